@@ -1,0 +1,40 @@
+// The render target: a linear floating-point colour buffer and a depth buffer of the same size.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "glsl.h"
+
+namespace facet {
+
+class Framebuffer {
+  public:
+    Framebuffer() = default;
+    Framebuffer(int width, int height);
+
+    int width() const { return width_; }
+    int height() const { return height_; }
+
+    void clearColor(vec4 color);
+    void clearDepth(float depth = 1.0f);
+
+    vec4& color(int x, int y) { return color_[index(x, y)]; }
+    const vec4& color(int x, int y) const { return color_[index(x, y)]; }
+    float& depth(int x, int y) { return depth_[index(x, y)]; }
+    float depth(int x, int y) const { return depth_[index(x, y)]; }
+
+    // Row-major, row 0 at the top of the image.
+    const std::vector<vec4>& colorPixels() const { return color_; }
+    const std::vector<float>& depthPixels() const { return depth_; }
+
+  private:
+    std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * width_ + x; }
+
+    int width_ = 0;
+    int height_ = 0;
+    std::vector<vec4> color_;   // linear RGBA
+    std::vector<float> depth_;  // window depth in [0,1]; 1 is the far plane
+};
+
+}  // namespace facet

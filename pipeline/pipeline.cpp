@@ -1,0 +1,28 @@
+#include "pipeline.h"
+
+#include <sstream>
+
+namespace facet {
+
+void validateDraw(const DrawState& state, const Framebuffer& target, std::size_t vertexCount,
+                  std::span<const std::uint32_t> indices) {
+    const Viewport& vp = state.viewport;
+    if (vp.width <= 0 || vp.height <= 0 || vp.x < 0 || vp.y < 0 || vp.x + vp.width > target.width() ||
+        vp.y + vp.height > target.height() || target.width() > kMaxViewportSide ||
+        target.height() > kMaxViewportSide) {
+        std::ostringstream message;
+        message << "viewport " << vp.width << "x" << vp.height << "+" << vp.x << "+" << vp.y
+                << " does not fit the " << target.width() << "x" << target.height()
+                << " framebuffer (each side at most " << kMaxViewportSide << ")";
+        throw std::invalid_argument(message.str());
+    }
+    if (state.raster.subpixelBits < 0 || state.raster.subpixelBits > kMaxSubpixelBits)
+        throw std::invalid_argument("subpixel bits must be 0.." + std::to_string(kMaxSubpixelBits));
+    for (std::size_t k = 0; k < indices.size(); ++k)
+        if (indices[k] >= vertexCount)
+            throw std::invalid_argument("index " + std::to_string(indices[k]) + " at position " +
+                                        std::to_string(k) + " is out of range (" +
+                                        std::to_string(vertexCount) + " vertices)");
+}
+
+}  // namespace facet

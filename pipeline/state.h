@@ -1,0 +1,83 @@
+// Per-draw fixed-function state: everything the pipeline does besides the user's shaders.
+// Accuracy choices (sub-pixel bits, interpolation) live here, per draw, not as scattered constants,
+// so a caller can trade speed for accuracy knowingly and the step mode can print what was chosen.
+#pragma once
+
+#include <cstdint>
+#include <iosfwd>
+
+namespace facet {
+
+// The part of the framebuffer a draw maps normalised device coordinates onto; pixels outside it
+// are never touched (it doubles as the scissor rectangle).
+struct Viewport {
+    int x = 0;  // pixels, left edge
+    int y = 0;  // pixels, top edge (window y grows downwards, row 0 is the top of the image)
+    int width = 0;
+    int height = 0;
+    float minDepth = 0.0f;  // window depth of the near plane (NDC z = −1)
+    float maxDepth = 1.0f;  // window depth of the far plane (NDC z = +1)
+};
+
+enum class CullMode : std::uint8_t { None, Back, Front };
+
+// Which winding, as seen on the screen, is a front face (OpenGL's glFrontFace; CCW by default).
+enum class FrontFace : std::uint8_t { CounterClockwise, Clockwise };
+
+// Depth comparison: the fragment passes when `fragmentDepth OP storedDepth` holds (glDepthFunc).
+enum class CompareOp : std::uint8_t {
+    Never,
+    Less,
+    Equal,
+    LessEqual,
+    Greater,
+    NotEqual,
+    GreaterEqual,
+    Always
+};
+
+struct DepthState {
+    bool testEnabled = true;
+    bool writeEnabled = true;
+    CompareOp compare = CompareOp::Less;
+};
+
+// How varyings are interpolated across a triangle in screen space.
+enum class Interpolation : std::uint8_t {
+    PerspectiveCorrect,  // a = Σ λᵢ·aᵢ/wᵢ ÷ Σ λᵢ/wᵢ: right for a plane seen in perspective
+    Affine,              // a = Σ λᵢ·aᵢ: cheaper, warps textures on tilted surfaces (kept to show that)
+};
+
+// How a fragment's colour combines with the colour already in the framebuffer.
+enum class BlendMode : std::uint8_t {
+    Replace,   // c = c_s
+    Additive,  // c = c_s + c_d (used by the coverage tests: a double hit shows as a doubled value)
+    Over,  // c = α_s·c_s + (1 − α_s)·c_d, α = α_s + (1 − α_s)·α_d (Porter–Duff over, straight alpha)
+};
+
+// Sub-pixel precision of the rasterizer: window positions are snapped to 1/2^bits of a pixel.
+// 8 bits is what Mesa llvmpipe and SwiftShader (and Vulkan's 2022 roadmap) use.
+inline constexpr int kMaxSubpixelBits = 8;
+
+struct RasterState {
+    CullMode cull = CullMode::Back;
+    FrontFace frontFace = FrontFace::CounterClockwise;
+    int subpixelBits = kMaxSubpixelBits;  // 0..8
+};
+
+struct DrawState {
+    Viewport viewport;
+    RasterState raster;
+    DepthState depth;
+    Interpolation interpolation = Interpolation::PerspectiveCorrect;
+    BlendMode blend = BlendMode::Replace;
+};
+
+std::ostream& operator<<(std::ostream& os, CullMode mode);
+std::ostream& operator<<(std::ostream& os, FrontFace face);
+std::ostream& operator<<(std::ostream& os, CompareOp op);
+std::ostream& operator<<(std::ostream& os, Interpolation mode);
+std::ostream& operator<<(std::ostream& os, BlendMode mode);
+std::ostream& operator<<(std::ostream& os, const DrawState& state);
+
+}  // namespace facet

@@ -1,0 +1,115 @@
+#include "triangle_setup.h"
+
+#include <algorithm>
+#include <utility>
+
+namespace facet {
+
+namespace {
+
+// orient2d(a, b, p) = (b.x − a.x)(p.y − a.y) − (b.y − a.y)(p.x − a.x), exact in int64 (types.h budget).
+std::int64_t orient2d(const WindowVertex& a, const WindowVertex& b, const WindowVertex& p) {
+    return (b.xFixed - a.xFixed) * (p.yFixed - a.yFixed) - (b.yFixed - a.yFixed) * (p.xFixed - a.xFixed);
+}
+
+// The edge function of edge a → b: E(p) = orient2d(a, b, p) written as a·x + b·y + c.
+EdgeFunction makeEdge(const WindowVertex& from, const WindowVertex& to) {
+    EdgeFunction e;
+    e.a = from.yFixed - to.yFixed;
+    e.b = to.xFixed - from.xFixed;
+    e.c = from.xFixed * to.yFixed - from.yFixed * to.xFixed;
+    e.bias = isTopLeft(to.xFixed - from.xFixed, to.yFixed - from.yFixed) ? 0 : -1;
+    return e;
+}
+
+std::int64_t floorDiv(std::int64_t a, std::int64_t b) {
+    std::int64_t q = a / b;
+    if ((a % b != 0) && ((a < 0) != (b < 0))) --q;
+    return q;
+}
+
+std::int64_t ceilDiv(std::int64_t a, std::int64_t b) {
+    return -floorDiv(-a, b);
+}
+
+}  // namespace
+
+std::int64_t signedDoubleArea(const WindowTriangle& t) {
+    return orient2d(t.vertices[0], t.vertices[1], t.vertices[2]);
+}
+
+bool isFrontFacing(std::int64_t signedDoubleArea, FrontFace frontFace) {
+    // Counter-clockwise on a y-down screen is a negative orient2d.
+    const bool counterClockwise = signedDoubleArea < 0;
+    return frontFace == FrontFace::CounterClockwise ? counterClockwise : !counterClockwise;
+}
+
+bool isCulled(bool frontFacing, CullMode cull) {
+    return (cull == CullMode::Back && !frontFacing) || (cull == CullMode::Front && frontFacing);
+}
+
+bool isTopLeft(std::int64_t dx, std::int64_t dy) {
+    return dy < 0 || (dy == 0 && dx > 0);
+}
+
+TriangleFate setupTriangle(const WindowTriangle& triangle, const DrawState& state, TriangleSetup& setup) {
+    // Cull on the snapped area: zero area in fixed point covers no sample, whatever its float size.
+    const std::int64_t area = signedDoubleArea(triangle);
+    if (area == 0) return TriangleFate::ZeroArea;
+    setup.frontFacing = isFrontFacing(area, state.raster.frontFace);
+    if (isCulled(setup.frontFacing, state.raster.cull)) return TriangleFate::Culled;
+
+    // Make the orientation positive by swapping v1 and v2, so every edge function is ≥ 0 inside.
+    std::array<int, 3> order = {0, 1, 2};
+    if (area < 0) std::swap(order[1], order[2]);
+    const WindowVertex& v0 = triangle.vertices[order[0]];
+    const WindowVertex& v1 = triangle.vertices[order[1]];
+    const WindowVertex& v2 = triangle.vertices[order[2]];
+    setup.doubleArea = area < 0 ? -area : area;
+
+    // Edge functions: edges[i] is opposite vertex i, so E_i(p) / doubleArea = λ_i.
+    setup.edges[0] = makeEdge(v1, v2);
+    setup.edges[1] = makeEdge(v2, v0);
+    setup.edges[2] = makeEdge(v0, v1);
+
+    // Bounding box of the pixels whose centre (x + ½, y + ½) may be inside, clamped to the viewport
+    // and to the fixed-point budget before any loop runs.
+    const std::int64_t half = kFixedOne / 2;
+    const std::int64_t minXf = std::min({v0.xFixed, v1.xFixed, v2.xFixed});
+    const std::int64_t maxXf = std::max({v0.xFixed, v1.xFixed, v2.xFixed});
+    const std::int64_t minYf = std::min({v0.yFixed, v1.yFixed, v2.yFixed});
+    const std::int64_t maxYf = std::max({v0.yFixed, v1.yFixed, v2.yFixed});
+    const Viewport& vp = state.viewport;
+    setup.minX = static_cast<int>(std::max<std::int64_t>(ceilDiv(minXf - half, kFixedOne), vp.x));
+    setup.minY = static_cast<int>(std::max<std::int64_t>(ceilDiv(minYf - half, kFixedOne), vp.y));
+    setup.maxX =
+        static_cast<int>(std::min<std::int64_t>(floorDiv(maxXf - half, kFixedOne), vp.x + vp.width - 1));
+    setup.maxY =
+        static_cast<int>(std::min<std::int64_t>(floorDiv(maxYf - half, kFixedOne), vp.y + vp.height - 1));
+
+    // Attribute planes in barycentric form, value = v0 + λ1·(v1 − v0) + λ2·(v2 − v0).
+    // Window depth is affine in screen space; a varying a is not, but a/w and 1/w are.
+    setup.z0 = v0.z;
+    setup.dz1 = v1.z - v0.z;
+    setup.dz2 = v2.z - v0.z;
+    setup.invW0 = v0.invW;
+    setup.dInvW1 = v1.invW - v0.invW;
+    setup.dInvW2 = v2.invW - v0.invW;
+    setup.perspective = state.interpolation == Interpolation::PerspectiveCorrect;
+    setup.varyingCount = triangle.varyingCount;
+    const float* a0 = triangle.varyings[order[0]];
+    const float* a1 = triangle.varyings[order[1]];
+    const float* a2 = triangle.varyings[order[2]];
+    const float s0 = setup.perspective ? v0.invW : 1.0f;
+    const float s1 = setup.perspective ? v1.invW : 1.0f;
+    const float s2 = setup.perspective ? v2.invW : 1.0f;
+    for (int k = 0; k < triangle.varyingCount; ++k) {
+        const float p0 = a0[k] * s0;
+        setup.varyingPlanes[3 * k] = p0;
+        setup.varyingPlanes[3 * k + 1] = a1[k] * s1 - p0;
+        setup.varyingPlanes[3 * k + 2] = a2[k] * s2 - p0;
+    }
+    return TriangleFate::Drawn;
+}
+
+}  // namespace facet

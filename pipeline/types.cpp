@@ -1,0 +1,134 @@
+#include "types.h"
+
+#include <ostream>
+#include <string>
+
+namespace facet {
+
+DrawStats& DrawStats::operator+=(const DrawStats& o) {
+    vertices += o.vertices;
+    triangles += o.triangles;
+    trianglesClipped += o.trianglesClipped;
+    trianglesRejected += o.trianglesRejected;
+    trianglesCulled += o.trianglesCulled;
+    trianglesZeroArea += o.trianglesZeroArea;
+    trianglesRasterized += o.trianglesRasterized;
+    fragmentsShaded += o.fragmentsShaded;
+    fragmentsDepthFailed += o.fragmentsDepthFailed;
+    fragmentsDiscarded += o.fragmentsDiscarded;
+    fragmentsWritten += o.fragmentsWritten;
+    return *this;
+}
+
+std::string clipPlaneNames(std::uint8_t planes) {
+    static constexpr const char* kNames[] = {"left", "right", "bottom", "top",
+                                             "near", "far",   "w",      "non-finite"};
+    std::string names;
+    for (int bit = 0; bit < 8; ++bit) {
+        if (!(planes & (1u << bit))) continue;
+        if (!names.empty()) names += "+";
+        names += kNames[bit];
+    }
+    return names.empty() ? "none" : names;
+}
+
+namespace {
+std::ostream& print(std::ostream& os, const vec4& v) {
+    return os << "(" << v.x << ", " << v.y << ", " << v.z << ", " << v.w << ")";
+}
+}  // namespace
+
+std::ostream& operator<<(std::ostream& os, const ClipVertex& v) {
+    return print(os << "clip ", v.position);
+}
+
+std::ostream& operator<<(std::ostream& os, const ClipPolygon& polygon) {
+    os << "polygon of " << polygon.count << " vertices, planes cut: " << clipPlaneNames(polygon.planesCut);
+    for (int i = 0; i < polygon.count; ++i)
+        os << "\n  v" << i << " " << polygon.vertices[i];
+    return os;
+}
+
+std::ostream& operator<<(std::ostream& os, const WindowVertex& v) {
+    return os << "window (" << v.window.x << ", " << v.window.y << ") snapped (" << v.xFixed << "/"
+              << kFixedOne << ", " << v.yFixed << "/" << kFixedOne << ") z " << v.z << " 1/w " << v.invW;
+}
+
+std::ostream& operator<<(std::ostream& os, const WindowTriangle& t) {
+    os << "window triangle";
+    for (int i = 0; i < 3; ++i)
+        os << "\n  v" << i << " " << t.vertices[i];
+    return os;
+}
+
+std::ostream& operator<<(std::ostream& os, const EdgeFunction& e) {
+    return os << "E(x,y) = " << e.a << "·x + " << e.b << "·y + " << e.c
+              << (e.bias ? " (not top-left: bias −1)" : " (top-left)");
+}
+
+std::ostream& operator<<(std::ostream& os, const TriangleSetup& s) {
+    os << "setup: 2·area " << s.doubleArea << ", " << (s.frontFacing ? "front" : "back")
+       << "-facing, pixels x " << s.minX << ".." << s.maxX << " y " << s.minY << ".." << s.maxY << ", "
+       << (s.perspective ? "perspective-correct" : "affine") << ", " << s.varyingCount << " varying floats";
+    for (int i = 0; i < 3; ++i)
+        os << "\n  edge " << i << ": " << s.edges[i];
+    return os;
+}
+
+std::ostream& operator<<(std::ostream& os, const Quad& q) {
+    os << "quad at (" << q.x << ", " << q.y << ") mask ";
+    for (int lane = 0; lane < 4; ++lane)
+        os << ((q.mask >> lane) & 1);
+    return os;
+}
+
+std::ostream& operator<<(std::ostream& os, FragmentFate fate) {
+    switch (fate) {
+        case FragmentFate::Written:
+            return os << "written";
+        case FragmentFate::DepthFailed:
+            return os << "failed the depth test";
+        case FragmentFate::Discarded:
+            return os << "discarded by the fragment shader";
+    }
+    return os << "?";
+}
+
+std::ostream& operator<<(std::ostream& os, const FragmentEvent& e) {
+    os << "fragment (" << e.x << ", " << e.y << ") of triangle " << e.triangle << ": depth " << e.depth
+       << " vs stored " << e.depthBefore << ", " << e.fate;
+    if (e.fate == FragmentFate::Written) {
+        print(os << "; shaded ", e.shaded);
+        print(os << ", colour ", e.colorBefore);
+        print(os << " -> ", e.colorAfter);
+    }
+    return os;
+}
+
+std::ostream& operator<<(std::ostream& os, TriangleFate fate) {
+    switch (fate) {
+        case TriangleFate::Drawn:
+            return os << "drawn";
+        case TriangleFate::NonFinite:
+            return os << "dropped: a vertex is NaN or infinite";
+        case TriangleFate::OutsideFrustum:
+            return os << "rejected: wholly outside one frustum plane";
+        case TriangleFate::ClippedAway:
+            return os << "clipped away";
+        case TriangleFate::ZeroArea:
+            return os << "culled: zero area after snapping";
+        case TriangleFate::Culled:
+            return os << "culled: faces away";
+    }
+    return os << "?";
+}
+
+std::ostream& operator<<(std::ostream& os, const DrawStats& s) {
+    return os << s.vertices << " vertices, " << s.triangles << " triangles (" << s.trianglesClipped
+              << " clipped, " << s.trianglesRejected << " rejected, " << s.trianglesCulled << " culled, "
+              << s.trianglesZeroArea << " zero-area, " << s.trianglesRasterized << " rasterized), "
+              << s.fragmentsShaded << " fragments shaded (" << s.fragmentsDepthFailed << " failed depth, "
+              << s.fragmentsDiscarded << " discarded, " << s.fragmentsWritten << " written)";
+}
+
+}  // namespace facet

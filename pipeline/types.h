@@ -1,0 +1,186 @@
+// The wire format: the plain structs that flow from one pipeline stage to the next, named for where
+// they are in the pipeline. Each is printable (operator<<), so tests and the step mode show the same text.
+//
+//   vertex stage → ShadedVertices → primitive assembly → ClipPolygon (3 vertices) → clip → ClipPolygon
+//   → viewport → WindowTriangle → cull + setup → TriangleSetup → rasterize → Quad → interpolate, depth,
+//   fragment shader, blend → Framebuffer
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <iosfwd>
+#include <vector>
+
+#include "glsl.h"
+
+namespace facet {
+
+// Varyings cross the middle of the pipeline as a flat float array (as in Mesa and SwiftShader), so the
+// stages between the two shaders are ordinary functions, not templates on the user's Varyings struct.
+inline constexpr int kMaxVaryingFloats = 32;
+
+// ---- Vertex stage → primitive assembly -------------------------------------------------------------
+
+// Outcode bits: which clip planes a clip-space position lies outside of (Cohen–Sutherland in
+// homogeneous space). A triangle whose three outcodes share a bit is wholly outside that plane.
+enum ClipPlaneBit : std::uint8_t {
+    kClipLeft = 1 << 0,    // x < −w
+    kClipRight = 1 << 1,   // x > w
+    kClipBottom = 1 << 2,  // y < −w
+    kClipTop = 1 << 3,     // y > w
+    kClipNear = 1 << 4,    // z < −w
+    kClipFar = 1 << 5,     // z > w
+    kClipW = 1 << 6,       // w < kMinClipW: at or behind the eye, where dividing by w is meaningless
+    kNonFinite = 1 << 7,   // a coordinate is NaN or ±Inf: the triangle is dropped, never clipped
+};
+inline constexpr std::uint8_t kAllClipPlanes = 0x7f;
+
+// The smallest w a vertex may keep after clipping. Points with w ≤ 0 satisfy −w ≤ x ≤ w only at the
+// origin, so the six frustum planes alone would still let w = 0 through to the divide.
+inline constexpr float kMinClipW = 1e-9f;
+
+// The vertex shader's output for every vertex of a draw, structure of arrays, reused between draws.
+struct ShadedVertices {
+    int varyingCount = 0;                // floats per vertex
+    std::vector<vec4> positions;         // clip space (gl_Position)
+    std::vector<float> varyings;         // varyingCount floats per vertex
+    std::vector<std::uint8_t> outcodes;  // ClipPlaneBit mask per vertex
+
+    std::size_t size() const { return positions.size(); }
+    const float* varyingsOf(std::size_t vertex) const { return varyings.data() + vertex * varyingCount; }
+};
+
+// ---- Primitive assembly → clip → viewport -----------------------------------------------------------
+
+struct ClipVertex {
+    vec4 position;                                  // clip space
+    std::array<float, kMaxVaryingFloats> varyings;  // the first varyingCount are used
+};
+
+// A convex polygon in clip space: a triangle as assembled, or what is left of it after clipping.
+// Each plane adds at most one vertex, so 3 + 7 planes bound the count.
+struct ClipPolygon {
+    static constexpr int kCapacity = 3 + 7;
+    int count = 0;
+    int varyingCount = 0;
+    std::uint8_t planesCut = 0;  // ClipPlaneBit mask of the planes that actually cut the polygon
+    std::array<ClipVertex, kCapacity> vertices;
+};
+
+// ---- Viewport → cull / setup ------------------------------------------------------------------------
+
+// A vertex after the perspective divide and the viewport transform.
+struct WindowVertex {
+    std::int64_t xFixed = 0;  // window x in pixels, fixed point with kFixedFractionBits fraction bits
+    std::int64_t yFixed = 0;  // window y, same units, growing downwards
+    float z = 0.0f;           // window depth in the viewport's depth range
+    float invW = 0.0f;        // 1/w_clip, for perspective-correct interpolation
+    vec2 window;              // unsnapped window position in pixels (for display and tests)
+};
+
+// Every window position is held with 8 fraction bits; RasterState::subpixelBits ≤ 8 chooses how finely
+// vertices are snapped inside that grid. Budget: the viewport is at most kMaxViewportSide = 2^14 pixels,
+// so a coordinate needs 14 + 8 = 22 bits and an edge function value (a product of two coordinate
+// differences, plus a constant) stays below 2^46: int64 holds it with room to spare.
+inline constexpr int kFixedFractionBits = 8;
+inline constexpr std::int64_t kFixedOne = std::int64_t{1} << kFixedFractionBits;
+inline constexpr int kMaxViewportSide = 1 << 14;
+
+struct WindowTriangle {
+    std::array<WindowVertex, 3> vertices;
+    std::array<const float*, 3> varyings{};  // each points to varyingCount floats (not owned)
+    int varyingCount = 0;
+};
+
+// ---- Setup → rasterize → interpolate ----------------------------------------------------------------
+
+// E(x, y) = a·x + b·y + c in fixed-point window coordinates, ≥ 0 on the inner side of the edge.
+// `bias` is 0 for a top or left edge and −1 otherwise: testing E + bias ≥ 0 then includes samples
+// exactly on the edge only for top-left edges, so two triangles sharing an edge never both cover them.
+struct EdgeFunction {
+    std::int64_t a = 0;
+    std::int64_t b = 0;
+    std::int64_t c = 0;
+    std::int64_t bias = 0;
+    std::int64_t at(std::int64_t xFixed, std::int64_t yFixed) const { return a * xFixed + b * yFixed + c; }
+};
+
+// Everything the rasterizer and the interpolator need for one triangle, computed once.
+struct TriangleSetup {
+    // edges[i] is the edge opposite vertex i; its value at a sample, divided by doubleArea,
+    // is vertex i's barycentric weight λᵢ.
+    std::array<EdgeFunction, 3> edges;
+    std::int64_t doubleArea = 0;  // twice the signed area in fixed units², made positive by setup
+    bool frontFacing = true;
+    int minX = 0, minY = 0, maxX = -1, maxY = -1;  // pixel bounds, inclusive, clamped to the viewport
+
+    // Attribute planes in barycentric form: value = v0 + λ1·d1 + λ2·d2.
+    float z0 = 0, dz1 = 0, dz2 = 0;           // window depth (affine in screen space)
+    float invW0 = 0, dInvW1 = 0, dInvW2 = 0;  // 1/w
+    int varyingCount = 0;
+    // For each varying k: [3k] value at v0, [3k+1] and [3k+2] its differences to v1 and v2;
+    // premultiplied by 1/w when interpolation is perspective-correct.
+    std::array<float, 3 * kMaxVaryingFloats> varyingPlanes{};
+    bool perspective = true;
+};
+
+// A 2×2 block of pixels, the fragment unit: lane i is pixel (x + (i & 1), y + (i >> 1)).
+// A 2×2 block is what later gives screen-space derivatives (dFdx, dFdy) for texture filtering.
+struct Quad {
+    int x = 0;                  // even
+    int y = 0;                  // even
+    std::uint8_t mask = 0;      // bit i set: lane i's sample is inside the triangle and the viewport
+    std::array<float, 4> b1{};  // λ1 per lane
+    std::array<float, 4> b2{};  // λ2 per lane (λ0 = 1 − λ1 − λ2)
+};
+
+// ---- Fragment → output -------------------------------------------------------------------------------
+
+// What happened to one fragment (a pixel history verdict, in the step mode's vocabulary).
+enum class FragmentFate : std::uint8_t { Written, DepthFailed, Discarded };
+
+struct FragmentEvent {
+    int x = 0, y = 0;
+    std::uint32_t triangle = 0;  // index of the triangle in the draw (index / 3)
+    float depth = 0.0f;          // the fragment's window depth
+    float depthBefore = 0.0f;    // the depth buffer before this fragment
+    FragmentFate fate = FragmentFate::Written;
+    vec4 shaded{0.0f};  // the fragment shader's output (when it ran and did not discard)
+    vec4 colorBefore{0.0f};
+    vec4 colorAfter{0.0f};
+};
+
+// Why a triangle produced no fragments.
+enum class TriangleFate : std::uint8_t { Drawn, NonFinite, OutsideFrustum, ClippedAway, ZeroArea, Culled };
+
+// Counters for one draw; cheap enough to keep always.
+struct DrawStats {
+    std::uint64_t vertices = 0;             // vertex shader invocations
+    std::uint64_t triangles = 0;            // triangles submitted
+    std::uint64_t trianglesClipped = 0;     // crossed a frustum plane and went through the clipper
+    std::uint64_t trianglesRejected = 0;    // non-finite, outside the frustum, or clipped away
+    std::uint64_t trianglesCulled = 0;      // back/front-face culled
+    std::uint64_t trianglesZeroArea = 0;    // zero area once snapped to fixed point
+    std::uint64_t trianglesRasterized = 0;  // window triangles handed to the rasterizer (after clipping)
+    std::uint64_t fragmentsShaded = 0;      // fragment shader invocations
+    std::uint64_t fragmentsDepthFailed = 0;
+    std::uint64_t fragmentsDiscarded = 0;
+    std::uint64_t fragmentsWritten = 0;
+
+    DrawStats& operator+=(const DrawStats& other);
+};
+
+std::ostream& operator<<(std::ostream& os, const ClipVertex& v);  // position only
+std::ostream& operator<<(std::ostream& os, const ClipPolygon& polygon);
+std::ostream& operator<<(std::ostream& os, const WindowVertex& v);
+std::ostream& operator<<(std::ostream& os, const WindowTriangle& triangle);
+std::ostream& operator<<(std::ostream& os, const EdgeFunction& edge);
+std::ostream& operator<<(std::ostream& os, const TriangleSetup& setup);
+std::ostream& operator<<(std::ostream& os, const Quad& quad);
+std::ostream& operator<<(std::ostream& os, FragmentFate fate);
+std::ostream& operator<<(std::ostream& os, const FragmentEvent& event);
+std::ostream& operator<<(std::ostream& os, TriangleFate fate);
+std::ostream& operator<<(std::ostream& os, const DrawStats& stats);
+std::string clipPlaneNames(std::uint8_t planes);  // "near+left", or "none"
+
+}  // namespace facet

@@ -1,0 +1,40 @@
+#include "viewport.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace facet {
+
+namespace {
+
+// Rounds a window coordinate to the sub-pixel grid: multiples of 2^(8 − bits) in 8-fraction-bit units.
+std::int64_t snap(float windowCoordinate, int subpixelBits) {
+    const int dropBits = kFixedFractionBits - subpixelBits;
+    const double scaled = std::ldexp(static_cast<double>(windowCoordinate), subpixelBits);
+    return static_cast<std::int64_t>(std::nearbyint(scaled)) << dropBits;
+}
+
+}  // namespace
+
+WindowVertex toWindow(const vec4& clip, const Viewport& viewport, int subpixelBits) {
+    // Perspective divide: clip space → normalised device coordinates in [−1, 1]³.
+    const float invW = 1.0f / clip.w;
+    const vec3 ndc = vec3(clip) * invW;
+
+    // Viewport transform.
+    WindowVertex v;
+    v.window.x = static_cast<float>(viewport.x) + (ndc.x + 1.0f) * 0.5f * static_cast<float>(viewport.width);
+    v.window.y = static_cast<float>(viewport.y) + (1.0f - ndc.y) * 0.5f * static_cast<float>(viewport.height);
+    const float depth01 = std::clamp((ndc.z + 1.0f) * 0.5f, 0.0f, 1.0f);
+    v.z = viewport.minDepth + depth01 * (viewport.maxDepth - viewport.minDepth);
+    v.invW = invW;
+
+    // Snap to fixed point. Clipping keeps |x_ndc|, |y_ndc| ≤ 1 up to rounding, so the values stay far
+    // inside the budget of types.h; clamping guards the rounding.
+    const float limit = static_cast<float>(2 * kMaxViewportSide);
+    v.xFixed = snap(std::clamp(v.window.x, -limit, limit), subpixelBits);
+    v.yFixed = snap(std::clamp(v.window.y, -limit, limit), subpixelBits);
+    return v;
+}
+
+}  // namespace facet

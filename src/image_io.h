@@ -1,0 +1,31 @@
+// Image output and input through OpenImageIO, format by file extension.
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace facet {
+
+// A linear, floating-point RGBA image, rows top to bottom.
+struct LinearImage {
+    int width = 0;
+    int height = 0;
+    std::vector<glm::vec4> pixels;  // width * height, row-major, row 0 at the top
+    glm::vec4& at(int x, int y) { return pixels[static_cast<std::size_t>(y) * width + x]; }
+    const glm::vec4& at(int x, int y) const { return pixels[static_cast<std::size_t>(y) * width + x]; }
+};
+
+// Writes `image` to `path`, its format chosen by the extension (.png .exr .ppm .jpg/.jpeg .tif/.tiff ...).
+// Float formats (EXR) keep the linear values unchanged; 8-bit formats get the sRGB transfer curve,
+// clamped to [0,1] (facet::linearToSrgb from pipeline/color.h). PPM and JPEG have no alpha: RGB only. The image is written to a temporary file in the same folder and
+// renamed into place, so a failure never leaves a partial file nor destroys an existing one.
+// Throws InputError ("out/x.bmpx: unknown image format ...", "out/: cannot write ...").
+void writeImage(const std::filesystem::path& path, const LinearImage& image);
+
+// Reads any image OpenImageIO knows into linear RGBA (8-bit data is decoded from sRGB; float data as is).
+// Throws InputError if the file is missing or unreadable.
+LinearImage readImage(const std::filesystem::path& path);
+
+}  // namespace facet

@@ -1,0 +1,32 @@
+// OBJ import: reads a Wavefront OBJ (and its MTL files) into a welded, triangulated Mesh.
+#pragma once
+
+#include <filesystem>
+
+#include "mesh.h"
+
+namespace facet {
+
+// Loads `path` with tinyobjloader, validates it and builds the mesh:
+// - polygons are fan-triangulated; degenerate triangles (repeated corners, zero area) are skipped
+//   and counted in stats.degenerateSkipped. A face with fewer than 3 corners is skipped too, counted
+//   there as one degenerate triangle, and reported once as a warning (as Blender and tinyobjloader do);
+// - corners are welded on their (position, normal, texcoord) index triple; a zero-length file normal
+//   counts as no normal;
+// - vertices without a normal in the file get the normalised sum of the unnormalised cross products
+//   of the faces around their position (area weighting); if that sum is zero, the normal of the
+//   first triangle that used the vertex;
+// - positive indices may refer forward; negative ones count back from the statement that uses them;
+// - a `\` at the end of a line continues the statement on the next line, and `#` after a blank starts
+//   a comment (tinyobjloader knows neither; the text is rewritten for it, keeping line numbers);
+// - a missing MTL file, an unknown material or a missing texture is a warning (Mesh::warnings)
+//   and falls back to the default material (or, for a texture, to the material without it). Every
+//   file on an `mtllib` line is read. `d` wins over `Tr` whichever comes first (tinyobjloader's rule);
+//   `Tr` alone gives opacity 1 - Tr. Mesh::materials holds the materials faces use, in first-use order;
+// - huge but finite coordinates (1e30) are accepted.
+// Throws InputError with "file:line: what" for: a missing or unreadable file, a malformed statement,
+// a face index out of range or zero, NaN/Inf coordinates (or ones beyond float range), a face with
+// more than 255 corners, or a file with no triangles at all ("file: no triangles to draw ...").
+Mesh loadObj(const std::filesystem::path& path);
+
+}  // namespace facet

@@ -1,0 +1,112 @@
+#include "interpolate.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "../support/test_shaders.h"
+
+namespace facet {
+namespace {
+
+using testing::ClipSpaceColorShader;
+
+// A floor plane seen in perspective: y = −1, z from −1 (near) to −9 (far), eye at the origin looking
+// down −z, 90° vertical field of view. A varying carries the world z; at a pixel it must equal the z where
+// the pixel's eye ray meets the plane (computed analytically), and the affine mode must not.
+struct TiltedPlane {
+    static constexpr int kSize = 64;
+    Framebuffer fb{kSize, kSize};
+
+    static mat4 projection() {
+        // OpenGL perspective: fovy 90°, aspect 1, near 0.5, far 20.
+        const float n = 0.5f, f = 20.0f;
+        mat4 p(0.0f);
+        p[0][0] = 1.0f;
+        p[1][1] = 1.0f;
+        p[2][2] = -(f + n) / (f - n);
+        p[2][3] = -1.0f;
+        p[3][2] = -2.0f * f * n / (f - n);
+        return p;
+    }
+
+    void render(Interpolation mode) {
+        fb.clearColor(vec4(0.0f));
+        fb.clearDepth();
+        DrawState state = testing::stateFor(fb);
+        state.interpolation = mode;
+        const mat4 P = projection();
+        auto v = [&](float x, float z) {
+            return ClipSpaceColorShader::Attributes{P * vec4(x, -1.0f, z, 1.0f), vec4(z, 0, 0, 1)};
+        };
+        testing::drawTriangles<ClipSpaceColorShader>(
+            state, {v(-4, -1), v(4, -1), v(4, -9), v(-4, -1), v(4, -9), v(-4, -9)}, fb);
+    }
+
+    // The world z where the eye ray through pixel (x, y)'s centre hits the plane y = −1.
+    static float analyticZ(int, int y) {
+        // The ray is t·(x_ndc, y_ndc, −1) for a 90° field of view; it meets y = −1 at t = −1/y_ndc.
+        const float yNdc = 1.0f - 2.0f * (y + 0.5f) / kSize;
+        return 1.0f / yNdc;
+    }
+};
+
+TEST(Interpolate, PerspectiveCorrectMatchesTheAnalyticPlane) {
+    TiltedPlane scene;
+    scene.render(Interpolation::PerspectiveCorrect);
+    int checked = 0;
+    for (int y = 40; y < 64; y += 3)
+        for (int x = 24; x < 40; x += 5) {
+            const vec4 c = scene.fb.color(x, y);
+            if (c.a == 0.0f) continue;
+            const float expected = TiltedPlane::analyticZ(x, y);
+            EXPECT_NEAR(c.r, expected, 1e-4f * std::abs(expected)) << "pixel " << x << "," << y;
+            ++checked;
+        }
+    EXPECT_GT(checked, 20);
+}
+
+TEST(Interpolate, AffineDeviatesFromTheAnalyticPlane) {
+    TiltedPlane scene;
+    scene.render(Interpolation::Affine);
+    float worstRelativeError = 0.0f;
+    for (int y = 40; y < 64; y += 3)
+        for (int x = 24; x < 40; x += 5) {
+            const vec4 c = scene.fb.color(x, y);
+            if (c.a == 0.0f) continue;
+            const float expected = TiltedPlane::analyticZ(x, y);
+            worstRelativeError = std::max(worstRelativeError, std::abs(c.r - expected) / std::abs(expected));
+        }
+    EXPECT_GT(worstRelativeError, 0.05f);  // several per cent off: the affine warp is visible
+}
+
+TEST(Interpolate, DepthIsAffineInScreenSpace) {
+    TriangleSetup s;
+    s.z0 = 0.2f;
+    s.dz1 = 0.4f;
+    s.dz2 = -0.1f;
+    EXPECT_FLOAT_EQ(interpolateDepth(s, 0.0f, 0.0f), 0.2f);
+    EXPECT_FLOAT_EQ(interpolateDepth(s, 1.0f, 0.0f), 0.6f);
+    EXPECT_FLOAT_EQ(interpolateDepth(s, 0.5f, 0.5f), 0.35f);
+}
+
+TEST(Interpolate, PerspectiveFormulaOnHandValues) {
+    // a0 = 2 at w0 = 1, a1 = 10 at w1 = 4, a2 = 6 at w2 = 2; planes hold a/w and differences.
+    TriangleSetup s;
+    s.perspective = true;
+    s.varyingCount = 1;
+    s.invW0 = 1.0f;
+    s.dInvW1 = 0.25f - 1.0f;
+    s.dInvW2 = 0.5f - 1.0f;
+    s.varyingPlanes = {2.0f, 10.0f / 4 - 2.0f, 6.0f / 2 - 2.0f};
+    float out[1];
+    // Halfway from v0 to v1 on screen: (a0/w0 + a1/w1)/2 ÷ (1/w0 + 1/w1)/2 = (2 + 2.5)/2 ÷ (1 + 0.25)/2
+    // = 3.6, not the affine midpoint 6: the far vertex (w = 4) weighs less.
+    interpolateVaryings(s, 0.5f, 0.0f, out);
+    EXPECT_FLOAT_EQ(out[0], 3.6f);
+    interpolateVaryings(s, 0.0f, 1.0f, out);
+    EXPECT_FLOAT_EQ(out[0], 6.0f);
+}
+
+}  // namespace
+}  // namespace facet

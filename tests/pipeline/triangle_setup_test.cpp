@@ -1,0 +1,158 @@
+#include "triangle_setup.h"
+
+#include <gtest/gtest.h>
+
+#include "rasterize.h"
+#include "viewport.h"
+
+namespace facet {
+namespace {
+
+DrawState stateOf(int width, int height, CullMode cull = CullMode::None) {
+    DrawState s;
+    s.viewport = {0, 0, width, height};
+    s.raster.cull = cull;
+    return s;
+}
+
+WindowVertex at(float x, float y, float z = 0.5f) {
+    WindowVertex v;
+    v.window = {x, y};
+    v.xFixed = static_cast<std::int64_t>(std::llround(x * kFixedOne));
+    v.yFixed = static_cast<std::int64_t>(std::llround(y * kFixedOne));
+    v.z = z;
+    v.invW = 1.0f;
+    return v;
+}
+
+WindowTriangle tri(WindowVertex a, WindowVertex b, WindowVertex c) {
+    WindowTriangle t;
+    t.vertices = {a, b, c};
+    return t;
+}
+
+int countCovered(const WindowTriangle& t, const DrawState& s) {
+    TriangleSetup setup;
+    if (setupTriangle(t, s, setup) != TriangleFate::Drawn) return 0;
+    int n = 0;
+    rasterizeTriangle(setup, [&](const Quad& q) {
+        for (int lane = 0; lane < 4; ++lane)
+            n += (q.mask >> lane) & 1;
+    });
+    return n;
+}
+
+TEST(TriangleSetup, SignedAreaAndFacing) {
+    // On a y-down screen, (0,0) → (0,4) → (4,0) turns counter-clockwise: negative orient2d.
+    const WindowTriangle ccw = tri(at(0, 0), at(0, 4), at(4, 0));
+    EXPECT_EQ(signedDoubleArea(ccw), -16 * kFixedOne * kFixedOne);
+    EXPECT_TRUE(isFrontFacing(signedDoubleArea(ccw), FrontFace::CounterClockwise));
+    EXPECT_FALSE(isFrontFacing(signedDoubleArea(ccw), FrontFace::Clockwise));
+    EXPECT_TRUE(isCulled(false, CullMode::Back));
+    EXPECT_FALSE(isCulled(true, CullMode::Back));
+    EXPECT_TRUE(isCulled(true, CullMode::Front));
+    EXPECT_FALSE(isCulled(false, CullMode::None));
+}
+
+TEST(TriangleSetup, BackFacesAreCulledFrontFacesKept) {
+    const WindowTriangle ccw = tri(at(0, 0), at(0, 4), at(4, 0));
+    const WindowTriangle cw = tri(at(0, 0), at(4, 0), at(0, 4));
+    TriangleSetup setup;
+    EXPECT_EQ(setupTriangle(ccw, stateOf(8, 8, CullMode::Back), setup), TriangleFate::Drawn);
+    EXPECT_TRUE(setup.frontFacing);
+    EXPECT_EQ(setupTriangle(cw, stateOf(8, 8, CullMode::Back), setup), TriangleFate::Culled);
+    EXPECT_EQ(setupTriangle(ccw, stateOf(8, 8, CullMode::Front), setup), TriangleFate::Culled);
+    // Either winding covers the same pixels when nothing is culled.
+    EXPECT_EQ(countCovered(ccw, stateOf(8, 8)), countCovered(cw, stateOf(8, 8)));
+}
+
+TEST(TriangleSetup, TopLeftClassification) {
+    EXPECT_TRUE(isTopLeft(5, 0));    // horizontal, pointing right: top edge of a positive triangle
+    EXPECT_FALSE(isTopLeft(-5, 0));  // horizontal, pointing left: bottom edge
+    EXPECT_TRUE(isTopLeft(3, -2));   // going up: left edge
+    EXPECT_FALSE(isTopLeft(3, 2));   // going down: right edge
+}
+
+// Direct3D's rasterization-rules example: the square (0,0)–(5,5) split along its diagonal. The five
+// pixel centres on the diagonal belong to the triangle for which it is a left edge: 15 + 10 pixels.
+TEST(TriangleSetup, SquareSplitAlongDiagonalGivesFifteenAndTen) {
+    const DrawState s = stateOf(8, 8);
+    const WindowTriangle upperRight = tri(at(0, 0), at(5, 0), at(5, 5));
+    const WindowTriangle lowerLeft = tri(at(0, 0), at(5, 5), at(0, 5));
+    EXPECT_EQ(countCovered(upperRight, s), 15);
+    EXPECT_EQ(countCovered(lowerLeft, s), 10);
+}
+
+// Edges through pixel centres: the left and top edges of a square take their samples, the right and
+// bottom ones do not, so the square (0.5,0.5)–(4.5,4.5) covers exactly the 4×4 pixels 0..3.
+TEST(TriangleSetup, EdgesThroughSampleCentresFollowTheTopLeftRule) {
+    const DrawState s = stateOf(8, 8);
+    const WindowTriangle a = tri(at(0.5f, 0.5f), at(4.5f, 0.5f), at(4.5f, 4.5f));
+    const WindowTriangle b = tri(at(0.5f, 0.5f), at(4.5f, 4.5f), at(0.5f, 4.5f));
+    TriangleSetup sa, sb;
+    ASSERT_EQ(setupTriangle(a, s, sa), TriangleFate::Drawn);
+    ASSERT_EQ(setupTriangle(b, s, sb), TriangleFate::Drawn);
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) {
+            const int covered = coversSample(sa, x, y) + coversSample(sb, x, y);
+            EXPECT_EQ(covered, (x <= 3 && y <= 3) ? 1 : 0) << "pixel " << x << "," << y;
+        }
+}
+
+TEST(TriangleSetup, ZeroAreaIsCulledButSliversAreNot) {
+    TriangleSetup setup;
+    const DrawState s = stateOf(64, 64);
+    // Collinear points, and points that become collinear once snapped to 1/256 px.
+    EXPECT_EQ(setupTriangle(tri(at(1, 1), at(5, 5), at(9, 9)), s, setup), TriangleFate::ZeroArea);
+    EXPECT_EQ(setupTriangle(tri(at(1, 1), at(5, 1.0005f), at(9, 1)), s, setup), TriangleFate::ZeroArea);
+    // A sliver one sub-pixel step tall, 40 px long, lying across sample centres: kept, and it covers them.
+    const WindowTriangle sliver = tri(at(0, 10.5f), at(40, 10.5f), at(40, 10.5f + 1.0f / 256));
+    ASSERT_EQ(setupTriangle(sliver, s, setup), TriangleFate::Drawn);
+    EXPECT_GT(countCovered(sliver, s), 0);
+}
+
+TEST(TriangleSetup, BoundingBoxIsClampedToTheViewport) {
+    DrawState s = stateOf(64, 64);
+    s.viewport = {8, 4, 16, 10};
+    TriangleSetup setup;
+    ASSERT_EQ(setupTriangle(tri(at(-100, -100), at(300, -100), at(-100, 300)), s, setup),
+              TriangleFate::Drawn);
+    EXPECT_EQ(setup.minX, 8);
+    EXPECT_EQ(setup.maxX, 23);
+    EXPECT_EQ(setup.minY, 4);
+    EXPECT_EQ(setup.maxY, 13);
+    EXPECT_EQ(countCovered(tri(at(-100, -100), at(300, -100), at(-100, 300)), s), 16 * 10);
+}
+
+TEST(TriangleSetup, BarycentricsAreOneAtTheirVertex) {
+    // Vertices on sample centres: the λ of each vertex is exactly 1 there.
+    const WindowTriangle t = tri(at(0.5f, 0.5f, 0.1f), at(6.5f, 0.5f, 0.2f), at(0.5f, 6.5f, 0.3f));
+    TriangleSetup setup;
+    ASSERT_EQ(setupTriangle(t, stateOf(8, 8), setup), TriangleFate::Drawn);
+    bool seen[3] = {};
+    rasterizeTriangle(setup, [&](const Quad& q) {
+        for (int lane = 0; lane < 4; ++lane) {
+            if (!((q.mask >> lane) & 1)) continue;
+            const int x = q.x + (lane & 1), y = q.y + (lane >> 1);
+            if (x == 0 && y == 0) {
+                seen[0] = true;
+                EXPECT_FLOAT_EQ(q.b1[lane] + q.b2[lane], 0.0f);
+            }
+        }
+    });
+    EXPECT_TRUE(seen[0]);
+    EXPECT_FLOAT_EQ(setup.z0 + setup.dz1, 0.2f);
+    EXPECT_FLOAT_EQ(setup.z0 + setup.dz2, 0.3f);
+}
+
+TEST(TriangleSetup, SnappingFollowsSubpixelBits) {
+    Viewport vp{0, 0, 100, 100};
+    // NDC x = 0.00123 → window x = 50.0615 px.
+    const vec4 clip{0.00123f, 0.0f, 0.0f, 1.0f};
+    EXPECT_EQ(toWindow(clip, vp, 8).xFixed, std::llround(50.0615 * 256));  // 1/256 px
+    EXPECT_EQ(toWindow(clip, vp, 4).xFixed, 50 * 256 + 16 * 1);            // nearest 1/16 px: 50 + 1/16
+    EXPECT_EQ(toWindow(clip, vp, 0).xFixed, 50 * 256);                     // whole pixels
+}
+
+}  // namespace
+}  // namespace facet
