@@ -24,6 +24,10 @@ struct LinearImage {
 // Throws InputError ("out/x.bmpx: unknown image format ...", "out/: cannot write ...").
 void writeImage(const std::filesystem::path& path, const LinearImage& image);
 
+// Checks, without writing anything, that `path` names an image format facet writes and that a
+// width × height image fits it; throws InputError otherwise. Lets a command fail before a long render.
+void checkImageDestination(const std::filesystem::path& path, int width, int height);
+
 // Reads any image OpenImageIO knows into linear RGBA (8-bit data is decoded from sRGB; float data as is).
 // Throws InputError if the file is missing or unreadable.
 LinearImage readImage(const std::filesystem::path& path);

@@ -13,7 +13,7 @@ namespace facet {
 // A material as written in an MTL file (colours are the file's numbers, not yet decoded to linear).
 struct Material {
     std::string name = "default";
-    glm::vec3 ambient{0.0f};        // Ka
+    glm::vec3 ambient{0.8f};        // Ka (the default material reflects ambient light like diffuse)
     glm::vec3 diffuse{0.8f};        // Kd
     glm::vec3 specular{0.2f};       // Ks
     float shininess = 32.0f;        // Ns, the Phong exponent

@@ -1,4 +1,5 @@
 // A scene: what to render (objects, camera, lights) and how (image size, pipeline options).
+// Every colour in a Scene is as the user wrote it: sRGB-encoded (renderer.h decodes it).
 // Loaded from a JSON scene file (docs/scene-format.md) or built with defaults around one OBJ model.
 #pragma once
 
@@ -26,7 +27,7 @@ struct LightSpec {
     LightType type = LightType::Directional;
     glm::vec3 direction{-0.4f, -0.6f, -0.7f};  // directional: the direction light travels, world space
     glm::vec3 position{0.0f};                  // point: world space
-    glm::vec3 color{1.0f};                     // linear RGB
+    glm::vec3 color{1.0f};                     // sRGB-encoded, decoded to linear by the renderer
     float intensity = 1.0f;                    // multiplies color
     bool cameraRelative = false;               // direction/position given in the camera's view space
 };
@@ -56,8 +57,8 @@ struct Scene {
     std::filesystem::path source;             // the scene or model file this came from (for messages)
     int width = 1280;
     int height = 960;
-    glm::vec4 background{0.05f, 0.05f, 0.07f, 1.0f};  // linear RGBA
-    glm::vec3 ambientLight{0.15f};                    // global ambient, linear RGB
+    glm::vec4 background{0.05f, 0.05f, 0.07f, 1.0f};  // sRGB-encoded RGB, alpha as is
+    glm::vec3 ambientLight{0.15f};                    // global ambient, sRGB-encoded
     CameraSpec camera;
     std::vector<LightSpec> lights;            // empty in a file: one default light is used
     std::vector<ObjectSpec> objects;          // at least one

@@ -1,0 +1,243 @@
+// Image files through OpenImageIO: LinearImage -> PNG/JPEG/PPM/TIFF/BMP/TGA (8-bit, sRGB-encoded) or
+// EXR/HDR (32-bit float, linear), and any readable file back to linear RGBA.
+// A write goes to a hidden temporary file beside the destination and is renamed into place once
+// complete, so a failure never leaves a partial image nor destroys the previous one.
+#include "image_io.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <string_view>
+#include <system_error>
+
+#include <unistd.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include "color.h"
+#include "errors.h"
+
+namespace facet {
+namespace {
+
+namespace fs = std::filesystem;
+
+// How each extension is written. Channel counts follow what the format (or its usual readers) can
+// hold: PPM and JPEG have no alpha; BMP alpha is ignored by most viewers; Radiance HDR is RGB only.
+struct FileFormat {
+    std::string_view extension;  // lower case, with the dot
+    int channels;                // 3 (RGB) or 4 (RGBA)
+    bool isFloat;                // true: 32-bit float linear; false: 8-bit sRGB-encoded
+    int maxSide;                 // pixels; checked first, as libjpeg exits the process beyond its limit
+};
+
+constexpr int kNoLimit = std::numeric_limits<int>::max();
+constexpr int kJpegMaxSide = 65500;  // libjpeg's JPEG_MAX_DIMENSION
+constexpr int kTgaMaxSide = 65535;   // 16-bit width and height fields
+
+constexpr FileFormat kFormats[] = {
+    {".png", 4, false, kNoLimit}, {".jpg", 3, false, kJpegMaxSide}, {".jpeg", 3, false, kJpegMaxSide},
+    {".ppm", 3, false, kNoLimit}, {".tif", 4, false, kNoLimit},     {".tiff", 4, false, kNoLimit},
+    {".bmp", 3, false, kNoLimit}, {".tga", 4, false, kTgaMaxSide},  {".exr", 4, true, kNoLimit},
+    {".hdr", 3, true, kNoLimit},
+};
+
+constexpr std::string_view kFormatList = ".png, .jpg, .jpeg, .ppm, .tif, .tiff, .bmp, .tga, .exr, .hdr";
+
+std::string lowerCase(std::string text) {
+    std::transform(text.begin(), text.end(), text.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return text;
+}
+
+const FileFormat* findFormat(const fs::path& path) {
+    const std::string extension = lowerCase(path.extension().string());
+    for (const FileFormat& format : kFormats) {
+        if (format.extension == extension) return &format;
+    }
+    return nullptr;
+}
+
+// OpenImageIO messages may span several lines; ours are one line.
+std::string oneLine(std::string text) {
+    std::replace(text.begin(), text.end(), '\n', ' ');
+    while (!text.empty() && text.back() == ' ')
+        text.pop_back();
+    return text.empty() ? "unknown OpenImageIO error" : text;
+}
+
+[[noreturn]] void fail(const fs::path& path, const std::string& what) {
+    throw InputError(path.string() + ": " + what);
+}
+
+// An 8-bit code for a value already in [0,1] (sRGB-encoded colour, or alpha), rounded to nearest.
+std::uint8_t toByte(float unit) {
+    if (!(unit > 0.0f)) return 0;  // also NaN
+    if (unit >= 1.0f) return 255;
+    return static_cast<std::uint8_t>(std::lround(unit * 255.0f));
+}
+
+// Removes the temporary file unless the write completed and the file was renamed into place.
+class TempFileGuard {
+  public:
+    explicit TempFileGuard(fs::path path) : path_(std::move(path)) {}
+    TempFileGuard(const TempFileGuard&) = delete;
+    TempFileGuard& operator=(const TempFileGuard&) = delete;
+    ~TempFileGuard() {
+        if (armed_) ::unlink(path_.c_str());  // unlink, not remove: never deletes a folder of that name
+    }
+    void release() { armed_ = false; }
+
+  private:
+    fs::path path_;
+    bool armed_ = true;
+};
+
+}  // namespace
+
+void checkImageDestination(const fs::path& path, int width, int height) {
+    // Choose the format before touching the disk, so a typo writes nothing.
+    const FileFormat* format = findFormat(path);
+    if (format == nullptr) {
+        const std::string extension = path.extension().string();
+        if (extension.empty()) {
+            fail(path,
+                 "no file extension to choose the image format from (use " + std::string(kFormatList) + ")");
+        }
+        fail(path, "unknown image format \"" + extension + "\" (use " + std::string(kFormatList) + ")");
+    }
+    if (width > format->maxSide || height > format->maxSide) {
+        fail(path, "the " + std::string(format->extension.substr(1)) + " format cannot hold " +
+                       std::to_string(width) + "x" + std::to_string(height) + " pixels (at most " +
+                       std::to_string(format->maxSide) + " per side)");
+    }
+    std::error_code error;
+    if (fs::is_directory(path, error)) fail(path, "is a folder, not an image file");
+}
+
+void writeImage(const fs::path& path, const LinearImage& image) {
+    checkImageDestination(path, image.width, image.height);
+    const FileFormat* format = findFormat(path);
+    const std::size_t pixelCount = static_cast<std::size_t>(std::max(image.width, 0)) *
+                                   static_cast<std::size_t>(std::max(image.height, 0));
+    if (image.width <= 0 || image.height <= 0 || image.pixels.size() != pixelCount) {
+        fail(path, "cannot write an image of " + std::to_string(image.width) + "x" +
+                       std::to_string(image.height) + " pixels holding " +
+                       std::to_string(image.pixels.size()) + " values");
+    }
+
+    // The destination folder is created when missing: "-o renders/spot.png" should just work.
+    std::error_code error;
+    const fs::path folder = path.parent_path();
+    if (!folder.empty() && !fs::is_directory(folder, error)) {
+        fs::create_directories(folder, error);
+        if (error) fail(path, "cannot create folder \"" + folder.string() + "\": " + error.message());
+    }
+
+    // Convert to the file's pixel type: float linear values unchanged, or 8-bit sRGB codes. Alpha is
+    // coverage, not light, so it is stored linearly.
+    const int channels = format->channels;
+    std::vector<float> floats;
+    std::vector<std::uint8_t> bytes;
+    if (format->isFloat) {
+        // RGBE (.hdr) shares one exponent between positive mantissas: a negative value would come
+        // back as garbage (-0.25 read as 3.75), so it is stored as 0. EXR keeps every value.
+        const bool clampNegative = format->extension == ".hdr";
+        floats.reserve(pixelCount * channels);
+        for (const glm::vec4& p : image.pixels) {
+            for (int c = 0; c < channels; ++c)
+                floats.push_back(clampNegative && !(p[c] > 0.0f) ? 0.0f : p[c]);
+        }
+    } else {
+        bytes.reserve(pixelCount * channels);
+        for (const glm::vec4& p : image.pixels) {
+            for (int c = 0; c < 3; ++c)
+                bytes.push_back(toByte(linearToSrgb(p[c])));
+            if (channels == 4) bytes.push_back(toByte(p.a));
+        }
+    }
+
+    // The temporary name keeps the real extension last, as OpenImageIO picks the writer from it.
+    // ("out/.spot.tmp-1234.png"; hidden, and named by process so two programs never share one.)
+    std::string tempName = ".";
+    tempName += path.stem().string();
+    tempName += ".tmp-" + std::to_string(::getpid());
+    tempName += path.extension().string();
+    const fs::path tempPath = folder / tempName;
+    TempFileGuard guard(tempPath);
+    {
+        std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create(tempPath.string());
+        if (!output) fail(path, "cannot write image: " + oneLine(OIIO::geterror()));
+
+        OIIO::ImageSpec spec(image.width, image.height, channels,
+                             format->isFloat ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+        spec.attribute("oiio:ColorSpace", format->isFloat ? "Linear" : "sRGB");
+        // Store the values as given: without this, the PNG writer would divide colour by alpha.
+        spec.attribute("oiio:UnassociatedAlpha", 1);
+        spec.attribute("Software", "Facet");
+
+        const void* data = format->isFloat ? static_cast<const void*>(floats.data())
+                                           : static_cast<const void*>(bytes.data());
+        if (!output->open(tempPath.string(), spec) ||
+            !output->write_image(format->isFloat ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8, data) ||
+            !output->close()) {
+            fail(path, "cannot write image: " + oneLine(output->geterror()));
+        }
+    }
+
+    fs::rename(tempPath, path, error);
+    if (error) fail(path, "cannot move the finished image into place: " + error.message());
+    guard.release();
+}
+
+LinearImage readImage(const fs::path& path) {
+    std::error_code error;
+    if (!fs::exists(path, error)) fail(path, "image file not found");
+    if (fs::is_directory(path, error)) fail(path, "is a folder, not an image file");
+
+    // Ask for the stored (unassociated) alpha: by default OpenImageIO premultiplies PNG colour by it.
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path.string(), &config);
+    if (!input) fail(path, "cannot read image: " + oneLine(OIIO::geterror()));
+
+    const OIIO::ImageSpec& spec = input->spec();
+    if (spec.deep) fail(path, "deep images are not supported");
+    if (spec.width <= 0 || spec.height <= 0 || spec.depth > 1 || spec.nchannels <= 0) {
+        fail(path, "cannot read an image of " + std::to_string(spec.width) + "x" +
+                       std::to_string(spec.height) + " pixels");
+    }
+
+    const int channels = spec.nchannels;
+    const std::size_t pixelCount = static_cast<std::size_t>(spec.width) * spec.height;
+    std::vector<float> values(pixelCount * channels);
+    if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, values.data())) {
+        fail(path, "cannot read image: " + oneLine(input->geterror()));
+    }
+
+    // Integer data holds display-encoded (sRGB) colour; float data is linear already.
+    const bool encoded = !spec.format.is_floating_point();
+    const auto decode = [encoded](float value) { return encoded ? srgbToLinear(value) : value; };
+    const int alphaChannel =
+        spec.alpha_channel >= 0 && spec.alpha_channel < channels ? spec.alpha_channel : -1;
+    const bool gray = channels < 3;
+
+    LinearImage image;
+    image.width = spec.width;
+    image.height = spec.height;
+    image.pixels.resize(pixelCount);
+    for (std::size_t i = 0; i < pixelCount; ++i) {
+        const float* v = &values[i * channels];
+        glm::vec4& p = image.pixels[i];
+        p.r = decode(v[0]);
+        p.g = gray ? p.r : decode(v[1]);
+        p.b = gray ? p.r : decode(v[2]);
+        p.a = alphaChannel >= 0 ? v[alphaChannel] : 1.0f;
+    }
+    return image;
+}
+
+}  // namespace facet

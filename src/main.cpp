@@ -1,0 +1,153 @@
+// facet: renders OBJ models and scene files to images with the Facet software rasterizer.
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "bench.h"
+#include "errors.h"
+#include "renderer.h"
+
+namespace {
+
+// The largest image facet renders: 64 Mpixel (e.g. 8192 × 8192) keeps the buffers near 1.3 GB.
+constexpr long long kMaxPixels = 1LL << 26;
+
+// Parses "x,y,z" into a vec3; CLI11 hands us the raw text so the error can quote it.
+glm::vec3 parseVec3(const std::string& option, const std::string& text) {
+    std::stringstream in(text);
+    glm::vec3 v;
+    char comma1 = 0, comma2 = 0;
+    if (!(in >> v.x >> comma1 >> v.y >> comma2 >> v.z) || comma1 != ',' || comma2 != ',' ||
+        !(in >> std::ws).eof() || !std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
+        throw facet::InputError(option + " expects three numbers separated by commas, like 0,1.5,4 (got \"" +
+                                text + "\")");
+    return v;
+}
+
+void checkSize(int width, int height) {
+    for (auto [name, value] : {std::pair{"--width", width}, std::pair{"--height", height}})
+        if (value < 1 || value > facet::kMaxImageSide)
+            throw facet::InputError(std::string(name) + " must be between 1 and " +
+                                    std::to_string(facet::kMaxImageSide) + " (got " + std::to_string(value) +
+                                    ")");
+    if (static_cast<long long>(width) * height > kMaxPixels)
+        throw facet::InputError("an image of " + std::to_string(width) + "x" + std::to_string(height) +
+                                " pixels is larger than the limit of " + std::to_string(kMaxPixels) +
+                                " pixels");
+}
+
+struct RenderArgs {
+    std::string input;
+    std::string output;
+    std::optional<int> width, height;
+    std::optional<std::string> eye, target;
+    std::optional<float> fovy;
+    bool quiet = false;
+};
+
+int render(const RenderArgs& args) {
+    const std::filesystem::path input = args.input;
+    facet::Scene scene = input.extension() == ".json" ? facet::loadScene(input) : facet::sceneForModel(input);
+    if (args.width) scene.width = *args.width;
+    if (args.height) scene.height = *args.height;
+    checkSize(scene.width, scene.height);
+    if (args.eye) scene.camera.eye = parseVec3("--eye", *args.eye);
+    if (args.target) scene.camera.target = parseVec3("--target", *args.target);
+    if (args.fovy) {
+        if (!(*args.fovy > 0.0f && *args.fovy < 180.0f))
+            throw facet::InputError("--fovy must be between 0 and 180 degrees (got " +
+                                    std::to_string(*args.fovy) + ")");
+        scene.camera.fovyDegrees = *args.fovy;
+    }
+    if (scene.camera.eye && scene.camera.target &&
+        glm::length(*scene.camera.eye - *scene.camera.target) == 0.0f)
+        throw facet::InputError("the camera's eye and target are the same point");
+
+    facet::checkImageDestination(args.output, scene.width, scene.height);
+
+    const auto start = std::chrono::steady_clock::now();
+    const facet::PreparedScene prepared = facet::prepareScene(scene);
+    for (const std::string& warning : prepared.warnings)
+        std::cerr << "facet: warning: " << warning << "\n";
+    facet::Framebuffer framebuffer(scene.width, scene.height);
+    facet::DrawScratch scratch;
+    const facet::DrawStats stats = facet::renderFrame(prepared, framebuffer, scratch);
+    const auto rendered = std::chrono::steady_clock::now();
+    facet::writeImage(args.output, facet::toImage(framebuffer));
+
+    if (!args.quiet) {
+        const double ms = std::chrono::duration<double, std::milli>(rendered - start).count();
+        std::cout << "facet: wrote " << args.output << " (" << scene.width << "x" << scene.height << ", "
+                  << prepared.triangleCount << " triangles";
+        if (prepared.degenerateSkipped)
+            std::cout << ", " << prepared.degenerateSkipped << " degenerate skipped";
+        std::cout << ", " << stats.fragmentsShaded << " fragments shaded, " << static_cast<long>(ms + 0.5)
+                  << " ms including loading)\n";
+    }
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"Facet: a software rasterizer. Renders OBJ models and scene files to images on the CPU."};
+    app.require_subcommand(1);
+    app.set_version_flag("--version", "facet 0.1");
+
+    RenderArgs renderArgs;
+    CLI::App* renderCommand = app.add_subcommand("render", "Render an OBJ model or a JSON scene to an image");
+    renderCommand->add_option("input", renderArgs.input, "Model (.obj) or scene (.json) to render")
+        ->required();
+    renderCommand
+        ->add_option("-o,--output", renderArgs.output,
+                     "Image to write; the extension picks the format (.png .exr .ppm .jpg .tif)")
+        ->required();
+    renderCommand->add_option("--width", renderArgs.width, "Image width in pixels (default 1280)");
+    renderCommand->add_option("--height", renderArgs.height, "Image height in pixels (default 960)");
+    renderCommand->add_option("--eye", renderArgs.eye,
+                              "Camera position x,y,z (default: framed from the front)");
+    renderCommand->add_option("--target", renderArgs.target,
+                              "Point the camera looks at, x,y,z (default: the model's centre)");
+    renderCommand->add_option("--fovy", renderArgs.fovy, "Vertical field of view in degrees (default 40)");
+    renderCommand->add_flag("-q,--quiet", renderArgs.quiet, "Print nothing on success");
+
+    facet::BenchOptions benchOptions;
+    benchOptions.model = "../shared/models/stanford-bunny/stanford-bunny.obj";
+    CLI::App* benchCommand = app.add_subcommand("bench", "Time frames of a model (median ms per frame)");
+    benchCommand->add_option("model", benchOptions.model,
+                             "Model or scene (default: the Stanford bunny in ../shared/models)");
+    benchCommand->add_option("--width", benchOptions.width, "Image width (default 1920)");
+    benchCommand->add_option("--height", benchOptions.height, "Image height (default 1080)");
+    benchCommand->add_option("--frames", benchOptions.frames, "Timed frames (default 30)");
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    }
+
+    try {
+        if (*renderCommand) return render(renderArgs);
+        if (*benchCommand) {
+            checkSize(benchOptions.width, benchOptions.height);
+            facet::runBench(benchOptions, std::cout);
+            return 0;
+        }
+    } catch (const facet::InputError& e) {
+        std::cerr << "facet: error: " << e.what() << "\n";
+        return 1;
+    } catch (const std::bad_alloc&) {
+        std::cerr << "facet: error: out of memory (try a smaller image)\n";
+        return 1;
+    } catch (const std::exception& e) {
+        std::cerr << "facet: internal error: " << e.what() << "\n";
+        return 2;
+    }
+    return 0;
+}

@@ -1,0 +1,623 @@
+// Scene files: reads the JSON scene format (docs/scene-format.md) into a Scene, checking every key.
+// Strict on purpose: an unknown key, a wrong type or an absurd value is a one-line error naming the file
+// and the key path (`scene.json: unknown key "camera.fvoy" (did you mean "fovy"?)`), never a silent default.
+#include "scene.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <set>
+#include <span>
+#include <string_view>
+#include <system_error>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
+
+#include "errors.h"
+
+namespace facet {
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+
+// A list of allowed keys or choices; named constexpr arrays, so messages can list them.
+using KeyList = std::span<const std::string_view>;
+
+// ---- Text helpers --------------------------------------------------------------------------------
+
+// A string in double quotes with JSON escapes, so a key holding a newline cannot break the one-line rule.
+std::string inQuotes(std::string_view text) {
+    return Json(std::string(text)).dump(-1, ' ', false, Json::error_handler_t::replace);
+}
+
+std::string formatNumber(double value) {
+    char buffer[32];
+    const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+    return std::string(buffer, result.ptr);
+}
+
+std::string childPath(const std::string& parent, std::string_view key) {
+    return parent.empty() ? std::string(key) : parent + "." + std::string(key);
+}
+
+std::string elementPath(const std::string& parent, std::size_t index) {
+    return parent + "[" + std::to_string(index) + "]";
+}
+
+// "a string", "an array of 2", ...: what the user wrote instead, for "must be X (got Y)" messages.
+std::string describe(const Json& value) {
+    switch (value.type()) {
+        case Json::value_t::null:
+            return "null";
+        case Json::value_t::boolean:
+            return value.get<bool>() ? "true" : "false";
+        case Json::value_t::string:
+            return "the string " + inQuotes(value.get<std::string>());
+        case Json::value_t::array:
+            return "an array of " + std::to_string(value.size());
+        case Json::value_t::object:
+            return "an object";
+        case Json::value_t::number_integer:
+        case Json::value_t::number_unsigned:
+        case Json::value_t::number_float:
+            return formatNumber(value.get<double>());
+        default:
+            return "a value of another type";
+    }
+}
+
+// Levenshtein distance counting a swap of two neighbours as one edit (optimal string alignment),
+// since "fvoy" for "fovy" is the typical typo.
+int editDistance(std::string_view a, std::string_view b) {
+    const std::size_t n = a.size(), m = b.size();
+    std::vector<std::vector<int>> d(n + 1, std::vector<int>(m + 1));
+    for (std::size_t i = 0; i <= n; ++i)
+        d[i][0] = static_cast<int>(i);
+    for (std::size_t j = 0; j <= m; ++j)
+        d[0][j] = static_cast<int>(j);
+    for (std::size_t i = 1; i <= n; ++i) {
+        for (std::size_t j = 1; j <= m; ++j) {
+            const int cost = a[i - 1] == b[j - 1] ? 0 : 1;
+            d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) {
+                d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+            }
+        }
+    }
+    return d[n][m];
+}
+
+// " (did you mean "fovy"?)" for the closest candidate within two edits, otherwise "".
+std::string suggestion(std::string_view word, KeyList candidates) {
+    constexpr int kMaxSuggestionDistance = 2;
+    std::string_view best;
+    int bestDistance = kMaxSuggestionDistance + 1;
+    for (std::string_view candidate : candidates) {
+        const int distance = editDistance(word, candidate);
+        if (distance < bestDistance) {
+            best = candidate;
+            bestDistance = distance;
+        }
+    }
+    return best.empty() ? "" : " (did you mean " + inQuotes(best) + "?)";
+}
+
+std::string oneLine(std::string text) {
+    std::replace(text.begin(), text.end(), '\n', ' ');
+    return text;
+}
+
+// 1-based line and column (in characters, as editors count) of a 0-based byte offset into `text`.
+std::string lineAndColumn(std::string_view text, std::size_t offset) {
+    offset = std::min(offset, text.size());
+    std::size_t line = 1, column = 1;
+    for (std::size_t i = 0; i < offset; ++i) {
+        if (text[i] == '\n') {
+            ++line;
+            column = 1;
+        } else if ((static_cast<unsigned char>(text[i]) & 0xC0) != 0x80) {
+            ++column;  // UTF-8 continuation bytes do not start a character
+        }
+    }
+    return "line " + std::to_string(line) + ", column " + std::to_string(column);
+}
+
+// ---- Duplicate keys ------------------------------------------------------------------------------
+
+// JSON allows a key twice in one object and nlohmann keeps the last, silently dropping the first
+// (a second "camera" block would win unnoticed). This parse callback records the first repeat's path.
+class DuplicateKeyFinder {
+  public:
+    bool operator()(int /*depth*/, Json::parse_event_t event, Json& parsed) {
+        using Event = Json::parse_event_t;
+        const bool startsValue =
+            event == Event::object_start || event == Event::array_start || event == Event::value;
+        if (startsValue && !frames_.empty() && !frames_.back().isObject) ++frames_.back().index;
+        switch (event) {
+            case Event::object_start:
+                frames_.push_back({true, {}, {}, 0});
+                break;
+            case Event::array_start:
+                frames_.push_back({false, {}, {}, 0});
+                break;
+            case Event::object_end:
+            case Event::array_end:
+                if (!frames_.empty()) frames_.pop_back();
+                break;
+            case Event::key: {
+                Frame& frame = frames_.back();
+                frame.key = parsed.get<std::string>();
+                if (!frame.keys.insert(frame.key).second && firstDuplicate_.empty()) {
+                    firstDuplicate_ = currentPath();
+                }
+                break;
+            }
+            case Event::value:
+                break;
+        }
+        return true;
+    }
+
+    const std::string& firstDuplicate() const { return firstDuplicate_; }
+
+  private:
+    struct Frame {
+        bool isObject;
+        std::set<std::string> keys;  // keys seen so far in this object
+        std::string key;             // object: the key being read
+        std::size_t index;           // array: 1 + the index of the element being read
+    };
+
+    std::string currentPath() const {
+        std::string path;
+        for (const Frame& frame : frames_) {
+            path = frame.isObject ? childPath(path, frame.key) : elementPath(path, frame.index - 1);
+        }
+        return path;
+    }
+
+    std::vector<Frame> frames_;
+    std::string firstDuplicate_;
+};
+
+// ---- The reader ----------------------------------------------------------------------------------
+
+// Reads values out of the parsed document. Every accessor takes the key path it reads, so each
+// message can name it; `fail` prefixes the scene file's path.
+class SceneReader {
+  public:
+    explicit SceneReader(const fs::path& file) : file_(file) {}
+
+    [[noreturn]] void fail(const std::string& what) const {
+        throw InputError(file_.string() + ": " + oneLine(what));
+    }
+
+    // Rejects keys of `object` that are not in `known`, naming the likely intended key.
+    void checkKeys(const Json& object, const std::string& path, KeyList known) const {
+        for (const auto& [key, value] : object.items()) {
+            if (std::find(known.begin(), known.end(), key) != known.end()) continue;
+            fail("unknown key " + inQuotes(childPath(path, key)) + suggestion(key, known));
+        }
+    }
+
+    void requireObject(const Json& value, const std::string& path, std::string_view what) const {
+        if (!value.is_object())
+            fail(inQuotes(path) + " must be " + std::string(what) + " (got " + describe(value) + ")");
+    }
+
+    const Json* find(const Json& object, std::string_view key) const {
+        const auto it = object.find(key);
+        return it == object.end() ? nullptr : &*it;
+    }
+
+    // A number that fits a 32-bit float: JSON allows 1e300, a float does not.
+    float number(const Json& value, const std::string& path) const {
+        if (!value.is_number()) fail(inQuotes(path) + " must be a number (got " + describe(value) + ")");
+        const double number = value.get<double>();
+        if (std::abs(number) > std::numeric_limits<float>::max()) {
+            fail(inQuotes(path) + " is too large (got " + formatNumber(number) + ")");
+        }
+        return static_cast<float>(number);
+    }
+
+    int wholeNumber(const Json& value, const std::string& path, int lowest, int highest) const {
+        if (!value.is_number())
+            fail(inQuotes(path) + " must be a whole number (got " + describe(value) + ")");
+        const double number = value.get<double>();
+        if (number != std::floor(number) || number < lowest || number > highest) {
+            fail(inQuotes(path) + " must be a whole number from " + std::to_string(lowest) + " to " +
+                 std::to_string(highest) + " (got " + formatNumber(number) + ")");
+        }
+        return static_cast<int>(number);
+    }
+
+    float nonNegative(const Json& value, const std::string& path) const {
+        const float x = number(value, path);
+        if (x < 0.0f) fail(inQuotes(path) + " must not be negative (got " + formatNumber(x) + ")");
+        return x;
+    }
+
+    // [x, y, z]; example shows the expected shape in the message.
+    glm::vec3 vec3(const Json& value, const std::string& path, std::string_view example = "[0, 1, 0]") const {
+        if (!value.is_array() || value.size() != 3) {
+            fail(inQuotes(path) + " must be an array of 3 numbers like " + std::string(example) + " (got " +
+                 describe(value) + ")");
+        }
+        glm::vec3 v;
+        for (int i = 0; i < 3; ++i)
+            v[i] = number(value[i], elementPath(path, i));
+        return v;
+    }
+
+    // A linear RGB colour: three non-negative numbers (above 1 is allowed: light can be bright).
+    glm::vec3 color(const Json& value, const std::string& path) const {
+        const glm::vec3 c = vec3(value, path, "[1, 0.5, 0.2]");
+        for (int i = 0; i < 3; ++i) {
+            if (c[i] < 0.0f) {
+                fail(inQuotes(elementPath(path, i)) + " must not be negative (got " + formatNumber(c[i]) +
+                     ")");
+            }
+        }
+        return c;
+    }
+
+    glm::vec3 nonZeroVector(const Json& value, const std::string& path) const {
+        const glm::vec3 v = vec3(value, path);
+        if (glm::length(glm::dvec3(v)) == 0.0) fail(inQuotes(path) + " must not be the zero vector");
+        return v;
+    }
+
+    std::string string(const Json& value, const std::string& path) const {
+        if (!value.is_string()) fail(inQuotes(path) + " must be a string (got " + describe(value) + ")");
+        return value.get<std::string>();
+    }
+
+    // One of `choices`; returns its index.
+    std::size_t choice(const Json& value, const std::string& path, KeyList choices) const {
+        const std::string text = string(value, path);
+        const auto it = std::find(choices.begin(), choices.end(), text);
+        if (it != choices.end()) return static_cast<std::size_t>(it - choices.begin());
+        std::string list;
+        for (std::string_view c : choices)
+            list += (list.empty() ? "" : ", ") + inQuotes(c);
+        fail(inQuotes(path) + " must be one of " + list + " (got " + inQuotes(text) + ")" +
+             suggestion(text, choices));
+    }
+
+    void checkModelFile(const fs::path& model, const std::string& written, const std::string& path) const {
+        std::error_code error;
+        const fs::file_status status = fs::status(model, error);
+        std::string where = model.string() == written ? "" : " (looked for " + inQuotes(model.string()) + ")";
+        if (!fs::exists(status))
+            fail(inQuotes(path) + ": model file " + inQuotes(written) + " not found" + where);
+        if (fs::is_directory(status))
+            fail(inQuotes(path) + ": model file " + inQuotes(written) + " is a folder" + where);
+    }
+
+  private:
+    const fs::path& file_;
+};
+
+// ---- The scene sections --------------------------------------------------------------------------
+
+constexpr std::string_view kTopLevelKeys[] = {"width",  "height",  "background", "ambient", "camera",
+                                              "lights", "objects", "model",      "pipeline"};
+constexpr std::string_view kCameraKeys[] = {"eye", "target", "up", "fovy", "near", "far"};
+constexpr std::string_view kLightKeys[] = {"type", "direction", "position", "color", "intensity", "space"};
+constexpr std::string_view kObjectKeys[] = {"model", "translate", "rotate", "scale", "material"};
+constexpr std::string_view kMaterialKeys[] = {"ambient",  "diffuse",   "specular",
+                                              "emission", "shininess", "opacity"};
+constexpr std::string_view kPipelineKeys[] = {"cull", "interpolation", "subpixel_bits"};
+constexpr std::string_view kLightTypes[] = {"directional", "point"};
+constexpr std::string_view kLightSpaces[] = {"world", "camera"};
+constexpr std::string_view kCullNames[] = {"back", "front", "none"};  // in CullChoice order
+constexpr std::string_view kInterpolationNames[] = {"perspective", "affine"};
+
+glm::vec4 readBackground(const SceneReader& reader, const Json& value) {
+    const std::string path = "background";
+    if (!value.is_array() || (value.size() != 3 && value.size() != 4)) {
+        reader.fail(inQuotes(path) + " must be [r, g, b] or [r, g, b, a] (got " + describe(value) + ")");
+    }
+    glm::vec4 background{0.0f, 0.0f, 0.0f, 1.0f};
+    for (std::size_t i = 0; i < value.size(); ++i)
+        background[i] = reader.nonNegative(value[i], elementPath(path, i));
+    if (background.a > 1.0f) {
+        reader.fail(inQuotes(elementPath(path, 3)) + " (alpha) must be from 0 to 1 (got " +
+                    formatNumber(background.a) + ")");
+    }
+    return background;
+}
+
+CameraSpec readCamera(const SceneReader& reader, const Json& camera) {
+    const std::string path = "camera";
+    reader.requireObject(camera, path, "an object like {\"eye\": [0, 1, 5], \"fovy\": 40}");
+    reader.checkKeys(camera, path, kCameraKeys);
+
+    CameraSpec spec;
+    if (const Json* v = reader.find(camera, "eye")) spec.eye = reader.vec3(*v, "camera.eye", "[0, 1, 5]");
+    if (const Json* v = reader.find(camera, "target"))
+        spec.target = reader.vec3(*v, "camera.target", "[0, 0, 0]");
+    if (const Json* v = reader.find(camera, "up")) spec.up = reader.nonZeroVector(*v, "camera.up");
+    if (const Json* v = reader.find(camera, "fovy")) {
+        spec.fovyDegrees = reader.number(*v, "camera.fovy");
+        if (!(spec.fovyDegrees > 0.0f && spec.fovyDegrees < 180.0f)) {
+            reader.fail("\"camera.fovy\" must be between 0 and 180 degrees, both excluded (got " +
+                        formatNumber(spec.fovyDegrees) + ")");
+        }
+    }
+    if (const Json* v = reader.find(camera, "near")) {
+        spec.near = reader.number(*v, "camera.near");
+        if (!(*spec.near > 0.0f)) {
+            reader.fail("\"camera.near\" must be greater than 0 (got " + formatNumber(*spec.near) + ")");
+        }
+    }
+    if (const Json* v = reader.find(camera, "far")) {
+        spec.far = reader.number(*v, "camera.far");
+        const float lowest = spec.near.value_or(0.0f);
+        if (!(*spec.far > lowest)) {
+            reader.fail("\"camera.far\" must be greater than " +
+                        std::string(spec.near ? "\"camera.near\" (" + formatNumber(lowest) + ")" : "0") +
+                        " (got " + formatNumber(*spec.far) + ")");
+        }
+    }
+
+    // The view direction is known only when both ends are given; otherwise the renderer frames the
+    // bounding box and must pick a direction compatible with `up` itself. Doubles, so huge
+    // coordinates cannot overflow the check.
+    if (spec.eye && spec.target) {
+        const glm::dvec3 view = glm::dvec3(*spec.target) - glm::dvec3(*spec.eye);
+        if (glm::length(view) == 0.0) reader.fail("\"camera.eye\" and \"camera.target\" must differ");
+        const glm::dvec3 side = glm::cross(glm::normalize(view), glm::normalize(glm::dvec3(spec.up)));
+        if (glm::length(side) < 1e-6) {
+            reader.fail(
+                "\"camera.up\" is parallel to the view direction (from \"camera.eye\" to "
+                "\"camera.target\"): give an \"up\" across it");
+        }
+    }
+    return spec;
+}
+
+LightSpec readLight(const SceneReader& reader, const Json& light, const std::string& path) {
+    reader.requireObject(light, path,
+                         "an object like {\"type\": \"directional\", \"direction\": [0, -1, 0]}");
+    reader.checkKeys(light, path, kLightKeys);
+
+    LightSpec spec;
+    if (const Json* v = reader.find(light, "type")) {
+        spec.type = reader.choice(*v, childPath(path, "type"), kLightTypes) == 0 ? LightType::Directional
+                                                                                 : LightType::Point;
+    }
+    // A key that the type ignores is almost always a forgotten "type": say so rather than ignore it.
+    if (spec.type == LightType::Directional && light.contains("position")) {
+        reader.fail(inQuotes(childPath(path, "position")) +
+                    " is only for point lights (add \"type\": \"point\")");
+    }
+    if (spec.type == LightType::Point && light.contains("direction")) {
+        reader.fail(inQuotes(childPath(path, "direction")) + " is only for directional lights");
+    }
+    if (const Json* v = reader.find(light, "direction"))
+        spec.direction = reader.nonZeroVector(*v, childPath(path, "direction"));
+    if (const Json* v = reader.find(light, "position"))
+        spec.position = reader.vec3(*v, childPath(path, "position"));
+    if (const Json* v = reader.find(light, "color")) spec.color = reader.color(*v, childPath(path, "color"));
+    if (const Json* v = reader.find(light, "intensity"))
+        spec.intensity = reader.nonNegative(*v, childPath(path, "intensity"));
+    if (const Json* v = reader.find(light, "space")) {
+        spec.cameraRelative = reader.choice(*v, childPath(path, "space"), kLightSpaces) == 1;
+    }
+    return spec;
+}
+
+MaterialOverride readMaterial(const SceneReader& reader, const Json& material, const std::string& path) {
+    reader.requireObject(material, path, "an object like {\"diffuse\": [0.8, 0.2, 0.2]}");
+    reader.checkKeys(material, path, kMaterialKeys);
+
+    MaterialOverride spec;
+    if (const Json* v = reader.find(material, "ambient"))
+        spec.ambient = reader.color(*v, childPath(path, "ambient"));
+    if (const Json* v = reader.find(material, "diffuse"))
+        spec.diffuse = reader.color(*v, childPath(path, "diffuse"));
+    if (const Json* v = reader.find(material, "specular"))
+        spec.specular = reader.color(*v, childPath(path, "specular"));
+    if (const Json* v = reader.find(material, "emission"))
+        spec.emission = reader.color(*v, childPath(path, "emission"));
+    if (const Json* v = reader.find(material, "shininess"))
+        spec.shininess = reader.nonNegative(*v, childPath(path, "shininess"));
+    if (const Json* v = reader.find(material, "opacity")) {
+        spec.opacity = reader.number(*v, childPath(path, "opacity"));
+        if (!(*spec.opacity >= 0.0f && *spec.opacity <= 1.0f)) {
+            reader.fail(inQuotes(childPath(path, "opacity")) + " must be from 0 to 1 (got " +
+                        formatNumber(*spec.opacity) + ")");
+        }
+    }
+    return spec;
+}
+
+// The model path as written, checked for existence relative to the scene file's folder.
+fs::path readModel(const SceneReader& reader, const Json& value, const std::string& path,
+                   const fs::path& folder) {
+    const std::string written = reader.string(value, path);
+    if (written.empty()) reader.fail(inQuotes(path) + " must name an OBJ file (got an empty string)");
+    const fs::path model = folder / fs::path(written);  // an absolute path replaces the folder
+    reader.checkModelFile(model, written, path);
+    return model;
+}
+
+ObjectSpec readObject(const SceneReader& reader, const Json& object, const std::string& path,
+                      const fs::path& folder) {
+    reader.requireObject(object, path, "an object like {\"model\": \"bunny.obj\"}");
+    reader.checkKeys(object, path, kObjectKeys);
+
+    ObjectSpec spec;
+    const Json* model = reader.find(object, "model");
+    if (model == nullptr)
+        reader.fail(inQuotes(childPath(path, "model")) + " is missing: every object needs a model file");
+    spec.model = readModel(reader, *model, childPath(path, "model"), folder);
+
+    glm::vec3 translate{0.0f}, rotateDegrees{0.0f}, scale{1.0f};
+    if (const Json* v = reader.find(object, "translate"))
+        translate = reader.vec3(*v, childPath(path, "translate"));
+    if (const Json* v = reader.find(object, "rotate"))
+        rotateDegrees = reader.vec3(*v, childPath(path, "rotate"), "[0, 90, 0]");
+    if (const Json* v = reader.find(object, "scale")) {
+        const std::string scalePath = childPath(path, "scale");
+        scale = v->is_number() ? glm::vec3(reader.number(*v, scalePath))
+                               : reader.vec3(*v, scalePath, "[1, 2, 1]");
+        // A zero factor flattens the model and leaves its normals undefined (no inverse transpose).
+        for (int i = 0; i < 3; ++i) {
+            if (scale[i] == 0.0f) {
+                reader.fail(inQuotes(scalePath) + " must not be zero" +
+                            (v->is_number() ? std::string() : " in any axis"));
+            }
+        }
+    }
+    if (const Json* v = reader.find(object, "material"))
+        spec.material = readMaterial(reader, *v, childPath(path, "material"));
+
+    // worldFromObject = T · Rz · Ry · Rx · S: scale first, then rotate about X, Y, Z (fixed axes),
+    // then translate. glm::rotate/scale multiply on the right, so the calls read left to right.
+    glm::mat4 m = glm::translate(glm::mat4(1.0f), translate);
+    m = glm::rotate(m, glm::radians(rotateDegrees.z), glm::vec3(0.0f, 0.0f, 1.0f));
+    m = glm::rotate(m, glm::radians(rotateDegrees.y), glm::vec3(0.0f, 1.0f, 0.0f));
+    m = glm::rotate(m, glm::radians(rotateDegrees.x), glm::vec3(1.0f, 0.0f, 0.0f));
+    spec.worldFromObject = glm::scale(m, scale);
+    return spec;
+}
+
+PipelineOptions readPipeline(const SceneReader& reader, const Json& pipeline) {
+    const std::string path = "pipeline";
+    reader.requireObject(pipeline, path, "an object like {\"cull\": \"back\"}");
+    reader.checkKeys(pipeline, path, kPipelineKeys);
+
+    PipelineOptions options;
+    if (const Json* v = reader.find(pipeline, "cull")) {
+        constexpr CullChoice kCullChoices[] = {CullChoice::Back, CullChoice::Front, CullChoice::None};
+        options.cull = kCullChoices[reader.choice(*v, "pipeline.cull", kCullNames)];
+    }
+    if (const Json* v = reader.find(pipeline, "interpolation")) {
+        options.interpolation = reader.choice(*v, "pipeline.interpolation", kInterpolationNames) == 0
+                                    ? InterpolationChoice::Perspective
+                                    : InterpolationChoice::Affine;
+    }
+    if (const Json* v = reader.find(pipeline, "subpixel_bits")) {
+        options.subpixelBits = reader.wholeNumber(*v, "pipeline.subpixel_bits", 0, 8);
+    }
+    return options;
+}
+
+// ---- File reading and parsing --------------------------------------------------------------------
+
+std::string readText(const SceneReader& reader, const fs::path& path) {
+    std::error_code error;
+    const fs::file_status status = fs::status(path, error);
+    if (!fs::exists(status)) reader.fail("scene file not found");
+    if (fs::is_directory(status)) reader.fail("is a folder, not a scene file");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) reader.fail(std::string("cannot open the scene file: ") + std::strerror(errno));
+    std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    if (in.bad()) reader.fail(std::string("cannot read the scene file: ") + std::strerror(errno));
+    return text;
+}
+
+// Parses with comments allowed (// and /* */: a scene file is hand-written) and turns nlohmann's
+// errors into "line L, column C" messages.
+Json parseJson(const SceneReader& reader, const std::string& text) {
+    DuplicateKeyFinder duplicates;
+    Json document;
+    try {
+        document =
+            Json::parse(text, std::ref(duplicates), /*allow_exceptions=*/true, /*ignore_comments=*/true);
+    } catch (const Json::parse_error& e) {
+        // e.byte is the 1-based position of the offending byte (one past the end at end of input).
+        // nlohmann's text reads "[json.exception...] parse error at line L, column C: syntax error
+        // while parsing value - unexpected '}'; ..."; keep the part after the last " - ".
+        std::string detail = e.what();
+        if (const std::size_t dash = detail.find(" - "); dash != std::string::npos)
+            detail = detail.substr(dash + 3);
+        reader.fail("JSON syntax error at " + lineAndColumn(text, e.byte == 0 ? 0 : e.byte - 1) + ": " +
+                    detail);
+    } catch (const Json::out_of_range& e) {
+        // A number beyond double range ("number overflow parsing '1e400'") carries no position; find
+        // the literal in the text.
+        std::string detail = e.what();
+        if (const std::size_t bracket = detail.find("] "); bracket != std::string::npos)
+            detail = detail.substr(bracket + 2);
+        const std::size_t open = detail.find('\''), close = detail.rfind('\'');
+        std::string where;
+        if (open != std::string::npos && close > open) {
+            const std::size_t offset = text.find(detail.substr(open + 1, close - open - 1));
+            if (offset != std::string::npos) where = " at " + lineAndColumn(text, offset);
+        }
+        reader.fail("invalid JSON" + where + ": " + detail);
+    }
+    if (!duplicates.firstDuplicate().empty()) {
+        reader.fail("key " + inQuotes(duplicates.firstDuplicate()) + " is given twice");
+    }
+    return document;
+}
+
+}  // namespace
+
+Scene loadScene(const fs::path& path) {
+    const SceneReader reader(path);
+    const Json document = parseJson(reader, readText(reader, path));
+    if (!document.is_object()) {
+        reader.fail("a scene file must hold a JSON object like {\"model\": \"bunny.obj\"} (got " +
+                    describe(document) + ")");
+    }
+    reader.checkKeys(document, "", kTopLevelKeys);
+
+    Scene scene;
+    scene.source = path;
+    if (const Json* v = reader.find(document, "width"))
+        scene.width = reader.wholeNumber(*v, "width", 1, kMaxImageSide);
+    if (const Json* v = reader.find(document, "height"))
+        scene.height = reader.wholeNumber(*v, "height", 1, kMaxImageSide);
+    if (const Json* v = reader.find(document, "background")) scene.background = readBackground(reader, *v);
+    if (const Json* v = reader.find(document, "ambient")) scene.ambientLight = reader.color(*v, "ambient");
+    if (const Json* v = reader.find(document, "camera")) scene.camera = readCamera(reader, *v);
+    if (const Json* v = reader.find(document, "pipeline")) scene.pipeline = readPipeline(reader, *v);
+
+    if (const Json* lights = reader.find(document, "lights")) {
+        if (!lights->is_array())
+            reader.fail("\"lights\" must be an array of lights (got " + describe(*lights) + ")");
+        for (std::size_t i = 0; i < lights->size(); ++i) {
+            scene.lights.push_back(readLight(reader, (*lights)[i], elementPath("lights", i)));
+        }
+    }
+
+    // Objects: the "model" shorthand or the "objects" array, exactly one of them.
+    const fs::path folder = path.parent_path();
+    const Json* model = reader.find(document, "model");
+    const Json* objects = reader.find(document, "objects");
+    if (model && objects) reader.fail("give either \"model\" or \"objects\", not both");
+    if (model) {
+        scene.objects.push_back(ObjectSpec{readModel(reader, *model, "model", folder), glm::mat4(1.0f), {}});
+    } else if (objects) {
+        if (!objects->is_array())
+            reader.fail("\"objects\" must be an array of objects (got " + describe(*objects) + ")");
+        for (std::size_t i = 0; i < objects->size(); ++i) {
+            scene.objects.push_back(readObject(reader, (*objects)[i], elementPath("objects", i), folder));
+        }
+    }
+    if (scene.objects.empty()) {
+        reader.fail("the scene has no objects: add \"model\": \"file.obj\" or an \"objects\" array");
+    }
+    return scene;
+}
+
+Scene sceneForModel(const fs::path& objPath) {
+    Scene scene;
+    scene.source = objPath;
+    scene.objects.push_back(ObjectSpec{objPath, glm::mat4(1.0f), {}});
+    return scene;
+}
+
+}  // namespace facet

@@ -1,0 +1,371 @@
+// Image files: round trips through each format (8-bit sRGB within half a code, float exact), the
+// channel count each format gets, and the failure guarantees: nothing written for a bad name, no
+// temporary file left behind, and an existing file untouched by a failed write.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <iterator>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include "color.h"
+#include "errors.h"
+#include "image_io.h"
+
+namespace facet {
+namespace {
+
+namespace fs = std::filesystem;
+
+class ImageIoTest : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        folder_ = fs::temp_directory_path() /
+                  ("facet-imageio-test-" + std::to_string(::getpid()) + "-" + info->name());
+        fs::remove_all(folder_);
+        fs::create_directories(folder_);
+    }
+    void TearDown() override { fs::remove_all(folder_); }
+
+    // Names of the entries in `folder` (hidden ones included, so a stray temporary file shows).
+    static std::set<std::string> listing(const fs::path& folder) {
+        std::set<std::string> names;
+        for (const auto& entry : fs::directory_iterator(folder))
+            names.insert(entry.path().filename().string());
+        return names;
+    }
+
+    static std::string contents(const fs::path& path) {
+        std::ifstream in(path, std::ios::binary);
+        return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    }
+
+    fs::path folder_;
+};
+
+// A gradient over the whole [0,1] range in each channel, with alpha varying too.
+LinearImage gradient(int width = 64, int height = 4) {
+    LinearImage image;
+    image.width = width;
+    image.height = height;
+    image.pixels.resize(static_cast<std::size_t>(width) * height);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const float t = static_cast<float>(x) / (width - 1);
+            image.at(x, y) = glm::vec4(t, 1.0f - t, t * t, 1.0f - 0.25f * y);
+        }
+    }
+    return image;
+}
+
+LinearImage solid(glm::vec4 color, int width = 2, int height = 2) {
+    LinearImage image;
+    image.width = width;
+    image.height = height;
+    image.pixels.assign(static_cast<std::size_t>(width) * height, color);
+    return image;
+}
+
+// The file's raw 8-bit values, as stored (no alpha association on read).
+std::vector<std::uint8_t> rawBytes(const fs::path& path, int* channels = nullptr) {
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    auto input = OIIO::ImageInput::open(path.string(), &config);
+    EXPECT_TRUE(input) << OIIO::geterror();
+    if (!input) return {};
+    const OIIO::ImageSpec& spec = input->spec();
+    if (channels) *channels = spec.nchannels;
+    std::vector<std::uint8_t> bytes(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
+    EXPECT_TRUE(input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, bytes.data()));
+    return bytes;
+}
+
+void writeGrayBytes(const fs::path& path, const std::vector<std::uint8_t>& bytes) {
+    auto output = OIIO::ImageOutput::create(path.string());
+    ASSERT_TRUE(output);
+    const OIIO::ImageSpec spec(static_cast<int>(bytes.size()), 1, 1, OIIO::TypeDesc::UINT8);
+    ASSERT_TRUE(output->open(path.string(), spec));
+    ASSERT_TRUE(output->write_image(OIIO::TypeDesc::UINT8, bytes.data()));
+    ASSERT_TRUE(output->close());
+}
+
+// ---- Round trips --------------------------------------------------------------------------------
+
+// Rounding to the nearest code puts every encoded value within half a code of the original.
+TEST_F(ImageIoTest, PngRoundTripWithinHalfACodeAfterEncoding) {
+    const LinearImage image = gradient();
+    const fs::path path = folder_ / "gradient.png";
+    writeImage(path, image);
+    const LinearImage back = readImage(path);
+
+    ASSERT_EQ(back.width, image.width);
+    ASSERT_EQ(back.height, image.height);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_NEAR(linearToSrgb(back.pixels[i][c]), linearToSrgb(image.pixels[i][c]), 0.5f / 255 + 1e-6f)
+                << "pixel " << i << " channel " << c;
+        }
+        // Alpha is stored linearly and as given (not premultiplied into the colour).
+        EXPECT_NEAR(back.pixels[i].a, image.pixels[i].a, 0.5f / 255 + 1e-6f) << "pixel " << i;
+    }
+}
+
+TEST_F(ImageIoTest, PngStoresSrgbCodes) {
+    const fs::path path = folder_ / "half.png";
+    writeImage(path, solid({0.5f, 0.0f, 1.0f, 0.5f}, 1, 1));
+    int channels = 0;
+    const std::vector<std::uint8_t> bytes = rawBytes(path, &channels);
+    ASSERT_EQ(channels, 4);
+    EXPECT_EQ(bytes[0], 188);  // sRGB(0.5) = 0.7354 → 187.5 → 188; a plain 0.5·255 would be 128
+    EXPECT_EQ(bytes[1], 0);
+    EXPECT_EQ(bytes[2], 255);
+    EXPECT_EQ(bytes[3], 128);  // alpha is not sRGB-encoded
+}
+
+TEST_F(ImageIoTest, OutOfRangeValuesClampInEightBitFiles) {
+    const fs::path path = folder_ / "clamp.png";
+    writeImage(path, solid({-1.0f, 7.5f, NAN, 2.0f}, 1, 1));
+    const std::vector<std::uint8_t> bytes = rawBytes(path);
+    EXPECT_EQ(bytes, (std::vector<std::uint8_t>{0, 255, 0, 255}));
+}
+
+TEST_F(ImageIoTest, ExrKeepsFloatValuesExactly) {
+    LinearImage image = solid({0.5f, 0.5f, 0.5f, 1.0f}, 3, 2);
+    image.at(0, 0) = {3.75f, -0.25f, 1e6f, 0.125f};
+    image.at(2, 1) = {1.0f / 3.0f, 0.0f, 65504.5f, 1.0f};
+    const fs::path path = folder_ / "values.exr";
+    writeImage(path, image);
+
+    auto input = OIIO::ImageInput::open(path.string());
+    ASSERT_TRUE(input);
+    EXPECT_EQ(input->spec().nchannels, 4);
+    EXPECT_EQ(input->spec().format, OIIO::TypeDesc::FLOAT);
+    input.reset();
+
+    const LinearImage back = readImage(path);
+    ASSERT_EQ(back.pixels.size(), image.pixels.size());
+    for (std::size_t i = 0; i < image.pixels.size(); ++i)
+        EXPECT_EQ(back.pixels[i], image.pixels[i]) << i;
+}
+
+TEST_F(ImageIoTest, PpmHasThreeChannelsAndReadsBackOpaque) {
+    const fs::path path = folder_ / "image.ppm";
+    writeImage(path, solid({0.5f, 0.25f, 1.0f, 0.3f}));
+    int channels = 0;
+    const std::vector<std::uint8_t> bytes = rawBytes(path, &channels);
+    EXPECT_EQ(channels, 3);
+    EXPECT_EQ(bytes[0], 188);
+    const LinearImage back = readImage(path);
+    EXPECT_EQ(back.pixels[0].a, 1.0f);
+    EXPECT_NEAR(back.pixels[0].r, 0.5f, 0.003f);
+}
+
+TEST_F(ImageIoTest, JpegHasThreeChannels) {
+    const fs::path path = folder_ / "image.JPG";  // extensions are case-insensitive
+    writeImage(path, solid({0.5f, 0.5f, 0.5f, 1.0f}, 16, 16));
+    int channels = 0;
+    const std::vector<std::uint8_t> bytes = rawBytes(path, &channels);
+    EXPECT_EQ(channels, 3);
+    EXPECT_NEAR(bytes[0], 188, 2);  // lossy, but a flat grey survives closely
+    EXPECT_EQ(readImage(path).pixels[0].a, 1.0f);
+}
+
+TEST_F(ImageIoTest, TiffIsEightBitRgba) {
+    const fs::path path = folder_ / "image.tif";
+    writeImage(path, solid({0.5f, 0.0f, 1.0f, 0.5f}));
+    auto input = OIIO::ImageInput::open(path.string());
+    ASSERT_TRUE(input);
+    EXPECT_EQ(input->spec().nchannels, 4);
+    EXPECT_EQ(input->spec().format, OIIO::TypeDesc::UINT8);
+    input.reset();
+    EXPECT_EQ(rawBytes(path)[0], 188);
+}
+
+TEST_F(ImageIoTest, OtherEightBitFormatsRoundTrip) {
+    const LinearImage image = gradient(16, 2);
+    for (const char* name : {"image.bmp", "image.tga", "image.jpeg", "image.tiff"}) {
+        SCOPED_TRACE(name);
+        const fs::path path = folder_ / name;
+        writeImage(path, image);
+        const LinearImage back = readImage(path);
+        ASSERT_EQ(back.width, 16);
+        ASSERT_EQ(back.height, 2);
+        const bool lossy = fs::path(name).extension() == ".jpeg";
+        EXPECT_NEAR(linearToSrgb(back.at(8, 1).r), linearToSrgb(image.at(8, 1).r),
+                    lossy ? 0.05f : 0.5f / 255 + 1e-6f);
+    }
+}
+
+TEST_F(ImageIoTest, HdrKeepsBrightValuesAndDropsNegatives) {
+    const fs::path path = folder_ / "image.hdr";
+    writeImage(path, solid({3.75f, -0.25f, 0.5f, 1.0f}));
+    const LinearImage back = readImage(path);
+    EXPECT_NEAR(back.pixels[0].r, 3.75f, 0.02f);
+    EXPECT_EQ(back.pixels[0].g, 0.0f);
+    EXPECT_NEAR(back.pixels[0].b, 0.5f, 0.01f);
+}
+
+// Every 8-bit code decodes to a linear value that encodes back to the same code, so reading an
+// 8-bit image and writing it again changes nothing.
+TEST_F(ImageIoTest, AllByteValuesSurviveDecodeEncode) {
+    for (int code = 0; code < 256; ++code) {
+        const float linear = srgbToLinear(code / 255.0f);
+        EXPECT_EQ(std::lround(linearToSrgb(linear) * 255.0f), code) << code;
+    }
+
+    std::vector<std::uint8_t> codes(256);
+    for (int code = 0; code < 256; ++code)
+        codes[code] = static_cast<std::uint8_t>(code);
+    const fs::path source = folder_ / "codes.png";
+    writeGrayBytes(source, codes);
+
+    const LinearImage image = readImage(source);  // gray → rgb, no alpha → 1
+    ASSERT_EQ(image.width, 256);
+    for (int code = 0; code < 256; ++code) {
+        const glm::vec4& p = image.at(code, 0);
+        EXPECT_EQ(p.r, p.g);
+        EXPECT_EQ(p.r, p.b);
+        EXPECT_EQ(p.a, 1.0f);
+    }
+    const fs::path copy = folder_ / "copy.png";
+    writeImage(copy, image);
+    const std::vector<std::uint8_t> bytes = rawBytes(copy);
+    ASSERT_EQ(bytes.size(), 256u * 4);
+    for (int code = 0; code < 256; ++code) {
+        EXPECT_EQ(bytes[code * 4 + 0], code);
+        EXPECT_EQ(bytes[code * 4 + 1], code);
+        EXPECT_EQ(bytes[code * 4 + 2], code);
+        EXPECT_EQ(bytes[code * 4 + 3], 255);
+    }
+}
+
+TEST_F(ImageIoTest, OverwritesAnExistingFile) {
+    const fs::path path = folder_ / "image.png";
+    writeImage(path, solid({1, 1, 1, 1}));
+    writeImage(path, solid({0, 0, 0, 1}));
+    EXPECT_EQ(readImage(path).pixels[0], glm::vec4(0, 0, 0, 1));
+    EXPECT_EQ(listing(folder_), (std::set<std::string>{"image.png"}));
+}
+
+// Choice: a missing destination folder is created ("-o renders/x.png" should just work).
+TEST_F(ImageIoTest, CreatesMissingFolders) {
+    const fs::path path = folder_ / "renders/today/image.png";
+    writeImage(path, solid({0.2f, 0.4f, 0.6f, 1}));
+    EXPECT_TRUE(fs::exists(path));
+    EXPECT_EQ(listing(path.parent_path()), (std::set<std::string>{"image.png"}));
+}
+
+// ---- Failures -----------------------------------------------------------------------------------
+
+TEST_F(ImageIoTest, UnknownExtensionThrowsAndWritesNothing) {
+    const fs::path path = folder_ / "new/x.bmpx";
+    try {
+        writeImage(path, solid({1, 0, 0, 1}));
+        FAIL() << "no error";
+    } catch (const InputError& e) {
+        const std::string message = e.what();
+        EXPECT_EQ(message.rfind(path.string() + ": unknown image format \".bmpx\" (use .png", 0), 0u)
+            << message;
+    }
+    EXPECT_EQ(listing(folder_), std::set<std::string>{});  // not even the folder "new"
+}
+
+TEST_F(ImageIoTest, MissingExtensionThrows) {
+    const fs::path path = folder_ / "image";
+    EXPECT_THROW(writeImage(path, solid({1, 0, 0, 1})), InputError);
+    EXPECT_FALSE(fs::exists(path));
+}
+
+TEST_F(ImageIoTest, InconsistentImageThrows) {
+    LinearImage image = solid({1, 0, 0, 1}, 4, 4);
+    image.pixels.pop_back();
+    EXPECT_THROW(writeImage(folder_ / "a.png", image), InputError);
+    EXPECT_THROW(writeImage(folder_ / "b.png", LinearImage{}), InputError);
+    EXPECT_EQ(listing(folder_), std::set<std::string>{});
+}
+
+// libjpeg would end the whole process on a side above 65500 pixels; the writer refuses first.
+TEST_F(ImageIoTest, JpegTooWideIsAnErrorNotAnExit) {
+    const fs::path path = folder_ / "wide.jpg";
+    try {
+        writeImage(path, solid({1, 1, 1, 1}, 65501, 1));
+        FAIL() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("at most 65500 per side"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(listing(folder_), std::set<std::string>{});
+}
+
+// A write that fails inside OpenImageIO (here: the temporary file's name is taken by a folder) leaves
+// the existing image byte for byte as it was and no temporary file.
+TEST_F(ImageIoTest, FailedWriteKeepsExistingFileAndLeavesNoTemporary) {
+    const fs::path path = folder_ / "keep.png";
+    writeImage(path, solid({0.25f, 0.5f, 0.75f, 1}));
+    const std::string before = contents(path);
+
+    const fs::path blocker = folder_ / (".keep.tmp-" + std::to_string(::getpid()) + ".png");
+    fs::create_directory(blocker);
+    fs::create_directory(blocker / "child");  // not empty, so nothing can remove it by accident
+    try {
+        writeImage(path, solid({1, 0, 0, 1}));
+        FAIL() << "no error";
+    } catch (const InputError& e) {
+        const std::string message = e.what();
+        EXPECT_EQ(message.rfind(path.string() + ": cannot write image: ", 0), 0u) << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
+    EXPECT_EQ(contents(path), before);
+    EXPECT_EQ(listing(folder_), (std::set<std::string>{"keep.png", blocker.filename().string()}));
+    EXPECT_TRUE(fs::is_directory(blocker / "child"));
+}
+
+TEST_F(ImageIoTest, FolderInTheWayIsAnError) {
+    const fs::path file = folder_ / "file.txt";
+    std::ofstream(file) << "not a folder";
+    try {
+        writeImage(file / "image.png", solid({1, 0, 0, 1}));
+        FAIL() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()).rfind((file / "image.png").string() + ": cannot create folder", 0),
+                  0u)
+            << e.what();
+    }
+    fs::create_directory(folder_ / "dir.png");
+    EXPECT_THROW(writeImage(folder_ / "dir.png", solid({1, 0, 0, 1})), InputError);
+    EXPECT_EQ(listing(folder_), (std::set<std::string>{"file.txt", "dir.png"}));
+    EXPECT_EQ(contents(file), "not a folder");
+}
+
+TEST_F(ImageIoTest, ReadingAMissingFileNamesIt) {
+    const fs::path path = folder_ / "missing.png";
+    try {
+        readImage(path);
+        FAIL() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()), path.string() + ": image file not found");
+    }
+}
+
+TEST_F(ImageIoTest, ReadingAFileThatIsNotAnImageFails) {
+    const fs::path path = folder_ / "text.png";
+    std::ofstream(path) << "this is not a PNG";
+    try {
+        readImage(path);
+        FAIL() << "no error";
+    } catch (const InputError& e) {
+        const std::string message = e.what();
+        EXPECT_EQ(message.rfind(path.string() + ": cannot read image: ", 0), 0u) << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
+}
+
+}  // namespace
+}  // namespace facet

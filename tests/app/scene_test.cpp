@@ -1,0 +1,582 @@
+// Scene loading: defaults, the "model" shorthand, every key's value, the transform order, and the
+// one-line error for each kind of mistake (each names the file and the full key path).
+// Scene files are written into a fresh folder under the system temp directory per test.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include "errors.h"
+#include "scene.h"
+
+namespace facet {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A fresh temporary folder holding the scene files and (empty) model files of one test.
+class SceneTest : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        std::string name = std::string(info->test_suite_name()) + "-" + info->name();
+        for (char& c : name) {
+            if (c == '/') c = '-';
+        }
+        folder_ = fs::temp_directory_path() / ("facet-scene-test-" + std::to_string(::getpid()) + "-" + name);
+        fs::remove_all(folder_);
+        fs::create_directories(folder_);
+    }
+    void TearDown() override { fs::remove_all(folder_); }
+
+    fs::path write(const fs::path& relative, const std::string& text) const {
+        const fs::path path = folder_ / relative;
+        fs::create_directories(path.parent_path());
+        std::ofstream(path, std::ios::binary) << text;
+        return path;
+    }
+    // loadScene only checks that model files exist, so an empty file stands in for an OBJ.
+    fs::path touch(const fs::path& relative) const { return write(relative, ""); }
+
+    // The InputError message of loading `text` as scene.json (with an m.obj beside it).
+    std::string errorOf(const std::string& text) const {
+        touch("m.obj");
+        const fs::path scene = write("scene.json", text);
+        try {
+            loadScene(scene);
+        } catch (const InputError& e) {
+            return e.what();
+        }
+        ADD_FAILURE() << "no error for: " << text;
+        return {};
+    }
+
+    fs::path folder_;
+};
+
+void expectNear(const glm::vec3& actual, const glm::vec3& expected, float tolerance = 1e-5f) {
+    for (int i = 0; i < 3; ++i)
+        EXPECT_NEAR(actual[i], expected[i], tolerance) << "component " << i;
+}
+
+glm::vec3 transformPoint(const glm::mat4& m, const glm::vec3& p) {
+    return glm::vec3(m * glm::vec4(p, 1.0f));
+}
+
+// ---- Loading ------------------------------------------------------------------------------------
+
+TEST_F(SceneTest, ModelShorthandGivesOneObjectAndEveryDefault) {
+    touch("bunny.obj");
+    const fs::path path = write("scene.json", R"({"model": "bunny.obj"})");
+    const Scene scene = loadScene(path);
+
+    EXPECT_EQ(scene.source, path);
+    EXPECT_EQ(scene.width, 1280);
+    EXPECT_EQ(scene.height, 960);
+    EXPECT_EQ(scene.background, glm::vec4(0.05f, 0.05f, 0.07f, 1.0f));
+    EXPECT_EQ(scene.ambientLight, glm::vec3(0.15f));
+    EXPECT_FALSE(scene.camera.eye.has_value());
+    EXPECT_FALSE(scene.camera.target.has_value());
+    EXPECT_EQ(scene.camera.up, glm::vec3(0.0f, 1.0f, 0.0f));
+    EXPECT_EQ(scene.camera.fovyDegrees, 40.0f);
+    EXPECT_FALSE(scene.camera.near.has_value());
+    EXPECT_FALSE(scene.camera.far.has_value());
+    EXPECT_TRUE(scene.lights.empty());
+    ASSERT_EQ(scene.objects.size(), 1u);
+    EXPECT_EQ(scene.objects[0].model, folder_ / "bunny.obj");
+    EXPECT_EQ(scene.objects[0].worldFromObject, glm::mat4(1.0f));
+    EXPECT_FALSE(scene.objects[0].material.diffuse.has_value());
+    EXPECT_FALSE(scene.objects[0].material.opacity.has_value());
+    EXPECT_EQ(scene.pipeline.cull, CullChoice::Back);
+    EXPECT_EQ(scene.pipeline.interpolation, InterpolationChoice::Perspective);
+    EXPECT_EQ(scene.pipeline.subpixelBits, 8);
+}
+
+TEST_F(SceneTest, ReadsEveryKey) {
+    touch("models/a.obj");
+    touch("models/b.obj");
+    const fs::path path = write("scene.json", R"({
+        "width": 640, "height": 480,
+        "background": [0.1, 0.2, 0.3, 0.5],
+        "ambient": [0.01, 0.02, 0.03],
+        "camera": {"eye": [0, 1, 5], "target": [0, 0.5, 0], "up": [0, 0, -1], "fovy": 30,
+                   "near": 0.25, "far": 100},
+        "lights": [
+            {"type": "directional", "direction": [0, -1, 0], "color": [1, 0.9, 0.8], "intensity": 2},
+            {"type": "point", "position": [1, 2, 3], "space": "camera"},
+            {}
+        ],
+        "objects": [
+            {"model": "models/a.obj",
+             "material": {"diffuse": [0.8, 0.1, 0.1], "ambient": [0.1, 0, 0], "specular": [0.5, 0.5, 0.5],
+                          "emission": [0, 0, 2], "shininess": 64, "opacity": 0.25}},
+            {"model": "models/b.obj", "scale": 2}
+        ],
+        "pipeline": {"cull": "none", "interpolation": "affine", "subpixel_bits": 4}
+    })");
+    const Scene scene = loadScene(path);
+
+    EXPECT_EQ(scene.width, 640);
+    EXPECT_EQ(scene.height, 480);
+    EXPECT_EQ(scene.background, glm::vec4(0.1f, 0.2f, 0.3f, 0.5f));
+    EXPECT_EQ(scene.ambientLight, glm::vec3(0.01f, 0.02f, 0.03f));
+
+    ASSERT_TRUE(scene.camera.eye && scene.camera.target && scene.camera.near && scene.camera.far);
+    EXPECT_EQ(*scene.camera.eye, glm::vec3(0, 1, 5));
+    EXPECT_EQ(*scene.camera.target, glm::vec3(0, 0.5f, 0));
+    EXPECT_EQ(scene.camera.up, glm::vec3(0, 0, -1));
+    EXPECT_EQ(scene.camera.fovyDegrees, 30.0f);
+    EXPECT_EQ(*scene.camera.near, 0.25f);
+    EXPECT_EQ(*scene.camera.far, 100.0f);
+
+    ASSERT_EQ(scene.lights.size(), 3u);
+    EXPECT_EQ(scene.lights[0].type, LightType::Directional);
+    EXPECT_EQ(scene.lights[0].direction, glm::vec3(0, -1, 0));
+    EXPECT_EQ(scene.lights[0].color, glm::vec3(1, 0.9f, 0.8f));
+    EXPECT_EQ(scene.lights[0].intensity, 2.0f);
+    EXPECT_FALSE(scene.lights[0].cameraRelative);
+    EXPECT_EQ(scene.lights[1].type, LightType::Point);
+    EXPECT_EQ(scene.lights[1].position, glm::vec3(1, 2, 3));
+    EXPECT_TRUE(scene.lights[1].cameraRelative);
+    EXPECT_EQ(scene.lights[1].color, glm::vec3(1.0f));
+    EXPECT_EQ(scene.lights[1].intensity, 1.0f);
+    // An empty light object is the LightSpec defaults.
+    EXPECT_EQ(scene.lights[2].type, LightType::Directional);
+    EXPECT_EQ(scene.lights[2].direction, LightSpec{}.direction);
+
+    ASSERT_EQ(scene.objects.size(), 2u);
+    EXPECT_EQ(scene.objects[0].model, folder_ / "models/a.obj");
+    const MaterialOverride& m = scene.objects[0].material;
+    ASSERT_TRUE(m.diffuse && m.ambient && m.specular && m.emission && m.shininess && m.opacity);
+    EXPECT_EQ(*m.diffuse, glm::vec3(0.8f, 0.1f, 0.1f));
+    EXPECT_EQ(*m.ambient, glm::vec3(0.1f, 0, 0));
+    EXPECT_EQ(*m.specular, glm::vec3(0.5f));
+    EXPECT_EQ(*m.emission, glm::vec3(0, 0, 2));
+    EXPECT_EQ(*m.shininess, 64.0f);
+    EXPECT_EQ(*m.opacity, 0.25f);
+    EXPECT_EQ(scene.objects[1].model, folder_ / "models/b.obj");
+    EXPECT_FALSE(scene.objects[1].material.diffuse.has_value());
+    EXPECT_EQ(scene.objects[1].worldFromObject, glm::mat4(glm::vec4(2, 0, 0, 0), glm::vec4(0, 2, 0, 0),
+                                                          glm::vec4(0, 0, 2, 0), glm::vec4(0, 0, 0, 1)));
+
+    EXPECT_EQ(scene.pipeline.cull, CullChoice::None);
+    EXPECT_EQ(scene.pipeline.interpolation, InterpolationChoice::Affine);
+    EXPECT_EQ(scene.pipeline.subpixelBits, 4);
+}
+
+TEST_F(SceneTest, CullFrontAndPerspectiveAreRead) {
+    touch("m.obj");
+    const Scene scene = loadScene(write(
+        "scene.json", R"({"model": "m.obj", "pipeline": {"cull": "front", "interpolation": "perspective",
+                                                                "subpixel_bits": 0}})"));
+    EXPECT_EQ(scene.pipeline.cull, CullChoice::Front);
+    EXPECT_EQ(scene.pipeline.interpolation, InterpolationChoice::Perspective);
+    EXPECT_EQ(scene.pipeline.subpixelBits, 0);
+}
+
+// worldFromObject = T · Rz · Ry · Rx · S. Hand-computed: (1,0,0) scaled by 2 is (2,0,0); rotated 90°
+// about Z it is (0,2,0); translated by (1,2,3) it is (1,4,3).
+TEST_F(SceneTest, TransformIsTranslateRotateScale) {
+    touch("m.obj");
+    const Scene scene = loadScene(write("scene.json", R"({"objects": [
+        {"model": "m.obj", "translate": [1, 2, 3], "rotate": [0, 0, 90], "scale": 2}]})"));
+    const glm::mat4& worldFromObject = scene.objects[0].worldFromObject;
+    expectNear(transformPoint(worldFromObject, {1, 0, 0}), {1, 4, 3});
+    expectNear(transformPoint(worldFromObject, {0, 0, 0}), {1, 2, 3});
+    expectNear(transformPoint(worldFromObject, {0, 1, 0}), {1 - 2, 2, 3});
+}
+
+// X is applied before Y: (0,1,0) turns to (0,0,1) about X, then to (1,0,0) about Y. The other order
+// would give (0,0,1).
+TEST_F(SceneTest, RotationAppliesXThenYThenZ) {
+    touch("m.obj");
+    const Scene scene =
+        loadScene(write("scene.json", R"({"objects": [{"model": "m.obj", "rotate": [90, 90, 0]}]})"));
+    expectNear(transformPoint(scene.objects[0].worldFromObject, {0, 1, 0}), {1, 0, 0});
+
+    const Scene zAfterY =
+        loadScene(write("scene2.json", R"({"objects": [{"model": "m.obj", "rotate": [0, 90, 90]}]})"));
+    // (1,0,0) → about Y: (0,0,-1) → about Z: unchanged.
+    expectNear(transformPoint(zAfterY.objects[0].worldFromObject, {1, 0, 0}), {0, 0, -1});
+}
+
+TEST_F(SceneTest, ScaleAcceptsOneNumberOrThree) {
+    touch("m.obj");
+    const Scene scene = loadScene(write(
+        "scene.json", R"({"objects": [{"model": "m.obj", "scale": [1, 2, -3], "translate": [0, 0, 1]}]})"));
+    expectNear(transformPoint(scene.objects[0].worldFromObject, {1, 1, 1}), {1, 2, -2});
+}
+
+TEST_F(SceneTest, ModelPathsAreRelativeToTheSceneFolder) {
+    touch("models/m.obj");
+    const fs::path path = write("scenes/deep/s.json", R"({"model": "../../models/m.obj"})");
+    const Scene scene = loadScene(path);
+    EXPECT_EQ(scene.objects[0].model, folder_ / "scenes/deep/../../models/m.obj");
+    EXPECT_TRUE(fs::exists(scene.objects[0].model));
+}
+
+TEST_F(SceneTest, AbsoluteModelPathIsKept) {
+    const fs::path model = touch("elsewhere/m.obj");
+    const nlohmann::json scene = {{"model", model.string()}};
+    const Scene loaded = loadScene(write("scenes/s.json", scene.dump()));
+    EXPECT_EQ(loaded.objects[0].model, model);
+}
+
+TEST_F(SceneTest, CommentsAreAllowed) {
+    touch("m.obj");
+    const Scene scene = loadScene(write("scene.json", R"({
+        // the test model
+        "model": "m.obj",
+        /* a small image */ "width": 32
+    })"));
+    EXPECT_EQ(scene.width, 32);
+}
+
+TEST_F(SceneTest, EmptyLightsListMeansDefaultLight) {
+    touch("m.obj");
+    const Scene scene = loadScene(write("scene.json", R"({"model": "m.obj", "lights": []})"));
+    EXPECT_TRUE(scene.lights.empty());
+}
+
+TEST_F(SceneTest, HugeButFloatSizedValuesAreAccepted) {
+    touch("m.obj");
+    const Scene scene = loadScene(write(
+        "scene.json", R"({"model": "m.obj", "lights": [{"intensity": 1e30}], "camera": {"far": 1e38}})"));
+    EXPECT_EQ(scene.lights[0].intensity, 1e30f);
+    EXPECT_EQ(*scene.camera.far, 1e38f);
+}
+
+TEST_F(SceneTest, WholeNumberMayBeWrittenWithAFraction) {
+    touch("m.obj");
+    const Scene scene =
+        loadScene(write("scene.json", R"({"model": "m.obj", "width": 800.0, "height": 16384})"));
+    EXPECT_EQ(scene.width, 800);
+    EXPECT_EQ(scene.height, kMaxImageSide);
+}
+
+TEST(SceneForModel, OneModelAndEveryDefault) {
+    const Scene scene = sceneForModel("models/spot/spot_triangulated.obj");
+    EXPECT_EQ(scene.source, fs::path("models/spot/spot_triangulated.obj"));
+    ASSERT_EQ(scene.objects.size(), 1u);
+    EXPECT_EQ(scene.objects[0].model, fs::path("models/spot/spot_triangulated.obj"));
+    EXPECT_EQ(scene.objects[0].worldFromObject, glm::mat4(1.0f));
+    EXPECT_TRUE(scene.lights.empty());
+    EXPECT_EQ(scene.width, 1280);
+    EXPECT_EQ(scene.height, 960);
+    EXPECT_FALSE(scene.camera.eye.has_value());
+    EXPECT_EQ(scene.pipeline.subpixelBits, 8);
+}
+
+// The committed example must load. Its model may not be copied into models/ yet, so the example is
+// loaded from a temporary copy beside a stand-in model file.
+TEST_F(SceneTest, ExampleSceneLoads) {
+    const fs::path example = fs::path(FACET_SOURCE_DIR) / "models/example-scene.json";
+    std::ifstream in(example);
+    ASSERT_TRUE(in) << example;
+    std::stringstream text;
+    text << in.rdbuf();
+    touch("spot/spot_triangulated.obj");
+    const Scene scene = loadScene(write("example-scene.json", text.str()));
+
+    ASSERT_EQ(scene.objects.size(), 1u);
+    EXPECT_EQ(scene.objects[0].model, folder_ / "spot/spot_triangulated.obj");
+    EXPECT_TRUE(scene.objects[0].material.diffuse.has_value());
+    ASSERT_EQ(scene.lights.size(), 2u);
+    EXPECT_EQ(scene.lights[0].type, LightType::Directional);
+    EXPECT_EQ(scene.lights[1].type, LightType::Point);
+    EXPECT_TRUE(scene.camera.eye.has_value());
+}
+
+// Every ```json block in docs/scene-format.md is a complete scene that loads, so the documentation
+// cannot drift from the loader.
+TEST_F(SceneTest, DocumentationExamplesLoad) {
+    const fs::path doc = fs::path(FACET_SOURCE_DIR) / "docs/scene-format.md";
+    std::ifstream in(doc);
+    ASSERT_TRUE(in) << doc;
+    std::vector<std::string> blocks;
+    std::string line, block;
+    bool inside = false;
+    while (std::getline(in, line)) {
+        if (!inside && line == "```json") {
+            inside = true;
+            block.clear();
+        } else if (inside && line == "```") {
+            inside = false;
+            blocks.push_back(block);
+        } else if (inside) {
+            block += line + "\n";
+        }
+    }
+    ASSERT_GE(blocks.size(), 2u);
+    for (std::size_t i = 0; i < blocks.size(); ++i) {
+        SCOPED_TRACE("block " + std::to_string(i) + ":\n" + blocks[i]);
+        const nlohmann::json document = nlohmann::json::parse(blocks[i], nullptr, true, true);
+        if (document.contains("model")) touch(document["model"].get<std::string>());
+        for (const auto& object : document.value("objects", nlohmann::json::array())) {
+            touch(object["model"].get<std::string>());
+        }
+        const fs::path path = write("doc-" + std::to_string(i) + ".json", blocks[i]);
+        EXPECT_NO_THROW(loadScene(path));
+    }
+}
+
+// ---- File-level errors --------------------------------------------------------------------------
+
+TEST_F(SceneTest, MissingFileIsAnError) {
+    const fs::path path = folder_ / "nope.json";
+    try {
+        loadScene(path);
+        FAIL() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()), path.string() + ": scene file not found");
+    }
+}
+
+TEST_F(SceneTest, FolderIsNotASceneFile) {
+    try {
+        loadScene(folder_);
+        FAIL() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()), folder_.string() + ": is a folder, not a scene file");
+    }
+}
+
+TEST_F(SceneTest, SyntaxErrorGivesLineAndColumn) {
+    const std::string message = errorOf("{\n  \"width\": 100,\n  \"height\": }\n");
+    EXPECT_EQ(
+        message,
+        (folder_ / "scene.json").string() +
+            ": JSON syntax error at line 3, column 13: unexpected '}'; expected '[', '{', or a literal");
+}
+
+TEST_F(SceneTest, SyntaxErrorColumnCountsCharactersNotBytes) {
+    // "é" is two bytes in UTF-8 but one column in an editor.
+    EXPECT_NE(errorOf("{\"model\": \"m.obj\", \"é\": x}").find("line 1, column 25"), std::string::npos);
+}
+
+TEST_F(SceneTest, UnexpectedEndOfFileIsLocated) {
+    EXPECT_NE(errorOf("{\"model\": \"m.obj\",\n").find("at line 2, column 1: unexpected end of input"),
+              std::string::npos);
+    EXPECT_NE(errorOf("").find("JSON syntax error at line 1, column 1"), std::string::npos);
+}
+
+TEST_F(SceneTest, NumberBeyondDoubleRangeIsLocated) {
+    const std::string message = errorOf("{\"model\": \"m.obj\",\n \"width\": 1e400}");
+    EXPECT_NE(message.find("at line 2, column 11"), std::string::npos) << message;
+    EXPECT_NE(message.find("1e400"), std::string::npos) << message;
+}
+
+// ---- Key-level errors: one table, each message checked for the file, the key path and the reason ----
+
+struct ErrorCase {
+    const char* name;
+    const char* json;
+    std::vector<std::string> expected;  // substrings of the message (after the "file: " prefix)
+};
+
+std::ostream& operator<<(std::ostream& out, const ErrorCase& c) {
+    return out << c.name;
+}
+
+class SceneErrors : public SceneTest, public ::testing::WithParamInterface<ErrorCase> {};
+
+TEST_P(SceneErrors, MessageNamesFileAndKey) {
+    const ErrorCase& c = GetParam();
+    const std::string message = errorOf(c.json);
+    const std::string prefix = (folder_ / "scene.json").string() + ": ";
+    EXPECT_EQ(message.substr(0, prefix.size()), prefix) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    for (const std::string& part : c.expected)
+        EXPECT_NE(message.find(part), std::string::npos) << message;
+}
+
+const ErrorCase kErrorCases[] = {
+    // Unknown keys, at every depth, with a suggestion only for a near miss.
+    {"UnknownTopLevelKey",
+     R"({"model": "m.obj", "widht": 5})",
+     {R"(unknown key "widht" (did you mean "width"?))"}},
+    {"UnknownCameraKey",
+     R"({"model": "m.obj", "camera": {"fvoy": 5}})",
+     {R"(unknown key "camera.fvoy" (did you mean "fovy"?))"}},
+    {"UnknownLightKey",
+     R"({"model": "m.obj", "lights": [{}, {"colour": [1, 1, 1]}]})",
+     {R"(unknown key "lights[1].colour" (did you mean "color"?))"}},
+    {"UnknownMaterialKey",
+     R"({"objects": [{"model": "m.obj", "material": {"roughness": 1}}]})",
+     {R"(unknown key "objects[0].material.roughness")"}},
+    {"UnknownPipelineKey",
+     R"({"model": "m.obj", "pipeline": {"subpixelBits": 4}})",
+     {R"(unknown key "pipeline.subpixelBits" (did you mean "subpixel_bits"?))"}},
+    {"UnknownKeyWithNewline", "{\"model\": \"m.obj\", \"a\\nb\": 1}", {R"(unknown key "a\nb")"}},
+    // Wrong types.
+    {"FovyNotANumber",
+     R"({"model": "m.obj", "camera": {"fovy": "wide"}})",
+     {R"("camera.fovy" must be a number (got the string "wide"))"}},
+    {"EyeWrongLength",
+     R"({"model": "m.obj", "camera": {"eye": [0, 1]}})",
+     {R"("camera.eye" must be an array of 3 numbers)", "(got an array of 2)"}},
+    {"EyeElementNotANumber",
+     R"({"model": "m.obj", "camera": {"eye": [0, true, 1]}})",
+     {R"("camera.eye[1]" must be a number (got true))"}},
+    {"CameraNotAnObject", R"({"model": "m.obj", "camera": [0, 1, 5]})", {R"("camera" must be an object)"}},
+    {"WidthAsString",
+     R"({"model": "m.obj", "width": "800"})",
+     {R"("width" must be a whole number (got the string "800"))"}},
+    {"LightsNotAnArray",
+     R"({"model": "m.obj", "lights": {"type": "point"}})",
+     {R"("lights" must be an array of lights (got an object))"}},
+    {"ObjectsNotAnArray", R"({"objects": {"model": "m.obj"}})", {R"("objects" must be an array)"}},
+    {"ModelNotAString", R"({"model": 3})", {R"("model" must be a string (got 3))"}},
+    {"CullNotAChoice",
+     R"({"model": "m.obj", "pipeline": {"cull": "bakc"}})",
+     {R"("pipeline.cull" must be one of "back", "front", "none" (got "bakc") (did you mean "back"?))"}},
+    {"LightTypeUnknown",
+     R"({"model": "m.obj", "lights": [{"type": "spot"}]})",
+     {R"("lights[0].type" must be one of "directional", "point")"}},
+    {"LightSpaceUnknown",
+     R"({"model": "m.obj", "lights": [{"space": "view"}]})",
+     {R"("lights[0].space" must be one of "world", "camera")"}},
+    {"InterpolationUnknown",
+     R"({"model": "m.obj", "pipeline": {"interpolation": "linear"}})",
+     {R"("pipeline.interpolation" must be one of)"}},
+    {"TopLevelNotAnObject", R"([{"model": "m.obj"}])", {"must hold a JSON object", "(got an array of 1)"}},
+    // Out-of-range values.
+    {"WidthZero",
+     R"({"model": "m.obj", "width": 0})",
+     {R"("width" must be a whole number from 1 to 16384 (got 0))"}},
+    {"HeightTooLarge",
+     R"({"model": "m.obj", "height": 16385})",
+     {R"("height")", "from 1 to 16384 (got 16385)"}},
+    {"WidthFraction",
+     R"({"model": "m.obj", "width": 2.5})",
+     {R"("width" must be a whole number)", "(got 2.5)"}},
+    {"WidthHuge", R"({"model": "m.obj", "width": 1e300})", {R"("width")", "(got 1e+300)"}},
+    {"FovyZero",
+     R"({"model": "m.obj", "camera": {"fovy": 0}})",
+     {R"("camera.fovy" must be between 0 and 180 degrees)", "(got 0)"}},
+    {"Fovy180", R"({"model": "m.obj", "camera": {"fovy": 180}})", {R"("camera.fovy")", "(got 180)"}},
+    {"NearZero",
+     R"({"model": "m.obj", "camera": {"near": 0}})",
+     {R"("camera.near" must be greater than 0 (got 0))"}},
+    {"NearNegative", R"({"model": "m.obj", "camera": {"near": -1}})", {R"("camera.near")", "(got -1)"}},
+    {"FarBelowNear",
+     R"({"model": "m.obj", "camera": {"near": 10, "far": 5}})",
+     {R"("camera.far" must be greater than "camera.near" (10) (got 5))"}},
+    {"FarEqualsNear", R"({"model": "m.obj", "camera": {"near": 1, "far": 1}})", {R"("camera.far")"}},
+    {"FarNegative",
+     R"({"model": "m.obj", "camera": {"far": -2}})",
+     {R"("camera.far" must be greater than 0)"}},
+    {"EyeEqualsTarget",
+     R"({"model": "m.obj", "camera": {"eye": [1, 2, 3], "target": [1, 2, 3]}})",
+     {R"("camera.eye" and "camera.target" must differ)"}},
+    {"UpParallelToView",
+     R"({"model": "m.obj", "camera": {"eye": [0, 5, 0], "target": [0, 0, 0]}})",
+     {R"("camera.up" is parallel to the view direction)"}},
+    {"UpZero",
+     R"({"model": "m.obj", "camera": {"up": [0, 0, 0]}})",
+     {R"("camera.up" must not be the zero vector)"}},
+    {"IntensityNegative",
+     R"({"model": "m.obj", "lights": [{"intensity": -1}]})",
+     {R"("lights[0].intensity" must not be negative (got -1))"}},
+    {"ColorNegative",
+     R"({"model": "m.obj", "lights": [{"color": [1, -0.5, 1]}]})",
+     {R"("lights[0].color[1]" must not be negative (got -0.5))"}},
+    {"DirectionZero",
+     R"({"model": "m.obj", "lights": [{"direction": [0, 0, 0]}]})",
+     {R"("lights[0].direction" must not be the zero vector)"}},
+    {"PointLightWithDirection",
+     R"({"model": "m.obj", "lights": [{"type": "point", "direction": [0, -1, 0]}]})",
+     {R"("lights[0].direction" is only for directional lights)"}},
+    {"DirectionalLightWithPosition",
+     R"({"model": "m.obj", "lights": [{"position": [0, 1, 0]}]})",
+     {R"("lights[0].position" is only for point lights (add "type": "point"))"}},
+    {"SubpixelBitsTooMany",
+     R"({"model": "m.obj", "pipeline": {"subpixel_bits": 9}})",
+     {R"("pipeline.subpixel_bits" must be a whole number from 0 to 8 (got 9))"}},
+    {"SubpixelBitsNegative",
+     R"({"model": "m.obj", "pipeline": {"subpixel_bits": -1}})",
+     {R"("pipeline.subpixel_bits")", "(got -1)"}},
+    {"OpacityAboveOne",
+     R"({"objects": [{"model": "m.obj", "material": {"opacity": 1.5}}]})",
+     {R"("objects[0].material.opacity" must be from 0 to 1 (got 1.5))"}},
+    {"ShininessNegative",
+     R"({"objects": [{"model": "m.obj", "material": {"shininess": -2}}]})",
+     {R"("objects[0].material.shininess" must not be negative)"}},
+    {"DiffuseNegative",
+     R"({"objects": [{"model": "m.obj", "material": {"diffuse": [-1, 0, 0]}}]})",
+     {R"("objects[0].material.diffuse[0]" must not be negative)"}},
+    {"MaterialNotAnObject",
+     R"({"objects": [{"model": "m.obj", "material": "red"}]})",
+     {R"("objects[0].material" must be an object)"}},
+    {"ScaleZero",
+     R"({"objects": [{"model": "m.obj", "scale": 0}]})",
+     {R"("objects[0].scale" must not be zero)"}},
+    {"ScaleAxisZero",
+     R"({"objects": [{"model": "m.obj", "scale": [1, 0, 1]}]})",
+     {R"("objects[0].scale" must not be zero in any axis)"}},
+    {"TranslateBeyondFloat",
+     R"({"objects": [{"model": "m.obj", "translate": [1e300, 0, 0]}]})",
+     {R"("objects[0].translate[0]" is too large (got 1e+300))"}},
+    {"BackgroundWrongLength",
+     R"({"model": "m.obj", "background": [1, 1]})",
+     {R"("background" must be [r, g, b] or [r, g, b, a] (got an array of 2))"}},
+    {"BackgroundAlphaAboveOne",
+     R"({"model": "m.obj", "background": [0, 0, 0, 2]})",
+     {R"("background[3]" (alpha) must be from 0 to 1 (got 2))"}},
+    {"AmbientNegative",
+     R"({"model": "m.obj", "ambient": [0.1, 0.1, -0.1]})",
+     {R"("ambient[2]" must not be negative)"}},
+    // Objects.
+    {"NoObjects", R"({"width": 100})", {"the scene has no objects"}},
+    {"EmptyObjects", R"({"objects": []})", {"the scene has no objects"}},
+    {"ModelAndObjects",
+     R"({"model": "m.obj", "objects": [{"model": "m.obj"}]})",
+     {R"(give either "model" or "objects", not both)"}},
+    {"ObjectWithoutModel",
+     R"({"objects": [{"model": "m.obj"}, {"scale": 2}]})",
+     {R"("objects[1].model" is missing)"}},
+    {"ModelEmpty", R"({"model": ""})", {R"("model" must name an OBJ file)"}},
+    {"ModelNotFound",
+     R"({"objects": [{"model": "m.obj"}, {"model": "x.obj"}]})",
+     {R"("objects[1].model": model file "x.obj" not found (looked for ")", R"(x.obj"))"}},
+    {"ShorthandModelNotFound", R"({"model": "sub/x.obj"})", {R"("model": model file "sub/x.obj" not found)"}},
+    // Duplicates: JSON would silently keep the last one.
+    {"DuplicateKey",
+     R"({"model": "m.obj", "camera": {"fovy": 30, "fovy": 40}})",
+     {R"(key "camera.fovy" is given twice)"}},
+    {"DuplicateKeyInArray",
+     R"({"model": "m.obj", "lights": [{}, {"color": [1, 1, 1], "color": [1, 0, 0]}]})",
+     {R"(key "lights[1].color" is given twice)"}},
+    {"DuplicateTopLevelKey",
+     R"({"model": "m.obj", "width": 10, "width": 20})",
+     {R"(key "width" is given twice)"}},
+};
+
+INSTANTIATE_TEST_SUITE_P(Scene, SceneErrors, ::testing::ValuesIn(kErrorCases),
+                         [](const ::testing::TestParamInfo<ErrorCase>& info) {
+                             return std::string(info.param.name);
+                         });
+
+// Only a key within two edits of a known one is suggested.
+TEST_F(SceneTest, FarFromEveryKeyGivesNoSuggestion) {
+    const std::string message = errorOf(R"({"objects": [{"model": "m.obj", "material": {"roughness": 1}}]})");
+    EXPECT_EQ(message,
+              (folder_ / "scene.json").string() + R"(: unknown key "objects[0].material.roughness")");
+}
+
+TEST_F(SceneTest, ModelThatIsAFolderIsAnError) {
+    fs::create_directories(folder_ / "dir.obj");
+    const std::string message = errorOf(R"({"model": "dir.obj"})");
+    EXPECT_NE(message.find(R"("model": model file "dir.obj" is a folder)"), std::string::npos) << message;
+}
+
+}  // namespace
+}  // namespace facet

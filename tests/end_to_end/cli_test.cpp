@@ -1,0 +1,144 @@
+// The facet program as a user runs it: exit status, the one-line error, and no partial images.
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "image_io.h"
+#include "test_files.h"
+
+namespace facet {
+namespace {
+
+using testing::readText;
+using testing::TempDir;
+
+struct Run {
+    int status = -1;
+    std::string out;
+    std::string err;
+};
+
+Run runFacet(const std::string& args, const TempDir& dir) {
+    const auto outFile = dir.path() / "stdout.txt", errFile = dir.path() / "stderr.txt";
+    const std::string command = std::string("'") + FACET_BINARY + "' " + args + " >'" + outFile.string() +
+                                "' 2>'" + errFile.string() + "' </dev/null";
+    const int raw = std::system(command.c_str());
+    Run run;
+    run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    run.out = readText(outFile);
+    run.err = readText(errFile);
+    return run;
+}
+
+int lineCount(const std::string& text) {
+    int n = 0;
+    for (char c : text)
+        n += c == '\n';
+    return n;
+}
+
+std::string quoted(const std::filesystem::path& p) {
+    return "'" + p.string() + "'";
+}
+
+TEST(Cli, RendersABundledModelToPng) {
+    TempDir dir;
+    const auto png = dir.path() / "spot.png";
+    const Run run = runFacet(
+        "render " + quoted(std::filesystem::path(FACET_SOURCE_DIR) / "models/spot/spot_triangulated.obj") +
+            " -o " + quoted(png) + " --width 96 --height 72",
+        dir);
+    ASSERT_EQ(run.status, 0) << run.err;
+    EXPECT_NE(run.out.find("5856 triangles"), std::string::npos) << run.out;
+    const LinearImage image = readImage(png);
+    EXPECT_EQ(image.width, 96);
+    EXPECT_EQ(image.height, 72);
+    // No temporary file is left beside the image.
+    int files = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
+        files += entry.path().extension() == ".png";
+    EXPECT_EQ(files, 1);
+}
+
+// Each bad input: exit status 1, exactly one line on stderr naming what is wrong, and an existing
+// output file left as it was.
+struct BadInput {
+    const char* name;
+    const char* objText;    // written as bad.obj when not null
+    const char* sceneText;  // written as bad.json when not null
+    const char* extraArgs;
+    const char* expected;  // must appear in the error line
+};
+
+class CliBadInput : public ::testing::TestWithParam<BadInput> {};
+
+TEST_P(CliBadInput, FailsWithOneLineAndKeepsTheOldImage) {
+    const BadInput& c = GetParam();
+    TempDir dir;
+    std::string input = quoted(dir.path() / "missing.obj");
+    if (c.objText) input = quoted(dir.write("bad.obj", c.objText));
+    if (c.sceneText) input = quoted(dir.write("bad.json", c.sceneText));
+    if (!c.objText && !c.sceneText && std::string(c.extraArgs).empty() == false)
+        input = quoted(dir.write("ok.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
+    const auto out = dir.write("old.png", "previous contents");
+    const Run run = runFacet("render " + input + " -o " + quoted(out) + " " + c.extraArgs, dir);
+    EXPECT_EQ(run.status, 1) << run.err;
+    EXPECT_EQ(lineCount(run.err), 1) << run.err;
+    EXPECT_EQ(run.err.rfind("facet: error: ", 0), 0u) << run.err;
+    EXPECT_NE(run.err.find(c.expected), std::string::npos)
+        << "expected \"" << c.expected << "\" in: " << run.err;
+    EXPECT_EQ(readText(out), "previous contents");
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, CliBadInput,
+    ::testing::Values(
+        BadInput{"MissingFile", nullptr, nullptr, "", "missing.obj"},
+        BadInput{"IndexOutOfRange", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", nullptr, "", "bad.obj:4"},
+        BadInput{"NanCoordinate", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n", nullptr, "", "bad.obj:2"},
+        BadInput{"NoTriangles", "v 0 0 0\nv 1 0 0\n", nullptr, "", "bad.obj"},
+        BadInput{"UnknownSceneKey", nullptr, "{\"model\": \"x.obj\", \"camera\": {\"fvoy\": 30}}", "",
+                 "camera.fvoy"},
+        BadInput{"SceneSyntax", nullptr, "{\n  \"width\": 10,\n  oops\n}", "", "bad.json"},
+        BadInput{"WidthZero", nullptr, nullptr, "--width 0", "--width"},
+        BadInput{"WidthHuge", nullptr, nullptr, "--width 1000000", "--width"},
+        BadInput{"TooManyPixels", nullptr, nullptr, "--width 16384 --height 16384", "limit"},
+        BadInput{"BadEye", nullptr, nullptr, "--eye 1,2", "--eye"},
+        BadInput{"FovyOutOfRange", nullptr, nullptr, "--fovy 200", "--fovy"}),
+    [](const ::testing::TestParamInfo<BadInput>& info) { return std::string(info.param.name); });
+
+TEST(Cli, UnknownImageFormatWritesNothing) {
+    TempDir dir;
+    const auto obj = dir.write("ok.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    const Run run = runFacet("render " + quoted(obj) + " -o " + quoted(dir.path() / "x.notaformat"), dir);
+    EXPECT_EQ(run.status, 1);
+    EXPECT_EQ(lineCount(run.err), 1) << run.err;
+    EXPECT_NE(run.err.find("x.notaformat"), std::string::npos) << run.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / "x.notaformat"));
+}
+
+TEST(Cli, MissingMaterialFileWarnsAndRenders) {
+    TempDir dir;
+    const auto obj =
+        dir.write("m.obj", "mtllib nowhere.mtl\nusemtl red\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    const Run run = runFacet(
+        "render " + quoted(obj) + " -o " + quoted(dir.path() / "m.png") + " --width 32 --height 32", dir);
+    EXPECT_EQ(run.status, 0) << run.err;
+    EXPECT_NE(run.err.find("warning"), std::string::npos);
+    EXPECT_NE(run.err.find("nowhere.mtl"), std::string::npos) << run.err;
+    EXPECT_TRUE(std::filesystem::exists(dir.path() / "m.png"));
+}
+
+TEST(Cli, NoArgumentsPrintsUsageAndFails) {
+    TempDir dir;
+    const Run run = runFacet("", dir);
+    EXPECT_NE(run.status, 0);
+    EXPECT_NE((run.out + run.err).find("render"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace facet

@@ -1,0 +1,124 @@
+// Rendering whole scenes through the renderer: hand-computed pixels, and every bundled model.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "color.h"
+#include "renderer.h"
+#include "test_files.h"
+
+namespace facet {
+namespace {
+
+using testing::TempDir;
+
+// A 2×2 square in the z = 0 plane facing +z, seen head-on.
+constexpr const char* kSquareObj =
+    "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvn 0 0 1\nf 1//1 2//1 3//1 4//1\n";
+
+Scene headOnScene(const std::filesystem::path& model) {
+    Scene scene = sceneForModel(model);
+    scene.width = 64;
+    scene.height = 48;
+    scene.camera.eye = vec3(0, 0, 5);
+    scene.camera.target = vec3(0, 0, 0);
+    scene.ambientLight = vec3(0);
+    LightSpec light;
+    light.type = LightType::Directional;
+    light.direction = vec3(0, 0, -1);  // travelling into the screen: straight onto the square
+    scene.lights = {light};
+    return scene;
+}
+
+LinearImage renderScene(const Scene& scene) {
+    const PreparedScene prepared = prepareScene(scene);
+    Framebuffer framebuffer(scene.width, scene.height);
+    DrawScratch scratch;
+    renderFrame(prepared, framebuffer, scratch);
+    return toImage(framebuffer);
+}
+
+// c = k_d·(N·L) + k_s·(N·H)^n with N = L = V = H = +z at the centre: k_d + k_s, both decoded from sRGB.
+TEST(Render, HeadOnSquareHasTheHandComputedColour) {
+    TempDir dir;
+    const auto obj = dir.write("square.obj", std::string("mtllib square.mtl\nusemtl grey\n") + kSquareObj);
+    dir.write("square.mtl", "newmtl grey\nKa 0 0 0\nKd 0.5 0.25 0.75\nKs 0.2 0.2 0.2\nNs 10\n");
+    const LinearImage image = renderScene(headOnScene(obj));
+    const vec4 centre = image.at(32, 24);
+    const float ks = srgbToLinear(0.2f);
+    EXPECT_NEAR(centre.r, srgbToLinear(0.5f) + ks, 1e-4f);
+    EXPECT_NEAR(centre.g, srgbToLinear(0.25f) + ks, 1e-4f);
+    EXPECT_NEAR(centre.b, srgbToLinear(0.75f) + ks, 1e-4f);
+    EXPECT_EQ(centre.a, 1.0f);
+    // The corner shows the background (default, decoded from sRGB).
+    const Scene defaults;
+    EXPECT_NEAR(image.at(0, 0).r, srgbToLinear(defaults.background.r), 1e-6f);
+    EXPECT_NEAR(image.at(0, 0).b, srgbToLinear(defaults.background.b), 1e-6f);
+}
+
+TEST(Render, LightFromBehindLeavesOnlyAmbientAndEmission) {
+    TempDir dir;
+    const auto obj = dir.write("square.obj", std::string("mtllib square.mtl\nusemtl glow\n") + kSquareObj);
+    dir.write("square.mtl", "newmtl glow\nKa 1 1 1\nKd 0.5 0.5 0.5\nKs 1 1 1\nKe 0.1 0.2 0.3\n");
+    Scene scene = headOnScene(obj);
+    scene.lights[0].direction = vec3(0, 0, 1);  // travelling towards the viewer: lights the back
+    scene.ambientLight = vec3(0.5f);
+    const vec4 centre = renderScene(scene).at(32, 24);
+    // c = k_e + a_global ⊗ k_a: no diffuse, no specular (N·L < 0).
+    EXPECT_NEAR(centre.r, srgbToLinear(0.1f) + srgbToLinear(0.5f), 1e-5f);
+    EXPECT_NEAR(centre.g, srgbToLinear(0.2f) + srgbToLinear(0.5f), 1e-5f);
+    EXPECT_NEAR(centre.b, srgbToLinear(0.3f) + srgbToLinear(0.5f), 1e-5f);
+}
+
+// Each bundled model, and the classic ones in ../shared/models, render with every default: the corner
+// holds the background, the centre is the model, every value is finite.
+class BundledModel : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(BundledModel, RendersWithDefaults) {
+    const std::filesystem::path path = GetParam();
+    const bool isScene = path.extension() == ".json";
+    if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is not here";
+    Scene scene = isScene ? loadScene(path) : sceneForModel(path);
+    scene.width = 160;
+    scene.height = 120;
+    const PreparedScene prepared = prepareScene(scene);
+    EXPECT_GT(prepared.triangleCount, 0u);
+    Framebuffer framebuffer(scene.width, scene.height);
+    DrawScratch scratch;
+    const DrawStats stats = renderFrame(prepared, framebuffer, scratch);
+    EXPECT_GT(stats.fragmentsWritten, 500u);
+    const LinearImage image = toImage(framebuffer);
+    const vec4 background = prepared.clearColor;
+    EXPECT_EQ(image.at(0, 0), background);
+    EXPECT_EQ(image.at(159, 119), background);
+    if (!isScene) {
+        // The default camera looks at the centre of the bounding box; these models are solid there.
+        int modelPixels = 0;
+        for (int y = 55; y < 65; ++y)
+            for (int x = 75; x < 85; ++x)
+                modelPixels += image.at(x, y) != background;
+        EXPECT_GT(modelPixels, 50) << "the middle of the image should show the model";
+    }
+    for (const vec4& p : image.pixels)
+        for (int k = 0; k < 4; ++k)
+            ASSERT_TRUE(std::isfinite(p[k]));
+}
+
+INSTANTIATE_TEST_SUITE_P(Models, BundledModel,
+                         ::testing::Values(FACET_SOURCE_DIR "/models/spot/spot_triangulated.obj",
+                                           FACET_SOURCE_DIR "/models/cube/cube.obj",
+                                           FACET_SOURCE_DIR "/models/example-scene.json",
+                                           FACET_SHARED_MODELS "/stanford-bunny/stanford-bunny.obj",
+                                           FACET_SHARED_MODELS "/utah-teapot/teapot.obj",
+                                           FACET_SHARED_MODELS "/suzanne/suzanne.obj",
+                                           FACET_SHARED_MODELS "/cornell-box/CornellBox-Original.obj",
+                                           FACET_SHARED_MODELS "/lat-long-sphere/sphere-cylcoords-4k.obj"),
+                         [](const ::testing::TestParamInfo<std::string>& info) {
+                             std::string name = std::filesystem::path(info.param).stem().string();
+                             for (char& c : name)
+                                 if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                             return name;
+                         });
+
+}  // namespace
+}  // namespace facet
