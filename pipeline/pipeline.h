@@ -19,6 +19,7 @@
 #include "framebuffer.h"
 #include "interpolate.h"
 #include "observer.h"
+#include "primitive_assembly.h"
 #include "rasterize.h"
 #include "shader.h"
 #include "state.h"
@@ -120,6 +121,7 @@ template <Shader S, class Observer = NullObserver>
 DrawStats draw(const DrawState& state, const typename S::Uniforms& uniforms,
                std::span<const typename S::Attributes> vertices, std::span<const std::uint32_t> indices,
                Framebuffer& target, DrawScratch& scratch, Observer&& observer = Observer{}) {
+    constexpr bool kObserving = std::remove_reference_t<Observer>::enabled;
     validateDraw(state, target, vertices.size(), indices);
     DrawStats stats;
 
@@ -132,7 +134,7 @@ DrawStats draw(const DrawState& state, const typename S::Uniforms& uniforms,
     for (std::size_t i = 0; i < shaded.size(); ++i) {
         if (shaded.outcodes[i] == 0)
             scratch.window[i] = toWindow(shaded.positions[i], state.viewport, state.raster.subpixelBits);
-        if constexpr (std::remove_reference_t<Observer>::enabled)
+        if constexpr (kObserving)
             observer.onVertex(static_cast<std::uint32_t>(i), shaded.positions[i], shaded.varyingsOf(i),
                               shaded.varyingCount, shaded.outcodes[i]);
     }
@@ -141,22 +143,21 @@ DrawStats draw(const DrawState& state, const typename S::Uniforms& uniforms,
     stats.triangles = triangleCount;
     for (std::size_t t = 0; t < triangleCount; ++t) {
         const auto triangleIndex = static_cast<std::uint32_t>(t);
-        const std::uint32_t i[3] = {indices[3 * t], indices[3 * t + 1], indices[3 * t + 2]};
+        const std::array<std::uint32_t, 3> i = {indices[3 * t], indices[3 * t + 1], indices[3 * t + 2]};
 
-        // Primitive assembly and trivial reject: a non-finite vertex drops the triangle; three vertices
-        // outside one plane put it wholly outside the frustum.
+        // Primitive assembly and trivial reject.
         const std::uint8_t outcodeAnd = shaded.outcodes[i[0]] & shaded.outcodes[i[1]] & shaded.outcodes[i[2]];
         const std::uint8_t outcodeOr = shaded.outcodes[i[0]] | shaded.outcodes[i[1]] | shaded.outcodes[i[2]];
-        TriangleFate rejected = TriangleFate::Drawn;
-        if (outcodeOr & kNonFinite)
-            rejected = TriangleFate::NonFinite;
-        else if (outcodeAnd)
-            rejected = TriangleFate::OutsideFrustum;
+        const TriangleFate rejected = trivialReject(outcodeAnd, outcodeOr);
         if (rejected != TriangleFate::Drawn) {
             ++stats.trianglesRejected;
-            if constexpr (std::remove_reference_t<Observer>::enabled)
-                observer.onRejected(triangleIndex, rejected);
+            if constexpr (kObserving) observer.onRejected(triangleIndex, rejected);
             continue;
+        }
+        ClipPolygon& polygon = scratch.polygon;
+        if (kObserving || outcodeOr != 0) {
+            assembleTriangle(shaded, i, polygon);
+            if constexpr (kObserving) observer.onAssembled(triangleIndex, polygon);
         }
 
         WindowTriangle window;
@@ -167,45 +168,22 @@ DrawStats draw(const DrawState& state, const typename S::Uniforms& uniforms,
                 window.vertices[k] = scratch.window[i[k]];
                 window.varyings[k] = shaded.varyingsOf(i[k]);
             }
-            if constexpr (std::remove_reference_t<Observer>::enabled) {
-                ClipPolygon& assembled = scratch.polygon;
-                assembled.count = 3;
-                assembled.varyingCount = shaded.varyingCount;
-                assembled.planesCut = 0;
-                for (int k = 0; k < 3; ++k) {
-                    assembled.vertices[k].position = shaded.positions[i[k]];
-                    std::copy_n(shaded.varyingsOf(i[k]), shaded.varyingCount,
-                                assembled.vertices[k].varyings.begin());
-                }
-                observer.onAssembled(triangleIndex, assembled);
-            }
             detail::drawWindowTriangle<S>(triangleIndex, window, state, uniforms, target, stats, observer);
             continue;
         }
 
         // Clipping: the triangle crosses at least one plane.
         ++stats.trianglesClipped;
-        ClipPolygon& polygon = scratch.polygon;
-        polygon.count = 3;
-        polygon.varyingCount = shaded.varyingCount;
-        polygon.planesCut = 0;
-        for (int k = 0; k < 3; ++k) {
-            polygon.vertices[k].position = shaded.positions[i[k]];
-            std::copy_n(shaded.varyingsOf(i[k]), shaded.varyingCount, polygon.vertices[k].varyings.begin());
-        }
-        if constexpr (std::remove_reference_t<Observer>::enabled)
-            observer.onAssembled(triangleIndex, polygon);
         clipPolygon(polygon, outcodeOr);
-        if constexpr (std::remove_reference_t<Observer>::enabled) observer.onClipped(triangleIndex, polygon);
+        if constexpr (kObserving) observer.onClipped(triangleIndex, polygon);
         if (polygon.count == 0) {
             ++stats.trianglesRejected;
-            if constexpr (std::remove_reference_t<Observer>::enabled)
-                observer.onRejected(triangleIndex, TriangleFate::ClippedAway);
+            if constexpr (kObserving) observer.onRejected(triangleIndex, TriangleFate::ClippedAway);
             continue;
         }
 
         // The clipped polygon is convex: draw it as a fan around its first vertex.
-        WindowVertex first =
+        const WindowVertex first =
             toWindow(polygon.vertices[0].position, state.viewport, state.raster.subpixelBits);
         WindowVertex previous =
             toWindow(polygon.vertices[1].position, state.viewport, state.raster.subpixelBits);

@@ -126,6 +126,10 @@ int main(int argc, char** argv) {
     benchCommand->add_option("--height", benchOptions.height, "Image height (default 1080)");
     benchCommand->add_option("--frames", benchOptions.frames, "Timed frames (default 30)");
 
+    if (argc == 1) {  // no command at all: show what there is to do
+        std::cerr << app.help();
+        return 2;
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

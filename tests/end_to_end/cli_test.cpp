@@ -3,6 +3,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -16,18 +17,20 @@ namespace {
 using testing::readText;
 using testing::TempDir;
 
-struct Run {
+struct RunResult {
     int status = -1;
     std::string out;
     std::string err;
 };
 
-Run runFacet(const std::string& args, const TempDir& dir) {
+RunResult runFacet(const std::string& args, const TempDir& dir) {
     const auto outFile = dir.path() / "stdout.txt", errFile = dir.path() / "stderr.txt";
-    const std::string command = std::string("'") + FACET_BINARY + "' " + args + " >'" + outFile.string() +
-                                "' 2>'" + errFile.string() + "' </dev/null";
-    const int raw = std::system(command.c_str());
-    Run run;
+    // Built with a stream: GCC 12 reports a false -Wrestrict on chains of std::string operator+.
+    std::ostringstream command;
+    command << "'" << FACET_BINARY << "' " << args << " >'" << outFile.string() << "' 2>'" << errFile.string()
+            << "' </dev/null";
+    const int raw = std::system(command.str().c_str());
+    RunResult run;
     run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
     run.out = readText(outFile);
     run.err = readText(errFile);
@@ -42,13 +45,15 @@ int lineCount(const std::string& text) {
 }
 
 std::string quoted(const std::filesystem::path& p) {
-    return "'" + p.string() + "'";
+    std::ostringstream text;
+    text << "'" << p.string() << "'";
+    return text.str();
 }
 
 TEST(Cli, RendersABundledModelToPng) {
     TempDir dir;
     const auto png = dir.path() / "spot.png";
-    const Run run = runFacet(
+    const RunResult run = runFacet(
         "render " + quoted(std::filesystem::path(FACET_SOURCE_DIR) / "models/spot/spot_triangulated.obj") +
             " -o " + quoted(png) + " --width 96 --height 72",
         dir);
@@ -74,6 +79,9 @@ struct BadInput {
     const char* expected;  // must appear in the error line
 };
 
+// Printed by gtest in test listings.
+void PrintTo(const BadInput& c, std::ostream* os) { *os << c.name; }
+
 class CliBadInput : public ::testing::TestWithParam<BadInput> {};
 
 TEST_P(CliBadInput, FailsWithOneLineAndKeepsTheOldImage) {
@@ -85,7 +93,7 @@ TEST_P(CliBadInput, FailsWithOneLineAndKeepsTheOldImage) {
     if (!c.objText && !c.sceneText && std::string(c.extraArgs).empty() == false)
         input = quoted(dir.write("ok.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
     const auto out = dir.write("old.png", "previous contents");
-    const Run run = runFacet("render " + input + " -o " + quoted(out) + " " + c.extraArgs, dir);
+    const RunResult run = runFacet("render " + input + " -o " + quoted(out) + " " + c.extraArgs, dir);
     EXPECT_EQ(run.status, 1) << run.err;
     EXPECT_EQ(lineCount(run.err), 1) << run.err;
     EXPECT_EQ(run.err.rfind("facet: error: ", 0), 0u) << run.err;
@@ -114,7 +122,8 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(Cli, UnknownImageFormatWritesNothing) {
     TempDir dir;
     const auto obj = dir.write("ok.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-    const Run run = runFacet("render " + quoted(obj) + " -o " + quoted(dir.path() / "x.notaformat"), dir);
+    const RunResult run =
+        runFacet("render " + quoted(obj) + " -o " + quoted(dir.path() / "x.notaformat"), dir);
     EXPECT_EQ(run.status, 1);
     EXPECT_EQ(lineCount(run.err), 1) << run.err;
     EXPECT_NE(run.err.find("x.notaformat"), std::string::npos) << run.err;
@@ -125,7 +134,7 @@ TEST(Cli, MissingMaterialFileWarnsAndRenders) {
     TempDir dir;
     const auto obj =
         dir.write("m.obj", "mtllib nowhere.mtl\nusemtl red\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-    const Run run = runFacet(
+    const RunResult run = runFacet(
         "render " + quoted(obj) + " -o " + quoted(dir.path() / "m.png") + " --width 32 --height 32", dir);
     EXPECT_EQ(run.status, 0) << run.err;
     EXPECT_NE(run.err.find("warning"), std::string::npos);
@@ -135,7 +144,7 @@ TEST(Cli, MissingMaterialFileWarnsAndRenders) {
 
 TEST(Cli, NoArgumentsPrintsUsageAndFails) {
     TempDir dir;
-    const Run run = runFacet("", dir);
+    const RunResult run = runFacet("", dir);
     EXPECT_NE(run.status, 0);
     EXPECT_NE((run.out + run.err).find("render"), std::string::npos);
 }

@@ -1,0 +1,993 @@
+// OBJ import: OBJ + MTL text → validated, welded, fan-triangulated Mesh.
+// tinyobjloader parses. A pre-scan of the same text first catches what it accepts silently ("nan" and
+// "inf" read as 0, index 0, relative indices before the first vertex) and maps each face to its line.
+// Smooth normals weight each face by its area: they sum the faces' unnormalised cross products.
+
+#include "obj_import.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <system_error>
+#include <type_traits>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include <tiny_obj_loader.h>
+
+#include "errors.h"
+
+namespace facet {
+namespace {
+
+namespace fs = std::filesystem;
+
+// tinyobjloader::tinyobjloader is the float build; the _double one compiles with TINYOBJLOADER_USE_DOUBLE.
+static_assert(std::is_same_v<tinyobj::real_t, float>, "link tinyobjloader::tinyobjloader (float build)");
+
+constexpr std::size_t kNoLine = 0;
+constexpr std::size_t kMaxCorners = 255;  // tinyobjloader keeps a face's corner count in an unsigned char
+constexpr std::uint32_t kNoVertex = std::numeric_limits<std::uint32_t>::max();
+
+// ---- Messages -------------------------------------------------------------------------------------
+
+std::string located(const std::string& file, std::size_t line, std::string_view what) {
+    std::string message = file;
+    if (line != kNoLine) {
+        message += ':';
+        message += std::to_string(line);
+    }
+    message += ": ";
+    message += what;
+    return message;
+}
+
+[[noreturn]] void fail(const std::string& file, std::size_t line, std::string_view what) {
+    throw InputError(located(file, line, what));
+}
+
+std::string inQuotes(std::string_view s) {
+    std::string quoted = "'";
+    quoted += s;
+    quoted += '\'';
+    return quoted;
+}
+
+// ---- Files ----------------------------------------------------------------------------------------
+
+// Why a file cannot be read, or "" when `path` is a readable regular file; `text` gets its bytes.
+// Every filesystem call takes an error_code: a filesystem_error must never escape as a crash.
+std::string readTextFile(const fs::path& path, std::string& text) {
+    std::error_code error;
+    const fs::file_status status = fs::status(path, error);
+    if (status.type() == fs::file_type::not_found) return "no such file";
+    if (error) return "cannot open (" + error.message() + ")";
+    if (fs::is_directory(status)) return "is a directory, not a file";
+    // FIFOs and devices could block or never end.
+    if (!fs::is_regular_file(status)) return "is not a regular file";
+
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return std::string("cannot open (") + std::strerror(errno) + ")";
+    in.seekg(0, std::ios::end);
+    const std::streamoff size = in.tellg();
+    in.seekg(0, std::ios::beg);
+    if (size < 0 || !in) return std::string("cannot read (") + std::strerror(errno) + ")";
+    text.assign(static_cast<std::size_t>(size), '\0');
+    in.read(text.data(), size);
+    if (in.gcount() != size) return std::string("cannot read (") + std::strerror(errno) + ")";
+    return "";
+}
+
+std::string readObjText(const fs::path& path, const std::string& file) {
+    std::string text;
+    if (std::string problem = readTextFile(path, text); !problem.empty()) fail(file, kNoLine, problem);
+    if (text.find('\0') != std::string::npos) fail(file, kNoLine, "contains NUL bytes: not an OBJ text file");
+    return text;
+}
+
+// ---- Tokens ---------------------------------------------------------------------------------------
+
+bool isBlank(char c) {
+    return c == ' ' || c == '\t';
+}
+
+// Splits on blanks, like tinyobjloader's strspn/strcspn(" \t").
+class Tokens {
+  public:
+    explicit Tokens(std::string_view text) : rest_(text) {}
+    bool next(std::string_view& token) {
+        std::size_t begin = 0;
+        while (begin < rest_.size() && isBlank(rest_[begin]))
+            ++begin;
+        if (begin == rest_.size()) return false;
+        std::size_t end = begin;
+        while (end < rest_.size() && !isBlank(rest_[end]))
+            ++end;
+        token = rest_.substr(begin, end - begin);
+        rest_.remove_prefix(end);
+        return true;
+    }
+
+  private:
+    std::string_view rest_;
+};
+
+enum class NumberCheck { kFinite, kNotANumber, kNotFinite };
+
+// Accepts what strtod accepts as a whole token (plus a leading '+'), and rejects what a float cannot
+// hold: tinyobjloader reads "nan" and "inf" as 0 and 1e39 as inf, so they must be caught here.
+NumberCheck checkNumber(std::string_view token) {
+    std::string_view digits = token;
+    if (digits.size() > 1 && digits[0] == '+' && digits[1] != '-' && digits[1] != '+')
+        digits.remove_prefix(1);
+    double value = 0.0;
+    const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+    if (end != digits.data() + digits.size() || error == std::errc::invalid_argument) {
+        // MSVC prints NaN and Inf as 1.#IND, 1.#QNAN, 1.#INF.
+        if (error != std::errc::invalid_argument && *end == '#') return NumberCheck::kNotFinite;
+        return NumberCheck::kNotANumber;
+    }
+    if (error == std::errc::result_out_of_range) {
+        // Out of double range: overflow is not finite, underflow is a fine zero.
+        const double rounded = std::strtod(std::string(digits).c_str(), nullptr);
+        return std::isinf(rounded) ? NumberCheck::kNotFinite : NumberCheck::kFinite;
+    }
+    if (!std::isfinite(value) || std::abs(value) > double(std::numeric_limits<float>::max())) {
+        return NumberCheck::kNotFinite;
+    }
+    return NumberCheck::kFinite;
+}
+
+enum class IndexParse { kOk, kMalformed, kTooLarge };
+
+IndexParse parseIndex(std::string_view token, long long& index) {
+    if (token.size() > 1 && token[0] == '+' && token[1] != '-') token.remove_prefix(1);
+    const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), index);
+    if (token.empty() || end != token.data() + token.size() || error == std::errc::invalid_argument) {
+        return IndexParse::kMalformed;
+    }
+    if (error == std::errc::result_out_of_range) return IndexParse::kTooLarge;
+    return IndexParse::kOk;
+}
+
+// One face corner as written, "v", "v/vt", "v//vn" or "v/vt/vn".
+struct CornerRef {
+    long long position = 0;
+    long long texcoord = 0;
+    long long normal = 0;
+    bool hasTexcoord = false;
+    bool hasNormal = false;
+};
+
+// The names tinyobjloader's SplitString gives for an mtllib line: split on ' ', '\' escapes.
+std::vector<std::string> splitLibraryNames(std::string_view text) {
+    std::vector<std::string> names;
+    std::string name;
+    bool escaping = false;
+    for (char c : text) {
+        if (escaping) {
+            escaping = false;
+        } else if (c == '\\') {
+            escaping = true;
+            continue;
+        } else if (c == ' ') {
+            if (!name.empty()) names.push_back(std::move(name));
+            name.clear();
+            continue;
+        }
+        name += c;
+    }
+    if (!name.empty()) names.push_back(std::move(name));
+    return names;
+}
+
+// ---- Pre-scan -------------------------------------------------------------------------------------
+
+enum class Statement : std::uint8_t {
+    kVertex,
+    kTexcoord,
+    kNormal,
+    kFace,
+    kLine,
+    kPoint,
+    kUseMaterial,
+    kLibrary
+};
+
+// A statement the pre-scan checks: [offset, offset + length) of the cleaned text.
+struct ScannedStatement {
+    std::size_t offset;
+    std::size_t length;
+    std::size_t line;  // 1-based, the first physical line when `\` continues it
+    Statement kind;
+};
+
+struct UseMaterial {
+    std::size_t line;
+    std::string name;
+};
+
+struct LibraryStatement {
+    std::size_t line;
+    std::vector<std::string> names;
+};
+
+struct ObjScan {
+    std::size_t positions = 0, texcoords = 0, normals = 0;  // v, vt, vn statements
+    std::size_t facesRead = 0;                              // every f statement
+    std::vector<std::size_t> faceLines;                     // each face with >= 3 corners, in file order
+    std::vector<std::int32_t> faceMaterial;  // per such face: index into useMaterials, -1 before any
+    std::size_t cornerCount = 0;             // over those faces
+    std::size_t shortFaces = 0;              // f statements with < 3 corners
+    std::size_t firstShortFaceLine = kNoLine;
+    std::vector<UseMaterial> useMaterials;
+    std::vector<LibraryStatement> libraries;
+};
+
+// Which statement tinyobjloader would see in `s` (leading blanks removed), in its own order of tests:
+// a keyword then a blank, except "usemtl", which it matches as a bare prefix.
+bool classify(std::string_view s, Statement& kind) {
+    auto keyword = [&](std::string_view word) {
+        return s.size() > word.size() && s.substr(0, word.size()) == word && isBlank(s[word.size()]);
+    };
+    if (keyword("v"))
+        kind = Statement::kVertex;
+    else if (keyword("vn"))
+        kind = Statement::kNormal;
+    else if (keyword("vt"))
+        kind = Statement::kTexcoord;
+    else if (keyword("l"))
+        kind = Statement::kLine;
+    else if (keyword("p"))
+        kind = Statement::kPoint;
+    else if (keyword("f"))
+        kind = Statement::kFace;
+    else if (s.substr(0, 6) == "usemtl")
+        kind = Statement::kUseMaterial;
+    else if (keyword("mtllib"))
+        kind = Statement::kLibrary;
+    else
+        return false;
+    return true;
+}
+
+// Pass 1: splits `text` into lines as tinyobjloader does (LF, CRLF or a lone CR) and rewrites it in
+// place for tinyobjloader without moving a byte: a trailing `\` and the line break after it become
+// blanks (joining the lines), so do comments starting with a `#` after a blank, and a UTF-8 BOM.
+// Returns the statements pass 2 checks, and counts v/vt/vn so that pass 2 knows the file's totals.
+std::vector<ScannedStatement> cleanAndSplit(std::string& text, ObjScan& scan) {
+    std::vector<ScannedStatement> statements;
+    statements.reserve(text.size() / 24);
+    if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) text.replace(0, 3, "   ");
+
+    std::size_t physicalLine = 1;
+    std::size_t pos = 0;
+    while (pos < text.size()) {
+        const std::size_t begin = pos;
+        const std::size_t firstLine = physicalLine;
+        bool isComment = false;  // a comment line is never continued
+        std::size_t end = pos;
+        for (bool firstPiece = true;; firstPiece = false) {
+            end = std::min(text.find_first_of("\r\n", pos), text.size());
+            std::size_t next = end;
+            if (next < text.size())
+                next += (text[next] == '\r' && next + 1 < text.size() && text[next + 1] == '\n') ? 2 : 1;
+            if (firstPiece) {
+                std::size_t first = pos;
+                while (first < end && isBlank(text[first]))
+                    ++first;
+                isComment = first < end && text[first] == '#';
+            }
+            std::size_t last = end;
+            while (last > pos && isBlank(text[last - 1]))
+                --last;
+            ++physicalLine;
+            if (isComment || last == pos || text[last - 1] != '\\') {
+                pos = next;
+                break;
+            }
+            std::fill(text.begin() + static_cast<std::ptrdiff_t>(last - 1),
+                      text.begin() + static_cast<std::ptrdiff_t>(next), ' ');
+            pos = next;
+            if (pos == text.size()) {
+                end = pos;
+                break;
+            }
+        }
+
+        std::size_t first = begin;
+        while (first < end && isBlank(text[first]))
+            ++first;
+        if (first == end || text[first] == '#') continue;
+        for (std::size_t i = first + 1; i < end; ++i) {
+            if (text[i] == '#' && isBlank(text[i - 1])) {
+                std::fill(text.begin() + static_cast<std::ptrdiff_t>(i),
+                          text.begin() + static_cast<std::ptrdiff_t>(end), ' ');
+                break;
+            }
+        }
+        Statement kind;
+        if (!classify(std::string_view(text).substr(first, end - first), kind)) continue;
+        statements.push_back({first, end - first, firstLine, kind});
+        if (kind == Statement::kVertex) ++scan.positions;
+        if (kind == Statement::kTexcoord) ++scan.texcoords;
+        if (kind == Statement::kNormal) ++scan.normals;
+    }
+    return statements;
+}
+
+// The numbers of a v/vt/vn statement: all must be finite, and there must be at least `required`.
+void checkNumbers(std::string_view body, std::size_t required, const char* what, const char* needs,
+                  const std::string& file, std::size_t line) {
+    Tokens tokens(body);
+    std::string_view token;
+    std::size_t count = 0;
+    while (tokens.next(token)) {
+        switch (checkNumber(token)) {
+            case NumberCheck::kNotANumber:
+                fail(file, line, std::string(what) + " " + inQuotes(token) + " is not a number");
+            case NumberCheck::kNotFinite:
+                fail(file, line, std::string(what) + " " + inQuotes(token) + " is not a finite number");
+            case NumberCheck::kFinite:
+                break;
+        }
+        ++count;
+    }
+    if (count < required) fail(file, line, std::string(needs) + ", found " + std::to_string(count));
+}
+
+// One index of a corner against the counts: `before` defined above this line, `total` in the file.
+void checkIndex(long long index, std::size_t before, std::size_t total, const char* what, const char* plural,
+                const std::string& file, std::size_t line) {
+    const std::string name = std::string("face ") + what + "index " + std::to_string(index);
+    if (index == 0) fail(file, line, name + " is invalid (OBJ indices start at 1)");
+    if (index > 0 && static_cast<unsigned long long>(index) > total) {
+        fail(file, line,
+             name + " is out of range (the file has " + std::to_string(total) + " " + plural + ")");
+    }
+    if (index < 0 && index < -static_cast<long long>(before)) {  // not -index: LLONG_MIN has no negation
+        fail(file, line,
+             name + " is out of range (" + std::to_string(before) + " " + plural +
+                 " are defined before this line)");
+    }
+}
+
+// Parses "v", "v/vt", "v//vn" or "v/vt/vn"; false when the corner is malformed.
+bool parseCorner(std::string_view token, CornerRef& corner, const std::string& file, std::size_t line) {
+    std::string_view parts[3];
+    std::size_t partCount = 0;
+    for (;;) {
+        const std::size_t slash = token.find('/');
+        if (partCount == 3) return false;
+        parts[partCount++] = token.substr(0, slash);
+        if (slash == std::string_view::npos) break;
+        token.remove_prefix(slash + 1);
+    }
+    long long* targets[3] = {&corner.position, &corner.texcoord, &corner.normal};
+    corner.hasTexcoord = partCount >= 2 && !(partCount == 3 && parts[1].empty());  // v//vn has none
+    corner.hasNormal = partCount == 3;
+    for (std::size_t i = 0; i < partCount; ++i) {
+        if (i == 1 && !corner.hasTexcoord) continue;
+        switch (parseIndex(parts[i], *targets[i])) {
+            case IndexParse::kMalformed:
+                return false;
+            case IndexParse::kTooLarge:
+                fail(file, line, "face index " + inQuotes(parts[i]) + " is out of range");
+            case IndexParse::kOk:
+                break;
+        }
+    }
+    return true;
+}
+
+// Pass 2: checks every statement in file order, so the error reported is the first in the file.
+ObjScan scanObj(std::string& text, const std::string& file) {
+    ObjScan scan;
+    const std::vector<ScannedStatement> statements = cleanAndSplit(text, scan);
+    scan.faceLines.reserve(scan.positions * 2 + 16);
+    scan.faceMaterial.reserve(scan.positions * 2 + 16);
+
+    std::size_t positions = 0, texcoords = 0, normals = 0;
+    std::int32_t currentMaterial = -1;
+    const std::string_view all(text);
+    for (const ScannedStatement& statement : statements) {
+        const std::string_view s = all.substr(statement.offset, statement.length);
+        const std::size_t line = statement.line;
+        switch (statement.kind) {
+            case Statement::kVertex:
+                checkNumbers(s.substr(1), 3, "vertex coordinate", "a vertex needs 3 coordinates (x y z)",
+                             file, line);
+                ++positions;
+                break;
+            case Statement::kTexcoord:
+                checkNumbers(s.substr(2), 1, "texture coordinate", "a texture coordinate needs at least u",
+                             file, line);
+                ++texcoords;
+                break;
+            case Statement::kNormal:
+                checkNumbers(s.substr(2), 3, "normal component", "a normal needs 3 components (x y z)", file,
+                             line);
+                ++normals;
+                break;
+            case Statement::kFace:
+            case Statement::kLine:
+            case Statement::kPoint: {
+                const bool isFace = statement.kind == Statement::kFace;
+                Tokens tokens(s.substr(1));
+                std::string_view token;
+                std::size_t corners = 0;
+                while (tokens.next(token)) {
+                    CornerRef corner;
+                    if (!parseCorner(token, corner, file, line)) {
+                        fail(file, line,
+                             "malformed corner " + inQuotes(token) +
+                                 " (expected v, v/vt, v//vn or v/vt/vn with integer indices)");
+                    }
+                    if (isFace) {
+                        checkIndex(corner.position, positions, scan.positions, "", "vertices", file, line);
+                        if (corner.hasTexcoord) {
+                            checkIndex(corner.texcoord, texcoords, scan.texcoords, "texture coordinate ",
+                                       "texture coordinates", file, line);
+                        }
+                        if (corner.hasNormal) {
+                            checkIndex(corner.normal, normals, scan.normals, "normal ", "normals", file,
+                                       line);
+                        }
+                    } else if (corner.position == 0 || (corner.hasTexcoord && corner.texcoord == 0) ||
+                               (corner.hasNormal && corner.normal == 0)) {
+                        // Lines and points are not drawn, but tinyobjloader rejects index 0 in them too.
+                        fail(file, line, "index 0 is invalid (OBJ indices start at 1)");
+                    }
+                    ++corners;
+                }
+                if (!isFace) break;
+                ++scan.facesRead;
+                if (corners > kMaxCorners) {
+                    fail(file, line,
+                         "a face with " + std::to_string(corners) + " corners; at most " +
+                             std::to_string(kMaxCorners) + " are supported");
+                }
+                if (corners < 3) {
+                    if (scan.shortFaces++ == 0) scan.firstShortFaceLine = line;
+                    break;
+                }
+                scan.faceLines.push_back(line);
+                scan.faceMaterial.push_back(currentMaterial);
+                scan.cornerCount += corners;
+                break;
+            }
+            case Statement::kUseMaterial: {
+                // tinyobjloader's parseString: the first blank-delimited word.
+                Tokens tokens(s.substr(6));
+                std::string_view name;  // stays empty for a bare "usemtl"
+                tokens.next(name);
+                currentMaterial = static_cast<std::int32_t>(scan.useMaterials.size());
+                scan.useMaterials.push_back({line, std::string(name)});
+                break;
+            }
+            case Statement::kLibrary:
+                scan.libraries.push_back({line, splitLibraryNames(s.substr(7))});
+                break;
+        }
+    }
+    return scan;
+}
+
+// ---- MTL files ------------------------------------------------------------------------------------
+
+struct Library {
+    fs::path path;
+    std::string problem;                                 // why it was not read; empty when it was
+    std::vector<std::string> warnings;                   // "file:line: ..." about its contents
+    std::map<std::string, std::size_t> diffuseMapLines;  // material name → line of its map_Kd
+};
+
+// Reads the MTL files an OBJ names, relative to the OBJ's folder, and remembers where each material
+// came from (textures resolve against that file's folder) and where its map_Kd line is (for warnings).
+class LibraryReader final : public tinyobj::MaterialReader {
+  public:
+    explicit LibraryReader(fs::path objFolder) : objFolder_(std::move(objFolder)) {}
+
+    bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
+                    std::map<std::string, int>* materialIds, std::string* /*warn*/,
+                    std::string* /*err*/) override {
+        // Returning false makes tinyobjloader go on to the next name of the same mtllib line: the
+        // format reads them all, tinyobjloader alone stops at the first one found.
+        if (name.empty() || byName_.count(name) != 0) return false;
+        Library library;
+        library.path = objFolder_ / name;
+        std::string text;
+        library.problem = readTextFile(library.path, text);
+        if (library.problem.empty()) {
+            std::istringstream stream(text);
+            std::string ignoredWarnings, ignoredErrors;  // LoadMtl only warns of d + Tr, even when they agree
+            tinyobj::LoadMtl(materialIds, materials, &stream, &ignoredWarnings, &ignoredErrors);
+            scanMtl(text, library);
+            materialLibrary_.resize(materials->size(), libraries_.size());
+        }
+        byName_[name] = libraries_.size();
+        libraries_.push_back(std::move(library));
+        return false;
+    }
+
+    const Library* find(const std::string& name) const {
+        const auto it = byName_.find(name);
+        return it == byName_.end() ? nullptr : &libraries_[it->second];
+    }
+    // The file material `index` (tinyobjloader's numbering) came from.
+    const Library* libraryOf(std::size_t material) const {
+        return material < materialLibrary_.size() ? &libraries_[materialLibrary_[material]] : nullptr;
+    }
+
+  private:
+    // Finds each material's map_Kd line, and d and Tr that disagree (d 1 with Tr 0 is common and
+    // fine), splitting lines and names the way LoadMtl does.
+    static void scanMtl(const std::string& text, Library& library) {
+        struct Opacity {
+            double value = 0.0;
+            std::size_t line = kNoLine;
+        };
+        std::string material;
+        Opacity d, tr;  // tr.value holds 1 - Tr
+        auto checkOpacity = [&] {
+            if (d.line != kNoLine && tr.line != kNoLine && std::abs(d.value - tr.value) > 1e-6) {
+                std::ostringstream what;
+                what << "material " << inQuotes(material) << " sets opacity twice, d " << d.value
+                     << " and Tr " << 1.0 - tr.value << " (opacity " << tr.value << "); d wins";
+                library.warnings.push_back(
+                    located(library.path.string(), std::max(d.line, tr.line), what.str()));
+            }
+            d = tr = Opacity{};
+        };
+        std::size_t lineNumber = 0;
+        std::size_t pos = 0;
+        while (pos < text.size()) {
+            std::size_t end = std::min(text.find_first_of("\r\n", pos), text.size());
+            std::string_view s = std::string_view(text).substr(pos, end - pos);
+            pos = end + ((end + 1 < text.size() && text[end] == '\r' && text[end + 1] == '\n') ? 2 : 1);
+            ++lineNumber;
+            while (!s.empty() && isBlank(s.back()))
+                s.remove_suffix(1);
+            while (!s.empty() && isBlank(s.front()))
+                s.remove_prefix(1);
+            auto keyword = [&](std::string_view word) {
+                return s.size() > word.size() && s.substr(0, word.size()) == word && isBlank(s[word.size()]);
+            };
+            auto number = [&](std::size_t skip) {
+                return std::strtod(std::string(s.substr(skip)).c_str(), nullptr);
+            };
+            if (keyword("newmtl")) {
+                checkOpacity();
+                material = std::string(s.substr(7));
+            } else if (keyword("map_Kd")) {
+                library.diffuseMapLines[material] = lineNumber;
+            } else if (keyword("d")) {
+                d = {number(2), lineNumber};
+            } else if (keyword("Tr")) {
+                tr = {1.0 - number(3), lineNumber};
+            }
+        }
+        checkOpacity();
+    }
+
+    fs::path objFolder_;
+    std::vector<Library> libraries_;
+    std::map<std::string, std::size_t> byName_;
+    std::vector<std::size_t> materialLibrary_;  // tinyobjloader material index → libraries_ index
+};
+
+// A used MTL material in facet's terms. Non-finite numbers (1e39 reads as inf) fall back to the
+// defaults; opacity is clamped because `Tr` above 1 or below 0 would give one outside [0, 1].
+Material convertMaterial(const tinyobj::material_t& source, std::vector<std::string>& warnings,
+                         const std::string& libraryFile) {
+    Material m;
+    m.name = source.name;
+    const Material defaults;
+    bool replaced = false;
+    auto colour = [&](const tinyobj::real_t* rgb, glm::vec3 fallback) {
+        const glm::vec3 c(rgb[0], rgb[1], rgb[2]);
+        if (std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z)) return c;
+        replaced = true;
+        return fallback;
+    };
+    auto scalar = [&](float value, float fallback) {
+        if (std::isfinite(value)) return value;
+        replaced = true;
+        return fallback;
+    };
+    m.ambient = colour(source.ambient, defaults.ambient);
+    m.diffuse = colour(source.diffuse, defaults.diffuse);
+    m.specular = colour(source.specular, defaults.specular);
+    m.emission = colour(source.emission, defaults.emission);
+    m.shininess = scalar(source.shininess, defaults.shininess);
+    m.opacity = std::clamp(scalar(source.dissolve, defaults.opacity), 0.0f, 1.0f);
+    if (replaced) {
+        warnings.push_back(
+            located(libraryFile, kNoLine,
+                    "material " + inQuotes(m.name) + " has a non-finite number; its default is used"));
+    }
+    return m;
+}
+
+// The texture file `name` from the MTL in `folder`; a Windows path ("maps\wood.png") is tried with '/'.
+fs::path findTexture(const fs::path& folder, const std::string& name) {
+    std::error_code error;
+    fs::path candidate = folder / name;
+    if (fs::is_regular_file(candidate, error)) return candidate;
+    if (name.find('\\') != std::string::npos) {
+        std::string slashed = name;
+        std::replace(slashed.begin(), slashed.end(), '\\', '/');
+        candidate = folder / slashed;
+        if (fs::is_regular_file(candidate, error)) return candidate;
+    }
+    return {};
+}
+
+// ---- Mesh building --------------------------------------------------------------------------------
+
+struct CornerKey {
+    std::int32_t position, texcoord, normal;  // tinyobjloader indices, -1 when absent
+    bool operator==(const CornerKey&) const = default;
+};
+
+struct CornerKeyHash {
+    std::size_t operator()(const CornerKey& k) const noexcept {
+        std::uint64_t h = std::uint32_t(k.position);
+        h = (h * 0x9E3779B97F4A7C15ull) ^ std::uint32_t(k.texcoord);
+        h = (h * 0xC2B2AE3D27D4EB4Full) ^ std::uint32_t(k.normal);
+        // splitmix64's finaliser: neighbouring indices must not share buckets.
+        h ^= h >> 30;
+        h *= 0xBF58476D1CE4E5B9ull;
+        h ^= h >> 27;
+        h *= 0x94D049BB133111EBull;
+        h ^= h >> 31;
+        return static_cast<std::size_t>(h);
+    }
+};
+
+class MeshBuilder {
+  public:
+    MeshBuilder(const tinyobj::attrib_t& attrib, std::size_t cornerCount) : attrib_(attrib) {
+        const std::size_t positionCount = attrib.vertices.size() / 3;
+        normalSums_.assign(positionCount, glm::dvec3(0.0));
+        plainVertex_.assign(positionCount, kNoVertex);
+        welded_.reserve(cornerCount / 2 + 16);
+        vertices_.reserve(cornerCount / 3 + 16);
+
+        // File normals, normalised once; a zero-length one counts as absent.
+        const std::size_t normalCount = attrib.normals.size() / 3;
+        fileNormals_.resize(normalCount);
+        usableNormal_.assign(normalCount, false);
+        for (std::size_t i = 0; i < normalCount; ++i) {
+            const glm::dvec3 n(attrib.normals[3 * i], attrib.normals[3 * i + 1], attrib.normals[3 * i + 2]);
+            const double length = glm::length(n);
+            if (length > 0.0 && std::isfinite(length)) {
+                fileNormals_[i] = glm::vec3(n / length);
+                usableNormal_[i] = true;
+            }
+        }
+    }
+
+    glm::dvec3 position(int index) const {
+        const std::size_t i = static_cast<std::size_t>(index) * 3;
+        return {attrib_.vertices[i], attrib_.vertices[i + 1], attrib_.vertices[i + 2]};
+    }
+
+    // Adds one polygon: fan-triangulated, degenerate triangles counted, the rest into `out`.
+    // Returns the number of triangles kept.
+    std::size_t addPolygon(const tinyobj::index_t* corners, std::size_t count,
+                           std::vector<std::uint32_t>& out, std::size_t& degenerate) {
+        kept_.clear();
+        glm::dvec3 area(0.0);  // the polygon's vector area ×2: the sum of its fan triangles' cross products
+        const glm::dvec3 p0 = position(corners[0].vertex_index);
+        for (std::size_t i = 1; i + 1 < count; ++i) {
+            const tinyobj::index_t &a = corners[0], &b = corners[i], &c = corners[i + 1];
+            if (a.vertex_index == b.vertex_index || b.vertex_index == c.vertex_index ||
+                a.vertex_index == c.vertex_index) {
+                ++degenerate;
+                continue;
+            }
+            // Doubles: a float cross product of 1e30-sized coordinates would overflow.
+            const glm::dvec3 cross = glm::cross(position(b.vertex_index) - p0, position(c.vertex_index) - p0);
+            if (cross == glm::dvec3(0.0)) {
+                ++degenerate;
+                continue;
+            }
+            area += cross;
+            kept_.push_back({i, cross});
+        }
+        if (kept_.empty()) return 0;
+
+        // Every position of the polygon gets its whole area once, whichever fan triangles it is in, so
+        // that a cube's corner normal is the symmetric (1,1,1)/√3.
+        for (std::size_t i = 0; i < count; ++i) {
+            bool seen = false;
+            for (std::size_t j = 0; j < i && !seen; ++j)
+                seen = corners[j].vertex_index == corners[i].vertex_index;
+            if (!seen) normalSums_[static_cast<std::size_t>(corners[i].vertex_index)] += area;
+        }
+        for (const KeptTriangle& t : kept_) {
+            const glm::vec3 faceNormal(glm::normalize(t.cross));
+            out.push_back(vertexFor(corners[0], faceNormal));
+            out.push_back(vertexFor(corners[t.second], faceNormal));
+            out.push_back(vertexFor(corners[t.second + 1], faceNormal));
+        }
+        return kept_.size();
+    }
+
+    // Gives the vertices without a file normal their area-weighted one. Returns how many there were.
+    std::size_t finishNormals() {
+        std::size_t computed = 0;
+        for (std::size_t v = 0; v < vertices_.size(); ++v) {
+            if (smoothPosition_[v] < 0) continue;
+            const glm::dvec3 sum = normalSums_[static_cast<std::size_t>(smoothPosition_[v])];
+            const double length = glm::length(sum);
+            // Opposite faces can cancel (a two-sided sheet): then the first face's own normal.
+            vertices_[v].normal =
+                length > 0.0 && std::isfinite(length) ? glm::vec3(sum / length) : fallbackNormals_[v];
+            ++computed;
+        }
+        return computed;
+    }
+
+    std::vector<MeshVertex> takeVertices() { return std::move(vertices_); }
+    bool hasTexcoords() const { return hasTexcoords_; }
+
+  private:
+    struct KeptTriangle {
+        std::size_t second;  // the fan triangle (0, second, second + 1)
+        glm::dvec3 cross;
+    };
+
+    std::uint32_t vertexFor(const tinyobj::index_t& corner, glm::vec3 faceNormal) {
+        int normal = corner.normal_index;
+        if (normal >= 0 && !usableNormal_[static_cast<std::size_t>(normal)]) normal = -1;
+        const int texcoord = corner.texcoord_index;
+        const std::size_t positionIndex = static_cast<std::size_t>(corner.vertex_index);
+
+        // Most meshes have positions only: an array beats hashing there.
+        std::uint32_t* slot;
+        if (texcoord < 0 && normal < 0) {
+            slot = &plainVertex_[positionIndex];
+        } else {
+            const auto [it, inserted] =
+                welded_.try_emplace(CornerKey{corner.vertex_index, texcoord, normal}, kNoVertex);
+            slot = &it->second;
+        }
+        if (*slot != kNoVertex) return *slot;
+
+        MeshVertex vertex;
+        vertex.position = glm::vec3(position(corner.vertex_index));
+        vertex.uv = glm::vec2(0.0f);
+        if (texcoord >= 0) {
+            const std::size_t t = static_cast<std::size_t>(texcoord) * 2;
+            vertex.uv = glm::vec2(attrib_.texcoords[t], attrib_.texcoords[t + 1]);
+            hasTexcoords_ = true;
+        }
+        vertex.normal = normal >= 0 ? fileNormals_[static_cast<std::size_t>(normal)] : glm::vec3(0.0f);
+        *slot = static_cast<std::uint32_t>(vertices_.size());
+        vertices_.push_back(vertex);
+        fallbackNormals_.push_back(faceNormal);
+        smoothPosition_.push_back(normal >= 0 ? -1 : corner.vertex_index);
+        return *slot;
+    }
+
+    const tinyobj::attrib_t& attrib_;
+    std::vector<glm::vec3> fileNormals_;
+    std::vector<bool> usableNormal_;
+    std::vector<glm::dvec3> normalSums_;      // per position: Σ cross products of the faces around it
+    std::vector<std::uint32_t> plainVertex_;  // per position: its vertex without texcoord or normal
+    std::unordered_map<CornerKey, std::uint32_t, CornerKeyHash> welded_;
+    std::vector<MeshVertex> vertices_;
+    std::vector<glm::vec3> fallbackNormals_;    // per vertex: the normal of the first triangle using it
+    std::vector<std::int32_t> smoothPosition_;  // per vertex: position whose smooth normal it takes, or -1
+    std::vector<KeptTriangle> kept_;
+    bool hasTexcoords_ = false;
+};
+
+// Any value tinyobjloader produced that the pre-scan did not foresee (a bug, not bad input) is still
+// refused rather than drawn as NaN.
+void checkFinite(const std::vector<tinyobj::real_t>& values, std::size_t stride, const char* what,
+                 const std::string& file) {
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        if (!std::isfinite(values[i])) {
+            fail(file, kNoLine, std::string(what) + " " + std::to_string(i / stride + 1) + " is not finite");
+        }
+    }
+}
+
+}  // namespace
+
+Mesh loadObj(const std::filesystem::path& path) {
+    const std::string file = path.string();
+
+    // 1. Read and pre-scan; `text` is rewritten for tinyobjloader (continuations, comments).
+    std::string text = readObjText(path, file);
+    const ObjScan scan = scanObj(text, file);
+
+    // 2. Parse with tinyobjloader, untriangulated: facet fans, and faces stay one-to-one with lines.
+    tinyobj::attrib_t attrib;
+    std::vector<tinyobj::shape_t> shapes;
+    std::vector<tinyobj::material_t> tinyMaterials;
+    std::string tinyWarnings, tinyErrors;  // its warnings repeat what the pre-scan reports better
+    LibraryReader libraries(path.parent_path());
+    std::istringstream stream(std::move(text));
+    if (!tinyobj::LoadObj(&attrib, &shapes, &tinyMaterials, &tinyWarnings, &tinyErrors, &stream, &libraries,
+                          /*triangulate=*/false, /*default_vcols_fallback=*/false)) {
+        std::string what = tinyErrors.substr(0, tinyErrors.find('\n'));
+        fail(file, kNoLine, what.empty() ? "tinyobjloader cannot parse it" : what);
+    }
+    checkFinite(attrib.vertices, 3, "vertex", file);
+    checkFinite(attrib.texcoords, 2, "texture coordinate", file);
+    checkFinite(attrib.normals, 3, "normal", file);
+
+    // The line map is only trusted when tinyobjloader saw the same faces as the pre-scan.
+    std::size_t faceCount = 0, cornerCount = 0;
+    for (const tinyobj::shape_t& shape : shapes) {
+        faceCount += shape.mesh.num_face_vertices.size();
+        cornerCount += shape.mesh.indices.size();
+    }
+    const bool linesTrusted = faceCount == scan.faceLines.size() && cornerCount == scan.cornerCount &&
+                              attrib.vertices.size() == 3 * scan.positions &&
+                              attrib.texcoords.size() == 2 * scan.texcoords &&
+                              attrib.normals.size() == 3 * scan.normals;
+
+    Mesh mesh;
+    mesh.stats.facesRead = scan.facesRead;
+    mesh.stats.degenerateSkipped = scan.shortFaces;
+    std::vector<std::string>& warnings = mesh.warnings;
+
+    // 3. MTL problems, each reported once at the mtllib line naming the file.
+    std::set<std::string> reported;
+    for (const LibraryStatement& statement : scan.libraries) {
+        if (statement.names.empty())
+            warnings.push_back(located(file, statement.line, "mtllib names no file"));
+        for (const std::string& name : statement.names) {
+            const Library* library = libraries.find(name);
+            if (library == nullptr || !reported.insert(name).second) continue;
+            if (!library->problem.empty()) {
+                warnings.push_back(located(file, statement.line,
+                                           "material library " + inQuotes(name) + ": " + library->problem +
+                                               "; its materials fall back to the default"));
+            }
+            warnings.insert(warnings.end(), library->warnings.begin(), library->warnings.end());
+        }
+    }
+    if (scan.shortFaces > 0) {
+        warnings.push_back(
+            located(file, scan.firstShortFaceLine,
+                    std::to_string(scan.shortFaces) + " face(s) with fewer than 3 corners skipped"));
+    }
+
+    // 4. Triangulate, weld and bucket the triangles by material, in first-use order.
+    MeshBuilder builder(attrib, cornerCount);
+    std::vector<int> meshMaterialOf(tinyMaterials.size() + 1, -1);  // [0]: no material; [i + 1]: material i
+    std::vector<int> tinyMaterialOf;  // mesh material → tinyobjloader's, or -1
+    std::vector<std::vector<std::uint32_t>> buckets;
+    std::set<std::string> unknownReported;
+    std::size_t face = 0;
+    for (const tinyobj::shape_t& shape : shapes) {
+        const tinyobj::mesh_t& m = shape.mesh;
+        std::size_t offset = 0;
+        for (std::size_t f = 0; f < m.num_face_vertices.size(); ++f, ++face) {
+            const std::size_t count = m.num_face_vertices[f];
+            const std::size_t line = linesTrusted ? scan.faceLines[face] : kNoLine;
+            if (offset + count > m.indices.size())
+                fail(file, line, "face corners do not match tinyobjloader's");
+            const tinyobj::index_t* corners = &m.indices[offset];
+            offset += count;
+            if (count < 3) {  // tinyobjloader drops these itself; kept for safety
+                ++mesh.stats.degenerateSkipped;
+                continue;
+            }
+            // The pre-scan checked every index; this keeps a mismatch from reading out of bounds.
+            for (std::size_t c = 0; c < count; ++c) {
+                const tinyobj::index_t& k = corners[c];
+                if (k.vertex_index < 0 || std::size_t(k.vertex_index) >= attrib.vertices.size() / 3 ||
+                    k.texcoord_index < -1 ||
+                    (k.texcoord_index >= 0 && std::size_t(k.texcoord_index) >= attrib.texcoords.size() / 2) ||
+                    k.normal_index < -1 ||
+                    (k.normal_index >= 0 && std::size_t(k.normal_index) >= attrib.normals.size() / 3)) {
+                    fail(file, line, "face index out of range");
+                }
+            }
+
+            int tinyMaterial = f < m.material_ids.size() ? m.material_ids[f] : -1;
+            if (tinyMaterial < 0 || std::size_t(tinyMaterial) >= tinyMaterials.size()) {
+                tinyMaterial = -1;
+                const std::int32_t use = linesTrusted ? scan.faceMaterial[face] : -1;
+                if (use >= 0) {
+                    const UseMaterial& statement = scan.useMaterials[std::size_t(use)];
+                    if (unknownReported.insert(statement.name).second) {
+                        warnings.push_back(located(
+                            file, statement.line,
+                            "unknown material " + inQuotes(statement.name) + "; using the default material"));
+                    }
+                }
+            }
+            int& meshMaterial = meshMaterialOf[std::size_t(tinyMaterial + 1)];
+            if (meshMaterial < 0) {
+                meshMaterial = static_cast<int>(buckets.size());
+                buckets.emplace_back();
+                tinyMaterialOf.push_back(tinyMaterial);
+            }
+            mesh.stats.trianglesKept += builder.addPolygon(corners, count, buckets[std::size_t(meshMaterial)],
+                                                           mesh.stats.degenerateSkipped);
+        }
+    }
+
+    if (mesh.stats.trianglesKept == 0) {
+        fail(file, kNoLine,
+             scan.facesRead == 0 ? "no triangles to draw (the file has no faces)"
+                                 : "no triangles to draw (all " + std::to_string(scan.facesRead) +
+                                       " faces are degenerate or have fewer than 3 corners)");
+    }
+
+    // 5. Normals, then the index buffer: one part per material.
+    mesh.stats.normalsComputed = builder.finishNormals();
+    mesh.hasTexcoords = builder.hasTexcoords();
+    mesh.vertices = builder.takeVertices();
+    mesh.indices.reserve(mesh.stats.trianglesKept * 3);
+    for (std::size_t b = 0; b < buckets.size(); ++b) {
+        if (buckets[b].empty()) continue;  // a material whose faces were all degenerate
+        MeshPart part;
+        part.firstIndex = static_cast<std::uint32_t>(mesh.indices.size());
+        part.indexCount = static_cast<std::uint32_t>(buckets[b].size());
+        part.material = static_cast<std::uint32_t>(mesh.materials.size());
+        mesh.indices.insert(mesh.indices.end(), buckets[b].begin(), buckets[b].end());
+        mesh.parts.push_back(part);
+
+        // 6. The part's material, its texture resolved against its own MTL file's folder.
+        const int tinyMaterial = tinyMaterialOf[b];
+        if (tinyMaterial < 0) {
+            mesh.materials.emplace_back();
+            continue;
+        }
+        const tinyobj::material_t& source = tinyMaterials[std::size_t(tinyMaterial)];
+        const Library* library = libraries.libraryOf(std::size_t(tinyMaterial));
+        const std::string libraryFile = library ? library->path.string() : file;
+        Material material = convertMaterial(source, warnings, libraryFile);
+        std::size_t mapLine = kNoLine;
+        if (library) {
+            const auto it = library->diffuseMapLines.find(source.name);
+            if (it != library->diffuseMapLines.end()) mapLine = it->second;
+        }
+        if (!source.diffuse_texname.empty()) {
+            const fs::path folder = library ? library->path.parent_path() : path.parent_path();
+            material.diffuseTexture = findTexture(folder, source.diffuse_texname);
+            if (material.diffuseTexture.empty()) {
+                warnings.push_back(located(libraryFile, mapLine,
+                                           "texture " + inQuotes(source.diffuse_texname) + " of material " +
+                                               inQuotes(source.name) + " not found; drawing without it"));
+            }
+        } else if (mapLine != kNoLine) {
+            // tinyobjloader's "-o u [v [w]]" and "-s", "-t" eat the file name when given fewer numbers.
+            warnings.push_back(located(libraryFile, mapLine,
+                                       "map_Kd of material " + inQuotes(source.name) +
+                                           " names no texture file that could be read; drawing without it"));
+        }
+        mesh.materials.push_back(std::move(material));
+    }
+
+    // 7. Bounds: every vertex is used, as vertices are only made for kept triangles.
+    mesh.boundsMin = mesh.boundsMax = mesh.vertices.front().position;
+    for (const MeshVertex& v : mesh.vertices) {
+        mesh.boundsMin = glm::min(mesh.boundsMin, v.position);
+        mesh.boundsMax = glm::max(mesh.boundsMax, v.position);
+    }
+    return mesh;
+}
+
+}  // namespace facet
