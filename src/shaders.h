@@ -24,7 +24,7 @@ struct ShaderMaterial {
     vec3 specular{0.0f};      // k_s
     vec3 emission{0.0f};      // k_e
     float shininess = 32.0f;  // n
-    float opacity = 1.0f;
+    float opacity = 1.0f;  // d, or 1 − Tr (not applied yet: see fragment())
     const Texture* diffuseMap = nullptr;  // multiplies k_d when set
 };
 
@@ -75,7 +75,9 @@ struct BlinnPhongShader {
             const float specular = m.shininess > 0.0f ? pow(max(dot(N, H), 0.0f), m.shininess) : 1.0f;
             color += light.color * (kd * NdotL + m.specular * specular);
         }
-        return vec4(color, m.opacity);
+        // Drawn opaque: blending transparent surfaces needs them sorted, which the renderer does not do
+        // yet, so the material's opacity is carried but not applied.
+        return vec4(color, 1.0f);
     }
 };
 
