@@ -23,15 +23,19 @@
 #include "rasterize.h"
 #include "shader.h"
 #include "state.h"
+#include "thread_pool.h"
 #include "triangle_setup.h"
 #include "vertex_stage.h"
 #include "viewport.h"
 
 namespace facet {
 
-// Buffers a draw needs, kept by the caller and reused, so that drawing allocates nothing per triangle
-// or fragment (and, once warmed up, nothing per draw).
-struct DrawScratch {
+// The worker threads and buffers draws use, kept by the caller and reused, so that drawing allocates
+// nothing per triangle or fragment (and, once warmed up, nothing per draw). The image a draw produces
+// does not depend on the number of threads.
+struct DrawContext {
+    explicit DrawContext(int threads = 0) : pool(threads) {}
+    ThreadPool pool;
     ShadedVertices shaded;
     std::vector<WindowVertex> window;  // viewport transform of each vertex that needs no clipping
     ClipPolygon polygon;
@@ -120,7 +124,7 @@ void drawWindowTriangle(std::uint32_t triangleIndex, const WindowTriangle& windo
 template <Shader S, class Observer = NullObserver>
 DrawStats draw(const DrawState& state, const typename S::Uniforms& uniforms,
                std::span<const typename S::Attributes> vertices, std::span<const std::uint32_t> indices,
-               Framebuffer& target, DrawScratch& scratch, Observer&& observer = Observer{}) {
+               Framebuffer& target, DrawContext& scratch, Observer&& observer = Observer{}) {
     constexpr bool kObserving = std::remove_reference_t<Observer>::enabled;
     validateDraw(state, target, vertices.size(), indices);
     DrawStats stats;

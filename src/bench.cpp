@@ -30,14 +30,14 @@ void runBench(const BenchOptions& options, std::ostream& out) {
     const PreparedScene prepared = prepareScene(scene);
 
     Framebuffer framebuffer(scene.width, scene.height);
-    DrawScratch scratch;
-    DrawStats stats = renderFrame(prepared, framebuffer, scratch);  // warm-up: caches, scratch buffers
+    DrawContext context(options.threads);
+    DrawStats stats = renderFrame(prepared, framebuffer, context);  // warm-up: caches, buffers, threads
 
     using Clock = std::chrono::steady_clock;
     std::vector<double> frameMs, clearMs;
     for (int i = 0; i < options.frames; ++i) {
         const auto start = Clock::now();
-        stats = renderFrame(prepared, framebuffer, scratch);
+        stats = renderFrame(prepared, framebuffer, context);
         const auto end = Clock::now();
         frameMs.push_back(std::chrono::duration<double, std::milli>(end - start).count());
 
@@ -49,7 +49,8 @@ void runBench(const BenchOptions& options, std::ostream& out) {
 
     out << std::fixed << std::setprecision(2);
     out << "model      " << options.model.string() << "\n";
-    out << "image      " << scene.width << "x" << scene.height << ", 1 thread, built-in Blinn-Phong shader\n";
+    out << "image      " << scene.width << "x" << scene.height << ", " << context.pool.threads()
+        << (context.pool.threads() == 1 ? " thread" : " threads") << ", built-in Blinn-Phong shader\n";
     out << "triangles  " << prepared.triangleCount << " (" << stats.trianglesRasterized
         << " rasterized after culling and clipping)\n";
     out << "fragments  " << stats.fragmentsShaded << " shaded, " << stats.fragmentsWritten << " written, "

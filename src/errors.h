@@ -10,7 +10,7 @@ namespace facet {
 // what() is the whole one-line message, already prefixed with "file:line: " where one is known,
 // e.g. "models/box.obj:12: face index 9 is out of range (the file has 8 vertices)".
 class InputError : public std::runtime_error {
-public:
+  public:
     using std::runtime_error::runtime_error;
 };
 

@@ -19,9 +19,10 @@ struct LinearImage {
 
 // Writes `image` to `path`, its format chosen by the extension (.png .exr .ppm .jpg/.jpeg .tif/.tiff ...).
 // Float formats (EXR) keep the linear values unchanged; 8-bit formats get the sRGB transfer curve,
-// clamped to [0,1] (facet::linearToSrgb from pipeline/color.h). PPM and JPEG have no alpha: RGB only. The image is written to a temporary file in the same folder and
-// renamed into place, so a failure never leaves a partial file nor destroys an existing one.
-// Throws InputError ("out/x.bmpx: unknown image format ...", "out/: cannot write ...").
+// clamped to [0,1] (facet::linearToSrgb from pipeline/color.h). PPM and JPEG have no alpha: RGB only. The
+// image is written to a temporary file in the same folder and renamed into place, so a failure never leaves a
+// partial file nor destroys an existing one. Throws InputError ("out/x.bmpx: unknown image format ...",
+// "out/: cannot write ...").
 void writeImage(const std::filesystem::path& path, const LinearImage& image);
 
 // Checks, without writing anything, that `path` names an image format facet writes and that a

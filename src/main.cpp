@@ -48,6 +48,7 @@ struct RenderArgs {
     std::optional<int> width, height;
     std::optional<std::string> eye, target;
     std::optional<float> fovy;
+    int threads = 0;
     bool quiet = false;
 };
 
@@ -76,8 +77,8 @@ int render(const RenderArgs& args) {
     for (const std::string& warning : prepared.warnings)
         std::cerr << "facet: warning: " << warning << "\n";
     facet::Framebuffer framebuffer(scene.width, scene.height);
-    facet::DrawScratch scratch;
-    const facet::DrawStats stats = facet::renderFrame(prepared, framebuffer, scratch);
+    facet::DrawContext context(args.threads);
+    const facet::DrawStats stats = facet::renderFrame(prepared, framebuffer, context);
     const auto rendered = std::chrono::steady_clock::now();
     facet::writeImage(args.output, facet::toImage(framebuffer));
 
@@ -115,6 +116,9 @@ int main(int argc, char** argv) {
     renderCommand->add_option("--target", renderArgs.target,
                               "Point the camera looks at, x,y,z (default: the model's centre)");
     renderCommand->add_option("--fovy", renderArgs.fovy, "Vertical field of view in degrees (default 40)");
+    renderCommand
+        ->add_option("--threads", renderArgs.threads, "Worker threads (default: one per hardware thread)")
+        ->check(CLI::Range(0, 1024));
     renderCommand->add_flag("-q,--quiet", renderArgs.quiet, "Print nothing on success");
 
     facet::BenchOptions benchOptions;
@@ -125,6 +129,9 @@ int main(int argc, char** argv) {
     benchCommand->add_option("--width", benchOptions.width, "Image width (default 1920)");
     benchCommand->add_option("--height", benchOptions.height, "Image height (default 1080)");
     benchCommand->add_option("--frames", benchOptions.frames, "Timed frames (default 30)");
+    benchCommand
+        ->add_option("--threads", benchOptions.threads, "Worker threads (default: one per hardware thread)")
+        ->check(CLI::Range(0, 1024));
 
     if (argc == 1) {  // no command at all: show what there is to do
         std::cerr << app.help();

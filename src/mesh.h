@@ -13,13 +13,14 @@ namespace facet {
 // A material as written in an MTL file (colours are the file's numbers, not yet decoded to linear).
 struct Material {
     std::string name = "default";
-    glm::vec3 ambient{0.8f};        // Ka (the default material reflects ambient light like diffuse)
-    glm::vec3 diffuse{0.8f};        // Kd
-    glm::vec3 specular{0.2f};       // Ks
-    float shininess = 32.0f;        // Ns, the Phong exponent
-    glm::vec3 emission{0.0f};       // Ke
-    float opacity = 1.0f;           // d, or 1 - Tr
-    std::filesystem::path diffuseTexture;  // map_Kd, resolved against the MTL's folder; empty if none or missing
+    glm::vec3 ambient{0.8f};   // Ka (the default material reflects ambient light like diffuse)
+    glm::vec3 diffuse{0.8f};   // Kd
+    glm::vec3 specular{0.2f};  // Ks
+    float shininess = 32.0f;   // Ns, the Phong exponent
+    glm::vec3 emission{0.0f};  // Ke
+    float opacity = 1.0f;      // d, or 1 - Tr
+    std::filesystem::path
+        diffuseTexture;  // map_Kd, resolved against the MTL's folder; empty if none or missing
 };
 
 struct MeshVertex {
@@ -36,20 +37,20 @@ struct MeshPart {
 };
 
 struct ImportStats {
-    std::size_t facesRead = 0;             // 'f' statements
-    std::size_t trianglesKept = 0;         // after fan triangulation and skipping degenerate ones
-    std::size_t degenerateSkipped = 0;     // triangles with zero area or repeated corners
-    std::size_t normalsComputed = 0;       // vertices whose normal was computed (area-weighted)
+    std::size_t facesRead = 0;          // 'f' statements
+    std::size_t trianglesKept = 0;      // after fan triangulation and skipping degenerate ones
+    std::size_t degenerateSkipped = 0;  // triangles with zero area or repeated corners
+    std::size_t normalsComputed = 0;    // vertices whose normal was computed (area-weighted)
 };
 
 struct Mesh {
     std::vector<MeshVertex> vertices;
     std::vector<std::uint32_t> indices;  // three per triangle
     std::vector<MeshPart> parts;
-    std::vector<Material> materials;     // never empty: a neutral default when the file names none
+    std::vector<Material> materials;  // never empty: a neutral default when the file names none
     bool hasTexcoords = false;
     ImportStats stats;
-    std::vector<std::string> warnings;   // one line each, "file:line: ..." (missing MTL, missing texture, ...)
+    std::vector<std::string> warnings;  // one line each, "file:line: ..." (missing MTL, missing texture, ...)
     glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};  // object-space bounding box of the used vertices
 };
 

@@ -170,13 +170,13 @@ PreparedScene prepareScene(const Scene& scene) {
     return prepared;
 }
 
-DrawStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawScratch& scratch) {
+DrawStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawContext& context) {
     target.clearColor(prepared.clearColor);
     target.clearDepth(1.0f);
     DrawStats total;
     for (const PreparedDraw& d : prepared.draws)
         total += draw<BlinnPhongShader>(prepared.state, d.uniforms, std::span<const MeshVertex>(d.vertices),
-                                        std::span<const std::uint32_t>(d.indices), target, scratch);
+                                        std::span<const std::uint32_t>(d.indices), target, context);
     return total;
 }
 

@@ -42,7 +42,7 @@ struct PreparedScene {
 PreparedScene prepareScene(const Scene& scene);
 
 // Clears `target` to the scene's background and draws every object. `target` must be scene-sized.
-DrawStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawScratch& scratch);
+DrawStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawContext& context);
 
 // The framebuffer's colour as an image (same linear values).
 LinearImage toImage(const Framebuffer& framebuffer);

@@ -16,8 +16,8 @@ struct CameraSpec {
     std::optional<glm::vec3> eye;     // world space; absent: framed from the scene's bounding box
     std::optional<glm::vec3> target;  // absent: the centre of the bounding box
     glm::vec3 up{0.0f, 1.0f, 0.0f};
-    float fovyDegrees = 40.0f;        // vertical field of view
-    std::optional<float> near;        // absent: derived from the bounding box
+    float fovyDegrees = 40.0f;  // vertical field of view
+    std::optional<float> near;  // absent: derived from the bounding box
     std::optional<float> far;
 };
 
@@ -39,8 +39,8 @@ struct MaterialOverride {
 };
 
 struct ObjectSpec {
-    std::filesystem::path model;              // resolved against the scene file's folder
-    glm::mat4 worldFromObject{1.0f};          // translate · rotate(Z·Y·X degrees) · scale
+    std::filesystem::path model;      // resolved against the scene file's folder
+    glm::mat4 worldFromObject{1.0f};  // translate · rotate(Z·Y·X degrees) · scale
     MaterialOverride material;
 };
 
@@ -50,18 +50,18 @@ enum class InterpolationChoice { Perspective, Affine };
 struct PipelineOptions {
     CullChoice cull = CullChoice::Back;
     InterpolationChoice interpolation = InterpolationChoice::Perspective;
-    int subpixelBits = 8;                     // 0..8
+    int subpixelBits = 8;  // 0..8
 };
 
 struct Scene {
-    std::filesystem::path source;             // the scene or model file this came from (for messages)
+    std::filesystem::path source;  // the scene or model file this came from (for messages)
     int width = 1280;
     int height = 960;
     glm::vec4 background{0.05f, 0.05f, 0.07f, 1.0f};  // sRGB-encoded RGB, alpha as is
     glm::vec3 ambientLight{0.15f};                    // global ambient, sRGB-encoded
     CameraSpec camera;
-    std::vector<LightSpec> lights;            // empty in a file: one default light is used
-    std::vector<ObjectSpec> objects;          // at least one
+    std::vector<LightSpec> lights;    // empty in a file: one default light is used
+    std::vector<ObjectSpec> objects;  // at least one
     PipelineOptions pipeline;
 };
 

@@ -19,12 +19,12 @@ struct ShaderLight {
 
 // Material colours here are linear (decoded from the file's sRGB values by the renderer).
 struct ShaderMaterial {
-    vec3 ambient{0.0f};       // k_a
-    vec3 diffuse{0.8f};       // k_d
-    vec3 specular{0.0f};      // k_s
-    vec3 emission{0.0f};      // k_e
-    float shininess = 32.0f;  // n
-    float opacity = 1.0f;  // d, or 1 − Tr (not applied yet: see fragment())
+    vec3 ambient{0.0f};                   // k_a
+    vec3 diffuse{0.8f};                   // k_d
+    vec3 specular{0.0f};                  // k_s
+    vec3 emission{0.0f};                  // k_e
+    float shininess = 32.0f;              // n
+    float opacity = 1.0f;                 // d, or 1 − Tr (not applied yet: see fragment())
     const Texture* diffuseMap = nullptr;  // multiplies k_d when set
 };
 

@@ -33,7 +33,7 @@ Scene headOnScene(const std::filesystem::path& model) {
 LinearImage renderScene(const Scene& scene) {
     const PreparedScene prepared = prepareScene(scene);
     Framebuffer framebuffer(scene.width, scene.height);
-    DrawScratch scratch;
+    DrawContext scratch;
     renderFrame(prepared, framebuffer, scratch);
     return toImage(framebuffer);
 }
@@ -84,7 +84,7 @@ TEST_P(BundledModel, RendersWithDefaults) {
     const PreparedScene prepared = prepareScene(scene);
     EXPECT_GT(prepared.triangleCount, 0u);
     Framebuffer framebuffer(scene.width, scene.height);
-    DrawScratch scratch;
+    DrawContext scratch;
     const DrawStats stats = renderFrame(prepared, framebuffer, scratch);
     EXPECT_GT(stats.fragmentsWritten, 500u);
     const LinearImage image = toImage(framebuffer);

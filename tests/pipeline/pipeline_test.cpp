@@ -195,7 +195,7 @@ TEST(PipelineRobustness, OddFramebufferSizesAndTheLastRowAndColumn) {
 
 TEST(PipelineRobustness, InvalidDrawsAreRefusedWithAReason) {
     Framebuffer fb(8, 8);
-    DrawScratch scratch;
+    DrawContext scratch;
     DrawState state = testing::stateFor(fb);
     std::vector<CountingShader::Attributes> v = {{{0, 0, 0, 1}}, {{1, 0, 0, 1}}, {{0, 1, 0, 1}}};
     std::vector<std::uint32_t> badIndices = {0, 1, 3};
@@ -238,7 +238,7 @@ TEST(PipelineStages, VertexShaderOncePerVertexAndDiscardWritesNothing) {
     std::vector<CountingVertexShader::Attributes> v = {
         {{-1, -1, 0, 1}}, {{1, -1, 0, 1}}, {{1, 1, 0, 1}}, {{-1, 1, 0, 1}}};
     std::vector<std::uint32_t> indices = {0, 1, 2, 0, 2, 3};
-    DrawScratch scratch;
+    DrawContext scratch;
     const DrawStats stats = draw<CountingVertexShader>(testing::stateFor(fb), {&vertexCalls, &fragmentCalls},
                                                        std::span<const CountingVertexShader::Attributes>(v),
                                                        std::span<const std::uint32_t>(indices), fb, scratch);
@@ -319,7 +319,7 @@ TEST(PipelineObserver, SeesEveryStageAndEveryFragmentFate) {
     std::vector<std::uint32_t> indices(v.size());
     for (std::size_t i = 0; i < v.size(); ++i)
         indices[i] = static_cast<std::uint32_t>(i);
-    DrawScratch scratch;
+    DrawContext scratch;
     RecordingObserver observer;
     draw<ClipSpaceColorShader>(state, {}, std::span<const ClipSpaceColorShader::Attributes>(v),
                                std::span<const std::uint32_t>(indices), fb, scratch, observer);

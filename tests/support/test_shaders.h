@@ -54,7 +54,7 @@ DrawStats drawTriangles(const DrawState& state, const std::vector<typename S::At
     std::vector<std::uint32_t> indices(vertices.size());
     for (std::size_t i = 0; i < indices.size(); ++i)
         indices[i] = static_cast<std::uint32_t>(i);
-    DrawScratch scratch;
+    DrawContext scratch;
     return draw<S>(state, uniforms, std::span<const typename S::Attributes>(vertices),
                    std::span<const std::uint32_t>(indices), fb, scratch);
 }

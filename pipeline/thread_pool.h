@@ -1,0 +1,47 @@
+// A small fixed pool of worker threads for data-parallel loops. The calling thread works too, so a
+// pool of N threads runs N − 1 workers. Which thread runs which item never affects results: callers
+// give every item its own output (a tile, a chunk of vertices), so images are the same for any count.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <cstddef>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace facet {
+
+class ThreadPool {
+  public:
+    // threads ≤ 0: one per hardware thread.
+    explicit ThreadPool(int threads = 0);
+    ~ThreadPool();
+    ThreadPool(const ThreadPool&) = delete;
+    ThreadPool& operator=(const ThreadPool&) = delete;
+
+    int threads() const { return static_cast<int>(workers_.size()) + 1; }
+
+    // Calls body(item, thread) for every item in [0, count), spread over the threads, and returns when
+    // all are done. `thread` in [0, threads()) names the calling thread, for per-thread scratch.
+    // One std::function call per item, not per pixel: items are tiles or chunks of work.
+    void parallelFor(std::size_t count, const std::function<void(std::size_t item, int thread)>& body);
+
+  private:
+    void workerLoop(int thread);
+    void runItems(int thread);
+
+    std::vector<std::thread> workers_;
+    std::mutex mutex_;
+    std::condition_variable wake_;
+    std::condition_variable done_;
+    const std::function<void(std::size_t, int)>* body_ = nullptr;
+    std::size_t count_ = 0;
+    std::atomic<std::size_t> next_{0};
+    int busy_ = 0;                  // workers still inside the current job
+    std::uint64_t generation_ = 0;  // bumped for every job, so a worker runs each job once
+    bool stopping_ = false;
+};
+
+}  // namespace facet
