@@ -5,8 +5,17 @@
 #include <cstring>
 
 #include "shader.h"
+#include "wide.h"
 
 namespace facet {
+
+// A shader that can also shade eight fragments at once: static Vec4x8 fragmentBatch(const FragmentBatch&,
+// const Uniforms&), computing what fragment() computes. The pipeline then shades a block row at a time.
+template <class S>
+concept BatchShader = Shader<S> && !kMayDiscard<S> &&
+                      requires(const FragmentBatch& batch, const typename S::Uniforms& uniforms) {
+    { S::fragmentBatch(batch, uniforms) } -> std::same_as<Vec4x8>;
+};
 
 template <Shader S>
 inline bool shadeFragment(const float* varyingFloats, const typename S::Uniforms& uniforms, vec4& color) {

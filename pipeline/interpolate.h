@@ -3,6 +3,7 @@
 #pragma once
 
 #include "types.h"
+#include "wide.h"
 
 namespace facet {
 
@@ -15,7 +16,7 @@ inline float interpolateDepth(const TriangleSetup& s, float b1, float b2) {
 // Affine: a = Σ λᵢ·aᵢ, which is only right when w is the same at all three vertices.
 // After clipping every wᵢ ≥ kMinClipW and λᵢ ≥ 0, so Σ λᵢ/wᵢ > 0 and the divide is safe.
 inline void interpolateVaryings(const TriangleSetup& s, float b1, float b2, float* out) {
-    const float* plane = s.varyingPlanes.data();
+    const float* plane = s.varyingPlanes;
     if (s.perspective) {
         const float w = 1.0f / (s.invW0 + b1 * s.dInvW1 + b2 * s.dInvW2);
         for (int k = 0; k < s.varyingCount; ++k, plane += 3)
@@ -23,6 +24,19 @@ inline void interpolateVaryings(const TriangleSetup& s, float b1, float b2, floa
     } else {
         for (int k = 0; k < s.varyingCount; ++k, plane += 3)
             out[k] = plane[0] + b1 * plane[1] + b2 * plane[2];
+    }
+}
+
+// The same for eight fragments at once, into a FragmentBatch (structure of arrays).
+inline void interpolateVaryings(const TriangleSetup& s, Float8 b1, Float8 b2, FragmentBatch& out) {
+    const float* plane = s.varyingPlanes;
+    if (s.perspective) {
+        const Float8 w = 1.0f / (s.invW0 + b1 * s.dInvW1 + b2 * s.dInvW2);
+        for (int k = 0; k < s.varyingCount; ++k, plane += 3)
+            out.varyings[k] = (plane[0] + b1 * plane[1] + b2 * plane[2]) * w;
+    } else {
+        for (int k = 0; k < s.varyingCount; ++k, plane += 3)
+            out.varyings[k] = plane[0] + b1 * plane[1] + b2 * plane[2];
     }
 }
 

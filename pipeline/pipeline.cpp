@@ -5,7 +5,10 @@
 namespace facet {
 
 void validateDraw(const DrawState& state, const Framebuffer& target, std::size_t vertexCount,
-                  std::span<const std::uint32_t> indices) {
+                  std::span<const std::uint32_t> indices, int tileSize) {
+    if (tileSize < kBlockSize || tileSize % kBlockSize != 0)
+        throw std::invalid_argument("tile size " + std::to_string(tileSize) +
+                                    " is not a positive multiple of " + std::to_string(kBlockSize));
     const Viewport& vp = state.viewport;
     if (vp.width <= 0 || vp.height <= 0 || vp.x < 0 || vp.y < 0 || vp.x + vp.width > target.width() ||
         vp.y + vp.height > target.height() || target.width() > kMaxViewportSide ||

@@ -1,17 +1,25 @@
 // The pipeline, every stage in order on one screen:
 //
-//   vertex stage → primitive assembly → clipping → perspective divide + viewport → culling + setup
-//   → rasterization (2×2 quads) → depth test → interpolation → fragment shader → blending
+//   front end, per triangle:  vertex stage → primitive assembly → clipping → divide + viewport
+//                             → culling + setup → binning into screen tiles
+//   back end, per tile:       rasterization (8×8 blocks) → depth test → interpolation
+//                             → fragment shader → blending
 //
 // Each stage is a plain function in its own file; draw() is the only place that knows their order, and
-// it hands every stage's output to an Observer between stages (observer.h).
+// it hands every stage's output to an Observer between stages (observer.h). Vertices and chunks of
+// triangles are processed in parallel; then tiles are, each drawing its triangles in submission order,
+// so the image is the same bytes for any number of threads or any tile size.
 #pragma once
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
+#include "bin.h"
 #include "blend.h"
 #include "clip.h"
 #include "depth_test.h"
@@ -30,122 +38,76 @@
 
 namespace facet {
 
+// The front end's output for one chunk of consecutive triangles: their setups, and for every tile the
+// setups that may touch it, in submission order.
+struct SetupChunk {
+    std::vector<TriangleSetup> setups;
+    std::vector<float> varyingPlanes;              // 3 · varyingCount floats per setup, in order
+    std::vector<std::vector<std::uint32_t>> bins;  // per tile: indices into setups
+    DrawStats stats;
+    ClipPolygon polygon;  // clipping scratch
+};
+
 // The worker threads and buffers draws use, kept by the caller and reused, so that drawing allocates
 // nothing per triangle or fragment (and, once warmed up, nothing per draw). The image a draw produces
-// does not depend on the number of threads.
+// does not depend on the number of threads nor on the tile size.
 struct DrawContext {
-    explicit DrawContext(int threads = 0) : pool(threads) {}
+    explicit DrawContext(int threads = 0, int tileSize = kDefaultTileSize)
+        : pool(threads), tileSize(tileSize) {}
     ThreadPool pool;
+    int tileSize;  // pixels, a multiple of kBlockSize
     ShadedVertices shaded;
     std::vector<WindowVertex> window;  // viewport transform of each vertex that needs no clipping
-    ClipPolygon polygon;
+    std::vector<SetupChunk> chunks;
+    std::vector<DrawStats> threadStats;  // back-end counters, one per thread
 };
+
+// Work sizes: vertices are shaded in chunks of kVertexChunk, triangles set up in chunks of
+// kTriangleChunk, and at most kChunksPerBatch chunks are binned before their tiles are drawn, which
+// bounds the memory held in setups whatever the size of the mesh.
+inline constexpr std::size_t kVertexChunk = 8192;
+inline constexpr std::size_t kTriangleChunk = 4096;
+inline constexpr std::size_t kChunksPerBatch = 16;
 
 // Checks a draw's state and the mesh's indices; throws std::invalid_argument naming the problem.
 void validateDraw(const DrawState& state, const Framebuffer& target, std::size_t vertexCount,
-                  std::span<const std::uint32_t> indices);
+                  std::span<const std::uint32_t> indices, int tileSize);
 
 namespace detail {
 
-// Setup, rasterization and the per-fragment operations for one window triangle.
-template <Shader S, class Observer>
-void drawWindowTriangle(std::uint32_t triangleIndex, const WindowTriangle& window, const DrawState& state,
-                        const typename S::Uniforms& uniforms, Framebuffer& target, DrawStats& stats,
-                        Observer& observer) {
-    TriangleSetup setup;
-    const TriangleFate fate = setupTriangle(window, state, setup);
-    if constexpr (Observer::enabled) observer.onSetup(triangleIndex, window, fate, setup);
-    if (fate == TriangleFate::ZeroArea) ++stats.trianglesZeroArea;
-    if (fate == TriangleFate::Culled) ++stats.trianglesCulled;
-    if (fate != TriangleFate::Drawn) return;
-    ++stats.trianglesRasterized;
+// Front end for triangles [first, last): assembly, clipping, viewport, setup, binning into `chunk`.
+template <class Observer>
+void setupTriangles(std::span<const std::uint32_t> indices, std::size_t first, std::size_t last,
+                    const DrawState& state, const TileGrid& grid, const DrawContext& context,
+                    SetupChunk& chunk, Observer& observer) {
+    constexpr bool kObserving = Observer::enabled;
+    const ShadedVertices& shaded = context.shaded;
+    const int varyingCount = shaded.varyingCount;
+    const int planeFloats = 3 * varyingCount;
+    DrawStats& stats = chunk.stats;
 
-    const DepthState depth = state.depth;
-    const BlendMode blendMode = state.blend;
-    float varyings[kMaxVaryingFloats];
-    rasterizeTriangle(setup, [&](const Quad& quad) {
-        for (int lane = 0; lane < 4; ++lane) {
-            if (!(quad.mask & (1u << lane))) continue;
-            const int x = quad.x + (lane & 1);
-            const int y = quad.y + (lane >> 1);
-            const float b1 = quad.b1[lane];
-            const float b2 = quad.b2[lane];
-
-            // Depth test before shading: the shader cannot change depth, so testing early gives the
-            // same image and skips shading hidden fragments. The write waits for a possible discard.
-            const float z = interpolateDepth(setup, b1, b2);
-            float& storedDepth = target.depth(x, y);
-            FragmentEvent event;
-            if constexpr (Observer::enabled) {
-                event = FragmentEvent{x, y, triangleIndex, z, storedDepth};
-                event.colorBefore = event.colorAfter = target.color(x, y);
-            }
-            if (depth.testEnabled && !depthTestPasses(depth.compare, z, storedDepth)) {
-                ++stats.fragmentsDepthFailed;
-                if constexpr (Observer::enabled) {
-                    event.fate = FragmentFate::DepthFailed;
-                    observer.onFragment(event);
-                }
-                continue;
-            }
-
-            // Interpolation and the fragment shader.
-            interpolateVaryings(setup, b1, b2, varyings);
-            vec4 color;
-            ++stats.fragmentsShaded;
-            if (!shadeFragment<S>(varyings, uniforms, color)) {
-                ++stats.fragmentsDiscarded;
-                if constexpr (Observer::enabled) {
-                    event.fate = FragmentFate::Discarded;
-                    observer.onFragment(event);
-                }
-                continue;
-            }
-
-            // Depth write and blending.
-            if (depth.testEnabled && depth.writeEnabled) storedDepth = z;
-            vec4& destination = target.color(x, y);
-            destination = blend(blendMode, color, destination);
-            ++stats.fragmentsWritten;
-            if constexpr (Observer::enabled) {
-                event.fate = FragmentFate::Written;
-                event.shaded = color;
-                event.colorAfter = destination;
-                observer.onFragment(event);
-            }
+    // Setup and binning of one window triangle (a whole triangle, or one fan piece of a clipped one).
+    auto setupAndBin = [&](std::uint32_t triangleIndex, const WindowTriangle& window) {
+        const std::size_t index = chunk.setups.size();
+        chunk.setups.emplace_back();
+        chunk.varyingPlanes.resize((index + 1) * planeFloats);
+        TriangleSetup& setup = chunk.setups.back();
+        const TriangleFate fate =
+            setupTriangle(window, state, setup, chunk.varyingPlanes.data() + index * planeFloats);
+        setup.triangle = triangleIndex;
+        if constexpr (kObserving) observer.onSetup(triangleIndex, window, fate, setup);
+        if (fate != TriangleFate::Drawn) {
+            if (fate == TriangleFate::ZeroArea) ++stats.trianglesZeroArea;
+            if (fate == TriangleFate::Culled) ++stats.trianglesCulled;
+            chunk.setups.pop_back();
+            chunk.varyingPlanes.resize(index * planeFloats);
+            return;
         }
-    });
-}
+        ++stats.trianglesRasterized;
+        binTriangle(grid, setup, static_cast<std::uint32_t>(index), chunk.bins);
+    };
 
-}  // namespace detail
-
-// Draws an indexed triangle list: indices[3t], indices[3t+1], indices[3t+2] make triangle t.
-// The caller owns `scratch` (reuse it across draws). Returns counters for the draw.
-template <Shader S, class Observer = NullObserver>
-DrawStats draw(const DrawState& state, const typename S::Uniforms& uniforms,
-               std::span<const typename S::Attributes> vertices, std::span<const std::uint32_t> indices,
-               Framebuffer& target, DrawContext& scratch, Observer&& observer = Observer{}) {
-    constexpr bool kObserving = std::remove_reference_t<Observer>::enabled;
-    validateDraw(state, target, vertices.size(), indices);
-    DrawStats stats;
-
-    // Vertex stage: the vertex shader once per vertex, then the viewport transform for every vertex
-    // inside the frustum (most of them), which the triangles sharing it then reuse.
-    ShadedVertices& shaded = scratch.shaded;
-    shadeVertices<S>(vertices, uniforms, shaded);
-    stats.vertices = shaded.size();
-    scratch.window.resize(shaded.size());
-    for (std::size_t i = 0; i < shaded.size(); ++i) {
-        if (shaded.outcodes[i] == 0)
-            scratch.window[i] = toWindow(shaded.positions[i], state.viewport, state.raster.subpixelBits);
-        if constexpr (kObserving)
-            observer.onVertex(static_cast<std::uint32_t>(i), shaded.positions[i], shaded.varyingsOf(i),
-                              shaded.varyingCount, shaded.outcodes[i]);
-    }
-
-    const std::size_t triangleCount = indices.size() / 3;
-    stats.triangles = triangleCount;
-    for (std::size_t t = 0; t < triangleCount; ++t) {
+    for (std::size_t t = first; t < last; ++t) {
         const auto triangleIndex = static_cast<std::uint32_t>(t);
         const std::array<std::uint32_t, 3> i = {indices[3 * t], indices[3 * t + 1], indices[3 * t + 2]};
 
@@ -158,21 +120,21 @@ DrawStats draw(const DrawState& state, const typename S::Uniforms& uniforms,
             if constexpr (kObserving) observer.onRejected(triangleIndex, rejected);
             continue;
         }
-        ClipPolygon& polygon = scratch.polygon;
+        ClipPolygon& polygon = chunk.polygon;
         if (kObserving || outcodeOr != 0) {
             assembleTriangle(shaded, i, polygon);
             if constexpr (kObserving) observer.onAssembled(triangleIndex, polygon);
         }
 
         WindowTriangle window;
-        window.varyingCount = shaded.varyingCount;
+        window.varyingCount = varyingCount;
         if (outcodeOr == 0) {
             // Trivially inside: no clipping, the vertices' window positions are ready.
             for (int k = 0; k < 3; ++k) {
-                window.vertices[k] = scratch.window[i[k]];
+                window.vertices[k] = context.window[i[k]];
                 window.varyings[k] = shaded.varyingsOf(i[k]);
             }
-            detail::drawWindowTriangle<S>(triangleIndex, window, state, uniforms, target, stats, observer);
+            setupAndBin(triangleIndex, window);
             continue;
         }
 
@@ -186,22 +148,246 @@ DrawStats draw(const DrawState& state, const typename S::Uniforms& uniforms,
             continue;
         }
 
-        // The clipped polygon is convex: draw it as a fan around its first vertex.
-        const WindowVertex first =
-            toWindow(polygon.vertices[0].position, state.viewport, state.raster.subpixelBits);
-        WindowVertex previous =
-            toWindow(polygon.vertices[1].position, state.viewport, state.raster.subpixelBits);
+        // The clipped polygon is convex: a fan around its first vertex.
+        const int bits = state.raster.subpixelBits;
+        const WindowVertex firstVertex = toWindow(polygon.vertices[0].position, state.viewport, bits);
+        WindowVertex previous = toWindow(polygon.vertices[1].position, state.viewport, bits);
         for (int k = 2; k < polygon.count; ++k) {
-            const WindowVertex current =
-                toWindow(polygon.vertices[k].position, state.viewport, state.raster.subpixelBits);
-            window.vertices = {first, previous, current};
+            const WindowVertex current = toWindow(polygon.vertices[k].position, state.viewport, bits);
+            window.vertices = {firstVertex, previous, current};
             window.varyings = {polygon.vertices[0].varyings.data(), polygon.vertices[k - 1].varyings.data(),
                                polygon.vertices[k].varyings.data()};
-            detail::drawWindowTriangle<S>(triangleIndex, window, state, uniforms, target, stats, observer);
+            setupAndBin(triangleIndex, window);
             previous = current;
         }
     }
-    return stats;
+    // The planes vector has stopped growing: point every setup at its planes.
+    for (std::size_t k = 0; k < chunk.setups.size(); ++k)
+        chunk.setups[k].varyingPlanes = chunk.varyingPlanes.data() + k * planeFloats;
+}
+
+// Fragments of one triangle that passed the depth test, waiting to be shaded eight at a time.
+// A triangle covers each pixel at most once, so its fragments may be shaded in any grouping; the queue
+// is flushed before the next triangle, which keeps the order between triangles.
+struct FragmentQueue {
+    int count = 0;
+    int x[kBlockSize], y[kBlockSize];
+    float b1[kBlockSize], b2[kBlockSize], z[kBlockSize];
+};
+
+// Interpolation, the fragment shader, the depth write and blending for the queued fragments.
+template <Shader S, class Observer>
+void shadeQueue(const TriangleSetup& setup, FragmentQueue& queue, const DrawState& state,
+                const typename S::Uniforms& uniforms, Framebuffer& target, DrawStats& stats,
+                Observer& observer) {
+    constexpr bool kObserving = Observer::enabled;
+    const int n = queue.count;
+    if (n == 0) return;
+    queue.count = 0;
+
+    // Interpolation and the fragment shader: eight lanes at once when the shader can.
+    vec4 shaded[kBlockSize];
+    unsigned kept = (1u << n) - 1;
+    stats.fragmentsShaded += static_cast<unsigned>(n);
+    if constexpr (BatchShader<S>) {
+        FragmentBatch batch;
+        batch.mask = kept;
+        Float8 b1{}, b2{};
+        for (int lane = 0; lane < n; ++lane) {
+            b1[lane] = queue.b1[lane];
+            b2[lane] = queue.b2[lane];
+        }
+        interpolateVaryings(setup, b1, b2, batch);
+        const Vec4x8 c = S::fragmentBatch(batch, uniforms);
+        for (int lane = 0; lane < n; ++lane)
+            shaded[lane] = vec4(c.x[lane], c.y[lane], c.z[lane], c.w[lane]);
+    } else {
+        float varyings[kMaxVaryingFloats];
+        for (int lane = 0; lane < n; ++lane) {
+            interpolateVaryings(setup, queue.b1[lane], queue.b2[lane], varyings);
+            if (!shadeFragment<S>(varyings, uniforms, shaded[lane])) kept &= ~(1u << lane);
+        }
+    }
+
+    // Depth write and blending.
+    const DepthState depth = state.depth;
+    for (int lane = 0; lane < n; ++lane) {
+        const int x = queue.x[lane], y = queue.y[lane];
+        FragmentEvent event;
+        if constexpr (kObserving) {
+            event = FragmentEvent{x, y, setup.triangle, queue.z[lane], target.depth(x, y)};
+            event.colorBefore = event.colorAfter = target.color(x, y);
+        }
+        if (!(kept & (1u << lane))) {
+            ++stats.fragmentsDiscarded;
+            if constexpr (kObserving) {
+                event.fate = FragmentFate::Discarded;
+                observer.onFragment(event);
+            }
+            continue;
+        }
+        if (depth.testEnabled && depth.writeEnabled) target.depth(x, y) = queue.z[lane];
+        vec4& destination = target.color(x, y);
+        destination = blend(state.blend, shaded[lane], destination);
+        ++stats.fragmentsWritten;
+        if constexpr (kObserving) {
+            event.fate = FragmentFate::Written;
+            event.shaded = shaded[lane];
+            event.colorAfter = destination;
+            observer.onFragment(event);
+        }
+    }
+}
+
+// The covered pixels of one block: barycentrics, depth, and the depth test (before shading: the shader
+// cannot change depth, so testing early gives the same image and skips hidden fragments). Fragments
+// that pass go to the queue, which is shaded whenever it holds eight.
+template <Shader S, class Observer>
+void depthTestBlock(const TriangleSetup& setup, const CoverageBlock& block, FragmentQueue& queue,
+                    const DrawState& state, const typename S::Uniforms& uniforms, Framebuffer& target,
+                    DrawStats& stats, Observer& observer) {
+    constexpr bool kObserving = Observer::enabled;
+    const DepthState depth = state.depth;
+
+    // Barycentrics from the exact edge values: λᵢ = Eᵢ / (2·area). The edge values at the block's first
+    // sample and their per-pixel steps are integers below 2^47, exact in double.
+    const double invArea = 1.0 / static_cast<double>(setup.doubleArea);
+    const std::int64_t px = std::int64_t{block.x} * kFixedOne + kFixedOne / 2;
+    const std::int64_t py = std::int64_t{block.y} * kFixedOne + kFixedOne / 2;
+    const double e1 = static_cast<double>(setup.edges[1].at(px, py));
+    const double e2 = static_cast<double>(setup.edges[2].at(px, py));
+    const double e1x = static_cast<double>(setup.edges[1].a * kFixedOne);
+    const double e1y = static_cast<double>(setup.edges[1].b * kFixedOne);
+    const double e2x = static_cast<double>(setup.edges[2].a * kFixedOne);
+    const double e2y = static_cast<double>(setup.edges[2].b * kFixedOne);
+
+    for (int row = 0; row < kBlockSize; ++row) {
+        const unsigned rowMask = static_cast<unsigned>(block.mask >> (row * kBlockSize)) & 0xffu;
+        if (!rowMask) continue;
+        const int y = block.y + row;
+
+        // Barycentrics and depth for the row's eight lanes.
+        float b1[kBlockSize], b2[kBlockSize], z[kBlockSize];
+        for (int lane = 0; lane < kBlockSize; ++lane) {
+            b1[lane] = static_cast<float>((e1 + lane * e1x + row * e1y) * invArea);
+            b2[lane] = static_cast<float>((e2 + lane * e2x + row * e2y) * invArea);
+            z[lane] = setup.z0 + b1[lane] * setup.dz1 + b2[lane] * setup.dz2;
+        }
+
+        float* depthRow = &target.depth(block.x, y);
+        for (int lane = 0; lane < kBlockSize; ++lane) {
+            if (!(rowMask & (1u << lane))) continue;
+            if (depth.testEnabled && !depthTestPasses(depth.compare, z[lane], depthRow[lane])) {
+                ++stats.fragmentsDepthFailed;
+                if constexpr (kObserving) {
+                    FragmentEvent event{block.x + lane, y, setup.triangle, z[lane], depthRow[lane]};
+                    event.colorBefore = event.colorAfter = target.color(block.x + lane, y);
+                    event.fate = FragmentFate::DepthFailed;
+                    observer.onFragment(event);
+                }
+                continue;
+            }
+            const int slot = queue.count++;
+            queue.x[slot] = block.x + lane;
+            queue.y[slot] = y;
+            queue.b1[slot] = b1[lane];
+            queue.b2[slot] = b2[lane];
+            queue.z[slot] = z[lane];
+            if (queue.count == kBlockSize)
+                shadeQueue<S>(setup, queue, state, uniforms, target, stats, observer);
+        }
+    }
+}
+
+}  // namespace detail
+
+// Draws an indexed triangle list: indices[3t], indices[3t+1], indices[3t+2] make triangle t.
+// The caller owns `context` (reuse it across draws). Returns counters for the draw.
+// With an enabled Observer everything runs on the calling thread, so hooks see a stable order:
+// the front end in triangle order, then fragments tile by tile, each tile in triangle order.
+template <Shader S, class Observer = NullObserver>
+DrawStats draw(const DrawState& state, const typename S::Uniforms& uniforms,
+               std::span<const typename S::Attributes> vertices, std::span<const std::uint32_t> indices,
+               Framebuffer& target, DrawContext& context, Observer&& observer = Observer{}) {
+    using ObserverType = std::remove_reference_t<Observer>;
+    constexpr bool kObserving = ObserverType::enabled;
+    validateDraw(state, target, vertices.size(), indices, context.tileSize);
+    ThreadPool& pool = context.pool;
+    auto forEach = [&](std::size_t count, const auto& body) {
+        if constexpr (kObserving) {
+            for (std::size_t item = 0; item < count; ++item)
+                body(item, 0);
+        } else {
+            pool.parallelFor(count, body);
+        }
+    };
+
+    // Vertex stage: the vertex shader once per vertex, then the viewport transform for every vertex
+    // inside the frustum (most of them), which the triangles sharing it then reuse.
+    ShadedVertices& shaded = context.shaded;
+    prepareShadedVertices<S>(vertices.size(), shaded);
+    context.window.resize(vertices.size());
+    const std::size_t vertexChunks = (vertices.size() + kVertexChunk - 1) / kVertexChunk;
+    forEach(vertexChunks, [&](std::size_t chunk, int) {
+        const std::size_t begin = chunk * kVertexChunk, end = std::min(begin + kVertexChunk, vertices.size());
+        shadeVertices<S>(vertices, uniforms, begin, end, shaded);
+        for (std::size_t i = begin; i < end; ++i)
+            if (shaded.outcodes[i] == 0)
+                context.window[i] = toWindow(shaded.positions[i], state.viewport, state.raster.subpixelBits);
+    });
+    if constexpr (kObserving)
+        for (std::size_t i = 0; i < shaded.size(); ++i)
+            observer.onVertex(static_cast<std::uint32_t>(i), shaded.positions[i], shaded.varyingsOf(i),
+                              shaded.varyingCount, shaded.outcodes[i]);
+
+    DrawStats total;
+    total.vertices = shaded.size();
+    total.triangles = indices.size() / 3;
+    const TileGrid grid = makeTileGrid(state.viewport, context.tileSize);
+    context.threadStats.assign(static_cast<std::size_t>(pool.threads()), DrawStats{});
+    const std::size_t triangleCount = indices.size() / 3;
+    for (std::size_t batchStart = 0; batchStart < triangleCount;
+         batchStart += kTriangleChunk * kChunksPerBatch) {
+        // Front end: chunks of triangles in parallel, each binning into its own lists.
+        const std::size_t batchEnd = std::min(triangleCount, batchStart + kTriangleChunk * kChunksPerBatch);
+        const std::size_t chunkCount = (batchEnd - batchStart + kTriangleChunk - 1) / kTriangleChunk;
+        if (context.chunks.size() < chunkCount) context.chunks.resize(chunkCount);
+        forEach(chunkCount, [&](std::size_t c, int) {
+            SetupChunk& chunk = context.chunks[c];
+            chunk.setups.clear();
+            chunk.varyingPlanes.clear();
+            chunk.bins.resize(static_cast<std::size_t>(grid.count()));
+            for (auto& bin : chunk.bins)
+                bin.clear();
+            chunk.stats = DrawStats{};
+            const std::size_t first = batchStart + c * kTriangleChunk;
+            detail::setupTriangles(indices, first, std::min(first + kTriangleChunk, batchEnd), state, grid,
+                                   context, chunk, observer);
+        });
+
+        // Back end: tiles in parallel; inside a tile, chunk after chunk, so triangles keep their order.
+        forEach(static_cast<std::size_t>(grid.count()), [&](std::size_t tile, int thread) {
+            const PixelRect rect = grid.tileRect(static_cast<int>(tile));
+            DrawStats& stats = context.threadStats[static_cast<std::size_t>(thread)];
+            for (std::size_t c = 0; c < chunkCount; ++c) {
+                const SetupChunk& chunk = context.chunks[c];
+                for (std::uint32_t index : chunk.bins[tile]) {
+                    const TriangleSetup& setup = chunk.setups[index];
+                    detail::FragmentQueue queue;
+                    rasterizeBlocks(setup, rect, [&](const CoverageBlock& block) {
+                        detail::depthTestBlock<S>(setup, block, queue, state, uniforms, target, stats,
+                                                  observer);
+                    });
+                    detail::shadeQueue<S>(setup, queue, state, uniforms, target, stats, observer);
+                }
+            }
+        });
+        for (std::size_t c = 0; c < chunkCount; ++c)
+            total += context.chunks[c].stats;
+    }
+    for (const DrawStats& s : context.threadStats)
+        total += s;
+    return total;
 }
 
 }  // namespace facet

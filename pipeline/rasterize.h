@@ -1,15 +1,23 @@
-// Rasterization: which pixel centres a triangle covers, walked as 2×2 quads with a coverage mask.
-// In: TriangleSetup. Out: a Quad for every 2×2 block with at least one covered sample, in row order.
-// The edge functions are stepped incrementally (adding a or b per pixel) and are exact integers, so the
-// result equals evaluating each pixel on its own (coversSample, the test oracle), bit for bit.
+// Rasterization: which pixel centres a triangle covers, found 8×8 block by block.
+// In: TriangleSetup and the rectangle of pixels to cover (a tile). Out: a CoverageBlock for every block
+// with a covered sample, in row order.
+// Each block is first tested whole (Pineda's edge functions are linear, so an edge's extremes over a
+// block sit at its corners): a block outside one edge is skipped, a block inside all three is covered
+// without a per-pixel test, and only blocks an edge crosses are tested pixel by pixel, stepping the edge
+// functions incrementally. All of it is exact integer arithmetic, so the result equals evaluating each
+// pixel on its own (coversSample, the test oracle), bit for bit.
 #pragma once
+
+#include <algorithm>
+#include <climits>
+#include <cstdint>
 
 #include "types.h"
 
 namespace facet {
 
 // The plain per-pixel test: is the centre of pixel (x, y) inside the triangle under the top-left rule?
-// (Ignores the bounding box; used by tests as the reference the incremental walk must match.)
+// (Ignores the bounding box; used by tests as the reference the block walk must match.)
 inline bool coversSample(const TriangleSetup& setup, int x, int y) {
     const std::int64_t px = std::int64_t{x} * kFixedOne + kFixedOne / 2;
     const std::int64_t py = std::int64_t{y} * kFixedOne + kFixedOne / 2;
@@ -18,57 +26,126 @@ inline bool coversSample(const TriangleSetup& setup, int x, int y) {
     return true;
 }
 
-// Calls visit(const Quad&) for each 2×2 block of the bounding box that has a covered sample.
-template <class QuadVisitor>
-void rasterizeTriangle(const TriangleSetup& setup, QuadVisitor&& visit) {
-    if (setup.minX > setup.maxX || setup.minY > setup.maxY) return;
+// Bits of an 8×8 block's mask for the pixels inside `rect`.
+inline std::uint64_t rectMask(int blockX, int blockY, const PixelRect& rect) {
+    const int firstColumn = std::max(rect.minX - blockX, 0),
+              lastColumn = std::min(rect.maxX - blockX, kBlockSize - 1);
+    const int firstRow = std::max(rect.minY - blockY, 0),
+              lastRow = std::min(rect.maxY - blockY, kBlockSize - 1);
+    if (firstColumn > lastColumn || firstRow > lastRow) return 0;
+    const std::uint64_t rowBits = ((std::uint64_t{1} << (lastColumn - firstColumn + 1)) - 1) << firstColumn;
+    std::uint64_t mask = 0;
+    for (int row = firstRow; row <= lastRow; ++row)
+        mask |= rowBits << (row * kBlockSize);
+    return mask;
+}
 
-    // Quads are aligned to even pixel coordinates.
-    const int startX = setup.minX & ~1;
-    const int startY = setup.minY & ~1;
+namespace detail {
 
-    // Edge values (with fill-rule bias) at the centre of pixel (startX, startY), and their steps.
-    const std::int64_t px = std::int64_t{startX} * kFixedOne + kFixedOne / 2;
-    const std::int64_t py = std::int64_t{startY} * kFixedOne + kFixedOne / 2;
-    std::int64_t rowStart[3], stepX[3], stepY[3];
+// Coverage of a block that some edge crosses: one bit per sample where all three biased edge functions
+// are ≥ 0. Edges that are ≥ 0 over the whole block are left out. When every remaining edge's values
+// over the block fit in 32 bits (always, but for edges thousands of pixels long), a row of eight samples
+// is tested with 32-bit lanes, which the compiler turns into SIMD; otherwise with 64-bit integers.
+inline std::uint64_t partialBlockMask(const std::int64_t origin[3], const std::int64_t stepX[3],
+                                      const std::int64_t stepY[3], const std::int64_t minOffset[3],
+                                      const std::int64_t maxOffset[3]) {
+    int edges[3], count = 0;
+    bool fits32 = true;
+    for (int i = 0; i < 3; ++i) {
+        if (origin[i] + minOffset[i] >= 0) continue;  // this edge covers the whole block
+        edges[count++] = i;
+        const std::int64_t low = origin[i] + minOffset[i], high = origin[i] + maxOffset[i];
+        fits32 &= low >= INT32_MIN && high <= INT32_MAX;
+    }
+    std::uint64_t mask = 0;
+    if (fits32) {
+        using Lanes = std::int32_t __attribute__((vector_size(32)));
+        const Lanes column = {0, 1, 2, 3, 4, 5, 6, 7};
+        Lanes rowValue[3];
+        std::int32_t down[3];
+        for (int k = 0; k < count; ++k) {
+            const int i = edges[k];
+            // Values inside the block stay in int32; origin ± steps are the block's own samples.
+            rowValue[k] = static_cast<std::int32_t>(origin[i]) + column * static_cast<std::int32_t>(stepX[i]);
+            down[k] = static_cast<std::int32_t>(stepY[i]);
+        }
+        for (int y = 0; y < kBlockSize; ++y) {
+            Lanes all = {0, 0, 0, 0, 0, 0, 0, 0};
+            for (int k = 0; k < count; ++k) {
+                all |= rowValue[k];
+                rowValue[k] += down[k];
+            }
+            std::uint64_t rowBits = 0;
+            for (int x = 0; x < kBlockSize; ++x)
+                rowBits |= static_cast<std::uint64_t>(all[x] >= 0) << x;
+            mask |= rowBits << (y * kBlockSize);
+        }
+        return mask;
+    }
+    std::int64_t row[3] = {origin[0], origin[1], origin[2]};
+    for (int y = 0; y < kBlockSize; ++y) {
+        std::uint64_t rowBits = 0;
+        for (int x = 0; x < kBlockSize; ++x) {
+            std::int64_t all = 0;
+            for (int k = 0; k < count; ++k)
+                all |= row[edges[k]] + x * stepX[edges[k]];
+            rowBits |= static_cast<std::uint64_t>(all >= 0) << x;
+        }
+        mask |= rowBits << (y * kBlockSize);
+        for (int i = 0; i < 3; ++i)
+            row[i] += stepY[i];
+    }
+    return mask;
+}
+
+}  // namespace detail
+
+// Calls visit(const CoverageBlock&) for every block of `rect` ∩ the triangle's bounds with a covered sample.
+template <class BlockVisitor>
+void rasterizeBlocks(const TriangleSetup& setup, const PixelRect& area, BlockVisitor&& visit) {
+    const PixelRect rect{std::max(area.minX, setup.minX), std::max(area.minY, setup.minY),
+                         std::min(area.maxX, setup.maxX), std::min(area.maxY, setup.maxY)};
+    if (rect.empty()) return;
+
+    // Per edge: the step from one pixel to the next, and the offsets from a block's first sample to the
+    // block's smallest and largest value of the edge function (at opposite corners).
+    constexpr std::int64_t kSpan = (kBlockSize - 1) * kFixedOne;
+    std::int64_t stepX[3], stepY[3], minOffset[3], maxOffset[3];
     for (int i = 0; i < 3; ++i) {
         const EdgeFunction& e = setup.edges[i];
-        rowStart[i] = e.at(px, py) + e.bias;
-        stepX[i] = e.a * kFixedOne;  // one pixel to the right
-        stepY[i] = e.b * kFixedOne;  // one pixel down
+        stepX[i] = e.a * kFixedOne;
+        stepY[i] = e.b * kFixedOne;
+        minOffset[i] = std::min<std::int64_t>(0, e.a * kSpan) + std::min<std::int64_t>(0, e.b * kSpan);
+        maxOffset[i] = std::max<std::int64_t>(0, e.a * kSpan) + std::max<std::int64_t>(0, e.b * kSpan);
     }
-    const float invDoubleArea = static_cast<float>(1.0 / static_cast<double>(setup.doubleArea));
 
-    Quad quad;
-    for (int y = startY; y <= setup.maxY; y += 2) {
-        std::int64_t e[3] = {rowStart[0], rowStart[1], rowStart[2]};
-        for (int x = startX; x <= setup.maxX; x += 2) {
-            quad.mask = 0;
-            for (int lane = 0; lane < 4; ++lane) {
-                const int dx = lane & 1;
-                const int dy = lane >> 1;
-                const int sx = x + dx;
-                const int sy = y + dy;
-                if (sx < setup.minX || sx > setup.maxX || sy < setup.minY || sy > setup.maxY) continue;
-                const std::int64_t w0 = e[0] + dx * stepX[0] + dy * stepY[0];
-                const std::int64_t w1 = e[1] + dx * stepX[1] + dy * stepY[1];
-                const std::int64_t w2 = e[2] + dx * stepX[2] + dy * stepY[2];
-                if ((w0 | w1 | w2) < 0) continue;  // some biased edge value is negative: outside
-                quad.mask |= static_cast<std::uint8_t>(1u << lane);
-                // Barycentrics from the unbiased edge values: λ_i = E_i / (2·area).
-                quad.b1[lane] = static_cast<float>(w1 - setup.edges[1].bias) * invDoubleArea;
-                quad.b2[lane] = static_cast<float>(w2 - setup.edges[2].bias) * invDoubleArea;
+    const int firstBlockX = rect.minX & ~(kBlockSize - 1);
+    const int firstBlockY = rect.minY & ~(kBlockSize - 1);
+    CoverageBlock block;
+    for (int by = firstBlockY; by <= rect.maxY; by += kBlockSize) {
+        for (int bx = firstBlockX; bx <= rect.maxX; bx += kBlockSize) {
+            // Biased edge values at the block's first sample, the centre of pixel (bx, by).
+            const std::int64_t px = std::int64_t{bx} * kFixedOne + kFixedOne / 2;
+            const std::int64_t py = std::int64_t{by} * kFixedOne + kFixedOne / 2;
+            std::int64_t origin[3];
+            bool outside = false, inside = true;
+            for (int i = 0; i < 3; ++i) {
+                origin[i] = setup.edges[i].at(px, py) + setup.edges[i].bias;
+                outside |= origin[i] + maxOffset[i] < 0;
+                inside &= origin[i] + minOffset[i] >= 0;
             }
-            if (quad.mask) {
-                quad.x = x;
-                quad.y = y;
-                visit(static_cast<const Quad&>(quad));
-            }
-            for (int i = 0; i < 3; ++i)
-                e[i] += 2 * stepX[i];
+            if (outside) continue;  // trivially rejected: wholly outside one edge
+
+            const std::uint64_t inRect = rectMask(bx, by, rect);
+            std::uint64_t mask = inRect;
+            if (!inside) mask = detail::partialBlockMask(origin, stepX, stepY, minOffset, maxOffset) & inRect;
+            if (mask == 0) continue;
+            block.x = bx;
+            block.y = by;
+            block.mask = mask;
+            block.fullyCovered = inside;
+            visit(static_cast<const CoverageBlock&>(block));
         }
-        for (int i = 0; i < 3; ++i)
-            rowStart[i] += 2 * stepY[i];
     }
 }
 

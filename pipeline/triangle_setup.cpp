@@ -52,7 +52,8 @@ bool isTopLeft(std::int64_t dx, std::int64_t dy) {
     return dy < 0 || (dy == 0 && dx > 0);
 }
 
-TriangleFate setupTriangle(const WindowTriangle& triangle, const DrawState& state, TriangleSetup& setup) {
+TriangleFate setupTriangle(const WindowTriangle& triangle, const DrawState& state, TriangleSetup& setup,
+                           float* varyingPlanes) {
     // Cull on the snapped area: zero area in fixed point covers no sample, whatever its float size.
     const std::int64_t area = signedDoubleArea(triangle);
     if (area == 0) return TriangleFate::ZeroArea;
@@ -105,10 +106,11 @@ TriangleFate setupTriangle(const WindowTriangle& triangle, const DrawState& stat
     const float s2 = setup.perspective ? v2.invW : 1.0f;
     for (int k = 0; k < triangle.varyingCount; ++k) {
         const float p0 = a0[k] * s0;
-        setup.varyingPlanes[3 * k] = p0;
-        setup.varyingPlanes[3 * k + 1] = a1[k] * s1 - p0;
-        setup.varyingPlanes[3 * k + 2] = a2[k] * s2 - p0;
+        varyingPlanes[3 * k] = p0;
+        varyingPlanes[3 * k + 1] = a1[k] * s1 - p0;
+        varyingPlanes[3 * k + 2] = a2[k] * s2 - p0;
     }
+    setup.varyingPlanes = varyingPlanes;
     return TriangleFate::Drawn;
 }
 

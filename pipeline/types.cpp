@@ -75,10 +75,13 @@ std::ostream& operator<<(std::ostream& os, const TriangleSetup& s) {
     return os;
 }
 
-std::ostream& operator<<(std::ostream& os, const Quad& q) {
-    os << "quad at (" << q.x << ", " << q.y << ") mask ";
-    for (int lane = 0; lane < 4; ++lane)
-        os << ((q.mask >> lane) & 1);
+std::ostream& operator<<(std::ostream& os, const CoverageBlock& b) {
+    os << "block at (" << b.x << ", " << b.y << ")" << (b.fullyCovered ? ", fully covered" : "");
+    for (int row = 0; row < kBlockSize; ++row) {
+        os << "\n  ";
+        for (int column = 0; column < kBlockSize; ++column)
+            os << (((b.mask >> (row * kBlockSize + column)) & 1) ? '#' : '.');
+    }
     return os;
 }
 

@@ -2,8 +2,8 @@
 // they are in the pipeline. Each is printable (operator<<), so tests and the step mode show the same text.
 //
 //   vertex stage → ShadedVertices → primitive assembly → ClipPolygon (3 vertices) → clip → ClipPolygon
-//   → viewport → WindowTriangle → cull + setup → TriangleSetup → rasterize → Quad → interpolate, depth,
-//   fragment shader, blend → Framebuffer
+//   → viewport → WindowTriangle → cull + setup → TriangleSetup → bin (tiles) → rasterize → CoverageBlock
+//   → depth test, interpolate, fragment shader, blend → Framebuffer
 #pragma once
 
 #include <array>
@@ -112,26 +112,36 @@ struct TriangleSetup {
     std::array<EdgeFunction, 3> edges;
     std::int64_t doubleArea = 0;  // twice the signed area in fixed units², made positive by setup
     bool frontFacing = true;
+    bool perspective = true;
     int minX = 0, minY = 0, maxX = -1, maxY = -1;  // pixel bounds, inclusive, clamped to the viewport
+    std::uint32_t triangle = 0;                    // index of the triangle in its draw
 
     // Attribute planes in barycentric form: value = v0 + λ1·d1 + λ2·d2.
     float z0 = 0, dz1 = 0, dz2 = 0;           // window depth (affine in screen space)
     float invW0 = 0, dInvW1 = 0, dInvW2 = 0;  // 1/w
     int varyingCount = 0;
     // For each varying k: [3k] value at v0, [3k+1] and [3k+2] its differences to v1 and v2;
-    // premultiplied by 1/w when interpolation is perspective-correct.
-    std::array<float, 3 * kMaxVaryingFloats> varyingPlanes{};
-    bool perspective = true;
+    // premultiplied by 1/w when interpolation is perspective-correct. Storage belongs to the caller of
+    // setupTriangle (3 · varyingCount floats), so a setup stays small whatever the shader.
+    const float* varyingPlanes = nullptr;
 };
 
-// A 2×2 block of pixels, the fragment unit: lane i is pixel (x + (i & 1), y + (i >> 1)).
-// A 2×2 block is what later gives screen-space derivatives (dFdx, dFdy) for texture filtering.
-struct Quad {
-    int x = 0;                  // even
-    int y = 0;                  // even
-    std::uint8_t mask = 0;      // bit i set: lane i's sample is inside the triangle and the viewport
-    std::array<float, 4> b1{};  // λ1 per lane
-    std::array<float, 4> b2{};  // λ2 per lane (λ0 = 1 − λ1 − λ2)
+// The rasterizer's unit of work: an 8×8 block of pixels with one coverage bit per pixel.
+// Bit (8·row + column) is pixel (x + column, y + row). Blocks sit on multiples of 8 in the framebuffer,
+// so how the screen is cut into tiles never changes what a block computes.
+inline constexpr int kBlockSize = 8;
+
+struct CoverageBlock {
+    int x = 0;                  // multiple of kBlockSize
+    int y = 0;                  // multiple of kBlockSize
+    std::uint64_t mask = 0;     // covered samples inside the triangle, the viewport and the tile
+    bool fullyCovered = false;  // every sample of the block is inside the triangle (no edge test ran)
+};
+
+// An inclusive rectangle of pixels.
+struct PixelRect {
+    int minX = 0, minY = 0, maxX = -1, maxY = -1;
+    bool empty() const { return minX > maxX || minY > maxY; }
 };
 
 // ---- Fragment → output -------------------------------------------------------------------------------
@@ -176,7 +186,7 @@ std::ostream& operator<<(std::ostream& os, const WindowVertex& v);
 std::ostream& operator<<(std::ostream& os, const WindowTriangle& triangle);
 std::ostream& operator<<(std::ostream& os, const EdgeFunction& edge);
 std::ostream& operator<<(std::ostream& os, const TriangleSetup& setup);
-std::ostream& operator<<(std::ostream& os, const Quad& quad);
+std::ostream& operator<<(std::ostream& os, const CoverageBlock& block);
 std::ostream& operator<<(std::ostream& os, FragmentFate fate);
 std::ostream& operator<<(std::ostream& os, const FragmentEvent& event);
 std::ostream& operator<<(std::ostream& os, TriangleFate fate);

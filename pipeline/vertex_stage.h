@@ -11,21 +11,37 @@
 
 namespace facet {
 
+// Sizes `out` for `count` vertices of shader S.
 template <Shader S>
-void shadeVertices(std::span<const typename S::Attributes> attributes, const typename S::Uniforms& uniforms,
-                   ShadedVertices& out) {
+void prepareShadedVertices(std::size_t count, ShadedVertices& out) {
     constexpr int kFloats = kVaryingFloatCount<typename S::Varyings>;
     out.varyingCount = kFloats;
-    out.positions.resize(attributes.size());
-    out.varyings.resize(attributes.size() * kFloats);
-    out.outcodes.resize(attributes.size());
-    for (std::size_t i = 0; i < attributes.size(); ++i) {
+    out.positions.resize(count);
+    out.varyings.resize(count * kFloats);
+    out.outcodes.resize(count);
+}
+
+// Shades vertices [begin, end) into `out` (already sized by prepareShadedVertices). Disjoint ranges
+// may run on different threads.
+template <Shader S>
+void shadeVertices(std::span<const typename S::Attributes> attributes, const typename S::Uniforms& uniforms,
+                   std::size_t begin, std::size_t end, ShadedVertices& out) {
+    constexpr int kFloats = kVaryingFloatCount<typename S::Varyings>;
+    for (std::size_t i = begin; i < end; ++i) {
         const VertexOut<typename S::Varyings> shaded = S::vertex(attributes[i], uniforms);
         out.positions[i] = shaded.position;
         if constexpr (kFloats > 0)
             std::memcpy(out.varyings.data() + i * kFloats, &shaded.varyings, kFloats * sizeof(float));
         out.outcodes[i] = computeOutcode(shaded.position);
     }
+}
+
+// All vertices, on the calling thread.
+template <Shader S>
+void shadeVertices(std::span<const typename S::Attributes> attributes, const typename S::Uniforms& uniforms,
+                   ShadedVertices& out) {
+    prepareShadedVertices<S>(attributes.size(), out);
+    shadeVertices<S>(attributes, uniforms, 0, attributes.size(), out);
 }
 
 }  // namespace facet

@@ -3,10 +3,12 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 
 #include "mesh.h"
 #include "shader.h"
 #include "texture.h"
+#include "wide.h"
 
 namespace facet {
 
@@ -54,30 +56,58 @@ struct BlinnPhongShader {
 
     // c = k_e + a_global ⊗ k_a + Σ_lights c_light ⊗ (k_d·max(N·L, 0) + k_s·max(N·H, 0)^n),
     // H = normalize(L + V), the specular term only where N·L > 0 (Blinn 1977).
-    static vec4 fragment(const Varyings& in, const Uniforms& u) {
+    // Written once for both lane types: F, V3 = float, vec3 (one fragment) or Float8, Vec3x8 (eight).
+    template <class F, class V3>
+    static V3 lighting(const V3& worldPosition, const V3& normal, const V3& kd, const Uniforms& u) {
         const ShaderMaterial& m = u.material;
-        vec3 N = normalize(in.normal);
-        const vec3 V = normalize(u.eyeWorld - in.worldPosition);
+        V3 N = normalize(normal);
+        const V3 V = normalize(u.eyeWorld - worldPosition);
         // Seen from behind (an open mesh with culling off): light the side facing the viewer.
-        if (dot(N, V) < 0.0f) N = -N;
-        vec3 kd = m.diffuse;
-        if (m.diffuseMap) kd *= vec3(sampleBilinear(*m.diffuseMap, in.uv));
+        N = select(dot(N, V) < 0.0f, -N, N);
 
-        vec3 color = m.emission + u.globalAmbient * m.ambient;
+        V3 color(m.emission + u.globalAmbient * m.ambient);
         for (int i = 0; i < u.lightCount; ++i) {
             const ShaderLight& light = u.lights[i];
-            const vec3 L = light.positionOrDirection.w == 0.0f
-                               ? -vec3(light.positionOrDirection)
-                               : normalize(vec3(light.positionOrDirection) - in.worldPosition);
-            const float NdotL = dot(N, L);
-            if (NdotL <= 0.0f) continue;
-            const vec3 H = normalize(L + V);
-            const float specular = m.shininess > 0.0f ? pow(max(dot(N, H), 0.0f), m.shininess) : 1.0f;
-            color += light.color * (kd * NdotL + m.specular * specular);
+            const V3 L = light.positionOrDirection.w == 0.0f
+                             ? V3(-vec3(light.positionOrDirection))
+                             : normalize(vec3(light.positionOrDirection) - worldPosition);
+            const F NdotL = dot(N, L);
+            const V3 H = normalize(L + V);
+            const F lit = select(NdotL > 0.0f, 1.0f, 0.0f);
+            const F specular = pow(max(dot(N, H), 0.0f), m.shininess) * lit;
+            color += light.color * (kd * max(NdotL, 0.0f) + m.specular * specular);
         }
+        return color;
+    }
+
+    static vec4 fragment(const Varyings& in, const Uniforms& u) {
+        const ShaderMaterial& m = u.material;
+        vec3 kd = m.diffuse;
+        if (m.diffuseMap) kd *= vec3(sampleBilinear(*m.diffuseMap, in.uv));
         // Drawn opaque: blending transparent surfaces needs them sorted, which the renderer does not do
         // yet, so the material's opacity is carried but not applied.
-        return vec4(color, 1.0f);
+        return vec4(lighting<float, vec3>(in.worldPosition, in.normal, kd, u), 1.0f);
+    }
+
+    // The same for eight fragments at once (the pipeline prefers this when a shader has it).
+    static Vec4x8 fragmentBatch(const FragmentBatch& in, const Uniforms& u) {
+        constexpr int kPosition = offsetof(Varyings, worldPosition) / sizeof(float);
+        constexpr int kNormal = offsetof(Varyings, normal) / sizeof(float);
+        constexpr int kUv = offsetof(Varyings, uv) / sizeof(float);
+        const ShaderMaterial& m = u.material;
+        Vec3x8 kd(m.diffuse);
+        if (m.diffuseMap) {
+            const Vec2x8 uv = in.vec2At(kUv);
+            for (int lane = 0; lane < 8; ++lane) {
+                if (!((in.mask >> lane) & 1)) continue;
+                const vec4 texel = sampleBilinear(*m.diffuseMap, vec2(uv.x[lane], uv.y[lane]));
+                kd.x[lane] *= texel.r;
+                kd.y[lane] *= texel.g;
+                kd.z[lane] *= texel.b;
+            }
+        }
+        const Vec3x8 c = lighting<Float8, Vec3x8>(in.vec3At(kPosition), in.vec3At(kNormal), kd, u);
+        return {c.x, c.y, c.z, splat(1.0f)};
     }
 };
 

@@ -1,5 +1,6 @@
 #include "rasterize.h"
 
+#include <bit>
 #include <random>
 #include <vector>
 
@@ -18,44 +19,75 @@ WindowVertex fixedAt(std::int64_t xFixed, std::int64_t yFixed) {
     return v;
 }
 
-// The quad walk must report exactly the pixels the plain per-pixel test covers, inside the bounds,
-// each once, with the barycentrics the edge functions give.
-TEST(Rasterize, QuadWalkMatchesPerPixelOracleOnRandomTriangles) {
+// Walks `rect` block by block and counts how often each pixel is reported covered.
+std::vector<int> walk(const TriangleSetup& setup, const PixelRect& rect, int width, int height) {
+    std::vector<int> covered(static_cast<std::size_t>(width) * height, 0);
+    rasterizeBlocks(setup, rect, [&](const CoverageBlock& b) {
+        EXPECT_EQ(b.x % kBlockSize, 0);
+        EXPECT_EQ(b.y % kBlockSize, 0);
+        EXPECT_NE(b.mask, 0u);
+        for (int bit = 0; bit < 64; ++bit) {
+            if (!((b.mask >> bit) & 1)) continue;
+            const int x = b.x + bit % kBlockSize, y = b.y + bit / kBlockSize;
+            EXPECT_TRUE(x >= rect.minX && x <= rect.maxX && y >= rect.minY && y <= rect.maxY)
+                << x << "," << y;
+            if (x >= 0 && x < width && y >= 0 && y < height)
+                ++covered[static_cast<std::size_t>(y) * width + x];
+        }
+        if (b.fullyCovered) {
+            // Trivially accepted: every sample of the block really is inside.
+            for (int bit = 0; bit < 64; ++bit) {
+                if ((b.mask >> bit) & 1) {
+                    EXPECT_TRUE(coversSample(setup, b.x + bit % kBlockSize, b.y + bit / kBlockSize));
+                }
+            }
+        }
+    });
+    return covered;
+}
+
+// The block walk, with its trivial accept and reject, must report exactly the pixels the plain
+// per-pixel test covers inside the bounds, each once, for random triangles of every size and for
+// random sub-rectangles (tiles).
+TEST(Rasterize, BlockWalkMatchesPerPixelOracleOnRandomTriangles) {
     std::mt19937 rng(20261124);
-    const int width = 37, height = 29;
+    const int width = 83, height = 61;
     DrawState state;
     state.viewport = {0, 0, width, height};
     state.raster.cull = CullMode::None;
-    std::uniform_int_distribution<std::int64_t> coordX(-10 * kFixedOne, (width + 10) * kFixedOne);
-    std::uniform_int_distribution<std::int64_t> coordY(-10 * kFixedOne, (height + 10) * kFixedOne);
-    int trianglesChecked = 0;
-    for (int trial = 0; trial < 2000; ++trial) {
+    int trianglesChecked = 0, fullBlocksSeen = 0;
+    for (int trial = 0; trial < 3000; ++trial) {
+        // Sizes from a pixel to several times the viewport.
+        const float scale = std::ldexp(1.0f, static_cast<int>(rng() % 9)) * kFixedOne;
+        std::uniform_real_distribution<float> offset(-0.5f * scale, 0.5f * scale);
+        std::uniform_real_distribution<float> centreX(0, width * kFixedOne), centreY(0, height * kFixedOne);
+        const float cx = centreX(rng), cy = centreY(rng);
         WindowTriangle t;
         for (auto& v : t.vertices)
-            v = fixedAt(coordX(rng), coordY(rng));
+            v = fixedAt(static_cast<std::int64_t>(cx + offset(rng)),
+                        static_cast<std::int64_t>(cy + offset(rng)));
         TriangleSetup setup;
-        if (setupTriangle(t, state, setup) != TriangleFate::Drawn) continue;
+        if (setupTriangle(t, state, setup, nullptr) != TriangleFate::Drawn) continue;
         ++trianglesChecked;
-        std::vector<int> walked(width * height, 0);
-        rasterizeTriangle(setup, [&](const Quad& q) {
-            EXPECT_EQ(q.x % 2, 0);
-            EXPECT_EQ(q.y % 2, 0);
-            for (int lane = 0; lane < 4; ++lane) {
-                if (!((q.mask >> lane) & 1)) continue;
-                const int x = q.x + (lane & 1), y = q.y + (lane >> 1);
-                ASSERT_TRUE(x >= 0 && x < width && y >= 0 && y < height);
-                ++walked[y * width + x];
-                const std::int64_t px = x * kFixedOne + kFixedOne / 2, py = y * kFixedOne + kFixedOne / 2;
-                EXPECT_FLOAT_EQ(q.b1[lane], static_cast<float>(setup.edges[1].at(px, py)) /
-                                                static_cast<float>(setup.doubleArea));
-            }
-        });
+        std::uniform_int_distribution<int> rx(0, width - 1), ry(0, height - 1);
+        int x0 = rx(rng), x1 = rx(rng), y0 = ry(rng), y1 = ry(rng);
+        const PixelRect rect =
+            trial % 2 ? PixelRect{0, 0, width - 1, height - 1}
+                      : PixelRect{std::min(x0, x1), std::min(y0, y1), std::max(x0, x1), std::max(y0, y1)};
+        const std::vector<int> covered = walk(setup, rect, width, height);
+        rasterizeBlocks(setup, rect, [&](const CoverageBlock& b) { fullBlocksSeen += b.fullyCovered; });
         for (int y = 0; y < height; ++y)
-            for (int x = 0; x < width; ++x)
-                ASSERT_EQ(walked[y * width + x], coversSample(setup, x, y) ? 1 : 0)
+            for (int x = 0; x < width; ++x) {
+                const bool inside =
+                    x >= std::max(rect.minX, setup.minX) && x <= std::min(rect.maxX, setup.maxX) &&
+                    y >= std::max(rect.minY, setup.minY) && y <= std::min(rect.maxY, setup.maxY);
+                ASSERT_EQ(covered[static_cast<std::size_t>(y) * width + x],
+                          inside && coversSample(setup, x, y) ? 1 : 0)
                     << "trial " << trial << " pixel " << x << "," << y;
+            }
     }
-    EXPECT_GT(trianglesChecked, 1500);
+    EXPECT_GT(trianglesChecked, 2500);
+    EXPECT_GT(fullBlocksSeen, 100);  // the trivial-accept path was exercised
 }
 
 TEST(Rasterize, OddBoundsAndTheLastRowAndColumn) {
@@ -68,13 +100,9 @@ TEST(Rasterize, OddBoundsAndTheLastRowAndColumn) {
         t.vertices = {fixedAt(-5 * kFixedOne, -5 * kFixedOne), fixedAt(3 * width * kFixedOne, -5 * kFixedOne),
                       fixedAt(-5 * kFixedOne, 3 * height * kFixedOne + 20 * kFixedOne)};
         TriangleSetup setup;
-        ASSERT_EQ(setupTriangle(t, state, setup), TriangleFate::Drawn);
-        std::vector<int> walked(static_cast<std::size_t>(width) * height, 0);
-        rasterizeTriangle(setup, [&](const Quad& q) {
-            for (int lane = 0; lane < 4; ++lane)
-                if ((q.mask >> lane) & 1) ++walked[(q.y + (lane >> 1)) * width + q.x + (lane & 1)];
-        });
-        for (int v : walked)
+        ASSERT_EQ(setupTriangle(t, state, setup, nullptr), TriangleFate::Drawn);
+        const std::vector<int> covered = walk(setup, {0, 0, width - 1, height - 1}, width, height);
+        for (int v : covered)
             ASSERT_EQ(v, 1) << width << "x" << height;
     }
 }
@@ -82,8 +110,16 @@ TEST(Rasterize, OddBoundsAndTheLastRowAndColumn) {
 TEST(Rasterize, EmptyBoundsVisitNothing) {
     TriangleSetup setup;  // default bounds are empty (max < min)
     int visits = 0;
-    rasterizeTriangle(setup, [&](const Quad&) { ++visits; });
+    rasterizeBlocks(setup, PixelRect{0, 0, 100, 100}, [&](const CoverageBlock&) { ++visits; });
     EXPECT_EQ(visits, 0);
+}
+
+TEST(Rasterize, RectMaskSelectsThePixelsInside) {
+    EXPECT_EQ(rectMask(0, 0, {0, 0, 7, 7}), ~std::uint64_t{0});
+    EXPECT_EQ(rectMask(8, 0, {0, 0, 7, 7}), 0u);
+    EXPECT_EQ(rectMask(0, 0, {1, 0, 2, 0}), 0b110u);                  // row 0, columns 1–2
+    EXPECT_EQ(rectMask(0, 0, {0, 7, 0, 7}), std::uint64_t{1} << 56);  // row 7, column 0
+    EXPECT_EQ(std::popcount(rectMask(16, 8, {18, 9, 30, 12})), 6 * 4);
 }
 
 }  // namespace

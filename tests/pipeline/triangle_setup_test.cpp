@@ -1,5 +1,7 @@
 #include "triangle_setup.h"
 
+#include <bit>
+
 #include <gtest/gtest.h>
 
 #include "rasterize.h"
@@ -33,12 +35,11 @@ WindowTriangle tri(WindowVertex a, WindowVertex b, WindowVertex c) {
 
 int countCovered(const WindowTriangle& t, const DrawState& s) {
     TriangleSetup setup;
-    if (setupTriangle(t, s, setup) != TriangleFate::Drawn) return 0;
+    if (setupTriangle(t, s, setup, nullptr) != TriangleFate::Drawn) return 0;
     int n = 0;
-    rasterizeTriangle(setup, [&](const Quad& q) {
-        for (int lane = 0; lane < 4; ++lane)
-            n += (q.mask >> lane) & 1;
-    });
+    rasterizeBlocks(
+        setup, PixelRect{0, 0, s.viewport.x + s.viewport.width - 1, s.viewport.y + s.viewport.height - 1},
+        [&](const CoverageBlock& b) { n += std::popcount(b.mask); });
     return n;
 }
 
@@ -58,10 +59,10 @@ TEST(TriangleSetup, BackFacesAreCulledFrontFacesKept) {
     const WindowTriangle ccw = tri(at(0, 0), at(0, 4), at(4, 0));
     const WindowTriangle cw = tri(at(0, 0), at(4, 0), at(0, 4));
     TriangleSetup setup;
-    EXPECT_EQ(setupTriangle(ccw, stateOf(8, 8, CullMode::Back), setup), TriangleFate::Drawn);
+    EXPECT_EQ(setupTriangle(ccw, stateOf(8, 8, CullMode::Back), setup, nullptr), TriangleFate::Drawn);
     EXPECT_TRUE(setup.frontFacing);
-    EXPECT_EQ(setupTriangle(cw, stateOf(8, 8, CullMode::Back), setup), TriangleFate::Culled);
-    EXPECT_EQ(setupTriangle(ccw, stateOf(8, 8, CullMode::Front), setup), TriangleFate::Culled);
+    EXPECT_EQ(setupTriangle(cw, stateOf(8, 8, CullMode::Back), setup, nullptr), TriangleFate::Culled);
+    EXPECT_EQ(setupTriangle(ccw, stateOf(8, 8, CullMode::Front), setup, nullptr), TriangleFate::Culled);
     // Either winding covers the same pixels when nothing is culled.
     EXPECT_EQ(countCovered(ccw, stateOf(8, 8)), countCovered(cw, stateOf(8, 8)));
 }
@@ -90,8 +91,8 @@ TEST(TriangleSetup, EdgesThroughSampleCentresFollowTheTopLeftRule) {
     const WindowTriangle a = tri(at(0.5f, 0.5f), at(4.5f, 0.5f), at(4.5f, 4.5f));
     const WindowTriangle b = tri(at(0.5f, 0.5f), at(4.5f, 4.5f), at(0.5f, 4.5f));
     TriangleSetup sa, sb;
-    ASSERT_EQ(setupTriangle(a, s, sa), TriangleFate::Drawn);
-    ASSERT_EQ(setupTriangle(b, s, sb), TriangleFate::Drawn);
+    ASSERT_EQ(setupTriangle(a, s, sa, nullptr), TriangleFate::Drawn);
+    ASSERT_EQ(setupTriangle(b, s, sb, nullptr), TriangleFate::Drawn);
     for (int y = 0; y < 8; ++y)
         for (int x = 0; x < 8; ++x) {
             const int covered = coversSample(sa, x, y) + coversSample(sb, x, y);
@@ -103,11 +104,12 @@ TEST(TriangleSetup, ZeroAreaIsCulledButSliversAreNot) {
     TriangleSetup setup;
     const DrawState s = stateOf(64, 64);
     // Collinear points, and points that become collinear once snapped to 1/256 px.
-    EXPECT_EQ(setupTriangle(tri(at(1, 1), at(5, 5), at(9, 9)), s, setup), TriangleFate::ZeroArea);
-    EXPECT_EQ(setupTriangle(tri(at(1, 1), at(5, 1.0005f), at(9, 1)), s, setup), TriangleFate::ZeroArea);
+    EXPECT_EQ(setupTriangle(tri(at(1, 1), at(5, 5), at(9, 9)), s, setup, nullptr), TriangleFate::ZeroArea);
+    EXPECT_EQ(setupTriangle(tri(at(1, 1), at(5, 1.0005f), at(9, 1)), s, setup, nullptr),
+              TriangleFate::ZeroArea);
     // A sliver one sub-pixel step tall, 40 px long, lying across sample centres: kept, and it covers them.
     const WindowTriangle sliver = tri(at(0, 10.5f), at(40, 10.5f), at(40, 10.5f + 1.0f / 256));
-    ASSERT_EQ(setupTriangle(sliver, s, setup), TriangleFate::Drawn);
+    ASSERT_EQ(setupTriangle(sliver, s, setup, nullptr), TriangleFate::Drawn);
     EXPECT_GT(countCovered(sliver, s), 0);
 }
 
@@ -115,7 +117,7 @@ TEST(TriangleSetup, BoundingBoxIsClampedToTheViewport) {
     DrawState s = stateOf(64, 64);
     s.viewport = {8, 4, 16, 10};
     TriangleSetup setup;
-    ASSERT_EQ(setupTriangle(tri(at(-100, -100), at(300, -100), at(-100, 300)), s, setup),
+    ASSERT_EQ(setupTriangle(tri(at(-100, -100), at(300, -100), at(-100, 300)), s, setup, nullptr),
               TriangleFate::Drawn);
     EXPECT_EQ(setup.minX, 8);
     EXPECT_EQ(setup.maxX, 23);
@@ -128,19 +130,13 @@ TEST(TriangleSetup, BarycentricsAreOneAtTheirVertex) {
     // Vertices on sample centres: the λ of each vertex is exactly 1 there.
     const WindowTriangle t = tri(at(0.5f, 0.5f, 0.1f), at(6.5f, 0.5f, 0.2f), at(0.5f, 6.5f, 0.3f));
     TriangleSetup setup;
-    ASSERT_EQ(setupTriangle(t, stateOf(8, 8), setup), TriangleFate::Drawn);
-    bool seen[3] = {};
-    rasterizeTriangle(setup, [&](const Quad& q) {
-        for (int lane = 0; lane < 4; ++lane) {
-            if (!((q.mask >> lane) & 1)) continue;
-            const int x = q.x + (lane & 1), y = q.y + (lane >> 1);
-            if (x == 0 && y == 0) {
-                seen[0] = true;
-                EXPECT_FLOAT_EQ(q.b1[lane] + q.b2[lane], 0.0f);
-            }
-        }
-    });
-    EXPECT_TRUE(seen[0]);
+    ASSERT_EQ(setupTriangle(t, stateOf(8, 8), setup, nullptr), TriangleFate::Drawn);
+    // At vertex 0's sample (the centre of pixel 0, 0) λ is exactly (1, 0, 0): the edge functions
+    // opposite v1 and v2 vanish there, and the one opposite v0 equals twice the area.
+    EXPECT_TRUE(coversSample(setup, 0, 0));
+    EXPECT_EQ(setup.edges[1].at(kFixedOne / 2, kFixedOne / 2), 0);
+    EXPECT_EQ(setup.edges[2].at(kFixedOne / 2, kFixedOne / 2), 0);
+    EXPECT_EQ(setup.edges[0].at(kFixedOne / 2, kFixedOne / 2), setup.doubleArea);
     EXPECT_FLOAT_EQ(setup.z0 + setup.dz1, 0.2f);
     EXPECT_FLOAT_EQ(setup.z0 + setup.dz2, 0.3f);
 }

@@ -1,0 +1,51 @@
+#include "bin.h"
+
+#include <algorithm>
+
+namespace facet {
+
+TileGrid makeTileGrid(const Viewport& viewport, int tileSize) {
+    TileGrid grid;
+    grid.tileSize = tileSize;
+    grid.area = {viewport.x, viewport.y, viewport.x + viewport.width - 1, viewport.y + viewport.height - 1};
+    grid.firstColumn = grid.area.minX / tileSize;
+    grid.firstRow = grid.area.minY / tileSize;
+    grid.columns = grid.area.maxX / tileSize - grid.firstColumn + 1;
+    grid.rows = grid.area.maxY / tileSize - grid.firstRow + 1;
+    return grid;
+}
+
+PixelRect TileGrid::tileRect(int index) const {
+    const int column = firstColumn + index % columns;
+    const int row = firstRow + index / columns;
+    return {std::max(column * tileSize, area.minX), std::max(row * tileSize, area.minY),
+            std::min((column + 1) * tileSize - 1, area.maxX), std::min((row + 1) * tileSize - 1, area.maxY)};
+}
+
+void binTriangle(const TileGrid& grid, const TriangleSetup& setup, std::uint32_t setupIndex,
+                 std::vector<std::vector<std::uint32_t>>& bins) {
+    const int c0 = std::max(setup.minX / grid.tileSize, grid.firstColumn) - grid.firstColumn;
+    const int c1 = std::min(setup.maxX / grid.tileSize - grid.firstColumn, grid.columns - 1);
+    const int r0 = std::max(setup.minY / grid.tileSize, grid.firstRow) - grid.firstRow;
+    const int r1 = std::min(setup.maxY / grid.tileSize - grid.firstRow, grid.rows - 1);
+    const bool single = c0 == c1 && r0 == r1;
+    for (int r = r0; r <= r1; ++r)
+        for (int c = c0; c <= c1; ++c) {
+            const int tile = r * grid.columns + c;
+            if (!single) {
+                // Skip a tile wholly outside one edge: the edge's largest value over the tile's sample
+                // points is at the corner its gradient points to.
+                const PixelRect rect = grid.tileRect(tile);
+                bool outside = false;
+                for (const EdgeFunction& e : setup.edges) {
+                    const std::int64_t x = (e.a > 0 ? rect.maxX : rect.minX) * kFixedOne + kFixedOne / 2;
+                    const std::int64_t y = (e.b > 0 ? rect.maxY : rect.minY) * kFixedOne + kFixedOne / 2;
+                    outside |= e.at(x, y) + e.bias < 0;
+                }
+                if (outside) continue;
+            }
+            bins[tile].push_back(setupIndex);
+        }
+}
+
+}  // namespace facet

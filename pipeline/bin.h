@@ -1,0 +1,34 @@
+// Binning: the seam between the front end (one triangle at a time) and the back end (one tile at a
+// time, tiles in parallel). The viewport is cut into square tiles; each triangle is listed in the bin of
+// every tile it may cover, in submission order, so a tile's triangles are drawn in the order they came.
+// In: TriangleSetup. Out: its index appended to tile bins. (llvmpipe's setup/rast split.)
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "state.h"
+#include "types.h"
+
+namespace facet {
+
+inline constexpr int kDefaultTileSize = 64;  // pixels; a tile's colour and depth (64·64·20 B) fit in L2
+
+struct TileGrid {
+    int tileSize = kDefaultTileSize;    // pixels, a multiple of kBlockSize
+    PixelRect area;                     // the viewport's pixels
+    int firstColumn = 0, firstRow = 0;  // tiles sit on multiples of tileSize in the framebuffer
+    int columns = 0, rows = 0;
+
+    int count() const { return columns * rows; }
+    PixelRect tileRect(int index) const;  // the tile's pixels inside the viewport
+};
+
+TileGrid makeTileGrid(const Viewport& viewport, int tileSize);
+
+// Appends `setupIndex` to bins[t] for every tile t that the triangle's bounding box overlaps and that
+// is not wholly outside one of its edges. `bins` has grid.count() entries.
+void binTriangle(const TileGrid& grid, const TriangleSetup& setup, std::uint32_t setupIndex,
+                 std::vector<std::vector<std::uint32_t>>& bins);
+
+}  // namespace facet

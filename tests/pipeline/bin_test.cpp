@@ -1,0 +1,93 @@
+#include "bin.h"
+
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "../support/test_shaders.h"
+#include "rasterize.h"
+#include "triangle_setup.h"
+
+namespace facet {
+namespace {
+
+TEST(TileGrid, CoversTheViewportWithTilesOnMultiplesOfTheTileSize) {
+    const TileGrid grid = makeTileGrid(Viewport{10, 70, 150, 20}, 64);
+    EXPECT_EQ(grid.columns, 3);  // x 10..159: tiles 0, 1, 2
+    EXPECT_EQ(grid.rows, 1);     // y 70..89: all in tile row 1 (64..127)
+    EXPECT_EQ(grid.firstRow, 1);
+    int pixels = 0;
+    for (int t = 0; t < grid.count(); ++t) {
+        const PixelRect r = grid.tileRect(t);
+        if (!r.empty()) pixels += (r.maxX - r.minX + 1) * (r.maxY - r.minY + 1);
+    }
+    EXPECT_EQ(pixels, 150 * 20);
+}
+
+// Every pixel a triangle covers lies in a tile the triangle was binned into.
+TEST(Bin, EveryCoveredPixelIsInABinnedTile) {
+    std::mt19937 rng(5);
+    DrawState state;
+    state.viewport = {0, 0, 300, 200};
+    state.raster.cull = CullMode::None;
+    const TileGrid grid = makeTileGrid(state.viewport, 32);
+    std::uniform_real_distribution<float> coord(-100.0f, 400.0f);
+    for (int trial = 0; trial < 300; ++trial) {
+        WindowTriangle t;
+        for (auto& v : t.vertices) {
+            v.xFixed = static_cast<std::int64_t>(coord(rng) * kFixedOne);
+            v.yFixed = static_cast<std::int64_t>(coord(rng) * kFixedOne);
+        }
+        TriangleSetup setup;
+        if (setupTriangle(t, state, setup, nullptr) != TriangleFate::Drawn) continue;
+        std::vector<std::vector<std::uint32_t>> bins(static_cast<std::size_t>(grid.count()));
+        binTriangle(grid, setup, 0, bins);
+        for (int tile = 0; tile < grid.count(); ++tile) {
+            int covered = 0;
+            rasterizeBlocks(setup, grid.tileRect(tile),
+                            [&](const CoverageBlock& b) { covered += b.mask != 0; });
+            if (covered) {
+                EXPECT_EQ(bins[tile].size(), 1u) << "trial " << trial << " tile " << tile;
+            }
+        }
+    }
+}
+
+// The image does not depend on the number of threads nor on the tile size: the same bytes.
+TEST(Bin, SameBytesForAnyThreadCountAndTileSize) {
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<float> u(-1.3f, 1.3f);
+    std::vector<testing::ClipSpaceColorShader::Attributes> vertices;
+    for (int i = 0; i < 3 * 2000; ++i) {
+        // A mix of small triangles and a few large ones crossing many tiles and the frustum.
+        const float size = i % 300 < 3 ? 1.0f : 0.05f;
+        const vec2 centre(u(rng), u(rng));
+        vertices.push_back({vec4(centre + size * vec2(u(rng), u(rng)), u(rng) * 0.9f, 1.0f),
+                            vec4(u(rng), u(rng), u(rng), 0.5f)});
+    }
+    std::vector<std::uint32_t> indices(vertices.size());
+    for (std::size_t i = 0; i < indices.size(); ++i)
+        indices[i] = static_cast<std::uint32_t>(i);
+    auto render = [&](int threads, int tileSize, BlendMode blend) {
+        Framebuffer fb(317, 211);
+        fb.clearColor(vec4(0));
+        DrawState state = testing::stateFor(fb);
+        state.blend = blend;
+        DrawContext context(threads, tileSize);
+        draw<testing::ClipSpaceColorShader>(
+            state, {}, std::span<const testing::ClipSpaceColorShader::Attributes>(vertices),
+            std::span<const std::uint32_t>(indices), fb, context);
+        return std::make_pair(fb.colorPixels(), fb.depthPixels());
+    };
+    for (BlendMode blend : {BlendMode::Replace, BlendMode::Over}) {
+        const auto reference = render(1, 64, blend);
+        for (auto [threads, tileSize] : {std::pair{2, 64}, {7, 64}, {1, 8}, {2, 16}, {7, 32}, {3, 1024}}) {
+            const auto image = render(threads, tileSize, blend);
+            EXPECT_TRUE(image.first == reference.first) << threads << " threads, tile " << tileSize;
+            EXPECT_TRUE(image.second == reference.second) << threads << " threads, tile " << tileSize;
+        }
+    }
+}
+
+}  // namespace
+}  // namespace facet
