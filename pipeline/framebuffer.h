@@ -8,6 +8,8 @@
 
 namespace facet {
 
+class ThreadPool;
+
 class Framebuffer {
   public:
     Framebuffer() = default;
@@ -18,6 +20,8 @@ class Framebuffer {
 
     void clearColor(vec4 color);
     void clearDepth(float depth = 1.0f);
+    // Both at once, rows spread over the pool's threads (a 1080p float buffer is 41 MB to write).
+    void clear(vec4 color, float depth, ThreadPool& pool);
 
     vec4& color(int x, int y) { return color_[index(x, y)]; }
     const vec4& color(int x, int y) const { return color_[index(x, y)]; }

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cstring>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -275,9 +276,27 @@ void depthTestBlock(const TriangleSetup& setup, const CoverageBlock& block, Frag
         }
 
         float* depthRow = &target.depth(block.x, y);
+        unsigned passed = rowMask;
+        if (depth.testEnabled) {
+            if (block.x + kBlockSize <= target.width()) {
+                // Eight stored depths at once (the row lies inside the framebuffer).
+                Float8 zLanes, stored;
+                std::memcpy(&zLanes, z, sizeof zLanes);
+                std::memcpy(&stored, depthRow, sizeof stored);
+                const Int8 pass = depthTestPasses(depth.compare, zLanes, stored);
+                unsigned passBits = 0;
+                for (int lane = 0; lane < kBlockSize; ++lane)
+                    passBits |= (static_cast<unsigned>(pass[lane]) & 1u) << lane;
+                passed &= passBits;
+            } else {
+                for (int lane = 0; lane < kBlockSize; ++lane)
+                    if ((rowMask >> lane) & 1u)
+                        if (!depthTestPasses(depth.compare, z[lane], depthRow[lane])) passed &= ~(1u << lane);
+            }
+        }
         for (int lane = 0; lane < kBlockSize; ++lane) {
             if (!(rowMask & (1u << lane))) continue;
-            if (depth.testEnabled && !depthTestPasses(depth.compare, z[lane], depthRow[lane])) {
+            if (!(passed & (1u << lane))) {
                 ++stats.fragmentsDepthFailed;
                 if constexpr (kObserving) {
                     FragmentEvent event{block.x + lane, y, setup.triangle, z[lane], depthRow[lane]};

@@ -171,8 +171,7 @@ PreparedScene prepareScene(const Scene& scene) {
 }
 
 DrawStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawContext& context) {
-    target.clearColor(prepared.clearColor);
-    target.clearDepth(1.0f);
+    target.clear(prepared.clearColor, 1.0f, context.pool);
     DrawStats total;
     for (const PreparedDraw& d : prepared.draws)
         total += draw<BlinnPhongShader>(prepared.state, d.uniforms, std::span<const MeshVertex>(d.vertices),
