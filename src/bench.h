@@ -1,4 +1,5 @@
 // `facet bench`: times whole frames of a model and prints medians (never a pass/fail test).
+// `facet bench --vs-mesa` times Facet against Mesa's llvmpipe (mesa_peer.h) on the same scenes.
 #pragma once
 
 #include <filesystem>
@@ -12,11 +13,28 @@ struct BenchOptions {
     int height = 1080;
     int frames = 30;  // timed frames, after one untimed warm-up frame
     int threads = 0;  // 0: one per hardware thread
+
+    // --vs-mesa
+    bool vsMesa = false;
+    bool quick = false;  // a shorter sweep, for a smoke run (the caller also lowers `frames`)
+    std::filesystem::path csv = "out/bench-scaling.csv";
+    std::filesystem::path chart = "out/bench-scaling.png";
+    std::filesystem::path sharedModels = "../shared/models";  // the largest model is found here
+    std::filesystem::path smallModel = "models/spot/spot_triangulated.obj";  // drawn at 3840×2160
 };
 
 // Renders options.frames frames on options.threads threads and prints a report to `out`:
 // the median, minimum and maximum milliseconds per frame, the triangle and fragment counts, and the
 // cost of clearing the framebuffer alone (the floor under any frame). Throws InputError on bad input.
 void runBench(const BenchOptions& options, std::ostream& out);
+
+// Renders each benchmark scene through Facet and through Mesa llvmpipe (OSMesa, when it can be loaded),
+// frames alternating, on the same number of threads, and prints per scene the median ms per frame of
+// each, their ratio, whether the two images agree, and the peak memory of Facet's render. Scenes:
+// options.model at 1920×1080 with one point light; the largest model of options.sharedModels;
+// options.smallModel at 3840×2160; a triangle sweep (icospheres of 1k to 1M triangles) and a
+// resolution sweep (options.model at 640×480 to 3840×2160), written to options.csv and drawn to
+// options.chart. Without OSMesa it says so and times Facet alone. Throws InputError on bad input.
+void runMesaComparison(const BenchOptions& options, std::ostream& out);
 
 }  // namespace facet

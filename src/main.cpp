@@ -132,6 +132,15 @@ int main(int argc, char** argv) {
     benchCommand
         ->add_option("--threads", benchOptions.threads, "Worker threads (default: one per hardware thread)")
         ->check(CLI::Range(0, 1024));
+    benchCommand->add_flag("--vs-mesa", benchOptions.vsMesa,
+                           "Compare with Mesa llvmpipe (OSMesa, if installed) on fixed scenes and sweeps, "
+                           "same thread count");
+    benchCommand->add_flag("--quick", benchOptions.quick,
+                           "With --vs-mesa: a shorter sweep and 5 frames (unless --frames), for a smoke run");
+    benchCommand->add_option("--csv", benchOptions.csv,
+                             "With --vs-mesa: where the sweeps' CSV goes (default out/bench-scaling.csv)");
+    benchCommand->add_option("--chart", benchOptions.chart,
+                             "With --vs-mesa: where the sweeps' chart goes (default out/bench-scaling.png)");
 
     if (argc == 1) {  // no command at all: show what there is to do
         std::cerr << app.help();
@@ -146,6 +155,17 @@ int main(int argc, char** argv) {
     try {
         if (*renderCommand) return render(renderArgs);
         if (*benchCommand) {
+            if (benchOptions.vsMesa) {
+                // The scenes and their sizes are fixed; MODEL replaces the bunny.
+                if (benchCommand->count("--width") || benchCommand->count("--height"))
+                    throw facet::InputError(
+                        "--vs-mesa renders fixed sizes; --width and --height do not apply");
+                if (benchOptions.quick && benchCommand->count("--frames") == 0) benchOptions.frames = 5;
+                facet::runMesaComparison(benchOptions, std::cout);
+                return 0;
+            }
+            if (benchOptions.quick || benchCommand->count("--csv") || benchCommand->count("--chart"))
+                throw facet::InputError("--quick, --csv and --chart go with --vs-mesa");
             checkSize(benchOptions.width, benchOptions.height);
             facet::runBench(benchOptions, std::cout);
             return 0;
