@@ -100,6 +100,7 @@ void setupTriangles(std::span<const std::uint32_t> indices, std::size_t first, s
         if (fate != TriangleFate::Drawn) {
             if (fate == TriangleFate::ZeroArea) ++stats.trianglesZeroArea;
             if (fate == TriangleFate::Culled) ++stats.trianglesCulled;
+            if (fate == TriangleFate::MissesSamples) ++stats.trianglesMissingSamples;
             chunk.setups.pop_back();
             chunk.varyingPlanes.resize(index * planeFloats);
             return;
@@ -167,45 +168,53 @@ void setupTriangles(std::span<const std::uint32_t> indices, std::size_t first, s
         chunk.setups[k].varyingPlanes = chunk.varyingPlanes.data() + k * planeFloats;
 }
 
-// Fragments of one triangle that passed the depth test, waiting to be shaded eight at a time.
-// A triangle covers each pixel at most once, so its fragments may be shaded in any grouping; the queue
-// is flushed before the next triangle, which keeps the order between triangles.
+// Fragments that passed the depth test, waiting to be shaded eight at a time: the fragments of tiny
+// triangles share a batch. Their varyings are interpolated on the way in (each with its own triangle's
+// planes), so a batch may mix triangles of one draw. No two queued fragments share a pixel: before a
+// fragment is depth-tested at a pixel that holds a queued one, the queue is shaded, so every pixel
+// still sees its fragments in submission order, and the image does not depend on how fragments were
+// grouped.
 struct FragmentQueue {
     int count = 0;
     int x[kBlockSize], y[kBlockSize];
-    float b1[kBlockSize], b2[kBlockSize], z[kBlockSize];
+    float z[kBlockSize];
+    std::uint32_t triangle[kBlockSize];
+    FragmentBatch batch;  // interpolated varyings, lane = queue slot
+
+    // Does a queued fragment sit in row y, at a column of [x, x + 8) whose bit is set in `columns`?
+    bool holdsAny(int rowY, int firstX, unsigned columns) const {
+        bool found = false;
+        for (int i = 0; i < count; ++i) {
+            const unsigned column = static_cast<unsigned>(x[i] - firstX);
+            found |= y[i] == rowY && column < kBlockSize && ((columns >> column) & 1u);
+        }
+        return found;
+    }
 };
 
-// Interpolation, the fragment shader, the depth write and blending for the queued fragments.
+// The fragment shader, the depth write and blending for the queued fragments.
 template <Shader S, class Observer>
-void shadeQueue(const TriangleSetup& setup, FragmentQueue& queue, const DrawState& state,
-                const typename S::Uniforms& uniforms, Framebuffer& target, DrawStats& stats,
-                Observer& observer) {
+void shadeQueue(FragmentQueue& queue, const DrawState& state, const typename S::Uniforms& uniforms,
+                Framebuffer& target, DrawStats& stats, Observer& observer) {
     constexpr bool kObserving = Observer::enabled;
     const int n = queue.count;
     if (n == 0) return;
     queue.count = 0;
 
-    // Interpolation and the fragment shader: eight lanes at once when the shader can.
+    // The fragment shader: eight lanes at once when the shader can.
     vec4 shaded[kBlockSize];
     unsigned kept = (1u << n) - 1;
     stats.fragmentsShaded += static_cast<unsigned>(n);
     if constexpr (BatchShader<S>) {
-        FragmentBatch batch;
-        batch.mask = kept;
-        Float8 b1{}, b2{};
-        for (int lane = 0; lane < n; ++lane) {
-            b1[lane] = queue.b1[lane];
-            b2[lane] = queue.b2[lane];
-        }
-        interpolateVaryings(setup, b1, b2, batch);
-        const Vec4x8 c = S::fragmentBatch(batch, uniforms);
+        queue.batch.mask = kept;
+        const Vec4x8 c = S::fragmentBatch(queue.batch, uniforms);
         for (int lane = 0; lane < n; ++lane)
             shaded[lane] = vec4(c.x[lane], c.y[lane], c.z[lane], c.w[lane]);
     } else {
         float varyings[kMaxVaryingFloats];
         for (int lane = 0; lane < n; ++lane) {
-            interpolateVaryings(setup, queue.b1[lane], queue.b2[lane], varyings);
+            for (int k = 0; k < kVaryingFloatCount<typename S::Varyings>; ++k)
+                varyings[k] = queue.batch.varyings[k][lane];
             if (!shadeFragment<S>(varyings, uniforms, shaded[lane])) kept &= ~(1u << lane);
         }
     }
@@ -216,7 +225,7 @@ void shadeQueue(const TriangleSetup& setup, FragmentQueue& queue, const DrawStat
         const int x = queue.x[lane], y = queue.y[lane];
         FragmentEvent event;
         if constexpr (kObserving) {
-            event = FragmentEvent{x, y, setup.triangle, queue.z[lane], target.depth(x, y)};
+            event = FragmentEvent{x, y, queue.triangle[lane], queue.z[lane], target.depth(x, y)};
             event.colorBefore = event.colorAfter = target.color(x, y);
         }
         if (!(kept & (1u << lane))) {
@@ -275,6 +284,10 @@ void depthTestBlock(const TriangleSetup& setup, const CoverageBlock& block, Frag
             z[lane] = setup.z0 + b1[lane] * setup.dz1 + b2[lane] * setup.dz2;
         }
 
+        // A queued fragment at one of these pixels must reach the framebuffer before they are tested.
+        if (queue.count && queue.holdsAny(y, block.x, rowMask))
+            shadeQueue<S>(queue, state, uniforms, target, stats, observer);
+
         float* depthRow = &target.depth(block.x, y);
         unsigned passed = rowMask;
         if (depth.testEnabled) {
@@ -284,10 +297,7 @@ void depthTestBlock(const TriangleSetup& setup, const CoverageBlock& block, Frag
                 std::memcpy(&zLanes, z, sizeof zLanes);
                 std::memcpy(&stored, depthRow, sizeof stored);
                 const Int8 pass = depthTestPasses(depth.compare, zLanes, stored);
-                unsigned passBits = 0;
-                for (int lane = 0; lane < kBlockSize; ++lane)
-                    passBits |= (static_cast<unsigned>(pass[lane]) & 1u) << lane;
-                passed &= passBits;
+                passed &= signMask(pass);
             } else {
                 for (int lane = 0; lane < kBlockSize; ++lane)
                     if ((rowMask >> lane) & 1u)
@@ -309,11 +319,13 @@ void depthTestBlock(const TriangleSetup& setup, const CoverageBlock& block, Frag
             const int slot = queue.count++;
             queue.x[slot] = block.x + lane;
             queue.y[slot] = y;
-            queue.b1[slot] = b1[lane];
-            queue.b2[slot] = b2[lane];
             queue.z[slot] = z[lane];
-            if (queue.count == kBlockSize)
-                shadeQueue<S>(setup, queue, state, uniforms, target, stats, observer);
+            queue.triangle[slot] = setup.triangle;
+            float varyings[kMaxVaryingFloats];
+            interpolateVaryings(setup, b1[lane], b2[lane], varyings);
+            for (int k = 0; k < setup.varyingCount; ++k)
+                queue.batch.varyings[k][slot] = varyings[k];
+            if (queue.count == kBlockSize) shadeQueue<S>(queue, state, uniforms, target, stats, observer);
         }
     }
 }
@@ -388,18 +400,18 @@ DrawStats draw(const DrawState& state, const typename S::Uniforms& uniforms,
         forEach(static_cast<std::size_t>(grid.count()), [&](std::size_t tile, int thread) {
             const PixelRect rect = grid.tileRect(static_cast<int>(tile));
             DrawStats& stats = context.threadStats[static_cast<std::size_t>(thread)];
+            detail::FragmentQueue queue;
             for (std::size_t c = 0; c < chunkCount; ++c) {
                 const SetupChunk& chunk = context.chunks[c];
                 for (std::uint32_t index : chunk.bins[tile]) {
                     const TriangleSetup& setup = chunk.setups[index];
-                    detail::FragmentQueue queue;
                     rasterizeBlocks(setup, rect, [&](const CoverageBlock& block) {
                         detail::depthTestBlock<S>(setup, block, queue, state, uniforms, target, stats,
                                                   observer);
                     });
-                    detail::shadeQueue<S>(setup, queue, state, uniforms, target, stats, observer);
                 }
             }
+            detail::shadeQueue<S>(queue, state, uniforms, target, stats, observer);
         });
         for (std::size_t c = 0; c < chunkCount; ++c)
             total += context.chunks[c].stats;

@@ -13,6 +13,7 @@
 #include <cstdint>
 
 #include "types.h"
+#include "wide.h"
 
 namespace facet {
 
@@ -59,26 +60,22 @@ inline std::uint64_t partialBlockMask(const std::int64_t origin[3], const std::i
     }
     std::uint64_t mask = 0;
     if (fits32) {
-        using Lanes = std::int32_t __attribute__((vector_size(32)));
-        const Lanes column = {0, 1, 2, 3, 4, 5, 6, 7};
-        Lanes rowValue[3];
+        const Int8 column = {0, 1, 2, 3, 4, 5, 6, 7};
+        Int8 rowValue[3];
         std::int32_t down[3];
         for (int k = 0; k < count; ++k) {
             const int i = edges[k];
-            // Values inside the block stay in int32; origin ± steps are the block's own samples.
             rowValue[k] = static_cast<std::int32_t>(origin[i]) + column * static_cast<std::int32_t>(stepX[i]);
             down[k] = static_cast<std::int32_t>(stepY[i]);
         }
         for (int y = 0; y < kBlockSize; ++y) {
-            Lanes all = {0, 0, 0, 0, 0, 0, 0, 0};
+            Int8 all = {0, 0, 0, 0, 0, 0, 0, 0};
             for (int k = 0; k < count; ++k) {
                 all |= rowValue[k];
                 rowValue[k] += down[k];
             }
-            std::uint64_t rowBits = 0;
-            for (int x = 0; x < kBlockSize; ++x)
-                rowBits |= static_cast<std::uint64_t>(all[x] >= 0) << x;
-            mask |= rowBits << (y * kBlockSize);
+            // A sample is covered where no edge value is negative: where the OR has no sign bit.
+            mask |= static_cast<std::uint64_t>(~signMask(all) & 0xffu) << (y * kBlockSize);
         }
         return mask;
     }

@@ -57,6 +57,27 @@ TriangleFate setupTriangle(const WindowTriangle& triangle, const DrawState& stat
     // Cull on the snapped area: zero area in fixed point covers no sample, whatever its float size.
     const std::int64_t area = signedDoubleArea(triangle);
     if (area == 0) return TriangleFate::ZeroArea;
+    // Bounding box of the pixels whose centre (x + ½, y + ½) may be inside, clamped to the viewport
+    // and to the fixed-point budget before any loop runs.
+    const WindowVertex& t0 = triangle.vertices[0];
+    const WindowVertex& t1 = triangle.vertices[1];
+    const WindowVertex& t2 = triangle.vertices[2];
+    const std::int64_t half = kFixedOne / 2;
+    const std::int64_t minXf = std::min({t0.xFixed, t1.xFixed, t2.xFixed});
+    const std::int64_t maxXf = std::max({t0.xFixed, t1.xFixed, t2.xFixed});
+    const std::int64_t minYf = std::min({t0.yFixed, t1.yFixed, t2.yFixed});
+    const std::int64_t maxYf = std::max({t0.yFixed, t1.yFixed, t2.yFixed});
+    const Viewport& vp = state.viewport;
+    setup.minX = static_cast<int>(std::max<std::int64_t>(ceilDiv(minXf - half, kFixedOne), vp.x));
+    setup.minY = static_cast<int>(std::max<std::int64_t>(ceilDiv(minYf - half, kFixedOne), vp.y));
+    setup.maxX =
+        static_cast<int>(std::min<std::int64_t>(floorDiv(maxXf - half, kFixedOne), vp.x + vp.width - 1));
+    setup.maxY =
+        static_cast<int>(std::min<std::int64_t>(floorDiv(maxYf - half, kFixedOne), vp.y + vp.height - 1));
+
+    // A triangle between sample points covers none: common for the sub-pixel triangles of dense meshes.
+    if (setup.minX > setup.maxX || setup.minY > setup.maxY) return TriangleFate::MissesSamples;
+
     setup.frontFacing = isFrontFacing(area, state.raster.frontFace);
     if (isCulled(setup.frontFacing, state.raster.cull)) return TriangleFate::Culled;
 
@@ -72,21 +93,6 @@ TriangleFate setupTriangle(const WindowTriangle& triangle, const DrawState& stat
     setup.edges[0] = makeEdge(v1, v2);
     setup.edges[1] = makeEdge(v2, v0);
     setup.edges[2] = makeEdge(v0, v1);
-
-    // Bounding box of the pixels whose centre (x + ½, y + ½) may be inside, clamped to the viewport
-    // and to the fixed-point budget before any loop runs.
-    const std::int64_t half = kFixedOne / 2;
-    const std::int64_t minXf = std::min({v0.xFixed, v1.xFixed, v2.xFixed});
-    const std::int64_t maxXf = std::max({v0.xFixed, v1.xFixed, v2.xFixed});
-    const std::int64_t minYf = std::min({v0.yFixed, v1.yFixed, v2.yFixed});
-    const std::int64_t maxYf = std::max({v0.yFixed, v1.yFixed, v2.yFixed});
-    const Viewport& vp = state.viewport;
-    setup.minX = static_cast<int>(std::max<std::int64_t>(ceilDiv(minXf - half, kFixedOne), vp.x));
-    setup.minY = static_cast<int>(std::max<std::int64_t>(ceilDiv(minYf - half, kFixedOne), vp.y));
-    setup.maxX =
-        static_cast<int>(std::min<std::int64_t>(floorDiv(maxXf - half, kFixedOne), vp.x + vp.width - 1));
-    setup.maxY =
-        static_cast<int>(std::min<std::int64_t>(floorDiv(maxYf - half, kFixedOne), vp.y + vp.height - 1));
 
     // Attribute planes in barycentric form, value = v0 + λ1·(v1 − v0) + λ2·(v2 − v0).
     // Window depth is affine in screen space; a varying a is not, but a/w and 1/w are.

@@ -12,6 +12,7 @@ DrawStats& DrawStats::operator+=(const DrawStats& o) {
     trianglesRejected += o.trianglesRejected;
     trianglesCulled += o.trianglesCulled;
     trianglesZeroArea += o.trianglesZeroArea;
+    trianglesMissingSamples += o.trianglesMissingSamples;
     trianglesRasterized += o.trianglesRasterized;
     fragmentsShaded += o.fragmentsShaded;
     fragmentsDepthFailed += o.fragmentsDepthFailed;
@@ -120,6 +121,8 @@ std::ostream& operator<<(std::ostream& os, TriangleFate fate) {
             return os << "clipped away";
         case TriangleFate::ZeroArea:
             return os << "culled: zero area after snapping";
+        case TriangleFate::MissesSamples:
+            return os << "skipped: covers no pixel centre";
         case TriangleFate::Culled:
             return os << "culled: faces away";
     }
@@ -129,9 +132,10 @@ std::ostream& operator<<(std::ostream& os, TriangleFate fate) {
 std::ostream& operator<<(std::ostream& os, const DrawStats& s) {
     return os << s.vertices << " vertices, " << s.triangles << " triangles (" << s.trianglesClipped
               << " clipped, " << s.trianglesRejected << " rejected, " << s.trianglesCulled << " culled, "
-              << s.trianglesZeroArea << " zero-area, " << s.trianglesRasterized << " rasterized), "
-              << s.fragmentsShaded << " fragments shaded (" << s.fragmentsDepthFailed << " failed depth, "
-              << s.fragmentsDiscarded << " discarded, " << s.fragmentsWritten << " written)";
+              << s.trianglesZeroArea << " zero-area, " << s.trianglesMissingSamples
+              << " between pixel centres, " << s.trianglesRasterized << " rasterized), " << s.fragmentsShaded
+              << " fragments shaded (" << s.fragmentsDepthFailed << " failed depth, " << s.fragmentsDiscarded
+              << " discarded, " << s.fragmentsWritten << " written)";
 }
 
 }  // namespace facet

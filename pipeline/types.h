@@ -161,18 +161,27 @@ struct FragmentEvent {
 };
 
 // Why a triangle produced no fragments.
-enum class TriangleFate : std::uint8_t { Drawn, NonFinite, OutsideFrustum, ClippedAway, ZeroArea, Culled };
+enum class TriangleFate : std::uint8_t {
+    Drawn,
+    NonFinite,
+    OutsideFrustum,
+    ClippedAway,
+    ZeroArea,
+    MissesSamples,  // its bounding box holds no pixel centre
+    Culled,
+};
 
 // Counters for one draw; cheap enough to keep always.
 struct DrawStats {
-    std::uint64_t vertices = 0;             // vertex shader invocations
-    std::uint64_t triangles = 0;            // triangles submitted
-    std::uint64_t trianglesClipped = 0;     // crossed a frustum plane and went through the clipper
-    std::uint64_t trianglesRejected = 0;    // non-finite, outside the frustum, or clipped away
-    std::uint64_t trianglesCulled = 0;      // back/front-face culled
-    std::uint64_t trianglesZeroArea = 0;    // zero area once snapped to fixed point
-    std::uint64_t trianglesRasterized = 0;  // window triangles handed to the rasterizer (after clipping)
-    std::uint64_t fragmentsShaded = 0;      // fragment shader invocations
+    std::uint64_t vertices = 0;                 // vertex shader invocations
+    std::uint64_t triangles = 0;                // triangles submitted
+    std::uint64_t trianglesClipped = 0;         // crossed a frustum plane and went through the clipper
+    std::uint64_t trianglesRejected = 0;        // non-finite, outside the frustum, or clipped away
+    std::uint64_t trianglesCulled = 0;          // back/front-face culled
+    std::uint64_t trianglesZeroArea = 0;        // zero area once snapped to fixed point
+    std::uint64_t trianglesMissingSamples = 0;  // no pixel centre inside their bounding box
+    std::uint64_t trianglesRasterized = 0;      // window triangles handed to the rasterizer (after clipping)
+    std::uint64_t fragmentsShaded = 0;          // fragment shader invocations
     std::uint64_t fragmentsDepthFailed = 0;
     std::uint64_t fragmentsDiscarded = 0;
     std::uint64_t fragmentsWritten = 0;

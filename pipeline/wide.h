@@ -8,6 +8,9 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#if defined(__AVX__)
+#include <immintrin.h>
+#endif
 
 #include "glsl.h"
 #include "types.h"
@@ -16,6 +19,18 @@ namespace facet {
 
 using Float8 = float __attribute__((vector_size(32)));
 using Int8 = std::int32_t __attribute__((vector_size(32)));
+
+// One bit per lane, set where the lane is negative (comparison results are all ones or all zeros).
+inline unsigned signMask(Int8 v) {
+#if defined(__AVX__)
+    return static_cast<unsigned>(_mm256_movemask_ps(std::bit_cast<__m256>(v)));
+#else
+    unsigned bits = 0;
+    for (int i = 0; i < 8; ++i)
+        bits |= (static_cast<std::uint32_t>(v[i]) >> 31) << i;
+    return bits;
+#endif
+}
 
 inline Float8 splat(float v) {
     return Float8{v, v, v, v, v, v, v, v};

@@ -113,6 +113,18 @@ TEST(TriangleSetup, ZeroAreaIsCulledButSliversAreNot) {
     EXPECT_GT(countCovered(sliver, s), 0);
 }
 
+// A triangle that fits between pixel centres covers nothing and is dropped before any plane is set up;
+// one that holds a centre is kept.
+TEST(TriangleSetup, TrianglesBetweenPixelCentresAreSkipped) {
+    TriangleSetup setup;
+    const DrawState s = stateOf(16, 16);
+    EXPECT_EQ(setupTriangle(tri(at(3.6f, 3.6f), at(4.4f, 3.6f), at(3.6f, 4.4f)), s, setup, nullptr),
+              TriangleFate::MissesSamples);
+    EXPECT_EQ(setupTriangle(tri(at(3.4f, 3.4f), at(4.4f, 3.4f), at(3.4f, 4.4f)), s, setup, nullptr),
+              TriangleFate::Drawn);
+    EXPECT_EQ(countCovered(tri(at(3.4f, 3.4f), at(4.4f, 3.4f), at(3.4f, 4.4f)), s), 1);
+}
+
 TEST(TriangleSetup, BoundingBoxIsClampedToTheViewport) {
     DrawState s = stateOf(64, 64);
     s.viewport = {8, 4, 16, 10};
