@@ -89,24 +89,22 @@ void setupTriangles(std::span<const std::uint32_t> indices, std::size_t first, s
 
     // Setup and binning of one window triangle (a whole triangle, or one fan piece of a clipped one).
     auto setupAndBin = [&](std::uint32_t triangleIndex, const WindowTriangle& window) {
-        const std::size_t index = chunk.setups.size();
-        chunk.setups.emplace_back();
-        chunk.varyingPlanes.resize((index + 1) * planeFloats);
-        TriangleSetup& setup = chunk.setups.back();
-        const TriangleFate fate =
-            setupTriangle(window, state, setup, chunk.varyingPlanes.data() + index * planeFloats);
+        TriangleSetup setup;
+        float planes[3 * kMaxVaryingFloats];
+        const TriangleFate fate = setupTriangle(window, state, setup, planes);
         setup.triangle = triangleIndex;
         if constexpr (kObserving) observer.onSetup(triangleIndex, window, fate, setup);
         if (fate != TriangleFate::Drawn) {
             if (fate == TriangleFate::ZeroArea) ++stats.trianglesZeroArea;
             if (fate == TriangleFate::Culled) ++stats.trianglesCulled;
             if (fate == TriangleFate::MissesSamples) ++stats.trianglesMissingSamples;
-            chunk.setups.pop_back();
-            chunk.varyingPlanes.resize(index * planeFloats);
             return;
         }
         ++stats.trianglesRasterized;
-        binTriangle(grid, setup, static_cast<std::uint32_t>(index), chunk.bins);
+        const auto index = static_cast<std::uint32_t>(chunk.setups.size());
+        chunk.setups.push_back(setup);
+        chunk.varyingPlanes.insert(chunk.varyingPlanes.end(), planes, planes + planeFloats);
+        binTriangle(grid, setup, index, chunk.bins);
     };
 
     for (std::size_t t = first; t < last; ++t) {

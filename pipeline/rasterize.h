@@ -44,12 +44,13 @@ inline std::uint64_t rectMask(int blockX, int blockY, const PixelRect& rect) {
 namespace detail {
 
 // Coverage of a block that some edge crosses: one bit per sample where all three biased edge functions
-// are ≥ 0. Edges that are ≥ 0 over the whole block are left out. When every remaining edge's values
-// over the block fit in 32 bits (always, but for edges thousands of pixels long), a row of eight samples
-// is tested with 32-bit lanes, which the compiler turns into SIMD; otherwise with 64-bit integers.
+// are ≥ 0, for rows [firstRow, lastRow] (the others stay 0). Edges that are ≥ 0 over the whole block
+// are left out. When every remaining edge's values over the block fit in 32 bits (always, but for
+// edges thousands of pixels long), a row of eight samples is tested with 32-bit lanes, which the
+// compiler turns into SIMD; otherwise with 64-bit integers.
 inline std::uint64_t partialBlockMask(const std::int64_t origin[3], const std::int64_t stepX[3],
                                       const std::int64_t stepY[3], const std::int64_t minOffset[3],
-                                      const std::int64_t maxOffset[3]) {
+                                      const std::int64_t maxOffset[3], int firstRow, int lastRow) {
     int edges[3], count = 0;
     bool fits32 = true;
     for (int i = 0; i < 3; ++i) {
@@ -65,10 +66,11 @@ inline std::uint64_t partialBlockMask(const std::int64_t origin[3], const std::i
         std::int32_t down[3];
         for (int k = 0; k < count; ++k) {
             const int i = edges[k];
-            rowValue[k] = static_cast<std::int32_t>(origin[i]) + column * static_cast<std::int32_t>(stepX[i]);
+            rowValue[k] = static_cast<std::int32_t>(origin[i] + firstRow * stepY[i]) +
+                          column * static_cast<std::int32_t>(stepX[i]);
             down[k] = static_cast<std::int32_t>(stepY[i]);
         }
-        for (int y = 0; y < kBlockSize; ++y) {
+        for (int y = firstRow; y <= lastRow; ++y) {
             Int8 all = {0, 0, 0, 0, 0, 0, 0, 0};
             for (int k = 0; k < count; ++k) {
                 all |= rowValue[k];
@@ -79,8 +81,9 @@ inline std::uint64_t partialBlockMask(const std::int64_t origin[3], const std::i
         }
         return mask;
     }
-    std::int64_t row[3] = {origin[0], origin[1], origin[2]};
-    for (int y = 0; y < kBlockSize; ++y) {
+    std::int64_t row[3] = {origin[0] + firstRow * stepY[0], origin[1] + firstRow * stepY[1],
+                           origin[2] + firstRow * stepY[2]};
+    for (int y = firstRow; y <= lastRow; ++y) {
         std::uint64_t rowBits = 0;
         for (int x = 0; x < kBlockSize; ++x) {
             std::int64_t all = 0;
@@ -135,7 +138,13 @@ void rasterizeBlocks(const TriangleSetup& setup, const PixelRect& area, BlockVis
 
             const std::uint64_t inRect = rectMask(bx, by, rect);
             std::uint64_t mask = inRect;
-            if (!inside) mask = detail::partialBlockMask(origin, stepX, stepY, minOffset, maxOffset) & inRect;
+            if (!inside) {
+                const int firstRow = std::max(rect.minY - by, 0),
+                          lastRow = std::min(rect.maxY - by, kBlockSize - 1);
+                mask =
+                    detail::partialBlockMask(origin, stepX, stepY, minOffset, maxOffset, firstRow, lastRow) &
+                    inRect;
+            }
             if (mask == 0) continue;
             block.x = bx;
             block.y = by;
