@@ -7,11 +7,14 @@
 
 namespace facet {
 
-// glDepthFunc semantics: the fragment passes when `fragmentDepth OP storedDepth`.
-inline bool depthTestPasses(CompareOp op, float fragmentDepth, float storedDepth) {
+// glDepthFunc semantics: the fragment passes when `fragmentDepth OP storedDepth`. For float operands
+// the verdict is a bool; for Float8 (eight fragments) a lane mask, all bits set where a lane passes.
+template <class Depth>
+inline auto depthTestPasses(CompareOp op, Depth fragmentDepth, Depth storedDepth) {
+    const auto never = fragmentDepth < fragmentDepth;  // false (or all lanes false), of the right type
     switch (op) {
         case CompareOp::Never:
-            return false;
+            return never;
         case CompareOp::Less:
             return fragmentDepth < storedDepth;
         case CompareOp::Equal:
@@ -25,33 +28,9 @@ inline bool depthTestPasses(CompareOp op, float fragmentDepth, float storedDepth
         case CompareOp::GreaterEqual:
             return fragmentDepth >= storedDepth;
         case CompareOp::Always:
-            return true;
+            return never == never;
     }
-    return false;
-}
-
-// The same for eight fragments: a lane mask (all bits set where the fragment passes).
-inline Int8 depthTestPasses(CompareOp op, Float8 fragmentDepth, Float8 storedDepth) {
-    const Int8 none = {0, 0, 0, 0, 0, 0, 0, 0};
-    switch (op) {
-        case CompareOp::Never:
-            return none;
-        case CompareOp::Less:
-            return fragmentDepth < storedDepth;
-        case CompareOp::Equal:
-            return fragmentDepth == storedDepth;
-        case CompareOp::LessEqual:
-            return fragmentDepth <= storedDepth;
-        case CompareOp::Greater:
-            return fragmentDepth > storedDepth;
-        case CompareOp::NotEqual:
-            return fragmentDepth != storedDepth;
-        case CompareOp::GreaterEqual:
-            return fragmentDepth >= storedDepth;
-        case CompareOp::Always:
-            return none == none;
-    }
-    return none;
+    return never;
 }
 
 }  // namespace facet

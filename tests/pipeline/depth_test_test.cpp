@@ -23,6 +23,20 @@ TEST(DepthTest, CompareFunctionsOnHandValues) {
     }
 }
 
+// The eight-lane test agrees with the one-lane test for every compare function.
+TEST(DepthTest, EightLanesAgreeWithOne) {
+    const Float8 fragment = {0.1f, 0.5f, 0.9f, 0.5f, 0.0f, 1.0f, 0.25f, 0.75f};
+    const Float8 stored = {0.5f, 0.5f, 0.5f, 0.4f, 0.0f, 0.99f, 0.3f, 0.7f};
+    for (CompareOp op :
+         {CompareOp::Never, CompareOp::Less, CompareOp::Equal, CompareOp::LessEqual, CompareOp::Greater,
+          CompareOp::NotEqual, CompareOp::GreaterEqual, CompareOp::Always}) {
+        const unsigned lanes = signMask(depthTestPasses(op, fragment, stored));
+        for (int i = 0; i < 8; ++i)
+            EXPECT_EQ(((lanes >> i) & 1u) != 0, depthTestPasses(op, fragment[i], stored[i]))
+                << op << " lane " << i;
+    }
+}
+
 using testing::ClipSpaceColorShader;
 
 // Two full-screen quads, red at NDC z = −0.5 (nearer) and green at z = 0.5, drawn in both orders: for each
