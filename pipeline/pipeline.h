@@ -275,12 +275,12 @@ void depthTestBlock(const TriangleSetup& setup, const CoverageBlock& block, Frag
         const int y = block.y + row;
 
         // Barycentrics and depth for the row's eight lanes.
-        float b1[kBlockSize], b2[kBlockSize], z[kBlockSize];
+        Float8 b1{}, b2{};
         for (int lane = 0; lane < kBlockSize; ++lane) {
             b1[lane] = static_cast<float>((e1 + lane * e1x + row * e1y) * invArea);
             b2[lane] = static_cast<float>((e2 + lane * e2x + row * e2y) * invArea);
-            z[lane] = setup.z0 + b1[lane] * setup.dz1 + b2[lane] * setup.dz2;
         }
+        const Float8 z = setup.z0 + b1 * setup.dz1 + b2 * setup.dz2;
 
         // A queued fragment at one of these pixels must reach the framebuffer before they are tested.
         if (queue.count && queue.holdsAny(y, block.x, rowMask))
@@ -291,10 +291,9 @@ void depthTestBlock(const TriangleSetup& setup, const CoverageBlock& block, Frag
         if (depth.testEnabled) {
             if (block.x + kBlockSize <= target.width()) {
                 // Eight stored depths at once (the row lies inside the framebuffer).
-                Float8 zLanes, stored;
-                std::memcpy(&zLanes, z, sizeof zLanes);
+                Float8 stored;
                 std::memcpy(&stored, depthRow, sizeof stored);
-                const Int8 pass = depthTestPasses(depth.compare, zLanes, stored);
+                const Int8 pass = depthTestPasses(depth.compare, z, stored);
                 passed &= signMask(pass);
             } else {
                 for (int lane = 0; lane < kBlockSize; ++lane)
@@ -302,6 +301,9 @@ void depthTestBlock(const TriangleSetup& setup, const CoverageBlock& block, Frag
                         if (!depthTestPasses(depth.compare, z[lane], depthRow[lane])) passed &= ~(1u << lane);
             }
         }
+        // Varyings for the row's eight lanes, when any fragment survived.
+        FragmentBatch rowVaryings;
+        if (passed) interpolateVaryings(setup, b1, b2, rowVaryings);
         for (int lane = 0; lane < kBlockSize; ++lane) {
             if (!(rowMask & (1u << lane))) continue;
             if (!(passed & (1u << lane))) {
@@ -319,10 +321,8 @@ void depthTestBlock(const TriangleSetup& setup, const CoverageBlock& block, Frag
             queue.y[slot] = y;
             queue.z[slot] = z[lane];
             queue.triangle[slot] = setup.triangle;
-            float varyings[kMaxVaryingFloats];
-            interpolateVaryings(setup, b1[lane], b2[lane], varyings);
             for (int k = 0; k < setup.varyingCount; ++k)
-                queue.batch.varyings[k][slot] = varyings[k];
+                queue.batch.varyings[k][slot] = rowVaryings.varyings[k][lane];
             if (queue.count == kBlockSize) shadeQueue<S>(queue, state, uniforms, target, stats, observer);
         }
     }

@@ -2,6 +2,7 @@
 
 #include <bit>
 #include <random>
+#include <set>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -88,6 +89,43 @@ TEST(Rasterize, BlockWalkMatchesPerPixelOracleOnRandomTriangles) {
     }
     EXPECT_GT(trianglesChecked, 2000);
     EXPECT_GT(fullBlocksSeen, 100);  // the trivial-accept path was exercised
+}
+
+// Edges thousands of pixels long overflow the 32-bit lanes of a crossed block; those blocks take the
+// 64-bit path, which must agree with the oracle just the same.
+TEST(Rasterize, LongEdgesTakeTheWidePathAndStayExact) {
+    std::mt19937 rng(77);
+    const int width = 16000, height = 16000;
+    DrawState state;
+    state.viewport = {0, 0, width, height};
+    state.raster.cull = CullMode::None;
+    std::uniform_int_distribution<std::int64_t> coord(0, std::int64_t{width} * kFixedOne);
+    int checked = 0;
+    for (int trial = 0; trial < 40; ++trial) {
+        WindowTriangle t;
+        for (auto& v : t.vertices)
+            v = fixedAt(coord(rng), coord(rng));
+        TriangleSetup setup;
+        if (setupTriangle(t, state, setup, nullptr) != TriangleFate::Drawn) continue;
+        // Look at a 96×96 window around the middle of the first edge, which the edge crosses.
+        const int cx = static_cast<int>((t.vertices[0].xFixed + t.vertices[1].xFixed) / 2 / kFixedOne);
+        const int cy = static_cast<int>((t.vertices[0].yFixed + t.vertices[1].yFixed) / 2 / kFixedOne);
+        const PixelRect rect{std::max(cx - 48, 0), std::max(cy - 48, 0), std::min(cx + 47, width - 1),
+                             std::min(cy + 47, height - 1)};
+        std::set<std::pair<int, int>> walked;
+        rasterizeBlocks(setup, rect, [&](const CoverageBlock& b) {
+            for (int bit = 0; bit < 64; ++bit)
+                if ((b.mask >> bit) & 1) walked.insert({b.x + bit % kBlockSize, b.y + bit / kBlockSize});
+        });
+        for (int y = rect.minY; y <= rect.maxY; ++y)
+            for (int x = rect.minX; x <= rect.maxX; ++x) {
+                const bool inside = x >= setup.minX && x <= setup.maxX && y >= setup.minY && y <= setup.maxY;
+                ASSERT_EQ(walked.count({x, y}) == 1, inside && coversSample(setup, x, y))
+                    << "trial " << trial;
+            }
+        ++checked;
+    }
+    EXPECT_GT(checked, 30);
 }
 
 TEST(Rasterize, OddBoundsAndTheLastRowAndColumn) {
