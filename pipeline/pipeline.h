@@ -301,9 +301,11 @@ void depthTestBlock(const TriangleSetup& setup, const CoverageBlock& block, Frag
                         if (!depthTestPasses(depth.compare, z[lane], depthRow[lane])) passed &= ~(1u << lane);
             }
         }
-        // Varyings for the row's eight lanes, when any fragment survived.
+        // Varyings for the row's eight lanes at once when several fragments survived; one by one when a
+        // sliver of a triangle left one or two (the same formula either way: interpolate.h).
         FragmentBatch rowVaryings;
-        if (passed) interpolateVaryings(setup, b1, b2, rowVaryings);
+        const bool wideRow = std::popcount(passed) > 2;
+        if (wideRow) interpolateVaryings(setup, b1, b2, rowVaryings);
         for (int lane = 0; lane < kBlockSize; ++lane) {
             if (!(rowMask & (1u << lane))) continue;
             if (!(passed & (1u << lane))) {
@@ -321,8 +323,15 @@ void depthTestBlock(const TriangleSetup& setup, const CoverageBlock& block, Frag
             queue.y[slot] = y;
             queue.z[slot] = z[lane];
             queue.triangle[slot] = setup.triangle;
-            for (int k = 0; k < setup.varyingCount; ++k)
-                queue.batch.varyings[k][slot] = rowVaryings.varyings[k][lane];
+            if (wideRow) {
+                for (int k = 0; k < setup.varyingCount; ++k)
+                    queue.batch.varyings[k][slot] = rowVaryings.varyings[k][lane];
+            } else {
+                float varyings[kMaxVaryingFloats];
+                interpolateVaryings(setup, b1[lane], b2[lane], varyings);
+                for (int k = 0; k < setup.varyingCount; ++k)
+                    queue.batch.varyings[k][slot] = varyings[k];
+            }
             if (queue.count == kBlockSize) shadeQueue<S>(queue, state, uniforms, target, stats, observer);
         }
     }
