@@ -67,8 +67,8 @@ struct DrawContext {
 // kTriangleChunk, and at most kChunksPerBatch chunks are binned before their tiles are drawn, which
 // bounds the memory held in setups whatever the size of the mesh.
 inline constexpr std::size_t kVertexChunk = 8192;
-inline constexpr std::size_t kTriangleChunk = 4096;
-inline constexpr std::size_t kChunksPerBatch = 16;
+inline constexpr std::size_t kTriangleChunk = 1024;
+inline constexpr std::size_t kChunksPerBatch = 8;
 
 // Checks a draw's state and the mesh's indices; throws std::invalid_argument naming the problem.
 void validateDraw(const DrawState& state, const Framebuffer& target, std::size_t vertexCount,
@@ -410,8 +410,17 @@ DrawStats draw(const DrawState& state, const typename S::Uniforms& uniforms,
             detail::FragmentQueue queue;
             for (std::size_t c = 0; c < chunkCount; ++c) {
                 const SetupChunk& chunk = context.chunks[c];
-                for (std::uint32_t index : chunk.bins[tile]) {
-                    const TriangleSetup& setup = chunk.setups[index];
+                const std::vector<std::uint32_t>& bin = chunk.bins[tile];
+                for (std::size_t k = 0; k < bin.size(); ++k) {
+                    // Setups were written by the front end a while ago: ask for the next one early.
+                    if (k + 1 < bin.size()) {
+                        const TriangleSetup& next = chunk.setups[bin[k + 1]];
+                        __builtin_prefetch(&next);
+                        __builtin_prefetch(reinterpret_cast<const char*>(&next) + 64);
+                        __builtin_prefetch(reinterpret_cast<const char*>(&next) + 128);
+                        __builtin_prefetch(next.varyingPlanes);
+                    }
+                    const TriangleSetup& setup = chunk.setups[bin[k]];
                     rasterizeBlocks(setup, rect, [&](const CoverageBlock& block) {
                         detail::depthTestBlock<S>(setup, block, queue, state, uniforms, target, stats,
                                                   observer);
