@@ -67,7 +67,7 @@ struct DrawContext {
 // kTriangleChunk, and at most kChunksPerBatch chunks are binned before their tiles are drawn, which
 // bounds the memory held in setups whatever the size of the mesh.
 inline constexpr std::size_t kVertexChunk = 8192;
-inline constexpr std::size_t kTriangleChunk = 1024;
+inline constexpr std::size_t kTriangleChunk = 2048;
 inline constexpr std::size_t kChunksPerBatch = 8;
 
 // Checks a draw's state and the mesh's indices; throws std::invalid_argument naming the problem.
