@@ -61,20 +61,21 @@ inline std::uint64_t partialBlockMask(const std::int64_t origin[3], const std::i
     }
     std::uint64_t mask = 0;
     if (fits32) {
-        const Int8 column = {0, 1, 2, 3, 4, 5, 6, 7};
         Int8 rowValue[3];
         std::int32_t down[3];
         for (int k = 0; k < count; ++k) {
             const int i = edges[k];
-            rowValue[k] = static_cast<std::int32_t>(origin[i] + firstRow * stepY[i]) +
-                          column * static_cast<std::int32_t>(stepX[i]);
+            // Each lane's first value computed in 64 bits: it fits in 32, a partial product may not.
+            for (int x = 0; x < kBlockSize; ++x)
+                rowValue[k][x] = static_cast<std::int32_t>(origin[i] + firstRow * stepY[i] + x * stepX[i]);
             down[k] = static_cast<std::int32_t>(stepY[i]);
         }
         for (int y = firstRow; y <= lastRow; ++y) {
             Int8 all = {0, 0, 0, 0, 0, 0, 0, 0};
             for (int k = 0; k < count; ++k) {
+                // Step down only between rows of the block: one step past its last row could leave int32.
+                if (y > firstRow) rowValue[k] += down[k];
                 all |= rowValue[k];
-                rowValue[k] += down[k];
             }
             // A sample is covered where no edge value is negative: where the OR has no sign bit.
             mask |= static_cast<std::uint64_t>(~signMask(all) & 0xffu) << (y * kBlockSize);
