@@ -5,9 +5,11 @@
 // template, for float lanes and for Float8 lanes.
 #pragma once
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #if defined(__AVX__)
 #include <immintrin.h>
 #endif
@@ -186,5 +188,92 @@ struct FragmentBatch {
     Vec2x8 vec2At(int offset) const { return {varyings[offset], varyings[offset + 1]}; }
     Vec3x8 vec3At(int offset) const { return {varyings[offset], varyings[offset + 1], varyings[offset + 2]}; }
 };
+
+// ---- Lane-generic helpers: one name for float and Float8 lanes, for formulas written as templates ---
+
+template <class F>
+struct LaneTraits;
+template <>
+struct LaneTraits<float> {
+    using Vec3 = vec3;
+    static float splat(float v) { return v; }
+};
+template <>
+struct LaneTraits<Float8> {
+    using Vec3 = Vec3x8;
+    static Float8 splat(float v) { return facet::splat(v); }
+};
+
+// The three-component vector type that goes with the lane type F.
+template <class F>
+using LaneVec3 = typename LaneTraits<F>::Vec3;
+
+// v in every lane of F.
+template <class F>
+F lanes(float v) {
+    return LaneTraits<F>::splat(v);
+}
+
+inline Vec3x8 operator*(const Vec3x8& a, float s) {
+    return {a.x * s, a.y * s, a.z * s};
+}
+inline Vec3x8 operator*(float s, const Vec3x8& a) {
+    return a * s;
+}
+inline Vec3x8 operator+(const vec3& v, const Vec3x8& a) {
+    return a + v;
+}
+
+inline Float8 min(Float8 a, float b) {
+    return min(a, splat(b));
+}
+inline Float8 select(Int8 cond, Float8 a, float b) {
+    return select(cond, a, splat(b));
+}
+inline Float8 select(Int8 cond, float a, Float8 b) {
+    return select(cond, splat(a), b);
+}
+
+// Lane-wise logical and of two comparison results.
+inline bool both(bool a, bool b) {
+    return a && b;
+}
+inline Int8 both(Int8 a, Int8 b) {
+    return a & b;
+}
+
+inline float sqrt(float x) {
+    return std::sqrt(x);
+}
+
+// e^x = 2^(x·log2 e).
+inline float exp(float x) {
+    return std::exp(x);
+}
+inline Float8 exp(Float8 x) {
+    return exp2(x * std::numbers::log2e_v<float>);
+}
+
+// clamp(x, 0, 1) (HLSL's saturate).
+inline float saturate(float x) {
+    return std::clamp(x, 0.0f, 1.0f);
+}
+inline Float8 saturate(Float8 x) {
+    return max(min(x, 1.0f), 0.0f);
+}
+
+// v/|v|, and the zero vector for the zero vector (normalize would give NaN).
+template <class F, class V3 = LaneVec3<F>>
+V3 safeNormalize(const V3& v) {
+    return v * (1.0f / sqrt(max(dot(v, v), 1e-30f)));
+}
+
+// GLSL's smoothstep: t = clamp((x − e0)/(e1 − e0), 0, 1), t²(3 − 2t).
+template <class F>
+F smoothstep(float edge0, float edge1, F x) {
+    const float width = edge1 - edge0;
+    const F t = saturate((x - edge0) * (1.0f / (width != 0.0f ? width : 1e-7f)));
+    return t * t * (3.0f - 2.0f * t);
+}
 
 }  // namespace facet
