@@ -69,6 +69,25 @@ TEST(Cli, RendersABundledModelToPng) {
     EXPECT_EQ(files, 1);
 }
 
+// The same render on 1, 2 and 7 threads writes the same bytes.
+TEST(Cli, ThreadCountDoesNotChangeTheImage) {
+    TempDir dir;
+    const auto model = std::filesystem::path(FACET_SHARED_MODELS) / "stanford-bunny/stanford-bunny.obj";
+    if (!std::filesystem::exists(model)) GTEST_SKIP() << model << " is not here";
+    std::string reference;
+    for (int threads : {1, 2, 7}) {
+        const auto exr = dir.path() / ("bunny-" + std::to_string(threads) + ".exr");
+        const RunResult run = runFacet("render " + quoted(model) + " -o " + quoted(exr) +
+                                           " --width 320 --height 240 --threads " + std::to_string(threads),
+                                       dir);
+        ASSERT_EQ(run.status, 0) << run.err;
+        const std::string bytes = readText(exr);
+        ASSERT_FALSE(bytes.empty());
+        if (reference.empty()) reference = bytes;
+        EXPECT_TRUE(bytes == reference) << threads << " threads";
+    }
+}
+
 // Each bad input: exit status 1, exactly one line on stderr naming what is wrong, and an existing
 // output file left as it was.
 struct BadInput {
@@ -80,7 +99,9 @@ struct BadInput {
 };
 
 // Printed by gtest in test listings.
-void PrintTo(const BadInput& c, std::ostream* os) { *os << c.name; }
+void PrintTo(const BadInput& c, std::ostream* os) {
+    *os << c.name;
+}
 
 class CliBadInput : public ::testing::TestWithParam<BadInput> {};
 
