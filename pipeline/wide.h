@@ -184,7 +184,6 @@ struct FragmentBatch {
     Float8 varyings[kMaxVaryingFloats];
     std::uint32_t mask = 0;  // bit i: lane i is a live fragment (others hold meaningless values)
 
-    Float8 at(int offset) const { return varyings[offset]; }
     Vec2x8 vec2At(int offset) const { return {varyings[offset], varyings[offset + 1]}; }
     Vec3x8 vec3At(int offset) const { return {varyings[offset], varyings[offset + 1], varyings[offset + 2]}; }
 };
@@ -232,14 +231,6 @@ inline Float8 select(Int8 cond, Float8 a, float b) {
 }
 inline Float8 select(Int8 cond, float a, Float8 b) {
     return select(cond, splat(a), b);
-}
-
-// Lane-wise logical and of two comparison results.
-inline bool both(bool a, bool b) {
-    return a && b;
-}
-inline Int8 both(Int8 a, Int8 b) {
-    return a & b;
 }
 
 inline float sqrt(float x) {

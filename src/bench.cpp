@@ -66,8 +66,7 @@ void runBench(const BenchOptions& options, std::ostream& out) {
         frameMs.push_back(std::chrono::duration<double, std::milli>(end - start).count());
 
         const auto clearStart = Clock::now();
-        framebuffer.clearColor(prepared.clearColor);
-        framebuffer.clearDepth(1.0f);
+        framebuffer.clear(prepared.clearColor, 1.0f, context.pool);  // as renderFrame clears
         clearMs.push_back(std::chrono::duration<double, std::milli>(Clock::now() - clearStart).count());
     }
 
