@@ -22,6 +22,20 @@ namespace facet {
 // 1. Light sources and the standard lighting equation
 // =====================================================================================================
 
+// Which reflection model lights a surface.
+enum class ReflectionModel {
+    Phong,         // standard equation, specular max(R·V, 0)^n
+    BlinnPhong,    // standard equation, specular max(N·H, 0)^n
+    CookTorrance,  // physically based: Lambert c_base/π + D·F·G / (4 (N·L)(N·V))
+};
+
+// How often the lighting equation is evaluated (the lecture's "shading frequency").
+enum class ShadingFrequency {
+    Flat,     // once per face: every pixel of a triangle gets its provoking vertex's colour
+    Gouraud,  // once per vertex, the colours interpolated across the triangle
+    Phong,    // once per pixel, with the interpolated normal renormalised
+};
+
 enum class LightKind { Directional, Point, Spot };
 
 // How a spot light falls off towards the edge of its cone.

@@ -810,7 +810,7 @@ void checkFinite(const std::vector<tinyobj::real_t>& values, std::size_t stride,
 
 }  // namespace
 
-Mesh loadObj(const std::filesystem::path& path) {
+Mesh loadObj(const std::filesystem::path& path, [[maybe_unused]] const ObjOptions& options) {
     const std::string file = path.string();
 
     // 1. Read and pre-scan; `text` is rewritten for tinyobjloader (continuations, comments).

@@ -27,6 +27,12 @@ namespace facet {
 // Throws InputError with "file:line: what" for: a missing or unreadable file, a malformed statement,
 // a face index out of range or zero, NaN/Inf coordinates (or ones beyond float range), a face with
 // more than 255 corners, or a file with no triangles at all ("file: no triangles to draw ...").
-Mesh loadObj(const std::filesystem::path& path);
+struct ObjOptions {
+    // Computed normals only: two faces sharing a position are smoothed together when their face
+    // normals differ by at most this angle (degrees, 0..180); a sharper edge stays hard (the vertex
+    // is split). 180 smooths everything, 0 gives every face its own normal.
+    float creaseAngleDegrees = 60.0f;
+};
+Mesh loadObj(const std::filesystem::path& path, const ObjOptions& options = {});
 
 }  // namespace facet

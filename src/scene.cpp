@@ -599,7 +599,9 @@ Scene loadScene(const fs::path& path) {
     const Json* objects = reader.find(document, "objects");
     if (model && objects) reader.fail("give either \"model\" or \"objects\", not both");
     if (model) {
-        scene.objects.push_back(ObjectSpec{readModel(reader, *model, "model", folder), glm::mat4(1.0f), {}});
+        ObjectSpec object;
+        object.model = readModel(reader, *model, "model", folder);
+        scene.objects.push_back(object);
     } else if (objects) {
         if (!objects->is_array())
             reader.fail("\"objects\" must be an array of objects (got " + describe(*objects) + ")");
@@ -616,7 +618,9 @@ Scene loadScene(const fs::path& path) {
 Scene sceneForModel(const fs::path& objPath) {
     Scene scene;
     scene.source = objPath;
-    scene.objects.push_back(ObjectSpec{objPath, glm::mat4(1.0f), {}});
+    ObjectSpec object;
+    object.model = objPath;
+    scene.objects.push_back(object);
     return scene;
 }
 

@@ -10,6 +10,8 @@
 
 #include <glm/glm.hpp>
 
+#include "lighting.h"
+
 namespace facet {
 
 struct CameraSpec {
@@ -21,27 +23,72 @@ struct CameraSpec {
     std::optional<float> far;
 };
 
-enum class LightType { Directional, Point };
+enum class LightType { Directional, Point, Spot };
 
 struct LightSpec {
     LightType type = LightType::Directional;
-    glm::vec3 direction{-0.4f, -0.6f, -0.7f};  // directional: the direction light travels, world space
-    glm::vec3 position{0.0f};                  // point: world space
-    glm::vec3 color{1.0f};                     // sRGB-encoded, decoded to linear by the renderer
-    float intensity = 1.0f;                    // multiplies color
-    bool cameraRelative = false;               // direction/position given in the camera's view space
+    // Directional: the direction light travels, world space. Spot: the cone's axis (pointing away from
+    // the light). Absent from the file: [-0.4, -0.6, -0.7] for a directional light, [0, -1, 0] for a spot.
+    glm::vec3 direction{-0.4f, -0.6f, -0.7f};
+    glm::vec3 position{0.0f};  // point and spot: world space
+    glm::vec3 color{1.0f};     // sRGB-encoded, decoded to linear by the renderer
+    float intensity = 1.0f;    // multiplies every colour of the light (color, ambient, diffuse, specular)
+    // The standard equation's per-term light colours (sRGB-encoded): l_a (absent: black),
+    // l_d and l_s (absent: color). The physically based model uses l_d as c_light.
+    std::optional<glm::vec3> ambient, diffuse, specular;
+    glm::vec3 attenuation{1.0f, 0.0f, 0.0f};  // c0, c1, c2 of 1/(c0 + c1·d + c2·d²); point and spot
+    float spotCutoffDegrees = 30.0f;          // spot, OpenGL profile: half-angle of the cone, 0..90
+    float spotExponent = 0.0f;                // spot, OpenGL profile: cos^exponent falloff, 0..128
+    // Spot, smooth profile (used when both are given): full intensity inside `inner`, none outside
+    // `outer`, smoothstep between. 0 ≤ inner < outer ≤ 90.
+    std::optional<float> spotInnerDegrees, spotOuterDegrees;
+    bool cameraRelative = false;  // direction/position given in the camera's view space
 };
 
 // Optional per-object material override; each field overrides the MTL value when present.
 struct MaterialOverride {
-    std::optional<glm::vec3> ambient, diffuse, specular, emission;
+    std::optional<glm::vec3> ambient, diffuse, specular, emission;  // sRGB-encoded
     std::optional<float> shininess, opacity;
+    // Physically based parameters (the Cook-Torrance model). A preset names an entry of
+    // kMaterialPresets (lighting.h): a metal sets base_color to its F0 colour and metalness to 1, a
+    // dielectric sets f0; keys given next to the preset win over it.
+    std::optional<std::string> preset;
+    std::optional<glm::vec3> baseColor;  // sRGB-encoded; absent: the diffuse colour
+    std::optional<float> metalness;      // 0..1
+    std::optional<float> roughness;      // 0..1, perceptual (α = roughness²)
+    std::optional<glm::vec3>
+        f0;  // linear reflectance at normal incidence, 0..1 (a number in the file sets all three)
+
+    // Whether any physically based key (or a preset) is given.
+    bool physicallyBased() const { return preset || baseColor || metalness || roughness || f0; }
 };
 
 struct ObjectSpec {
     std::filesystem::path model;      // resolved against the scene file's folder
     glm::mat4 worldFromObject{1.0f};  // translate · rotate(Z·Y·X degrees) · scale
     MaterialOverride material;
+    // Per-object "lighting": {"model", "shading"}; absent: the scene's "lighting" settings (an object
+    // whose material is physically based, see MaterialOverride::physicallyBased, defaults to Cook-Torrance).
+    std::optional<ReflectionModel> reflection;
+    std::optional<ShadingFrequency> shading;
+};
+
+// How the scene is lit ("lighting" in the scene file).
+enum class LightingPreset {
+    Facet,  // linear-light rendering: colours decoded from sRGB, output encoded, per-pixel by default
+    GL,     // OpenGL 1.x fixed function: colours as given, no gamma, Gouraud by default (docs/lighting.md)
+};
+
+struct LightingOptions {
+    LightingPreset preset = LightingPreset::Facet;
+    ReflectionModel model = ReflectionModel::BlinnPhong;
+    std::optional<ShadingFrequency> shading;  // absent: Phong (Facet preset) or Gouraud (GL preset)
+    float creaseAngleDegrees = 60.0f;  // computed normals: faces meeting at a sharper angle keep a hard edge
+    BrdfModel brdf;                    // Cook-Torrance's D, F and G
+    ShadingFrequency shadingOrDefault() const {
+        return shading.value_or(preset == LightingPreset::GL ? ShadingFrequency::Gouraud
+                                                             : ShadingFrequency::Phong);
+    }
 };
 
 enum class CullChoice { Back, Front, None };
@@ -63,6 +110,7 @@ struct Scene {
     std::vector<LightSpec> lights;    // empty in a file: one default light is used
     std::vector<ObjectSpec> objects;  // at least one
     PipelineOptions pipeline;
+    LightingOptions lighting;
 };
 
 // Reads a JSON scene file. Throws InputError with a one-line message naming the file and the
