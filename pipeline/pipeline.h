@@ -77,10 +77,11 @@ void validateDraw(const DrawState& state, const Framebuffer& target, std::size_t
 namespace detail {
 
 // Front end for triangles [first, last): assembly, clipping, viewport, setup, binning into `chunk`.
+// The first flatVaryingCount varyings are flat (shader.h, flatVaryingFloats).
 template <class Observer>
 void setupTriangles(std::span<const std::uint32_t> indices, std::size_t first, std::size_t last,
                     const DrawState& state, const TileGrid& grid, const DrawContext& context,
-                    SetupChunk& chunk, Observer& observer) {
+                    int flatVaryingCount, SetupChunk& chunk, Observer& observer) {
     constexpr bool kObserving = Observer::enabled;
     const ShadedVertices& shaded = context.shaded;
     const int varyingCount = shaded.varyingCount;
@@ -128,6 +129,9 @@ void setupTriangles(std::span<const std::uint32_t> indices, std::size_t first, s
 
         WindowTriangle window;
         window.varyingCount = varyingCount;
+        window.flatVaryingCount = flatVaryingCount;
+        window.provokingVaryings =
+            shaded.varyingsOf(i[state.raster.provokingVertex == ProvokingVertex::Last ? 2 : 0]);
         if (outcodeOr == 0) {
             // Trivially inside: no clipping, the vertices' window positions are ready.
             for (int k = 0; k < 3; ++k) {
@@ -400,7 +404,7 @@ DrawStats draw(const DrawState& state, const typename S::Uniforms& uniforms,
             chunk.stats = DrawStats{};
             const std::size_t first = batchStart + c * kTriangleChunk;
             detail::setupTriangles(indices, first, std::min(first + kTriangleChunk, batchEnd), state, grid,
-                                   context, chunk, observer);
+                                   context, flatVaryingFloats<S>(), chunk, observer);
         });
 
         // Back end: tiles in parallel; inside a tile, chunk after chunk, so triangles keep their order.

@@ -47,6 +47,21 @@ concept Shader = requires(const typename S::Attributes& attributes, const typena
     requires kIsFloatBundle<typename S::Varyings>;
 };
 
+// A shader may declare `static constexpr int kFlatVaryingFloats = n;`: the first n floats of its
+// Varyings are then flat (GLSL's `flat` qualifier), the provoking vertex's values across the whole
+// triangle, not interpolated. Flat shading is a flat colour varying computed by the vertex shader.
+template <class S>
+constexpr int flatVaryingFloats() {
+    if constexpr (requires { S::kFlatVaryingFloats; }) {
+        static_assert(
+            S::kFlatVaryingFloats >= 0 && S::kFlatVaryingFloats <= kVaryingFloatCount<typename S::Varyings>,
+            "kFlatVaryingFloats must count floats of Varyings");
+        return S::kFlatVaryingFloats;
+    } else {
+        return 0;
+    }
+}
+
 // A shader whose fragment function returns std::optional<vec4> may discard fragments.
 template <Shader S>
 inline constexpr bool kMayDiscard =

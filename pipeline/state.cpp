@@ -20,6 +20,10 @@ std::ostream& operator<<(std::ostream& os, FrontFace face) {
     return os << (face == FrontFace::CounterClockwise ? "counter-clockwise" : "clockwise");
 }
 
+std::ostream& operator<<(std::ostream& os, ProvokingVertex vertex) {
+    return os << (vertex == ProvokingVertex::Last ? "last" : "first");
+}
+
 std::ostream& operator<<(std::ostream& os, CompareOp op) {
     static constexpr const char* kNames[] = {"never",   "less",      "equal",         "less-equal",
                                              "greater", "not-equal", "greater-equal", "always"};
@@ -46,10 +50,11 @@ std::ostream& operator<<(std::ostream& os, const DrawState& s) {
     const Viewport& vp = s.viewport;
     return os << "viewport " << vp.width << "x" << vp.height << " at (" << vp.x << ", " << vp.y
               << "), depth range [" << vp.minDepth << ", " << vp.maxDepth << "]; cull " << s.raster.cull
-              << " faces, front faces " << s.raster.frontFace << "; " << s.raster.subpixelBits
-              << " sub-pixel bits; depth test " << (s.depth.testEnabled ? "on" : "off") << " ("
-              << s.depth.compare << ", writes " << (s.depth.writeEnabled ? "on" : "off") << "); "
-              << s.interpolation << " interpolation; blend " << s.blend;
+              << " faces, front faces " << s.raster.frontFace << ", provoking vertex "
+              << s.raster.provokingVertex << "; " << s.raster.subpixelBits << " sub-pixel bits; depth test "
+              << (s.depth.testEnabled ? "on" : "off") << " (" << s.depth.compare << ", writes "
+              << (s.depth.writeEnabled ? "on" : "off") << "); " << s.interpolation << " interpolation; blend "
+              << s.blend;
 }
 
 }  // namespace facet

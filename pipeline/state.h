@@ -59,9 +59,16 @@ enum class BlendMode : std::uint8_t {
 // 8 bits is what Mesa llvmpipe and SwiftShader (and Vulkan's 2022 roadmap) use.
 inline constexpr int kMaxSubpixelBits = 8;
 
+// Which vertex of a triangle gives the values of flat varyings (glProvokingVertex).
+enum class ProvokingVertex : std::uint8_t {
+    Last,   // the third vertex, OpenGL's default (GL_LAST_VERTEX_CONVENTION)
+    First,  // the first vertex, as Direct3D and Vulkan do
+};
+
 struct RasterState {
     CullMode cull = CullMode::Back;
     FrontFace frontFace = FrontFace::CounterClockwise;
+    ProvokingVertex provokingVertex = ProvokingVertex::Last;
     int subpixelBits = kMaxSubpixelBits;  // 0..8
 };
 
@@ -75,6 +82,7 @@ struct DrawState {
 
 std::ostream& operator<<(std::ostream& os, CullMode mode);
 std::ostream& operator<<(std::ostream& os, FrontFace face);
+std::ostream& operator<<(std::ostream& os, ProvokingVertex vertex);
 std::ostream& operator<<(std::ostream& os, CompareOp op);
 std::ostream& operator<<(std::ostream& os, Interpolation mode);
 std::ostream& operator<<(std::ostream& os, BlendMode mode);

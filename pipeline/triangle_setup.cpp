@@ -110,7 +110,13 @@ TriangleFate setupTriangle(const WindowTriangle& triangle, const DrawState& stat
     const float s0 = setup.perspective ? v0.invW : 1.0f;
     const float s1 = setup.perspective ? v1.invW : 1.0f;
     const float s2 = setup.perspective ? v2.invW : 1.0f;
-    for (int k = 0; k < triangle.varyingCount; ++k) {
+    setup.flatVaryingCount = triangle.flatVaryingCount;
+    for (int k = 0; k < triangle.flatVaryingCount; ++k) {
+        varyingPlanes[3 * k] = triangle.provokingVaryings[k];
+        varyingPlanes[3 * k + 1] = 0.0f;
+        varyingPlanes[3 * k + 2] = 0.0f;
+    }
+    for (int k = triangle.flatVaryingCount; k < triangle.varyingCount; ++k) {
         const float p0 = a0[k] * s0;
         varyingPlanes[3 * k] = p0;
         varyingPlanes[3 * k + 1] = a1[k] * s1 - p0;

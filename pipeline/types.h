@@ -90,6 +90,10 @@ struct WindowTriangle {
     std::array<WindowVertex, 3> vertices;
     std::array<const float*, 3> varyings{};  // each points to varyingCount floats (not owned)
     int varyingCount = 0;
+    // The first flatVaryingCount varyings are flat (GLSL `flat`): not interpolated, but taken from the
+    // provoking vertex of the triangle as submitted, which clipping does not move (OpenGL's rule).
+    int flatVaryingCount = 0;
+    const float* provokingVaryings = nullptr;  // varyingCount floats; needed when flatVaryingCount > 0
 };
 
 // ---- Setup → rasterize → interpolate ----------------------------------------------------------------
@@ -120,6 +124,7 @@ struct TriangleSetup {
     float z0 = 0, dz1 = 0, dz2 = 0;           // window depth (affine in screen space)
     float invW0 = 0, dInvW1 = 0, dInvW2 = 0;  // 1/w
     int varyingCount = 0;
+    int flatVaryingCount = 0;  // the first ones: constant, their plane is [value, 0, 0]
     // For each varying k: [3k] value at v0, [3k+1] and [3k+2] its differences to v1 and v2;
     // premultiplied by 1/w when interpolation is perspective-correct. Storage belongs to the caller of
     // setupTriangle (3 · varyingCount floats), so a setup stays small whatever the shader.

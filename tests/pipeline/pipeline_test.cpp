@@ -16,6 +16,7 @@ namespace {
 
 using testing::ClipSpaceColorShader;
 using testing::CountingShader;
+using testing::FlatColorShader;
 using testing::hits;
 
 // piglit's overdraw test: a fan of triangles around a centre, drawn with additive blending, must hit
@@ -302,6 +303,51 @@ struct RecordingObserver : NullObserver {
     void onRejected(std::uint32_t, TriangleFate fate) { rejections.push_back(fate); }
     void onFragment(const FragmentEvent& e) { fragments.push_back(e); }
 };
+
+// Flat varyings take the provoking vertex's value, bit for bit, on every pixel: the last vertex by
+// default (OpenGL), the first when asked (Direct3D, Vulkan), and still that vertex's value on every
+// fan piece of a triangle that clipping cut up (clipping must not make a new provoking vertex).
+TEST(PipelineStages, FlatVaryingsTakeTheProvokingVertexValueExactly) {
+    const vec4 colors[3] = {vec4(0.1f, 0.2f, 0.3f, 1.0f), vec4(0.7f, 0.11f, 0.13f, 1.0f),
+                            vec4(0.123456f, 0.654321f, 0.999f, 0.5f)};
+    for (ProvokingVertex provoking : {ProvokingVertex::Last, ProvokingVertex::First}) {
+        for (bool clipped : {false, true}) {
+            Framebuffer fb(40, 30);
+            fb.clearColor(vec4(-1.0f));
+            DrawState state = testing::stateFor(fb);
+            state.raster.provokingVertex = provoking;
+            state.depth.testEnabled = false;  // the second draw covers the same pixels
+            // Perspective: different w at each vertex, so interpolating would not give a constant.
+            // The clipped case pokes vertex 1 far out through the left and near planes.
+            std::vector<FlatColorShader::Attributes> v = {
+                {testing::clipFromWindow({3, 2}, fb) * 1.0f, colors[0]},
+                {clipped ? vec4(-30.0f, 0.5f, -4.0f, 2.0f) : testing::clipFromWindow({37, 5}, fb) * 3.0f,
+                 colors[1]},
+                {testing::clipFromWindow({20, 27}, fb) * 0.5f, colors[2]},
+            };
+            const DrawStats stats = testing::drawTriangles<FlatColorShader>(state, v, fb);
+            EXPECT_EQ(stats.trianglesClipped, clipped ? 1u : 0u);
+            const vec4 expected = colors[provoking == ProvokingVertex::Last ? 2 : 0];
+            int covered = 0;
+            for (int y = 0; y < fb.height(); ++y)
+                for (int x = 0; x < fb.width(); ++x) {
+                    if (fb.color(x, y).r == -1.0f) continue;
+                    ++covered;
+                    ASSERT_EQ(fb.color(x, y), expected) << "pixel " << x << ", " << y;
+                }
+            EXPECT_GT(covered, 100);
+
+            // The same triangle with the colour interpolated is not constant.
+            fb.clearColor(vec4(-1.0f));
+            testing::drawTriangles<FlatColorShader>(state, v, fb, {.showSmooth = true});
+            int differing = 0;
+            for (int y = 0; y < fb.height(); ++y)
+                for (int x = 0; x < fb.width(); ++x)
+                    if (fb.color(x, y).r != -1.0f && fb.color(x, y) != expected) ++differing;
+            EXPECT_GT(differing, 50);
+        }
+    }
+}
 
 TEST(PipelineObserver, SeesEveryStageAndEveryFragmentFate) {
     Framebuffer fb(4, 4);

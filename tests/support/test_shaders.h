@@ -25,6 +25,29 @@ struct ClipSpaceColorShader {
     static vec4 fragment(const Varyings& in, const Uniforms&) { return in.color; }
 };
 
+// Like ClipSpaceColorShader, but the colour is flat (GLSL `flat`): the provoking vertex's, unblended,
+// followed by an interpolated copy to show the two kinds side by side in one Varyings.
+struct FlatColorShader {
+    struct Attributes {
+        vec4 position;
+        vec4 color;
+    };
+    struct Varyings {
+        vec4 flatColor;
+        vec4 smoothColor;
+    };
+    static constexpr int kFlatVaryingFloats = 4;
+    struct Uniforms {
+        bool showSmooth = false;
+    };
+    static VertexOut<Varyings> vertex(const Attributes& in, const Uniforms&) {
+        return {in.position, {in.color, in.color}};
+    }
+    static vec4 fragment(const Varyings& in, const Uniforms& u) {
+        return u.showSmooth ? in.smoothColor : in.flatColor;
+    }
+};
+
 // Every fragment adds exactly `value` to red: with additive blending a pixel's red counts its hits.
 struct CountingShader {
     struct Attributes {
