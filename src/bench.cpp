@@ -351,9 +351,13 @@ void useOnePointLight(PreparedScene& prepared) {
     light.type = LightType::Point;
     light.position = positionWorld;
     prepared.scene.lights = {light};
+    LightParams eyeSpace;  // lights live in eye space in the uniforms
+    eyeSpace.kind = LightKind::Point;
+    eyeSpace.position = vec3(camera.viewFromWorld * vec4(positionWorld, 1.0f));
+    eyeSpace.diffuse = eyeSpace.specular = vec3(1.0f);  // white: linear 1
     for (PreparedDraw& draw : prepared.draws) {
         draw.uniforms.lightCount = 1;
-        draw.uniforms.lights[0] = ShaderLight{vec4(positionWorld, 1.0f), vec3(1.0f)};  // white: linear 1
+        draw.uniforms.lights[0] = eyeSpace;
     }
 }
 

@@ -118,7 +118,11 @@ void checkImageDestination(const fs::path& path, int width, int height) {
     if (fs::is_directory(path, error)) fail(path, "is a folder, not an image file");
 }
 
-void writeImage(const fs::path& path, const LinearImage& image) {
+std::uint8_t encodeChannel(float value, ColorEncoding encoding) {
+    return toByte(encoding == ColorEncoding::Srgb ? linearToSrgb(value) : value);
+}
+
+void writeImage(const fs::path& path, const LinearImage& image, ColorEncoding encoding) {
     checkImageDestination(path, image.width, image.height);
     const FileFormat* format = findFormat(path);
     const std::size_t pixelCount = static_cast<std::size_t>(std::max(image.width, 0)) *
@@ -137,8 +141,8 @@ void writeImage(const fs::path& path, const LinearImage& image) {
         if (error) fail(path, "cannot create folder \"" + folder.string() + "\": " + error.message());
     }
 
-    // Convert to the file's pixel type: float linear values unchanged, or 8-bit sRGB codes. Alpha is
-    // coverage, not light, so it is stored linearly.
+    // Convert to the file's pixel type: float values unchanged, or 8-bit codes (sRGB-encoded by
+    // default). Alpha is coverage, not light, so it is stored linearly.
     const int channels = format->channels;
     std::vector<float> floats;
     std::vector<std::uint8_t> bytes;
@@ -155,7 +159,7 @@ void writeImage(const fs::path& path, const LinearImage& image) {
         bytes.reserve(pixelCount * channels);
         for (const glm::vec4& p : image.pixels) {
             for (int c = 0; c < 3; ++c)
-                bytes.push_back(toByte(linearToSrgb(p[c])));
+                bytes.push_back(encodeChannel(p[c], encoding));
             if (channels == 4) bytes.push_back(toByte(p.a));
         }
     }

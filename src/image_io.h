@@ -1,6 +1,7 @@
 // Image output and input through OpenImageIO, format by file extension.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <vector>
 
@@ -17,13 +18,24 @@ struct LinearImage {
     const glm::vec4& at(int x, int y) const { return pixels[static_cast<std::size_t>(y) * width + x]; }
 };
 
+// How 8-bit files encode the colour buffer's values.
+enum class ColorEncoding {
+    Srgb,    // the exact sRGB transfer curve (facet::linearToSrgb, pipeline/color.h): linear light in the
+             // buffer
+    Linear,  // none: code = round(255·c), as OpenGL 1.x writes its colours to an 8-bit framebuffer
+};
+
+// The 8-bit code of one channel value: clamped to [0, 1], encoded, rounded to nearest.
+std::uint8_t encodeChannel(float value, ColorEncoding encoding);
+
 // Writes `image` to `path`, its format chosen by the extension (.png .exr .ppm .jpg/.jpeg .tif/.tiff ...).
-// Float formats (EXR) keep the linear values unchanged; 8-bit formats get the sRGB transfer curve,
-// clamped to [0,1] (facet::linearToSrgb from pipeline/color.h). PPM and JPEG have no alpha: RGB only. The
+// Float formats (EXR) keep the buffer's values unchanged; 8-bit formats get `encoding`, clamped to
+// [0,1] (encodeChannel). PPM and JPEG have no alpha: RGB only. The
 // image is written to a temporary file in the same folder and renamed into place, so a failure never leaves a
 // partial file nor destroys an existing one. Throws InputError ("out/x.bmpx: unknown image format ...",
 // "out/: cannot write ...").
-void writeImage(const std::filesystem::path& path, const LinearImage& image);
+void writeImage(const std::filesystem::path& path, const LinearImage& image,
+                ColorEncoding encoding = ColorEncoding::Srgb);
 
 // Checks, without writing anything, that `path` names an image format facet writes and that a
 // width × height image fits it; throws InputError otherwise. Lets a command fail before a long render.

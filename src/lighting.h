@@ -140,9 +140,10 @@ struct LightingTerms {
 //     + Σ_lights att · spot · (l_a ⊗ m_ambient + max(N·L, 0) · l_d ⊗ m_diffuse + spec · l_s ⊗ m_specular),
 // spec = max(R·V, 0)^n (Phong) or max(N·H, 0)^n (Blinn-Phong), and 0 where N·L ≤ 0 (the light is
 // behind the surface). N is used as given (normalised, not flipped towards the viewer).
+// `diffuseColor` is m_diffuse per lane (a texture may vary it); the overload below uses the material's.
 template <class F, class V3 = LaneVec3<F>>
 LightingTerms<V3> standardLighting(const V3& position, const V3& normal, const vec3& eye,
-                                   const PhongMaterial& m, const vec3& globalAmbient,
+                                   const PhongMaterial& m, const V3& diffuseColor, const vec3& globalAmbient,
                                    std::span<const LightParams> lights,
                                    SpecularModel specularModel = SpecularModel::BlinnPhong) {
     const V3 N = safeNormalize<F, V3>(normal);
@@ -157,7 +158,7 @@ LightingTerms<V3> standardLighting(const V3& position, const V3& normal, const v
         // Ambient and Lambert diffuse.
         const F NdotL = dot(N, L);
         terms.ambient += (light.ambient * m.ambient) * reach;
-        terms.diffuse += (light.diffuse * m.diffuse) * (reach * max(NdotL, 0.0f));
+        terms.diffuse += diffuseColor * light.diffuse * (reach * max(NdotL, 0.0f));
 
         // Specular, only where the light is in front of the surface.
         F cosine;
@@ -171,6 +172,15 @@ LightingTerms<V3> standardLighting(const V3& position, const V3& normal, const v
         terms.specular += (light.specular * m.specular) * (reach * spec);
     }
     return terms;
+}
+
+template <class F, class V3 = LaneVec3<F>>
+LightingTerms<V3> standardLighting(const V3& position, const V3& normal, const vec3& eye,
+                                   const PhongMaterial& m, const vec3& globalAmbient,
+                                   std::span<const LightParams> lights,
+                                   SpecularModel specularModel = SpecularModel::BlinnPhong) {
+    return standardLighting<F, V3>(position, normal, eye, m, V3(m.diffuse), globalAmbient, lights,
+                                   specularModel);
 }
 
 // =====================================================================================================
@@ -282,8 +292,18 @@ F geometrySmithGGX(F NdotV, F NdotL, float alpha) {
 //   f(l, v) = (1 − F)(1 − metalness) · c_base/π + D·F·G / (4 (n·l)(n·v)),
 // F0 = mix(F0_dielectric, c_base, metalness) (metals reflect their colour), and f = 0 where n·l ≤ 0.
 // n, l, v need not be unit; zero vectors give 0, never NaN.
+// The two lobes of the BRDF apart: diffuse (1 − F)(1 − metalness)·albedo/π and specular D·F·G/(4 (n·l)(n·v)).
+template <class V3>
+struct BrdfLobes {
+    V3 diffuse;
+    V3 specular;
+};
+
+// `albedo` is the base colour the Lambert lobe reflects, per lane (a texture may vary it); F0 always
+// comes from the material.
 template <class F, class V3 = LaneVec3<F>>
-V3 brdf(const V3& n, const V3& l, const V3& v, const PbrMaterial& m, const BrdfModel& model = {}) {
+BrdfLobes<V3> brdfLobes(const V3& n, const V3& l, const V3& v, const PbrMaterial& m, const V3& albedo,
+                        const BrdfModel& model = {}) {
     // The cosines, clamped away from the divisions' zeros.
     const V3 N = safeNormalize<F, V3>(n);
     const V3 L = safeNormalize<F, V3>(l);
@@ -305,32 +325,57 @@ V3 brdf(const V3& n, const V3& l, const V3& v, const PbrMaterial& m, const BrdfM
     const F G = model.geometry == GeometryTerm::SmithGGX ? geometrySmithGGX(NdotV, NdotL, alpha)
                                                          : geometryCookTorrance(NdotH, NdotV, NdotL, VdotH);
 
-    // Diffuse and specular lobes.
+    // Diffuse and specular lobes, nothing where the light is behind the surface.
     const V3 specular = fresnel * (D * G / (4.0f * NdotL * NdotV));
     const V3 diffuse =
-        (vec3(1.0f) - fresnel) * (m.baseColor * ((1.0f - m.metalness) / std::numbers::pi_v<float>));
-    return select(NdotLRaw > 0.0f, diffuse + specular, V3(vec3(0.0f)));
+        (V3(vec3(1.0f)) - fresnel) * albedo * ((1.0f - m.metalness) / std::numbers::pi_v<float>);
+    const V3 zero(vec3(0.0f));
+    return {select(NdotLRaw > 0.0f, diffuse, zero), select(NdotLRaw > 0.0f, specular, zero)};
+}
+
+template <class F, class V3 = LaneVec3<F>>
+V3 brdf(const V3& n, const V3& l, const V3& v, const PbrMaterial& m, const BrdfModel& model = {}) {
+    const BrdfLobes<V3> lobes = brdfLobes<F, V3>(n, l, v, m, V3(m.baseColor), model);
+    return lobes.diffuse + lobes.specular;
 }
 
 // Outgoing radiance from punctual lights: L_o = Σ f(l, v) ⊗ (π c_light) · falloff · spot · max(n·l, 0),
 // c_light = the light's l_d, π c_light the incoming radiance scaled so that a white Lambertian surface
 // lit head-on shows c_light (Hoffman 2013), falloff = 1/r² for point and spot lights, 1 for directional.
+//
+// As terms for the component images: the diffuse and specular lobes summed over the lights, plus
+//   emission = m_emission and ambient = a_global ⊗ albedo
+// (a constant stand-in for the light that arrives from everywhere, as the standard equation's
+// a_global ⊗ m_ambient; image-based ambient is out of scope). `albedo` is the base colour per lane.
 template <class F, class V3 = LaneVec3<F>>
-V3 physicallyBasedLighting(const V3& position, const V3& normal, const vec3& eye, const PbrMaterial& m,
-                           std::span<const LightParams> lights, const BrdfModel& model = {}) {
+LightingTerms<V3> physicallyBasedTerms(const V3& position, const V3& normal, const vec3& eye,
+                                       const PbrMaterial& m, const V3& albedo, const vec3& emission,
+                                       const vec3& globalAmbient, std::span<const LightParams> lights,
+                                       const BrdfModel& model = {}) {
     const V3 N = safeNormalize<F, V3>(normal);
     const V3 V = safeNormalize<F, V3>(eye - position);
-    V3 radiance(vec3(0.0f));
+    LightingTerms<V3> terms{V3(emission), albedo * globalAmbient, V3(vec3(0.0f)), V3(vec3(0.0f))};
     for (const LightParams& light : lights) {
         const LightVector<F, V3> toLight = lightVector<F, V3>(light, position);
         const F falloff = light.kind == LightKind::Directional
                               ? lanes<F>(1.0f)
                               : 1.0f / max(toLight.distance * toLight.distance, 1e-8f);
         const F irradiance = falloff * spotFactor<F, V3>(light, toLight.L) * max(dot(N, toLight.L), 0.0f);
-        radiance +=
-            brdf<F, V3>(N, toLight.L, V, m, model) * (light.diffuse * std::numbers::pi_v<float>)*irradiance;
+        const BrdfLobes<V3> lobes = brdfLobes<F, V3>(N, toLight.L, V, m, albedo, model);
+        const V3 incoming = V3(light.diffuse * std::numbers::pi_v<float>) * irradiance;
+        terms.diffuse += lobes.diffuse * incoming;
+        terms.specular += lobes.specular * incoming;
     }
-    return radiance;
+    return terms;
+}
+
+// The reflected light alone (no emission, no ambient), the material's own base colour.
+template <class F, class V3 = LaneVec3<F>>
+V3 physicallyBasedLighting(const V3& position, const V3& normal, const vec3& eye, const PbrMaterial& m,
+                           std::span<const LightParams> lights, const BrdfModel& model = {}) {
+    const LightingTerms<V3> terms = physicallyBasedTerms<F, V3>(position, normal, eye, m, V3(m.baseColor),
+                                                                vec3(0.0f), vec3(0.0f), lights, model);
+    return terms.diffuse + terms.specular;
 }
 
 // ---- Material presets -------------------------------------------------------------------------------

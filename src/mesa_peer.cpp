@@ -5,6 +5,7 @@
 // frame, work that Facet's renderFrame() does not do.
 #include "mesa_peer.h"
 
+#include <array>
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -187,6 +188,37 @@ void main() {
 }
 )";
 
+// Interim: the uniforms the GLSL above reads, from the built-in shader's (eye space serves as its
+// "world" space, the eye at the origin).
+struct LegacyLight {
+    vec4 positionOrDirection;
+    vec3 color;
+};
+struct LegacyUniforms {
+    mat4 clipFromObject, worldFromObject;
+    mat3 normalFromObject;
+    vec3 eyeWorld{0.0f}, globalAmbient;
+    int lightCount = 0;
+    std::array<LegacyLight, kMaxLights> lights{};
+    PhongMaterial material;
+    const Texture* diffuseMap = nullptr;
+};
+LegacyUniforms legacyUniforms(const SurfaceUniforms& u) {
+    LegacyUniforms out;
+    out.clipFromObject = u.clipFromObject;
+    out.worldFromObject = u.viewFromObject;
+    out.normalFromObject = u.normalFromObject;
+    out.globalAmbient = u.globalAmbient;
+    out.lightCount = u.lightCount;
+    for (int i = 0; i < u.lightCount; ++i) {
+        const LightParams& l = u.lights[i];
+        out.lights[i] = {l.kind == LightKind::Directional ? vec4(l.direction, 0.0f) : vec4(l.position, 1.0f), l.diffuse};
+    }
+    out.material = u.material;
+    out.diffuseMap = u.diffuseMap;
+    return out;
+}
+
 GLenum glCompare(CompareOp op) {
     switch (op) {
         case CompareOp::Never:
@@ -243,7 +275,7 @@ struct MesaPeer::Impl {
         GLsizei indexCount = 0;
         GLuint texture = 0;  // 0: no diffuse map
         const Program* program = nullptr;
-        BlinnPhongShader::Uniforms uniforms;
+        LegacyUniforms uniforms;
     };
     std::vector<Draw> draws;
     std::vector<GLuint> textures;
@@ -331,7 +363,7 @@ struct MesaPeer::Impl {
 
     // The uniforms of one draw, as BlinnPhongShader::Uniforms holds them (GLM matrices are column-major,
     // as GL expects).
-    void setUniforms(const Program& location, const BlinnPhongShader::Uniforms& u) const {
+    void setUniforms(const Program& location, const LegacyUniforms& u) const {
         gl.glUniformMatrix4fv(location.clipFromObject, 1, GL_FALSE, &u.clipFromObject[0][0]);
         gl.glUniformMatrix4fv(location.worldFromObject, 1, GL_FALSE, &u.worldFromObject[0][0]);
         gl.glUniformMatrix3fv(location.normalFromObject, 1, GL_FALSE, &u.normalFromObject[0][0]);
@@ -346,7 +378,7 @@ struct MesaPeer::Impl {
         }
         gl.glUniform4fv(location.lightPositionOrDirection, kMaxLights, positions);
         gl.glUniform3fv(location.lightColor, kMaxLights, colors);
-        const ShaderMaterial& m = u.material;
+        const PhongMaterial& m = u.material;
         gl.glUniform3fv(location.materialAmbient, 1, &m.ambient[0]);
         gl.glUniform3fv(location.materialDiffuse, 1, &m.diffuse[0]);
         gl.glUniform3fv(location.materialSpecular, 1, &m.specular[0]);
@@ -554,7 +586,7 @@ void MesaPeer::load(const PreparedScene& prepared) {
     std::map<const Texture*, GLuint> textureNames;
     for (const PreparedDraw& source : prepared.draws) {
         Impl::Draw draw;
-        draw.uniforms = source.uniforms;
+        draw.uniforms = legacyUniforms(source.uniforms);
         draw.indexCount = static_cast<GLsizei>(source.indices.size());
         gl.glGenVertexArrays(1, &draw.vertexArray);
         gl.glBindVertexArray(draw.vertexArray);
@@ -576,7 +608,7 @@ void MesaPeer::load(const PreparedScene& prepared) {
         gl.glEnableVertexAttribArray(2);
         gl.glVertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, stride,
                                  reinterpret_cast<const void*>(offsetof(MeshVertex, uv)));
-        if (const Texture* map = source.uniforms.material.diffuseMap; map && !map->empty()) {
+        if (const Texture* map = source.uniforms.diffuseMap; map && !map->empty()) {
             GLuint& name = textureNames[map];
             if (!name) name = p.uploadTexture(*map);
             draw.texture = name;

@@ -1,10 +1,18 @@
-// The built-in shader of `facet render`: per-pixel Lambert diffuse and Blinn-Phong specular over the
-// scene's lights, with the material's emission and the global ambient term.
+// The built-in shaders of `facet render`: the lighting models of lighting.h (Phong, Blinn-Phong,
+// Cook-Torrance) at the three shading frequencies of the lectures:
+//   SurfaceShader<ShadingFrequency::Phong>    the normal interpolated, lighting per pixel;
+//   SurfaceShader<ShadingFrequency::Gouraud>  lighting per vertex, the colour interpolated;
+//   SurfaceShader<ShadingFrequency::Flat>     lighting per vertex, the provoking vertex's colour on the
+//                                             whole triangle (a flat varying).
+// Lighting happens in eye space: the eye is at the origin, V = normalize(−P) (a local viewer).
 #pragma once
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
+#include <span>
 
+#include "lighting.h"
 #include "mesh.h"
 #include "shader.h"
 #include "texture.h"
@@ -12,103 +20,185 @@
 
 namespace facet {
 
-inline constexpr int kMaxLights = 8;
+inline constexpr int kMaxLights = 8;  // as OpenGL 1.x guarantees (GL_MAX_LIGHTS)
 
-struct ShaderLight {
-    vec4 positionOrDirection{0.0f};  // world space; w = 0: direction the light travels, w = 1: a point light
-    vec3 color{1.0f};                // linear RGB, intensity included
+// The terms of the lighting equation, as bits, to draw some of them alone (the component images).
+enum LightingTerm : std::uint8_t {
+    kEmissionTerm = 1,
+    kAmbientTerm = 2,
+    kDiffuseTerm = 4,
+    kSpecularTerm = 8,
+    kAllTerms = 15,
 };
 
-// Material colours here are linear (decoded from the file's sRGB values by the renderer).
-struct ShaderMaterial {
-    vec3 ambient{0.0f};                   // k_a
-    vec3 diffuse{0.8f};                   // k_d
-    vec3 specular{0.0f};                  // k_s
-    vec3 emission{0.0f};                  // k_e
-    float shininess = 32.0f;              // n
-    float opacity = 1.0f;                 // d, or 1 − Tr (not applied yet: see fragment())
-    const Texture* diffuseMap = nullptr;  // multiplies k_d when set
+struct SurfaceUniforms {
+    mat4 clipFromObject{1.0f};
+    mat4 viewFromObject{1.0f};
+    mat3 normalFromObject{1.0f};  // transpose(inverse(mat3(viewFromObject)))
+    vec3 globalAmbient{0.0f};     // a_global, linear
+    int lightCount = 0;
+    std::array<LightParams, kMaxLights> lights{};  // eye space
+    ReflectionModel reflection = ReflectionModel::BlinnPhong;
+    BrdfModel brdf;
+    PhongMaterial material;  // the standard equation's; its emission is Cook-Torrance's too
+    PbrMaterial pbr;         // Cook-Torrance's
+    // The diffuse colour (m_diffuse, or Cook-Torrance's albedo c_base) is multiplied by this texture:
+    // before lighting when lighting per pixel; per vertex, the interpolated diffuse term is.
+    const Texture* diffuseMap = nullptr;
+    bool twoSidedFlip = true;  // light the side of a surface that faces the viewer (N·V < 0: N = −N)
+    bool clampColor = false;   // clamp lit colours to [0, 1] (per vertex before interpolation), as OpenGL 1.x
+    std::uint8_t terms = kAllTerms;  // LightingTerm bits: which terms reach the image
+    float opacity = 1.0f;            // written to alpha
+
+    std::span<const LightParams> activeLights() const {
+        return {lights.data(), static_cast<std::size_t>(lightCount)};
+    }
+    vec3 albedo() const {
+        return reflection == ReflectionModel::CookTorrance ? pbr.baseColor : material.diffuse;
+    }
 };
 
-struct BlinnPhongShader {
+// The lighting equation's terms at one point (or eight), as the uniforms choose: the model, the
+// two-sided flip, and only the selected terms (the others are zero). P and N are in eye space; N need
+// not be unit length. `albedo` is m_diffuse or c_base, per lane.
+template <class F, class V3>
+LightingTerms<V3> surfaceTerms(const V3& P, const V3& normal, const V3& albedo, const SurfaceUniforms& u) {
+    V3 N = normal;
+    if (u.twoSidedFlip) N = select(dot(N, -P) < 0.0f, -N, N);
+    const vec3 eye(0.0f);
+    LightingTerms<V3> t;
+    switch (u.reflection) {
+        case ReflectionModel::Phong:
+            t = standardLighting<F, V3>(P, N, eye, u.material, albedo, u.globalAmbient, u.activeLights(),
+                                        SpecularModel::Phong);
+            break;
+        case ReflectionModel::BlinnPhong:
+            t = standardLighting<F, V3>(P, N, eye, u.material, albedo, u.globalAmbient, u.activeLights(),
+                                        SpecularModel::BlinnPhong);
+            break;
+        case ReflectionModel::CookTorrance:
+            t = physicallyBasedTerms<F, V3>(P, N, eye, u.pbr, albedo, u.material.emission, u.globalAmbient,
+                                            u.activeLights(), u.brdf);
+            break;
+    }
+    if (u.terms != kAllTerms) {
+        const V3 zero(vec3(0.0f));
+        if (!(u.terms & kEmissionTerm)) t.emission = zero;
+        if (!(u.terms & kAmbientTerm)) t.ambient = zero;
+        if (!(u.terms & kDiffuseTerm)) t.diffuse = zero;
+        if (!(u.terms & kSpecularTerm)) t.specular = zero;
+    }
+    return t;
+}
+
+namespace detail {
+
+// The diffuse map's texels for the batch's lanes (white where there is no map or the lane is empty).
+inline Vec3x8 diffuseTexels(const Texture& map, const Vec2x8& uv, unsigned mask) {
+    Vec3x8 texel(vec3(1.0f));
+    for (int lane = 0; lane < 8; ++lane) {
+        if (!((mask >> lane) & 1)) continue;
+        const vec4 t = sampleBilinear(map, vec2(uv.x[lane], uv.y[lane]));
+        texel.x[lane] = t.r;
+        texel.y[lane] = t.g;
+        texel.z[lane] = t.b;
+    }
+    return texel;
+}
+
+template <class V3>
+V3 clamp01(const V3& c) {
+    return V3(saturate(c.x), saturate(c.y), saturate(c.z));
+}
+
+}  // namespace detail
+
+template <ShadingFrequency kFrequency>
+struct SurfaceShader;
+
+// Phong shading: the eye-space position and normal are interpolated; lighting per pixel.
+template <>
+struct SurfaceShader<ShadingFrequency::Phong> {
     using Attributes = MeshVertex;
+    using Uniforms = SurfaceUniforms;
     struct Varyings {
-        vec3 worldPosition;
-        vec3 normal;  // world space, not normalised after interpolation
+        vec3 position;  // eye space
+        vec3 normal;    // eye space, renormalised per pixel by the lighting
         vec2 uv;
-    };
-    struct Uniforms {
-        mat4 clipFromObject{1.0f};
-        mat4 worldFromObject{1.0f};
-        mat3 normalFromObject{1.0f};  // transpose(inverse(mat3(worldFromObject)))
-        vec3 eyeWorld{0.0f};
-        vec3 globalAmbient{0.0f};
-        int lightCount = 0;
-        std::array<ShaderLight, kMaxLights> lights{};
-        ShaderMaterial material;
     };
 
     static VertexOut<Varyings> vertex(const Attributes& in, const Uniforms& u) {
-        const vec4 worldPosition = u.worldFromObject * vec4(in.position, 1.0f);
         return {u.clipFromObject * vec4(in.position, 1.0f),
-                {vec3(worldPosition), u.normalFromObject * in.normal, in.uv}};
-    }
-
-    // c = k_e + a_global ⊗ k_a + Σ_lights c_light ⊗ (k_d·max(N·L, 0) + k_s·max(N·H, 0)^n),
-    // H = normalize(L + V), the specular term only where N·L > 0 (Blinn 1977).
-    // Written once for both lane types: F, V3 = float, vec3 (one fragment) or Float8, Vec3x8 (eight).
-    template <class F, class V3>
-    static V3 lighting(const V3& worldPosition, const V3& normal, const V3& kd, const Uniforms& u) {
-        const ShaderMaterial& m = u.material;
-        V3 N = normalize(normal);
-        const V3 V = normalize(u.eyeWorld - worldPosition);
-        // Seen from behind (an open mesh with culling off): light the side facing the viewer.
-        N = select(dot(N, V) < 0.0f, -N, N);
-
-        V3 color(m.emission + u.globalAmbient * m.ambient);
-        for (int i = 0; i < u.lightCount; ++i) {
-            const ShaderLight& light = u.lights[i];
-            const V3 L = light.positionOrDirection.w == 0.0f
-                             ? V3(-vec3(light.positionOrDirection))
-                             : normalize(vec3(light.positionOrDirection) - worldPosition);
-            const F NdotL = dot(N, L);
-            const V3 H = normalize(L + V);
-            const F lit = select(NdotL > 0.0f, 1.0f, 0.0f);
-            const F specular = pow(max(dot(N, H), 0.0f), m.shininess) * lit;
-            color += light.color * (kd * max(NdotL, 0.0f) + m.specular * specular);
-        }
-        return color;
+                {vec3(u.viewFromObject * vec4(in.position, 1.0f)), u.normalFromObject * in.normal, in.uv}};
     }
 
     static vec4 fragment(const Varyings& in, const Uniforms& u) {
-        const ShaderMaterial& m = u.material;
-        vec3 kd = m.diffuse;
-        if (m.diffuseMap) kd *= vec3(sampleBilinear(*m.diffuseMap, in.uv));
-        // Drawn opaque: blending transparent surfaces needs them sorted, which the renderer does not do
-        // yet, so the material's opacity is carried but not applied.
-        return vec4(lighting<float, vec3>(in.worldPosition, in.normal, kd, u), 1.0f);
+        vec3 albedo = u.albedo();
+        if (u.diffuseMap) albedo *= vec3(sampleBilinear(*u.diffuseMap, in.uv));
+        vec3 c = surfaceTerms<float, vec3>(in.position, in.normal, albedo, u).sum();
+        if (u.clampColor) c = detail::clamp01(c);
+        return vec4(c, u.opacity);
     }
 
     // The same for eight fragments at once (the pipeline prefers this when a shader has it).
     static Vec4x8 fragmentBatch(const FragmentBatch& in, const Uniforms& u) {
-        constexpr int kPosition = offsetof(Varyings, worldPosition) / sizeof(float);
+        constexpr int kPosition = offsetof(Varyings, position) / sizeof(float);
         constexpr int kNormal = offsetof(Varyings, normal) / sizeof(float);
         constexpr int kUv = offsetof(Varyings, uv) / sizeof(float);
-        const ShaderMaterial& m = u.material;
-        Vec3x8 kd(m.diffuse);
-        if (m.diffuseMap) {
-            const Vec2x8 uv = in.vec2At(kUv);
-            for (int lane = 0; lane < 8; ++lane) {
-                if (!((in.mask >> lane) & 1)) continue;
-                const vec4 texel = sampleBilinear(*m.diffuseMap, vec2(uv.x[lane], uv.y[lane]));
-                kd.x[lane] *= texel.r;
-                kd.y[lane] *= texel.g;
-                kd.z[lane] *= texel.b;
-            }
-        }
-        const Vec3x8 c = lighting<Float8, Vec3x8>(in.vec3At(kPosition), in.vec3At(kNormal), kd, u);
-        return {c.x, c.y, c.z, splat(1.0f)};
+        Vec3x8 albedo(u.albedo());
+        if (u.diffuseMap) albedo = albedo * detail::diffuseTexels(*u.diffuseMap, in.vec2At(kUv), in.mask);
+        Vec3x8 c = surfaceTerms<Float8, Vec3x8>(in.vec3At(kPosition), in.vec3At(kNormal), albedo, u).sum();
+        if (u.clampColor) c = detail::clamp01(c);
+        return {c.x, c.y, c.z, splat(u.opacity)};
     }
 };
+
+// Lighting per vertex (Gouraud 1971). The colour travels in two parts so that a diffuse map can tint
+// the diffuse light only: `modulated` (the diffuse term) is multiplied by the texel, `added`
+// (emission + ambient + specular) is not. With clampColor (OpenGL 1.x) the clamped sum is modulated
+// whole, as fixed function's GL_MODULATE does. Flat shading is the same with the colour flat: the
+// provoking vertex's colour fills the triangle.
+template <ShadingFrequency kFrequency>
+struct PerVertexSurfaceShader {
+    using Attributes = MeshVertex;
+    using Uniforms = SurfaceUniforms;
+    struct Varyings {
+        vec3 modulated;
+        vec3 added;
+        vec2 uv;
+    };
+    static constexpr int kFlatVaryingFloats = kFrequency == ShadingFrequency::Flat ? 6 : 0;
+
+    static VertexOut<Varyings> vertex(const Attributes& in, const Uniforms& u) {
+        const vec3 P(u.viewFromObject * vec4(in.position, 1.0f));
+        const LightingTerms<vec3> t =
+            surfaceTerms<float, vec3>(P, u.normalFromObject * in.normal, u.albedo(), u);
+        Varyings out{t.diffuse, t.emission + t.ambient + t.specular, in.uv};
+        if (u.clampColor) out = {detail::clamp01(t.sum()), vec3(0.0f), in.uv};
+        return {u.clipFromObject * vec4(in.position, 1.0f), out};
+    }
+
+    static vec4 fragment(const Varyings& in, const Uniforms& u) {
+        vec3 modulated = in.modulated;
+        if (u.diffuseMap) modulated *= vec3(sampleBilinear(*u.diffuseMap, in.uv));
+        return vec4(modulated + in.added, u.opacity);
+    }
+
+    static Vec4x8 fragmentBatch(const FragmentBatch& in, const Uniforms& u) {
+        constexpr int kModulated = offsetof(Varyings, modulated) / sizeof(float);
+        constexpr int kAdded = offsetof(Varyings, added) / sizeof(float);
+        constexpr int kUv = offsetof(Varyings, uv) / sizeof(float);
+        Vec3x8 modulated = in.vec3At(kModulated);
+        if (u.diffuseMap)
+            modulated = modulated * detail::diffuseTexels(*u.diffuseMap, in.vec2At(kUv), in.mask);
+        const Vec3x8 c = modulated + in.vec3At(kAdded);
+        return {c.x, c.y, c.z, splat(u.opacity)};
+    }
+};
+
+template <>
+struct SurfaceShader<ShadingFrequency::Gouraud> : PerVertexSurfaceShader<ShadingFrequency::Gouraud> {};
+template <>
+struct SurfaceShader<ShadingFrequency::Flat> : PerVertexSurfaceShader<ShadingFrequency::Flat> {};
 
 }  // namespace facet

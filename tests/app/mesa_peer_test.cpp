@@ -109,7 +109,7 @@ TEST(MesaPeer, DrawsTheSameImageAsFacet) {
     point.cameraRelative = true;
     scene.lights = {key, point};
     const PreparedScene prepared = prepareScene(scene);
-    ASSERT_NE(prepared.draws.front().uniforms.material.diffuseMap, nullptr);  // the texture is compared too
+    ASSERT_NE(prepared.draws.front().uniforms.diffuseMap, nullptr);  // the texture is compared too
 
     Framebuffer framebuffer(scene.width, scene.height);
     DrawContext context(1);

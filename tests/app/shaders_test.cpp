@@ -1,4 +1,5 @@
-// The built-in shader's eight-lane path computes what its one-fragment path computes.
+// The built-in surface shaders: the eight-lane path computes what the one-fragment path computes, for
+// every reflection model and shading frequency; the term mask, the two-sided flip and the GL clamp.
 #include "shaders.h"
 
 #include <random>
@@ -8,44 +9,151 @@
 namespace facet {
 namespace {
 
-TEST(BlinnPhongShader, BatchMatchesScalarOnRandomFragments) {
-    std::mt19937 rng(3);
+SurfaceUniforms threeLights() {
+    SurfaceUniforms u;
+    u.globalAmbient = vec3(0.1f, 0.12f, 0.08f);
+    u.lightCount = 3;
+    u.lights[0].kind = LightKind::Directional;
+    u.lights[0].direction = normalize(vec3(-0.3f, -1.0f, -0.5f));
+    u.lights[0].diffuse = vec3(1.0f, 0.9f, 0.8f);
+    u.lights[1].kind = LightKind::Point;
+    u.lights[1].position = vec3(2.0f, 1.0f, 1.5f);
+    u.lights[1].diffuse = u.lights[1].specular = vec3(0.4f, 0.5f, 1.2f);
+    u.lights[1].c1 = 0.3f;
+    u.lights[2].kind = LightKind::Spot;
+    u.lights[2].position = vec3(-2.0f, -1.0f, 0.5f);
+    u.lights[2].spotDirection = normalize(vec3(1.0f, 0.5f, -1.0f));
+    u.lights[2].spotCutoffDegrees = 50.0f;
+    u.lights[2].spotExponent = 4.0f;
+    u.lights[2].ambient = vec3(0.05f);
+    u.lights[2].diffuse = vec3(0.7f, 0.2f, 0.1f);
+    u.material.ambient = vec3(0.3f);
+    u.material.diffuse = vec3(0.6f, 0.4f, 0.2f);
+    u.material.specular = vec3(0.5f);
+    u.material.emission = vec3(0.01f, 0.02f, 0.0f);
+    u.pbr.baseColor = vec3(0.9f, 0.6f, 0.3f);
+    u.pbr.roughness = 0.4f;
+    u.pbr.metalness = 0.3f;
+    return u;
+}
+
+template <ShadingFrequency kFrequency>
+void expectBatchMatchesScalar(const SurfaceUniforms& uniforms, std::mt19937& rng, const char* what) {
+    using S = SurfaceShader<kFrequency>;
     std::uniform_real_distribution<float> u(-1.0f, 1.0f), unit(0.0f, 1.0f);
-    BlinnPhongShader::Uniforms uniforms;
-    uniforms.eyeWorld = vec3(0.3f, 0.5f, 4.0f);
-    uniforms.globalAmbient = vec3(0.1f, 0.12f, 0.08f);
-    uniforms.lightCount = 3;
-    uniforms.lights[0] = {vec4(normalize(vec3(-0.3f, -1.0f, -0.5f)), 0.0f), vec3(1.0f, 0.9f, 0.8f)};
-    uniforms.lights[1] = {vec4(2.0f, 1.0f, 1.5f, 1.0f), vec3(0.4f, 0.5f, 1.2f)};
-    uniforms.lights[2] = {vec4(-2.0f, -1.0f, 0.5f, 1.0f), vec3(0.7f, 0.2f, 0.1f)};
-    uniforms.material.ambient = vec3(0.3f);
-    uniforms.material.diffuse = vec3(0.6f, 0.4f, 0.2f);
-    uniforms.material.specular = vec3(0.5f);
-    uniforms.material.emission = vec3(0.01f, 0.02f, 0.0f);
-    for (float shininess : {0.0f, 1.0f, 12.0f, 128.0f}) {
-        uniforms.material.shininess = shininess;
-        for (int trial = 0; trial < 200; ++trial) {
-            FragmentBatch batch;
-            batch.mask = 0xff;
-            BlinnPhongShader::Varyings scalar[8];
-            for (int lane = 0; lane < 8; ++lane) {
-                scalar[lane] = {vec3(u(rng), u(rng), u(rng)), vec3(u(rng), u(rng), u(rng)),
-                                vec2(unit(rng), unit(rng))};
-                const float* f = reinterpret_cast<const float*>(&scalar[lane]);
-                for (int k = 0; k < kVaryingFloatCount<BlinnPhongShader::Varyings>; ++k)
-                    batch.varyings[k][lane] = f[k];
-            }
-            const Vec4x8 wide = BlinnPhongShader::fragmentBatch(batch, uniforms);
-            for (int lane = 0; lane < 8; ++lane) {
-                const vec4 one = BlinnPhongShader::fragment(scalar[lane], uniforms);
-                const float tolerance = 2e-5f * (1.0f + one.r + one.g + one.b);
-                EXPECT_NEAR(wide.x[lane], one.r, tolerance) << "shininess " << shininess;
-                EXPECT_NEAR(wide.y[lane], one.g, tolerance);
-                EXPECT_NEAR(wide.z[lane], one.b, tolerance);
-                EXPECT_EQ(wide.w[lane], one.a);
+    for (int trial = 0; trial < 100; ++trial) {
+        FragmentBatch batch;
+        batch.mask = 0xff;
+        typename S::Varyings scalar[8];
+        for (int lane = 0; lane < 8; ++lane) {
+            float* f = reinterpret_cast<float*>(&scalar[lane]);
+            for (int k = 0; k < kVaryingFloatCount<typename S::Varyings>; ++k) {
+                f[k] = k < 3 ? u(rng) - (k == 2 ? 3.0f : 0.0f) : u(rng);  // positions in front of the eye
+                batch.varyings[k][lane] = f[k];
             }
         }
+        const Vec4x8 wide = S::fragmentBatch(batch, uniforms);
+        for (int lane = 0; lane < 8; ++lane) {
+            const vec4 one = S::fragment(scalar[lane], uniforms);
+            const float tolerance = 2e-5f * (1.0f + std::abs(one.r) + std::abs(one.g) + std::abs(one.b));
+            EXPECT_NEAR(wide.x[lane], one.r, tolerance) << what;
+            EXPECT_NEAR(wide.y[lane], one.g, tolerance) << what;
+            EXPECT_NEAR(wide.z[lane], one.b, tolerance) << what;
+            EXPECT_EQ(wide.w[lane], one.a) << what;
+        }
     }
+}
+
+TEST(SurfaceShader, BatchMatchesScalarForEveryModelAndFrequency) {
+    std::mt19937 rng(3);
+    SurfaceUniforms uniforms = threeLights();
+    for (ReflectionModel model :
+         {ReflectionModel::Phong, ReflectionModel::BlinnPhong, ReflectionModel::CookTorrance}) {
+        uniforms.reflection = model;
+        for (float shininess : {0.0f, 1.0f, 12.0f, 128.0f}) {
+            uniforms.material.shininess = shininess;
+            expectBatchMatchesScalar<ShadingFrequency::Phong>(uniforms, rng, "per pixel");
+            expectBatchMatchesScalar<ShadingFrequency::Gouraud>(uniforms, rng, "per vertex");
+        }
+    }
+}
+
+// The vertex shader of the per-vertex shaders lights the vertex; the fragment shader only adds up.
+TEST(SurfaceShader, PerVertexColourIsTheLightingAtTheVertex) {
+    SurfaceUniforms u = threeLights();
+    const MeshVertex v{vec3(0.2f, -0.1f, -3.0f), normalize(vec3(0.1f, 0.3f, 1.0f)), vec2(0.0f)};
+    const auto out = SurfaceShader<ShadingFrequency::Gouraud>::vertex(v, u);
+    const vec4 color = SurfaceShader<ShadingFrequency::Gouraud>::fragment(out.varyings, u);
+    const vec3 expected = surfaceTerms<float, vec3>(v.position, v.normal, u.material.diffuse, u).sum();
+    EXPECT_NEAR(color.r, expected.r, 1e-6f);
+    EXPECT_NEAR(color.g, expected.g, 1e-6f);
+    EXPECT_NEAR(color.b, expected.b, 1e-6f);
+    // And per pixel at the same point with the same normal gives the same colour.
+    const SurfaceShader<ShadingFrequency::Phong>::Varyings pixel{v.position, v.normal, v.uv};
+    const vec4 perPixel = SurfaceShader<ShadingFrequency::Phong>::fragment(pixel, u);
+    EXPECT_NEAR(perPixel.r, expected.r, 1e-6f);
+    EXPECT_NEAR(perPixel.g, expected.g, 1e-6f);
+}
+
+// Each term bit selects one term; the four component images add up to the full image.
+TEST(SurfaceShader, TermMaskSelectsComponentsThatSumToTheWhole) {
+    SurfaceUniforms u = threeLights();
+    const vec3 P(0.3f, 0.2f, -2.0f), N = normalize(vec3(-0.2f, 0.4f, 1.0f));
+    for (ReflectionModel model :
+         {ReflectionModel::Phong, ReflectionModel::BlinnPhong, ReflectionModel::CookTorrance}) {
+        u.reflection = model;
+        u.terms = kAllTerms;
+        const LightingTerms<vec3> all = surfaceTerms<float, vec3>(P, N, u.albedo(), u);
+        vec3 sum(0.0f);
+        for (std::uint8_t bit : {kEmissionTerm, kAmbientTerm, kDiffuseTerm, kSpecularTerm}) {
+            u.terms = bit;
+            const LightingTerms<vec3> one = surfaceTerms<float, vec3>(P, N, u.albedo(), u);
+            sum += one.sum();
+            const vec3 expected = bit == kEmissionTerm  ? all.emission
+                                  : bit == kAmbientTerm ? all.ambient
+                                  : bit == kDiffuseTerm ? all.diffuse
+                                                        : all.specular;
+            EXPECT_EQ(one.sum(), expected) << int(bit);
+        }
+        EXPECT_NEAR(sum.r, all.sum().r, 1e-6f);
+        EXPECT_NEAR(sum.g, all.sum().g, 1e-6f);
+        EXPECT_GT(all.diffuse.r, 0.0f);
+        EXPECT_GT(all.specular.r, 0.0f);
+    }
+}
+
+// Facet lights the side facing the viewer; OpenGL 1.x (one-sided) leaves a back-facing normal unlit.
+TEST(SurfaceShader, TwoSidedFlipLightsTheSideFacingTheViewer) {
+    SurfaceUniforms u;
+    u.lightCount = 1;
+    u.lights[0].kind = LightKind::Directional;
+    u.lights[0].direction = vec3(0.0f, 0.0f, -1.0f);  // travelling away from the eye, like the view
+    u.material.diffuse = vec3(0.5f);
+    u.material.specular = vec3(0.0f);
+    const vec3 P(0.0f, 0.0f, -5.0f), awayFromViewer(0.0f, 0.0f, -1.0f);
+    const auto diffuse = [&] { return surfaceTerms<float, vec3>(P, awayFromViewer, u.albedo(), u).diffuse.r; };
+    u.twoSidedFlip = true;
+    EXPECT_FLOAT_EQ(diffuse(), 0.5f);
+    u.twoSidedFlip = false;
+    EXPECT_FLOAT_EQ(diffuse(), 0.0f);
+}
+
+// OpenGL 1.x clamps each vertex's colour to [0, 1] before interpolating it.
+TEST(SurfaceShader, ClampColorClampsPerVertexBeforeInterpolation) {
+    SurfaceUniforms u;
+    u.lightCount = 1;
+    u.lights[0].kind = LightKind::Directional;
+    u.lights[0].direction = vec3(0.0f, 0.0f, -1.0f);
+    u.lights[0].diffuse = vec3(4.0f, 0.5f, 0.0f);
+    u.material.diffuse = vec3(1.0f);
+    u.material.specular = vec3(0.0f);
+    const MeshVertex v{vec3(0.0f, 0.0f, -5.0f), vec3(0.0f, 0.0f, 1.0f), vec2(0.0f)};
+    using Gouraud = SurfaceShader<ShadingFrequency::Gouraud>;
+    EXPECT_FLOAT_EQ(Gouraud::fragment(Gouraud::vertex(v, u).varyings, u).r, 4.0f);
+    u.clampColor = true;
+    const vec4 clamped = Gouraud::fragment(Gouraud::vertex(v, u).varyings, u);
+    EXPECT_FLOAT_EQ(clamped.r, 1.0f);
+    EXPECT_FLOAT_EQ(clamped.g, 0.5f);
 }
 
 }  // namespace
