@@ -4,6 +4,8 @@
 #include "scene.h"
 
 #include <algorithm>
+#include <array>
+#include <cctype>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -15,6 +17,7 @@
 #include <span>
 #include <string_view>
 #include <system_error>
+#include <tuple>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
@@ -240,7 +243,18 @@ class SceneReader {
 
     float nonNegative(const Json& value, const std::string& path) const {
         const float x = number(value, path);
-        if (x < 0.0f) fail(inQuotes(path) + " must not be negative (got " + formatNumber(x) + ")");
+        if (x < 0.0f) fail(inQuotes(path) + " must not be negative (got " + describe(value) + ")");
+        return x;
+    }
+
+    // A number from `lowest` to `highest`, both included; `unit` (" degrees") follows the range.
+    float numberFromTo(const Json& value, const std::string& path, float lowest, float highest,
+                       std::string_view unit = "") const {
+        const float x = number(value, path);
+        if (!(x >= lowest && x <= highest)) {
+            fail(inQuotes(path) + " must be from " + formatNumber(lowest) + " to " + formatNumber(highest) +
+                 std::string(unit) + " (got " + describe(value) + ")");
+        }
         return x;
     }
 
@@ -256,16 +270,21 @@ class SceneReader {
         return v;
     }
 
-    // A linear RGB colour: three non-negative numbers (above 1 is allowed: light can be bright).
-    glm::vec3 color(const Json& value, const std::string& path) const {
-        const glm::vec3 c = vec3(value, path, "[1, 0.5, 0.2]");
+    // [x, y, z] with no negative component.
+    glm::vec3 nonNegativeVector(const Json& value, const std::string& path, std::string_view example) const {
+        const glm::vec3 v = vec3(value, path, example);
         for (int i = 0; i < 3; ++i) {
-            if (c[i] < 0.0f) {
-                fail(inQuotes(elementPath(path, i)) + " must not be negative (got " + formatNumber(c[i]) +
+            if (v[i] < 0.0f) {
+                fail(inQuotes(elementPath(path, i)) + " must not be negative (got " + describe(value[i]) +
                      ")");
             }
         }
-        return c;
+        return v;
+    }
+
+    // A colour: three non-negative numbers (above 1 is allowed: light can be bright).
+    glm::vec3 color(const Json& value, const std::string& path) const {
+        return nonNegativeVector(value, path, "[1, 0.5, 0.2]");
     }
 
     glm::vec3 nonZeroVector(const Json& value, const std::string& path) const {
@@ -307,15 +326,28 @@ class SceneReader {
 
 // ---- The scene sections --------------------------------------------------------------------------
 
-constexpr std::string_view kTopLevelKeys[] = {"width",  "height",  "background", "ambient", "camera",
-                                              "lights", "objects", "model",      "pipeline"};
+constexpr std::string_view kTopLevelKeys[] = {"width",  "height",  "background", "ambient",  "camera",
+                                              "lights", "objects", "model",      "pipeline", "lighting"};
 constexpr std::string_view kCameraKeys[] = {"eye", "target", "up", "fovy", "near", "far"};
-constexpr std::string_view kLightKeys[] = {"type", "direction", "position", "color", "intensity", "space"};
-constexpr std::string_view kObjectKeys[] = {"model", "translate", "rotate", "scale", "material"};
-constexpr std::string_view kMaterialKeys[] = {"ambient",  "diffuse",   "specular",
-                                              "emission", "shininess", "opacity"};
+constexpr std::string_view kLightKeys[] = {"type",     "direction", "position", "color",       "intensity",
+                                           "ambient",  "diffuse",   "specular", "attenuation", "cutoff",
+                                           "exponent", "inner",     "outer",    "space"};
+constexpr std::string_view kSpotOnlyKeys[] = {"cutoff", "exponent", "inner", "outer"};
+constexpr std::string_view kObjectKeys[] = {"model", "translate", "rotate", "scale", "material", "lighting"};
+constexpr std::string_view kMaterialKeys[] = {"ambient",   "diffuse",   "specular", "emission",
+                                              "shininess", "opacity",   "preset",   "base_color",
+                                              "metalness", "roughness", "f0"};
 constexpr std::string_view kPipelineKeys[] = {"cull", "interpolation", "subpixel_bits"};
-constexpr std::string_view kLightTypes[] = {"directional", "point"};
+constexpr std::string_view kLightingKeys[] = {"preset",       "model",   "shading", "crease_angle",
+                                              "distribution", "fresnel", "geometry"};
+constexpr std::string_view kObjectLightingKeys[] = {"model", "shading"};
+constexpr std::string_view kLightTypes[] = {"directional", "point", "spot"};  // in LightType order
+constexpr std::string_view kLightingPresetNames[] = {"facet", "gl"};          // in LightingPreset order
+constexpr std::string_view kReflectionModelNames[] = {"phong", "blinn-phong", "cook-torrance"};  // enum order
+constexpr std::string_view kShadingNames[] = {"flat", "gouraud", "phong"};  // in ShadingFrequency order
+constexpr std::string_view kDistributionNames[] = {"ggx", "beckmann"};
+constexpr std::string_view kFresnelNames[] = {"schlick", "exact"};
+constexpr std::string_view kGeometryNames[] = {"smith-ggx", "cook-torrance"};
 constexpr std::string_view kLightSpaces[] = {"world", "camera"};
 constexpr std::string_view kCullNames[] = {"back", "front", "none"};  // in CullChoice order
 constexpr std::string_view kInterpolationNames[] = {"perspective", "affine"};
@@ -388,31 +420,126 @@ LightSpec readLight(const SceneReader& reader, const Json& light, const std::str
     reader.requireObject(light, path,
                          "an object like {\"type\": \"directional\", \"direction\": [0, -1, 0]}");
     reader.checkKeys(light, path, kLightKeys);
+    const auto key = [&](std::string_view name) { return inQuotes(childPath(path, name)); };
 
     LightSpec spec;
     if (const Json* v = reader.find(light, "type")) {
-        spec.type = reader.choice(*v, childPath(path, "type"), kLightTypes) == 0 ? LightType::Directional
-                                                                                 : LightType::Point;
+        constexpr LightType kTypes[] = {LightType::Directional, LightType::Point, LightType::Spot};
+        spec.type = kTypes[reader.choice(*v, childPath(path, "type"), kLightTypes)];
     }
     // A key that the type ignores is almost always a forgotten "type": say so rather than ignore it.
     if (spec.type == LightType::Directional && light.contains("position")) {
-        reader.fail(inQuotes(childPath(path, "position")) +
-                    " is only for point lights (add \"type\": \"point\")");
+        reader.fail(key("position") + " is only for point and spot lights (add \"type\": \"point\")");
+    }
+    if (spec.type == LightType::Directional && light.contains("attenuation")) {
+        reader.fail(key("attenuation") +
+                    " is only for point and spot lights: a directional light is infinitely far and does "
+                    "not fade (add \"type\": \"point\")");
     }
     if (spec.type == LightType::Point && light.contains("direction")) {
-        reader.fail(inQuotes(childPath(path, "direction")) + " is only for directional lights");
+        reader.fail(key("direction") +
+                    " is only for directional and spot lights: a point light shines every way (add "
+                    "\"type\": \"spot\" for a cone)");
     }
-    if (const Json* v = reader.find(light, "direction"))
+    if (spec.type != LightType::Spot) {
+        for (std::string_view name : kSpotOnlyKeys) {
+            if (light.contains(name))
+                reader.fail(key(name) + " is only for spot lights (add \"type\": \"spot\")");
+        }
+    }
+
+    if (const Json* v = reader.find(light, "direction")) {
         spec.direction = reader.nonZeroVector(*v, childPath(path, "direction"));
+    } else if (spec.type == LightType::Spot) {
+        spec.direction = glm::vec3(0.0f, -1.0f, 0.0f);
+    }
     if (const Json* v = reader.find(light, "position"))
         spec.position = reader.vec3(*v, childPath(path, "position"));
     if (const Json* v = reader.find(light, "color")) spec.color = reader.color(*v, childPath(path, "color"));
     if (const Json* v = reader.find(light, "intensity"))
         spec.intensity = reader.nonNegative(*v, childPath(path, "intensity"));
+    if (const Json* v = reader.find(light, "ambient"))
+        spec.ambient = reader.color(*v, childPath(path, "ambient"));
+    if (const Json* v = reader.find(light, "diffuse"))
+        spec.diffuse = reader.color(*v, childPath(path, "diffuse"));
+    if (const Json* v = reader.find(light, "specular"))
+        spec.specular = reader.color(*v, childPath(path, "specular"));
+    if (const Json* v = reader.find(light, "attenuation")) {
+        spec.attenuation = reader.nonNegativeVector(*v, childPath(path, "attenuation"), "[1, 0.1, 0.01]");
+        if (spec.attenuation == glm::vec3(0.0f)) {
+            reader.fail(key("attenuation") +
+                        " must not be all zero: 1/(c0 + c1*d + c2*d^2) would divide by zero (got [0, 0, 0])");
+        }
+    }
+
+    // The spot's profile: "cutoff" and "exponent" (OpenGL's) or "inner" and "outer" (smooth), not a mix.
+    if (spec.type == LightType::Spot) {
+        const Json* inner = reader.find(light, "inner");
+        const Json* outer = reader.find(light, "outer");
+        if ((inner == nullptr) != (outer == nullptr)) {
+            reader.fail(key(inner ? "inner" : "outer") + " needs " + key(inner ? "outer" : "inner") +
+                        " too: give both for the smooth spot profile, or neither");
+        }
+        for (std::string_view name : {"cutoff", "exponent"}) {
+            if (inner && light.contains(name)) {
+                reader.fail(key(name) +
+                            " cannot be given with \"inner\" and \"outer\": \"cutoff\" and \"exponent\" set "
+                            "the OpenGL spot profile, \"inner\" and \"outer\" the smooth one; choose one");
+            }
+        }
+        if (const Json* v = reader.find(light, "cutoff"))
+            spec.spotCutoffDegrees =
+                reader.numberFromTo(*v, childPath(path, "cutoff"), 0.0f, 90.0f, " degrees");
+        if (const Json* v = reader.find(light, "exponent"))
+            spec.spotExponent = reader.numberFromTo(*v, childPath(path, "exponent"), 0.0f, 128.0f);
+        if (inner) {
+            spec.spotInnerDegrees =
+                reader.numberFromTo(*inner, childPath(path, "inner"), 0.0f, 90.0f, " degrees");
+            spec.spotOuterDegrees =
+                reader.numberFromTo(*outer, childPath(path, "outer"), 0.0f, 90.0f, " degrees");
+            if (!(*spec.spotInnerDegrees < *spec.spotOuterDegrees)) {
+                reader.fail(key("inner") + " (" + describe(*inner) + ") must be less than " + key("outer") +
+                            " (" + describe(*outer) + ")");
+            }
+        }
+    }
     if (const Json* v = reader.find(light, "space")) {
         spec.cameraRelative = reader.choice(*v, childPath(path, "space"), kLightSpaces) == 1;
     }
     return spec;
+}
+
+// f0: one number for all three channels or [r, g, b], each 0..1.
+glm::vec3 readF0(const SceneReader& reader, const Json& value, const std::string& path) {
+    if (value.is_number()) return glm::vec3(reader.numberFromTo(value, path, 0.0f, 1.0f));
+    if (!value.is_array() || value.size() != 3) {
+        reader.fail(inQuotes(path) +
+                    " must be a number or an array of 3 numbers like [0.04, 0.04, 0.04] (got " +
+                    describe(value) + ")");
+    }
+    glm::vec3 f0;
+    for (int i = 0; i < 3; ++i)
+        f0[i] = reader.numberFromTo(value[i], elementPath(path, i), 0.0f, 1.0f);
+    return f0;
+}
+
+// The preset's name as kMaterialPresets spells it ("Gold" and "aluminum" are accepted too).
+std::string readMaterialPreset(const SceneReader& reader, const Json& value, const std::string& path) {
+    const std::string name = reader.string(value, path);
+    if (const std::optional<MaterialPreset> preset = findMaterialPreset(name))
+        return std::string(preset->name);
+
+    std::array<std::string_view, std::tuple_size_v<decltype(kMaterialPresets)>> names;
+    std::string list;
+    for (std::size_t i = 0; i < names.size(); ++i) {
+        names[i] = kMaterialPresets[i].name;
+        list += (list.empty() ? "" : ", ") + inQuotes(names[i]);
+    }
+    std::string lower = name;
+    for (char& c : lower)
+        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    reader.fail(inQuotes(path) + " must be one of the material presets " + list + " (got " + inQuotes(name) +
+                ")" + suggestion(lower, names));
 }
 
 MaterialOverride readMaterial(const SceneReader& reader, const Json& material, const std::string& path) {
@@ -430,14 +557,55 @@ MaterialOverride readMaterial(const SceneReader& reader, const Json& material, c
         spec.emission = reader.color(*v, childPath(path, "emission"));
     if (const Json* v = reader.find(material, "shininess"))
         spec.shininess = reader.nonNegative(*v, childPath(path, "shininess"));
-    if (const Json* v = reader.find(material, "opacity")) {
-        spec.opacity = reader.number(*v, childPath(path, "opacity"));
-        if (!(*spec.opacity >= 0.0f && *spec.opacity <= 1.0f)) {
-            reader.fail(inQuotes(childPath(path, "opacity")) + " must be from 0 to 1 (got " +
-                        formatNumber(*spec.opacity) + ")");
+    if (const Json* v = reader.find(material, "opacity"))
+        spec.opacity = reader.numberFromTo(*v, childPath(path, "opacity"), 0.0f, 1.0f);
+
+    // Physically based keys.
+    if (const Json* v = reader.find(material, "preset"))
+        spec.preset = readMaterialPreset(reader, *v, childPath(path, "preset"));
+    if (const Json* v = reader.find(material, "base_color"))
+        spec.baseColor = reader.color(*v, childPath(path, "base_color"));
+    if (const Json* v = reader.find(material, "metalness"))
+        spec.metalness = reader.numberFromTo(*v, childPath(path, "metalness"), 0.0f, 1.0f);
+    if (const Json* v = reader.find(material, "roughness"))
+        spec.roughness = reader.numberFromTo(*v, childPath(path, "roughness"), 0.0f, 1.0f);
+    if (const Json* v = reader.find(material, "f0")) spec.f0 = readF0(reader, *v, childPath(path, "f0"));
+    return spec;
+}
+
+ReflectionModel readReflectionModel(const SceneReader& reader, const Json& value, const std::string& path) {
+    constexpr ReflectionModel kModels[] = {ReflectionModel::Phong, ReflectionModel::BlinnPhong,
+                                           ReflectionModel::CookTorrance};
+    return kModels[reader.choice(value, path, kReflectionModelNames)];
+}
+
+ShadingFrequency readShading(const SceneReader& reader, const Json& value, const std::string& path) {
+    constexpr ShadingFrequency kFrequencies[] = {ShadingFrequency::Flat, ShadingFrequency::Gouraud,
+                                                 ShadingFrequency::Phong};
+    return kFrequencies[reader.choice(value, path, kShadingNames)];
+}
+
+// An object's "lighting": only the reflection model and the shading frequency can differ per object.
+void readObjectLighting(const SceneReader& reader, const Json& lighting, const std::string& path,
+                        ObjectSpec& spec) {
+    reader.requireObject(lighting, path,
+                         "an object like {\"model\": \"cook-torrance\", \"shading\": \"flat\"}");
+    for (const auto& [key, value] : lighting.items()) {
+        const bool perObject = std::find(std::begin(kObjectLightingKeys), std::end(kObjectLightingKeys),
+                                         key) != std::end(kObjectLightingKeys);
+        const bool sceneWide =
+            std::find(std::begin(kLightingKeys), std::end(kLightingKeys), key) != std::end(kLightingKeys);
+        if (!perObject && sceneWide) {
+            reader.fail(inQuotes(childPath(path, key)) +
+                        " cannot be set per object (only \"model\" and \"shading\" can): set it in the "
+                        "top-level \"lighting\"");
         }
     }
-    return spec;
+    reader.checkKeys(lighting, path, kObjectLightingKeys);
+    if (const Json* v = reader.find(lighting, "model"))
+        spec.reflection = readReflectionModel(reader, *v, childPath(path, "model"));
+    if (const Json* v = reader.find(lighting, "shading"))
+        spec.shading = readShading(reader, *v, childPath(path, "shading"));
 }
 
 // The model path as written, checked for existence relative to the scene file's folder.
@@ -480,6 +648,8 @@ ObjectSpec readObject(const SceneReader& reader, const Json& object, const std::
     }
     if (const Json* v = reader.find(object, "material"))
         spec.material = readMaterial(reader, *v, childPath(path, "material"));
+    if (const Json* v = reader.find(object, "lighting"))
+        readObjectLighting(reader, *v, childPath(path, "lighting"), spec);
 
     // worldFromObject = T · Rz · Ry · Rx · S: scale first, then rotate about X, Y, Z (fixed axes),
     // then translate. glm::rotate/scale multiply on the right, so the calls read left to right.
@@ -508,6 +678,45 @@ PipelineOptions readPipeline(const SceneReader& reader, const Json& pipeline) {
     }
     if (const Json* v = reader.find(pipeline, "subpixel_bits")) {
         options.subpixelBits = reader.wholeNumber(*v, "pipeline.subpixel_bits", 0, 8);
+    }
+    return options;
+}
+
+// The scene's "lighting": a preset name alone, or an object.
+LightingOptions readLighting(const SceneReader& reader, const Json& lighting) {
+    const std::string path = "lighting";
+    constexpr LightingPreset kPresets[] = {LightingPreset::Facet, LightingPreset::GL};
+    LightingOptions options;
+    if (lighting.is_string()) {
+        options.preset = kPresets[reader.choice(lighting, path, kLightingPresetNames)];
+        return options;
+    }
+    reader.requireObject(lighting, path,
+                         "\"facet\", \"gl\" or an object like {\"model\": \"cook-torrance\"}");
+    reader.checkKeys(lighting, path, kLightingKeys);
+
+    if (const Json* v = reader.find(lighting, "preset"))
+        options.preset = kPresets[reader.choice(*v, "lighting.preset", kLightingPresetNames)];
+    if (const Json* v = reader.find(lighting, "model"))
+        options.model = readReflectionModel(reader, *v, "lighting.model");
+    if (const Json* v = reader.find(lighting, "shading"))
+        options.shading = readShading(reader, *v, "lighting.shading");
+    if (const Json* v = reader.find(lighting, "crease_angle"))
+        options.creaseAngleDegrees =
+            reader.numberFromTo(*v, "lighting.crease_angle", 0.0f, 180.0f, " degrees");
+    if (const Json* v = reader.find(lighting, "distribution")) {
+        constexpr NormalDistribution kDistributions[] = {NormalDistribution::GGX,
+                                                         NormalDistribution::Beckmann};
+        options.brdf.distribution =
+            kDistributions[reader.choice(*v, "lighting.distribution", kDistributionNames)];
+    }
+    if (const Json* v = reader.find(lighting, "fresnel")) {
+        constexpr FresnelModel kFresnels[] = {FresnelModel::Schlick, FresnelModel::Exact};
+        options.brdf.fresnel = kFresnels[reader.choice(*v, "lighting.fresnel", kFresnelNames)];
+    }
+    if (const Json* v = reader.find(lighting, "geometry")) {
+        constexpr GeometryTerm kGeometries[] = {GeometryTerm::SmithGGX, GeometryTerm::CookTorrance};
+        options.brdf.geometry = kGeometries[reader.choice(*v, "lighting.geometry", kGeometryNames)];
     }
     return options;
 }
@@ -584,6 +793,7 @@ Scene loadScene(const fs::path& path) {
     if (const Json* v = reader.find(document, "ambient")) scene.ambientLight = reader.color(*v, "ambient");
     if (const Json* v = reader.find(document, "camera")) scene.camera = readCamera(reader, *v);
     if (const Json* v = reader.find(document, "pipeline")) scene.pipeline = readPipeline(reader, *v);
+    if (const Json* v = reader.find(document, "lighting")) scene.lighting = readLighting(reader, *v);
 
     if (const Json* lights = reader.find(document, "lights")) {
         if (!lights->is_array())

@@ -262,6 +262,252 @@ TEST_F(SceneTest, WholeNumberMayBeWrittenWithAFraction) {
     EXPECT_EQ(scene.height, kMaxImageSide);
 }
 
+// ---- Lighting ------------------------------------------------------------------------------------
+
+TEST_F(SceneTest, LightingDefaultsWhenAbsent) {
+    touch("m.obj");
+    const Scene scene = loadScene(write("scene.json", R"({"model": "m.obj"})"));
+    EXPECT_EQ(scene.lighting.preset, LightingPreset::Facet);
+    EXPECT_EQ(scene.lighting.model, ReflectionModel::BlinnPhong);
+    EXPECT_FALSE(scene.lighting.shading.has_value());
+    EXPECT_EQ(scene.lighting.shadingOrDefault(), ShadingFrequency::Phong);
+    EXPECT_EQ(scene.lighting.creaseAngleDegrees, 60.0f);
+    EXPECT_EQ(scene.lighting.brdf.distribution, NormalDistribution::GGX);
+    EXPECT_EQ(scene.lighting.brdf.fresnel, FresnelModel::Schlick);
+    EXPECT_EQ(scene.lighting.brdf.geometry, GeometryTerm::SmithGGX);
+    EXPECT_FALSE(scene.objects[0].reflection.has_value());
+    EXPECT_FALSE(scene.objects[0].shading.has_value());
+    EXPECT_FALSE(scene.objects[0].material.physicallyBased());
+}
+
+// The string form sets the preset and nothing else; the GL preset's shading default is Gouraud.
+TEST_F(SceneTest, LightingStringIsAPresetOnly) {
+    touch("m.obj");
+    const Scene gl = loadScene(write("gl.json", R"({"model": "m.obj", "lighting": "gl"})"));
+    EXPECT_EQ(gl.lighting.preset, LightingPreset::GL);
+    EXPECT_EQ(gl.lighting.model, ReflectionModel::BlinnPhong);
+    EXPECT_FALSE(gl.lighting.shading.has_value());
+    EXPECT_EQ(gl.lighting.shadingOrDefault(), ShadingFrequency::Gouraud);
+    EXPECT_EQ(gl.lighting.creaseAngleDegrees, 60.0f);
+
+    const Scene facet = loadScene(write("facet.json", R"({"model": "m.obj", "lighting": "facet"})"));
+    EXPECT_EQ(facet.lighting.preset, LightingPreset::Facet);
+    EXPECT_EQ(facet.lighting.shadingOrDefault(), ShadingFrequency::Phong);
+}
+
+TEST_F(SceneTest, LightingReadsEveryKey) {
+    touch("m.obj");
+    const Scene scene = loadScene(write("scene.json", R"({"model": "m.obj", "lighting": {
+        "preset": "gl", "model": "cook-torrance", "shading": "flat", "crease_angle": 35.5,
+        "distribution": "beckmann", "fresnel": "exact", "geometry": "cook-torrance"}})"));
+    EXPECT_EQ(scene.lighting.preset, LightingPreset::GL);
+    EXPECT_EQ(scene.lighting.model, ReflectionModel::CookTorrance);
+    ASSERT_TRUE(scene.lighting.shading.has_value());
+    EXPECT_EQ(*scene.lighting.shading, ShadingFrequency::Flat);
+    EXPECT_EQ(scene.lighting.shadingOrDefault(), ShadingFrequency::Flat);
+    EXPECT_EQ(scene.lighting.creaseAngleDegrees, 35.5f);
+    EXPECT_EQ(scene.lighting.brdf.distribution, NormalDistribution::Beckmann);
+    EXPECT_EQ(scene.lighting.brdf.fresnel, FresnelModel::Exact);
+    EXPECT_EQ(scene.lighting.brdf.geometry, GeometryTerm::CookTorrance);
+}
+
+// Every name maps to its own enum value (both ends of the crease range are allowed).
+TEST_F(SceneTest, LightingChoicesMapToTheirEnums) {
+    touch("m.obj");
+    const auto lighting = [&](const std::string& object) {
+        return loadScene(write("scene.json", R"({"model": "m.obj", "lighting": )" + object + "}")).lighting;
+    };
+    EXPECT_EQ(lighting(R"({"model": "phong"})").model, ReflectionModel::Phong);
+    EXPECT_EQ(lighting(R"({"model": "blinn-phong"})").model, ReflectionModel::BlinnPhong);
+    EXPECT_EQ(lighting(R"({"model": "cook-torrance"})").model, ReflectionModel::CookTorrance);
+    EXPECT_EQ(lighting(R"({"shading": "flat"})").shading, ShadingFrequency::Flat);
+    EXPECT_EQ(lighting(R"({"shading": "gouraud"})").shading, ShadingFrequency::Gouraud);
+    EXPECT_EQ(lighting(R"({"shading": "phong"})").shading, ShadingFrequency::Phong);
+    EXPECT_EQ(lighting(R"({"preset": "gl"})").preset, LightingPreset::GL);
+    EXPECT_EQ(lighting(R"({"preset": "facet"})").preset, LightingPreset::Facet);
+    EXPECT_EQ(lighting(R"({"distribution": "ggx"})").brdf.distribution, NormalDistribution::GGX);
+    EXPECT_EQ(lighting(R"({"distribution": "beckmann"})").brdf.distribution, NormalDistribution::Beckmann);
+    EXPECT_EQ(lighting(R"({"fresnel": "schlick"})").brdf.fresnel, FresnelModel::Schlick);
+    EXPECT_EQ(lighting(R"({"fresnel": "exact"})").brdf.fresnel, FresnelModel::Exact);
+    EXPECT_EQ(lighting(R"({"geometry": "smith-ggx"})").brdf.geometry, GeometryTerm::SmithGGX);
+    EXPECT_EQ(lighting(R"({"geometry": "cook-torrance"})").brdf.geometry, GeometryTerm::CookTorrance);
+    EXPECT_EQ(lighting(R"({"crease_angle": 0})").creaseAngleDegrees, 0.0f);
+    EXPECT_EQ(lighting(R"({"crease_angle": 180})").creaseAngleDegrees, 180.0f);
+    // The GL preset with an explicit shading keeps it.
+    EXPECT_EQ(lighting(R"({"preset": "gl", "shading": "phong"})").shadingOrDefault(),
+              ShadingFrequency::Phong);
+}
+
+TEST_F(SceneTest, ObjectLightingSetsModelAndShading) {
+    touch("m.obj");
+    const Scene scene = loadScene(write("scene.json", R"({"objects": [
+        {"model": "m.obj", "lighting": {"model": "cook-torrance", "shading": "gouraud"}},
+        {"model": "m.obj", "lighting": {"shading": "flat"}},
+        {"model": "m.obj", "lighting": {"model": "phong"}},
+        {"model": "m.obj", "lighting": {}}]})"));
+    ASSERT_EQ(scene.objects.size(), 4u);
+    EXPECT_EQ(scene.objects[0].reflection, ReflectionModel::CookTorrance);
+    EXPECT_EQ(scene.objects[0].shading, ShadingFrequency::Gouraud);
+    EXPECT_FALSE(scene.objects[1].reflection.has_value());
+    EXPECT_EQ(scene.objects[1].shading, ShadingFrequency::Flat);
+    EXPECT_EQ(scene.objects[2].reflection, ReflectionModel::Phong);
+    EXPECT_FALSE(scene.objects[2].shading.has_value());
+    EXPECT_FALSE(scene.objects[3].reflection.has_value());
+    EXPECT_FALSE(scene.objects[3].shading.has_value());
+    // The scene-wide settings are untouched.
+    EXPECT_EQ(scene.lighting.model, ReflectionModel::BlinnPhong);
+    EXPECT_FALSE(scene.lighting.shading.has_value());
+}
+
+// ---- Lights: spot, per-term colours, attenuation ---------------------------------------------------
+
+TEST_F(SceneTest, SpotLightReadsEveryKey) {
+    touch("m.obj");
+    const Scene scene = loadScene(write("scene.json", R"({"model": "m.obj", "lights": [
+        {"type": "spot", "position": [1, 2, 3], "direction": [0, -1, -1], "color": [1, 0.5, 0.25],
+         "intensity": 4, "ambient": [0.1, 0.2, 0.3], "diffuse": [0.9, 0.8, 0.7], "specular": [0.5, 0.6, 0.7],
+         "attenuation": [0.5, 0.25, 0.125], "cutoff": 25, "exponent": 12, "space": "camera"}]})"));
+    ASSERT_EQ(scene.lights.size(), 1u);
+    const LightSpec& light = scene.lights[0];
+    EXPECT_EQ(light.type, LightType::Spot);
+    EXPECT_EQ(light.position, glm::vec3(1, 2, 3));
+    EXPECT_EQ(light.direction, glm::vec3(0, -1, -1));
+    EXPECT_EQ(light.color, glm::vec3(1, 0.5f, 0.25f));
+    EXPECT_EQ(light.intensity, 4.0f);
+    ASSERT_TRUE(light.ambient && light.diffuse && light.specular);
+    EXPECT_EQ(*light.ambient, glm::vec3(0.1f, 0.2f, 0.3f));
+    EXPECT_EQ(*light.diffuse, glm::vec3(0.9f, 0.8f, 0.7f));
+    EXPECT_EQ(*light.specular, glm::vec3(0.5f, 0.6f, 0.7f));
+    EXPECT_EQ(light.attenuation, glm::vec3(0.5f, 0.25f, 0.125f));
+    EXPECT_EQ(light.spotCutoffDegrees, 25.0f);
+    EXPECT_EQ(light.spotExponent, 12.0f);
+    EXPECT_FALSE(light.spotInnerDegrees.has_value());
+    EXPECT_FALSE(light.spotOuterDegrees.has_value());
+    EXPECT_TRUE(light.cameraRelative);
+}
+
+TEST_F(SceneTest, SpotLightSmoothProfile) {
+    touch("m.obj");
+    const Scene scene = loadScene(write("scene.json", R"({"model": "m.obj", "lights": [
+        {"type": "spot", "inner": 12.5, "outer": 30},
+        {"type": "spot", "inner": 0, "outer": 90}]})"));
+    ASSERT_EQ(scene.lights.size(), 2u);
+    ASSERT_TRUE(scene.lights[0].spotInnerDegrees && scene.lights[0].spotOuterDegrees);
+    EXPECT_EQ(*scene.lights[0].spotInnerDegrees, 12.5f);
+    EXPECT_EQ(*scene.lights[0].spotOuterDegrees, 30.0f);
+    // The OpenGL profile's values stay at their defaults.
+    EXPECT_EQ(scene.lights[0].spotCutoffDegrees, LightSpec{}.spotCutoffDegrees);
+    EXPECT_EQ(scene.lights[0].spotExponent, LightSpec{}.spotExponent);
+    // The extremes of the range are allowed.
+    EXPECT_EQ(scene.lights[1].spotInnerDegrees, 0.0f);
+    EXPECT_EQ(scene.lights[1].spotOuterDegrees, 90.0f);
+}
+
+// A spot without "direction" points straight down; a directional light keeps its own default.
+TEST_F(SceneTest, SpotDirectionDefaultsDown) {
+    touch("m.obj");
+    const Scene scene = loadScene(write("scene.json", R"({"model": "m.obj", "lights": [
+        {"type": "spot", "position": [0, 3, 0]}, {"type": "directional"}, {"type": "point"}]})"));
+    ASSERT_EQ(scene.lights.size(), 3u);
+    EXPECT_EQ(scene.lights[0].type, LightType::Spot);
+    EXPECT_EQ(scene.lights[0].direction, glm::vec3(0, -1, 0));
+    EXPECT_EQ(scene.lights[0].position, glm::vec3(0, 3, 0));
+    EXPECT_EQ(scene.lights[0].spotCutoffDegrees, 30.0f);
+    EXPECT_EQ(scene.lights[0].spotExponent, 0.0f);
+    EXPECT_EQ(scene.lights[0].attenuation, glm::vec3(1, 0, 0));
+    EXPECT_EQ(scene.lights[1].direction, glm::vec3(-0.4f, -0.6f, -0.7f));
+    EXPECT_EQ(scene.lights[2].type, LightType::Point);
+}
+
+TEST_F(SceneTest, PointLightTermColoursAndAttenuation) {
+    touch("m.obj");
+    const Scene scene = loadScene(write("scene.json", R"({"model": "m.obj", "lights": [
+        {"type": "point", "attenuation": [0, 0, 1], "specular": [0, 0, 0]},
+        {"type": "directional", "ambient": [0.2, 0.2, 0.2]},
+        {"type": "point"}]})"));
+    ASSERT_EQ(scene.lights.size(), 3u);
+    EXPECT_EQ(scene.lights[0].attenuation, glm::vec3(0, 0, 1));
+    EXPECT_FALSE(scene.lights[0].ambient.has_value());
+    EXPECT_FALSE(scene.lights[0].diffuse.has_value());
+    ASSERT_TRUE(scene.lights[0].specular.has_value());
+    EXPECT_EQ(*scene.lights[0].specular, glm::vec3(0.0f));
+    EXPECT_EQ(scene.lights[1].ambient, glm::vec3(0.2f));
+    EXPECT_EQ(scene.lights[1].attenuation, glm::vec3(1, 0, 0));
+    EXPECT_EQ(scene.lights[2].attenuation, glm::vec3(1, 0, 0));
+}
+
+// ---- Materials: physically based keys -------------------------------------------------------------
+
+TEST_F(SceneTest, MaterialReadsPhysicallyBasedKeys) {
+    touch("m.obj");
+    const Scene scene = loadScene(write("scene.json", R"({"objects": [
+        {"model": "m.obj", "material": {"preset": "gold", "base_color": [0.9, 0.6, 0.2], "metalness": 0.75,
+                                        "roughness": 0.3, "f0": [0.1, 0.2, 0.3], "diffuse": [0.5, 0.5, 0.5]}},
+        {"model": "m.obj", "material": {"roughness": 0}},
+        {"model": "m.obj", "material": {"diffuse": [1, 0, 0]}}]})"));
+    const MaterialOverride& m = scene.objects[0].material;
+    ASSERT_TRUE(m.preset && m.baseColor && m.metalness && m.roughness && m.f0 && m.diffuse);
+    EXPECT_EQ(*m.preset, "gold");
+    EXPECT_EQ(*m.baseColor, glm::vec3(0.9f, 0.6f, 0.2f));
+    EXPECT_EQ(*m.metalness, 0.75f);
+    EXPECT_EQ(*m.roughness, 0.3f);
+    EXPECT_EQ(*m.f0, glm::vec3(0.1f, 0.2f, 0.3f));
+    EXPECT_EQ(*m.diffuse, glm::vec3(0.5f));
+    EXPECT_TRUE(m.physicallyBased());
+
+    const MaterialOverride& rough = scene.objects[1].material;
+    EXPECT_EQ(rough.roughness, 0.0f);
+    EXPECT_FALSE(rough.preset.has_value());
+    EXPECT_FALSE(rough.metalness.has_value());
+    EXPECT_TRUE(rough.physicallyBased());
+    EXPECT_FALSE(scene.objects[2].material.physicallyBased());
+}
+
+// Preset names ignore case and are stored as kMaterialPresets spells them; "aluminum" is accepted.
+TEST_F(SceneTest, MaterialPresetIgnoresCase) {
+    touch("m.obj");
+    const Scene scene = loadScene(write("scene.json", R"({"objects": [
+        {"model": "m.obj", "material": {"preset": "Gold"}},
+        {"model": "m.obj", "material": {"preset": "ALUMINUM"}},
+        {"model": "m.obj", "material": {"preset": "water"}}]})"));
+    EXPECT_EQ(scene.objects[0].material.preset, "gold");
+    EXPECT_EQ(scene.objects[1].material.preset, "aluminium");
+    EXPECT_EQ(scene.objects[2].material.preset, "water");
+}
+
+// Every preset of the table is accepted by name.
+TEST_F(SceneTest, EveryMaterialPresetIsAccepted) {
+    touch("m.obj");
+    for (const MaterialPreset& preset : kMaterialPresets) {
+        const std::string name(preset.name);
+        const Scene scene = loadScene(write(
+            "scene.json", R"({"objects": [{"model": "m.obj", "material": {"preset": ")" + name + "\"}}]}"));
+        EXPECT_EQ(scene.objects[0].material.preset, name);
+    }
+}
+
+TEST_F(SceneTest, F0NumberSetsAllThreeChannels) {
+    touch("m.obj");
+    const Scene scene = loadScene(write("scene.json", R"({"objects": [
+        {"model": "m.obj", "material": {"f0": 0.04}},
+        {"model": "m.obj", "material": {"f0": 1}},
+        {"model": "m.obj", "material": {"f0": [0, 0.5, 1]}}]})"));
+    EXPECT_EQ(scene.objects[0].material.f0, glm::vec3(0.04f));
+    EXPECT_EQ(scene.objects[1].material.f0, glm::vec3(1.0f));
+    EXPECT_EQ(scene.objects[2].material.f0, glm::vec3(0, 0.5f, 1));
+}
+
+// The full message for an unknown preset lists every name.
+TEST_F(SceneTest, UnknownMaterialPresetListsEveryName) {
+    const std::string message =
+        errorOf(R"({"objects": [{"model": "m.obj", "material": {"preset": "unobtainium"}}]})");
+    EXPECT_EQ(message, (folder_ / "scene.json").string() +
+                           R"(: "objects[0].material.preset" must be one of the material presets "water", )"
+                           R"("skin", "hair", "titanium", "chromium", "iron", "nickel", "platinum", )"
+                           R"("copper", "palladium", "mercury", "brass", "zinc", "gold", "aluminium", )"
+                           R"("silver" (got "unobtainium"))");
+}
+
 TEST(SceneForModel, OneModelAndEveryDefault) {
     const Scene scene = sceneForModel("models/spot/spot_triangulated.obj");
     EXPECT_EQ(scene.source, fs::path("models/spot/spot_triangulated.obj"));
@@ -293,6 +539,42 @@ TEST_F(SceneTest, ExampleSceneLoads) {
     EXPECT_EQ(scene.lights[0].type, LightType::Directional);
     EXPECT_EQ(scene.lights[1].type, LightType::Point);
     EXPECT_TRUE(scene.camera.eye.has_value());
+}
+
+// The bundled lighting example loads as committed (its models are in models/) with the values it shows.
+TEST(SceneLightingExample, LoadsWithItsLightingKeys) {
+    const fs::path path = fs::path(FACET_SOURCE_DIR) / "models/lighting-scene.json";
+    const Scene scene = loadScene(path);
+
+    EXPECT_EQ(scene.lighting.preset, LightingPreset::Facet);
+    EXPECT_EQ(scene.lighting.model, ReflectionModel::BlinnPhong);
+    EXPECT_EQ(scene.lighting.shading, ShadingFrequency::Phong);
+    EXPECT_EQ(scene.lighting.creaseAngleDegrees, 60.0f);
+
+    ASSERT_EQ(scene.lights.size(), 2u);
+    const LightSpec& spot = scene.lights[0];
+    EXPECT_EQ(spot.type, LightType::Spot);
+    EXPECT_EQ(spot.position, glm::vec3(0.0f, 3.0f, 1.5f));
+    EXPECT_EQ(spot.direction, glm::vec3(0.0f, -3.0f, -1.5f));
+    EXPECT_EQ(spot.spotInnerDegrees, 18.0f);
+    EXPECT_EQ(spot.spotOuterDegrees, 28.0f);
+    EXPECT_EQ(spot.attenuation, glm::vec3(0, 0, 1));
+    EXPECT_EQ(spot.intensity, 9.0f);
+    const LightSpec& point = scene.lights[1];
+    EXPECT_EQ(point.type, LightType::Point);
+    EXPECT_EQ(point.attenuation, glm::vec3(1.0f, 0.2f, 0.05f));
+    EXPECT_EQ(point.ambient, glm::vec3(0.05f, 0.04f, 0.03f));
+
+    ASSERT_EQ(scene.objects.size(), 2u);
+    EXPECT_EQ(scene.objects[0].model, path.parent_path() / "spot/spot_triangulated.obj");
+    EXPECT_EQ(scene.objects[0].material.preset, "gold");
+    EXPECT_EQ(scene.objects[0].material.roughness, 0.35f);
+    EXPECT_EQ(scene.objects[0].reflection, ReflectionModel::CookTorrance);
+    EXPECT_FALSE(scene.objects[0].shading.has_value());
+    EXPECT_EQ(scene.objects[1].model, path.parent_path() / "cube/cube.obj");
+    EXPECT_EQ(scene.objects[1].reflection, ReflectionModel::Phong);
+    EXPECT_EQ(scene.objects[1].shading, ShadingFrequency::Flat);
+    EXPECT_FALSE(scene.objects[1].material.physicallyBased());
 }
 
 // Every ```json block in docs/scene-format.md is a complete scene that loads, so the documentation
@@ -410,8 +692,8 @@ const ErrorCase kErrorCases[] = {
      R"({"model": "m.obj", "lights": [{}, {"colour": [1, 1, 1]}]})",
      {R"(unknown key "lights[1].colour" (did you mean "color"?))"}},
     {"UnknownMaterialKey",
-     R"({"objects": [{"model": "m.obj", "material": {"roughness": 1}}]})",
-     {R"(unknown key "objects[0].material.roughness")"}},
+     R"({"objects": [{"model": "m.obj", "material": {"glossiness": 1}}]})",
+     {R"(unknown key "objects[0].material.glossiness")"}},
     {"UnknownPipelineKey",
      R"({"model": "m.obj", "pipeline": {"subpixelBits": 4}})",
      {R"(unknown key "pipeline.subpixelBits" (did you mean "subpixel_bits"?))"}},
@@ -439,8 +721,8 @@ const ErrorCase kErrorCases[] = {
      R"({"model": "m.obj", "pipeline": {"cull": "bakc"}})",
      {R"("pipeline.cull" must be one of "back", "front", "none" (got "bakc") (did you mean "back"?))"}},
     {"LightTypeUnknown",
-     R"({"model": "m.obj", "lights": [{"type": "spot"}]})",
-     {R"("lights[0].type" must be one of "directional", "point")"}},
+     R"({"model": "m.obj", "lights": [{"type": "sopt"}]})",
+     {R"("lights[0].type" must be one of "directional", "point", "spot" (got "sopt") (did you mean "spot"?))"}},
     {"LightSpaceUnknown",
      R"({"model": "m.obj", "lights": [{"space": "view"}]})",
      {R"("lights[0].space" must be one of "world", "camera")"}},
@@ -494,10 +776,10 @@ const ErrorCase kErrorCases[] = {
      {R"("lights[0].direction" must not be the zero vector)"}},
     {"PointLightWithDirection",
      R"({"model": "m.obj", "lights": [{"type": "point", "direction": [0, -1, 0]}]})",
-     {R"("lights[0].direction" is only for directional lights)"}},
+     {R"("lights[0].direction" is only for directional and spot lights)"}},
     {"DirectionalLightWithPosition",
      R"({"model": "m.obj", "lights": [{"position": [0, 1, 0]}]})",
-     {R"("lights[0].position" is only for point lights (add "type": "point"))"}},
+     {R"("lights[0].position" is only for point and spot lights (add "type": "point"))"}},
     {"SubpixelBitsTooMany",
      R"({"model": "m.obj", "pipeline": {"subpixel_bits": 9}})",
      {R"("pipeline.subpixel_bits" must be a whole number from 0 to 8 (got 9))"}},
@@ -558,6 +840,172 @@ const ErrorCase kErrorCases[] = {
     {"DuplicateTopLevelKey",
      R"({"model": "m.obj", "width": 10, "width": 20})",
      {R"(key "width" is given twice)"}},
+    // Scene-wide "lighting".
+    {"LightingUnknownPreset",
+     R"({"model": "m.obj", "lighting": "opengl"})",
+     {R"("lighting" must be one of "facet", "gl" (got "opengl"))"}},
+    {"LightingNotAnObject",
+     R"({"model": "m.obj", "lighting": 1})",
+     {R"("lighting" must be "facet", "gl" or an object like {"model": "cook-torrance"} (got 1))"}},
+    {"LightingUnknownKey",
+     R"({"model": "m.obj", "lighting": {"shadding": "flat"}})",
+     {R"(unknown key "lighting.shadding" (did you mean "shading"?))"}},
+    {"LightingPresetUnknown",
+     R"({"model": "m.obj", "lighting": {"preset": "GL"}})",
+     {R"("lighting.preset" must be one of "facet", "gl" (got "GL"))"}},
+    {"LightingModelUnknown",
+     R"({"model": "m.obj", "lighting": {"model": "blinn"}})",
+     {R"("lighting.model" must be one of "phong", "blinn-phong", "cook-torrance" (got "blinn"))"}},
+    {"LightingModelTypo",
+     R"({"model": "m.obj", "lighting": {"model": "blinn_phong"}})",
+     {R"("lighting.model")", R"((did you mean "blinn-phong"?))"}},
+    {"LightingShadingUnknown",
+     R"({"model": "m.obj", "lighting": {"shading": "smooth"}})",
+     {R"("lighting.shading" must be one of "flat", "gouraud", "phong" (got "smooth"))"}},
+    {"CreaseAngleAbove180",
+     R"({"model": "m.obj", "lighting": {"crease_angle": 181}})",
+     {R"("lighting.crease_angle" must be from 0 to 180 degrees (got 181))"}},
+    {"CreaseAngleNegative",
+     R"({"model": "m.obj", "lighting": {"crease_angle": -1}})",
+     {R"("lighting.crease_angle" must be from 0 to 180 degrees (got -1))"}},
+    {"CreaseAngleNotANumber",
+     R"({"model": "m.obj", "lighting": {"crease_angle": "sharp"}})",
+     {R"("lighting.crease_angle" must be a number (got the string "sharp"))"}},
+    {"DistributionUnknown",
+     R"({"model": "m.obj", "lighting": {"distribution": "phong"}})",
+     {R"("lighting.distribution" must be one of "ggx", "beckmann" (got "phong"))"}},
+    {"FresnelUnknown",
+     R"({"model": "m.obj", "lighting": {"fresnel": "schlik"}})",
+     {R"("lighting.fresnel" must be one of "schlick", "exact" (got "schlik") (did you mean "schlick"?))"}},
+    {"GeometryUnknown",
+     R"({"model": "m.obj", "lighting": {"geometry": "smith"}})",
+     {R"("lighting.geometry" must be one of "smith-ggx", "cook-torrance" (got "smith"))"}},
+    // Per-object "lighting".
+    {"ObjectLightingNotAnObject",
+     R"({"objects": [{"model": "m.obj", "lighting": "gl"}]})",
+     {R"("objects[0].lighting" must be an object like {"model": "cook-torrance", "shading": "flat"})"}},
+    {"ObjectLightingSceneWideKey",
+     R"({"objects": [{"model": "m.obj"}, {"model": "m.obj", "lighting": {"crease_angle": 30}}]})",
+     {R"("objects[1].lighting.crease_angle" cannot be set per object (only "model" and "shading" can))"}},
+    {"ObjectLightingUnknownKey",
+     R"({"objects": [{"model": "m.obj", "lighting": {"modle": "phong"}}]})",
+     {R"(unknown key "objects[0].lighting.modle" (did you mean "model"?))"}},
+    {"ObjectLightingModelUnknown",
+     R"({"objects": [{"model": "m.obj", "lighting": {"model": "pbr"}}]})",
+     {R"("objects[0].lighting.model" must be one of "phong", "blinn-phong", "cook-torrance" (got "pbr"))"}},
+    {"ObjectLightingShadingUnknown",
+     R"({"objects": [{"model": "m.obj", "lighting": {"shading": "Flat"}}]})",
+     {R"("objects[0].lighting.shading" must be one of "flat", "gouraud", "phong" (got "Flat"))"}},
+    // Lights: keys the type ignores.
+    {"SpotKeyOnPointLight",
+     R"({"model": "m.obj", "lights": [{}, {"type": "point", "cutoff": 20}]})",
+     {R"("lights[1].cutoff" is only for spot lights (add "type": "spot"))"}},
+    {"SpotKeyOnDirectionalLight",
+     R"({"model": "m.obj", "lights": [{"exponent": 2}]})",
+     {R"("lights[0].exponent" is only for spot lights (add "type": "spot"))"}},
+    {"InnerOnPointLight",
+     R"({"model": "m.obj", "lights": [{"type": "point", "inner": 10, "outer": 20}]})",
+     {R"("lights[0].inner" is only for spot lights)"}},
+    {"OuterOnDirectionalLight",
+     R"({"model": "m.obj", "lights": [{"outer": 20}]})",
+     {R"("lights[0].outer" is only for spot lights)"}},
+    {"AttenuationOnDirectionalLight",
+     R"({"model": "m.obj", "lights": [{"attenuation": [1, 0, 0]}]})",
+     {R"("lights[0].attenuation" is only for point and spot lights)", R"((add "type": "point"))"}},
+    {"SpotDirectionZero",
+     R"({"model": "m.obj", "lights": [{"type": "spot", "direction": [0, 0, 0]}]})",
+     {R"("lights[0].direction" must not be the zero vector)"}},
+    // Lights: values.
+    {"AttenuationAllZero",
+     R"({"model": "m.obj", "lights": [{"type": "point", "attenuation": [0, 0, 0]}]})",
+     {R"("lights[0].attenuation" must not be all zero)"}},
+    {"AttenuationNegative",
+     R"({"model": "m.obj", "lights": [{"type": "spot", "attenuation": [1, -0.1, 0]}]})",
+     {R"("lights[0].attenuation[1]" must not be negative (got -0.1))"}},
+    {"AttenuationWrongLength",
+     R"({"model": "m.obj", "lights": [{"type": "point", "attenuation": [1, 0.1]}]})",
+     {R"("lights[0].attenuation" must be an array of 3 numbers like [1, 0.1, 0.01] (got an array of 2))"}},
+    {"LightAmbientNegative",
+     R"({"model": "m.obj", "lights": [{"ambient": [0, -1, 0]}]})",
+     {R"("lights[0].ambient[1]" must not be negative (got -1))"}},
+    {"LightDiffuseNotAColour",
+     R"({"model": "m.obj", "lights": [{"diffuse": 1}]})",
+     {R"("lights[0].diffuse" must be an array of 3 numbers like [1, 0.5, 0.2] (got 1))"}},
+    {"LightSpecularNegative",
+     R"({"model": "m.obj", "lights": [{"specular": [-2, 0, 0]}]})",
+     {R"("lights[0].specular[0]" must not be negative (got -2))"}},
+    {"CutoffAbove90",
+     R"({"model": "m.obj", "lights": [{"type": "spot", "cutoff": 180}]})",
+     {R"("lights[0].cutoff" must be from 0 to 90 degrees (got 180))"}},
+    {"CutoffNegative",
+     R"({"model": "m.obj", "lights": [{"type": "spot", "cutoff": -5}]})",
+     {R"("lights[0].cutoff" must be from 0 to 90 degrees (got -5))"}},
+    {"ExponentAbove128",
+     R"({"model": "m.obj", "lights": [{"type": "spot", "exponent": 128.5}]})",
+     {R"("lights[0].exponent" must be from 0 to 128 (got 128.5))"}},
+    {"ExponentNegative",
+     R"({"model": "m.obj", "lights": [{"type": "spot", "exponent": -1}]})",
+     {R"("lights[0].exponent" must be from 0 to 128 (got -1))"}},
+    {"InnerWithoutOuter",
+     R"({"model": "m.obj", "lights": [{"type": "spot", "inner": 10}]})",
+     {R"("lights[0].inner" needs "lights[0].outer" too)"}},
+    {"OuterWithoutInner",
+     R"({"model": "m.obj", "lights": [{"type": "spot", "outer": 10}]})",
+     {R"("lights[0].outer" needs "lights[0].inner" too)"}},
+    {"InnerOuterWithCutoff",
+     R"({"model": "m.obj", "lights": [{"type": "spot", "inner": 10, "outer": 20, "cutoff": 20}]})",
+     {R"("lights[0].cutoff" cannot be given with "inner" and "outer")"}},
+    {"InnerOuterWithExponent",
+     R"({"model": "m.obj", "lights": [{"type": "spot", "inner": 10, "outer": 20, "exponent": 4}]})",
+     {R"("lights[0].exponent" cannot be given with "inner" and "outer")"}},
+    {"InnerNotBelowOuter",
+     R"({"model": "m.obj", "lights": [{"type": "spot", "inner": 30, "outer": 20}]})",
+     {R"("lights[0].inner" (30) must be less than "lights[0].outer" (20))"}},
+    {"InnerEqualsOuter",
+     R"({"model": "m.obj", "lights": [{"type": "spot", "inner": 20, "outer": 20}]})",
+     {R"("lights[0].inner" (20) must be less than "lights[0].outer" (20))"}},
+    {"InnerNegative",
+     R"({"model": "m.obj", "lights": [{"type": "spot", "inner": -1, "outer": 20}]})",
+     {R"("lights[0].inner" must be from 0 to 90 degrees (got -1))"}},
+    {"OuterAbove90",
+     R"({"model": "m.obj", "lights": [{"type": "spot", "inner": 10, "outer": 91}]})",
+     {R"("lights[0].outer" must be from 0 to 90 degrees (got 91))"}},
+    // Material: physically based keys.
+    {"PresetTypo",
+     R"({"objects": [{"model": "m.obj", "material": {"preset": "gld"}}]})",
+     {R"("objects[0].material.preset" must be one of the material presets "water", "skin")",
+      R"("aluminium", "silver" (got "gld") (did you mean "gold"?))"}},
+    {"PresetTypoIgnoresCase",
+     R"({"objects": [{"model": "m.obj", "material": {"preset": "COPER"}}]})",
+     {R"((got "COPER") (did you mean "copper"?))"}},
+    {"PresetNotAString",
+     R"({"objects": [{"model": "m.obj", "material": {"preset": 1}}]})",
+     {R"("objects[0].material.preset" must be a string (got 1))"}},
+    {"BaseColorNegative",
+     R"({"objects": [{"model": "m.obj", "material": {"base_color": [1, 1, -1]}}]})",
+     {R"("objects[0].material.base_color[2]" must not be negative (got -1))"}},
+    {"BaseColorCamelCase",
+     R"({"objects": [{"model": "m.obj", "material": {"baseColor": [1, 1, 1]}}]})",
+     {R"(unknown key "objects[0].material.baseColor")"}},
+    {"MetalnessAboveOne",
+     R"({"objects": [{"model": "m.obj", "material": {"metalness": 1.5}}]})",
+     {R"("objects[0].material.metalness" must be from 0 to 1 (got 1.5))"}},
+    {"RoughnessNegative",
+     R"({"objects": [{"model": "m.obj", "material": {"roughness": -0.1}}]})",
+     {R"("objects[0].material.roughness" must be from 0 to 1 (got -0.1))"}},
+    {"F0AboveOne",
+     R"({"objects": [{"model": "m.obj", "material": {"f0": 1.2}}]})",
+     {R"("objects[0].material.f0" must be from 0 to 1 (got 1.2))"}},
+    {"F0ElementAboveOne",
+     R"({"objects": [{"model": "m.obj", "material": {"f0": [0.04, 2, 0.04]}}]})",
+     {R"("objects[0].material.f0[1]" must be from 0 to 1 (got 2))"}},
+    {"F0WrongShape",
+     R"({"objects": [{"model": "m.obj", "material": {"f0": [0.04, 0.04]}}]})",
+     {R"("objects[0].material.f0" must be a number or an array of 3 numbers like [0.04, 0.04, 0.04])",
+      "(got an array of 2)"}},
+    {"F0String",
+     R"({"objects": [{"model": "m.obj", "material": {"f0": "0.04"}}]})",
+     {R"("objects[0].material.f0" must be a number or an array of 3 numbers)"}},
 };
 
 INSTANTIATE_TEST_SUITE_P(Scene, SceneErrors, ::testing::ValuesIn(kErrorCases),
@@ -567,9 +1015,10 @@ INSTANTIATE_TEST_SUITE_P(Scene, SceneErrors, ::testing::ValuesIn(kErrorCases),
 
 // Only a key within two edits of a known one is suggested.
 TEST_F(SceneTest, FarFromEveryKeyGivesNoSuggestion) {
-    const std::string message = errorOf(R"({"objects": [{"model": "m.obj", "material": {"roughness": 1}}]})");
+    const std::string message =
+        errorOf(R"({"objects": [{"model": "m.obj", "material": {"glossiness": 1}}]})");
     EXPECT_EQ(message,
-              (folder_ / "scene.json").string() + R"(: unknown key "objects[0].material.roughness")");
+              (folder_ / "scene.json").string() + R"(: unknown key "objects[0].material.glossiness")");
 }
 
 TEST_F(SceneTest, ModelThatIsAFolderIsAnError) {
