@@ -50,7 +50,58 @@ struct RenderArgs {
     std::optional<float> fovy;
     int threads = 0;
     bool quiet = false;
+    std::optional<std::string> lighting, reflection, shading, only;
+    std::optional<float> creaseAngle;
+    bool components = false;
 };
+
+// The lighting terms by the names the command line uses, in the order component images are written.
+struct TermName {
+    const char* name;
+    std::uint8_t bits;
+};
+constexpr TermName kTermNames[] = {{"emission", facet::kEmissionTerm},
+                                   {"ambient", facet::kAmbientTerm},
+                                   {"diffuse", facet::kDiffuseTerm},
+                                   {"specular", facet::kSpecularTerm}};
+
+// "out/spot.png" + "diffuse" -> "out/spot-diffuse.png"
+std::filesystem::path componentPath(const std::filesystem::path& output, const char* term) {
+    std::filesystem::path path = output;
+    path.replace_filename(output.stem().string() + "-" + term + output.extension().string());
+    return path;
+}
+
+// Applies the command line's lighting choices to every object (they win over the scene file's).
+void applyLightingOptions(const RenderArgs& args, facet::Scene& scene) {
+    if (args.lighting)
+        scene.lighting.preset =
+            *args.lighting == "gl" ? facet::LightingPreset::GL : facet::LightingPreset::Facet;
+    if (args.reflection) {
+        const facet::ReflectionModel model = *args.reflection == "phong" ? facet::ReflectionModel::Phong
+                                             : *args.reflection == "blinn-phong"
+                                                 ? facet::ReflectionModel::BlinnPhong
+                                                 : facet::ReflectionModel::CookTorrance;
+        scene.lighting.model = model;
+        for (facet::ObjectSpec& object : scene.objects)
+            object.reflection = model;
+    }
+    if (args.shading) {
+        const facet::ShadingFrequency frequency = *args.shading == "flat" ? facet::ShadingFrequency::Flat
+                                                  : *args.shading == "gouraud"
+                                                      ? facet::ShadingFrequency::Gouraud
+                                                      : facet::ShadingFrequency::Phong;
+        scene.lighting.shading = frequency;
+        for (facet::ObjectSpec& object : scene.objects)
+            object.shading = frequency;
+    }
+    if (args.creaseAngle) {
+        if (!(*args.creaseAngle >= 0.0f && *args.creaseAngle <= 180.0f))
+            throw facet::InputError("--crease-angle must be from 0 to 180 degrees (got " +
+                                    std::to_string(*args.creaseAngle) + ")");
+        scene.lighting.creaseAngleDegrees = *args.creaseAngle;
+    }
+}
 
 int render(const RenderArgs& args) {
     const std::filesystem::path input = args.input;
@@ -70,6 +121,12 @@ int render(const RenderArgs& args) {
         glm::length(*scene.camera.eye - *scene.camera.target) == 0.0f)
         throw facet::InputError("the camera's eye and target are the same point");
 
+    applyLightingOptions(args, scene);
+    if (args.only && args.components) throw facet::InputError("--only and --components do not go together");
+    std::uint8_t terms = facet::kAllTerms;
+    if (args.only)
+        for (const TermName& term : kTermNames)
+            if (*args.only == term.name) terms = term.bits;
     facet::checkImageDestination(args.output, scene.width, scene.height);
 
     const auto start = std::chrono::steady_clock::now();
@@ -78,9 +135,18 @@ int render(const RenderArgs& args) {
         std::cerr << "facet: warning: " << warning << "\n";
     facet::Framebuffer framebuffer(scene.width, scene.height);
     facet::DrawContext context(args.threads);
-    const facet::DrawStats stats = facet::renderFrame(prepared, framebuffer, context);
+    const facet::DrawStats stats = facet::renderFrame(prepared, framebuffer, context, terms);
     const auto rendered = std::chrono::steady_clock::now();
-    facet::writeImage(args.output, facet::toImage(framebuffer));
+    facet::writeImage(args.output, facet::toImage(framebuffer), prepared.encoding);
+    // The component images: each term alone, over the same background; the main image is their sum.
+    std::vector<std::filesystem::path> written{args.output};
+    if (args.components) {
+        for (const TermName& term : kTermNames) {
+            facet::renderFrame(prepared, framebuffer, context, term.bits);
+            written.push_back(componentPath(args.output, term.name));
+            facet::writeImage(written.back(), facet::toImage(framebuffer), prepared.encoding);
+        }
+    }
 
     if (!args.quiet) {
         const double ms = std::chrono::duration<double, std::milli>(rendered - start).count();
@@ -90,6 +156,9 @@ int render(const RenderArgs& args) {
             std::cout << ", " << prepared.degenerateSkipped << " degenerate skipped";
         std::cout << ", " << stats.fragmentsShaded << " fragments shaded, " << static_cast<long>(ms + 0.5)
                   << " ms including loading)\n";
+        for (std::size_t k = 1; k < written.size(); ++k)
+            std::cout << "facet: wrote " << written[k].string() << " (" << kTermNames[k - 1].name
+                      << " term alone)\n";
     }
     return 0;
 }
@@ -120,6 +189,31 @@ int main(int argc, char** argv) {
         ->add_option("--threads", renderArgs.threads, "Worker threads (default: one per hardware thread)")
         ->check(CLI::Range(0, 1024));
     renderCommand->add_flag("-q,--quiet", renderArgs.quiet, "Print nothing on success");
+    renderCommand
+        ->add_option("--lighting", renderArgs.lighting,
+                     "facet: linear light, sRGB output (default); gl: OpenGL 1.x fixed-function conventions "
+                     "(docs/lighting.md)")
+        ->check(CLI::IsMember({"facet", "gl"}));
+    renderCommand
+        ->add_option("--reflection", renderArgs.reflection,
+                     "Reflection model for every object: phong, blinn-phong (default) or cook-torrance")
+        ->check(CLI::IsMember({"phong", "blinn-phong", "cook-torrance"}));
+    renderCommand
+        ->add_option(
+            "--shading", renderArgs.shading,
+            "Shading frequency for every object: flat (per face), gouraud (per vertex) or phong (per "
+            "pixel, the default)")
+        ->check(CLI::IsMember({"flat", "gouraud", "phong"}));
+    renderCommand->add_option("--crease-angle", renderArgs.creaseAngle,
+                              "Computed normals: faces meeting at a sharper angle (degrees) keep a hard edge "
+                              "(default 60)");
+    renderCommand
+        ->add_option("--only", renderArgs.only,
+                     "Render one term of the lighting equation alone: emission, ambient, diffuse or specular")
+        ->check(CLI::IsMember({"emission", "ambient", "diffuse", "specular"}));
+    renderCommand->add_flag("--components", renderArgs.components,
+                            "Also write each term alone next to the output: NAME-emission, NAME-ambient, "
+                            "NAME-diffuse, NAME-specular (the output is their sum)");
 
     facet::BenchOptions benchOptions;
     benchOptions.model = "../shared/models/stanford-bunny/stanford-bunny.obj";
