@@ -2,7 +2,12 @@
 // every reflection model and shading frequency; the term mask, the two-sided flip and the GL clamp.
 #include "shaders.h"
 
+#include "pipeline.h"
+
 #include <random>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <gtest/gtest.h>
 
@@ -131,7 +136,9 @@ TEST(SurfaceShader, TwoSidedFlipLightsTheSideFacingTheViewer) {
     u.material.diffuse = vec3(0.5f);
     u.material.specular = vec3(0.0f);
     const vec3 P(0.0f, 0.0f, -5.0f), awayFromViewer(0.0f, 0.0f, -1.0f);
-    const auto diffuse = [&] { return surfaceTerms<float, vec3>(P, awayFromViewer, u.albedo(), u).diffuse.r; };
+    const auto diffuse = [&] {
+        return surfaceTerms<float, vec3>(P, awayFromViewer, u.albedo(), u).diffuse.r;
+    };
     u.twoSidedFlip = true;
     EXPECT_FLOAT_EQ(diffuse(), 0.5f);
     u.twoSidedFlip = false;
@@ -154,6 +161,59 @@ TEST(SurfaceShader, ClampColorClampsPerVertexBeforeInterpolation) {
     const vec4 clamped = Gouraud::fragment(Gouraud::vertex(v, u).varyings, u);
     EXPECT_FLOAT_EQ(clamped.r, 1.0f);
     EXPECT_FLOAT_EQ(clamped.g, 0.5f);
+}
+
+}  // namespace
+}  // namespace facet
+
+namespace facet {
+namespace {
+
+// The lecture's argument for Phong shading, as a test: a highlight that falls between the vertices of a
+// coarse mesh is lost by Gouraud shading (the vertices see almost no specular light, and interpolating
+// their colours cannot make a peak), while Phong shading, lighting every pixel with the interpolated
+// normal, keeps it. Two triangles, a quad 2 × 2 units at 3 units from the eye; a point light one unit
+// in front of its centre, so the mirror direction hits the eye only at the centre.
+template <ShadingFrequency kFrequency>
+float brightestSpecular(const SurfaceUniforms& uniforms) {
+    const std::vector<MeshVertex> quad = {{vec3(-1, -1, -3), vec3(0, 0, 1), vec2(0)},
+                                          {vec3(1, -1, -3), vec3(0, 0, 1), vec2(0)},
+                                          {vec3(1, 1, -3), vec3(0, 0, 1), vec2(0)},
+                                          {vec3(-1, 1, -3), vec3(0, 0, 1), vec2(0)}};
+    const std::vector<std::uint32_t> indices = {0, 1, 2, 0, 2, 3};
+    Framebuffer fb(64, 64);
+    DrawContext context(1);
+    fb.clear(vec4(0.0f), 1.0f, context.pool);
+    DrawState state;
+    state.viewport = {0, 0, 64, 64};
+    draw<SurfaceShader<kFrequency>>(state, uniforms, std::span<const MeshVertex>(quad),
+                                    std::span<const std::uint32_t>(indices), fb, context);
+    float brightest = 0.0f;
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x)
+            brightest = std::max(brightest, fb.color(x, y).r);
+    return brightest;
+}
+
+TEST(ShadingFrequency, GouraudLosesAHighlightBetweenVerticesThatPhongShadingKeeps) {
+    SurfaceUniforms u;
+    u.clipFromObject = glm::perspective(glm::radians(50.0f), 1.0f, 0.1f, 10.0f);  // the eye at the origin
+    u.lightCount = 1;
+    u.lights[0].kind = LightKind::Point;
+    u.lights[0].position = vec3(0.0f, 0.0f, -2.0f);
+    u.material.diffuse = vec3(0.0f);
+    u.material.specular = vec3(1.0f);
+    u.material.shininess = 64.0f;
+    u.terms = kSpecularTerm;
+    for (ReflectionModel model : {ReflectionModel::Phong, ReflectionModel::BlinnPhong}) {
+        u.reflection = model;
+        // At a corner, e.g. (1, 1, −3): N·H ≈ 0.79 (Blinn) or R·V ≈ 0.35 (Phong), and 0.79^64 ≈ 3·10⁻⁷.
+        const float perVertex = brightestSpecular<ShadingFrequency::Gouraud>(u);
+        const float perPixel = brightestSpecular<ShadingFrequency::Phong>(u);
+        EXPECT_LT(perVertex, 1e-3f) << "Gouraud: the corners see no highlight, so no pixel does";
+        EXPECT_GT(perPixel, 0.9f)
+            << "Phong shading: the pixels near the centre see the light's mirror image";
+    }
 }
 
 }  // namespace
