@@ -242,8 +242,16 @@ int main(int argc, char** argv) {
     }
     try {
         app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
+    } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        // One line, like every other error (CLI11's own report adds a second line).
+        std::cerr << "facet: error: " << e.what() << " (facet --help lists the commands and options)\n";
+        return 2;
     }
 
     try {

@@ -89,6 +89,48 @@ TEST(Cli, ThreadCountDoesNotChangeTheImage) {
     }
 }
 
+// --components writes the four terms next to the output; over a black background they add up to the
+// image itself (EXR keeps the linear values). --only writes one of them as the output.
+TEST(Cli, ComponentImagesAddUpToTheImage) {
+    TempDir dir;
+    const auto model = std::filesystem::path(FACET_SOURCE_DIR) / "models/spot/spot_triangulated.obj";
+    const auto scene = dir.write("scene.json", "{\"model\": \"" + model.string() +
+                                                   "\", \"background\": [0, 0, 0, 1], \"width\": 80, "
+                                                   "\"height\": 60, \"lights\": [{\"type\": \"point\", "
+                                                   "\"position\": [1, 1, 3]}]}");
+    const RunResult run = runFacet("render " + quoted(scene) + " -o " + quoted(dir.path() / "cow.exr") +
+                                       " --components --reflection phong",
+                                   dir);
+    ASSERT_EQ(run.status, 0) << run.err;
+    EXPECT_NE(run.out.find("cow-specular.exr (specular term alone)"), std::string::npos) << run.out;
+    const LinearImage whole = readImage(dir.path() / "cow.exr");
+    LinearImage sum = whole;
+    for (glm::vec4& p : sum.pixels)
+        p = glm::vec4(0.0f);
+    float brightestSpecular = 0.0f;
+    for (const char* term : {"emission", "ambient", "diffuse", "specular"}) {
+        const LinearImage part = readImage(dir.path() / (std::string("cow-") + term + ".exr"));
+        ASSERT_EQ(part.pixels.size(), whole.pixels.size());
+        for (std::size_t i = 0; i < part.pixels.size(); ++i) {
+            sum.pixels[i] += glm::vec4(glm::vec3(part.pixels[i]), 0.0f);
+            if (std::string(term) == "specular")
+                brightestSpecular = std::max(brightestSpecular, part.pixels[i].g);
+        }
+    }
+    EXPECT_GT(brightestSpecular, 0.02f);  // the highlight is there to be summed
+    for (std::size_t i = 0; i < whole.pixels.size(); ++i) {
+        ASSERT_NEAR(sum.pixels[i].r, whole.pixels[i].r, 1e-3f * (1.0f + whole.pixels[i].r)) << i;
+        ASSERT_NEAR(sum.pixels[i].b, whole.pixels[i].b, 1e-3f * (1.0f + whole.pixels[i].b)) << i;
+    }
+
+    const RunResult only = runFacet("render " + quoted(scene) + " -o " + quoted(dir.path() / "only.exr") +
+                                        " --only specular --reflection phong",
+                                    dir);
+    ASSERT_EQ(only.status, 0) << only.err;
+    EXPECT_TRUE(readImage(dir.path() / "only.exr").pixels ==
+                readImage(dir.path() / "cow-specular.exr").pixels);
+}
+
 // Each bad input: exit status 1, exactly one line on stderr naming what is wrong, and an existing
 // output file left as it was.
 struct BadInput {
@@ -97,6 +139,7 @@ struct BadInput {
     const char* sceneText;  // written as bad.json when not null
     const char* extraArgs;
     const char* expected;  // must appear in the error line
+    int status = 1;        // 1: bad input; 2: the command line itself is malformed
 };
 
 // Printed by gtest in test listings.
@@ -116,7 +159,7 @@ TEST_P(CliBadInput, FailsWithOneLineAndKeepsTheOldImage) {
         input = quoted(dir.write("ok.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
     const auto out = dir.write("old.png", "previous contents");
     const RunResult run = runFacet("render " + input + " -o " + quoted(out) + " " + c.extraArgs, dir);
-    EXPECT_EQ(run.status, 1) << run.err;
+    EXPECT_EQ(run.status, c.status) << run.err;
     EXPECT_EQ(lineCount(run.err), 1) << run.err;
     EXPECT_EQ(run.err.rfind("facet: error: ", 0), 0u) << run.err;
     EXPECT_NE(run.err.find(c.expected), std::string::npos)
@@ -138,7 +181,11 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"WidthHuge", nullptr, nullptr, "--width 1000000", "--width"},
         BadInput{"TooManyPixels", nullptr, nullptr, "--width 16384 --height 16384", "limit"},
         BadInput{"BadEye", nullptr, nullptr, "--eye 1,2", "--eye"},
-        BadInput{"FovyOutOfRange", nullptr, nullptr, "--fovy 200", "--fovy"}),
+        BadInput{"FovyOutOfRange", nullptr, nullptr, "--fovy 200", "--fovy"},
+        BadInput{"UnknownTerm", nullptr, nullptr, "--only glare", "--only: glare not in", 2},
+        BadInput{"UnknownShading", nullptr, nullptr, "--shading smooth", "--shading", 2},
+        BadInput{"OnlyAndComponents", nullptr, nullptr, "--only diffuse --components", "do not go together"},
+        BadInput{"CreaseAngleOutOfRange", nullptr, nullptr, "--crease-angle 200", "--crease-angle"}),
     [](const ::testing::TestParamInfo<BadInput>& info) { return std::string(info.param.name); });
 
 TEST(Cli, UnknownImageFormatWritesNothing) {

@@ -70,6 +70,74 @@ TEST(Render, LightFromBehindLeavesOnlyAmbientAndEmission) {
     EXPECT_NEAR(centre.b, srgbToLinear(0.3f) + srgbToLinear(0.5f), 1e-5f);
 }
 
+// The GL preset takes colours as given (no sRGB decoding) and writes them without encoding, as
+// OpenGL 1.x does: the centre is k_d exactly, and its 8-bit code is round(255·c).
+TEST(Render, GlPresetUsesColoursAsGivenAndWritesThemUnencoded) {
+    TempDir dir;
+    const auto obj = dir.write("square.obj", std::string("mtllib square.mtl\nusemtl grey\n") + kSquareObj);
+    dir.write("square.mtl", "newmtl grey\nKa 0 0 0\nKd 0.5 0.25 0.6\nKs 0 0 0\n");
+    Scene scene = headOnScene(obj);
+    scene.lighting.preset = LightingPreset::GL;
+    const PreparedScene prepared = prepareScene(scene);
+    EXPECT_EQ(prepared.encoding, ColorEncoding::Linear);
+    EXPECT_EQ(prepared.draws.front().frequency, ShadingFrequency::Gouraud);  // OpenGL 1.x's default
+    const vec4 centre = renderScene(scene).at(32, 24);
+    EXPECT_NEAR(centre.r, 0.5f, 1e-6f);
+    EXPECT_NEAR(centre.g, 0.25f, 1e-6f);
+    EXPECT_NEAR(centre.b, 0.6f, 1e-6f);
+    EXPECT_EQ(encodeChannel(centre.g, prepared.encoding), 64);  // 0.25 · 255 = 63.75
+    EXPECT_EQ(encodeChannel(centre.g, ColorEncoding::Srgb), 137);
+}
+
+// A spot light at (0, 0, 2) aimed at the square's centre with a 10° cutoff lights the centre
+// (attenuated by 1/(c0 + c1·d + c2·d²) at d = 2) and leaves a point 0.9 from the centre (24° off the
+// axis) dark.
+TEST(Render, SpotLightConeAndAttenuation) {
+    TempDir dir;
+    const auto obj = dir.write("square.obj", std::string("mtllib square.mtl\nusemtl white\n") + kSquareObj);
+    dir.write("square.mtl", "newmtl white\nKa 0 0 0\nKd 1 1 1\nKs 0 0 0\n");
+    Scene scene = headOnScene(obj);
+    scene.lighting.preset = LightingPreset::GL;  // colours as given: the numbers stay readable
+    LightSpec spot;
+    spot.type = LightType::Spot;
+    spot.position = vec3(0, 0, 2);
+    spot.direction = vec3(0, 0, -1);
+    spot.spotCutoffDegrees = 10.0f;
+    spot.attenuation = vec3(0.5f, 0.25f, 0.125f);  // 1/(0.5 + 0.5 + 0.5) at d = 2
+    scene.lights = {spot};
+    scene.lighting.shading = ShadingFrequency::Phong;  // the cone is narrower than the square's triangles
+    const LinearImage image = renderScene(scene);
+    EXPECT_NEAR(image.at(32, 24).r, 1.0f / 1.5f, 2e-3f);  // the pixel centre is a hair off the axis
+    // Pixel (44, 24) is about 0.9 units right of the centre on the square (camera at 5, fovy 40).
+    EXPECT_EQ(image.at(44, 24).r, 0.0f);
+    EXPECT_EQ(image.at(44, 24).g, 0.0f);
+}
+
+// Flat shading lights each triangle once, with its face normal: vertex normals that lean outwards do
+// not matter, and with no specular term every pixel of a square facing the light is k_d.
+TEST(Render, FlatShadingUsesTheFaceNormal) {
+    TempDir dir;
+    const auto obj = dir.write("square.obj",
+                               "mtllib square.mtl\nusemtl grey\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n"
+                               "vn -1 -1 1\nvn 1 -1 1\nvn 1 1 1\nvn -1 1 1\nf 1//1 2//2 3//3 4//4\n");
+    dir.write("square.mtl", "newmtl grey\nKa 0 0 0\nKd 0.5 0.5 0.5\nKs 0 0 0\n");
+    Scene scene = headOnScene(obj);
+    scene.lighting.shading = ShadingFrequency::Flat;
+    const LinearImage flat = renderScene(scene);
+    int covered = 0;
+    for (int y = 0; y < scene.height; ++y)
+        for (int x = 0; x < scene.width; ++x)
+            if (flat.at(x, y).g > 0.1f) {
+                ++covered;
+                ASSERT_FLOAT_EQ(flat.at(x, y).g, srgbToLinear(0.5f)) << x << ", " << y;
+            }
+    EXPECT_GT(covered, 300);
+    // Gouraud with the leaning normals is darker towards the corners.
+    scene.lighting.shading = ShadingFrequency::Gouraud;
+    const LinearImage smooth = renderScene(scene);
+    EXPECT_LT(smooth.at(22, 14).g, srgbToLinear(0.5f) * 0.9f);
+}
+
 // Each bundled model, and the classic ones in ../shared/models, render with every default: the corner
 // holds the background, the centre is the model, every value is finite.
 class BundledModel : public ::testing::TestWithParam<std::string> {};
