@@ -41,6 +41,7 @@ struct ImportStats {
     std::size_t trianglesKept = 0;      // after fan triangulation and skipping degenerate ones
     std::size_t degenerateSkipped = 0;  // triangles with zero area or repeated corners
     std::size_t normalsComputed = 0;    // vertices whose normal was computed (area-weighted)
+    std::size_t creaseSplits = 0;       // of those, vertices added by splitting a welded one at a crease
 };
 
 struct Mesh {

@@ -13,9 +13,17 @@ namespace facet {
 //   there as one degenerate triangle, and reported once as a warning (as Blender and tinyobjloader do);
 // - corners are welded on their (position, normal, texcoord) index triple; a zero-length file normal
 //   counts as no normal;
-// - vertices without a normal in the file get the normalised sum of the unnormalised cross products
-//   of the faces around their position (area weighting); if that sum is zero, the normal of the
-//   first triangle that used the vertex;
+// - vertices without a normal in the file get a computed one, per face corner: the normalised sum of
+//   the vector areas (unnormalised cross products: area weighting) of those faces around the corner's
+//   position whose unit normal is within options.creaseAngleDegrees of the corner's own face's normal
+//   (the face itself always counts; a face is the file's polygon, its normal its normalised vector
+//   area). Corners welded on their index triple but ending up with different sets of faces become
+//   separate vertices (counted in stats.creaseSplits); corners with the same set share one. So at 60°
+//   a cube without normals has 24 vertices, at 180° (smooth everything) 8, and a finely tessellated
+//   sphere one per position. At a position with more than 64 faces the faces are clustered greedily
+//   instead (each joins the first cluster whose first face is within the angle). If a sum is zero
+//   (opposite faces cancelling), the normal of the first triangle that used the vertex. File
+//   normals are never changed;
 // - positive indices may refer forward; negative ones count back from the statement that uses them;
 // - a `\` at the end of a line continues the statement on the next line, and `#` after a blank starts
 //   a comment (tinyobjloader knows neither; the text is rewritten for it, keeping line numbers);
@@ -27,10 +35,13 @@ namespace facet {
 // Throws InputError with "file:line: what" for: a missing or unreadable file, a malformed statement,
 // a face index out of range or zero, NaN/Inf coordinates (or ones beyond float range), a face with
 // more than 255 corners, or a file with no triangles at all ("file: no triangles to draw ...").
+// Throws std::invalid_argument if options.creaseAngleDegrees is NaN or outside [0, 180] (a caller's
+// bug: the scene loader validates user input).
 struct ObjOptions {
     // Computed normals only: two faces sharing a position are smoothed together when their face
     // normals differ by at most this angle (degrees, 0..180); a sharper edge stays hard (the vertex
-    // is split). 180 smooths everything, 0 gives every face its own normal.
+    // is split). 180 smooths everything, 0 gives every face its own normal (faces of the same
+    // direction, to within about 1e-4 degrees, still share one).
     float creaseAngleDegrees = 60.0f;
 };
 Mesh loadObj(const std::filesystem::path& path, const ObjOptions& options = {});

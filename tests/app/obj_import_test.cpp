@@ -1,5 +1,6 @@
 // OBJ import tests: hand-computed small files written to a temp folder (welding, area-weighted
-// normals, fan triangulation, errors with their line), then every bundled model as a property check.
+// normals, crease angles, fan triangulation, errors with their line), then every bundled model as a
+// property check.
 
 #include "obj_import.h"
 
@@ -7,9 +8,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <fstream>
+#include <iomanip>
+#include <limits>
 #include <map>
+#include <numbers>
 #include <set>
+#include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -92,8 +99,11 @@ const std::string kCubeFaces =
 
 // ---- Geometry -------------------------------------------------------------------------------------
 
+// Crease angle 180 smooths across every edge: the welded mesh, as before crease angles.
+const ObjOptions kSmoothAll{180.0f};
+
 TEST_F(ObjImport, CubeWithoutNormalsWeldsToEightVerticesWithCornerNormals) {
-    const Mesh mesh = loadObj(write("cube.obj", kCubePositions + kCubeFaces));
+    const Mesh mesh = loadObj(write("cube.obj", kCubePositions + kCubeFaces), kSmoothAll);
 
     EXPECT_EQ(mesh.stats.facesRead, 6u);
     EXPECT_EQ(mesh.stats.trianglesKept, 12u);
@@ -101,6 +111,7 @@ TEST_F(ObjImport, CubeWithoutNormalsWeldsToEightVerticesWithCornerNormals) {
     ASSERT_EQ(mesh.indices.size(), 36u);
     ASSERT_EQ(mesh.vertices.size(), 8u);
     EXPECT_EQ(mesh.stats.normalsComputed, 8u);
+    EXPECT_EQ(mesh.stats.creaseSplits, 0u);
     EXPECT_FALSE(mesh.hasTexcoords);
     // Each corner touches three equal faces, whichever fan triangles it is in: (±1, ±1, ±1) / √3.
     for (const MeshVertex& v : mesh.vertices) {
@@ -149,7 +160,7 @@ TEST_F(ObjImport, CubeWithFaceNormalsHasTwentyFourVertices) {
 
 // Two triangles meeting only at the origin: one in the z = 0 plane with area 2 (cross product
 // (0,0,4)), one in the x = 0 plane with area 1/2 (cross product (1,0,0)). The origin's normal is
-// (1,0,4)/√17, not the unweighted (1,0,1)/√2.
+// (1,0,4)/√17, not the unweighted (1,0,1)/√2 (at 180°: the faces meet at 90°).
 const std::string kTwoFaces =
     "v 0 0 0\n"
     "v 2 0 0\n"
@@ -158,7 +169,7 @@ const std::string kTwoFaces =
     "v 0 0 1\n";
 
 TEST_F(ObjImport, NormalsAreAreaWeighted) {
-    const Mesh mesh = loadObj(write("two.obj", kTwoFaces + "f 1 2 3\nf 1 4 5\n"));
+    const Mesh mesh = loadObj(write("two.obj", kTwoFaces + "f 1 2 3\nf 1 4 5\n"), kSmoothAll);
 
     ASSERT_EQ(mesh.vertices.size(), 5u);
     EXPECT_EQ(mesh.stats.normalsComputed, 5u);
@@ -174,8 +185,8 @@ TEST_F(ObjImport, NormalsAreAreaWeighted) {
 
 TEST_F(ObjImport, CornersSharingAPositionShareTheSmoothNormal) {
     // The origin has texcoord 1 in one face and 2 in the other: two vertices, one normal.
-    const Mesh mesh =
-        loadObj(write("two.obj", kTwoFaces + "vt 0.25 0.5\nvt 0.75 1\nf 1/1 2/1 3/1\nf 1/2 4/2 5/2\n"));
+    const Mesh mesh = loadObj(
+        write("two.obj", kTwoFaces + "vt 0.25 0.5\nvt 0.75 1\nf 1/1 2/1 3/1\nf 1/2 4/2 5/2\n"), kSmoothAll);
 
     ASSERT_EQ(mesh.vertices.size(), 6u);
     EXPECT_TRUE(mesh.hasTexcoords);
@@ -199,15 +210,309 @@ TEST_F(ObjImport, ZeroLengthFileNormalIsComputedInstead) {
 }
 
 TEST_F(ObjImport, CancellingFacesFallBackToTheFaceNormal) {
-    // The same triangle twice, once per side: the sums cancel to zero, so no NaN but a face normal.
-    const Mesh mesh = loadObj(write("sheet.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 3 2\n"));
+    // The same triangle twice, once per side: at 180° the sums cancel to zero, so no NaN but a face
+    // normal (below 180° the two sides are not smoothed together at all).
+    const Mesh mesh =
+        loadObj(write("sheet.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 3 2\n"), kSmoothAll);
 
     EXPECT_EQ(mesh.stats.trianglesKept, 2u);
-    for (const MeshVertex& v : mesh.vertices) {
-        EXPECT_FALSE(std::isnan(v.normal.x) || std::isnan(v.normal.y) || std::isnan(v.normal.z));
-        EXPECT_NEAR(std::abs(v.normal.z), 1.0f, 1e-6f);
+    ASSERT_EQ(mesh.vertices.size(), 3u);
+    for (const MeshVertex& v : mesh.vertices)
+        EXPECT_EQ(v.normal, glm::vec3(0, 0, 1));  // the first triangle's
+
+    const Mesh sides = loadObj(write("sheet.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 3 2\n"));
+    ASSERT_EQ(sides.vertices.size(), 6u);
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_EQ(sides.vertices[sides.indices[c]].normal, glm::vec3(0, 0, 1));
+        EXPECT_EQ(sides.vertices[sides.indices[3 + c]].normal, glm::vec3(0, 0, -1));
     }
 }
+
+// ---- Crease angle ---------------------------------------------------------------------------------
+
+std::string objNumber(double value) {
+    std::ostringstream out;
+    out << std::setprecision(9) << value;
+    return out.str();
+}
+
+std::string objVertex(glm::dvec3 p) {
+    return "v " + objNumber(p.x) + " " + objNumber(p.y) + " " + objNumber(p.z) + "\n";
+}
+
+// The unit normal of triangle t, from its vertices' positions.
+glm::vec3 faceNormal(const Mesh& mesh, std::size_t t) {
+    const auto p = triangle(mesh, t);
+    return glm::normalize(glm::cross(p[1] - p[0], p[2] - p[0]));
+}
+
+// How many vertices sit at `position`.
+std::size_t verticesAt(const Mesh& mesh, glm::vec3 position) {
+    return std::size_t(std::count_if(mesh.vertices.begin(), mesh.vertices.end(),
+                                     [&](const MeshVertex& v) { return v.position == position; }));
+}
+
+TEST_F(ObjImport, CreaseAngleKeepsTheCubeEdgesHard) {
+    const fs::path path = write("cube.obj", kCubePositions + kCubeFaces);
+    for (const float crease : {60.0f, 0.0f, 89.0f}) {
+        SCOPED_TRACE(crease);
+        const Mesh mesh = loadObj(path, ObjOptions{crease});
+
+        EXPECT_EQ(mesh.stats.trianglesKept, 12u);
+        ASSERT_EQ(mesh.vertices.size(), 24u);  // each corner once per face: 8 welded + 16 split off
+        EXPECT_EQ(mesh.stats.normalsComputed, 24u);
+        EXPECT_EQ(mesh.stats.creaseSplits, 16u);
+        for (std::size_t t = 0; t < 12; ++t) {
+            const glm::vec3 n = faceNormal(mesh, t);
+            EXPECT_EQ(glm::abs(n.x) + glm::abs(n.y) + glm::abs(n.z), 1.0f) << "triangle " << t;
+            for (int c = 0; c < 3; ++c)
+                EXPECT_EQ(mesh.vertices[mesh.indices[3 * t + c]].normal, n) << "triangle " << t;
+        }
+        for (const MeshVertex& v : mesh.vertices)
+            EXPECT_EQ(verticesAt(mesh, v.position), 3u);
+    }
+    // From 90° on, the three faces at a corner are smoothed together.
+    const Mesh smooth = loadObj(path, ObjOptions{90.5f});
+    EXPECT_EQ(smooth.vertices.size(), 8u);
+    EXPECT_EQ(smooth.stats.creaseSplits, 0u);
+    for (const MeshVertex& v : smooth.vertices)
+        expectVec3(v.normal, glm::sign(v.position) / std::sqrt(3.0f));
+}
+
+// Two triangles of area 1/2 sharing the edge (0,0,0)-(1,0,0), folded so that their normals, (0,0,1)
+// and (0, sin 45°, cos 45°), are 45° apart.
+const std::string kFold =
+    "v 0 0 0\n"
+    "v 1 0 0\n"
+    "v 0.5 1 0\n"
+    "v 0.5 -0.707106781 0.707106781\n"
+    "f 1 2 3\n"
+    "f 2 1 4\n";
+
+TEST_F(ObjImport, FoldIsSmoothOnlyWithinTheCreaseAngle) {
+    const fs::path path = write("fold.obj", kFold);
+    const glm::vec3 flat(0, 0, 1), folded = glm::normalize(glm::vec3(0, 1, 1));
+
+    const Mesh hard = loadObj(path, ObjOptions{44.0f});
+    ASSERT_EQ(hard.vertices.size(), 6u);
+    EXPECT_EQ(hard.stats.creaseSplits, 2u);
+    for (int c = 0; c < 3; ++c) {
+        expectVec3(hard.vertices[hard.indices[c]].normal, flat);
+        expectVec3(hard.vertices[hard.indices[3 + c]].normal, folded);
+    }
+
+    const Mesh smooth = loadObj(path, ObjOptions{46.0f});
+    ASSERT_EQ(smooth.vertices.size(), 4u);
+    EXPECT_EQ(smooth.stats.creaseSplits, 0u);
+    EXPECT_EQ(smooth.indices[0], smooth.indices[4]);  // the shared edge is welded, both ends
+    EXPECT_EQ(smooth.indices[1], smooth.indices[3]);
+    const glm::vec3 bisector(0, std::sin(glm::radians(22.5f)), std::cos(glm::radians(22.5f)));
+    expectVec3(smooth.vertices[smooth.indices[0]].normal, bisector);
+    expectVec3(smooth.vertices[smooth.indices[1]].normal, bisector);
+    expectVec3(smooth.vertices[smooth.indices[2]].normal, flat);  // the far corners keep their face's
+    expectVec3(smooth.vertices[smooth.indices[5]].normal, folded);
+}
+
+// A closed cylinder of radius 1 and height 1 around the z axis: `segments` side quads, caps fanned
+// from their centres.
+std::string cylinder(int segments) {
+    std::string obj;
+    for (int z = 0; z < 2; ++z) {
+        for (int i = 0; i < segments; ++i) {
+            const double angle = 2.0 * std::numbers::pi * i / segments;
+            obj += objVertex({std::cos(angle), std::sin(angle), z});
+        }
+    }
+    obj += "v 0 0 0\nv 0 0 1\n";
+    const int bottomCentre = 2 * segments + 1, topCentre = 2 * segments + 2;
+    for (int i = 0; i < segments; ++i) {
+        const int b0 = i + 1, b1 = (i + 1) % segments + 1, t0 = b0 + segments, t1 = b1 + segments;
+        obj += "f " + std::to_string(b0) + " " + std::to_string(b1) + " " + std::to_string(t1) + " " +
+               std::to_string(t0) + "\n";
+        obj += "f " + std::to_string(topCentre) + " " + std::to_string(t0) + " " + std::to_string(t1) + "\n";
+        obj +=
+            "f " + std::to_string(bottomCentre) + " " + std::to_string(b1) + " " + std::to_string(b0) + "\n";
+    }
+    return obj;
+}
+
+TEST_F(ObjImport, CylinderSideIsSmoothAndItsCapEdgesHard) {
+    const int segments = 32;
+    const fs::path path = write("cylinder.obj", cylinder(segments));
+
+    const Mesh mesh = loadObj(path);  // the default 60°; neighbouring side quads meet at 11.25°
+    EXPECT_EQ(mesh.stats.trianglesKept, 4u * segments);
+    // Every rim position twice (side and cap), the cap centres once.
+    ASSERT_EQ(mesh.vertices.size(), 4u * segments + 2);
+    EXPECT_EQ(mesh.stats.creaseSplits, 2u * segments);
+    for (std::size_t t = 0; t < mesh.indices.size() / 3; ++t) {
+        const bool cap = std::abs(faceNormal(mesh, t).z) > 0.5f;
+        for (int c = 0; c < 3; ++c) {
+            const MeshVertex& v = mesh.vertices[mesh.indices[3 * t + c]];
+            if (cap)  // flat, up to the rim
+                expectVec3(v.normal, glm::vec3(0, 0, v.position.z > 0.5f ? 1 : -1));
+            else  // radial: smooth round the side
+                expectVec3(v.normal, glm::vec3(v.position.x, v.position.y, 0), 1e-5f);
+        }
+    }
+
+    const Mesh welded = loadObj(path, kSmoothAll);
+    EXPECT_EQ(welded.vertices.size(), 2u * segments + 2);
+    EXPECT_EQ(welded.stats.creaseSplits, 0u);
+}
+
+TEST_F(ObjImport, FinelyFacetedSphereKeepsOneVertexPerPosition) {
+    // A latitude-longitude sphere: quads, triangle fans at the poles; neighbouring faces meet at 15°.
+    const int rings = 12, segments = 24;
+    std::string obj = "v 0 0 1\nv 0 0 -1\n";
+    for (int r = 1; r < rings; ++r) {
+        for (int s = 0; s < segments; ++s) {
+            const double theta = std::numbers::pi * r / rings, phi = 2.0 * std::numbers::pi * s / segments;
+            obj += objVertex(
+                {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)});
+        }
+    }
+    const auto at = [&](int r, int s) { return std::to_string(3 + (r - 1) * segments + s % segments); };
+    for (int s = 0; s < segments; ++s) {
+        obj += "f 1 " + at(1, s) + " " + at(1, s + 1) + "\n";
+        obj += "f 2 " + at(rings - 1, s + 1) + " " + at(rings - 1, s) + "\n";
+        for (int r = 1; r + 1 < rings; ++r)
+            obj += "f " + at(r, s) + " " + at(r + 1, s) + " " + at(r + 1, s + 1) + " " + at(r, s + 1) + "\n";
+    }
+    const Mesh mesh = loadObj(write("sphere.obj", obj));
+
+    EXPECT_EQ(mesh.vertices.size(), 2u + (rings - 1) * segments);
+    EXPECT_EQ(mesh.stats.creaseSplits, 0u);
+    for (const MeshVertex& v : mesh.vertices)
+        EXPECT_GT(glm::dot(v.normal, v.position), 0.99f);  // area weighting leans a little near the poles
+}
+
+TEST_F(ObjImport, CreaseAngleNeverChangesFileNormals) {
+    // Every corner of the cube names the same odd normal: nothing is computed, whatever the angle.
+    const std::string faces =
+        "vn 1 2 3\n"
+        "f 1//1 4//1 3//1 2//1\n"
+        "f 5//1 6//1 7//1 8//1\n"
+        "f 1//1 2//1 6//1 5//1\n"
+        "f 4//1 8//1 7//1 3//1\n"
+        "f 1//1 5//1 8//1 4//1\n"
+        "f 2//1 3//1 7//1 6//1\n";
+    const fs::path path = write("cube.obj", kCubePositions + faces);
+    for (const float crease : {0.0f, 60.0f, 180.0f}) {
+        SCOPED_TRACE(crease);
+        const Mesh mesh = loadObj(path, ObjOptions{crease});
+        EXPECT_EQ(mesh.vertices.size(), 8u);
+        EXPECT_EQ(mesh.stats.normalsComputed, 0u);
+        EXPECT_EQ(mesh.stats.creaseSplits, 0u);
+        for (const MeshVertex& v : mesh.vertices)
+            expectVec3(v.normal, glm::normalize(glm::vec3(1, 2, 3)));
+    }
+
+    // Only the -z face has (deliberately wrong) file normals: they stay, while that face still
+    // counts in the computed normals around it when it is within the angle (at 180°).
+    const std::string mixed =
+        "vn 0 1 0\nf 1//1 4//1 3//1 2//1\n" + kCubeFaces.substr(kCubeFaces.find('\n') + 1);
+    const fs::path mixedPath = write("mixed.obj", kCubePositions + mixed);
+    const Mesh hard = loadObj(mixedPath);
+    EXPECT_EQ(hard.vertices.size(), 24u);  // 4 with the file normal, 5 faces × 4 computed
+    EXPECT_EQ(hard.stats.normalsComputed, 20u);
+    for (std::size_t t = 0; t < 12; ++t) {
+        const glm::vec3 expected = t < 2 ? glm::vec3(0, 1, 0) : faceNormal(hard, t);
+        for (int c = 0; c < 3; ++c)
+            EXPECT_EQ(hard.vertices[hard.indices[3 * t + c]].normal, expected) << "triangle " << t;
+    }
+    const Mesh smooth = loadObj(mixedPath, kSmoothAll);
+    EXPECT_EQ(smooth.vertices.size(), 12u);  // 4 with the file normal, 8 computed
+    for (std::size_t t = 0; t < 12; ++t) {
+        for (int c = 0; c < 3; ++c) {
+            const MeshVertex& v = smooth.vertices[smooth.indices[3 * t + c]];
+            expectVec3(v.normal, t < 2 ? glm::vec3(0, 1, 0) : glm::sign(v.position) / std::sqrt(3.0f));
+        }
+    }
+}
+
+TEST_F(ObjImport, CreaseAngleZeroStillWeldsCoplanarFaces) {
+    // A flat 2×2 grid of quads (8 triangles), tilted so that rounding makes its face normals differ in
+    // their last bits: at 0° they still share vertices. Then a ninth triangle folded up by 10°.
+    const glm::dvec3 origin(0.1, 0.2, 0.3), u(1.0, 0.3, 0.7), v(-0.2, 1.0, 0.45);
+    std::string obj;
+    for (int j = 0; j < 3; ++j) {
+        for (int i = 0; i < 3; ++i)
+            obj += objVertex(origin + double(i) * u + double(j) * v);
+    }
+    for (int j = 0; j < 2; ++j) {
+        for (int i = 0; i < 2; ++i) {
+            const int a = 1 + j * 3 + i, b = a + 1, c = a + 4, d = a + 3;
+            obj += "f " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(c) + "\n";
+            obj += "f " + std::to_string(a) + " " + std::to_string(c) + " " + std::to_string(d) + "\n";
+        }
+    }
+    const glm::dvec3 n = glm::normalize(glm::cross(u, v));
+    const glm::dvec3 away = -glm::normalize(glm::cross(n, u));  // in the plane, off the j = 0 edge
+    const double tilt = glm::radians(10.0);
+    obj += objVertex(origin + 0.5 * u + std::cos(tilt) * away + std::sin(tilt) * n);
+    obj += "f 2 1 10\n";
+    const fs::path path = write("flat.obj", obj);
+
+    const Mesh mesh = loadObj(path, ObjOptions{0.0f});
+    EXPECT_EQ(mesh.stats.trianglesKept, 9u);
+    EXPECT_EQ(mesh.vertices.size(), 12u);  // 9 on the grid, the fold's 3 of its own
+    EXPECT_EQ(mesh.stats.creaseSplits, 2u);
+    for (std::size_t t = 0; t < 8; ++t) {
+        for (int c = 0; c < 3; ++c)
+            expectVec3(mesh.vertices[mesh.indices[3 * t + c]].normal, glm::vec3(n), 1e-6f);
+    }
+    const glm::vec3 fold = faceNormal(mesh, 8);
+    EXPECT_NEAR(glm::degrees(std::acos(glm::dot(fold, glm::vec3(n)))), 10.0f, 1e-3f);
+    for (int c = 0; c < 3; ++c)
+        expectVec3(mesh.vertices[mesh.indices[24 + c]].normal, fold, 1e-6f);
+
+    EXPECT_EQ(loadObj(path, ObjOptions{10.5f}).vertices.size(), 10u);
+}
+
+TEST_F(ObjImport, CrowdedPositionIsClusteredGreedily) {
+    // A cone of 90 triangles (more than the 64 compared pairwise): the apex normals lean 45°, and two
+    // are within 60° when their directions round the axis differ by at most 90°. In file order, face 0
+    // (at 2°) starts a cluster, faces up to 90° join it; face 23 (94°) starts one, faces up to 182° join;
+    // face 46 (186°) starts one, faces up to 270° join; from 274° on they are within 90° of face 0 and
+    // join the first cluster. So the apex has three vertices at 60°, where the exact rule gives 90.
+    const int segments = 90;
+    std::string obj = "v 0 0 1\n";
+    for (int i = 0; i < segments; ++i) {
+        const double angle = 2.0 * std::numbers::pi * i / segments;
+        obj += objVertex({std::cos(angle), std::sin(angle), 0.0});
+    }
+    for (int i = 0; i < segments; ++i)
+        obj += "f 1 " + std::to_string(i + 2) + " " + std::to_string((i + 1) % segments + 2) + "\n";
+    const fs::path path = write("cone.obj", obj);
+
+    const Mesh mesh = loadObj(path);
+    EXPECT_EQ(verticesAt(mesh, glm::vec3(0, 0, 1)), 3u);
+    EXPECT_EQ(mesh.vertices.size(), segments + 3u);  // the rim is smooth (neighbours 4° apart)
+    for (std::size_t t = 0; t < std::size_t(segments); ++t) {
+        const std::size_t cluster = t <= 22 ? 0 : t <= 45 ? 1 : t <= 67 ? 2 : 0;
+        EXPECT_EQ(mesh.indices[3 * t], mesh.indices[3 * (cluster * 23)]) << "triangle " << t;
+        EXPECT_GT(glm::dot(mesh.vertices[mesh.indices[3 * t]].normal, faceNormal(mesh, t)), 0.5f);
+    }
+
+    const Mesh smooth = loadObj(path, kSmoothAll);
+    EXPECT_EQ(smooth.vertices.size(), segments + 1u);
+    expectVec3(smooth.vertices[smooth.indices[0]].normal, glm::vec3(0, 0, 1), 1e-5f);
+}
+
+TEST_F(ObjImport, CreaseAngleOutsideZeroTo180IsInvalid) {
+    const fs::path path = write("cube.obj", kCubePositions + kCubeFaces);
+    for (const float crease : {-1.0f, -0.0001f, 180.0001f, 360.0f, std::numeric_limits<float>::infinity(),
+                               std::numeric_limits<float>::quiet_NaN()}) {
+        EXPECT_THROW(loadObj(path, ObjOptions{crease}), std::invalid_argument) << crease;
+    }
+    EXPECT_NO_THROW(loadObj(path, ObjOptions{0.0f}));
+    EXPECT_NO_THROW(loadObj(path, ObjOptions{180.0f}));
+    // Checked before the file is even read.
+    EXPECT_THROW(loadObj(dir_ / "missing.obj", ObjOptions{-5.0f}), std::invalid_argument);
+}
+
+// ---- Triangulation and indices -------------------------------------------------------------------
 
 TEST_F(ObjImport, PolygonsFanTriangulateFromTheFirstCorner) {
     // A rhombus whose 0-2 diagonal is the longer one: tinyobjloader's own triangulation would cut
@@ -287,7 +592,7 @@ TEST_F(ObjImport, CrlfFileMatchesLf) {
         crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
     const Mesh mesh = loadObj(write("crlf.obj", crlf));
     EXPECT_EQ(mesh.stats.trianglesKept, 12u);
-    EXPECT_EQ(mesh.vertices.size(), 8u);
+    EXPECT_EQ(mesh.vertices.size(), 24u);  // split at the cube's edges by the default 60°
 
     // Lines still count right: CRLF, lone CR (old Mac) and LF each end one line.
     const fs::path bad = write("bad.obj", "v 0 0 0\r\nv 1 0 0\rv 0 1 0\n\r\nf 1 2 7\r\n");
@@ -671,6 +976,70 @@ TEST(ObjImportModels, BundledModelsLoadWithTheirTriangleCounts) {
             ASSERT_TRUE(glm::all(glm::lessThanEqual(v.position, mesh.boundsMax)));
         }
     }
+}
+
+// The bunny (triangles, no normals, one position per vertex line) against a brute-force reading of
+// the crease rule: every corner's normal is the normalised sum of the cross products of the triangles
+// at its position within 60° of its own, and corners share a vertex exactly when their sets agree.
+TEST(ObjImportModels, BunnyNormalsFollowTheCreaseRule) {
+    const fs::path path = kModels / "stanford-bunny" / "stanford-bunny.obj";
+    const Mesh mesh = loadObj(path);
+    const Mesh welded = loadObj(path, kSmoothAll);
+
+    const std::size_t triangles = mesh.indices.size() / 3;
+    EXPECT_EQ(triangles, 69451u);
+    EXPECT_EQ(welded.indices.size(), mesh.indices.size());
+    EXPECT_EQ(welded.stats.creaseSplits, 0u);
+    EXPECT_GT(mesh.stats.creaseSplits, 0u);
+    EXPECT_EQ(mesh.vertices.size(), welded.vertices.size() + mesh.stats.creaseSplits);
+    EXPECT_EQ(mesh.stats.normalsComputed, mesh.vertices.size());
+
+    std::vector<glm::dvec3> cross(triangles), unit(triangles);
+    std::map<std::vector<float>, std::vector<std::size_t>> trianglesAt;
+    for (std::size_t t = 0; t < triangles; ++t) {
+        const auto p = triangle(mesh, t);
+        cross[t] = glm::cross(glm::dvec3(p[1]) - glm::dvec3(p[0]), glm::dvec3(p[2]) - glm::dvec3(p[0]));
+        unit[t] = cross[t] / glm::length(cross[t]);
+        for (const glm::vec3& q : p)
+            trianglesAt[{q.x, q.y, q.z}].push_back(t);
+    }
+    const double limit = std::cos(glm::radians(60.0));
+    std::map<std::pair<std::vector<float>, std::vector<std::size_t>>, std::uint32_t> vertexOfSet;
+    std::size_t checked = 0;
+    for (std::size_t t = 0; t < triangles; ++t) {
+        for (int c = 0; c < 3; ++c) {
+            const std::uint32_t index = mesh.indices[3 * t + c];
+            const glm::vec3 q = mesh.vertices[index].position;
+            std::vector<std::size_t> set;
+            glm::dvec3 sum(0.0);
+            bool nearTheLimit = false;
+            for (const std::size_t other : trianglesAt[{q.x, q.y, q.z}]) {
+                const double d = glm::dot(unit[t], unit[other]);
+                nearTheLimit = nearTheLimit || std::abs(d - limit) < 1e-9;
+                if (d >= limit || other == t) {
+                    set.push_back(other);
+                    sum += cross[other];
+                }
+            }
+            if (nearTheLimit) continue;  // rounding may decide either way
+            ++checked;
+            ASSERT_NEAR(glm::distance(glm::dvec3(mesh.vertices[index].normal), sum / glm::length(sum)), 0.0,
+                        1e-6)
+                << "triangle " << t << " corner " << c;
+            const auto [it, inserted] = vertexOfSet.try_emplace({{q.x, q.y, q.z}, set}, index);
+            ASSERT_EQ(it->second, index) << "triangle " << t << " corner " << c;
+        }
+    }
+    EXPECT_GT(checked, 3 * triangles - 100);
+    EXPECT_EQ(vertexOfSet.size(), mesh.vertices.size());
+
+    // The same input gives the same bytes.
+    const Mesh again = loadObj(path);
+    ASSERT_EQ(again.vertices.size(), mesh.vertices.size());
+    EXPECT_EQ(
+        std::memcmp(again.vertices.data(), mesh.vertices.data(), mesh.vertices.size() * sizeof(MeshVertex)),
+        0);
+    EXPECT_EQ(again.indices, mesh.indices);
 }
 
 TEST(ObjImportModels, CubeMcguireIsTexturedAndWarningFree) {
