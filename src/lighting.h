@@ -80,6 +80,8 @@ LightVector<F, V3> lightVector(const LightParams& light, const V3& position) {
 template <class F>
 F attenuation(const LightParams& light, F distance) {
     if (light.kind == LightKind::Directional) return lanes<F>(1.0f);
+    // Constant attenuation alone (the default) needs no per-pixel division.
+    if (light.c1 == 0.0f && light.c2 == 0.0f) return lanes<F>(1.0f / light.c0);
     return 1.0f / (light.c0 + distance * (light.c1 + distance * light.c2));
 }
 
@@ -157,7 +159,7 @@ LightingTerms<V3> standardLighting(const V3& position, const V3& normal, const v
 
         // Ambient and Lambert diffuse.
         const F NdotL = dot(N, L);
-        terms.ambient += (light.ambient * m.ambient) * reach;
+        if (light.ambient != vec3(0.0f)) terms.ambient += (light.ambient * m.ambient) * reach;
         terms.diffuse += diffuseColor * light.diffuse * (reach * max(NdotL, 0.0f));
 
         // Specular, only where the light is in front of the surface.
