@@ -14,6 +14,7 @@
 #include <optional>
 #include <ostream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <thread>
@@ -405,6 +406,56 @@ void writeDisagreement(const BenchScene& bench, const LinearImage& facet, const 
         << (folder / (stem + "-mesa.png")).string() << "\n";
 }
 
+// ---- TEMPORARY: replaced by renderer.h's toGlScene() --------------------------------------------------
+// The PreparedScene as the Mesa peer's GlScene, drawn as the built-in shader draws it: per-pixel
+// Blinn-Phong, the normal flipped towards the viewer, each ShaderLight's colour as both l_d and l_s
+// (no attenuation, no light ambient), all of it moved from world to eye space by the camera's view.
+GlScene benchGlScene(const PreparedScene& prepared) {
+    const RasterState& raster = prepared.state.raster;
+    if (raster.cull == CullMode::Front || raster.frontFace != FrontFace::CounterClockwise)
+        throw std::invalid_argument("the Mesa peer culls back faces with counter-clockwise fronts, or none");
+    const mat4& viewFromWorld = prepared.camera.viewFromWorld;
+    GlScene gl;
+    gl.width = prepared.scene.width;
+    gl.height = prepared.scene.height;
+    gl.clearColor = prepared.clearColor;
+    gl.clipFromView = prepared.camera.clipFromView;
+    gl.cullBackFaces = raster.cull == CullMode::Back;
+    gl.twoSidedFlip = true;
+    if (!prepared.draws.empty()) {
+        const BlinnPhongShader::Uniforms& u = prepared.draws.front().uniforms;  // the same in every draw
+        gl.globalAmbient = u.globalAmbient;
+        for (int i = 0; i < u.lightCount; ++i) {
+            const ShaderLight& source = u.lights[i];
+            LightParams light;
+            const bool directional = source.positionOrDirection.w == 0.0f;
+            light.kind = directional ? LightKind::Directional : LightKind::Point;
+            const vec4 eye = viewFromWorld * source.positionOrDirection;
+            (directional ? light.direction : light.position) = vec3(eye);
+            light.ambient = vec3(0.0f);
+            light.diffuse = light.specular = source.color;
+            gl.lights.push_back(light);
+        }
+    }
+    for (const PreparedDraw& source : prepared.draws) {
+        const BlinnPhongShader::Uniforms& u = source.uniforms;
+        GlDraw draw;
+        draw.vertices = source.vertices;
+        draw.indices = source.indices;
+        draw.viewFromObject = viewFromWorld * u.worldFromObject;
+        draw.normalFromObject = transpose(inverse(mat3(draw.viewFromObject)));
+        draw.program = GlProgram::PerPixel;
+        draw.reflection = ReflectionModel::BlinnPhong;
+        draw.frequency = ShadingFrequency::Phong;
+        draw.material = {u.material.emission, u.material.ambient, u.material.diffuse, u.material.specular,
+                         u.material.shininess};
+        draw.diffuseMap = u.material.diffuseMap;
+        gl.draws.push_back(std::move(draw));
+    }
+    return gl;
+}
+// ---- end of TEMPORARY -----------------------------------------------------------------------------------
+
 // Loads the scene into both renderers, warms both up, checks that their images agree, then times
 // `frames` frames of each, alternating (and alternating which goes first) so that both see the same
 // machine state. Uploads and the check are not timed.
@@ -412,7 +463,7 @@ void timeScene(BenchScene& bench, MesaPeer* mesa, DrawContext& context, int fram
                const fs::path& imageFolder, std::ostream& out) {
     const PreparedScene prepared = prepareBenchScene(bench);
     Framebuffer framebuffer(bench.width, bench.height);
-    if (mesa) mesa->load(prepared);
+    if (mesa) mesa->load(benchGlScene(prepared));
     for (int i = 0; i < kWarmUpFrames; ++i) {
         renderFrame(prepared, framebuffer, context);
         if (mesa) mesa->renderFrame();
@@ -822,7 +873,10 @@ void runMesaComparison(const BenchOptions& options, std::ostream& out) {
 
     // 3. Mesa.
     std::string whyNot;
-    std::unique_ptr<MesaPeer> mesa = MesaPeer::open(threads, whyNot);
+    MesaOptions mesaOptions;
+    mesaOptions.driver = MesaDriver::Llvmpipe;
+    mesaOptions.threads = threads;
+    std::unique_ptr<MesaPeer> mesa = MesaPeer::open(mesaOptions, whyNot);
     if (mesa) {
         out << "mesa       " << mesa->renderer() << ", OpenGL " << mesa->version() << "\n"
             << "target     both draw into "
