@@ -14,6 +14,7 @@
 #include <optional>
 #include <ostream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <thread>
@@ -409,6 +410,7 @@ void writeDisagreement(const BenchScene& bench, const LinearImage& facet, const 
         << (folder / (stem + "-mesa.png")).string() << "\n";
 }
 
+
 // Loads the scene into both renderers, warms both up, checks that their images agree, then times
 // `frames` frames of each, alternating (and alternating which goes first) so that both see the same
 // machine state. Uploads and the check are not timed.
@@ -416,7 +418,7 @@ void timeScene(BenchScene& bench, MesaPeer* mesa, DrawContext& context, int fram
                const fs::path& imageFolder, std::ostream& out) {
     const PreparedScene prepared = prepareBenchScene(bench);
     Framebuffer framebuffer(bench.width, bench.height);
-    if (mesa) mesa->load(prepared);
+    if (mesa) mesa->load(toGlScene(prepared));
     for (int i = 0; i < kWarmUpFrames; ++i) {
         renderFrame(prepared, framebuffer, context);
         if (mesa) mesa->renderFrame();
@@ -826,7 +828,10 @@ void runMesaComparison(const BenchOptions& options, std::ostream& out) {
 
     // 3. Mesa.
     std::string whyNot;
-    std::unique_ptr<MesaPeer> mesa = MesaPeer::open(threads, whyNot);
+    MesaOptions mesaOptions;
+    mesaOptions.driver = MesaDriver::Llvmpipe;
+    mesaOptions.threads = threads;
+    std::unique_ptr<MesaPeer> mesa = MesaPeer::open(mesaOptions, whyNot);
     if (mesa) {
         out << "mesa       " << mesa->renderer() << ", OpenGL " << mesa->version() << "\n"
             << "target     both draw into "

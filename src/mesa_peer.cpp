@@ -3,10 +3,16 @@
 // framebuffer object (RGBA32F colour, 32-bit float depth: the formats of Facet's Framebuffer), not to
 // OSMesa's own buffer, because glFinish() would copy that buffer out to the caller's memory every
 // frame, work that Facet's renderFrame() does not do.
+//
+// Mesa's fixed function (Mesa 22.3: ffvertex_prog.c builds a vertex program from the GL state) differs
+// from lighting.h only at edges the peer keeps away from: its spot test is cos > cos(cutoff) where
+// lighting.h has ≥, and GL accepts cutoffs in [0, 90] or 180 and exponents and shininess in [0, 128]
+// only, so load() refuses the rest. Lit vertex colours are clamped to [0, 1] (GL_CLAMP_VERTEX_COLOR)
+// before interpolation and texturing, as GlDraw::clampColor describes.
 #include "mesa_peer.h"
 
-#include <array>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
@@ -22,9 +28,13 @@
 #include <GL/glext.h>
 #include <GL/osmesa.h>
 
+#include "color.h"
+
 namespace facet {
 
 namespace {
+
+constexpr int kMaxGlLights = 8;  // GL_MAX_LIGHTS's guaranteed minimum; the GLSL programs' arrays too
 
 // The GL functions the peer calls, each resolved through OSMesaGetProcAddress.
 #define FACET_GL_FUNCTIONS(X)    \
@@ -39,6 +49,7 @@ namespace {
     X(glBindVertexArray)         \
     X(glBufferData)              \
     X(glCheckFramebufferStatus)  \
+    X(glClampColor)              \
     X(glClear)                   \
     X(glClearColor)              \
     X(glClearDepth)              \
@@ -59,6 +70,7 @@ namespace {
     X(glDisable)                 \
     X(glDrawElements)            \
     X(glEnable)                  \
+    X(glEnableClientState)       \
     X(glEnableVertexAttribArray) \
     X(glFinish)                  \
     X(glFramebufferRenderbuffer) \
@@ -75,11 +87,25 @@ namespace {
     X(glGetShaderiv)             \
     X(glGetString)               \
     X(glGetUniformLocation)      \
+    X(glLightModelfv)            \
+    X(glLightModeli)             \
+    X(glLightf)                  \
+    X(glLightfv)                 \
     X(glLinkProgram)             \
+    X(glLoadIdentity)            \
+    X(glLoadMatrixf)             \
+    X(glMaterialf)               \
+    X(glMaterialfv)              \
+    X(glMatrixMode)              \
+    X(glNormalPointer)           \
     X(glPixelStorei)             \
+    X(glProvokingVertex)         \
     X(glReadPixels)              \
     X(glRenderbufferStorage)     \
+    X(glShadeModel)              \
     X(glShaderSource)            \
+    X(glTexCoordPointer)         \
+    X(glTexEnvi)                 \
     X(glTexImage2D)              \
     X(glTexParameteri)           \
     X(glUniform1f)               \
@@ -90,6 +116,7 @@ namespace {
     X(glUniformMatrix4fv)        \
     X(glUseProgram)              \
     X(glVertexAttribPointer)     \
+    X(glVertexPointer)           \
     X(glViewport)
 
 struct Gl {
@@ -104,7 +131,8 @@ struct OsMesaLibrary {
     bool tried = false;
     void* handle = nullptr;
     std::string loadError;
-    int threads = 0;  // as asked of the first open()
+    MesaDriver driver = MesaDriver::Llvmpipe;  // as asked of the first open()
+    int threads = 0;                           // as asked of the first open()
     decltype(&::OSMesaCreateContextAttribs) createContextAttribs = nullptr;
     decltype(&::OSMesaCreateContextExt) createContextExt = nullptr;
     decltype(&::OSMesaMakeCurrent) makeCurrent = nullptr;
@@ -123,123 +151,277 @@ void resolveSymbol(void* handle, const char* name, Function& function) {
     function = reinterpret_cast<Function>(::dlsym(handle, name));
 }
 
-// The built-in shader (shaders.h), line for line in GLSL. Written without layout qualifiers so that
-// it compiles as GLSL 1.30 as well as 3.30; attribute and output locations are bound before linking.
-// The light count and the presence of a diffuse map are compiled in (LIGHT_COUNT, HAS_DIFFUSE_MAP: one
-// program per combination, chosen per draw, as a GL engine would), because llvmpipe runs a loop with a
-// uniform trip count and uniform-array indexing about twice as slowly as the unrolled loop (bunny,
-// 1920×1080, one light: 50 vs 26 ms), while for Facet's compiled C++ the runtime loop costs next to
-// nothing. The arithmetic per pixel is the same either way.
-const char* const kVertexShader = R"(
-in vec3 position;
-in vec3 normal;
-in vec2 uv;
-uniform mat4 clipFromObject;
-uniform mat4 worldFromObject;
-uniform mat3 normalFromObject;
-out vec3 worldPosition;
-out vec3 worldNormal;  // not normalised after interpolation
-out vec2 texcoord;
-void main() {
-    vec4 world = worldFromObject * vec4(position, 1.0);
-    worldPosition = world.xyz;
-    worldNormal = normalFromObject * normal;
-    texcoord = uv;
-    gl_Position = clipFromObject * vec4(position, 1.0);
-}
-)";
+// ---- The GLSL programs ---------------------------------------------------------------------------------
+//
+// lighting.h's formulas line for line, in eye space (the eye at the origin). One program per distinct
+// (per pixel or per vertex, flat or smooth, reflection model, BRDF choice, lights, diffuse map, colour
+// clamp, two-sided flip), the choices compiled in as #defines, and the light count and each light's kind
+// too, as literal arguments of the calls to addLight(): llvmpipe runs a loop with a uniform trip count and
+// uniform-array indexing about twice as slowly as the unrolled loop (bunny, 1920×1080, one light: 50 vs
+// 26 ms), while for Facet's compiled C++ the runtime loop costs next to nothing. Written without layout
+// qualifiers so that it compiles as GLSL 1.30 as well as 3.30; attribute and output locations are bound
+// before linking.
 
-// c = k_e + a_global ⊗ k_a + Σ_lights c_light ⊗ (k_d·max(N·L, 0) + k_s·max(N·H, 0)^n), as in shaders.h.
-const char* const kFragmentShader = R"(
-in vec3 worldPosition;
-in vec3 worldNormal;
-in vec2 texcoord;
-uniform vec3 eyeWorld;
+// The lighting, in whichever stage evaluates it (the fragment shader per pixel, the vertex shader per
+// vertex). Light kinds: 0 directional, 1 point (or a spot without a cone), 2 spot with OpenGL's profile,
+// 3 spot with the smooth one.
+const char* const kLightingGlsl = R"(
+#define PI 3.14159265358979
 uniform vec3 globalAmbient;
-uniform vec4 lightPositionOrDirection[MAX_LIGHTS];  // w = 0: direction the light travels; w = 1: point
-uniform vec3 lightColor[MAX_LIGHTS];
+uniform vec3 lightPosition[MAX_LIGHTS];       // point and spot lights
+uniform vec3 lightToward[MAX_LIGHTS];         // directional lights: −normalize(direction)
+uniform vec3 lightAttenuation[MAX_LIGHTS];    // c0, c1, c2
+uniform vec3 lightSpotDirection[MAX_LIGHTS];  // unit
+uniform vec4 lightSpot[MAX_LIGHTS];           // cos cutoff, exponent, cos outer, cos inner
+uniform vec3 lightAmbient[MAX_LIGHTS];
+uniform vec3 lightDiffuse[MAX_LIGHTS];
+uniform vec3 lightSpecular[MAX_LIGHTS];
+uniform vec3 materialEmission;
 uniform vec3 materialAmbient;
 uniform vec3 materialDiffuse;
 uniform vec3 materialSpecular;
-uniform vec3 materialEmission;
 uniform float materialShininess;
-uniform sampler2D diffuseMap;
-out vec4 fragColor;
-void main() {
-    vec3 N = normalize(worldNormal);
-    vec3 V = normalize(eyeWorld - worldPosition);
-    if (dot(N, V) < 0.0) N = -N;
-    vec3 kd = materialDiffuse;
-#if HAS_DIFFUSE_MAP
-    kd *= texture(diffuseMap, texcoord).rgb;
+uniform vec3 baseColor;
+uniform float metalness;
+uniform float alpha;         // alphaFromRoughness(roughness)
+uniform vec3 dielectricF0;
+
+struct Terms {
+    vec3 emission;
+    vec3 ambient;
+    vec3 diffuse;
+    vec3 specular;
+};
+
+// wide.h's safeNormalize: the zero vector stays zero.
+vec3 safeNormalize(vec3 v) {
+    return v * (1.0 / sqrt(max(dot(v, v), 1e-30)));
+}
+
+// x^n for x ≥ 0 as lighting.h's pow: 1 where n = 0, 0 where x = 0 < n (GLSL's pow leaves both undefined).
+float powSafe(float x, float n) {
+    return n == 0.0 ? 1.0 : (x <= 0.0 ? 0.0 : pow(x, n));
+}
+
+// wide.h's smoothstep (GLSL's leaves edge0 ≥ edge1 undefined).
+float smoothStep(float edge0, float edge1, float x) {
+    float width = edge1 - edge0;
+    float t = clamp((x - edge0) * (1.0 / (width != 0.0 ? width : 1e-7)), 0.0, 1.0);
+    return t * t * (3.0 - 2.0 * t);
+}
+
+#if REFLECTION == 2
+float etaFromF0(float f0) {
+    float s = sqrt(clamp(f0, 0.0, 0.9999));
+    return (1.0 + s) / (1.0 - s);
+}
+
+float fresnelExact(float cosTheta, float eta) {
+    float c = clamp(cosTheta, 0.0, 1.0);
+    float g2 = eta * eta - 1.0 + c * c;
+    float g = sqrt(max(g2, 0.0));
+    float a = (g - c) / max(g + c, 1e-7);
+    float b = (c * (g + c) - 1.0) / (c * (g - c) + 1.0);
+    return g2 < 0.0 ? 1.0 : 0.5 * a * a * (1.0 + b * b);
+}
+
+float smithG1GGX(float NdotX, float a2) {
+    float c = max(NdotX, 0.0);
+    return 2.0 * c / max(c + sqrt(a2 + (1.0 - a2) * c * c), 1e-7);
+}
+
+// lighting.h's brdf(), its diffuse and specular lobes apart.
+void brdf(vec3 n, vec3 l, vec3 v, vec3 base, out vec3 diffuse, out vec3 specular) {
+    vec3 N = safeNormalize(n);
+    vec3 L = safeNormalize(l);
+    vec3 V = safeNormalize(v);
+    vec3 H = safeNormalize(L + V);
+    float NdotLRaw = dot(N, L);
+    float NdotL = max(NdotLRaw, 1e-4);
+    float NdotV = max(dot(N, V), 1e-4);
+    float NdotH = dot(N, H);
+    float VdotH = clamp(dot(V, H), 0.0, 1.0);
+    float a2 = alpha * alpha;
+    vec3 f0 = mix(dielectricF0, baseColor, metalness);  // the material's: a diffuse map tints the Lambert lobe only
+#if DISTRIBUTION_GGX
+    float cH = max(NdotH, 0.0);
+    float denominator = cH * cH * (a2 - 1.0) + 1.0;
+    float D = NdotH > 0.0 ? a2 / (PI * denominator * denominator) : 0.0;
+#else
+    float cH = max(NdotH, 1e-4);
+    float c2 = cH * cH;
+    float D = NdotH > 0.0 ? exp((c2 - 1.0) / (a2 * c2)) / (PI * a2 * c2 * c2) : 0.0;
+#endif
+#if FRESNEL_EXACT
+    vec3 F = vec3(fresnelExact(VdotH, etaFromF0(f0.x)), fresnelExact(VdotH, etaFromF0(f0.y)),
+                  fresnelExact(VdotH, etaFromF0(f0.z)));
+#else
+    float m = 1.0 - clamp(VdotH, 0.0, 1.0);
+    float m2 = m * m;
+    vec3 F = (vec3(1.0) - f0) * (m2 * m2 * m) + f0;
+#endif
+#if GEOMETRY_SMITH
+    float G = smithG1GGX(NdotV, a2) * smithG1GGX(NdotL, a2);
+#else
+    float k = 2.0 * max(NdotH, 0.0) / max(VdotH, 1e-4);
+    float G = min(min(k * NdotV, k * NdotL), 1.0);
+#endif
+    bool lit = NdotLRaw > 0.0;
+    specular = lit ? F * (D * G / (4.0 * NdotL * NdotV)) : vec3(0.0);
+    diffuse = lit ? (vec3(1.0) - F) * (base * ((1.0 - metalness) / PI)) : vec3(0.0);
+}
 #endif
 
-    vec3 color = materialEmission + globalAmbient * materialAmbient;
-    for (int i = 0; i < LIGHT_COUNT; ++i) {
-        vec4 light = lightPositionOrDirection[i];
-        vec3 L = light.w == 0.0 ? -light.xyz : normalize(light.xyz - worldPosition);
-        float NdotL = dot(N, L);
-        if (NdotL <= 0.0) continue;
-        vec3 H = normalize(L + V);
-        float specular = materialShininess > 0.0 ? pow(max(dot(N, H), 0.0), materialShininess) : 1.0;
-        color += lightColor[i] * (kd * NdotL + materialSpecular * specular);
+// One light's share. `kind` is a literal at every call, so each call compiles to straight code.
+// surface: m_diffuse (standard equation) or c_base (Cook-Torrance), the texel applied where it applies.
+void addLight(int i, int kind, vec3 P, vec3 N, vec3 V, vec3 surface, inout Terms terms) {
+    // lightVector(): L towards the light and its distance.
+    vec3 L;
+    float d = 0.0;
+    if (kind == 0) {
+        L = lightToward[i];
+    } else {
+        vec3 toLight = lightPosition[i] - P;
+        d = sqrt(dot(toLight, toLight));
+        L = toLight * (1.0 / max(d, 1e-20));
     }
-    fragColor = vec4(color, 1.0);
+    // spotFactorOpenGL() / spotFactorSmooth().
+    float spot = 1.0;
+    if (kind == 2) {
+        float cosAngle = dot(-L, lightSpotDirection[i]);
+        spot = cosAngle >= lightSpot[i].x ? powSafe(max(cosAngle, 0.0), lightSpot[i].y) : 0.0;
+    } else if (kind == 3) {
+        spot = smoothStep(lightSpot[i].z, lightSpot[i].w, dot(-L, lightSpotDirection[i]));
+    }
+#if REFLECTION == 2
+    // physicallyBasedLighting(): π c_light radiance, 1/d² falloff.
+    float falloff = kind == 0 ? 1.0 : 1.0 / max(d * d, 1e-8);
+    float irradiance = falloff * spot * max(dot(N, L), 0.0);
+    vec3 diffuse, specular;
+    brdf(N, L, V, surface, diffuse, specular);
+    vec3 radiance = lightDiffuse[i] * PI;
+    terms.diffuse += diffuse * radiance * irradiance;
+    terms.specular += specular * radiance * irradiance;
+#else
+    // standardLighting(): attenuation and spot, ambient, Lambert diffuse, specular where N·L > 0.
+    vec3 c = lightAttenuation[i];
+    float attenuation = kind == 0 ? 1.0 : 1.0 / (c.x + d * (c.y + d * c.z));
+    float reach = attenuation * spot;
+    float NdotL = dot(N, L);
+    terms.ambient += (lightAmbient[i] * materialAmbient) * reach;
+    terms.diffuse += (lightDiffuse[i] * surface) * (reach * max(NdotL, 0.0));
+#if REFLECTION == 0
+    vec3 R = N * (2.0 * NdotL) - L;
+    float cosine = dot(R, V);
+#else
+    float cosine = dot(N, safeNormalize(L + V));
+#endif
+    float spec = NdotL > 0.0 ? powSafe(max(cosine, 0.0), materialShininess) : 0.0;
+    terms.specular += (lightSpecular[i] * materialSpecular) * (reach * spec);
+#endif
+}
+
+void addLights(vec3 P, vec3 N, vec3 V, vec3 surface, inout Terms terms);  // generated per program
+
+// The four terms at eye-space point P with normal n (any length); texel multiplies m_diffuse or c_base.
+Terms shade(vec3 P, vec3 n, vec3 texel) {
+    vec3 V = safeNormalize(-P);
+    vec3 N = safeNormalize(n);
+#if TWO_SIDED_FLIP
+    if (dot(N, V) < 0.0) N = -N;
+#endif
+    Terms terms;
+    terms.emission = materialEmission;
+#if REFLECTION == 2
+    vec3 surface = baseColor * texel;
+    terms.ambient = globalAmbient * surface;
+#else
+    vec3 surface = materialDiffuse * texel;
+    terms.ambient = globalAmbient * materialAmbient;
+#endif
+    terms.diffuse = vec3(0.0);
+    terms.specular = vec3(0.0);
+    addLights(P, N, V, surface, terms);
+    return terms;
+}
+
+vec3 sum(Terms t) {
+    return t.emission + t.ambient + t.diffuse + t.specular;
 }
 )";
 
-// Interim: the uniforms the GLSL above reads, from the built-in shader's (eye space serves as its
-// "world" space, the eye at the origin).
-struct LegacyLight {
-    vec4 positionOrDirection;
-    vec3 color;
-};
-struct LegacyUniforms {
-    mat4 clipFromObject, worldFromObject;
-    mat3 normalFromObject;
-    vec3 eyeWorld{0.0f}, globalAmbient;
-    int lightCount = 0;
-    std::array<LegacyLight, kMaxLights> lights{};
-    PhongMaterial material;
-    const Texture* diffuseMap = nullptr;
-};
-LegacyUniforms legacyUniforms(const SurfaceUniforms& u) {
-    LegacyUniforms out;
-    out.clipFromObject = u.clipFromObject;
-    out.worldFromObject = u.viewFromObject;
-    out.normalFromObject = u.normalFromObject;
-    out.globalAmbient = u.globalAmbient;
-    out.lightCount = u.lightCount;
-    for (int i = 0; i < u.lightCount; ++i) {
-        const LightParams& l = u.lights[i];
-        out.lights[i] = {l.kind == LightKind::Directional ? vec4(l.direction, 0.0f) : vec4(l.position, 1.0f), l.diffuse};
-    }
-    out.material = u.material;
-    out.diffuseMap = u.diffuseMap;
-    return out;
+const char* const kVertexGlsl = R"(
+in vec3 position;
+in vec3 normal;
+in vec2 uv;
+uniform mat4 clipFromView;
+uniform mat4 viewFromObject;
+uniform mat3 normalFromObject;
+out vec2 texcoord;
+#if PER_VERTEX
+INTERPOLATION out vec3 shadedColor;  // the colour; with a diffuse map and no clamp, its diffuse term
+#if HAS_DIFFUSE_MAP && !CLAMP_COLOR
+INTERPOLATION out vec3 shadedRest;   // emission + ambient + specular
+#endif
+#else
+out vec3 eyePosition;
+out vec3 eyeNormal;  // not normalised
+#endif
+void main() {
+    vec4 eye = viewFromObject * vec4(position, 1.0);
+    vec3 n = normalFromObject * normal;
+    texcoord = uv;
+    gl_Position = clipFromView * eye;
+#if PER_VERTEX
+    Terms terms = shade(eye.xyz, n, vec3(1.0));
+#if CLAMP_COLOR
+    shadedColor = clamp(sum(terms), 0.0, 1.0);
+#elif HAS_DIFFUSE_MAP
+    shadedColor = terms.diffuse;
+    shadedRest = terms.emission + terms.ambient + terms.specular;
+#else
+    shadedColor = sum(terms);
+#endif
+#else
+    eyePosition = eye.xyz;
+    eyeNormal = n;
+#endif
 }
+)";
 
-GLenum glCompare(CompareOp op) {
-    switch (op) {
-        case CompareOp::Never:
-            return GL_NEVER;
-        case CompareOp::Less:
-            return GL_LESS;
-        case CompareOp::Equal:
-            return GL_EQUAL;
-        case CompareOp::LessEqual:
-            return GL_LEQUAL;
-        case CompareOp::Greater:
-            return GL_GREATER;
-        case CompareOp::NotEqual:
-            return GL_NOTEQUAL;
-        case CompareOp::GreaterEqual:
-            return GL_GEQUAL;
-        case CompareOp::Always:
-            return GL_ALWAYS;
-    }
-    return GL_LESS;
+const char* const kFragmentGlsl = R"(
+in vec2 texcoord;
+#if PER_VERTEX
+INTERPOLATION in vec3 shadedColor;
+#if HAS_DIFFUSE_MAP && !CLAMP_COLOR
+INTERPOLATION in vec3 shadedRest;
+#endif
+#else
+in vec3 eyePosition;
+in vec3 eyeNormal;
+#endif
+uniform sampler2D diffuseMap;
+out vec4 fragColor;
+void main() {
+    vec3 texel = vec3(1.0);
+#if HAS_DIFFUSE_MAP
+    texel = texture(diffuseMap, texcoord).rgb;
+#endif
+#if PER_VERTEX
+#if HAS_DIFFUSE_MAP && !CLAMP_COLOR
+    vec3 color = shadedColor * texel + shadedRest;
+#else
+    vec3 color = shadedColor * texel;
+#endif
+#else
+    vec3 color = sum(shade(eyePosition, eyeNormal, texel));
+#if CLAMP_COLOR
+    color = clamp(color, 0.0, 1.0);
+#endif
+#endif
+    fragColor = vec4(color, 1.0);
 }
+)";
 
 // "4.50" or "4.50 (compatibility)" → 450.
 int glslVersion(const std::string& text) {
@@ -248,34 +430,105 @@ int glslVersion(const std::string& text) {
     return major * 100 + minor;
 }
 
+// How a light enters a GLSL program: 0 directional, 1 point (a spot without a cone is one: its spot
+// factor is 1), 2 spot with OpenGL's profile, 3 spot with the smooth one.
+int lightKindCode(const LightParams& light) {
+    switch (light.kind) {
+        case LightKind::Directional:
+            return 0;
+        case LightKind::Point:
+            return 1;
+        case LightKind::Spot:
+            if (light.spotProfile == SpotProfile::Smooth) return 3;
+            return light.spotCutoffDegrees >= 180.0f ? 1 : 2;
+    }
+    return 1;
+}
+
+const char* programName(GlProgram program) {
+    switch (program) {
+        case GlProgram::FixedFunction:
+            return "FixedFunction";
+        case GlProgram::PerPixel:
+            return "PerPixel";
+        case GlProgram::PerVertex:
+            return "PerVertex";
+    }
+    return "?";
+}
+
+// What OpenGL's fixed function can draw, checked before any state is set: one line for the message.
+void checkFixedFunction(const GlScene& scene, std::size_t drawIndex) {
+    const GlDraw& draw = scene.draws[drawIndex];
+    const std::string where = "GlScene draw " + std::to_string(drawIndex) + " (FixedFunction): ";
+    if (draw.reflection != ReflectionModel::BlinnPhong)
+        throw std::invalid_argument(where + "fixed-function lighting is Blinn-Phong only");
+    const float n = draw.material.shininess;
+    if (!(n >= 0.0f && n <= 128.0f))
+        throw std::invalid_argument(where + "shininess " + std::to_string(n) +
+                                    " is outside OpenGL's [0, 128]");
+    for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+        const LightParams& light = scene.lights[i];
+        const std::string lightWhere = where + "light " + std::to_string(i) + ": ";
+        if (light.kind == LightKind::Spot) {
+            if (light.spotProfile == SpotProfile::Smooth)
+                throw std::invalid_argument(lightWhere +
+                                            "a Smooth-profile spot has no fixed-function equivalent");
+            const float cutoff = light.spotCutoffDegrees;
+            if (!(cutoff >= 0.0f && (cutoff <= 90.0f || cutoff >= 180.0f)))
+                throw std::invalid_argument(lightWhere + "spot cutoff " + std::to_string(cutoff) +
+                                            " degrees is outside OpenGL's [0, 90] (or 180)");
+            if (!(light.spotExponent >= 0.0f && light.spotExponent <= 128.0f))
+                throw std::invalid_argument(lightWhere + "spot exponent " +
+                                            std::to_string(light.spotExponent) +
+                                            " is outside OpenGL's [0, 128]");
+        }
+        if (light.kind != LightKind::Directional &&
+            !(light.c0 >= 0.0f && light.c1 >= 0.0f && light.c2 >= 0.0f))
+            throw std::invalid_argument(lightWhere + "attenuation coefficients must not be negative");
+    }
+}
+
 }  // namespace
+
+const char* driverName(MesaDriver driver) {
+    return driver == MesaDriver::Softpipe ? "softpipe" : "llvmpipe";
+}
 
 struct MesaPeer::Impl {
     OSMesaContext context = nullptr;
     float defaultBuffer[4] = {};  // OSMesa's own 1×1 buffer; frames go to `framebuffer`
     GLenum defaultBufferType = GL_FLOAT;
     Gl gl;
-    std::string renderer, version;
+    std::string renderer, version, glslVersionText;
+    MesaDriver driver = MesaDriver::Llvmpipe;
     int threads = 0;
     bool floatColor = true;
 
-    // The shader programs, by (light count, has a diffuse map), and their uniform locations.
+    // The GLSL programs, by their #define header, and their uniform locations.
     struct Program {
         GLuint name = 0;
-        GLint clipFromObject, worldFromObject, normalFromObject, eyeWorld, globalAmbient,
-            lightPositionOrDirection, lightColor, materialAmbient, materialDiffuse, materialSpecular,
-            materialEmission, materialShininess;
+        // Set once per load(): the scene's.
+        GLint clipFromView, globalAmbient, lightPosition, lightToward, lightAttenuation, lightSpotDirection,
+            lightSpot, lightAmbient, lightDiffuse, lightSpecular;
+        // Set per draw.
+        GLint viewFromObject, normalFromObject, materialEmission, materialAmbient, materialDiffuse,
+            materialSpecular, materialShininess, baseColor, metalness, alpha, dielectricF0;
     };
-    std::string versionLine;  // "#version 330 core" or "#version 130"
-    std::map<std::pair<int, bool>, Program> programs;
+    std::string versionLine;  // "#version 330" or "#version 130"
+    std::map<std::string, Program> programs;
 
     // What load() uploaded.
     struct Draw {
         GLuint vertexArray = 0, vertexBuffer = 0, indexBuffer = 0;
         GLsizei indexCount = 0;
-        GLuint texture = 0;  // 0: no diffuse map
-        const Program* program = nullptr;
-        LegacyUniforms uniforms;
+        GLuint texture = 0;                // 0: no diffuse map
+        const Program* program = nullptr;  // nullptr: fixed function
+        bool flat = false;
+        mat4 viewFromObject{1.0f};
+        mat3 normalFromObject{1.0f};
+        PhongMaterial material;
+        PbrMaterial pbr;
     };
     std::vector<Draw> draws;
     std::vector<GLuint> textures;
@@ -301,6 +554,13 @@ struct MesaPeer::Impl {
         throw std::runtime_error(std::string("OpenGL error ") + code + " while " + during);
     }
 
+    // The first line of a compiler or linker log, for a one-line message.
+    static std::string firstLine(const char* log) {
+        std::string line(log);
+        line = line.substr(0, line.find('\n'));
+        return line.empty() ? "no log" : line;
+    }
+
     GLuint compileShader(GLenum type, const std::string& source) const {
         const GLuint shader = gl.glCreateShader(type);
         const char* text = source.c_str();
@@ -312,19 +572,55 @@ struct MesaPeer::Impl {
             char log[2048] = {};
             gl.glGetShaderInfoLog(shader, sizeof log, nullptr, log);
             gl.glDeleteShader(shader);
-            throw std::runtime_error(std::string("the Mesa peer's shader does not compile: ") + log);
+            throw std::runtime_error(std::string("the Mesa peer's ") +
+                                     (type == GL_VERTEX_SHADER ? "vertex" : "fragment") +
+                                     " shader does not compile: " + firstLine(log));
         }
         return shader;
     }
 
-    const Program& program(int lightCount, bool hasDiffuseMap) {
-        Program& p = programs[{lightCount, hasDiffuseMap}];
+    // The program for one draw of `scene`: its #define header is the cache's key.
+    const Program& program(const GlScene& scene, const GlDraw& draw) {
+        const bool perVertex = draw.program == GlProgram::PerVertex;
+        const bool hasDiffuseMap = draw.diffuseMap && !draw.diffuseMap->empty();
+        const int reflection = draw.reflection == ReflectionModel::Phong        ? 0
+                               : draw.reflection == ReflectionModel::BlinnPhong ? 1
+                                                                                : 2;
+        const bool costTerms = reflection == 2;  // the BRDF's choices matter to Cook-Torrance only
+        std::string header = versionLine + "\n#define MAX_LIGHTS " + std::to_string(kMaxGlLights) +
+                             "\n#define PER_VERTEX " + (perVertex ? "1" : "0") + "\n#define INTERPOLATION " +
+                             (draw.frequency == ShadingFrequency::Flat ? "flat" : "smooth") +
+                             "\n#define REFLECTION " + std::to_string(reflection) +
+                             "\n#define DISTRIBUTION_GGX " +
+                             (costTerms && scene.brdf.distribution == NormalDistribution::GGX ? "1" : "0") +
+                             "\n#define FRESNEL_EXACT " +
+                             (costTerms && scene.brdf.fresnel == FresnelModel::Exact ? "1" : "0") +
+                             "\n#define GEOMETRY_SMITH " +
+                             (costTerms && scene.brdf.geometry == GeometryTerm::SmithGGX ? "1" : "0") +
+                             "\n#define HAS_DIFFUSE_MAP " + (hasDiffuseMap ? "1" : "0") +
+                             "\n#define CLAMP_COLOR " + (draw.clampColor ? "1" : "0") +
+                             "\n#define TWO_SIDED_FLIP " + (scene.twoSidedFlip ? "1" : "0") + "\n";
+        std::string addLights = "void addLights(vec3 P, vec3 N, vec3 V, vec3 surface, inout Terms terms) {\n";
+        for (std::size_t i = 0; i < scene.lights.size(); ++i)
+            addLights += "    addLight(" + std::to_string(i) + ", " +
+                         std::to_string(lightKindCode(scene.lights[i])) + ", P, N, V, surface, terms);\n";
+        addLights += "}\n";
+        const std::string key = header + addLights;
+        Program& p = programs[key];
         if (p.name) return p;
-        const std::string header = versionLine + "\n#define MAX_LIGHTS " + std::to_string(kMaxLights) +
-                                   "\n#define LIGHT_COUNT " + std::to_string(lightCount) +
-                                   "\n#define HAS_DIFFUSE_MAP " + (hasDiffuseMap ? "1" : "0") + "\n";
-        const GLuint vertex = compileShader(GL_VERTEX_SHADER, header + kVertexShader);
-        const GLuint fragment = compileShader(GL_FRAGMENT_SHADER, header + kFragmentShader);
+
+        const std::string lighting = std::string(kLightingGlsl) + addLights;
+        const GLuint vertex =
+            compileShader(GL_VERTEX_SHADER, header + (perVertex ? lighting : std::string()) + kVertexGlsl);
+        GLuint fragment = 0;
+        try {
+            fragment = compileShader(GL_FRAGMENT_SHADER,
+                                     header + (perVertex ? std::string() : lighting) + kFragmentGlsl);
+        } catch (...) {
+            gl.glDeleteShader(vertex);
+            programs.erase(key);
+            throw;
+        }
         p.name = gl.glCreateProgram();
         gl.glAttachShader(p.name, vertex);
         gl.glAttachShader(p.name, fragment);
@@ -340,50 +636,150 @@ struct MesaPeer::Impl {
         if (!ok) {
             char log[2048] = {};
             gl.glGetProgramInfoLog(p.name, sizeof log, nullptr, log);
-            throw std::runtime_error(std::string("the Mesa peer's shader does not link: ") + log);
+            gl.glDeleteProgram(p.name);
+            programs.erase(key);
+            throw std::runtime_error(std::string("the Mesa peer's shader does not link: ") + firstLine(log));
         }
         auto uniform = [&](const char* name) { return gl.glGetUniformLocation(p.name, name); };
-        p.clipFromObject = uniform("clipFromObject");
-        p.worldFromObject = uniform("worldFromObject");
-        p.normalFromObject = uniform("normalFromObject");
-        p.eyeWorld = uniform("eyeWorld");
+        p.clipFromView = uniform("clipFromView");
         p.globalAmbient = uniform("globalAmbient");
-        p.lightPositionOrDirection = uniform("lightPositionOrDirection");
-        p.lightColor = uniform("lightColor");
+        p.lightPosition = uniform("lightPosition");
+        p.lightToward = uniform("lightToward");
+        p.lightAttenuation = uniform("lightAttenuation");
+        p.lightSpotDirection = uniform("lightSpotDirection");
+        p.lightSpot = uniform("lightSpot");
+        p.lightAmbient = uniform("lightAmbient");
+        p.lightDiffuse = uniform("lightDiffuse");
+        p.lightSpecular = uniform("lightSpecular");
+        p.viewFromObject = uniform("viewFromObject");
+        p.normalFromObject = uniform("normalFromObject");
+        p.materialEmission = uniform("materialEmission");
         p.materialAmbient = uniform("materialAmbient");
         p.materialDiffuse = uniform("materialDiffuse");
         p.materialSpecular = uniform("materialSpecular");
-        p.materialEmission = uniform("materialEmission");
         p.materialShininess = uniform("materialShininess");
+        p.baseColor = uniform("baseColor");
+        p.metalness = uniform("metalness");
+        p.alpha = uniform("alpha");
+        p.dielectricF0 = uniform("dielectricF0");
         gl.glUseProgram(p.name);
         gl.glUniform1i(uniform("diffuseMap"), 0);  // texture unit 0
         checkGl("building a shader program");
         return p;
     }
 
-    // The uniforms of one draw, as BlinnPhongShader::Uniforms holds them (GLM matrices are column-major,
-    // as GL expects).
-    void setUniforms(const Program& location, const LegacyUniforms& u) const {
-        gl.glUniformMatrix4fv(location.clipFromObject, 1, GL_FALSE, &u.clipFromObject[0][0]);
-        gl.glUniformMatrix4fv(location.worldFromObject, 1, GL_FALSE, &u.worldFromObject[0][0]);
-        gl.glUniformMatrix3fv(location.normalFromObject, 1, GL_FALSE, &u.normalFromObject[0][0]);
-        gl.glUniform3fv(location.eyeWorld, 1, &u.eyeWorld[0]);
-        gl.glUniform3fv(location.globalAmbient, 1, &u.globalAmbient[0]);
-        float positions[kMaxLights * 4], colors[kMaxLights * 3];
-        for (int i = 0; i < kMaxLights; ++i) {
-            for (int c = 0; c < 4; ++c)
-                positions[i * 4 + c] = u.lights[i].positionOrDirection[c];
-            for (int c = 0; c < 3; ++c)
-                colors[i * 3 + c] = u.lights[i].color[c];
+    // The scene's uniforms: the projection and the lights, as lighting.h reads LightParams (the
+    // directional vector and the spot axis normalised and the cosines taken on the CPU, as there).
+    void setSceneUniforms(const Program& p, const GlScene& scene) const {
+        std::array<float, kMaxGlLights * 3> position{}, toward{}, attenuation{}, spotDirection{}, ambient{},
+            diffuse{}, specular{};
+        std::array<float, kMaxGlLights * 4> spot{};
+        for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+            const LightParams& light = scene.lights[i];
+            const vec3 towardLight =
+                light.kind == LightKind::Directional ? -normalize(light.direction) : vec3(0.0f);
+            const vec3 axis =
+                light.kind == LightKind::Spot ? normalize(light.spotDirection) : vec3(0.0f, 0.0f, -1.0f);
+            const vec3 c(light.c0, light.c1, light.c2);
+            for (int k = 0; k < 3; ++k) {
+                position[i * 3 + k] = light.position[k];
+                toward[i * 3 + k] = towardLight[k];
+                attenuation[i * 3 + k] = c[k];
+                spotDirection[i * 3 + k] = axis[k];
+                ambient[i * 3 + k] = light.ambient[k];
+                diffuse[i * 3 + k] = light.diffuse[k];
+                specular[i * 3 + k] = light.specular[k];
+            }
+            spot[i * 4 + 0] = std::cos(glm::radians(light.spotCutoffDegrees));
+            spot[i * 4 + 1] = light.spotExponent;
+            spot[i * 4 + 2] = std::cos(glm::radians(light.spotOuterDegrees));
+            spot[i * 4 + 3] = std::cos(glm::radians(light.spotInnerDegrees));
         }
-        gl.glUniform4fv(location.lightPositionOrDirection, kMaxLights, positions);
-        gl.glUniform3fv(location.lightColor, kMaxLights, colors);
-        const PhongMaterial& m = u.material;
-        gl.glUniform3fv(location.materialAmbient, 1, &m.ambient[0]);
-        gl.glUniform3fv(location.materialDiffuse, 1, &m.diffuse[0]);
-        gl.glUniform3fv(location.materialSpecular, 1, &m.specular[0]);
-        gl.glUniform3fv(location.materialEmission, 1, &m.emission[0]);
-        gl.glUniform1f(location.materialShininess, m.shininess);
+        gl.glUseProgram(p.name);
+        gl.glUniformMatrix4fv(p.clipFromView, 1, GL_FALSE, &scene.clipFromView[0][0]);
+        gl.glUniform3fv(p.globalAmbient, 1, &scene.globalAmbient[0]);
+        gl.glUniform3fv(p.lightPosition, kMaxGlLights, position.data());
+        gl.glUniform3fv(p.lightToward, kMaxGlLights, toward.data());
+        gl.glUniform3fv(p.lightAttenuation, kMaxGlLights, attenuation.data());
+        gl.glUniform3fv(p.lightSpotDirection, kMaxGlLights, spotDirection.data());
+        gl.glUniform4fv(p.lightSpot, kMaxGlLights, spot.data());
+        gl.glUniform3fv(p.lightAmbient, kMaxGlLights, ambient.data());
+        gl.glUniform3fv(p.lightDiffuse, kMaxGlLights, diffuse.data());
+        gl.glUniform3fv(p.lightSpecular, kMaxGlLights, specular.data());
+    }
+
+    // One draw's uniforms (GLM matrices are column-major, as GL expects).
+    void setDrawUniforms(const Draw& draw) const {
+        const Program& p = *draw.program;
+        gl.glUniformMatrix4fv(p.viewFromObject, 1, GL_FALSE, &draw.viewFromObject[0][0]);
+        gl.glUniformMatrix3fv(p.normalFromObject, 1, GL_FALSE, &draw.normalFromObject[0][0]);
+        const PhongMaterial& m = draw.material;
+        gl.glUniform3fv(p.materialEmission, 1, &m.emission[0]);
+        gl.glUniform3fv(p.materialAmbient, 1, &m.ambient[0]);
+        gl.glUniform3fv(p.materialDiffuse, 1, &m.diffuse[0]);
+        gl.glUniform3fv(p.materialSpecular, 1, &m.specular[0]);
+        gl.glUniform1f(p.materialShininess, m.shininess);
+        gl.glUniform3fv(p.baseColor, 1, &draw.pbr.baseColor[0]);
+        gl.glUniform1f(p.metalness, draw.pbr.metalness);
+        gl.glUniform1f(p.alpha, alphaFromRoughness(draw.pbr.roughness));
+        gl.glUniform3fv(p.dielectricF0, 1, &draw.pbr.f0[0]);
+    }
+
+    // Fixed-function lighting: the light model and the lights, given under an identity modelview so that
+    // GL stores them as they are (eye space).
+    void setFixedFunctionLights(const GlScene& scene) const {
+        gl.glMatrixMode(GL_MODELVIEW);
+        gl.glLoadIdentity();
+        const vec4 ambient(scene.globalAmbient, 1.0f);
+        gl.glLightModelfv(GL_LIGHT_MODEL_AMBIENT, &ambient[0]);
+        gl.glLightModeli(GL_LIGHT_MODEL_LOCAL_VIEWER, GL_TRUE);
+        gl.glLightModeli(GL_LIGHT_MODEL_TWO_SIDE, GL_FALSE);
+        gl.glLightModeli(GL_LIGHT_MODEL_COLOR_CONTROL, GL_SINGLE_COLOR);
+        for (int i = 0; i < kMaxGlLights; ++i) {
+            const GLenum name = GL_LIGHT0 + static_cast<GLenum>(i);
+            if (static_cast<std::size_t>(i) >= scene.lights.size()) {
+                gl.glDisable(name);
+                continue;
+            }
+            const LightParams& light = scene.lights[i];
+            gl.glEnable(name);
+            const vec4 position = light.kind == LightKind::Directional ? vec4(-light.direction, 0.0f)
+                                                                       : vec4(light.position, 1.0f);
+            gl.glLightfv(name, GL_POSITION, &position[0]);
+            const bool cone = light.kind == LightKind::Spot && light.spotCutoffDegrees < 180.0f;
+            const vec3 axis = light.kind == LightKind::Spot ? light.spotDirection : vec3(0.0f, 0.0f, -1.0f);
+            gl.glLightfv(name, GL_SPOT_DIRECTION, &axis[0]);
+            gl.glLightf(name, GL_SPOT_CUTOFF, cone ? light.spotCutoffDegrees : 180.0f);
+            gl.glLightf(name, GL_SPOT_EXPONENT, cone ? light.spotExponent : 0.0f);
+            const bool local = light.kind != LightKind::Directional;
+            gl.glLightf(name, GL_CONSTANT_ATTENUATION, local ? light.c0 : 1.0f);
+            gl.glLightf(name, GL_LINEAR_ATTENUATION, local ? light.c1 : 0.0f);
+            gl.glLightf(name, GL_QUADRATIC_ATTENUATION, local ? light.c2 : 0.0f);
+            const vec4 la(light.ambient, 1.0f), ld(light.diffuse, 1.0f), ls(light.specular, 1.0f);
+            gl.glLightfv(name, GL_AMBIENT, &la[0]);
+            gl.glLightfv(name, GL_DIFFUSE, &ld[0]);
+            gl.glLightfv(name, GL_SPECULAR, &ls[0]);
+        }
+    }
+
+    // One fixed-function draw's state: modelview, material (front and back), shade model, texturing.
+    void setFixedFunctionDraw(const Draw& draw) const {
+        gl.glUseProgram(0);
+        gl.glMatrixMode(GL_MODELVIEW);
+        gl.glLoadMatrixf(&draw.viewFromObject[0][0]);
+        const PhongMaterial& m = draw.material;
+        const vec4 emission(m.emission, 1.0f), ambient(m.ambient, 1.0f), diffuse(m.diffuse, 1.0f),
+            specular(m.specular, 1.0f);
+        gl.glMaterialfv(GL_FRONT_AND_BACK, GL_EMISSION, &emission[0]);
+        gl.glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT, &ambient[0]);
+        gl.glMaterialfv(GL_FRONT_AND_BACK, GL_DIFFUSE, &diffuse[0]);  // its alpha is the lit colour's
+        gl.glMaterialfv(GL_FRONT_AND_BACK, GL_SPECULAR, &specular[0]);
+        gl.glMaterialf(GL_FRONT_AND_BACK, GL_SHININESS, m.shininess);
+        gl.glShadeModel(draw.flat ? GL_FLAT : GL_SMOOTH);
+        if (draw.texture)
+            gl.glEnable(GL_TEXTURE_2D);
+        else
+            gl.glDisable(GL_TEXTURE_2D);
     }
 
     // A linear float RGBA texture sampled as Facet samples (bilinear, repeat, no mipmaps). Facet's
@@ -407,7 +803,6 @@ struct MesaPeer::Impl {
         textures.push_back(name);
         return name;
     }
-
     // Colour and depth renderbuffers of the scene's size: RGBA32F + DEPTH_COMPONENT32F like Facet's
     // Framebuffer, or RGBA8 + 24-bit depth where float colour is not renderable.
     void createFramebuffer(int w, int h) {
@@ -442,20 +837,29 @@ MesaPeer::~MesaPeer() {
     if (!impl_) return;
     try {
         unload();
+        impl_->makeCurrent();
+        for (const auto& [key, program] : impl_->programs)
+            impl_->gl.glDeleteProgram(program.name);
     } catch (const std::exception&) {  // the context is destroyed next, with everything in it
     }
 }
 
-std::unique_ptr<MesaPeer> MesaPeer::open(int threads, std::string& whyNot) {
+std::unique_ptr<MesaPeer> MesaPeer::open(const MesaOptions& options, std::string& whyNot) {
     OsMesaLibrary& lib = library();
+    const int threads = options.threads;
+    const char* const driver = driverName(options.driver);
     if (threads < 1) throw std::invalid_argument("MesaPeer::open: threads must be at least 1");
+    if (options.driver == MesaDriver::Softpipe && threads != 1)
+        throw std::invalid_argument("MesaPeer::open: softpipe runs on one thread");
 
-    // Load the library once; llvmpipe reads GALLIUM_DRIVER and LP_NUM_THREADS when it starts.
+    // Load the library once; Mesa reads GALLIUM_DRIVER (and llvmpipe LP_NUM_THREADS) when it starts.
     if (!lib.tried) {
         lib.tried = true;
+        lib.driver = options.driver;
         lib.threads = threads;
-        ::setenv("GALLIUM_DRIVER", "llvmpipe", 1);
-        ::setenv("LP_NUM_THREADS", std::to_string(lpNumThreads(threads)).c_str(), 1);
+        ::setenv("GALLIUM_DRIVER", driver, 1);
+        if (options.driver == MesaDriver::Llvmpipe)
+            ::setenv("LP_NUM_THREADS", std::to_string(lpNumThreads(threads)).c_str(), 1);
         lib.handle = ::dlopen("libOSMesa.so.8", RTLD_NOW | RTLD_LOCAL);
         if (!lib.handle) {
             const char* error = ::dlerror();
@@ -476,14 +880,20 @@ std::unique_ptr<MesaPeer> MesaPeer::open(int threads, std::string& whyNot) {
         whyNot = lib.loadError;
         return nullptr;
     }
+    if (options.driver != lib.driver) {
+        whyNot = std::string("Mesa already runs ") + driverName(lib.driver) + " in this process (it reads " +
+                 "GALLIUM_DRIVER once); " + driver + " needs a process of its own";
+        return nullptr;
+    }
     if (threads != lib.threads) {
         whyNot = "llvmpipe already runs on " + std::to_string(lib.threads) +
                  " threads in this process (Mesa reads LP_NUM_THREADS once)";
         return nullptr;
     }
 
-    // A core 3.3 context where OSMesa offers one, else the compatibility profile.
+    // A compatibility-profile context: fixed-function lighting needs one.
     auto impl = std::make_unique<Impl>();
+    impl->driver = options.driver;
     impl->threads = threads;
     if (lib.createContextAttribs) {
         const int attributes[] = {OSMESA_FORMAT,
@@ -495,11 +905,7 @@ std::unique_ptr<MesaPeer> MesaPeer::open(int threads, std::string& whyNot) {
                                   OSMESA_ACCUM_BITS,
                                   0,
                                   OSMESA_PROFILE,
-                                  OSMESA_CORE_PROFILE,
-                                  OSMESA_CONTEXT_MAJOR_VERSION,
-                                  3,
-                                  OSMESA_CONTEXT_MINOR_VERSION,
-                                  3,
+                                  OSMESA_COMPAT_PROFILE,
                                   0};
         impl->context = lib.createContextAttribs(attributes, nullptr);
     }
@@ -529,35 +935,55 @@ std::unique_ptr<MesaPeer> MesaPeer::open(int threads, std::string& whyNot) {
         return nullptr;
     }
 
-    // It must be llvmpipe, and speak GL 3.0 / GLSL 1.30 at least.
+    // It must be the driver asked for, and speak GLSL 1.30 at least (flat varyings).
     auto text = [&](GLenum name) {
         const GLubyte* value = gl.glGetString(name);
         return value ? std::string(reinterpret_cast<const char*>(value)) : std::string();
     };
     impl->renderer = text(GL_RENDERER);
     impl->version = text(GL_VERSION);
-    if (impl->renderer.find("llvmpipe") == std::string::npos) {
-        whyNot = "OSMesa renders with \"" + impl->renderer + "\", not llvmpipe";
+    impl->glslVersionText = text(GL_SHADING_LANGUAGE_VERSION);
+    if (impl->renderer.find(driver) == std::string::npos) {
+        whyNot = "OSMesa renders with \"" + impl->renderer + "\", not " + driver;
         return nullptr;
     }
-    const int glsl = glslVersion(text(GL_SHADING_LANGUAGE_VERSION));
+    const int glsl = glslVersion(impl->glslVersionText);
     if (glsl < 130) {
-        whyNot = "OSMesa offers GLSL " + text(GL_SHADING_LANGUAGE_VERSION) + "; the peer needs 1.30";
+        whyNot = "OSMesa offers GLSL " + impl->glslVersionText + "; the Mesa peer needs 1.30";
         return nullptr;
     }
-    impl->versionLine = glsl >= 330 ? "#version 330 core" : "#version 130";
-    impl->program(1, false);        // a first compile, so that a shader problem shows here
-    impl->createFramebuffer(1, 1);  // finds out whether float colour is renderable (floatColor())
+    impl->versionLine = glsl >= 330 ? "#version 330" : "#version 130";
+
+    // A first program, so that a shader problem shows here, and a first framebuffer, which finds out
+    // whether float colour is renderable (floatColor()).
+    GlScene probe;
+    probe.lights.resize(1);
+    probe.draws.resize(1);
+    probe.draws[0].program = GlProgram::PerPixel;
+    probe.draws[0].frequency = ShadingFrequency::Phong;
+    try {
+        impl->program(probe, probe.draws[0]);
+        impl->createFramebuffer(1, 1);
+    } catch (const std::exception& error) {
+        whyNot = error.what();
+        return nullptr;
+    }
     std::unique_ptr<MesaPeer> peer(new MesaPeer(std::move(impl)));
     peer->unload();
     return peer;
 }
 
+MesaDriver MesaPeer::driver() const {
+    return impl_->driver;
+}
 const std::string& MesaPeer::renderer() const {
     return impl_->renderer;
 }
 const std::string& MesaPeer::version() const {
     return impl_->version;
+}
+const std::string& MesaPeer::shadingLanguageVersion() const {
+    return impl_->glslVersionText;
 }
 int MesaPeer::threads() const {
     return impl_->threads;
@@ -572,22 +998,52 @@ bool MesaPeer::floatColor() const {
     return impl_->floatColor;
 }
 
-void MesaPeer::load(const PreparedScene& prepared) {
+void MesaPeer::load(const GlScene& scene) {
     unload();
     Impl& p = *impl_;
     const Gl& gl = p.gl;
-    const DrawState& state = prepared.state;
-    if (state.interpolation != Interpolation::PerspectiveCorrect || state.blend != BlendMode::Replace)
-        throw std::invalid_argument("the Mesa peer mirrors perspective-correct, unblended draws only");
 
-    // Meshes: each draw's vertices (position, normal, uv: 32 bytes) and 32-bit indices, as Facet reads them.
+    // What GL cannot draw as asked, before anything is uploaded.
+    if (scene.width < 1 || scene.height < 1)
+        throw std::invalid_argument("GlScene: width and height must be at least 1");
+    if (scene.lights.size() > static_cast<std::size_t>(kMaxGlLights))
+        throw std::invalid_argument("GlScene: " + std::to_string(scene.lights.size()) +
+                                    " lights, the Mesa peer draws at most " + std::to_string(kMaxGlLights));
+    bool fixedFunction = false;
+    for (std::size_t i = 0; i < scene.draws.size(); ++i) {
+        const GlDraw& draw = scene.draws[i];
+        const std::string where =
+            "GlScene draw " + std::to_string(i) + " (" + programName(draw.program) + "): ";
+        const bool perPixel = draw.program == GlProgram::PerPixel;
+        if (perPixel != (draw.frequency == ShadingFrequency::Phong))
+            throw std::invalid_argument(where + (perPixel ? "needs ShadingFrequency::Phong"
+                                                          : "needs ShadingFrequency::Flat or Gouraud"));
+        if (draw.indices.size() % 3 != 0)
+            throw std::invalid_argument(where + "the index count is not a multiple of 3");
+        for (const std::uint32_t index : draw.indices)
+            if (index >= draw.vertices.size())
+                throw std::invalid_argument(where + "index " + std::to_string(index) + " is past the " +
+                                            std::to_string(draw.vertices.size()) + " vertices");
+        if (draw.program == GlProgram::FixedFunction) {
+            checkFixedFunction(scene, i);
+            fixedFunction = true;
+        }
+    }
+
+    // Meshes: each draw's vertices (position, normal, uv: 32 bytes) and 32-bit indices, as Facet reads
+    // them: fixed function through the conventional arrays, GLSL through generic attributes 0, 1, 2.
     static_assert(sizeof(MeshVertex) == 32 && offsetof(MeshVertex, normal) == 12 &&
                   offsetof(MeshVertex, uv) == 24);
     std::map<const Texture*, GLuint> textureNames;
-    for (const PreparedDraw& source : prepared.draws) {
+    std::vector<const Impl::Program*> used;
+    for (const GlDraw& source : scene.draws) {
         Impl::Draw draw;
-        draw.uniforms = legacyUniforms(source.uniforms);
         draw.indexCount = static_cast<GLsizei>(source.indices.size());
+        draw.flat = source.frequency == ShadingFrequency::Flat;
+        draw.viewFromObject = source.viewFromObject;
+        draw.normalFromObject = source.normalFromObject;
+        draw.material = source.material;
+        draw.pbr = source.pbr;
         gl.glGenVertexArrays(1, &draw.vertexArray);
         gl.glBindVertexArray(draw.vertexArray);
         gl.glGenBuffers(1, &draw.vertexBuffer);
@@ -600,48 +1056,72 @@ void MesaPeer::load(const PreparedScene& prepared) {
                         static_cast<GLsizeiptr>(source.indices.size() * sizeof(std::uint32_t)),
                         source.indices.data(), GL_STATIC_DRAW);
         const GLsizei stride = sizeof(MeshVertex);
-        gl.glEnableVertexAttribArray(0);
-        gl.glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(0));
-        gl.glEnableVertexAttribArray(1);
-        gl.glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, stride,
-                                 reinterpret_cast<const void*>(offsetof(MeshVertex, normal)));
-        gl.glEnableVertexAttribArray(2);
-        gl.glVertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, stride,
-                                 reinterpret_cast<const void*>(offsetof(MeshVertex, uv)));
-        if (const Texture* map = source.uniforms.diffuseMap; map && !map->empty()) {
+        const auto* normalOffset = reinterpret_cast<const void*>(offsetof(MeshVertex, normal));
+        const auto* uvOffset = reinterpret_cast<const void*>(offsetof(MeshVertex, uv));
+        if (source.program == GlProgram::FixedFunction) {
+            gl.glEnableClientState(GL_VERTEX_ARRAY);
+            gl.glVertexPointer(3, GL_FLOAT, stride, nullptr);
+            gl.glEnableClientState(GL_NORMAL_ARRAY);
+            gl.glNormalPointer(GL_FLOAT, stride, normalOffset);
+            gl.glEnableClientState(GL_TEXTURE_COORD_ARRAY);
+            gl.glTexCoordPointer(2, GL_FLOAT, stride, uvOffset);
+        } else {
+            gl.glEnableVertexAttribArray(0);
+            gl.glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, stride, nullptr);
+            gl.glEnableVertexAttribArray(1);
+            gl.glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, stride, normalOffset);
+            gl.glEnableVertexAttribArray(2);
+            gl.glVertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, stride, uvOffset);
+        }
+        if (const Texture* map = source.diffuseMap; map && !map->empty()) {
             GLuint& name = textureNames[map];
             if (!name) name = p.uploadTexture(*map);
             draw.texture = name;
         }
-        draw.program = &p.program(source.uniforms.lightCount, draw.texture != 0);
+        if (source.program != GlProgram::FixedFunction) {
+            draw.program = &p.program(scene, source);
+            if (std::find(used.begin(), used.end(), draw.program) == used.end()) used.push_back(draw.program);
+        }
         p.draws.push_back(draw);
     }
     gl.glBindVertexArray(0);
+    for (const Impl::Program* program : used)
+        p.setSceneUniforms(*program, scene);
+    gl.glUseProgram(0);
 
-    // Framebuffer and fixed-function state, as the scene's DrawState says. The viewport's y is flipped:
-    // Facet counts rows from the top, GL from the bottom; the image is the same.
-    p.createFramebuffer(prepared.scene.width, prepared.scene.height);
-    const Viewport& v = state.viewport;
-    gl.glViewport(v.x, p.height - (v.y + v.height), v.width, v.height);
-    gl.glDepthRange(v.minDepth, v.maxDepth);
-    if (state.raster.cull == CullMode::None) {
-        gl.glDisable(GL_CULL_FACE);
-    } else {
+    // Fixed-function state: the lights and light model, the projection, per-vertex normalisation of the
+    // modelview's normals, texels modulating the lit colour; vertex colours clamped to [0, 1] (GL's
+    // default, said here), fragment and read colours not (the framebuffer is float).
+    if (fixedFunction) p.setFixedFunctionLights(scene);
+    gl.glEnable(GL_LIGHTING);
+    gl.glEnable(GL_NORMALIZE);
+    gl.glMatrixMode(GL_PROJECTION);
+    gl.glLoadMatrixf(&scene.clipFromView[0][0]);
+    gl.glMatrixMode(GL_MODELVIEW);
+    gl.glActiveTexture(GL_TEXTURE0);
+    gl.glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_MODULATE);
+    gl.glClampColor(GL_CLAMP_VERTEX_COLOR, GL_TRUE);
+    gl.glClampColor(GL_CLAMP_FRAGMENT_COLOR, GL_FALSE);
+    gl.glClampColor(GL_CLAMP_READ_COLOR, GL_FALSE);
+    gl.glProvokingVertex(GL_LAST_VERTEX_CONVENTION);  // flat shading takes a triangle's last vertex
+
+    // Framebuffer and raster state: the whole framebuffer, counter-clockwise fronts, GL_LESS, depth 1.
+    p.createFramebuffer(scene.width, scene.height);
+    gl.glViewport(0, 0, scene.width, scene.height);
+    gl.glDepthRange(0.0, 1.0);
+    if (scene.cullBackFaces) {
         gl.glEnable(GL_CULL_FACE);
-        gl.glCullFace(state.raster.cull == CullMode::Back ? GL_BACK : GL_FRONT);
-    }
-    gl.glFrontFace(state.raster.frontFace == FrontFace::CounterClockwise ? GL_CCW : GL_CW);
-    if (state.depth.testEnabled) {
-        gl.glEnable(GL_DEPTH_TEST);
-        gl.glDepthFunc(glCompare(state.depth.compare));
-        gl.glDepthMask(state.depth.writeEnabled ? GL_TRUE : GL_FALSE);
+        gl.glCullFace(GL_BACK);
     } else {
-        gl.glDisable(GL_DEPTH_TEST);
+        gl.glDisable(GL_CULL_FACE);
     }
+    gl.glFrontFace(GL_CCW);
+    gl.glEnable(GL_DEPTH_TEST);
+    gl.glDepthFunc(GL_LESS);
+    gl.glDepthMask(GL_TRUE);
     gl.glDisable(GL_BLEND);
     gl.glDisable(GL_DITHER);
-    gl.glClearColor(prepared.clearColor.r, prepared.clearColor.g, prepared.clearColor.b,
-                    prepared.clearColor.a);
+    gl.glClearColor(scene.clearColor.r, scene.clearColor.g, scene.clearColor.b, scene.clearColor.a);
     gl.glClearDepth(1.0);
     p.checkGl("uploading the scene");
 }
@@ -654,8 +1134,12 @@ void MesaPeer::renderFrame() {
     gl.glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     gl.glActiveTexture(GL_TEXTURE0);
     for (const Impl::Draw& draw : p.draws) {
-        gl.glUseProgram(draw.program->name);
-        p.setUniforms(*draw.program, draw.uniforms);
+        if (draw.program) {
+            gl.glUseProgram(draw.program->name);
+            p.setDrawUniforms(draw);
+        } else {
+            p.setFixedFunctionDraw(draw);
+        }
         gl.glBindTexture(GL_TEXTURE_2D, draw.texture);
         gl.glBindVertexArray(draw.vertexArray);
         gl.glDrawElements(GL_TRIANGLES, draw.indexCount, GL_UNSIGNED_INT, nullptr);
@@ -701,42 +1185,6 @@ void MesaPeer::unload() {
         p.framebuffer = p.colorBuffer = p.depthBuffer = 0;
     }
     p.width = p.height = 0;
-}
-
-ImageAgreement compareImages(const LinearImage& a, const LinearImage& b, vec4 background,
-                             float backgroundTolerance) {
-    if (a.width != b.width || a.height != b.height || a.pixels.size() != b.pixels.size())
-        throw std::invalid_argument("compareImages: the images differ in size");
-    auto isForeground = [&](const vec4& c) {
-        for (int channel = 0; channel < 3; ++channel)
-            if (std::abs(c[channel] - background[channel]) > backgroundTolerance) return true;
-        return false;
-    };
-    ImageAgreement result;
-    std::size_t coverageSame = 0, bothCovered = 0, colorWithin = 0;
-    double differenceSum = 0.0;
-    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
-        const bool inA = isForeground(a.pixels[i]);
-        const bool inB = isForeground(b.pixels[i]);
-        result.foregroundA += inA;
-        result.foregroundB += inB;
-        coverageSame += inA == inB;
-        if (!(inA && inB)) continue;
-        ++bothCovered;
-        float difference = 0.0f;
-        for (int channel = 0; channel < 3; ++channel) {
-            const float d = std::abs(a.pixels[i][channel] - b.pixels[i][channel]);
-            difference = std::max(difference, std::isnan(d) ? 1.0f : d);  // NaN counts as fully wrong
-        }
-        differenceSum += difference;
-        colorWithin += difference <= ImageAgreement::kColorTolerance;
-    }
-    if (!a.pixels.empty()) result.coverageAgreement = static_cast<double>(coverageSame) / a.pixels.size();
-    if (bothCovered) {
-        result.colorWithinTolerance = static_cast<double>(colorWithin) / bothCovered;
-        result.meanColorDifference = differenceSum / bothCovered;
-    }
-    return result;
 }
 
 }  // namespace facet
