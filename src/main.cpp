@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "bench.h"
+#include "compare.h"
 #include "errors.h"
 #include "renderer.h"
 
@@ -163,6 +164,35 @@ int render(const RenderArgs& args) {
     return 0;
 }
 
+struct CompareArgs {
+    RenderArgs scene;  // input, size and lighting choices as for render
+    std::string driver = "softpipe";
+    std::optional<std::string> facetImage, mesaImage, diffImage;
+};
+
+// Exit status when the images differ beyond the bar (0: they agree; 1: bad input; 2: bad command line).
+constexpr int kImagesDiffer = 3;
+
+int compare(const CompareArgs& args) {
+    const std::filesystem::path input = args.scene.input;
+    facet::Scene scene = input.extension() == ".json" ? facet::loadScene(input) : facet::sceneForModel(input);
+    if (args.scene.width) scene.width = *args.scene.width;
+    if (args.scene.height) scene.height = *args.scene.height;
+    checkSize(scene.width, scene.height);
+    applyLightingOptions(args.scene, scene);
+    for (const auto& path : {args.facetImage, args.mesaImage, args.diffImage})
+        if (path) facet::checkImageDestination(*path, scene.width, scene.height);
+
+    const facet::MesaDriver driver =
+        args.driver == "llvmpipe" ? facet::MesaDriver::Llvmpipe : facet::MesaDriver::Softpipe;
+    const facet::MesaComparison result = facet::compareWithMesa(scene, driver, args.scene.threads);
+    std::cout << "facet compare: " << input.string() << "\n" << facet::describe(result);
+    if (args.facetImage) facet::writeImage(*args.facetImage, result.facet, result.encoding);
+    if (args.mesaImage) facet::writeImage(*args.mesaImage, result.mesa, result.encoding);
+    if (args.diffImage) facet::writeImage(*args.diffImage, facet::differenceImage(result));
+    return result.agrees() ? 0 : kImagesDiffer;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -215,6 +245,37 @@ int main(int argc, char** argv) {
                             "Also write each term alone next to the output: NAME-emission, NAME-ambient, "
                             "NAME-diffuse, NAME-specular (the output is their sum)");
 
+    CompareArgs compareArgs;
+    CLI::App* compareCommand = app.add_subcommand(
+        "compare", "Render a model or scene with Facet and with OpenGL (Mesa) and compare the pixels");
+    compareCommand->add_option("input", compareArgs.scene.input, "Model (.obj) or scene (.json)")->required();
+    compareCommand->add_option("--width", compareArgs.scene.width, "Image width in pixels");
+    compareCommand->add_option("--height", compareArgs.scene.height, "Image height in pixels");
+    compareCommand
+        ->add_option("--driver", compareArgs.driver,
+                     "Mesa's rasterizer: softpipe (its reference implementation, the default) or llvmpipe")
+        ->check(CLI::IsMember({"softpipe", "llvmpipe"}));
+    compareCommand->add_option("--lighting", compareArgs.scene.lighting, "facet or gl (as for render)")
+        ->check(CLI::IsMember({"facet", "gl"}));
+    compareCommand
+        ->add_option("--reflection", compareArgs.scene.reflection, "phong, blinn-phong or cook-torrance")
+        ->check(CLI::IsMember({"phong", "blinn-phong", "cook-torrance"}));
+    compareCommand->add_option("--shading", compareArgs.scene.shading, "flat, gouraud or phong")
+        ->check(CLI::IsMember({"flat", "gouraud", "phong"}));
+    compareCommand->add_option("--crease-angle", compareArgs.scene.creaseAngle, "as for render");
+    compareCommand->add_option("--facet", compareArgs.facetImage, "Also write Facet's image here");
+    compareCommand->add_option("--mesa", compareArgs.mesaImage, "Also write OpenGL's image here");
+    compareCommand->add_option(
+        "--diff", compareArgs.diffImage,
+        "Also write where they differ: grey equal, blue 1/255, yellow 2/255, red more");
+    compareCommand
+        ->add_option("--threads", compareArgs.scene.threads,
+                     "Facet's worker threads (default: one per hardware thread)")
+        ->check(CLI::Range(0, 1024));
+    compareCommand->footer(
+        "Exit status: 0 when at least 99.5% of the pixels are within 2/255 on every channel, 3 when not, "
+        "1 for bad input, 2 for a bad command line.");
+
     facet::BenchOptions benchOptions;
     benchOptions.model = "../shared/models/stanford-bunny/stanford-bunny.obj";
     CLI::App* benchCommand = app.add_subcommand("bench", "Time frames of a model (median ms per frame)");
@@ -256,6 +317,7 @@ int main(int argc, char** argv) {
 
     try {
         if (*renderCommand) return render(renderArgs);
+        if (*compareCommand) return compare(compareArgs);
         if (*benchCommand) {
             if (benchOptions.vsMesa) {
                 // The scenes and their sizes are fixed; MODEL replaces the bunny.

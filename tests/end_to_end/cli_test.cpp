@@ -131,6 +131,24 @@ TEST(Cli, ComponentImagesAddUpToTheImage) {
                 readImage(dir.path() / "cow-specular.exr").pixels);
 }
 
+// facet compare renders a scene with Facet and with OpenGL (Mesa) and says whether they agree; the
+// bundled example scene does (exit status 0), and the three images it was asked for are written.
+TEST(Cli, CompareWithOpenGlAgreesOnTheBundledScene) {
+    TempDir dir;
+    const auto scene = std::filesystem::path(FACET_SOURCE_DIR) / "models/example-scene.json";
+    const RunResult run =
+        runFacet("compare " + quoted(scene) + " --width 160 --height 120 --lighting gl --diff " +
+                     quoted(dir.path() / "diff.png") + " --mesa " + quoted(dir.path() / "gl.png"),
+                 dir);
+    if (run.status == 1 && run.err.find("cannot compare with OpenGL") != std::string::npos)
+        GTEST_SKIP() << run.err;
+    ASSERT_EQ(run.status, 0) << run.out << run.err;
+    EXPECT_NE(run.out.find("verdict    agrees"), std::string::npos) << run.out;
+    EXPECT_NE(run.out.find("softpipe"), std::string::npos) << run.out;
+    EXPECT_EQ(readImage(dir.path() / "diff.png").width, 160);
+    EXPECT_EQ(readImage(dir.path() / "gl.png").height, 120);
+}
+
 // Each bad input: exit status 1, exactly one line on stderr naming what is wrong, and an existing
 // output file left as it was.
 struct BadInput {
