@@ -30,6 +30,13 @@
 
 #include "color.h"
 
+// For sanitizer builds: Mesa and LLVM keep process-lifetime allocations (the library is loaded once and
+// never closed), which LeakSanitizer would report at exit; they are not leaks of ours. Every program
+// that can load Mesa links this file.
+extern "C" const char* __lsan_default_suppressions() {
+    return "leak:libOSMesa\nleak:libLLVM\nleak:libgallium\nleak:swrast_dri\n";
+}
+
 namespace facet {
 
 namespace {

@@ -16,11 +16,6 @@
 #include "mesa_peer.h"
 #include "renderer.h"
 
-// Mesa and LLVM keep process-lifetime allocations (the loaded library is never closed): not leaks of ours.
-extern "C" const char* __lsan_default_suppressions() {
-    return "leak:libOSMesa\nleak:libLLVM\n";
-}
-
 namespace facet {
 namespace {
 
