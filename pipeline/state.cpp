@@ -42,6 +42,10 @@ std::ostream& operator<<(std::ostream& os, BlendMode mode) {
             return os << "additive";
         case BlendMode::Over:
             return os << "over";
+        case BlendMode::PremultipliedOver:
+            return os << "premultiplied over";
+        case BlendMode::Multiply:
+            return os << "multiply";
     }
     return os << "?";
 }

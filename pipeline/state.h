@@ -48,11 +48,17 @@ enum class Interpolation : std::uint8_t {
     Affine,              // a = Σ λᵢ·aᵢ: cheaper, warps textures on tilted surfaces (kept to show that)
 };
 
-// How a fragment's colour combines with the colour already in the framebuffer.
+// How a fragment's colour combines with the colour already in the framebuffer (glBlendFunc).
+// Only Replace ignores what was drawn before; of the others, Additive and Multiply commute (any
+// order of the surfaces gives the same sum or product), Over and PremultipliedOver do not, which is
+// why transparent surfaces are sorted back to front.
 enum class BlendMode : std::uint8_t {
     Replace,   // c = c_s
-    Additive,  // c = c_s + c_d (used by the coverage tests: a double hit shows as a doubled value)
-    Over,  // c = α_s·c_s + (1 − α_s)·c_d, α = α_s + (1 − α_s)·α_d (Porter–Duff over, straight alpha)
+    Additive,  // c = c_s + c_d, α = α_s + α_d (GL_ONE, GL_ONE): light adds up (glows, fire)
+    Over,      // c = α_s·c_s + (1 − α_s)·c_d, α = α_s + (1 − α_s)·α_d (Porter–Duff over, straight alpha)
+    PremultipliedOver,  // c = c_s + (1 − α_s)·c_d, α likewise (c_s already multiplied by α_s; GL_ONE,
+                        // GL_ONE_MINUS_SRC_ALPHA)
+    Multiply,           // c = c_s ⊗ c_d, α = α_d (GL_DST_COLOR, GL_ZERO): a coloured filter, tinted glass
 };
 
 // Sub-pixel precision of the rasterizer: window positions are snapped to 1/2^bits of a pixel.
