@@ -237,6 +237,13 @@ inline float sqrt(float x) {
     return std::sqrt(x);
 }
 
+inline float abs(float x) {
+    return std::fabs(x);
+}
+inline Float8 abs(Float8 x) {
+    return max(x, -x);
+}
+
 // e^x = 2^(x·log2 e).
 inline float exp(float x) {
     return std::exp(x);

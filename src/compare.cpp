@@ -84,7 +84,7 @@ std::string describe(const MesaComparison& c) {
     const PixelDifference& d = c.difference;
     std::ostringstream out;
     out << "image      " << c.facet.width << "x" << c.facet.height << ", 8-bit "
-        << (c.encoding == ColorEncoding::Srgb ? "sRGB-encoded" : "unencoded (gl preset)") << "\n";
+        << (c.encoding.curve == TransferCurve::Srgb ? "sRGB-encoded" : "unencoded (gl preset)") << "\n";
     out << "opengl     " << c.mesaRenderer << "; " << c.programs << "\n";
     out << "differing  " << d.differing << " of " << d.pixels << " pixels ("
         << percent(double(d.differing) / double(d.pixels)) << "), the largest difference " << d.maxDifference

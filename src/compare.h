@@ -14,7 +14,7 @@ namespace facet {
 struct MesaComparison {
     std::string mesaRenderer;  // GL_RENDERER and GL_VERSION
     std::string programs;      // how OpenGL drew the scene, e.g. "2 draws: fixed function (Gouraud)"
-    ColorEncoding encoding = ColorEncoding::Srgb;
+    ColorEncoding encoding = kSrgbEncoding;
     LinearImage facet, mesa;  // the colour buffers, rows top to bottom
     PixelDifference difference;
 

@@ -7,8 +7,10 @@
 #include <cstdint>
 #include <vector>
 
+#include "fog.h"
 #include "lighting.h"
 #include "mesh.h"
+#include "state.h"
 #include "texture.h"
 
 namespace facet {
@@ -36,6 +38,15 @@ struct GlDraw {
     // multiplied, as fixed function's GL_MODULATE does.
     const Texture* diffuseMap = nullptr;
     bool clampColor = false;  // clamp the lit colour to [0, 1] before interpolation, as fixed function does
+
+    // Transparency. The fragment's alpha is opacity (× the diffuse map's alpha). What the shader writes
+    // depends on the blend (as Facet's shaders do): Replace and Over: (c, α); PremultipliedOver and
+    // Additive: (α·c, α); Multiply: (mix(1, c, α), α). Fog applies to c before that.
+    float opacity = 1.0f;
+    BlendMode blend = BlendMode::Replace;  // glBlendFunc: Over (SRC_ALPHA, ONE_MINUS_SRC_ALPHA),
+                                           // PremultipliedOver (ONE, ONE_MINUS_SRC_ALPHA), Additive (ONE,
+                                           // ONE), Multiply (DST_COLOR, ZERO)
+    bool depthWrite = true;  // glDepthMask: off for transparent draws
 };
 
 struct GlScene {
@@ -46,8 +57,10 @@ struct GlScene {
     std::vector<LightParams> lights;  // eye space (as glLightfv sees them under an identity modelview)
     BrdfModel brdf;                   // Cook-Torrance's D, F and G
     bool cullBackFaces = true;        // counter-clockwise front faces
+    FogParams fog;                    // glFog; the fog distance of fixed function is |z_eye| or, for
+                                      // Radial, GL_EYE_RADIAL_NV (per vertex there, per pixel in GLSL)
     bool twoSidedFlip = false;        // GLSL programs: light the side of N facing the viewer (N·V < 0: −N)
-    std::vector<GlDraw> draws;
+    std::vector<GlDraw> draws;        // in order: opaque draws, then transparent ones back to front
 };
 
 }  // namespace facet

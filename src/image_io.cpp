@@ -119,7 +119,16 @@ void checkImageDestination(const fs::path& path, int width, int height) {
 }
 
 std::uint8_t encodeChannel(float value, ColorEncoding encoding) {
-    return toByte(encoding == ColorEncoding::Srgb ? linearToSrgb(value) : value);
+    switch (encoding.curve) {
+        case TransferCurve::Srgb:
+            return toByte(linearToSrgb(value));
+        case TransferCurve::Power:
+            // c^(1/γ) on [0, 1]; below 0 (and NaN) toByte gives 0.
+            return toByte(value > 0.0f ? std::pow(std::min(value, 1.0f), 1.0f / encoding.gamma) : 0.0f);
+        case TransferCurve::Linear:
+            return toByte(value);
+    }
+    return 0;
 }
 
 void writeImage(const fs::path& path, const LinearImage& image, ColorEncoding encoding) {

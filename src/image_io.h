@@ -18,12 +18,20 @@ struct LinearImage {
     const glm::vec4& at(int x, int y) const { return pixels[static_cast<std::size_t>(y) * width + x]; }
 };
 
-// How 8-bit files encode the colour buffer's values.
-enum class ColorEncoding {
-    Srgb,    // the exact sRGB transfer curve (facet::linearToSrgb, pipeline/color.h): linear light in the
-             // buffer
+// How 8-bit files encode the colour buffer's values (its transfer function, "gamma").
+enum class TransferCurve {
+    Srgb,    // the exact sRGB curve (facet::linearToSrgb, pipeline/color.h), IEC 61966-2-1: the default
+    Power,   // a plain power: code = round(255·c^(1/γ)), the "gamma 2.2" of older pipelines
     Linear,  // none: code = round(255·c), as OpenGL 1.x writes its colours to an 8-bit framebuffer
 };
+
+struct ColorEncoding {
+    TransferCurve curve = TransferCurve::Srgb;
+    float gamma = 2.2f;  // Power only
+    bool operator==(const ColorEncoding&) const = default;
+};
+inline constexpr ColorEncoding kSrgbEncoding{TransferCurve::Srgb};
+inline constexpr ColorEncoding kLinearEncoding{TransferCurve::Linear};
 
 // The 8-bit code of one channel value: clamped to [0, 1], encoded, rounded to nearest.
 std::uint8_t encodeChannel(float value, ColorEncoding encoding);
@@ -35,7 +43,7 @@ std::uint8_t encodeChannel(float value, ColorEncoding encoding);
 // partial file nor destroys an existing one. Throws InputError ("out/x.bmpx: unknown image format ...",
 // "out/: cannot write ...").
 void writeImage(const std::filesystem::path& path, const LinearImage& image,
-                ColorEncoding encoding = ColorEncoding::Srgb);
+                ColorEncoding encoding = kSrgbEncoding);
 
 // Checks, without writing anything, that `path` names an image format facet writes and that a
 // width × height image fits it; throws InputError otherwise. Lets a command fail before a long render.

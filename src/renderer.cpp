@@ -252,7 +252,7 @@ PreparedScene prepareScene(const Scene& scene) {
                               : Interpolation::PerspectiveCorrect;
     state.raster.provokingVertex = ProvokingVertex::Last;  // OpenGL's convention
     prepared.clearColor = vec4(decode(vec3(scene.background)), scene.background.a);
-    prepared.encoding = glPreset ? ColorEncoding::Linear : ColorEncoding::Srgb;
+    prepared.encoding = glPreset ? kLinearEncoding : kSrgbEncoding;
     return prepared;
 }
 

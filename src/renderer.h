@@ -30,7 +30,7 @@ struct PreparedScene {
     Camera camera;
     DrawState state;
     vec4 clearColor{0.0f};                         // linear (Facet preset) or as given (GL preset)
-    ColorEncoding encoding = ColorEncoding::Srgb;  // how 8-bit image files encode the colour buffer
+    ColorEncoding encoding = kSrgbEncoding;  // how 8-bit image files encode the colour buffer
     std::vector<PreparedDraw> draws;
     std::vector<std::unique_ptr<Texture>> textures;
     std::vector<std::string> warnings;  // from the importer, one line each

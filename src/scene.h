@@ -10,6 +10,9 @@
 
 #include <glm/glm.hpp>
 
+#include "image_io.h"
+
+#include "fog.h"
 #include "lighting.h"
 
 namespace facet {
@@ -63,6 +66,13 @@ struct MaterialOverride {
     bool physicallyBased() const { return preset || baseColor || metalness || roughness || f0; }
 };
 
+enum class BlendChoice {
+    Over,           // c = α·c_s + (1 − α)·c_d: glass, smoke
+    Additive,       // c = α·c_s + c_d: light that adds up (glow, fire)
+    Multiply,       // c = mix(1, c_s, α) ⊗ c_d: a coloured filter
+    Premultiplied,  // c = (α·c_s) + (1 − α)·c_d through premultiplied colour: the same picture as over
+};
+
 struct ObjectSpec {
     std::filesystem::path model;      // resolved against the scene file's folder
     glm::mat4 worldFromObject{1.0f};  // translate · rotate(Z·Y·X degrees) · scale
@@ -71,6 +81,10 @@ struct ObjectSpec {
     // whose material is physically based, see MaterialOverride::physicallyBased, defaults to Cook-Torrance).
     std::optional<ReflectionModel> reflection;
     std::optional<ShadingFrequency> shading;
+    // How the object's colour combines with what is behind it ("blend"). Absent: over. An object whose
+    // opacity (material d / 1 − Tr, the override, or a texture's alpha) is below 1, or whose blend is
+    // not over, is transparent: drawn after the opaque ones, without depth writes, sorted.
+    std::optional<BlendChoice> blend;
 };
 
 // How the scene is lit ("lighting" in the scene file).
@@ -100,6 +114,39 @@ struct PipelineOptions {
     int subpixelBits = 8;  // 0..8
 };
 
+// How transparent triangles are ordered ("transparency").
+enum class TransparencyMode {
+    Sorted,    // back to front by the sort key, insertion sort remembering the last frame's order (default)
+    Unsorted,  // in the order of the file: wrong wherever transparent surfaces overlap (for comparison)
+    Exact,  // per-pixel fragment lists sorted by depth (an A-buffer): right even for intersecting triangles
+};
+enum class SortKey {
+    Centroid,        // the view-space depth of the triangle's centroid
+    FarthestVertex,  // the view-space depth of its farthest vertex
+};
+struct TransparencyOptions {
+    TransparencyMode mode = TransparencyMode::Sorted;
+    SortKey key = SortKey::Centroid;
+};
+
+// Fog ("fog"); the colour is sRGB-encoded as every colour of a scene.
+struct FogSpec {
+    FogMode mode = FogMode::None;
+    glm::vec3 color{0.5f};
+    // Linear fog's range along the fog distance; absent: from the scene's bounding sphere, start at its
+    // nearest point to the eye and end at its farthest.
+    std::optional<float> start, end;
+    float density = 1.0f;  // exp and exp²: per unit of length
+    FogDistance distance = FogDistance::EyeDepth;
+};
+
+// Colour encoding of inputs and outputs ("gamma"). The gl preset ignores it: no decoding, no encoding.
+struct GammaOptions {
+    TransferCurve encode = TransferCurve::Srgb;  // 8-bit outputs; EXR always keeps the linear values
+    float exponent = 2.2f;                       // TransferCurve::Power: code = 255·c^(1/exponent)
+    bool decodeInputs = true;                    // read scene and MTL colours as sRGB-encoded
+};
+
 struct Scene {
     std::filesystem::path source;  // the scene or model file this came from (for messages)
     int width = 1280;
@@ -111,6 +158,9 @@ struct Scene {
     std::vector<ObjectSpec> objects;  // at least one
     PipelineOptions pipeline;
     LightingOptions lighting;
+    TransparencyOptions transparency;
+    FogSpec fog;
+    GammaOptions gamma;
 };
 
 // Reads a JSON scene file. Throws InputError with a one-line message naming the file and the

@@ -95,18 +95,18 @@ TEST(CompareImages, SizesMustMatch) {
 // ---- encodeChannel and comparePixels --------------------------------------------------------------------
 
 TEST(Quantize8, RoundsAsTheImageWriterDoes) {
-    EXPECT_EQ(encodeChannel(0.5f, ColorEncoding::Linear), 128);  // 127.5 rounds up
-    EXPECT_EQ(encodeChannel(0.5f, ColorEncoding::Srgb), 188);  // 1.055·0.5^(1/2.4) − 0.055 = 0.73536 → 187.5
-    EXPECT_EQ(encodeChannel(0.0031308f * 0.5f, ColorEncoding::Srgb), 5);  // the linear toe: 12.92 c · 255 = 5.16
-    EXPECT_EQ(encodeChannel(-1.0f, ColorEncoding::Srgb), 0);
-    EXPECT_EQ(encodeChannel(std::nanf(""), ColorEncoding::Linear), 0);
-    EXPECT_EQ(encodeChannel(7.0f, ColorEncoding::Srgb), 255);
-    EXPECT_EQ(encodeChannel(1.0f, ColorEncoding::Linear), 255);
+    EXPECT_EQ(encodeChannel(0.5f, kLinearEncoding), 128);  // 127.5 rounds up
+    EXPECT_EQ(encodeChannel(0.5f, kSrgbEncoding), 188);  // 1.055·0.5^(1/2.4) − 0.055 = 0.73536 → 187.5
+    EXPECT_EQ(encodeChannel(0.0031308f * 0.5f, kSrgbEncoding), 5);  // the linear toe: 12.92 c · 255 = 5.16
+    EXPECT_EQ(encodeChannel(-1.0f, kSrgbEncoding), 0);
+    EXPECT_EQ(encodeChannel(std::nanf(""), kLinearEncoding), 0);
+    EXPECT_EQ(encodeChannel(7.0f, kSrgbEncoding), 255);
+    EXPECT_EQ(encodeChannel(1.0f, kLinearEncoding), 255);
 }
 
 TEST(ComparePixels, CountsCodeStepsAndSilhouettePixels) {
     const LinearImage a = disc(64, 48, 30.0f, 20.0f, 15.0f);
-    const PixelDifference same = comparePixels(a, a, ColorEncoding::Srgb, kBackground);
+    const PixelDifference same = comparePixels(a, a, kSrgbEncoding, kBackground);
     EXPECT_EQ(same.pixels, 64u * 48u);
     EXPECT_EQ(same.differing, 0u);
     EXPECT_EQ(same.maxDifference, 0);
@@ -118,7 +118,7 @@ TEST(ComparePixels, CountsCodeStepsAndSilhouettePixels) {
     b.at(30, 20).r = a.at(30, 20).r + 2.0f / 255.0f;
     ASSERT_EQ(a.at(30, 4), kBackground);  // just above the disc (centre 20, radius 15)
     b.at(30, 4) = vec4(0.9f, 0.4f, 0.5f, 1.0f);
-    const PixelDifference d = comparePixels(a, b, ColorEncoding::Linear, kBackground);
+    const PixelDifference d = comparePixels(a, b, kLinearEncoding, kBackground);
     EXPECT_EQ(d.differing, 2u);
     EXPECT_EQ(d.differingAtEdges, 1u);
     EXPECT_EQ(d.maxInteriorDifference, 2);
@@ -127,10 +127,10 @@ TEST(ComparePixels, CountsCodeStepsAndSilhouettePixels) {
     EXPECT_DOUBLE_EQ(d.within2, 1.0 - 1.0 / d.pixels);
 
     // Without a background colour there is no silhouette.
-    const PixelDifference plain = comparePixels(a, b, ColorEncoding::Linear);
+    const PixelDifference plain = comparePixels(a, b, kLinearEncoding);
     EXPECT_EQ(plain.differingAtEdges, 0u);
     EXPECT_EQ(plain.maxInteriorDifference, 0);
-    EXPECT_THROW(comparePixels(a, disc(64, 47, 30, 20, 15), ColorEncoding::Srgb), std::invalid_argument);
+    EXPECT_THROW(comparePixels(a, disc(64, 47, 30, 20, 15), kSrgbEncoding), std::invalid_argument);
 }
 
 // ---- OpenGL as the oracle: hand-computed values on softpipe ------------------------------------------

@@ -79,14 +79,14 @@ TEST(Render, GlPresetUsesColoursAsGivenAndWritesThemUnencoded) {
     Scene scene = headOnScene(obj);
     scene.lighting.preset = LightingPreset::GL;
     const PreparedScene prepared = prepareScene(scene);
-    EXPECT_EQ(prepared.encoding, ColorEncoding::Linear);
+    EXPECT_EQ(prepared.encoding, kLinearEncoding);
     EXPECT_EQ(prepared.draws.front().frequency, ShadingFrequency::Gouraud);  // OpenGL 1.x's default
     const vec4 centre = renderScene(scene).at(32, 24);
     EXPECT_NEAR(centre.r, 0.5f, 1e-6f);
     EXPECT_NEAR(centre.g, 0.25f, 1e-6f);
     EXPECT_NEAR(centre.b, 0.6f, 1e-6f);
     EXPECT_EQ(encodeChannel(centre.g, prepared.encoding), 64);  // 0.25 · 255 = 63.75
-    EXPECT_EQ(encodeChannel(centre.g, ColorEncoding::Srgb), 137);
+    EXPECT_EQ(encodeChannel(centre.g, kSrgbEncoding), 137);
 }
 
 // A spot light at (0, 0, 2) aimed at the square's centre with a 10° cutoff lights the centre
