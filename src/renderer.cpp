@@ -1,6 +1,7 @@
 #include "renderer.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <map>
 #include <optional>
@@ -10,6 +11,8 @@
 #include "color.h"
 #include "errors.h"
 #include "obj_import.h"
+
+#include <glm/gtc/matrix_transform.hpp>
 
 namespace facet {
 
@@ -73,6 +76,37 @@ PbrMaterial pbrMaterial(const PhongMaterial& phong, const MaterialOverride& over
     return m;
 }
 
+BlendMode blendMode(BlendChoice choice) {
+    switch (choice) {
+        case BlendChoice::Over:
+            return BlendMode::Over;
+        case BlendChoice::Additive:
+            return BlendMode::Additive;
+        case BlendChoice::Multiply:
+            return BlendMode::Multiply;
+        case BlendChoice::Premultiplied:
+            return BlendMode::PremultipliedOver;
+    }
+    return BlendMode::Over;
+}
+
+// The scene's fog for the shaders. Linear fog without start and end spans the bounding sphere: from
+// its nearest point to the eye to its farthest.
+template <class Decode>
+FogParams fogParams(const Scene& scene, const Bounds& bounds, const Camera& camera, Decode decode) {
+    FogParams fog;
+    fog.mode = scene.fog.mode;
+    fog.color = decode(scene.fog.color);
+    fog.density = scene.fog.density;
+    fog.distance = scene.fog.distance;
+    const vec3 centre = 0.5f * (bounds.min + bounds.max);
+    const float radius = 0.5f * length(bounds.max - bounds.min);
+    const float distance = length(camera.eye - centre);
+    fog.start = scene.fog.start.value_or(std::max(distance - radius, 0.0f));
+    fog.end = scene.fog.end.value_or(distance + radius);
+    return fog;
+}
+
 // One vertex per triangle corner, each with its face's normal: flat shading's input. The face normal
 // is the cross product of two edges, turned to agree with the corners' own normals (so a model whose
 // winding disagrees with its normals still lights the side its normals show).
@@ -120,8 +154,10 @@ PreparedScene prepareScene(const Scene& scene) {
         throw InputError(scene.source.string() + ": the scene has no objects to render");
 
     const bool glPreset = scene.lighting.preset == LightingPreset::GL;
-    // Facet: colours are sRGB-encoded as written; GL: taken as given (OpenGL 1.x knows no gamma).
-    const auto decode = [glPreset](vec3 c) { return glPreset ? c : decodeSrgb(c); };
+    // Facet: colours are sRGB-encoded as written (unless "gamma": {"decode_inputs": false}); GL: taken
+    // as given (OpenGL 1.x knows no gamma).
+    const bool decodeInputs = !glPreset && scene.gamma.decodeInputs;
+    const auto decode = [decodeInputs](vec3 c) { return decodeInputs ? decodeSrgb(c) : c; };
 
     // Load each model once, even if several objects use it.
     std::map<std::filesystem::path, std::unique_ptr<Mesh>> meshes;
@@ -139,6 +175,8 @@ PreparedScene prepareScene(const Scene& scene) {
         sceneBounds.min = min(sceneBounds.min, b.min);
         sceneBounds.max = max(sceneBounds.max, b.max);
     }
+
+    prepared.turntableCentre = 0.5f * (sceneBounds.min + sceneBounds.max);
 
     // Camera.
     const float aspect = static_cast<float>(scene.width) / static_cast<float>(scene.height);
@@ -163,6 +201,7 @@ PreparedScene prepareScene(const Scene& scene) {
     common.brdf = scene.lighting.brdf;
     common.twoSidedFlip = !glPreset;
     common.clampColor = glPreset;
+    common.fog = fogParams(scene, sceneBounds, camera, decode);
     const mat4& viewFromWorld = camera.viewFromWorld;
     for (std::size_t i = 0; i < lights.size(); ++i) {
         const LightSpec& l = lights[i];
@@ -201,11 +240,13 @@ PreparedScene prepareScene(const Scene& scene) {
         uniforms.reflection = object.reflection.value_or(
             object.material.physicallyBased() ? ReflectionModel::CookTorrance : scene.lighting.model);
         const ShadingFrequency frequency = object.shading.value_or(scene.lighting.shadingOrDefault());
+        const BlendChoice blend = object.blend.value_or(BlendChoice::Over);
         for (const MeshPart& part : mesh.parts) {
             if (part.indexCount == 0) continue;
             PreparedDraw draw;
             draw.uniforms = uniforms;
             draw.frequency = frequency;
+            draw.worldFromObject = object.worldFromObject;
             const Material& material = mesh.materials.at(part.material);
             draw.uniforms.material = phongMaterial(material, object.material, decode);
             draw.uniforms.pbr = pbrMaterial(draw.uniforms.material, object.material, decode, scene.source);
@@ -218,16 +259,33 @@ PreparedScene prepareScene(const Scene& scene) {
                     owned->width = image.width;
                     owned->height = image.height;
                     owned->texels = image.pixels;
+                    // readImage decodes 8-bit files from sRGB; without decoding, texels are the file's
+                    // codes/255.
+                    if (!decodeInputs)
+                        for (vec4& t : owned->texels)
+                            t = vec4(linearToSrgb(t.r), linearToSrgb(t.g), linearToSrgb(t.b), t.a);
                     texture = owned.get();
                     prepared.textures.push_back(std::move(owned));
                 }
                 draw.uniforms.diffuseMap = texture;
             }
             extractPart(mesh, part, draw);
+            // Transparent: see through it (opacity, a texture's alpha) or blended other than over.
+            const bool textureAlpha =
+                draw.uniforms.diffuseMap &&
+                std::any_of(draw.uniforms.diffuseMap->texels.begin(), draw.uniforms.diffuseMap->texels.end(),
+                            [](const vec4& t) { return t.a < 1.0f; });
+            draw.transparent = draw.uniforms.opacity < 1.0f || textureAlpha || blend != BlendChoice::Over;
+            draw.uniforms.blend = draw.transparent ? blendMode(blend) : BlendMode::Replace;
             // Flat shading lights each face with its own normal; the GL preset keeps OpenGL's rule
             // instead: the provoking vertex's colour, lit with that vertex's normal.
             if (frequency == ShadingFrequency::Flat && !glPreset) unweldWithFaceNormals(draw);
             prepared.triangleCount += draw.indices.size() / 3;
+            if (draw.transparent) {
+                const auto drawIndex = static_cast<std::uint32_t>(prepared.draws.size());
+                for (std::uint32_t t = 0; t < draw.indices.size() / 3; ++t)
+                    prepared.transparentTriangles.push_back({drawIndex, t});
+            }
             prepared.draws.push_back(std::move(draw));
         }
     }
@@ -252,26 +310,112 @@ PreparedScene prepareScene(const Scene& scene) {
                               : Interpolation::PerspectiveCorrect;
     state.raster.provokingVertex = ProvokingVertex::Last;  // OpenGL's convention
     prepared.clearColor = vec4(decode(vec3(scene.background)), scene.background.a);
-    prepared.encoding = glPreset ? kLinearEncoding : kSrgbEncoding;
+    prepared.encoding = glPreset ? kLinearEncoding : ColorEncoding{scene.gamma.encode, scene.gamma.exponent};
     return prepared;
+}
+
+void setTurntable(PreparedScene& prepared, float degrees) {
+    const vec3 c = prepared.turntableCentre;
+    // turn(p) = c + Ry(θ)(p − c): about the vertical axis through the centre.
+    const mat4 turn = glm::translate(mat4(1.0f), c) *
+                      glm::rotate(mat4(1.0f), glm::radians(degrees), vec3(0.0f, 1.0f, 0.0f)) *
+                      glm::translate(mat4(1.0f), -c);
+    const Camera& camera = prepared.camera;
+    for (PreparedDraw& d : prepared.draws) {
+        SurfaceUniforms& u = d.uniforms;
+        u.viewFromObject = camera.viewFromWorld * turn * d.worldFromObject;
+        u.clipFromObject = camera.clipFromView * u.viewFromObject;
+        u.normalFromObject = transpose(inverse(mat3(u.viewFromObject)));
+    }
+}
+
+namespace {
+
+// The sort key of a transparent triangle: its distance along the view direction (−z_eye), of the
+// centroid or of the farthest corner. Larger is farther.
+float depthKey(const PreparedDraw& d, std::uint32_t triangle, SortKey key) {
+    const mat4& m = d.uniforms.viewFromObject;
+    const vec3 row(m[0][2], m[1][2], m[2][2]);  // z_eye = row · p + m[3][2]
+    float z[3];
+    for (int k = 0; k < 3; ++k)
+        z[k] = dot(row, d.vertices[d.indices[3 * triangle + k]].position) + m[3][2];
+    if (key == SortKey::FarthestVertex) return -std::min({z[0], z[1], z[2]});
+    return -(z[0] + z[1] + z[2]) * (1.0f / 3.0f);
+}
+
+}  // namespace
+
+std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, FrameMemory& memory, FrameStats& stats) {
+    std::vector<PlannedDraw> plan;
+    // Opaque draws, with depth writes, in file order.
+    for (std::uint32_t k = 0; k < prepared.draws.size(); ++k)
+        if (!prepared.draws[k].transparent) plan.push_back({k, prepared.draws[k].indices, prepared.state});
+    const std::vector<TransparentTriangle>& triangles = prepared.transparentTriangles;
+    if (triangles.empty()) return plan;
+
+    // The transparent pass: depth test on, depth writes off, each draw's own blend.
+    const TransparencyOptions& options = prepared.scene.transparency;
+    const auto transparentState = [&](std::uint32_t k) {
+        DrawState state = prepared.state;
+        state.depth.writeEnabled = false;
+        state.blend = prepared.draws[k].uniforms.blend;
+        return state;
+    };
+    if (options.mode != TransparencyMode::Sorted) {
+        for (std::uint32_t k = 0; k < prepared.draws.size(); ++k)
+            if (prepared.draws[k].transparent) {
+                plan.push_back({k, prepared.draws[k].indices, transparentState(k)});
+                ++stats.transparentRuns;
+            }
+        return plan;
+    }
+
+    // Sorted back to front, then cut into runs of consecutive triangles of one draw.
+    const auto start = std::chrono::steady_clock::now();
+    memory.keys.resize(triangles.size());
+    for (std::size_t t = 0; t < triangles.size(); ++t)
+        memory.keys[t] = depthKey(prepared.draws[triangles[t].draw], triangles[t].triangle, options.key);
+    const std::span<const std::uint32_t> order =
+        memory.sorter.sort(memory.keys, SortAlgorithm::InsertionWithMemory, stats.sort);
+    stats.sortMilliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+
+    memory.runIndices.resize(3 * triangles.size());
+    std::size_t written = 0;
+    for (std::size_t i = 0; i < order.size();) {
+        const std::uint32_t k = triangles[order[i]].draw;
+        const PreparedDraw& d = prepared.draws[k];
+        const std::size_t first = written;
+        for (; i < order.size() && triangles[order[i]].draw == k; ++i) {
+            const std::uint32_t t = triangles[order[i]].triangle;
+            for (int c = 0; c < 3; ++c)
+                memory.runIndices[written++] = d.indices[3 * t + c];
+        }
+        plan.push_back({k, std::span<const std::uint32_t>(memory.runIndices).subspan(first, written - first),
+                        transparentState(k)});
+        ++stats.transparentRuns;
+    }
+    return plan;
 }
 
 namespace {
 
 template <ShadingFrequency kFrequency>
-DrawStats drawSurface(const PreparedScene& prepared, const PreparedDraw& d, const SurfaceUniforms& uniforms,
+DrawStats drawSurface(const PreparedDraw& d, const PlannedDraw& call, const SurfaceUniforms& uniforms,
                       Framebuffer& target, DrawContext& context) {
-    return draw<SurfaceShader<kFrequency>>(prepared.state, uniforms, std::span<const MeshVertex>(d.vertices),
-                                           std::span<const std::uint32_t>(d.indices), target, context);
+    return draw<SurfaceShader<kFrequency>>(call.state, uniforms, std::span<const MeshVertex>(d.vertices),
+                                           call.indices, target, context);
 }
 
 }  // namespace
 
-DrawStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawContext& context,
-                      std::uint8_t terms) {
+FrameStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawContext& context,
+                       FrameMemory& memory, std::uint8_t terms) {
+    FrameStats stats;
+    const std::vector<PlannedDraw> plan = planFrame(prepared, memory, stats);
     target.clear(prepared.clearColor, 1.0f, context.pool);
-    DrawStats total;
-    for (const PreparedDraw& d : prepared.draws) {
+    for (const PlannedDraw& call : plan) {
+        const PreparedDraw& d = prepared.draws[call.draw];
         const SurfaceUniforms* uniforms = &d.uniforms;
         SurfaceUniforms selected;
         if (terms != kAllTerms) {
@@ -281,17 +425,23 @@ DrawStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawCo
         }
         switch (d.frequency) {
             case ShadingFrequency::Flat:
-                total += drawSurface<ShadingFrequency::Flat>(prepared, d, *uniforms, target, context);
+                stats.draw += drawSurface<ShadingFrequency::Flat>(d, call, *uniforms, target, context);
                 break;
             case ShadingFrequency::Gouraud:
-                total += drawSurface<ShadingFrequency::Gouraud>(prepared, d, *uniforms, target, context);
+                stats.draw += drawSurface<ShadingFrequency::Gouraud>(d, call, *uniforms, target, context);
                 break;
             case ShadingFrequency::Phong:
-                total += drawSurface<ShadingFrequency::Phong>(prepared, d, *uniforms, target, context);
+                stats.draw += drawSurface<ShadingFrequency::Phong>(d, call, *uniforms, target, context);
                 break;
         }
     }
-    return total;
+    return stats;
+}
+
+DrawStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawContext& context,
+                      std::uint8_t terms) {
+    FrameMemory memory;
+    return renderFrame(prepared, target, context, memory, terms).draw;
 }
 
 GlScene toGlScene(const PreparedScene& prepared) {
@@ -310,14 +460,19 @@ GlScene toGlScene(const PreparedScene& prepared) {
         gl.lights.assign(u.lights.begin(), u.lights.begin() + u.lightCount);
         gl.brdf = u.brdf;
         gl.twoSidedFlip = u.twoSidedFlip;
+        gl.fog = u.fog;
     }
     const bool smoothSpot = std::any_of(gl.lights.begin(), gl.lights.end(), [](const LightParams& l) {
         return l.kind == LightKind::Spot && l.spotProfile == SpotProfile::Smooth;
     });
-    for (const PreparedDraw& d : prepared.draws) {
+    // The draws in the order a frame draws them (the transparent ones sorted from scratch).
+    FrameMemory memory;
+    FrameStats stats;
+    for (const PlannedDraw& call : planFrame(prepared, memory, stats)) {
+        const PreparedDraw& d = prepared.draws[call.draw];
         GlDraw out;
         out.vertices = d.vertices;
-        out.indices = d.indices;
+        out.indices.assign(call.indices.begin(), call.indices.end());
         out.viewFromObject = d.uniforms.viewFromObject;
         out.normalFromObject = d.uniforms.normalFromObject;
         out.reflection = d.uniforms.reflection;
@@ -326,10 +481,15 @@ GlScene toGlScene(const PreparedScene& prepared) {
         out.pbr = d.uniforms.pbr;
         out.diffuseMap = d.uniforms.diffuseMap;
         out.clampColor = d.uniforms.clampColor;
-        // OpenGL 1.x itself where it can say the same: the GL preset's per-vertex Blinn-Phong.
+        out.opacity = d.uniforms.opacity;
+        out.blend = call.state.blend;
+        out.depthWrite = call.state.depth.writeEnabled;
+        // OpenGL 1.x itself where it can say the same: the GL preset's per-vertex Blinn-Phong, opaque or
+        // blended with straight alpha.
         const bool fixedFunction = glPreset && d.frequency != ShadingFrequency::Phong &&
                                    d.uniforms.reflection == ReflectionModel::BlinnPhong && !smoothSpot &&
-                                   d.uniforms.material.shininess <= 128.0f;
+                                   d.uniforms.material.shininess <= 128.0f &&
+                                   (out.blend == BlendMode::Replace || out.blend == BlendMode::Over);
         out.program = fixedFunction                            ? GlProgram::FixedFunction
                       : d.frequency == ShadingFrequency::Phong ? GlProgram::PerPixel
                                                                : GlProgram::PerVertex;

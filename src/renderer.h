@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "pipeline.h"
 #include "scene.h"
 #include "shaders.h"
+#include "transparency_sort.h"
 
 namespace facet {
 
@@ -21,17 +23,28 @@ namespace facet {
 struct PreparedDraw {
     std::vector<MeshVertex> vertices;  // flat shading (Facet preset): one vertex per corner, face normals
     std::vector<std::uint32_t> indices;
-    SurfaceUniforms uniforms;
+    SurfaceUniforms uniforms;  // uniforms.blend: Replace for opaque draws
     ShadingFrequency frequency = ShadingFrequency::Phong;
+    mat4 worldFromObject{1.0f};  // the object's placement (the turntable turns it)
+    // Drawn in the transparent pass: opacity or texture alpha below 1, or a blend other than over.
+    bool transparent = false;
+};
+
+// A transparent triangle, for sorting: which draw, which triangle of it.
+struct TransparentTriangle {
+    std::uint32_t draw;
+    std::uint32_t triangle;
 };
 
 struct PreparedScene {
     Scene scene;
     Camera camera;
     DrawState state;
-    vec4 clearColor{0.0f};                         // linear (Facet preset) or as given (GL preset)
+    vec4 clearColor{0.0f};                   // linear (Facet preset) or as given (GL preset)
     ColorEncoding encoding = kSrgbEncoding;  // how 8-bit image files encode the colour buffer
     std::vector<PreparedDraw> draws;
+    std::vector<TransparentTriangle> transparentTriangles;  // of every transparent draw, in file order
+    vec3 turntableCentre{0.0f};                             // world space: the centre of the bounding box
     std::vector<std::unique_ptr<Texture>> textures;
     std::vector<std::string> warnings;  // from the importer, one line each
     std::size_t triangleCount = 0;
@@ -46,8 +59,45 @@ struct PreparedScene {
 // unusable input.
 PreparedScene prepareScene(const Scene& scene);
 
+// Turns every object by `degrees` about the vertical (world y) axis through turntableCentre, as on a
+// turntable: camera and lights stay where they are. 0 is the scene as written.
+void setTurntable(PreparedScene& prepared, float degrees);
+
+// What a frame keeps for the next one: the back-to-front order of the transparent triangles (so that
+// insertion sort starts from an almost sorted order), and scratch buffers.
+struct FrameMemory {
+    TransparencySorter sorter;
+    std::vector<float> keys;                // per transparent triangle
+    std::vector<std::uint32_t> runIndices;  // the index lists of the transparent runs
+};
+
+struct FrameStats {
+    DrawStats draw;
+    SortStats sort;                   // transparent triangles sorted this frame (elements = 0: none)
+    double sortMilliseconds = 0;      // keys and sort
+    std::size_t transparentRuns = 0;  // draw calls of the transparent pass
+};
+
+// One draw call of a frame, in order: an opaque part whole, or a run of consecutive transparent
+// triangles of one part (back to front across all transparent parts).
+struct PlannedDraw {
+    std::uint32_t draw;                      // index into PreparedScene::draws
+    std::span<const std::uint32_t> indices;  // the draw's own indices, or a run from FrameMemory
+    DrawState state;                         // depth writes off and blending for transparent runs
+};
+
+// The frame's draw calls: opaque draws first, then the transparent triangles in the order the scene's
+// transparency mode gives (sorted back to front, file order, or file order into fragment lists).
+// Fills stats.sort and sortMilliseconds.
+std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, FrameMemory& memory, FrameStats& stats);
+
 // Clears `target` to the scene's background and draws every object. `target` must be scene-sized.
 // `terms` (LightingTerm bits) selects the lighting terms drawn: all of them, or one for a component image.
+// `memory` carries the transparent triangles' order from frame to frame.
+FrameStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawContext& context,
+                       FrameMemory& memory, std::uint8_t terms = kAllTerms);
+
+// The same without memory between frames (the transparent triangles are sorted from scratch).
 DrawStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawContext& context,
                       std::uint8_t terms = kAllTerms);
 

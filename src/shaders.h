@@ -12,9 +12,11 @@
 #include <cstdint>
 #include <span>
 
+#include "fog.h"
 #include "lighting.h"
 #include "mesh.h"
 #include "shader.h"
+#include "state.h"
 #include "texture.h"
 #include "wide.h"
 
@@ -47,8 +49,10 @@ struct SurfaceUniforms {
     const Texture* diffuseMap = nullptr;
     bool twoSidedFlip = true;  // light the side of a surface that faces the viewer (N·V < 0: N = −N)
     bool clampColor = false;   // clamp lit colours to [0, 1] (per vertex before interpolation), as OpenGL 1.x
-    std::uint8_t terms = kAllTerms;  // LightingTerm bits: which terms reach the image
-    float opacity = 1.0f;            // written to alpha
+    std::uint8_t terms = kAllTerms;        // LightingTerm bits: which terms reach the image
+    float opacity = 1.0f;                  // α, times the diffuse map's alpha when there is one
+    FogParams fog;                         // applied to the lit colour, before the blend's output form
+    BlendMode blend = BlendMode::Replace;  // the draw's blend, which decides the output form (surfaceOutput)
 
     std::span<const LightParams> activeLights() const {
         return {lights.data(), static_cast<std::size_t>(lightCount)};
@@ -91,17 +95,39 @@ LightingTerms<V3> surfaceTerms(const V3& P, const V3& normal, const V3& albedo, 
     return t;
 }
 
+// What a surface shader writes, from the lit colour c and its alpha α at eye-space point P: fog first,
+// c = f·c + (1 − f)·c_fog (fog.h), then the form the draw's blend expects:
+//   Replace, Over:               (c, α)            straight alpha
+//   PremultipliedOver, Additive: (α·c, α)          premultiplied (Additive: c_d + α·c)
+//   Multiply:                    (mix(1, c, α), α)  a filter that is clear (1) where α = 0
+template <class F, class V3>
+V3 surfaceOutput(V3 c, F alpha, const V3& P, const SurfaceUniforms& u) {
+    c = applyFog<F, V3>(u.fog, c, P);
+    switch (u.blend) {
+        case BlendMode::Replace:
+        case BlendMode::Over:
+            return c;
+        case BlendMode::PremultipliedOver:
+        case BlendMode::Additive:
+            return c * alpha;
+        case BlendMode::Multiply:
+            return V3(vec3(1.0f)) + (c - V3(vec3(1.0f))) * alpha;
+    }
+    return c;
+}
+
 namespace detail {
 
-// The diffuse map's texels for the batch's lanes (white where there is no map or the lane is empty).
-inline Vec3x8 diffuseTexels(const Texture& map, const Vec2x8& uv, unsigned mask) {
-    Vec3x8 texel(vec3(1.0f));
+// The diffuse map's texels for the batch's lanes (opaque white where the lane is empty).
+inline Vec4x8 diffuseTexels(const Texture& map, const Vec2x8& uv, unsigned mask) {
+    Vec4x8 texel{splat(1.0f), splat(1.0f), splat(1.0f), splat(1.0f)};
     for (int lane = 0; lane < 8; ++lane) {
         if (!((mask >> lane) & 1)) continue;
         const vec4 t = sampleBilinear(map, vec2(uv.x[lane], uv.y[lane]));
         texel.x[lane] = t.r;
         texel.y[lane] = t.g;
         texel.z[lane] = t.b;
+        texel.w[lane] = t.a;
     }
     return texel;
 }
@@ -134,10 +160,15 @@ struct SurfaceShader<ShadingFrequency::Phong> {
 
     static vec4 fragment(const Varyings& in, const Uniforms& u) {
         vec3 albedo = u.albedo();
-        if (u.diffuseMap) albedo *= vec3(sampleBilinear(*u.diffuseMap, in.uv));
+        float alpha = u.opacity;
+        if (u.diffuseMap) {
+            const vec4 texel = sampleBilinear(*u.diffuseMap, in.uv);
+            albedo *= vec3(texel);
+            alpha *= texel.a;
+        }
         vec3 c = surfaceTerms<float, vec3>(in.position, in.normal, albedo, u).sum();
         if (u.clampColor) c = detail::clamp01(c);
-        return vec4(c, u.opacity);
+        return vec4(surfaceOutput<float, vec3>(c, alpha, in.position, u), alpha);
     }
 
     // The same for eight fragments at once (the pipeline prefers this when a shader has it).
@@ -146,10 +177,17 @@ struct SurfaceShader<ShadingFrequency::Phong> {
         constexpr int kNormal = offsetof(Varyings, normal) / sizeof(float);
         constexpr int kUv = offsetof(Varyings, uv) / sizeof(float);
         Vec3x8 albedo(u.albedo());
-        if (u.diffuseMap) albedo = albedo * detail::diffuseTexels(*u.diffuseMap, in.vec2At(kUv), in.mask);
-        Vec3x8 c = surfaceTerms<Float8, Vec3x8>(in.vec3At(kPosition), in.vec3At(kNormal), albedo, u).sum();
+        Float8 alpha = splat(u.opacity);
+        if (u.diffuseMap) {
+            const Vec4x8 texel = detail::diffuseTexels(*u.diffuseMap, in.vec2At(kUv), in.mask);
+            albedo = albedo * Vec3x8{texel.x, texel.y, texel.z};
+            alpha = alpha * texel.w;
+        }
+        const Vec3x8 P = in.vec3At(kPosition);
+        Vec3x8 c = surfaceTerms<Float8, Vec3x8>(P, in.vec3At(kNormal), albedo, u).sum();
         if (u.clampColor) c = detail::clamp01(c);
-        return {c.x, c.y, c.z, splat(u.opacity)};
+        c = surfaceOutput<Float8, Vec3x8>(c, alpha, P, u);
+        return {c.x, c.y, c.z, alpha};
     }
 };
 
@@ -163,8 +201,9 @@ struct PerVertexSurfaceShader {
     using Attributes = MeshVertex;
     using Uniforms = SurfaceUniforms;
     struct Varyings {
-        vec3 modulated;
-        vec3 added;
+        vec3 modulated;  // flat when kFrequency is Flat
+        vec3 added;      // flat when kFrequency is Flat
+        vec3 position;   // eye space, for fog
         vec2 uv;
     };
     static constexpr int kFlatVaryingFloats = kFrequency == ShadingFrequency::Flat ? 6 : 0;
@@ -173,26 +212,37 @@ struct PerVertexSurfaceShader {
         const vec3 P(u.viewFromObject * vec4(in.position, 1.0f));
         const LightingTerms<vec3> t =
             surfaceTerms<float, vec3>(P, u.normalFromObject * in.normal, u.albedo(), u);
-        Varyings out{t.diffuse, t.emission + t.ambient + t.specular, in.uv};
-        if (u.clampColor) out = {detail::clamp01(t.sum()), vec3(0.0f), in.uv};
+        Varyings out{t.diffuse, t.emission + t.ambient + t.specular, P, in.uv};
+        if (u.clampColor) out = {detail::clamp01(t.sum()), vec3(0.0f), P, in.uv};
         return {u.clipFromObject * vec4(in.position, 1.0f), out};
     }
 
     static vec4 fragment(const Varyings& in, const Uniforms& u) {
         vec3 modulated = in.modulated;
-        if (u.diffuseMap) modulated *= vec3(sampleBilinear(*u.diffuseMap, in.uv));
-        return vec4(modulated + in.added, u.opacity);
+        float alpha = u.opacity;
+        if (u.diffuseMap) {
+            const vec4 texel = sampleBilinear(*u.diffuseMap, in.uv);
+            modulated *= vec3(texel);
+            alpha *= texel.a;
+        }
+        return vec4(surfaceOutput<float, vec3>(modulated + in.added, alpha, in.position, u), alpha);
     }
 
     static Vec4x8 fragmentBatch(const FragmentBatch& in, const Uniforms& u) {
         constexpr int kModulated = offsetof(Varyings, modulated) / sizeof(float);
         constexpr int kAdded = offsetof(Varyings, added) / sizeof(float);
+        constexpr int kPosition = offsetof(Varyings, position) / sizeof(float);
         constexpr int kUv = offsetof(Varyings, uv) / sizeof(float);
         Vec3x8 modulated = in.vec3At(kModulated);
-        if (u.diffuseMap)
-            modulated = modulated * detail::diffuseTexels(*u.diffuseMap, in.vec2At(kUv), in.mask);
-        const Vec3x8 c = modulated + in.vec3At(kAdded);
-        return {c.x, c.y, c.z, splat(u.opacity)};
+        Float8 alpha = splat(u.opacity);
+        if (u.diffuseMap) {
+            const Vec4x8 texel = detail::diffuseTexels(*u.diffuseMap, in.vec2At(kUv), in.mask);
+            modulated = modulated * Vec3x8{texel.x, texel.y, texel.z};
+            alpha = alpha * texel.w;
+        }
+        const Vec3x8 c =
+            surfaceOutput<Float8, Vec3x8>(modulated + in.vec3At(kAdded), alpha, in.vec3At(kPosition), u);
+        return {c.x, c.y, c.z, alpha};
     }
 };
 
