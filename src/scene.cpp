@@ -293,6 +293,12 @@ class SceneReader {
         return v;
     }
 
+    bool boolean(const Json& value, const std::string& path) const {
+        if (!value.is_boolean())
+            fail(inQuotes(path) + " must be true or false (got " + describe(value) + ")");
+        return value.get<bool>();
+    }
+
     std::string string(const Json& value, const std::string& path) const {
         if (!value.is_string()) fail(inQuotes(path) + " must be a string (got " + describe(value) + ")");
         return value.get<std::string>();
@@ -326,14 +332,16 @@ class SceneReader {
 
 // ---- The scene sections --------------------------------------------------------------------------
 
-constexpr std::string_view kTopLevelKeys[] = {"width",  "height",  "background", "ambient",  "camera",
-                                              "lights", "objects", "model",      "pipeline", "lighting"};
+constexpr std::string_view kTopLevelKeys[] = {"width",        "height",  "background", "ambient",  "camera",
+                                              "lights",       "objects", "model",      "pipeline", "lighting",
+                                              "transparency", "fog",     "gamma"};
 constexpr std::string_view kCameraKeys[] = {"eye", "target", "up", "fovy", "near", "far"};
 constexpr std::string_view kLightKeys[] = {"type",     "direction", "position", "color",       "intensity",
                                            "ambient",  "diffuse",   "specular", "attenuation", "cutoff",
                                            "exponent", "inner",     "outer",    "space"};
 constexpr std::string_view kSpotOnlyKeys[] = {"cutoff", "exponent", "inner", "outer"};
-constexpr std::string_view kObjectKeys[] = {"model", "translate", "rotate", "scale", "material", "lighting"};
+constexpr std::string_view kObjectKeys[] = {"model",    "translate", "rotate", "scale",
+                                            "material", "lighting",  "blend"};
 constexpr std::string_view kMaterialKeys[] = {"ambient",   "diffuse",   "specular", "emission",
                                               "shininess", "opacity",   "preset",   "base_color",
                                               "metalness", "roughness", "f0"};
@@ -351,6 +359,15 @@ constexpr std::string_view kGeometryNames[] = {"smith-ggx", "cook-torrance"};
 constexpr std::string_view kLightSpaces[] = {"world", "camera"};
 constexpr std::string_view kCullNames[] = {"back", "front", "none"};  // in CullChoice order
 constexpr std::string_view kInterpolationNames[] = {"perspective", "affine"};
+constexpr std::string_view kBlendNames[] = {"over", "additive", "multiply", "premultiplied"};  // BlendChoice
+constexpr std::string_view kTransparencyKeys[] = {"mode", "sort_key"};
+constexpr std::string_view kTransparencyModeNames[] = {"sorted", "unsorted", "exact"};  // TransparencyMode
+constexpr std::string_view kSortKeyNames[] = {"centroid", "farthest"};                  // in SortKey order
+constexpr std::string_view kFogKeys[] = {"mode", "color", "start", "end", "density", "distance"};
+constexpr std::string_view kFogModeNames[] = {"linear", "exp", "exp2"};  // FogMode after None
+constexpr std::string_view kFogDistanceNames[] = {"depth", "radial"};    // in FogDistance order
+constexpr std::string_view kGammaKeys[] = {"encode", "exponent", "decode_inputs"};
+constexpr std::string_view kEncodeNames[] = {"srgb", "power", "linear"};  // in TransferCurve order
 
 glm::vec4 readBackground(const SceneReader& reader, const Json& value) {
     const std::string path = "background";
@@ -650,6 +667,11 @@ ObjectSpec readObject(const SceneReader& reader, const Json& object, const std::
         spec.material = readMaterial(reader, *v, childPath(path, "material"));
     if (const Json* v = reader.find(object, "lighting"))
         readObjectLighting(reader, *v, childPath(path, "lighting"), spec);
+    if (const Json* v = reader.find(object, "blend")) {
+        constexpr BlendChoice kBlends[] = {BlendChoice::Over, BlendChoice::Additive, BlendChoice::Multiply,
+                                           BlendChoice::Premultiplied};
+        spec.blend = kBlends[reader.choice(*v, childPath(path, "blend"), kBlendNames)];
+    }
 
     // worldFromObject = T · Rz · Ry · Rx · S: scale first, then rotate about X, Y, Z (fixed axes),
     // then translate. glm::rotate/scale multiply on the right, so the calls read left to right.
@@ -718,6 +740,98 @@ LightingOptions readLighting(const SceneReader& reader, const Json& lighting) {
         constexpr GeometryTerm kGeometries[] = {GeometryTerm::SmithGGX, GeometryTerm::CookTorrance};
         options.brdf.geometry = kGeometries[reader.choice(*v, "lighting.geometry", kGeometryNames)];
     }
+    return options;
+}
+
+TransparencyOptions readTransparency(const SceneReader& reader, const Json& transparency) {
+    const std::string path = "transparency";
+    reader.requireObject(transparency, path, "an object like {\"mode\": \"exact\"}");
+    reader.checkKeys(transparency, path, kTransparencyKeys);
+
+    TransparencyOptions options;
+    if (const Json* v = reader.find(transparency, "mode")) {
+        constexpr TransparencyMode kModes[] = {TransparencyMode::Sorted, TransparencyMode::Unsorted,
+                                               TransparencyMode::Exact};
+        options.mode = kModes[reader.choice(*v, "transparency.mode", kTransparencyModeNames)];
+    }
+    // Used by "sorted" only, but accepted with every mode: switching the mode (in the file or with
+    // --transparency) must not make the rest of the file wrong.
+    if (const Json* v = reader.find(transparency, "sort_key")) {
+        constexpr SortKey kKeys[] = {SortKey::Centroid, SortKey::FarthestVertex};
+        options.key = kKeys[reader.choice(*v, "transparency.sort_key", kSortKeyNames)];
+    }
+    return options;
+}
+
+FogSpec readFog(const SceneReader& reader, const Json& fog) {
+    const std::string path = "fog";
+    reader.requireObject(fog, path, "an object like {\"mode\": \"exp2\", \"density\": 0.2}");
+    reader.checkKeys(fog, path, kFogKeys);
+
+    FogSpec spec;
+    const Json* mode = reader.find(fog, "mode");
+    if (mode == nullptr) {
+        reader.fail(
+            "\"fog.mode\" is missing: give \"linear\", \"exp\" or \"exp2\" (or remove \"fog\" for "
+            "no fog)");
+    }
+    constexpr FogMode kModes[] = {FogMode::Linear, FogMode::Exponential, FogMode::ExponentialSquared};
+    spec.mode = kModes[reader.choice(*mode, "fog.mode", kFogModeNames)];
+    const std::string modeName = mode->get<std::string>();
+
+    // A key the mode ignores usually means the wrong mode: say so rather than ignore it.
+    const bool linear = spec.mode == FogMode::Linear;
+    for (std::string_view name : {"start", "end"}) {
+        if (!linear && fog.contains(name)) {
+            reader.fail(inQuotes(childPath(path, name)) + ": start and end are for linear fog (the mode is " +
+                        inQuotes(modeName) + ", which uses \"density\")");
+        }
+    }
+    if (linear && fog.contains("density")) {
+        reader.fail(
+            "\"fog.density\": density is for exp and exp2 fog (the mode is \"linear\", which uses \"start\" "
+            "and \"end\")");
+    }
+
+    if (const Json* v = reader.find(fog, "color")) spec.color = reader.color(*v, "fog.color");
+    if (const Json* v = reader.find(fog, "start")) spec.start = reader.nonNegative(*v, "fog.start");
+    if (const Json* v = reader.find(fog, "end")) spec.end = reader.nonNegative(*v, "fog.end");
+    if (spec.start && spec.end && !(*spec.end > *spec.start)) {
+        reader.fail("\"fog.end\" (" + formatNumber(*spec.end) + ") must be greater than \"fog.start\" (" +
+                    formatNumber(*spec.start) + ")");
+    }
+    if (const Json* v = reader.find(fog, "density")) spec.density = reader.nonNegative(*v, "fog.density");
+    if (const Json* v = reader.find(fog, "distance")) {
+        constexpr FogDistance kDistances[] = {FogDistance::EyeDepth, FogDistance::Radial};
+        spec.distance = kDistances[reader.choice(*v, "fog.distance", kFogDistanceNames)];
+    }
+    return spec;
+}
+
+GammaOptions readGamma(const SceneReader& reader, const Json& gamma) {
+    const std::string path = "gamma";
+    reader.requireObject(gamma, path, "an object like {\"encode\": \"power\", \"exponent\": 2.2}");
+    reader.checkKeys(gamma, path, kGammaKeys);
+
+    GammaOptions options;
+    if (const Json* v = reader.find(gamma, "encode")) {
+        constexpr TransferCurve kCurves[] = {TransferCurve::Srgb, TransferCurve::Power,
+                                             TransferCurve::Linear};
+        options.encode = kCurves[reader.choice(*v, "gamma.encode", kEncodeNames)];
+    }
+    if (const Json* v = reader.find(gamma, "exponent")) {
+        if (options.encode != TransferCurve::Power) {
+            const std::string curve(kEncodeNames[static_cast<std::size_t>(options.encode)]);
+            reader.fail("\"gamma.exponent\" is only for \"encode\": \"power\" (the curve is " +
+                        inQuotes(curve) + (gamma.contains("encode") ? ")" : ", the default)"));
+        }
+        options.exponent = reader.number(*v, "gamma.exponent");
+        if (!(options.exponent > 0.0f)) {
+            reader.fail("\"gamma.exponent\" must be greater than 0 (got " + describe(*v) + ")");
+        }
+    }
+    if (const Json* v = reader.find(gamma, "decode_inputs"))
+        options.decodeInputs = reader.boolean(*v, "gamma.decode_inputs");
     return options;
 }
 
@@ -794,6 +908,19 @@ Scene loadScene(const fs::path& path) {
     if (const Json* v = reader.find(document, "camera")) scene.camera = readCamera(reader, *v);
     if (const Json* v = reader.find(document, "pipeline")) scene.pipeline = readPipeline(reader, *v);
     if (const Json* v = reader.find(document, "lighting")) scene.lighting = readLighting(reader, *v);
+    if (const Json* v = reader.find(document, "transparency"))
+        scene.transparency = readTransparency(reader, *v);
+    if (const Json* v = reader.find(document, "fog")) scene.fog = readFog(reader, *v);
+    if (const Json* v = reader.find(document, "gamma")) {
+        // The gl preset neither decodes nor encodes; a "gamma" beside it would silently do nothing.
+        if (scene.lighting.preset == LightingPreset::GL) {
+            reader.fail(
+                "\"gamma\" cannot be used with the gl lighting preset: the gl preset writes colours as "
+                "OpenGL "
+                "1.x does, without decoding or encoding; remove \"gamma\"");
+        }
+        scene.gamma = readGamma(reader, *v);
+    }
 
     if (const Json* lights = reader.find(document, "lights")) {
         if (!lights->is_array())

@@ -508,6 +508,167 @@ TEST_F(SceneTest, UnknownMaterialPresetListsEveryName) {
                            R"("silver" (got "unobtainium"))");
 }
 
+// ---- Transparency, blend, fog and gamma ------------------------------------------------------------
+
+TEST_F(SceneTest, TransparencyFogAndGammaDefaultsWhenAbsent) {
+    touch("m.obj");
+    const Scene scene = loadScene(write("scene.json", R"({"model": "m.obj"})"));
+    EXPECT_FALSE(scene.objects[0].blend.has_value());
+    EXPECT_EQ(scene.transparency.mode, TransparencyMode::Sorted);
+    EXPECT_EQ(scene.transparency.key, SortKey::Centroid);
+    EXPECT_EQ(scene.fog.mode, FogMode::None);
+    EXPECT_EQ(scene.fog.color, glm::vec3(0.5f));
+    EXPECT_FALSE(scene.fog.start.has_value());
+    EXPECT_FALSE(scene.fog.end.has_value());
+    EXPECT_EQ(scene.fog.density, 1.0f);
+    EXPECT_EQ(scene.fog.distance, FogDistance::EyeDepth);
+    EXPECT_EQ(scene.gamma.encode, TransferCurve::Srgb);
+    EXPECT_EQ(scene.gamma.exponent, 2.2f);
+    EXPECT_TRUE(scene.gamma.decodeInputs);
+}
+
+TEST_F(SceneTest, ObjectBlendMapsToItsEnum) {
+    touch("m.obj");
+    const Scene scene = loadScene(write("scene.json", R"({"objects": [
+        {"model": "m.obj", "blend": "over"},
+        {"model": "m.obj", "blend": "additive"},
+        {"model": "m.obj", "blend": "multiply"},
+        {"model": "m.obj", "blend": "premultiplied", "material": {"opacity": 0.5}},
+        {"model": "m.obj"}]})"));
+    ASSERT_EQ(scene.objects.size(), 5u);
+    EXPECT_EQ(scene.objects[0].blend, BlendChoice::Over);
+    EXPECT_EQ(scene.objects[1].blend, BlendChoice::Additive);
+    EXPECT_EQ(scene.objects[2].blend, BlendChoice::Multiply);
+    EXPECT_EQ(scene.objects[3].blend, BlendChoice::Premultiplied);
+    EXPECT_EQ(scene.objects[3].material.opacity, 0.5f);
+    EXPECT_FALSE(scene.objects[4].blend.has_value());
+}
+
+TEST_F(SceneTest, TransparencyReadsEveryKey) {
+    touch("m.obj");
+    const Scene scene = loadScene(write("scene.json", R"({"model": "m.obj",
+        "transparency": {"mode": "unsorted", "sort_key": "farthest"}})"));
+    EXPECT_EQ(scene.transparency.mode, TransparencyMode::Unsorted);
+    EXPECT_EQ(scene.transparency.key, SortKey::FarthestVertex);
+}
+
+// Every name maps to its own enum value; an empty object keeps the defaults, and sort_key is accepted
+// (unused) with the exact mode.
+TEST_F(SceneTest, TransparencyChoicesMapToTheirEnums) {
+    touch("m.obj");
+    const auto transparency = [&](const std::string& object) {
+        return loadScene(write("scene.json", R"({"model": "m.obj", "transparency": )" + object + "}"))
+            .transparency;
+    };
+    EXPECT_EQ(transparency(R"({"mode": "sorted"})").mode, TransparencyMode::Sorted);
+    EXPECT_EQ(transparency(R"({"mode": "unsorted"})").mode, TransparencyMode::Unsorted);
+    EXPECT_EQ(transparency(R"({"mode": "exact"})").mode, TransparencyMode::Exact);
+    EXPECT_EQ(transparency(R"({"sort_key": "centroid"})").key, SortKey::Centroid);
+    EXPECT_EQ(transparency(R"({"sort_key": "farthest"})").key, SortKey::FarthestVertex);
+    const TransparencyOptions empty = transparency("{}");
+    EXPECT_EQ(empty.mode, TransparencyMode::Sorted);
+    EXPECT_EQ(empty.key, SortKey::Centroid);
+    const TransparencyOptions exact = transparency(R"({"mode": "exact", "sort_key": "farthest"})");
+    EXPECT_EQ(exact.mode, TransparencyMode::Exact);
+    EXPECT_EQ(exact.key, SortKey::FarthestVertex);
+}
+
+TEST_F(SceneTest, LinearFogReadsEveryKey) {
+    touch("m.obj");
+    const Scene scene = loadScene(write("scene.json", R"({"model": "m.obj", "fog": {
+        "mode": "linear", "color": [0.7, 0.75, 0.8], "start": 2, "end": 12.5, "distance": "radial"}})"));
+    EXPECT_EQ(scene.fog.mode, FogMode::Linear);
+    EXPECT_EQ(scene.fog.color, glm::vec3(0.7f, 0.75f, 0.8f));
+    EXPECT_EQ(scene.fog.start, 2.0f);
+    EXPECT_EQ(scene.fog.end, 12.5f);
+    EXPECT_EQ(scene.fog.density, 1.0f);  // unused by linear fog
+    EXPECT_EQ(scene.fog.distance, FogDistance::Radial);
+}
+
+TEST_F(SceneTest, ExponentialFogReadsEveryKey) {
+    touch("m.obj");
+    const Scene scene = loadScene(write("scene.json", R"({"model": "m.obj", "fog": {
+        "mode": "exp2", "color": [0.1, 0.2, 0.3], "density": 0.35, "distance": "depth"}})"));
+    EXPECT_EQ(scene.fog.mode, FogMode::ExponentialSquared);
+    EXPECT_EQ(scene.fog.color, glm::vec3(0.1f, 0.2f, 0.3f));
+    EXPECT_FALSE(scene.fog.start.has_value());
+    EXPECT_FALSE(scene.fog.end.has_value());
+    EXPECT_EQ(scene.fog.density, 0.35f);
+    EXPECT_EQ(scene.fog.distance, FogDistance::EyeDepth);
+}
+
+// Every mode and distance maps to its enum; each key's defaults hold when only "mode" is given;
+// start or end may come alone (the other is derived by the renderer), and 0 is allowed for both.
+TEST_F(SceneTest, FogChoicesMapToTheirEnums) {
+    touch("m.obj");
+    const auto fog = [&](const std::string& object) {
+        return loadScene(write("scene.json", R"({"model": "m.obj", "fog": )" + object + "}")).fog;
+    };
+    EXPECT_EQ(fog(R"({"mode": "linear"})").mode, FogMode::Linear);
+    EXPECT_EQ(fog(R"({"mode": "exp"})").mode, FogMode::Exponential);
+    EXPECT_EQ(fog(R"({"mode": "exp2"})").mode, FogMode::ExponentialSquared);
+    EXPECT_EQ(fog(R"({"mode": "exp", "distance": "depth"})").distance, FogDistance::EyeDepth);
+    EXPECT_EQ(fog(R"({"mode": "exp", "distance": "radial"})").distance, FogDistance::Radial);
+
+    const FogSpec defaults = fog(R"({"mode": "exp"})");
+    EXPECT_EQ(defaults.color, glm::vec3(0.5f));
+    EXPECT_EQ(defaults.density, 1.0f);
+    EXPECT_EQ(defaults.distance, FogDistance::EyeDepth);
+
+    const FogSpec startOnly = fog(R"({"mode": "linear", "start": 3})");
+    EXPECT_EQ(startOnly.start, 3.0f);
+    EXPECT_FALSE(startOnly.end.has_value());
+    const FogSpec endOnly = fog(R"({"mode": "linear", "end": 0})");
+    EXPECT_FALSE(endOnly.start.has_value());
+    EXPECT_EQ(endOnly.end, 0.0f);
+    EXPECT_EQ(fog(R"({"mode": "linear", "start": 0, "end": 0.5})").start, 0.0f);
+    EXPECT_EQ(fog(R"({"mode": "exp", "density": 0})").density, 0.0f);
+}
+
+TEST_F(SceneTest, GammaReadsEveryKey) {
+    touch("m.obj");
+    const Scene scene = loadScene(write("scene.json", R"({"model": "m.obj",
+        "gamma": {"encode": "power", "exponent": 1.8, "decode_inputs": false}})"));
+    EXPECT_EQ(scene.gamma.encode, TransferCurve::Power);
+    EXPECT_EQ(scene.gamma.exponent, 1.8f);
+    EXPECT_FALSE(scene.gamma.decodeInputs);
+}
+
+TEST_F(SceneTest, GammaChoicesMapToTheirEnums) {
+    touch("m.obj");
+    const auto gamma = [&](const std::string& object) {
+        return loadScene(write("scene.json", R"({"model": "m.obj", "gamma": )" + object + "}")).gamma;
+    };
+    EXPECT_EQ(gamma(R"({"encode": "srgb"})").encode, TransferCurve::Srgb);
+    EXPECT_EQ(gamma(R"({"encode": "linear"})").encode, TransferCurve::Linear);
+    const GammaOptions power = gamma(R"({"encode": "power"})");
+    EXPECT_EQ(power.encode, TransferCurve::Power);
+    EXPECT_EQ(power.exponent, 2.2f);
+    EXPECT_TRUE(power.decodeInputs);
+    EXPECT_TRUE(gamma(R"({"decode_inputs": true})").decodeInputs);
+    EXPECT_EQ(gamma(R"({"decode_inputs": false})").encode, TransferCurve::Srgb);
+    const GammaOptions empty = gamma("{}");
+    EXPECT_EQ(empty.encode, TransferCurve::Srgb);
+    EXPECT_TRUE(empty.decodeInputs);
+}
+
+// "gamma" is checked against the preset however "lighting" is written, before or after it; the facet
+// preset accepts it.
+TEST_F(SceneTest, GammaIsRejectedWithTheGlPresetOnly) {
+    touch("m.obj");
+    const std::string message =
+        "\"gamma\" cannot be used with the gl lighting preset: the gl preset writes colours as OpenGL 1.x "
+        "does, without decoding or encoding; remove \"gamma\"";
+    EXPECT_EQ(errorOf(R"({"model": "m.obj", "lighting": "gl", "gamma": {}})"),
+              (folder_ / "scene.json").string() + ": " + message);
+    EXPECT_NE(errorOf(R"({"gamma": {"encode": "linear"}, "model": "m.obj", "lighting": {"preset": "gl"}})")
+                  .find(message),
+              std::string::npos);
+    const Scene facet = loadScene(write("facet.json", R"({"model": "m.obj", "lighting": "facet",
+        "gamma": {"encode": "linear"}})"));
+    EXPECT_EQ(facet.gamma.encode, TransferCurve::Linear);
+}
+
 TEST(SceneForModel, OneModelAndEveryDefault) {
     const Scene scene = sceneForModel("models/spot/spot_triangulated.obj");
     EXPECT_EQ(scene.source, fs::path("models/spot/spot_triangulated.obj"));
@@ -575,6 +736,51 @@ TEST(SceneLightingExample, LoadsWithItsLightingKeys) {
     EXPECT_EQ(scene.objects[1].reflection, ReflectionModel::Phong);
     EXPECT_EQ(scene.objects[1].shading, ShadingFrequency::Flat);
     EXPECT_FALSE(scene.objects[1].material.physicallyBased());
+}
+
+// The bundled transparency example loads as committed: an opaque backdrop, then the intersecting quads,
+// sorted per triangle (the doc comment asks for a second render with "exact").
+TEST(SceneIntersectingQuadsExample, LoadsWithItsTransparencyKeys) {
+    const fs::path path = fs::path(FACET_SOURCE_DIR) / "models/intersecting-quads.json";
+    const Scene scene = loadScene(path);
+
+    EXPECT_EQ(scene.transparency.mode, TransparencyMode::Sorted);
+    EXPECT_EQ(scene.transparency.key, SortKey::Centroid);
+    EXPECT_EQ(scene.pipeline.cull, CullChoice::None);
+    EXPECT_EQ(scene.fog.mode, FogMode::None);
+    ASSERT_EQ(scene.objects.size(), 2u);
+    EXPECT_EQ(scene.objects[0].model, path.parent_path() / "intersecting-quads/backdrop.obj");
+    EXPECT_FALSE(scene.objects[0].blend.has_value());
+    EXPECT_EQ(scene.objects[1].model, path.parent_path() / "intersecting-quads/quads.obj");
+    EXPECT_EQ(scene.objects[1].blend, BlendChoice::Over);
+    EXPECT_FALSE(scene.objects[1].material.opacity.has_value());  // the MTL's d 0.5
+    EXPECT_TRUE(fs::exists(path.parent_path() / "intersecting-quads/quads.mtl"));
+}
+
+// The bundled fog example loads as committed: three Spots, a ground and a glass cube in exp² fog.
+TEST(SceneFogAndGlassExample, LoadsWithItsFogAndBlendKeys) {
+    const fs::path path = fs::path(FACET_SOURCE_DIR) / "models/fog-and-glass.json";
+    const Scene scene = loadScene(path);
+
+    EXPECT_EQ(scene.fog.mode, FogMode::ExponentialSquared);
+    EXPECT_EQ(scene.fog.color, glm::vec3(0.62f, 0.66f, 0.72f));
+    EXPECT_EQ(scene.fog.density, 0.1f);
+    EXPECT_EQ(scene.fog.distance, FogDistance::Radial);
+    EXPECT_FALSE(scene.fog.start.has_value());
+    EXPECT_EQ(glm::vec3(scene.background), scene.fog.color);  // the far ground meets the sky
+    EXPECT_EQ(scene.transparency.mode, TransparencyMode::Sorted);
+    EXPECT_EQ(scene.gamma.encode, TransferCurve::Srgb);
+
+    ASSERT_EQ(scene.objects.size(), 5u);
+    EXPECT_EQ(scene.objects[0].model, path.parent_path() / "fog-and-glass/ground.obj");
+    for (std::size_t i = 1; i <= 3; ++i) {
+        EXPECT_EQ(scene.objects[i].model, path.parent_path() / "spot/spot_triangulated.obj");
+        EXPECT_FALSE(scene.objects[i].blend.has_value());
+    }
+    const ObjectSpec& glass = scene.objects[4];
+    EXPECT_EQ(glass.model, path.parent_path() / "cube/cube.obj");
+    EXPECT_EQ(glass.material.opacity, 0.4f);
+    EXPECT_EQ(glass.blend, BlendChoice::Over);
 }
 
 // Every ```json block in docs/scene-format.md is a complete scene that loads, so the documentation
@@ -1006,6 +1212,134 @@ const ErrorCase kErrorCases[] = {
     {"F0String",
      R"({"objects": [{"model": "m.obj", "material": {"f0": "0.04"}}]})",
      {R"("objects[0].material.f0" must be a number or an array of 3 numbers)"}},
+    // Object "blend".
+    {"BlendUnknown",
+     R"({"objects": [{"model": "m.obj", "blend": "add"}]})",
+     {R"("objects[0].blend" must be one of "over", "additive", "multiply", "premultiplied" (got "add"))"}},
+    {"BlendTypo",
+     R"({"objects": [{"model": "m.obj"}, {"model": "m.obj", "blend": "multipy"}]})",
+     {R"("objects[1].blend")", R"((got "multipy") (did you mean "multiply"?))"}},
+    {"BlendNotAString",
+     R"({"objects": [{"model": "m.obj", "blend": 1}]})",
+     {R"("objects[0].blend" must be a string (got 1))"}},
+    {"BlendUnknownObjectKeySuggestsBlend",
+     R"({"objects": [{"model": "m.obj", "blnd": "over"}]})",
+     {R"(unknown key "objects[0].blnd" (did you mean "blend"?))"}},
+    // "transparency".
+    {"TransparencyNotAnObject",
+     R"({"model": "m.obj", "transparency": "exact"})",
+     {R"("transparency" must be an object like {"mode": "exact"} (got the string "exact"))"}},
+    {"TransparencyUnknownKey",
+     R"({"model": "m.obj", "transparency": {"sortkey": "centroid"}})",
+     {R"(unknown key "transparency.sortkey" (did you mean "sort_key"?))"}},
+    {"TransparencyModeUnknown",
+     R"({"model": "m.obj", "transparency": {"mode": "exat"}})",
+     {R"("transparency.mode" must be one of "sorted", "unsorted", "exact" (got "exat") (did you mean "exact"?))"}},
+    {"TransparencyModeNotAString",
+     R"({"model": "m.obj", "transparency": {"mode": true}})",
+     {R"("transparency.mode" must be a string (got true))"}},
+    {"SortKeyUnknown",
+     R"({"model": "m.obj", "transparency": {"sort_key": "farthest-vertex"}})",
+     {R"("transparency.sort_key" must be one of "centroid", "farthest" (got "farthest-vertex"))"}},
+    {"TopLevelTypoSuggestsTransparency",
+     R"({"model": "m.obj", "transparancy": {}})",
+     {R"(unknown key "transparancy" (did you mean "transparency"?))"}},
+    // "fog".
+    {"FogNotAnObject",
+     R"({"model": "m.obj", "fog": "exp2"})",
+     {R"("fog" must be an object like {"mode": "exp2", "density": 0.2} (got the string "exp2"))"}},
+    {"FogEmpty",
+     R"({"model": "m.obj", "fog": {}})",
+     {R"("fog.mode" is missing: give "linear", "exp" or "exp2" (or remove "fog" for no fog))"}},
+    {"FogWithoutMode", R"({"model": "m.obj", "fog": {"density": 0.5}})", {R"("fog.mode" is missing)"}},
+    {"FogModeUnknown",
+     R"({"model": "m.obj", "fog": {"mode": "exponential"}})",
+     {R"("fog.mode" must be one of "linear", "exp", "exp2" (got "exponential"))"}},
+    {"FogModeNone",
+     R"({"model": "m.obj", "fog": {"mode": "none"}})",
+     {R"("fog.mode" must be one of "linear", "exp", "exp2" (got "none"))"}},
+    {"FogUnknownKey",
+     R"({"model": "m.obj", "fog": {"mode": "exp", "colour": [1, 1, 1]}})",
+     {R"(unknown key "fog.colour" (did you mean "color"?))"}},
+    {"FogColorNegative",
+     R"({"model": "m.obj", "fog": {"mode": "exp", "color": [0.5, -0.5, 0.5]}})",
+     {R"("fog.color[1]" must not be negative (got -0.5))"}},
+    {"FogColorWrongLength",
+     R"({"model": "m.obj", "fog": {"mode": "exp", "color": [0.5, 0.5]}})",
+     {R"("fog.color" must be an array of 3 numbers like [1, 0.5, 0.2] (got an array of 2))"}},
+    {"FogStartWithExp",
+     R"({"model": "m.obj", "fog": {"mode": "exp", "start": 1}})",
+     {R"("fog.start": start and end are for linear fog (the mode is "exp", which uses "density"))"}},
+    {"FogEndWithExp2",
+     R"({"model": "m.obj", "fog": {"mode": "exp2", "end": 10}})",
+     {R"("fog.end": start and end are for linear fog (the mode is "exp2", which uses "density"))"}},
+    {"FogDensityWithLinear",
+     R"({"model": "m.obj", "fog": {"mode": "linear", "density": 0.5}})",
+     {R"("fog.density": density is for exp and exp2 fog (the mode is "linear", which uses "start" and "end"))"}},
+    {"FogEndBelowStart",
+     R"({"model": "m.obj", "fog": {"mode": "linear", "start": 10, "end": 2}})",
+     {R"("fog.end" (2) must be greater than "fog.start" (10))"}},
+    {"FogEndEqualsStart",
+     R"({"model": "m.obj", "fog": {"mode": "linear", "start": 5, "end": 5}})",
+     {R"("fog.end" (5) must be greater than "fog.start" (5))"}},
+    {"FogStartNegative",
+     R"({"model": "m.obj", "fog": {"mode": "linear", "start": -1, "end": 5}})",
+     {R"("fog.start" must not be negative (got -1))"}},
+    {"FogEndNegative",
+     R"({"model": "m.obj", "fog": {"mode": "linear", "end": -5}})",
+     {R"("fog.end" must not be negative (got -5))"}},
+    {"FogStartNotANumber",
+     R"({"model": "m.obj", "fog": {"mode": "linear", "start": "near"}})",
+     {R"("fog.start" must be a number (got the string "near"))"}},
+    {"FogDensityNegative",
+     R"({"model": "m.obj", "fog": {"mode": "exp", "density": -0.1}})",
+     {R"("fog.density" must not be negative (got -0.1))"}},
+    {"FogDensityNotANumber",
+     R"({"model": "m.obj", "fog": {"mode": "exp2", "density": [1]}})",
+     {R"("fog.density" must be a number (got an array of 1))"}},
+    {"FogDistanceUnknown",
+     R"({"model": "m.obj", "fog": {"mode": "exp", "distance": "radiall"}})",
+     {R"("fog.distance" must be one of "depth", "radial" (got "radiall") (did you mean "radial"?))"}},
+    // "gamma".
+    {"GammaNotAnObject",
+     R"({"model": "m.obj", "gamma": 2.2})",
+     {R"("gamma" must be an object like {"encode": "power", "exponent": 2.2} (got 2.2))"}},
+    {"GammaUnknownKey",
+     R"({"model": "m.obj", "gamma": {"decodeInputs": false}})",
+     {R"(unknown key "gamma.decodeInputs")"}},
+    {"GammaUnknownKeyNearMiss",
+     R"({"model": "m.obj", "gamma": {"exponnet": 2}})",
+     {R"(unknown key "gamma.exponnet" (did you mean "exponent"?))"}},
+    {"GammaEncodeUnknown",
+     R"({"model": "m.obj", "gamma": {"encode": "sRGB"}})",
+     {R"("gamma.encode" must be one of "srgb", "power", "linear" (got "sRGB"))"}},
+    {"GammaExponentWithoutPower",
+     R"({"model": "m.obj", "gamma": {"exponent": 2.4}})",
+     {R"("gamma.exponent" is only for "encode": "power" (the curve is "srgb", the default))"}},
+    {"GammaExponentWithLinear",
+     R"({"model": "m.obj", "gamma": {"encode": "linear", "exponent": 2.4}})",
+     {R"("gamma.exponent" is only for "encode": "power" (the curve is "linear"))"}},
+    {"GammaExponentZero",
+     R"({"model": "m.obj", "gamma": {"encode": "power", "exponent": 0}})",
+     {R"("gamma.exponent" must be greater than 0 (got 0))"}},
+    {"GammaExponentNegative",
+     R"({"model": "m.obj", "gamma": {"encode": "power", "exponent": -2.2}})",
+     {R"("gamma.exponent" must be greater than 0 (got -2.2))"}},
+    {"GammaExponentNotANumber",
+     R"({"model": "m.obj", "gamma": {"encode": "power", "exponent": "2.2"}})",
+     {R"("gamma.exponent" must be a number (got the string "2.2"))"}},
+    {"GammaDecodeInputsNotABoolean",
+     R"({"model": "m.obj", "gamma": {"decode_inputs": "no"}})",
+     {R"("gamma.decode_inputs" must be true or false (got the string "no"))"}},
+    {"GammaDecodeInputsNumber",
+     R"({"model": "m.obj", "gamma": {"decode_inputs": 0}})",
+     {R"("gamma.decode_inputs" must be true or false (got 0))"}},
+    {"GammaWithGlPreset",
+     R"({"model": "m.obj", "lighting": "gl", "gamma": {"encode": "srgb"}})",
+     {R"("gamma" cannot be used with the gl lighting preset)", R"(remove "gamma")"}},
+    {"GammaWithGlPresetObject",
+     R"({"model": "m.obj", "lighting": {"preset": "gl"}, "gamma": {}})",
+     {R"("gamma" cannot be used with the gl lighting preset)"}},
 };
 
 INSTANTIATE_TEST_SUITE_P(Scene, SceneErrors, ::testing::ValuesIn(kErrorCases),
