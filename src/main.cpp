@@ -1,5 +1,7 @@
 // facet: renders OBJ models and scene files to images with the Facet software rasterizer.
 #include <chrono>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <optional>
@@ -54,6 +56,11 @@ struct RenderArgs {
     std::optional<std::string> lighting, reflection, shading, only;
     std::optional<float> creaseAngle;
     bool components = false;
+    std::optional<std::string> frames;  // "0-59"
+    std::optional<float> turntable;     // degrees over the frames
+    bool stats = false;
+    std::optional<std::string> transparency, sortKey, encode;
+    std::optional<float> gamma;
 };
 
 // The lighting terms by the names the command line uses, in the order component images are written.
@@ -96,12 +103,82 @@ void applyLightingOptions(const RenderArgs& args, facet::Scene& scene) {
         for (facet::ObjectSpec& object : scene.objects)
             object.shading = frequency;
     }
+    if (args.transparency)
+        scene.transparency.mode = *args.transparency == "sorted"     ? facet::TransparencyMode::Sorted
+                                  : *args.transparency == "unsorted" ? facet::TransparencyMode::Unsorted
+                                                                     : facet::TransparencyMode::Exact;
+    if (args.sortKey)
+        scene.transparency.key =
+            *args.sortKey == "farthest" ? facet::SortKey::FarthestVertex : facet::SortKey::Centroid;
+    if ((args.encode || args.gamma) && scene.lighting.preset == facet::LightingPreset::GL)
+        throw facet::InputError(
+            "the gl preset writes colours as OpenGL 1.x does, unencoded: --encode and --gamma do not apply");
+    if (args.encode)
+        scene.gamma.encode = *args.encode == "srgb"    ? facet::TransferCurve::Srgb
+                             : *args.encode == "power" ? facet::TransferCurve::Power
+                                                       : facet::TransferCurve::Linear;
+    if (args.gamma) {
+        if (!(*args.gamma > 0.0f && *args.gamma <= 10.0f))
+            throw facet::InputError("--gamma must be above 0 and at most 10 (got " +
+                                    std::to_string(*args.gamma) + ")");
+        if (args.encode && *args.encode != "power")
+            throw facet::InputError("--gamma goes with --encode power");
+        scene.gamma.encode = facet::TransferCurve::Power;
+        scene.gamma.exponent = *args.gamma;
+    }
     if (args.creaseAngle) {
         if (!(*args.creaseAngle >= 0.0f && *args.creaseAngle <= 180.0f))
             throw facet::InputError("--crease-angle must be from 0 to 180 degrees (got " +
                                     std::to_string(*args.creaseAngle) + ")");
         scene.lighting.creaseAngleDegrees = *args.creaseAngle;
     }
+}
+
+// "0-59" or "12": the first and last frame numbers.
+std::pair<int, int> parseFrames(const std::string& text) {
+    std::stringstream in(text);
+    int first = 0, last = 0;
+    char dash = 0;
+    bool ok = static_cast<bool>(in >> first);
+    if (ok && !(in >> std::ws).eof())
+        ok = (in >> dash) && dash == '-' && (in >> last) && (in >> std::ws).eof();
+    else
+        last = first;
+    if (!ok || first < 0 || last < first || last - first >= 100000)
+        throw facet::InputError(
+            "--frames expects FIRST-LAST (like 0-59) or one frame number, FIRST <= LAST, at most "
+            "100000 frames (got \"" +
+            text + "\")");
+    return {first, last};
+}
+
+// "out/spin.png", frame 7 -> "out/spin-0007.png".
+std::filesystem::path framePath(const std::filesystem::path& output, int frame) {
+    char number[16];
+    std::snprintf(number, sizeof number, "-%04d", frame);
+    std::filesystem::path path = output;
+    path.replace_filename(output.stem().string() + number + output.extension().string());
+    return path;
+}
+
+void printFrameStats(int frame, const facet::PreparedScene& prepared, const facet::FrameStats& stats) {
+    std::cout << "frame " << frame << ": " << stats.draw.fragmentsShaded << " fragments shaded";
+    const std::size_t transparent = prepared.transparentTriangles.size();
+    if (transparent > 0) {
+        std::cout << "; " << transparent << " transparent triangles";
+        if (stats.sort.elements > 0) {
+            std::cout << " sorted "
+                      << (stats.sort.fromScratch ? "from scratch"
+                                                 : "by insertion from the last frame's order")
+                      << ": " << stats.sort.comparisons << " comparisons, " << stats.sort.moves << " moves, ";
+            char ms[32];
+            std::snprintf(ms, sizeof ms, "%.2f ms", stats.sortMilliseconds);
+            std::cout << ms;
+        }
+        std::cout << "; " << stats.transparentRuns << (stats.transparentRuns == 1 ? " draw" : " draws")
+                  << " in the transparent pass";
+    }
+    std::cout << "\n";
 }
 
 int render(const RenderArgs& args) {
@@ -128,38 +205,62 @@ int render(const RenderArgs& args) {
     if (args.only)
         for (const TermName& term : kTermNames)
             if (*args.only == term.name) terms = term.bits;
+    if (args.turntable && !args.frames)
+        throw facet::InputError("--turntable needs --frames (like --frames 0-59)");
+    const auto [firstFrame, lastFrame] = args.frames ? parseFrames(*args.frames) : std::pair{0, 0};
+    const int frameCount = lastFrame - firstFrame + 1;
+    const float turntable = args.turntable.value_or(args.frames ? 360.0f : 0.0f);
+    if (!std::isfinite(turntable)) throw facet::InputError("--turntable must be a number of degrees");
     facet::checkImageDestination(args.output, scene.width, scene.height);
 
     const auto start = std::chrono::steady_clock::now();
-    const facet::PreparedScene prepared = facet::prepareScene(scene);
+    facet::PreparedScene prepared = facet::prepareScene(scene);
     for (const std::string& warning : prepared.warnings)
         std::cerr << "facet: warning: " << warning << "\n";
     facet::Framebuffer framebuffer(scene.width, scene.height);
     facet::DrawContext context(args.threads);
-    const facet::DrawStats stats = facet::renderFrame(prepared, framebuffer, context, terms);
-    const auto rendered = std::chrono::steady_clock::now();
-    facet::writeImage(args.output, facet::toImage(framebuffer), prepared.encoding);
-    // The component images: each term alone, over the same background; the main image is their sum.
-    std::vector<std::filesystem::path> written{args.output};
-    if (args.components) {
-        for (const TermName& term : kTermNames) {
-            facet::renderFrame(prepared, framebuffer, context, term.bits);
-            written.push_back(componentPath(args.output, term.name));
-            facet::writeImage(written.back(), facet::toImage(framebuffer), prepared.encoding);
+    facet::FrameMemory memory;  // the transparent triangles' order, carried from frame to frame
+    std::vector<std::filesystem::path> written;
+    facet::DrawStats total;
+    for (int frame = firstFrame; frame <= lastFrame; ++frame) {
+        // A turntable: frame k of n turns the objects by turntable·k/n degrees.
+        if (args.frames)
+            facet::setTurntable(prepared, turntable * float(frame - firstFrame) / float(frameCount));
+        const std::filesystem::path output =
+            args.frames ? framePath(args.output, frame) : std::filesystem::path(args.output);
+        const facet::FrameStats stats = facet::renderFrame(prepared, framebuffer, context, memory, terms);
+        total += stats.draw;
+        if (args.stats) printFrameStats(frame, prepared, stats);
+        facet::writeImage(output, facet::toImage(framebuffer), prepared.encoding);
+        written.push_back(output);
+        // The component images: each term alone, over the same background; the main image is their sum.
+        if (args.components) {
+            for (const TermName& term : kTermNames) {
+                facet::FrameMemory scratch;  // not the animation's: keeps its insertion sort honest
+                facet::renderFrame(prepared, framebuffer, context, scratch, term.bits);
+                written.push_back(componentPath(output, term.name));
+                facet::writeImage(written.back(), facet::toImage(framebuffer), prepared.encoding);
+            }
         }
     }
+    const auto rendered = std::chrono::steady_clock::now();
 
     if (!args.quiet) {
         const double ms = std::chrono::duration<double, std::milli>(rendered - start).count();
-        std::cout << "facet: wrote " << args.output << " (" << scene.width << "x" << scene.height << ", "
-                  << prepared.triangleCount << " triangles";
+        std::cout << "facet: wrote "
+                  << (args.frames ? std::to_string(frameCount) + " frames, " + written.front().string() +
+                                        " to " + framePath(args.output, lastFrame).string()
+                                  : args.output)
+                  << " (" << scene.width << "x" << scene.height << ", " << prepared.triangleCount
+                  << " triangles";
         if (prepared.degenerateSkipped)
             std::cout << ", " << prepared.degenerateSkipped << " degenerate skipped";
-        std::cout << ", " << stats.fragmentsShaded << " fragments shaded, " << static_cast<long>(ms + 0.5)
+        std::cout << ", " << total.fragmentsShaded << " fragments shaded, " << static_cast<long>(ms + 0.5)
                   << " ms including loading)\n";
-        for (std::size_t k = 1; k < written.size(); ++k)
-            std::cout << "facet: wrote " << written[k].string() << " (" << kTermNames[k - 1].name
-                      << " term alone)\n";
+        if (!args.frames)
+            for (std::size_t k = 1; k < written.size(); ++k)
+                std::cout << "facet: wrote " << written[k].string() << " (" << kTermNames[k - 1].name
+                          << " term alone)\n";
     }
     return 0;
 }
@@ -241,6 +342,30 @@ int main(int argc, char** argv) {
         ->add_option("--only", renderArgs.only,
                      "Render one term of the lighting equation alone: emission, ambient, diffuse or specular")
         ->check(CLI::IsMember({"emission", "ambient", "diffuse", "specular"}));
+    renderCommand->add_option(
+        "--frames", renderArgs.frames,
+        "Render frames FIRST-LAST (like 0-59) of a turntable, writing NAME-0000.png ...");
+    renderCommand->add_option(
+        "--turntable", renderArgs.turntable,
+        "Degrees the objects turn about the vertical axis over the frames (default 360)");
+    renderCommand->add_flag(
+        "--stats", renderArgs.stats,
+        "Print per frame the fragments and the sorting of transparent triangles (comparisons, "
+        "moves, time)");
+    renderCommand
+        ->add_option("--transparency", renderArgs.transparency,
+                     "sorted (back to front, the default), unsorted (file order) or exact (per-pixel lists)")
+        ->check(CLI::IsMember({"sorted", "unsorted", "exact"}));
+    renderCommand
+        ->add_option("--sort-key", renderArgs.sortKey,
+                     "Depth that orders transparent triangles: centroid (default) or farthest (vertex)")
+        ->check(CLI::IsMember({"centroid", "farthest"}));
+    renderCommand
+        ->add_option(
+            "--encode", renderArgs.encode,
+            "8-bit output encoding: srgb (the exact curve, default), power (1/gamma) or linear (none)")
+        ->check(CLI::IsMember({"srgb", "power", "linear"}));
+    renderCommand->add_option("--gamma", renderArgs.gamma, "Encode 8-bit output as c^(1/GAMMA) (e.g. 2.2)");
     renderCommand->add_flag("--components", renderArgs.components,
                             "Also write each term alone next to the output: NAME-emission, NAME-ambient, "
                             "NAME-diffuse, NAME-specular (the output is their sum)");
