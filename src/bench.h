@@ -1,5 +1,6 @@
 // `facet bench`: times whole frames of a model and prints medians (never a pass/fail test).
 // `facet bench --vs-mesa` times Facet against Mesa's llvmpipe (mesa_peer.h) on the same scenes.
+// `facet bench --sort` times the transparency sorter (transparency_sort.h) on a turntable.
 #pragma once
 
 #include <filesystem>
@@ -21,6 +22,9 @@ struct BenchOptions {
     std::filesystem::path chart = "out/bench-scaling.png";
     std::filesystem::path sharedModels = "../shared/models";  // the largest model is found here
     std::filesystem::path smallModel = "models/spot/spot_triangulated.obj";  // drawn at 3840×2160
+
+    // --sort
+    bool sort = false;
 };
 
 // Renders options.frames frames on options.threads threads and prints a report to `out`:
@@ -36,5 +40,14 @@ void runBench(const BenchOptions& options, std::ostream& out);
 // resolution sweep (options.model at 640×480 to 3840×2160), written to options.csv and drawn to
 // options.chart. Without OSMesa it says so and times Facet alone. Throws InputError on bad input.
 void runMesaComparison(const BenchOptions& options, std::ostream& out);
+
+// Treats every triangle of options.model (at least 50,000 of them, or InputError) as transparent and
+// turns the model on a turntable (about the vertical axis through its bounding box's centre, camera as
+// `facet render` frames it). Each frame computes one key per triangle (view-space depth of the centroid)
+// and orders the triangles back to front twice, by insertion sort from the previous frame's order and by
+// std::sort from scratch, for angular steps of 6°, 1°, 0.3°, 0.1°, 0.03° and 0.01° per frame, and prints
+// per step the median ms per frame of each, their ratio, their comparisons and moves, and the keys' cost
+// (options.frames frames per step after 1 warm-up, fewer where a step would take too long). Single thread.
+void runSortBench(const BenchOptions& options, std::ostream& out);
 
 }  // namespace facet

@@ -421,6 +421,10 @@ int main(int argc, char** argv) {
                              "With --vs-mesa: where the sweeps' CSV goes (default out/bench-scaling.csv)");
     benchCommand->add_option("--chart", benchOptions.chart,
                              "With --vs-mesa: where the sweeps' chart goes (default out/bench-scaling.png)");
+    benchCommand->add_flag(
+        "--sort", benchOptions.sort,
+        "Time the transparency sorter on a turntable of MODEL (at least 50,000 triangles): "
+        "insertion sort with memory against std::sort, 60 frames per step (unless --frames)");
 
     if (argc == 1) {  // no command at all: show what there is to do
         std::cerr << app.help();
@@ -444,6 +448,16 @@ int main(int argc, char** argv) {
         if (*renderCommand) return render(renderArgs);
         if (*compareCommand) return compare(compareArgs);
         if (*benchCommand) {
+            if (benchOptions.sort) {
+                // The camera frames MODEL as facet render does; the sort runs on one thread.
+                for (const char* option :
+                     {"--vs-mesa", "--quick", "--csv", "--chart", "--width", "--height", "--threads"})
+                    if (benchCommand->count(option))
+                        throw facet::InputError(std::string(option) + " does not go with --sort");
+                if (benchCommand->count("--frames") == 0) benchOptions.frames = 60;
+                facet::runSortBench(benchOptions, std::cout);
+                return 0;
+            }
             if (benchOptions.vsMesa) {
                 // The scenes and their sizes are fixed; MODEL replaces the bunny.
                 if (benchCommand->count("--width") || benchCommand->count("--height"))

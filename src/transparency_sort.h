@@ -19,9 +19,14 @@ enum class SortAlgorithm {
 
 struct SortStats {
     std::size_t elements = 0;
-    std::size_t comparisons = 0;  // key comparisons
-    std::size_t moves = 0;        // element moves (insertion sort: shifts by one place)
-    bool fromScratch = false;     // no usable previous order (first frame, or the count changed)
+    std::size_t comparisons = 0;  // key comparisons (FromScratch: calls of std::sort's comparator)
+    // Element moves: insertion sort's shifts by one place, so on a remembered order exactly the number of
+    // inversions between it and the new keys. Always 0 for FromScratch and for a from-scratch first frame:
+    // std::sort and std::stable_sort move elements by swaps, partitions and merges that are not
+    // comparable with shifts, and counting them would take an instrumented element type inside the sort
+    // being timed; their cost is O(n log n) whatever the input. Compare their comparisons instead.
+    std::size_t moves = 0;
+    bool fromScratch = false;  // no usable previous order (first frame, or the count changed)
 };
 
 class TransparencySorter {
@@ -31,7 +36,10 @@ class TransparencySorter {
     // result is deterministic. Returns the order (valid until the next call) and fills `stats`.
     // InsertionWithMemory starts from the order the previous call returned when it had the same element
     // count; otherwise (first frame, changed count) it sorts from scratch with std::stable_sort and
-    // says so in stats.fromScratch.
+    // says so in stats.fromScratch. FromScratch uses std::sort (introsort: in place, no buffer to
+    // allocate, the usual baseline) with ties broken by index, which makes its result deterministic and
+    // the same as a stable sort's. A NaN key counts as farther than +∞ (drawn first), all NaNs equal to
+    // each other; −0 equals +0. At most 2³² − 1 elements (std::length_error beyond).
     std::span<const std::uint32_t> sort(std::span<const float> keys, SortAlgorithm algorithm,
                                         SortStats& stats);
 
@@ -39,7 +47,17 @@ class TransparencySorter {
     void forget();
 
   private:
+    // What the sorts move: a key turned into an unsigned integer of the same order (NaN and −0 made
+    // canonical, so the comparison is a strict weak order) next to its element, contiguous, so a
+    // comparison reads neighbouring memory instead of gathering keys[order[j]].
+    struct Entry {
+        std::uint32_t key;
+        std::uint32_t index;
+    };
+
     std::vector<std::uint32_t> order_;
+    std::vector<Entry> entries_;  // scratch, kept to avoid an allocation per frame
+    bool remembered_ = false;     // order_ holds a previous result (it may be empty)
 };
 
 }  // namespace facet
