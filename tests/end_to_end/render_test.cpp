@@ -1,4 +1,5 @@
 // Rendering whole scenes through the renderer: hand-computed pixels, and every bundled model.
+#include <algorithm>
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -136,6 +137,74 @@ TEST(Render, FlatShadingUsesTheFaceNormal) {
     scene.lighting.shading = ShadingFrequency::Gouraud;
     const LinearImage smooth = renderScene(scene);
     EXPECT_LT(smooth.at(22, 14).g, srgbToLinear(0.5f) * 0.9f);
+}
+
+// Three overlapping half-transparent quads at different depths, facing the camera: with sorting, every
+// order of submission gives the colour of the over operator applied back to front,
+//   c = α_n·c_n + (1 − α_n)·(α_m·c_m + (1 − α_m)·(α_f·c_f + (1 − α_f)·c_background));
+// without sorting, an order that is not back to front gives another colour. The gl preset keeps the
+// numbers as written; each quad's colour is its emission alone.
+struct TransparentQuad {
+    const char* name;
+    float z;
+    vec3 color;
+    float alpha;
+};
+
+std::filesystem::path writeQuad(TempDir& dir, const TransparentQuad& q) {
+    dir.write(std::string(q.name) + ".mtl", "newmtl m\nKa 0 0 0\nKd 0 0 0\nKs 0 0 0\nKe " +
+                                                std::to_string(q.color.r) + " " + std::to_string(q.color.g) +
+                                                " " + std::to_string(q.color.b) + "\nd " +
+                                                std::to_string(q.alpha) + "\n");
+    const std::string z = std::to_string(q.z);
+    return dir.write(std::string(q.name) + ".obj",
+                     "mtllib " + std::string(q.name) + ".mtl\nusemtl m\nv -1 -1 " + z + "\nv 1 -1 " + z +
+                         "\nv 1 1 " + z + "\nv -1 1 " + z + "\nvn 0 0 1\nf 1//1 2//1 3//1 4//1\n");
+}
+
+TEST(Render, TransparentQuadsGiveTheOverOperatorInEveryOrderWhenSorted) {
+    TempDir dir;
+    const TransparentQuad quads[3] = {{"far", -1.0f, vec3(1.0f, 0.0f, 0.0f), 0.5f},
+                                      {"middle", 0.0f, vec3(0.0f, 1.0f, 0.0f), 0.25f},
+                                      {"near", 1.0f, vec3(0.0f, 0.0f, 1.0f), 0.75f}};
+    std::filesystem::path files[3];
+    for (int k = 0; k < 3; ++k)
+        files[k] = writeQuad(dir, quads[k]);
+    vec3 expected(0.0f);  // the black background, then over, back to front
+    for (const TransparentQuad& q : quads)
+        expected = q.alpha * q.color + (1.0f - q.alpha) * expected;
+
+    int order[3] = {0, 1, 2};
+    int unsortedWrong = 0;
+    do {
+        Scene scene = headOnScene(files[0]);
+        scene.lighting.preset = LightingPreset::GL;
+        scene.background = vec4(0.0f, 0.0f, 0.0f, 1.0f);
+        scene.camera.near = 0.5f;
+        scene.camera.far = 20.0f;
+        scene.objects.clear();
+        for (int k : order) {
+            ObjectSpec object;
+            object.model = files[k];
+            scene.objects.push_back(object);
+        }
+        const vec4 sorted = renderScene(scene).at(32, 24);
+        EXPECT_NEAR(sorted.r, expected.r, 1e-6f) << order[0] << order[1] << order[2];
+        EXPECT_NEAR(sorted.g, expected.g, 1e-6f) << order[0] << order[1] << order[2];
+        EXPECT_NEAR(sorted.b, expected.b, 1e-6f) << order[0] << order[1] << order[2];
+
+        scene.transparency.mode = TransparencyMode::Unsorted;
+        const vec4 unsorted = renderScene(scene).at(32, 24);
+        const bool backToFront = order[0] == 0 && order[1] == 1 && order[2] == 2;
+        const float error = glm::length(vec3(unsorted) - expected);
+        if (backToFront) {
+            EXPECT_LT(error, 1e-6f);
+        } else {
+            EXPECT_GT(error, 0.01f) << "submitted " << order[0] << order[1] << order[2] << ", drawn unsorted";
+            ++unsortedWrong;
+        }
+    } while (std::next_permutation(order, order + 3));
+    EXPECT_EQ(unsortedWrong, 5);
 }
 
 // Each bundled model, and the classic ones in ../shared/models, render with every default: the corner
