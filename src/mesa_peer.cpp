@@ -9,6 +9,13 @@
 // lighting.h has ≥, and GL accepts cutoffs in [0, 90] or 180 and exponents and shininess in [0, 128]
 // only, so load() refuses the rest. Lit vertex colours are clamped to [0, 1] (GL_CLAMP_VERTEX_COLOR)
 // before interpolation and texturing, as GlDraw::clampColor describes.
+//
+// Its fog: the vertex program writes the fog coordinate, |z_eye| (GL_EYE_PLANE_ABSOLUTE_NV, the
+// default: abs, not −z) or |P_eye| (GL_EYE_RADIAL_NV), per vertex; the fragment stage computes f from
+// the interpolated coordinate, per fragment (so exp and exp² see the interpolated distance, not an
+// interpolated factor). That is fog.h's value exactly for |z_eye|, not for |P_eye| inside a triangle
+// (setFixedFunctionFog). Linear fog with end = start makes Mesa take f = clamp(z − end, 0, 1), fog near
+// and clear far, the opposite of fog.h's wall, so load() refuses it for fixed function.
 #include "mesa_peer.h"
 
 #include <algorithm>
@@ -54,6 +61,8 @@ constexpr int kMaxGlLights = 8;  // GL_MAX_LIGHTS's guaranteed minimum; the GLSL
     X(glBindRenderbuffer)        \
     X(glBindTexture)             \
     X(glBindVertexArray)         \
+    X(glBlendEquation)           \
+    X(glBlendFuncSeparate)       \
     X(glBufferData)              \
     X(glCheckFramebufferStatus)  \
     X(glClampColor)              \
@@ -80,6 +89,9 @@ constexpr int kMaxGlLights = 8;  // GL_MAX_LIGHTS's guaranteed minimum; the GLSL
     X(glEnableClientState)       \
     X(glEnableVertexAttribArray) \
     X(glFinish)                  \
+    X(glFogf)                    \
+    X(glFogfv)                   \
+    X(glFogi)                    \
     X(glFramebufferRenderbuffer) \
     X(glFrontFace)               \
     X(glGenBuffers)              \
@@ -94,6 +106,7 @@ constexpr int kMaxGlLights = 8;  // GL_MAX_LIGHTS's guaranteed minimum; the GLSL
     X(glGetShaderiv)             \
     X(glGetString)               \
     X(glGetUniformLocation)      \
+    X(glHint)                    \
     X(glLightModelfv)            \
     X(glLightModeli)             \
     X(glLightf)                  \
@@ -162,10 +175,11 @@ void resolveSymbol(void* handle, const char* name, Function& function) {
 //
 // lighting.h's formulas line for line, in eye space (the eye at the origin). One program per distinct
 // (per pixel or per vertex, flat or smooth, reflection model, BRDF choice, lights, diffuse map, colour
-// clamp, two-sided flip), the choices compiled in as #defines, and the light count and each light's kind
-// too, as literal arguments of the calls to addLight(): llvmpipe runs a loop with a uniform trip count and
-// uniform-array indexing about twice as slowly as the unrolled loop (bunny, 1920×1080, one light: 50 vs
-// 26 ms), while for Facet's compiled C++ the runtime loop costs next to nothing. Written without layout
+// clamp, two-sided flip, fog mode and distance, what the blend wants written), the choices compiled in
+// as #defines, and the light count and each light's kind too, as literal arguments of the calls to
+// addLight(): llvmpipe runs a loop with a uniform trip count and uniform-array indexing about twice as
+// slowly as the unrolled loop (bunny, 1920×1080, one light: 50 vs 26 ms), while for Facet's compiled
+// C++ the runtime loop costs next to nothing. Written without layout
 // qualifiers so that it compiles as GLSL 1.30 as well as 3.30; attribute and output locations are bound
 // before linking.
 
@@ -370,6 +384,9 @@ INTERPOLATION out vec3 shadedColor;  // the colour; with a diffuse map and no cl
 #if HAS_DIFFUSE_MAP && !CLAMP_COLOR
 INTERPOLATION out vec3 shadedRest;   // emission + ambient + specular
 #endif
+#if FOG_MODE
+out vec3 eyePosition;  // smooth even for flat shading: the fog distance is taken per pixel
+#endif
 #else
 out vec3 eyePosition;
 out vec3 eyeNormal;  // not normalised
@@ -389,6 +406,9 @@ void main() {
 #else
     shadedColor = sum(terms);
 #endif
+#if FOG_MODE
+    eyePosition = eye.xyz;
+#endif
 #else
     eyePosition = eye.xyz;
     eyeNormal = n;
@@ -396,6 +416,10 @@ void main() {
 }
 )";
 
+// The fragment's colour c: lit (per pixel, or interpolated and textured), fogged (fog.h's formulas, the
+// distance taken per pixel from the interpolated eye-space position), then written as the blend wants
+// it (gl_scene.h): BLEND_OUTPUT 0 (Replace, Over) (c, α), 1 (PremultipliedOver, Additive) (α·c, α),
+// 2 (Multiply) (mix(1, c, α), α), with α = opacity × the diffuse map's alpha.
 const char* const kFragmentGlsl = R"(
 in vec2 texcoord;
 #if PER_VERTEX
@@ -403,16 +427,46 @@ INTERPOLATION in vec3 shadedColor;
 #if HAS_DIFFUSE_MAP && !CLAMP_COLOR
 INTERPOLATION in vec3 shadedRest;
 #endif
+#if FOG_MODE
+in vec3 eyePosition;
+#endif
 #else
 in vec3 eyePosition;
 in vec3 eyeNormal;
 #endif
 uniform sampler2D diffuseMap;
+uniform float opacity;
+#if FOG_MODE
+uniform vec3 fogColor;
+uniform vec3 fogRange;  // linear start and end, exponential density
+
+// fog.h's fogFactor(fogDistance()): FOG_MODE 1 linear, 2 exp, 3 exp².
+float fogFactor(vec3 P) {
+#if FOG_RADIAL
+    float z = sqrt(dot(P, P));
+#else
+    float z = abs(P.z);
+#endif
+#if FOG_MODE == 1
+    float start = fogRange.x, end = fogRange.y;
+    if (end == start) return z < start ? 1.0 : 0.0;  // a wall at start
+    return clamp((end - z) * (1.0 / (end - start)), 0.0, 1.0);
+#elif FOG_MODE == 2
+    return clamp(exp(-fogRange.z * z), 0.0, 1.0);
+#else
+    float dz = fogRange.z * z;
+    return clamp(exp(-(dz * dz)), 0.0, 1.0);
+#endif
+}
+#endif
 out vec4 fragColor;
 void main() {
     vec3 texel = vec3(1.0);
+    float a = opacity;
 #if HAS_DIFFUSE_MAP
-    texel = texture(diffuseMap, texcoord).rgb;
+    vec4 sampled = texture(diffuseMap, texcoord);
+    texel = sampled.rgb;
+    a *= sampled.a;
 #endif
 #if PER_VERTEX
 #if HAS_DIFFUSE_MAP && !CLAMP_COLOR
@@ -426,7 +480,17 @@ void main() {
     color = clamp(color, 0.0, 1.0);
 #endif
 #endif
-    fragColor = vec4(color, 1.0);
+#if FOG_MODE
+    float f = fogFactor(eyePosition);
+    color = color * f + fogColor * (1.0 - f);
+#endif
+#if BLEND_OUTPUT == 1
+    fragColor = vec4(color * a, a);
+#elif BLEND_OUTPUT == 2
+    fragColor = vec4(mix(vec3(1.0), color, a), a);
+#else
+    fragColor = vec4(color, a);
+#endif
 }
 )";
 
@@ -452,6 +516,36 @@ int lightKindCode(const LightParams& light) {
     return 1;
 }
 
+// How fog enters a GLSL program: FOG_MODE 0 none, 1 linear, 2 exp, 3 exp².
+int fogModeCode(FogMode mode) {
+    switch (mode) {
+        case FogMode::None:
+            return 0;
+        case FogMode::Linear:
+            return 1;
+        case FogMode::Exponential:
+            return 2;
+        case FogMode::ExponentialSquared:
+            return 3;
+    }
+    return 0;
+}
+
+// What a GLSL program writes for a blend: BLEND_OUTPUT 0 (c, α), 1 (α·c, α), 2 (mix(1, c, α), α).
+int blendOutputCode(BlendMode blend) {
+    switch (blend) {
+        case BlendMode::Replace:
+        case BlendMode::Over:
+            return 0;
+        case BlendMode::PremultipliedOver:
+        case BlendMode::Additive:
+            return 1;
+        case BlendMode::Multiply:
+            return 2;
+    }
+    return 0;
+}
+
 const char* programName(GlProgram program) {
     switch (program) {
         case GlProgram::FixedFunction:
@@ -464,12 +558,43 @@ const char* programName(GlProgram program) {
     return "?";
 }
 
+const char* blendName(BlendMode blend) {
+    switch (blend) {
+        case BlendMode::Replace:
+            return "Replace";
+        case BlendMode::Over:
+            return "Over";
+        case BlendMode::PremultipliedOver:
+            return "PremultipliedOver";
+        case BlendMode::Additive:
+            return "Additive";
+        case BlendMode::Multiply:
+            return "Multiply";
+    }
+    return "?";
+}
+
 // What OpenGL's fixed function can draw, checked before any state is set: one line for the message.
-void checkFixedFunction(const GlScene& scene, std::size_t drawIndex) {
+// radialFog: the context has GL_NV_fog_distance.
+void checkFixedFunction(const GlScene& scene, std::size_t drawIndex, bool radialFog) {
     const GlDraw& draw = scene.draws[drawIndex];
     const std::string where = "GlScene draw " + std::to_string(drawIndex) + " (FixedFunction): ";
     if (draw.reflection != ReflectionModel::BlinnPhong)
         throw std::invalid_argument(where + "fixed-function lighting is Blinn-Phong only");
+    if (draw.blend != BlendMode::Replace && draw.blend != BlendMode::Over)
+        throw std::invalid_argument(where + "blend " + blendName(draw.blend) +
+                                    " needs a shader writing (α·c, α) or (mix(1, c, α), α); fixed function " +
+                                    "writes (c, α) only (use GlProgram::PerVertex)");
+    const FogParams& fog = scene.fog;
+    if (fog.mode == FogMode::Linear && fog.end == fog.start)
+        throw std::invalid_argument(where + "linear fog with end = start (" + std::to_string(fog.start) +
+                                    ") has no fixed-function equivalent (Mesa fogs the near side)");
+    if ((fog.mode == FogMode::Exponential || fog.mode == FogMode::ExponentialSquared) &&
+        !(fog.density >= 0.0f))
+        throw std::invalid_argument(where + "fog density " + std::to_string(fog.density) +
+                                    " is negative (glFog refuses it)");
+    if (fog.mode != FogMode::None && fog.distance == FogDistance::Radial && !radialFog)
+        throw std::invalid_argument(where + "radial fog needs GL_NV_fog_distance, which this OpenGL lacks");
     const float n = draw.material.shininess;
     if (!(n >= 0.0f && n <= 128.0f))
         throw std::invalid_argument(where + "shininess " + std::to_string(n) +
@@ -511,16 +636,17 @@ struct MesaPeer::Impl {
     MesaDriver driver = MesaDriver::Llvmpipe;
     int threads = 0;
     bool floatColor = true;
+    bool radialFog = false;  // GL_NV_fog_distance: fixed-function fog at the radial distance
 
     // The GLSL programs, by their #define header, and their uniform locations.
     struct Program {
         GLuint name = 0;
         // Set once per load(): the scene's.
         GLint clipFromView, globalAmbient, lightPosition, lightToward, lightAttenuation, lightSpotDirection,
-            lightSpot, lightAmbient, lightDiffuse, lightSpecular;
+            lightSpot, lightAmbient, lightDiffuse, lightSpecular, fogColor, fogRange;
         // Set per draw.
         GLint viewFromObject, normalFromObject, materialEmission, materialAmbient, materialDiffuse,
-            materialSpecular, materialShininess, baseColor, metalness, alpha, dielectricF0;
+            materialSpecular, materialShininess, baseColor, metalness, alpha, dielectricF0, opacity;
     };
     std::string versionLine;  // "#version 330" or "#version 130"
     std::map<std::string, Program> programs;
@@ -536,6 +662,9 @@ struct MesaPeer::Impl {
         mat3 normalFromObject{1.0f};
         PhongMaterial material;
         PbrMaterial pbr;
+        float opacity = 1.0f;
+        BlendMode blend = BlendMode::Replace;
+        bool depthWrite = true;
     };
     std::vector<Draw> draws;
     std::vector<GLuint> textures;
@@ -607,6 +736,9 @@ struct MesaPeer::Impl {
                              "\n#define HAS_DIFFUSE_MAP " + (hasDiffuseMap ? "1" : "0") +
                              "\n#define CLAMP_COLOR " + (draw.clampColor ? "1" : "0") +
                              "\n#define TWO_SIDED_FLIP " + (scene.twoSidedFlip ? "1" : "0") + "\n";
+        header += "#define FOG_MODE " + std::to_string(fogModeCode(scene.fog.mode)) +
+                  "\n#define FOG_RADIAL " + (scene.fog.distance == FogDistance::Radial ? "1" : "0") +
+                  "\n#define BLEND_OUTPUT " + std::to_string(blendOutputCode(draw.blend)) + "\n";
         std::string addLights = "void addLights(vec3 P, vec3 N, vec3 V, vec3 surface, inout Terms terms) {\n";
         for (std::size_t i = 0; i < scene.lights.size(); ++i)
             addLights += "    addLight(" + std::to_string(i) + ", " +
@@ -669,6 +801,9 @@ struct MesaPeer::Impl {
         p.metalness = uniform("metalness");
         p.alpha = uniform("alpha");
         p.dielectricF0 = uniform("dielectricF0");
+        p.opacity = uniform("opacity");
+        p.fogColor = uniform("fogColor");  // -1 without fog: glUniform ignores it
+        p.fogRange = uniform("fogRange");
         gl.glUseProgram(p.name);
         gl.glUniform1i(uniform("diffuseMap"), 0);  // texture unit 0
         checkGl("building a shader program");
@@ -713,6 +848,9 @@ struct MesaPeer::Impl {
         gl.glUniform3fv(p.lightAmbient, kMaxGlLights, ambient.data());
         gl.glUniform3fv(p.lightDiffuse, kMaxGlLights, diffuse.data());
         gl.glUniform3fv(p.lightSpecular, kMaxGlLights, specular.data());
+        const vec3 fogRange(scene.fog.start, scene.fog.end, scene.fog.density);
+        gl.glUniform3fv(p.fogColor, 1, &scene.fog.color[0]);
+        gl.glUniform3fv(p.fogRange, 1, &fogRange[0]);
     }
 
     // One draw's uniforms (GLM matrices are column-major, as GL expects).
@@ -730,6 +868,7 @@ struct MesaPeer::Impl {
         gl.glUniform1f(p.metalness, draw.pbr.metalness);
         gl.glUniform1f(p.alpha, alphaFromRoughness(draw.pbr.roughness));
         gl.glUniform3fv(p.dielectricF0, 1, &draw.pbr.f0[0]);
+        gl.glUniform1f(p.opacity, draw.opacity);
     }
 
     // Fixed-function lighting: the light model and the lights, given under an identity modelview so that
@@ -775,11 +914,13 @@ struct MesaPeer::Impl {
         gl.glMatrixMode(GL_MODELVIEW);
         gl.glLoadMatrixf(&draw.viewFromObject[0][0]);
         const PhongMaterial& m = draw.material;
-        const vec4 emission(m.emission, 1.0f), ambient(m.ambient, 1.0f), diffuse(m.diffuse, 1.0f),
+        const vec4 emission(m.emission, 1.0f), ambient(m.ambient, 1.0f), diffuse(m.diffuse, draw.opacity),
             specular(m.specular, 1.0f);
         gl.glMaterialfv(GL_FRONT_AND_BACK, GL_EMISSION, &emission[0]);
         gl.glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT, &ambient[0]);
-        gl.glMaterialfv(GL_FRONT_AND_BACK, GL_DIFFUSE, &diffuse[0]);  // its alpha is the lit colour's
+        // Its alpha is the lit colour's (clamped to [0, 1] with the colour), the fragment's alpha once
+        // GL_MODULATE has multiplied the texel's in.
+        gl.glMaterialfv(GL_FRONT_AND_BACK, GL_DIFFUSE, &diffuse[0]);
         gl.glMaterialfv(GL_FRONT_AND_BACK, GL_SPECULAR, &specular[0]);
         gl.glMaterialf(GL_FRONT_AND_BACK, GL_SHININESS, m.shininess);
         gl.glShadeModel(draw.flat ? GL_FLAT : GL_SMOOTH);
@@ -787,6 +928,63 @@ struct MesaPeer::Impl {
             gl.glEnable(GL_TEXTURE_2D);
         else
             gl.glDisable(GL_TEXTURE_2D);
+    }
+
+    // One draw's blending and depth writes. The colour factors are gl_scene.h's; the alpha factors give
+    // the alphas of pipeline/state.h's BlendMode, which the colour factors would not for Over
+    // (α_s² + (1 − α_s)·α_d) and Multiply (α_s·α_d).
+    void setBlendState(const Draw& draw) const {
+        gl.glDepthMask(draw.depthWrite ? GL_TRUE : GL_FALSE);
+        if (draw.blend == BlendMode::Replace) {
+            gl.glDisable(GL_BLEND);
+            return;
+        }
+        gl.glEnable(GL_BLEND);
+        switch (draw.blend) {
+            case BlendMode::Replace:
+                break;
+            case BlendMode::Over:  // c = α_s·c_s + (1 − α_s)·c_d, α = α_s + (1 − α_s)·α_d
+                gl.glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+                break;
+            case BlendMode::PremultipliedOver:  // c = c_s + (1 − α_s)·c_d, α likewise
+                gl.glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+                break;
+            case BlendMode::Additive:  // c = c_s + c_d, α = α_s + α_d
+                gl.glBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
+                break;
+            case BlendMode::Multiply:  // c = c_s·c_d, α = α_d
+                gl.glBlendFuncSeparate(GL_DST_COLOR, GL_ZERO, GL_ZERO, GL_ONE);
+                break;
+        }
+    }
+
+    // Fixed-function fog (the GLSL programs fog in their fragment shaders). OpenGL's fog coordinate is
+    // a vertex output interpolated across the triangle, the factor f computed from it per fragment
+    // (GL_FOG_HINT GL_NICEST asks for that). With GL_EYE_PLANE_ABSOLUTE_NV (GL's default) the coordinate
+    // is |z_eye|, linear across a triangle (which clipping keeps on one side of the eye), so
+    // interpolating it gives fog.h's per-pixel value exactly. GL_EYE_RADIAL_NV's |P_eye| is not linear:
+    // its interpolation between the vertices overestimates the distance inside a triangle (|P| is
+    // convex), where Facet and the GLSL programs take |P| per pixel; radial fog differs inside large
+    // triangles.
+    void setFixedFunctionFog(const FogParams& fog) const {
+        if (fog.mode == FogMode::None) {
+            gl.glDisable(GL_FOG);
+            return;
+        }
+        gl.glEnable(GL_FOG);
+        gl.glFogi(GL_FOG_MODE, fog.mode == FogMode::Linear        ? GL_LINEAR
+                               : fog.mode == FogMode::Exponential ? GL_EXP
+                                                                  : GL_EXP2);
+        gl.glFogf(GL_FOG_START, fog.start);
+        gl.glFogf(GL_FOG_END, fog.end);
+        gl.glFogf(GL_FOG_DENSITY, fog.density);
+        const vec4 color(fog.color, 1.0f);  // fog leaves alpha alone
+        gl.glFogfv(GL_FOG_COLOR, &color[0]);
+        gl.glFogi(GL_FOG_COORD_SRC, GL_FRAGMENT_DEPTH);
+        gl.glHint(GL_FOG_HINT, GL_NICEST);
+        if (radialFog)
+            gl.glFogi(GL_FOG_DISTANCE_MODE_NV,
+                      fog.distance == FogDistance::Radial ? GL_EYE_RADIAL_NV : GL_EYE_PLANE_ABSOLUTE_NV);
     }
 
     // A linear float RGBA texture sampled as Facet samples (bilinear, repeat, no mipmaps). Facet's
@@ -960,6 +1158,8 @@ std::unique_ptr<MesaPeer> MesaPeer::open(const MesaOptions& options, std::string
         return nullptr;
     }
     impl->versionLine = glsl >= 330 ? "#version 330" : "#version 130";
+    const std::string extensions = " " + text(GL_EXTENSIONS) + " ";  // a compatibility context has it
+    impl->radialFog = extensions.find(" GL_NV_fog_distance ") != std::string::npos;
 
     // A first program, so that a shader problem shows here, and a first framebuffer, which finds out
     // whether float colour is renderable (floatColor()).
@@ -1032,7 +1232,7 @@ void MesaPeer::load(const GlScene& scene) {
                 throw std::invalid_argument(where + "index " + std::to_string(index) + " is past the " +
                                             std::to_string(draw.vertices.size()) + " vertices");
         if (draw.program == GlProgram::FixedFunction) {
-            checkFixedFunction(scene, i);
+            checkFixedFunction(scene, i, p.radialFog);
             fixedFunction = true;
         }
     }
@@ -1051,6 +1251,9 @@ void MesaPeer::load(const GlScene& scene) {
         draw.normalFromObject = source.normalFromObject;
         draw.material = source.material;
         draw.pbr = source.pbr;
+        draw.opacity = source.opacity;
+        draw.blend = source.blend;
+        draw.depthWrite = source.depthWrite;
         gl.glGenVertexArrays(1, &draw.vertexArray);
         gl.glBindVertexArray(draw.vertexArray);
         gl.glGenBuffers(1, &draw.vertexBuffer);
@@ -1111,6 +1314,7 @@ void MesaPeer::load(const GlScene& scene) {
     gl.glClampColor(GL_CLAMP_FRAGMENT_COLOR, GL_FALSE);
     gl.glClampColor(GL_CLAMP_READ_COLOR, GL_FALSE);
     gl.glProvokingVertex(GL_LAST_VERTEX_CONVENTION);  // flat shading takes a triangle's last vertex
+    p.setFixedFunctionFog(scene.fog);
 
     // Framebuffer and raster state: the whole framebuffer, counter-clockwise fronts, GL_LESS, depth 1.
     p.createFramebuffer(scene.width, scene.height);
@@ -1126,7 +1330,8 @@ void MesaPeer::load(const GlScene& scene) {
     gl.glEnable(GL_DEPTH_TEST);
     gl.glDepthFunc(GL_LESS);
     gl.glDepthMask(GL_TRUE);
-    gl.glDisable(GL_BLEND);
+    gl.glDisable(GL_BLEND);  // each draw sets its own blending and depth writes
+    gl.glBlendEquation(GL_FUNC_ADD);
     gl.glDisable(GL_DITHER);
     gl.glClearColor(scene.clearColor.r, scene.clearColor.g, scene.clearColor.b, scene.clearColor.a);
     gl.glClearDepth(1.0);
@@ -1138,9 +1343,12 @@ void MesaPeer::renderFrame() {
     p.makeCurrent();
     const Gl& gl = p.gl;
     gl.glBindFramebuffer(GL_FRAMEBUFFER, p.framebuffer);
+    gl.glDepthMask(GL_TRUE);  // glClear writes depth only where the mask lets it: the last draw may have
+                              // turned depth writes off
     gl.glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     gl.glActiveTexture(GL_TEXTURE0);
     for (const Impl::Draw& draw : p.draws) {
+        p.setBlendState(draw);
         if (draw.program) {
             gl.glUseProgram(draw.program->name);
             p.setDrawUniforms(draw);

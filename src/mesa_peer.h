@@ -60,11 +60,16 @@ class MesaPeer {
     // Uploads the scene's draws (vertex and index buffers), textures and a framebuffer of the scene's
     // size, builds the GLSL programs the draws need and sets the pipeline state; not part of a frame.
     // Keeps nothing of `scene` (textures are copied). Replaces what a previous load() uploaded.
+    // Blending, depth writes and fog are as gl_scene.h describes; the blend's alpha factors give
+    // pipeline/state.h's alphas (glBlendFuncSeparate: Over and PremultipliedOver α_s + (1 − α_s)·α_d,
+    // Additive α_s + α_d, Multiply α_d).
     // Throws std::invalid_argument for what OpenGL cannot draw as asked: more than 8 lights; a
     // program and frequency that do not go together (PerPixel needs ShadingFrequency::Phong,
     // FixedFunction and PerVertex need Flat or Gouraud); fixed function with another reflection model
     // than Blinn-Phong, a Smooth-profile spot light, a spot cutoff outside [0, 90] (other than ≥ 180:
-    // no cone), a spot exponent or shininess outside [0, 128] or a negative attenuation coefficient.
+    // no cone), a spot exponent or shininess outside [0, 128], a negative attenuation coefficient, a
+    // blend other than Replace and Over (the others need a shader's output: use PerVertex), linear fog
+    // with end = start, a negative fog density, or radial fog without GL_NV_fog_distance.
     // Throws std::runtime_error if GL reports an error.
     void load(const GlScene& scene);
 

@@ -96,7 +96,7 @@ TEST(CompareImages, SizesMustMatch) {
 
 TEST(Quantize8, RoundsAsTheImageWriterDoes) {
     EXPECT_EQ(encodeChannel(0.5f, kLinearEncoding), 128);  // 127.5 rounds up
-    EXPECT_EQ(encodeChannel(0.5f, kSrgbEncoding), 188);  // 1.055·0.5^(1/2.4) − 0.055 = 0.73536 → 187.5
+    EXPECT_EQ(encodeChannel(0.5f, kSrgbEncoding), 188);    // 1.055·0.5^(1/2.4) − 0.055 = 0.73536 → 187.5
     EXPECT_EQ(encodeChannel(0.0031308f * 0.5f, kSrgbEncoding), 5);  // the linear toe: 12.92 c · 255 = 5.16
     EXPECT_EQ(encodeChannel(-1.0f, kSrgbEncoding), 0);
     EXPECT_EQ(encodeChannel(std::nanf(""), kLinearEncoding), 0);
@@ -157,17 +157,17 @@ GlScene eyeScene() {
     return scene;
 }
 
-// A square of half-size 1 at z = −2, normal +z, as four counter-clockwise triangles around its centre
-// vertex (0, 0, −2): the centre pixel's colour is that vertex's even where lighting is per vertex.
+// A square of half-size 1 at z = −2 (or `z`), normal +z, as four counter-clockwise triangles around its
+// centre vertex (0, 0, z): the centre pixel's colour is that vertex's even where lighting is per vertex.
 // m_diffuse (0.5, 0.25, 0.125), no ambient or specular.
-GlDraw fanSquare(GlProgram program, ShadingFrequency frequency) {
+GlDraw fanSquare(GlProgram program, ShadingFrequency frequency, float z = -2.0f) {
     GlDraw draw;
     const vec3 n(0.0f, 0.0f, 1.0f);
-    draw.vertices = {{vec3(0.0f, 0.0f, -2.0f), n, vec2(0.5f)},
-                     {vec3(-1.0f, -1.0f, -2.0f), n, vec2(0.0f)},
-                     {vec3(1.0f, -1.0f, -2.0f), n, vec2(1.0f, 0.0f)},
-                     {vec3(1.0f, 1.0f, -2.0f), n, vec2(1.0f)},
-                     {vec3(-1.0f, 1.0f, -2.0f), n, vec2(0.0f, 1.0f)}};
+    draw.vertices = {{vec3(0.0f, 0.0f, z), n, vec2(0.5f)},
+                     {vec3(-1.0f, -1.0f, z), n, vec2(0.0f)},
+                     {vec3(1.0f, -1.0f, z), n, vec2(1.0f, 0.0f)},
+                     {vec3(1.0f, 1.0f, z), n, vec2(1.0f)},
+                     {vec3(-1.0f, 1.0f, z), n, vec2(0.0f, 1.0f)}};
     draw.indices = {0, 1, 2, 0, 2, 3, 0, 3, 4, 0, 4, 1};
     draw.program = program;
     draw.frequency = frequency;
@@ -584,6 +584,327 @@ TEST(MesaOracle, RefusesWhatOpenGlCannotDraw) {
     EXPECT_NE(loads(fanSquare(GlProgram::FixedFunction, ShadingFrequency::Gouraud)).find("cutoff"),
               std::string::npos);
     EXPECT_EQ(loads(fanSquare(GlProgram::PerPixel, ShadingFrequency::Phong)), "");  // GLSL takes any cone
+
+    // Fixed function writes (c, α): Replace and Over only.
+    scene.lights = {headOnLight()};
+    for (const BlendMode blend : {BlendMode::PremultipliedOver, BlendMode::Additive, BlendMode::Multiply}) {
+        draw = fanSquare(GlProgram::FixedFunction, ShadingFrequency::Gouraud);
+        draw.blend = blend;
+        EXPECT_NE(loads(draw).find("PerVertex"), std::string::npos);
+        draw.program = GlProgram::PerVertex;
+        EXPECT_EQ(loads(draw), "");
+    }
+    draw = fanSquare(GlProgram::FixedFunction, ShadingFrequency::Gouraud);
+    draw.blend = BlendMode::Over;
+    EXPECT_EQ(loads(draw), "");
+    // glFog has no wall (linear fog with end = start) and no negative density; the GLSL programs do.
+    scene.fog.mode = FogMode::Linear;
+    scene.fog.start = scene.fog.end = 2.0f;
+    EXPECT_NE(loads(fanSquare(GlProgram::FixedFunction, ShadingFrequency::Gouraud)).find("end = start"),
+              std::string::npos);
+    EXPECT_EQ(loads(fanSquare(GlProgram::PerPixel, ShadingFrequency::Phong)), "");
+    scene.fog.mode = FogMode::Exponential;
+    scene.fog.density = -0.5f;
+    EXPECT_NE(loads(fanSquare(GlProgram::FixedFunction, ShadingFrequency::Gouraud)).find("density"),
+              std::string::npos);
+    EXPECT_EQ(loads(fanSquare(GlProgram::PerVertex, ShadingFrequency::Gouraud)), "");
+}
+
+// ---- Transparency, blend modes and fog ------------------------------------------------------------------
+
+// How a draw is lit: a program with a frequency it goes with.
+struct Lighting {
+    GlProgram program;
+    ShadingFrequency frequency;
+};
+const Lighting kFixedFunction{GlProgram::FixedFunction, ShadingFrequency::Gouraud};
+const Lighting kPerPixel{GlProgram::PerPixel, ShadingFrequency::Phong};
+const Lighting kPerVertex{GlProgram::PerVertex, ShadingFrequency::Gouraud};
+const Lighting kPerVertexFlat{GlProgram::PerVertex, ShadingFrequency::Flat};
+
+::testing::Message describe(const Lighting& lighting) {
+    return ::testing::Message() << "program " << int(lighting.program) << ", frequency "
+                                << int(lighting.frequency);
+}
+
+GlDraw fanSquare(const Lighting& lighting, float z = -2.0f) {
+    return fanSquare(lighting.program, lighting.frequency, z);
+}
+
+// Head on, fanSquare's colour is its m_diffuse: the opaque square's d, and the transparent one's s.
+const vec3 kOpaque(0.5f, 0.25f, 0.125f);
+const vec3 kTransparent(0.25f, 0.5f, 0.75f);
+
+// The opaque square (Replace) at z = −3, then a transparent one at z = −2, without depth writes, over
+// it. The nearer square is seen larger: its pixels beyond the farther one's (|x| > 0.58 in NDC, column
+// 51 and on) are over the clear colour (0, 0, 0, 0).
+constexpr int kFrontOnly = 58;  // NDC 0.8: the nearer square only (it spans ±0.87)
+GlScene overlapScene(const Lighting& lighting, BlendMode blend, float opacity) {
+    GlScene scene = eyeScene();
+    scene.lights = {headOnLight()};
+    GlDraw transparent = fanSquare(lighting);
+    transparent.material.diffuse = kTransparent;
+    transparent.opacity = opacity;
+    transparent.blend = blend;
+    transparent.depthWrite = false;
+    scene.draws = {fanSquare(lighting, -3.0f), transparent};
+    return scene;
+}
+
+// What a blend gives for the shader's colour c of opacity α (gl_scene.h: the shader writes (c, α),
+// (α·c, α) or (mix(1, c, α), α)) over a destination (d, α_d), by pipeline/state.h's equations:
+//   Replace (c, α); Over and PremultipliedOver (α·c + (1 − α)·d, α + (1 − α)·α_d);
+//   Additive (α·c + d, α + α_d); Multiply (((1 − α) + α·c)·d, α_d).
+vec4 blended(BlendMode blend, const vec3& c, float a, const vec4& destination) {
+    const vec3 d(destination);
+    const float ad = destination.a;
+    switch (blend) {
+        case BlendMode::Replace:
+            return vec4(c, a);
+        case BlendMode::Over:
+        case BlendMode::PremultipliedOver:
+            return vec4(a * c + (1.0f - a) * d, a + (1.0f - a) * ad);
+        case BlendMode::Additive:
+            return vec4(a * c + d, a + ad);
+        case BlendMode::Multiply:
+            return vec4(((1.0f - a) + a * c) * d, ad);
+    }
+    return vec4(0.0f);
+}
+
+#define EXPECT_RGBA_NEAR(actual, expected, tolerance)         \
+    do {                                                      \
+        const vec4 e4_ = (expected);                          \
+        EXPECT_RGB_NEAR(actual, vec3(e4_), tolerance);        \
+        EXPECT_NEAR((actual).a, e4_.a, tolerance) << "alpha"; \
+    } while (false)
+
+// A square of opacity 0.25 over an opaque one and, at the nearer square's edge, over the clear colour:
+// every blend mode through the GLSL programs; Replace and Over in fixed function (the others need a
+// shader's output, RefusesWhatOpenGlCannotDraw). The framebuffer's alpha follows state.h too:
+// glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA) alone would give Over α² + (1 − α)·α_d.
+TEST(MesaOracle, BlendModesOverAnOpaqueSquare) {
+    std::string whyNot;
+    const std::unique_ptr<MesaPeer> mesa = openSoftpipe(whyNot);
+    if (!mesa) GTEST_SKIP() << "Mesa softpipe (OSMesa) cannot be opened: " << whyNot;
+    const float a = 0.25f;
+    for (const Lighting& lighting : {kFixedFunction, kPerPixel, kPerVertex, kPerVertexFlat})
+        for (const BlendMode blend : {BlendMode::Replace, BlendMode::Over, BlendMode::PremultipliedOver,
+                                      BlendMode::Additive, BlendMode::Multiply}) {
+            if (lighting.program == GlProgram::FixedFunction && blend != BlendMode::Replace &&
+                blend != BlendMode::Over)
+                continue;
+            SCOPED_TRACE(describe(lighting) << ", blend " << blend);
+            const LinearImage image = drawScene(*mesa, overlapScene(lighting, blend, a));
+            EXPECT_RGBA_NEAR(image.at(kCentre, kCentre), blended(blend, kTransparent, a, vec4(kOpaque, 1.0f)),
+                             1e-6);
+            EXPECT_RGBA_NEAR(image.at(kFrontOnly, kCentre), blended(blend, kTransparent, a, kClear), 1e-6);
+        }
+}
+
+// α = opacity × the diffuse map's alpha: opacity 0.5 with a white map of alpha 0.5 is α = 0.25 (fixed
+// function: GL_MODULATE multiplies the lit alpha, the material's diffuse alpha, by the texel's).
+TEST(MesaOracle, DiffuseMapAlphaMultipliesOpacity) {
+    std::string whyNot;
+    const std::unique_ptr<MesaPeer> mesa = openSoftpipe(whyNot);
+    if (!mesa) GTEST_SKIP() << "Mesa softpipe (OSMesa) cannot be opened: " << whyNot;
+    Texture map;
+    map.width = map.height = 2;
+    map.texels.assign(4, vec4(1.0f, 1.0f, 1.0f, 0.5f));
+    for (const Lighting& lighting : {kFixedFunction, kPerPixel, kPerVertex}) {
+        SCOPED_TRACE(describe(lighting));
+        GlScene scene = overlapScene(lighting, BlendMode::Over, 0.5f);
+        scene.draws[1].diffuseMap = &map;
+        EXPECT_RGBA_NEAR(drawScene(*mesa, scene).at(kCentre, kCentre),
+                         blended(BlendMode::Over, kTransparent, 0.25f, vec4(kOpaque, 1.0f)), 1e-6);
+    }
+}
+
+// Depth writes off: the transparent square at z = −2, drawn first, leaves the depth buffer as it was,
+// so the opaque square at z = −3 drawn after it passes GL_LESS and replaces it: OpenGL draws in the
+// order given, which is why transparent draws come last. With depth writes on, the farther square
+// fails the depth test there, and the nearer one's α·s over the clear colour stays.
+TEST(MesaOracle, DepthWritesOffLetALaterFartherDrawReplace) {
+    std::string whyNot;
+    const std::unique_ptr<MesaPeer> mesa = openSoftpipe(whyNot);
+    if (!mesa) GTEST_SKIP() << "Mesa softpipe (OSMesa) cannot be opened: " << whyNot;
+    for (const Lighting& lighting : {kFixedFunction, kPerPixel}) {
+        SCOPED_TRACE(describe(lighting));
+        GlScene scene = overlapScene(lighting, BlendMode::Over, 0.25f);
+        std::swap(scene.draws[0], scene.draws[1]);  // the transparent square first
+        EXPECT_RGBA_NEAR(drawScene(*mesa, scene).at(kCentre, kCentre), vec4(kOpaque, 1.0f), 1e-6);
+        scene.draws[0].depthWrite = true;
+        EXPECT_RGBA_NEAR(drawScene(*mesa, scene).at(kCentre, kCentre), vec4(0.25f * kTransparent, 0.25f),
+                         1e-6);
+    }
+
+    // A frame whose last draw turned depth writes off: the next frame still starts from a cleared depth
+    // buffer (else the opaque square would fail GL_LESS against its own depth of the frame before).
+    const GlScene scene = overlapScene(kPerPixel, BlendMode::Over, 0.25f);
+    const LinearImage first = drawScene(*mesa, scene);
+    mesa->renderFrame();
+    EXPECT_EQ(mesa->readImage().pixels, first.pixels);
+}
+
+// A fog of colour (0.2, 0.4, 0.6) and the factor f it should have.
+struct FogCase {
+    FogParams fog;
+    float f;
+};
+
+FogParams fogParams(FogMode mode, float start, float end, float density = 1.0f) {
+    FogParams fog;
+    fog.mode = mode;
+    fog.color = vec3(0.2f, 0.4f, 0.6f);
+    fog.start = start;
+    fog.end = end;
+    fog.density = density;
+    return fog;
+}
+
+vec3 fogged(const vec3& c, const FogParams& fog, float f) {
+    return f * c + (1.0f - f) * fog.color;
+}
+
+// Fog on the square at z = −2, |z_eye| = 2 at every pixel, of colour c = (0.5, 0.25, 0.125) head on:
+// c·f + c_fog·(1 − f) with
+//   linear from 2 to 4 (at the start): f = 1;  1 to 3 (the middle): 0.5;  0 to 2 (at the end): 0;
+//   0 to 1 (beyond the end): −1, clamped to 0;  3 to 5 (before the start): 1.5, clamped to 1;
+//   exp, density 0.25: e^(−0.5);  exp², density 0.25: e^(−0.25).
+// Every pixel, fixed function included: |z_eye| is linear across the square, so fixed function's
+// interpolating it from the vertices is exact. Then the GLSL programs' linear fog with end = start (a
+// wall, fog.h): at 2, the square is behind it (f = 0); at 2.5, in front of it (f = 1).
+TEST(MesaOracle, FogAtAKnownDepth) {
+    std::string whyNot;
+    const std::unique_ptr<MesaPeer> mesa = openSoftpipe(whyNot);
+    if (!mesa) GTEST_SKIP() << "Mesa softpipe (OSMesa) cannot be opened: " << whyNot;
+    const std::vector<FogCase> cases = {
+        {fogParams(FogMode::Linear, 2.0f, 4.0f), 1.0f},
+        {fogParams(FogMode::Linear, 1.0f, 3.0f), 0.5f},
+        {fogParams(FogMode::Linear, 0.0f, 2.0f), 0.0f},
+        {fogParams(FogMode::Linear, 0.0f, 1.0f), 0.0f},
+        {fogParams(FogMode::Linear, 3.0f, 5.0f), 1.0f},
+        {fogParams(FogMode::Exponential, 0.0f, 1.0f, 0.25f), float(std::exp(-0.5))},
+        {fogParams(FogMode::ExponentialSquared, 0.0f, 1.0f, 0.25f), float(std::exp(-0.25))},
+    };
+    auto expectEveryPixel = [&](const Lighting& lighting, const FogCase& fogCase) {
+        SCOPED_TRACE(describe(lighting) << ", fog mode " << int(fogCase.fog.mode) << ", start "
+                                        << fogCase.fog.start << ", end " << fogCase.fog.end);
+        GlScene scene = eyeScene();
+        scene.lights = {headOnLight()};
+        scene.fog = fogCase.fog;
+        scene.draws = {fanSquare(lighting)};
+        const vec3 expected = fogged(kOpaque, fogCase.fog, fogCase.f);
+        std::size_t covered = 0;
+        for (const vec4& pixel : drawScene(*mesa, scene).pixels) {
+            if (!drawn(pixel)) continue;
+            ++covered;
+            const vec3 difference = abs(vec3(pixel) - expected);
+            if (std::max({difference.r, difference.g, difference.b}) > 1e-5f) {
+                EXPECT_RGB_NEAR(pixel, expected, 1e-5);
+                return;
+            }
+            EXPECT_EQ(pixel.a, 1.0f);
+        }
+        EXPECT_GT(covered, 3000u);
+    };
+    for (const Lighting& lighting : {kFixedFunction, kPerPixel, kPerVertex, kPerVertexFlat})
+        for (const FogCase& fogCase : cases)
+            expectEveryPixel(lighting, fogCase);
+    for (const Lighting& lighting : {kPerPixel, kPerVertex}) {
+        expectEveryPixel(lighting, {fogParams(FogMode::Linear, 2.0f, 2.0f), 0.0f});
+        expectEveryPixel(lighting, {fogParams(FogMode::Linear, 2.5f, 2.5f), 1.0f});
+    }
+}
+
+// The fog distance is |z_eye|, not −z_eye: a projection looking down +z (clip space does not care which
+// way the eye looks) shows a square at z = +2, fogged as at z = −2 (linear from 1 to 3: f = 0.5);
+// −z_eye = −2 would leave it unfogged. Emission only, without lights: c = m_emission.
+TEST(MesaOracle, FogDistanceIsTheAbsoluteEyeDepth) {
+    std::string whyNot;
+    const std::unique_ptr<MesaPeer> mesa = openSoftpipe(whyNot);
+    if (!mesa) GTEST_SKIP() << "Mesa softpipe (OSMesa) cannot be opened: " << whyNot;
+    const FogParams fog = fogParams(FogMode::Linear, 1.0f, 3.0f);
+    for (const Lighting& lighting : {kFixedFunction, kPerPixel, kPerVertex}) {
+        SCOPED_TRACE(describe(lighting));
+        GlScene scene = eyeScene();
+        scene.clipFromView = scene.clipFromView * glm::scale(mat4(1.0f), vec3(1.0f, 1.0f, -1.0f));
+        scene.cullBackFaces = false;  // the mirror turns the square's winding
+        scene.fog = fog;
+        GlDraw draw = fanSquare(lighting, 2.0f);
+        draw.material.diffuse = vec3(0.0f);
+        draw.material.emission = kOpaque;
+        scene.draws = {draw};
+        EXPECT_RGB_NEAR(drawScene(*mesa, scene).at(kCentre, kCentre), fogged(kOpaque, fog, 0.5f), 1e-6);
+    }
+}
+
+// Radial fog, linear from 1 to 3 along |P_eye|, on the square at z = −2. At the centre |P| = 2: f = 0.5.
+// Along the middle row (y = 0), at x: |P| = √(4 + x²) per pixel, as Facet and the GLSL programs take it
+// (flat ones too: the eye-space position is interpolated for the fog whatever the colour's
+// interpolation). Fixed function (GL_EYE_RADIAL_NV) takes |P| at the vertices and interpolates it:
+// between the centre (|P| = 2) and the corners (1, ±1, −2) (|P| = √6), (1 − x)·2 + x·√6, farther than
+// √(4 + x²). Then exp² radial fog (density 0.25) in fixed function: its factor is computed per
+// fragment from the interpolated distance, e^(−(0.25·d)²), not interpolated from the vertices' factors.
+TEST(MesaOracle, RadialFog) {
+    std::string whyNot;
+    const std::unique_ptr<MesaPeer> mesa = openSoftpipe(whyNot);
+    if (!mesa) GTEST_SKIP() << "Mesa softpipe (OSMesa) cannot be opened: " << whyNot;
+    FogParams fog = fogParams(FogMode::Linear, 1.0f, 3.0f);
+    fog.distance = FogDistance::Radial;
+    constexpr int column = 48;
+    const double tan30 = std::tan(3.14159265358979323846 / 6.0);
+    const double x = ((column + 0.5) / kSize * 2.0 - 1.0) * 2.0 * tan30;  // the eye-space x it sees
+    const double perPixel = std::sqrt(4.0 + x * x), perVertex = (1.0 - x) * 2.0 + x * std::sqrt(6.0);
+    ASSERT_GT(perVertex - perPixel, 0.15);
+    auto draw = [&](const Lighting& lighting, const FogParams& params) {
+        GlScene scene = eyeScene();
+        scene.lights = {headOnLight()};
+        scene.fog = params;
+        scene.draws = {fanSquare(lighting)};
+        return drawScene(*mesa, scene);
+    };
+    for (const Lighting& lighting : {kPerPixel, kPerVertex, kPerVertexFlat}) {
+        SCOPED_TRACE(describe(lighting));
+        const LinearImage image = draw(lighting, fog);
+        EXPECT_RGB_NEAR(image.at(kCentre, kCentre), fogged(kOpaque, fog, 0.5f), 1e-6);
+        EXPECT_RGB_NEAR(image.at(column, kCentre), fogged(kOpaque, fog, float((3.0 - perPixel) / 2.0)), 1e-5);
+    }
+
+    LinearImage image;
+    try {
+        image = draw(kFixedFunction, fog);
+    } catch (const std::invalid_argument& error) {
+        GTEST_SKIP() << error.what();  // no GL_NV_fog_distance
+    }
+    EXPECT_RGB_NEAR(image.at(kCentre, kCentre), fogged(kOpaque, fog, 0.5f), 1e-6);
+    EXPECT_RGB_NEAR(image.at(column, kCentre), fogged(kOpaque, fog, float((3.0 - perVertex) / 2.0)), 1e-5);
+    FogParams exp2 = fogParams(FogMode::ExponentialSquared, 0.0f, 1.0f, 0.25f);
+    exp2.distance = FogDistance::Radial;
+    const double dz = 0.25 * perVertex;
+    EXPECT_RGB_NEAR(draw(kFixedFunction, exp2).at(column, kCentre),
+                    fogged(kOpaque, exp2, float(std::exp(-dz * dz))), 1e-5);
+}
+
+// Fog before the blend: linear fog from 1 to 5 fogs the opaque square at z = −3 with f = 0.5 and the
+// transparent one (α = 0.25) at z = −2 with f = 0.75; the blend then combines s' = 0.75·s + 0.25·c_fog
+// with d' = 0.5·d + 0.5·c_fog.
+TEST(MesaOracle, FogBeforeTheBlend) {
+    std::string whyNot;
+    const std::unique_ptr<MesaPeer> mesa = openSoftpipe(whyNot);
+    if (!mesa) GTEST_SKIP() << "Mesa softpipe (OSMesa) cannot be opened: " << whyNot;
+    const FogParams fog = fogParams(FogMode::Linear, 1.0f, 5.0f);
+    const vec3 d = fogged(kOpaque, fog, 0.5f), s = fogged(kTransparent, fog, 0.75f);
+    for (const auto& [lighting, blend] :
+         {std::pair{kFixedFunction, BlendMode::Over}, std::pair{kPerPixel, BlendMode::Over},
+          std::pair{kPerVertex, BlendMode::PremultipliedOver}, std::pair{kPerPixel, BlendMode::Additive},
+          std::pair{kPerVertexFlat, BlendMode::Multiply}}) {
+        SCOPED_TRACE(describe(lighting) << ", blend " << blend);
+        GlScene scene = overlapScene(lighting, blend, 0.25f);
+        scene.fog = fog;
+        EXPECT_RGBA_NEAR(drawScene(*mesa, scene).at(kCentre, kCentre),
+                         blended(blend, s, 0.25f, vec4(d, 1.0f)), 1e-6);
+    }
 }
 
 // ---- The benchmark's peer: llvmpipe draws what Facet draws -------------------------------------------
