@@ -104,6 +104,14 @@ FogParams fogParams(const Scene& scene, const Bounds& bounds, const Camera& came
     const float distance = length(camera.eye - centre);
     fog.start = scene.fog.start.value_or(std::max(distance - radius, 0.0f));
     fog.end = scene.fog.end.value_or(distance + radius);
+    // One end given, the other derived on its wrong side: keep the given one and a range of the
+    // sphere's diameter.
+    if (fog.end <= fog.start) {
+        if (scene.fog.start)
+            fog.end = fog.start + 2.0f * radius;
+        else
+            fog.start = std::max(fog.end - 2.0f * radius, 0.0f);
+    }
     return fog;
 }
 
