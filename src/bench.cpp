@@ -958,7 +958,7 @@ bool backToFront(std::span<const std::uint32_t> order, const std::vector<float>&
 struct SortStep {
     double degrees = 0.0;
     int frames = 0;
-    double keyMs = 0.0, insertionMs = 0.0, scratchMs = 0.0;
+    double keyMs = 0.0, insertionMs = 0.0, scratchMs = 0.0, radixMs = 0.0;
     double insertionComparisons = 0.0, insertionMoves = 0.0, scratchComparisons = 0.0;
     bool sorted = true;  // every order came out back to front
 };
@@ -968,14 +968,15 @@ struct SortStep {
 SortStep timeSortStep(Turntable& turntable, double degrees, int frames) {
     SortStep step;
     step.degrees = degrees;
-    TransparencySorter insertion, scratch;
+    TransparencySorter insertion, scratch, radix;
     SortStats stats;
     std::vector<float> keys;
     turntable.keys(0.0, SortKey::Centroid, keys);
     insertion.sort(keys, SortAlgorithm::InsertionWithMemory, stats);
     scratch.sort(keys, SortAlgorithm::FromScratch, stats);
+    radix.sort(keys, SortAlgorithm::RadixFromScratch, stats);
 
-    std::vector<double> keyMs, insertionMs, scratchMs, insertionComparisons, insertionMoves,
+    std::vector<double> keyMs, insertionMs, scratchMs, radixMs, insertionComparisons, insertionMoves,
         scratchComparisons;
     double spentMs = 0.0;
     for (int frame = 1; frame <= frames; ++frame) {
@@ -998,20 +999,37 @@ SortStep timeSortStep(Turntable& turntable, double degrees, int frames) {
             scratchComparisons.push_back(static_cast<double>(stats.comparisons));
             step.sorted = step.sorted && backToFront(order, keys);
         };
-        if (frame % 2) {
-            timeInsertion();
-            timeScratch();
-        } else {
-            timeScratch();
-            timeInsertion();
+        auto timeRadix = [&] {
+            const double start = threadCpuMs();
+            const auto order = radix.sort(keys, SortAlgorithm::RadixFromScratch, stats);
+            radixMs.push_back(threadCpuMs() - start);
+            step.sorted = step.sorted && backToFront(order, keys);
+        };
+        switch (frame % 3) {  // each goes first in turn
+            case 0:
+                timeInsertion();
+                timeScratch();
+                timeRadix();
+                break;
+            case 1:
+                timeScratch();
+                timeRadix();
+                timeInsertion();
+                break;
+            default:
+                timeRadix();
+                timeInsertion();
+                timeScratch();
+                break;
         }
         step.frames = frame;
-        spentMs += insertionMs.back() + scratchMs.back();
+        spentMs += insertionMs.back() + scratchMs.back() + radixMs.back();
         if (spentMs > kSortStepBudgetMs && frame >= kSortMinFrames) break;
     }
     step.keyMs = median(keyMs);
     step.insertionMs = median(insertionMs);
     step.scratchMs = median(scratchMs);
+    step.radixMs = median(radixMs);
     step.insertionComparisons = median(insertionComparisons);
     step.insertionMoves = median(insertionMoves);
     step.scratchComparisons = median(scratchComparisons);
@@ -1052,8 +1070,8 @@ void runSortBench(const BenchOptions& options, std::ostream& out) {
                          std::to_string(kSortMinTriangles) + " (the Stanford bunny has 69451)");
 
     out << "Per frame of a turntable, every triangle's back-to-front order (key: view-space depth of its "
-           "centroid)\nby insertion sort from the previous frame's order and by std::sort from scratch; "
-           "one thread, medians.\n";
+           "centroid)\nby insertion sort from the previous frame's order, by std::sort from scratch and by a "
+           "radix sort from scratch;\none thread, medians.\n";
     out << std::fixed << std::setprecision(2);
     out << "model      " << options.model.string() << "\n";
     out << "triangles  " << n << ", all treated as transparent (one key each)\n";
@@ -1070,7 +1088,7 @@ void runSortBench(const BenchOptions& options, std::ostream& out) {
            "moves are\n           swaps inside partitions, not comparable, not counted\n\n";
 
     out << "  step/frame  frames  keys ms   insertion ms   std::sort ms   faster               "
-           "insertion compares    moves   std::sort compares\n";
+           "insertion compares    moves   std::sort compares   radix ms\n";
     std::vector<SortStep> steps;
     for (const double degrees : kSortStepsDegrees) {
         const SortStep step = timeSortStep(turntable, degrees, options.frames);
@@ -1085,7 +1103,8 @@ void runSortBench(const BenchOptions& options, std::ostream& out) {
             << step.scratchMs << "   " << std::left << std::setw(18) << faster.str() << std::right
             << std::setw(20) << countText(step.insertionComparisons) << std::setw(9)
             << countText(step.insertionMoves) << std::setw(21) << countText(step.scratchComparisons)
-            << (step.sorted ? "" : "   ORDER NOT BACK TO FRONT") << std::endl;
+            << std::setw(11) << step.radixMs << (step.sorted ? "" : "   ORDER NOT BACK TO FRONT")
+            << std::endl;
     }
 
     // Where the two cross: the ratio of the times interpolated in log-log between the two steps around 1.

@@ -32,6 +32,12 @@ std::span<const std::uint32_t> TransparencySorter::sort(std::span<const float> k
     stats.elements = n;
     entries_.resize(n);
 
+    if (algorithm == SortAlgorithm::RadixFromScratch) {
+        radixSort(keys);
+        stats.moves = 4 * n;  // four passes of one write per element; no comparisons
+        stats.fromScratch = true;
+        return order_;
+    }
     const bool fromScratch = algorithm == SortAlgorithm::FromScratch || !remembered_ || order_.size() != n;
     if (fromScratch) {
         for (std::size_t i = 0; i < n; ++i)
@@ -91,6 +97,38 @@ std::span<const std::uint32_t> TransparencySorter::sort(std::span<const float> k
         order_[i] = entries_[i].index;
     remembered_ = true;
     return order_;
+}
+
+// Least-significant-digit radix sort, four passes of 8 bits over ~key (so ascending ~key is descending
+// key). Each pass is a stable counting sort, and the input is in index order, so ties end in index
+// order: the same result as FromScratch.
+void TransparencySorter::radixSort(std::span<const float> keys) {
+    const std::size_t n = keys.size();
+    entries_.resize(n);
+    radixScratch_.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+        entries_[i] = {~sortableKey(keys[i]), static_cast<std::uint32_t>(i)};
+    Entry* from = entries_.data();
+    Entry* to = radixScratch_.data();
+    for (int shift = 0; shift < 32; shift += 8) {
+        std::size_t start[256] = {};
+        for (std::size_t i = 0; i < n; ++i)
+            ++start[(from[i].key >> shift) & 0xFFu];
+        std::size_t sum = 0;
+        for (std::size_t& s : start) {
+            const std::size_t count = s;
+            s = sum;
+            sum += count;
+        }
+        for (std::size_t i = 0; i < n; ++i)
+            to[start[(from[i].key >> shift) & 0xFFu]++] = from[i];
+        std::swap(from, to);
+    }
+    // Four passes: the sorted entries are back in entries_.
+    order_.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+        order_[i] = entries_[i].index;
+    remembered_ = true;
 }
 
 void TransparencySorter::forget() {

@@ -15,6 +15,7 @@ namespace facet {
 enum class SortAlgorithm {
     InsertionWithMemory,  // insertion sort of the previous frame's order (from scratch on the first frame)
     FromScratch,          // std::sort of 0, 1, ..., n − 1 every frame (the comparison)
+    RadixFromScratch,     // LSD radix sort of the keys' bits every frame: O(n), no comparisons at all
 };
 
 struct SortStats {
@@ -55,9 +56,12 @@ class TransparencySorter {
         std::uint32_t index;
     };
 
+    void radixSort(std::span<const float> keys);
+
     std::vector<std::uint32_t> order_;
-    std::vector<Entry> entries_;  // scratch, kept to avoid an allocation per frame
-    bool remembered_ = false;     // order_ holds a previous result (it may be empty)
+    std::vector<Entry> entries_;       // scratch, kept to avoid an allocation per frame
+    std::vector<Entry> radixScratch_;  // the radix sort's second buffer
+    bool remembered_ = false;          // order_ holds a previous result (it may be empty)
 };
 
 }  // namespace facet

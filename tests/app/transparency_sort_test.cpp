@@ -277,5 +277,30 @@ TEST(TransparencySort, NaNKeysSortFarthestAndKeepAStrictWeakOrder) {
     }
 }
 
+// The radix sort gives exactly std::sort's order (key descending, ties by index), NaN and ±0 included,
+// without a single comparison.
+TEST(TransparencySort, RadixSortGivesTheSameOrderAsStdSort) {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> key(-100.0f, 100.0f);
+    for (int trial = 0; trial < 20; ++trial) {
+        std::vector<float> keys(1000 + 37 * trial);
+        for (float& k : keys)
+            k = trial % 3 == 0 ? std::round(key(rng) / 10.0f) : key(rng);  // many ties in some trials
+        keys[3] = std::nanf("");
+        keys[7] = -0.0f;
+        keys[8] = 0.0f;
+        keys[9] = -std::numeric_limits<float>::infinity();
+        TransparencySorter radix, scratch;
+        SortStats radixStats, scratchStats;
+        const auto a = radix.sort(keys, SortAlgorithm::RadixFromScratch, radixStats);
+        const std::vector<std::uint32_t> radixOrder(a.begin(), a.end());
+        const auto b = scratch.sort(keys, SortAlgorithm::FromScratch, scratchStats);
+        EXPECT_EQ(radixOrder, std::vector<std::uint32_t>(b.begin(), b.end())) << "trial " << trial;
+        EXPECT_EQ(radixStats.comparisons, 0u);
+        EXPECT_EQ(radixStats.moves, 4 * keys.size());
+        EXPECT_TRUE(radixStats.fromScratch);
+    }
+}
+
 }  // namespace
 }  // namespace facet
