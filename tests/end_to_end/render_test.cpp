@@ -207,6 +207,71 @@ TEST(Render, TransparentQuadsGiveTheOverOperatorInEveryOrderWhenSorted) {
     EXPECT_EQ(unsortedWrong, 5);
 }
 
+// "gamma": {"decode_inputs": false} reads colours as linear values; the chosen curve encodes the output.
+TEST(Render, GammaOptionsDecideDecodingAndEncoding) {
+    TempDir dir;
+    const auto obj = dir.write("square.obj", std::string("mtllib square.mtl\nusemtl grey\n") + kSquareObj);
+    dir.write("square.mtl", "newmtl grey\nKa 0 0 0\nKd 0.5 0.25 0.6\nKs 0 0 0\n");
+    Scene scene = headOnScene(obj);
+    scene.gamma.decodeInputs = false;
+    scene.gamma.encode = TransferCurve::Power;
+    scene.gamma.exponent = 2.2f;
+    const PreparedScene prepared = prepareScene(scene);
+    EXPECT_EQ(prepared.encoding, (ColorEncoding{TransferCurve::Power, 2.2f}));
+    const vec4 centre = renderScene(scene).at(32, 24);
+    EXPECT_NEAR(centre.r, 0.5f, 1e-6f);  // not decoded: 0.5 stays 0.5
+    EXPECT_NEAR(centre.g, 0.25f, 1e-6f);
+    EXPECT_EQ(encodeChannel(centre.r, prepared.encoding), 186);  // 0.5^(1/2.2) = 0.7297
+}
+
+// The turntable turns the objects about the vertical axis through the scene's centre: a whole turn
+// is the scene as written, a quarter turn of a square seen head-on shows its edge (nothing drawn).
+TEST(Render, TurntableTurnsAboutTheVerticalAxis) {
+    TempDir dir;
+    const auto obj = dir.write("square.obj", std::string("mtllib square.mtl\nusemtl grey\n") + kSquareObj);
+    dir.write("square.mtl", "newmtl grey\nKa 0 0 0\nKd 0.5 0.5 0.5\nKs 0 0 0\n");
+    Scene scene = headOnScene(obj);
+    scene.pipeline.cull = CullChoice::None;
+    PreparedScene prepared = prepareScene(scene);
+    const mat4 original = prepared.draws.front().uniforms.viewFromObject;
+    setTurntable(prepared, 360.0f);
+    const mat4 whole = prepared.draws.front().uniforms.viewFromObject;
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            EXPECT_NEAR(whole[c][r], original[c][r], 1e-5f);
+    setTurntable(prepared, 90.0f);
+    // The square's corner (1, 0, 0) turns to (0, 0, −1): 1 farther from the eye at z = 5.
+    const vec4 corner = prepared.draws.front().uniforms.viewFromObject * vec4(1.0f, 0.0f, 0.0f, 1.0f);
+    EXPECT_NEAR(corner.x, 0.0f, 1e-5f);
+    EXPECT_NEAR(corner.z, -6.0f, 1e-5f);
+    Framebuffer framebuffer(scene.width, scene.height);
+    DrawContext context(1);
+    const DrawStats stats = renderFrame(prepared, framebuffer, context);
+    EXPECT_EQ(stats.fragmentsShaded, 0u);  // edge-on: zero area
+}
+
+// A texture's alpha makes a part transparent: drawn in the transparent pass, its alpha in the image.
+TEST(Render, TextureAlphaMakesThePartTransparent) {
+    TempDir dir;
+    LinearImage texture;
+    texture.width = texture.height = 2;
+    texture.pixels.assign(4, vec4(1.0f, 1.0f, 1.0f, 0.5f));
+    writeImage(dir.path() / "half.png", texture);
+    const auto obj =
+        dir.write("square.obj", std::string("mtllib square.mtl\nusemtl t\n") +
+                                    "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                                    "vn 0 0 1\nf 1/1/1 2/2/1 3/3/1 4/4/1\n");
+    dir.write("square.mtl", "newmtl t\nKa 0 0 0\nKd 1 1 1\nKs 0 0 0\nmap_Kd half.png\n");
+    Scene scene = headOnScene(obj);
+    scene.background = vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    const PreparedScene prepared = prepareScene(scene);
+    ASSERT_EQ(prepared.draws.size(), 1u);
+    EXPECT_TRUE(prepared.draws.front().transparent);
+    EXPECT_EQ(prepared.transparentTriangles.size(), 2u);
+    const vec4 centre = renderScene(scene).at(32, 24);
+    EXPECT_NEAR(centre.r, 0.5f, 2e-3f);  // white at α = 0.5 over black (the 8-bit alpha is 128/255)
+}
+
 // Each bundled model, and the classic ones in ../shared/models, render with every default: the corner
 // holds the background, the centre is the model, every value is finite.
 class BundledModel : public ::testing::TestWithParam<std::string> {};
