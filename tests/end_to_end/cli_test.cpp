@@ -149,6 +149,28 @@ TEST(Cli, CompareWithOpenGlAgreesOnTheBundledScene) {
     EXPECT_EQ(readImage(dir.path() / "gl.png").height, 120);
 }
 
+// A turntable writes numbered images; --stats shows the first frame sorted from scratch and the next
+// ones by insertion from the previous order, with their comparisons and moves.
+TEST(Cli, TurntableFramesWithSortStatistics) {
+    TempDir dir;
+    const auto scene = std::filesystem::path(FACET_SOURCE_DIR) / "models/intersecting-quads.json";
+    const RunResult run = runFacet("render " + quoted(scene) + " -o " + quoted(dir.path() / "spin.png") +
+                                       " --width 64 --height 48 --frames 3-5 --turntable 30 --stats",
+                                   dir);
+    ASSERT_EQ(run.status, 0) << run.err;
+    for (const char* name : {"spin-0003.png", "spin-0004.png", "spin-0005.png"})
+        EXPECT_TRUE(std::filesystem::exists(dir.path() / name)) << name;
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / "spin.png"));
+    EXPECT_NE(run.out.find("frame 3: "), std::string::npos) << run.out;
+    EXPECT_NE(run.out.find("sorted from scratch"), std::string::npos) << run.out;
+    EXPECT_NE(run.out.find("frame 5: "), std::string::npos) << run.out;
+    EXPECT_NE(run.out.find("by insertion from the last frame's order"), std::string::npos) << run.out;
+    EXPECT_NE(run.out.find(" moves"), std::string::npos) << run.out;
+    // Frames differ: the objects turned.
+    EXPECT_FALSE(readImage(dir.path() / "spin-0003.png").pixels ==
+                 readImage(dir.path() / "spin-0005.png").pixels);
+}
+
 // Each bad input: exit status 1, exactly one line on stderr naming what is wrong, and an existing
 // output file left as it was.
 struct BadInput {
@@ -203,7 +225,11 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"UnknownTerm", nullptr, nullptr, "--only glare", "--only: glare not in", 2},
         BadInput{"UnknownShading", nullptr, nullptr, "--shading smooth", "--shading", 2},
         BadInput{"OnlyAndComponents", nullptr, nullptr, "--only diffuse --components", "do not go together"},
-        BadInput{"CreaseAngleOutOfRange", nullptr, nullptr, "--crease-angle 200", "--crease-angle"}),
+        BadInput{"CreaseAngleOutOfRange", nullptr, nullptr, "--crease-angle 200", "--crease-angle"},
+        BadInput{"BackwardFrames", nullptr, nullptr, "--frames 9-3", "--frames"},
+        BadInput{"TurntableWithoutFrames", nullptr, nullptr, "--turntable 90", "--turntable needs --frames"},
+        BadInput{"GammaWithLinear", nullptr, nullptr, "--encode linear --gamma 2.2", "--gamma goes with"},
+        BadInput{"GammaWithGlPreset", nullptr, nullptr, "--lighting gl --gamma 2.2", "gl preset"}),
     [](const ::testing::TestParamInfo<BadInput>& info) { return std::string(info.param.name); });
 
 TEST(Cli, UnknownImageFormatWritesNothing) {
