@@ -29,6 +29,7 @@ void Framebuffer::clear(vec4 color, float depth, ThreadPool& pool) {
         std::fill(color_.begin() + first, color_.begin() + last, color);
         std::fill(depth_.begin() + first, depth_.begin() + last, depth);
     });
+    lists_.clear(pool);
 }
 
 }  // namespace facet

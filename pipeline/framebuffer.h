@@ -1,9 +1,11 @@
-// The render target: a linear floating-point colour buffer and a depth buffer of the same size.
+// The render target: a linear floating-point colour buffer and a depth buffer of the same size, and
+// the per-pixel fragment lists of exact transparency (fragment_lists.h), allocated on first use.
 #pragma once
 
 #include <cstddef>
 #include <vector>
 
+#include "fragment_lists.h"
 #include "glsl.h"
 
 namespace facet {
@@ -20,7 +22,8 @@ class Framebuffer {
 
     void clearColor(vec4 color);
     void clearDepth(float depth = 1.0f);
-    // Both at once, rows spread over the pool's threads (a 1080p float buffer is 41 MB to write).
+    // Colour and depth at once, rows spread over the pool's threads (a 1080p float buffer is 41 MB to
+    // write), and the fragment lists emptied (their memory kept for the next frame).
     void clear(vec4 color, float depth, ThreadPool& pool);
 
     vec4& color(int x, int y) { return color_[index(x, y)]; }
@@ -32,6 +35,10 @@ class Framebuffer {
     const std::vector<vec4>& colorPixels() const { return color_; }
     const std::vector<float>& depthPixels() const { return depth_; }
 
+    // Where AppendToLists draws put their fragments, until resolveFragmentLists() composites them.
+    FragmentLists& fragmentLists() { return lists_; }
+    const FragmentLists& fragmentLists() const { return lists_; }
+
   private:
     std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * width_ + x; }
 
@@ -39,6 +46,7 @@ class Framebuffer {
     int height_ = 0;
     std::vector<vec4> color_;   // linear RGBA
     std::vector<float> depth_;  // window depth in [0,1]; 1 is the far plane
+    FragmentLists lists_;       // empty (no memory) until an AppendToLists draw
 };
 
 }  // namespace facet

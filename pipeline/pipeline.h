@@ -3,7 +3,8 @@
 //   front end, per triangle:  vertex stage → primitive assembly → clipping → divide + viewport
 //                             → culling + setup → binning into screen tiles
 //   back end, per tile:       rasterization (8×8 blocks) → depth test → interpolation
-//                             → fragment shader → blending
+//                             → fragment shader → blending (or, for exact transparency, appending
+//                             to per-pixel fragment lists that resolveFragmentLists() composites)
 //
 // Each stage is a plain function in its own file; draw() is the only place that knows their order, and
 // it hands every stage's output to an Observer between stages (observer.h). Vertices and chunks of
@@ -18,12 +19,14 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "bin.h"
 #include "blend.h"
 #include "clip.h"
 #include "depth_test.h"
+#include "fragment_lists.h"
 #include "fragment_stage.h"
 #include "framebuffer.h"
 #include "interpolate.h"
@@ -181,7 +184,8 @@ struct FragmentQueue {
     int x[kBlockSize], y[kBlockSize];
     float z[kBlockSize];
     std::uint32_t triangle[kBlockSize];
-    FragmentBatch batch;  // interpolated varyings, lane = queue slot
+    FragmentBatch batch;              // interpolated varyings, lane = queue slot
+    FragmentLists::TileWriter lists;  // the tile's fragment lists, for AppendToLists draws
 
     // Does a queued fragment sit in row y, at a column of [x, x + 8) whose bit is set in `columns`?
     bool holdsAny(int rowY, int firstX, unsigned columns) const {
@@ -194,8 +198,44 @@ struct FragmentQueue {
     }
 };
 
-// The fragment shader, the depth write and blending for the queued fragments.
-template <Shader S, class Observer>
+// The depth write and the append to the pixel's fragment list for the n shaded fragments of the
+// queue (those whose bit is set in `kept`; the others were discarded), for AppendToLists draws.
+template <class Observer>
+void appendQueue(const FragmentQueue& queue, int n, const vec4* shaded, unsigned kept, const DrawState& state,
+                 Framebuffer& target, DrawStats& stats, Observer& observer) {
+    constexpr bool kObserving = Observer::enabled;
+    const DepthState depth = state.depth;
+    FragmentLists::TileWriter lists = queue.lists;
+    for (int lane = 0; lane < n; ++lane) {
+        const int x = queue.x[lane], y = queue.y[lane];
+        FragmentEvent event;
+        if constexpr (kObserving) {
+            event = FragmentEvent{x, y, queue.triangle[lane], queue.z[lane], target.depth(x, y)};
+            event.colorBefore = event.colorAfter = target.color(x, y);
+        }
+        if (!(kept & (1u << lane))) {
+            ++stats.fragmentsDiscarded;
+            if constexpr (kObserving) {
+                event.fate = FragmentFate::Discarded;
+                observer.onFragment(event);
+            }
+            continue;
+        }
+        if (depth.testEnabled && depth.writeEnabled) target.depth(x, y) = queue.z[lane];
+        const bool stored = lists.append(x, y, shaded[lane], queue.z[lane], state.blend);
+        stats.fragmentsStored += stored;
+        if constexpr (kObserving) {
+            event.fate = stored ? FragmentFate::Stored : FragmentFate::Dropped;
+            event.shaded = shaded[lane];
+            observer.onFragment(event);
+        }
+    }
+}
+
+// The fragment shader, then the depth write and blending (or appending to the fragment lists) for the
+// queued fragments. The back end is compiled once for each FragmentOutput, and draw() chooses per draw,
+// so the blending loop is exactly what it would be without fragment lists.
+template <Shader S, FragmentOutput kOutput, class Observer>
 void shadeQueue(FragmentQueue& queue, const DrawState& state, const typename S::Uniforms& uniforms,
                 Framebuffer& target, DrawStats& stats, Observer& observer) {
     constexpr bool kObserving = Observer::enabled;
@@ -221,7 +261,10 @@ void shadeQueue(FragmentQueue& queue, const DrawState& state, const typename S::
         }
     }
 
-    // Depth write and blending.
+    if constexpr (kOutput == FragmentOutput::AppendToLists) {
+        appendQueue(queue, n, shaded, kept, state, target, stats, observer);
+        return;
+    }
     const DepthState depth = state.depth;
     for (int lane = 0; lane < n; ++lane) {
         const int x = queue.x[lane], y = queue.y[lane];
@@ -254,7 +297,7 @@ void shadeQueue(FragmentQueue& queue, const DrawState& state, const typename S::
 // The covered pixels of one block: barycentrics, depth, and the depth test (before shading: the shader
 // cannot change depth, so testing early gives the same image and skips hidden fragments). Fragments
 // that pass go to the queue, which is shaded whenever it holds eight.
-template <Shader S, class Observer>
+template <Shader S, FragmentOutput kOutput, class Observer>
 void depthTestBlock(const TriangleSetup& setup, const CoverageBlock& block, FragmentQueue& queue,
                     const DrawState& state, const typename S::Uniforms& uniforms, Framebuffer& target,
                     DrawStats& stats, Observer& observer) {
@@ -288,7 +331,7 @@ void depthTestBlock(const TriangleSetup& setup, const CoverageBlock& block, Frag
 
         // A queued fragment at one of these pixels must reach the framebuffer before they are tested.
         if (queue.count && queue.holdsAny(y, block.x, rowMask))
-            shadeQueue<S>(queue, state, uniforms, target, stats, observer);
+            shadeQueue<S, kOutput>(queue, state, uniforms, target, stats, observer);
 
         float* depthRow = &target.depth(block.x, y);
         unsigned passed = rowMask;
@@ -336,7 +379,8 @@ void depthTestBlock(const TriangleSetup& setup, const CoverageBlock& block, Frag
                 for (int k = 0; k < setup.varyingCount; ++k)
                     queue.batch.varyings[k][slot] = varyings[k];
             }
-            if (queue.count == kBlockSize) shadeQueue<S>(queue, state, uniforms, target, stats, observer);
+            if (queue.count == kBlockSize)
+                shadeQueue<S, kOutput>(queue, state, uniforms, target, stats, observer);
         }
     }
 }
@@ -354,6 +398,8 @@ DrawStats draw(const DrawState& state, const typename S::Uniforms& uniforms,
     using ObserverType = std::remove_reference_t<Observer>;
     constexpr bool kObserving = ObserverType::enabled;
     validateDraw(state, target, vertices.size(), indices, context.tileSize);
+    const bool appending = state.output == FragmentOutput::AppendToLists;
+    if (appending) target.fragmentLists().prepare(target.width(), target.height(), context.tileSize);
     ThreadPool& pool = context.pool;
     auto forEach = [&](std::size_t count, const auto& body) {
         if constexpr (kObserving) {
@@ -408,10 +454,14 @@ DrawStats draw(const DrawState& state, const typename S::Uniforms& uniforms,
         });
 
         // Back end: tiles in parallel; inside a tile, chunk after chunk, so triangles keep their order.
-        forEach(static_cast<std::size_t>(grid.count()), [&](std::size_t tile, int thread) {
+        // The back end is compiled for each FragmentOutput (shadeQueue): the choice is made per tile.
+        auto drawTile = [&](auto output, std::size_t tile, int thread) {
+            constexpr FragmentOutput kOutput = decltype(output)::value;
             const PixelRect rect = grid.tileRect(static_cast<int>(tile));
             DrawStats& stats = context.threadStats[static_cast<std::size_t>(thread)];
             detail::FragmentQueue queue;
+            if constexpr (kOutput == FragmentOutput::AppendToLists)
+                queue.lists = target.fragmentLists().writer(rect.minX, rect.minY);
             for (std::size_t c = 0; c < chunkCount; ++c) {
                 const SetupChunk& chunk = context.chunks[c];
                 const std::vector<std::uint32_t>& bin = chunk.bins[tile];
@@ -426,12 +476,19 @@ DrawStats draw(const DrawState& state, const typename S::Uniforms& uniforms,
                     }
                     const TriangleSetup& setup = chunk.setups[bin[k]];
                     rasterizeBlocks(setup, rect, [&](const CoverageBlock& block) {
-                        detail::depthTestBlock<S>(setup, block, queue, state, uniforms, target, stats,
-                                                  observer);
+                        detail::depthTestBlock<S, kOutput>(setup, block, queue, state, uniforms, target,
+                                                           stats, observer);
                     });
                 }
             }
-            detail::shadeQueue<S>(queue, state, uniforms, target, stats, observer);
+            detail::shadeQueue<S, kOutput>(queue, state, uniforms, target, stats, observer);
+        };
+        forEach(static_cast<std::size_t>(grid.count()), [&](std::size_t tile, int thread) {
+            if (appending)
+                drawTile(std::integral_constant<FragmentOutput, FragmentOutput::AppendToLists>{}, tile,
+                         thread);
+            else
+                drawTile(std::integral_constant<FragmentOutput, FragmentOutput::Blend>{}, tile, thread);
         });
         for (std::size_t c = 0; c < chunkCount; ++c)
             total += context.chunks[c].stats;

@@ -50,6 +50,10 @@ std::ostream& operator<<(std::ostream& os, BlendMode mode) {
     return os << "?";
 }
 
+std::ostream& operator<<(std::ostream& os, FragmentOutput output) {
+    return os << (output == FragmentOutput::Blend ? "blend" : "append to fragment lists");
+}
+
 std::ostream& operator<<(std::ostream& os, const DrawState& s) {
     const Viewport& vp = s.viewport;
     return os << "viewport " << vp.width << "x" << vp.height << " at (" << vp.x << ", " << vp.y
@@ -58,7 +62,7 @@ std::ostream& operator<<(std::ostream& os, const DrawState& s) {
               << s.raster.provokingVertex << "; " << s.raster.subpixelBits << " sub-pixel bits; depth test "
               << (s.depth.testEnabled ? "on" : "off") << " (" << s.depth.compare << ", writes "
               << (s.depth.writeEnabled ? "on" : "off") << "); " << s.interpolation << " interpolation; blend "
-              << s.blend;
+              << s.blend << "; output " << s.output;
 }
 
 }  // namespace facet

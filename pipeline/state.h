@@ -55,10 +55,18 @@ enum class Interpolation : std::uint8_t {
 enum class BlendMode : std::uint8_t {
     Replace,   // c = c_s
     Additive,  // c = c_s + c_d, α = α_s + α_d (GL_ONE, GL_ONE): light adds up (glows, fire)
-    Over,      // c = α_s·c_s + (1 − α_s)·c_d, α = α_s + (1 − α_s)·α_d (Porter–Duff over, straight alpha)
+    Over,  // c = α_s·c_s + (1 − α_s)·c_d, α = α_s + (1 − α_s)·α_d (Porter–Duff over, straight alpha)
     PremultipliedOver,  // c = c_s + (1 − α_s)·c_d, α likewise (c_s already multiplied by α_s; GL_ONE,
                         // GL_ONE_MINUS_SRC_ALPHA)
     Multiply,           // c = c_s ⊗ c_d, α = α_d (GL_DST_COLOR, GL_ZERO): a coloured filter, tinted glass
+};
+
+// Where a draw's fragments go after the fragment shader and the depth test.
+enum class FragmentOutput : std::uint8_t {
+    Blend,          // blended into the colour buffer now, in submission order (DrawState::blend)
+    AppendToLists,  // appended to the pixel's fragment list with DrawState::blend, for
+                    // resolveFragmentLists() to sort by depth and composite (fragment_lists.h):
+                    // exact transparency, whatever the order of the draws and their triangles
 };
 
 // Sub-pixel precision of the rasterizer: window positions are snapped to 1/2^bits of a pixel.
@@ -84,6 +92,7 @@ struct DrawState {
     DepthState depth;
     Interpolation interpolation = Interpolation::PerspectiveCorrect;
     BlendMode blend = BlendMode::Replace;
+    FragmentOutput output = FragmentOutput::Blend;
 };
 
 std::ostream& operator<<(std::ostream& os, CullMode mode);
@@ -92,6 +101,7 @@ std::ostream& operator<<(std::ostream& os, ProvokingVertex vertex);
 std::ostream& operator<<(std::ostream& os, CompareOp op);
 std::ostream& operator<<(std::ostream& os, Interpolation mode);
 std::ostream& operator<<(std::ostream& os, BlendMode mode);
+std::ostream& operator<<(std::ostream& os, FragmentOutput output);
 std::ostream& operator<<(std::ostream& os, const DrawState& state);
 
 }  // namespace facet

@@ -18,6 +18,7 @@ DrawStats& DrawStats::operator+=(const DrawStats& o) {
     fragmentsDepthFailed += o.fragmentsDepthFailed;
     fragmentsDiscarded += o.fragmentsDiscarded;
     fragmentsWritten += o.fragmentsWritten;
+    fragmentsStored += o.fragmentsStored;
     return *this;
 }
 
@@ -94,6 +95,10 @@ std::ostream& operator<<(std::ostream& os, FragmentFate fate) {
             return os << "failed the depth test";
         case FragmentFate::Discarded:
             return os << "discarded by the fragment shader";
+        case FragmentFate::Stored:
+            return os << "stored in the pixel's fragment list";
+        case FragmentFate::Dropped:
+            return os << "dropped: its tile's fragment pool is full";
     }
     return os << "?";
 }
@@ -101,7 +106,7 @@ std::ostream& operator<<(std::ostream& os, FragmentFate fate) {
 std::ostream& operator<<(std::ostream& os, const FragmentEvent& e) {
     os << "fragment (" << e.x << ", " << e.y << ") of triangle " << e.triangle << ": depth " << e.depth
        << " vs stored " << e.depthBefore << ", " << e.fate;
-    if (e.fate == FragmentFate::Written) {
+    if (e.fate == FragmentFate::Written || e.fate == FragmentFate::Stored) {
         print(os << "; shaded ", e.shaded);
         print(os << ", colour ", e.colorBefore);
         print(os << " -> ", e.colorAfter);
@@ -135,7 +140,7 @@ std::ostream& operator<<(std::ostream& os, const DrawStats& s) {
               << s.trianglesZeroArea << " zero-area, " << s.trianglesMissingSamples
               << " between pixel centres, " << s.trianglesRasterized << " rasterized), " << s.fragmentsShaded
               << " fragments shaded (" << s.fragmentsDepthFailed << " failed depth, " << s.fragmentsDiscarded
-              << " discarded, " << s.fragmentsWritten << " written)";
+              << " discarded, " << s.fragmentsWritten << " written, " << s.fragmentsStored << " stored)";
 }
 
 }  // namespace facet

@@ -152,7 +152,9 @@ struct PixelRect {
 // ---- Fragment → output -------------------------------------------------------------------------------
 
 // What happened to one fragment (a pixel history verdict, in the step mode's vocabulary).
-enum class FragmentFate : std::uint8_t { Written, DepthFailed, Discarded };
+// Stored: appended to the pixel's fragment list (FragmentOutput::AppendToLists), the colour buffer
+// untouched until the lists are resolved; Dropped: not stored, its tile's node pool being full.
+enum class FragmentFate : std::uint8_t { Written, DepthFailed, Discarded, Stored, Dropped };
 
 struct FragmentEvent {
     int x = 0, y = 0;
@@ -190,6 +192,7 @@ struct DrawStats {
     std::uint64_t fragmentsDepthFailed = 0;
     std::uint64_t fragmentsDiscarded = 0;
     std::uint64_t fragmentsWritten = 0;
+    std::uint64_t fragmentsStored = 0;  // appended to fragment lists (FragmentOutput::AppendToLists)
 
     DrawStats& operator+=(const DrawStats& other);
 };
