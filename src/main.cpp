@@ -177,6 +177,16 @@ void printFrameStats(int frame, const facet::PreparedScene& prepared, const face
         }
         std::cout << "; " << stats.transparentRuns << (stats.transparentRuns == 1 ? " draw" : " draws")
                   << " in the transparent pass";
+        if (stats.fragmentLists.fragments > 0) {
+            char text[160];
+            std::snprintf(
+                text, sizeof text,
+                "; exact: %llu fragments in per-pixel lists (longest %u), %.1f MiB held, resolved in %.2f ms",
+                static_cast<unsigned long long>(stats.fragmentLists.fragments),
+                stats.fragmentLists.longestList, double(stats.fragmentLists.bytesHeld) / (1024.0 * 1024.0),
+                stats.resolveMilliseconds);
+            std::cout << text;
+        }
     }
     std::cout << "\n";
 }

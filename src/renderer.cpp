@@ -353,7 +353,8 @@ float depthKey(const PreparedDraw& d, std::uint32_t triangle, SortKey key) {
 
 }  // namespace
 
-std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, FrameMemory& memory, FrameStats& stats) {
+std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, TransparencyMode mode, FrameMemory& memory,
+                                   FrameStats& stats) {
     std::vector<PlannedDraw> plan;
     // Opaque draws, with depth writes, in file order.
     for (std::uint32_t k = 0; k < prepared.draws.size(); ++k)
@@ -367,9 +368,10 @@ std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, FrameMemory& m
         DrawState state = prepared.state;
         state.depth.writeEnabled = false;
         state.blend = prepared.draws[k].uniforms.blend;
+        if (mode == TransparencyMode::Exact) state.output = FragmentOutput::AppendToLists;
         return state;
     };
-    if (options.mode != TransparencyMode::Sorted) {
+    if (mode != TransparencyMode::Sorted) {
         for (std::uint32_t k = 0; k < prepared.draws.size(); ++k)
             if (prepared.draws[k].transparent) {
                 plan.push_back({k, prepared.draws[k].indices, transparentState(k)});
@@ -420,7 +422,8 @@ DrawStats drawSurface(const PreparedDraw& d, const PlannedDraw& call, const Surf
 FrameStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawContext& context,
                        FrameMemory& memory, std::uint8_t terms) {
     FrameStats stats;
-    const std::vector<PlannedDraw> plan = planFrame(prepared, memory, stats);
+    const TransparencyMode mode = prepared.scene.transparency.mode;
+    const std::vector<PlannedDraw> plan = planFrame(prepared, mode, memory, stats);
     target.clear(prepared.clearColor, 1.0f, context.pool);
     for (const PlannedDraw& call : plan) {
         const PreparedDraw& d = prepared.draws[call.draw];
@@ -442,6 +445,13 @@ FrameStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawC
                 stats.draw += drawSurface<ShadingFrequency::Phong>(d, call, *uniforms, target, context);
                 break;
         }
+    }
+    // Exact transparency: every pixel's fragments sorted by depth and composited, farthest first.
+    if (mode == TransparencyMode::Exact && !prepared.transparentTriangles.empty()) {
+        const auto start = std::chrono::steady_clock::now();
+        stats.fragmentLists = resolveFragmentLists(target, context.pool);
+        stats.resolveMilliseconds =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     }
     return stats;
 }
@@ -473,10 +483,14 @@ GlScene toGlScene(const PreparedScene& prepared) {
     const bool smoothSpot = std::any_of(gl.lights.begin(), gl.lights.end(), [](const LightParams& l) {
         return l.kind == LightKind::Spot && l.spotProfile == SpotProfile::Smooth;
     });
-    // The draws in the order a frame draws them (the transparent ones sorted from scratch).
+    // The draws in the order a frame draws them (the transparent ones sorted from scratch). OpenGL has no
+    // fragment lists: exact transparency is compared with the sorted order.
     FrameMemory memory;
     FrameStats stats;
-    for (const PlannedDraw& call : planFrame(prepared, memory, stats)) {
+    const TransparencyMode mode = prepared.scene.transparency.mode == TransparencyMode::Exact
+                                      ? TransparencyMode::Sorted
+                                      : prepared.scene.transparency.mode;
+    for (const PlannedDraw& call : planFrame(prepared, mode, memory, stats)) {
         const PreparedDraw& d = prepared.draws[call.draw];
         GlDraw out;
         out.vertices = d.vertices;

@@ -76,6 +76,8 @@ struct FrameStats {
     SortStats sort;                   // transparent triangles sorted this frame (elements = 0: none)
     double sortMilliseconds = 0;      // keys and sort
     std::size_t transparentRuns = 0;  // draw calls of the transparent pass
+    FragmentListStats fragmentLists;  // exact transparency: fragments stored, the longest list, bytes held
+    double resolveMilliseconds = 0;   // exact transparency: sorting and compositing the lists
 };
 
 // One draw call of a frame, in order: an opaque part whole, or a run of consecutive transparent
@@ -86,10 +88,11 @@ struct PlannedDraw {
     DrawState state;                         // depth writes off and blending for transparent runs
 };
 
-// The frame's draw calls: opaque draws first, then the transparent triangles in the order the scene's
-// transparency mode gives (sorted back to front, file order, or file order into fragment lists).
-// Fills stats.sort and sortMilliseconds.
-std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, FrameMemory& memory, FrameStats& stats);
+// The frame's draw calls: opaque draws first, then the transparent triangles in the order `mode` gives
+// (sorted back to front; file order; file order into the framebuffer's fragment lists, to be resolved
+// after the last one). Fills stats.sort and sortMilliseconds.
+std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, TransparencyMode mode, FrameMemory& memory,
+                                   FrameStats& stats);
 
 // Clears `target` to the scene's background and draws every object. `target` must be scene-sized.
 // `terms` (LightingTerm bits) selects the lighting terms drawn: all of them, or one for a component image.

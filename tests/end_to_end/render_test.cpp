@@ -272,6 +272,50 @@ TEST(Render, TextureAlphaMakesThePartTransparent) {
     EXPECT_NEAR(centre.r, 0.5f, 2e-3f);  // white at α = 0.5 over black (the 8-bit alpha is 128/255)
 }
 
+// Two half-transparent quads that cross each other along x = 0 (z = x/2 and z = −x/2): left of the
+// crossing the second is nearer, right of it the first. No order of their triangles is right on both
+// sides; exact transparency (per-pixel fragment lists) is, and gives the over operator of the nearer
+// surface over the farther one at every pixel.
+TEST(Render, ExactTransparencyIsRightWhereSortingCannotBe) {
+    TempDir dir;
+    const auto quad = [&](const char* name, float slope, vec3 color) {
+        dir.write(std::string(name) + ".mtl", "newmtl m\nKa 0 0 0\nKd 0 0 0\nKs 0 0 0\nKe " +
+                                                  std::to_string(color.r) + " " + std::to_string(color.g) +
+                                                  " " + std::to_string(color.b) + "\nd 0.5\n");
+        const std::string zl = std::to_string(-slope), zr = std::to_string(slope);
+        return dir.write(std::string(name) + ".obj",
+                         "mtllib " + std::string(name) + ".mtl\nusemtl m\nv -1 -1 " + zl + "\nv 1 -1 " + zr +
+                             "\nv 1 1 " + zr + "\nv -1 1 " + zl + "\nf 1 2 3 4\n");
+    };
+    const vec3 red(1.0f, 0.0f, 0.0f), blue(0.0f, 0.0f, 1.0f);
+    Scene scene = headOnScene(quad("rising", 0.5f, red));
+    ObjectSpec falling;
+    falling.model = quad("falling", -0.5f, blue);
+    scene.objects.push_back(falling);
+    scene.lighting.preset = LightingPreset::GL;
+    scene.background = vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    scene.pipeline.cull = CullChoice::None;
+
+    const auto over = [](vec3 near, vec3 far) { return 0.5f * near + 0.5f * (0.5f * far); };
+    const vec3 left = over(blue, red), right = over(red, blue);  // expected either side of the crossing
+    scene.transparency.mode = TransparencyMode::Exact;
+    const LinearImage exact = renderScene(scene);
+    scene.transparency.mode = TransparencyMode::Sorted;
+    const LinearImage sorted = renderScene(scene);
+    int sortedWrong = 0;
+    for (int y : {14, 24, 34}) {
+        for (int x : {24, 28}) {  // left of the crossing (the image centre is x = 32)
+            EXPECT_NEAR(glm::length(vec3(exact.at(x, y)) - left), 0.0f, 1e-5f) << x << ", " << y;
+            sortedWrong += glm::length(vec3(sorted.at(x, y)) - left) > 0.1f;
+        }
+        for (int x : {36, 40}) {
+            EXPECT_NEAR(glm::length(vec3(exact.at(x, y)) - right), 0.0f, 1e-5f) << x << ", " << y;
+            sortedWrong += glm::length(vec3(sorted.at(x, y)) - right) > 0.1f;
+        }
+    }
+    EXPECT_GT(sortedWrong, 0) << "sorting per triangle should get some of these pixels wrong";
+}
+
 // Each bundled model, and the classic ones in ../shared/models, render with every default: the corner
 // holds the background, the centre is the model, every value is finite.
 class BundledModel : public ::testing::TestWithParam<std::string> {};
