@@ -25,12 +25,22 @@ struct BenchOptions {
 
     // --sort
     bool sort = false;
+
+    // --transparency
+    bool transparency = false;
+    float degreesPerFrame = 1.0f;  // the turntable's step
 };
 
 // Renders options.frames frames on options.threads threads and prints a report to `out`:
 // the median, minimum and maximum milliseconds per frame, the triangle and fragment counts, and the
 // cost of clearing the framebuffer alone (the floor under any frame). Throws InputError on bad input.
 void runBench(const BenchOptions& options, std::ostream& out);
+
+// The transparency modes side by side: options.model with every surface half transparent (opacity 0.5),
+// on a turntable of options.degreesPerFrame per frame, drawn with "sorted" (insertion sort with memory),
+// "unsorted" and "exact" (per-pixel fragment lists): median ms per frame, the sort's and the resolve's
+// share, and the memory the fragment lists hold. Throws InputError on bad input.
+void runTransparencyBench(const BenchOptions& options, std::ostream& out);
 
 // Renders each benchmark scene through Facet and through Mesa llvmpipe (OSMesa, when it can be loaded),
 // frames alternating, on the same number of threads, and prints per scene the median ms per frame of

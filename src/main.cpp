@@ -436,6 +436,13 @@ int main(int argc, char** argv) {
         "Time the transparency sorter on a turntable of MODEL (at least 50,000 triangles): "
         "insertion sort with memory against std::sort, 60 frames per step (unless --frames)");
 
+    benchCommand->add_flag(
+        "--transparency", benchOptions.transparency,
+        "Time the transparency modes (sorted, unsorted, exact) on a turntable of MODEL made "
+        "half transparent");
+    benchCommand->add_option("--degrees-per-frame", benchOptions.degreesPerFrame,
+                             "With --transparency: the turntable's step (default 1)");
+
     if (argc == 1) {  // no command at all: show what there is to do
         std::cerr << app.help();
         return 2;
@@ -458,6 +465,16 @@ int main(int argc, char** argv) {
         if (*renderCommand) return render(renderArgs);
         if (*compareCommand) return compare(compareArgs);
         if (*benchCommand) {
+            if (benchOptions.transparency) {
+                for (const char* option : {"--vs-mesa", "--quick", "--csv", "--chart", "--sort"})
+                    if (benchCommand->count(option))
+                        throw facet::InputError(std::string(option) + " does not go with --transparency");
+                checkSize(benchOptions.width, benchOptions.height);
+                facet::runTransparencyBench(benchOptions, std::cout);
+                return 0;
+            }
+            if (benchCommand->count("--degrees-per-frame"))
+                throw facet::InputError("--degrees-per-frame goes with --transparency");
             if (benchOptions.sort) {
                 // The camera frames MODEL as facet render does; the sort runs on one thread.
                 for (const char* option :
