@@ -144,10 +144,10 @@ struct LightingTerms {
 // behind the surface). N is used as given (normalised, not flipped towards the viewer).
 // `diffuseColor` is m_diffuse per lane (a texture may vary it); the overload below uses the material's.
 template <class F, class V3 = LaneVec3<F>>
-LightingTerms<V3> standardLighting(const V3& position, const V3& normal, const vec3& eye,
-                                   const PhongMaterial& m, const V3& diffuseColor, const vec3& globalAmbient,
-                                   std::span<const LightParams> lights,
-                                   SpecularModel specularModel = SpecularModel::BlinnPhong) {
+[[gnu::always_inline]] inline LightingTerms<V3> standardLighting(
+    const V3& position, const V3& normal, const vec3& eye, const PhongMaterial& m, const V3& diffuseColor,
+    const vec3& globalAmbient, std::span<const LightParams> lights,
+    SpecularModel specularModel = SpecularModel::BlinnPhong) {
     const V3 N = safeNormalize<F, V3>(normal);
     const V3 V = safeNormalize<F, V3>(eye - position);
     LightingTerms<V3> terms{V3(m.emission), V3(globalAmbient * m.ambient), V3(vec3(0.0f)), V3(vec3(0.0f))};

@@ -66,7 +66,8 @@ struct SurfaceUniforms {
 // two-sided flip, and only the selected terms (the others are zero). P and N are in eye space; N need
 // not be unit length. `albedo` is m_diffuse or c_base, per lane.
 template <class F, class V3>
-LightingTerms<V3> surfaceTerms(const V3& P, const V3& normal, const V3& albedo, const SurfaceUniforms& u) {
+[[gnu::always_inline]] inline LightingTerms<V3> surfaceTerms(const V3& P, const V3& normal, const V3& albedo,
+                                                             const SurfaceUniforms& u) {
     V3 N = normal;
     if (u.twoSidedFlip) N = select(dot(N, -P) < 0.0f, -N, N);
     const vec3 eye(0.0f);
@@ -101,7 +102,7 @@ LightingTerms<V3> surfaceTerms(const V3& P, const V3& normal, const V3& albedo, 
 //   PremultipliedOver, Additive: (α·c, α)          premultiplied (Additive: c_d + α·c)
 //   Multiply:                    (mix(1, c, α), α)  a filter that is clear (1) where α = 0
 template <class F, class V3>
-V3 surfaceOutput(V3 c, F alpha, const V3& P, const SurfaceUniforms& u) {
+[[gnu::always_inline]] inline V3 surfaceOutput(V3 c, F alpha, const V3& P, const SurfaceUniforms& u) {
     c = applyFog<F, V3>(u.fog, c, P);
     switch (u.blend) {
         case BlendMode::Replace:
