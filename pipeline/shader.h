@@ -62,6 +62,20 @@ constexpr int flatVaryingFloats() {
     }
 }
 
+// A shader may also shade eight vertices at once, to run per-vertex work (Gouraud lighting) in eight
+// lanes as fragmentBatch does for fragments:
+//   static void vertexBatch(const Attributes* in, const Uniforms&, VertexOut<Varyings>* out);
+// reads in[0..7] and writes out[0..7], each exactly what vertex() gives for it (up to rounding). The
+// vertex stage then calls it for groups of eight; a last, shorter group is padded with copies of its
+// last vertex, whose results are dropped.
+inline constexpr int kVertexBatch = 8;
+template <class S>
+concept BatchVertexShader = Shader<S> &&
+    requires(const typename S::Attributes* in, const typename S::Uniforms& u,
+             VertexOut<typename S::Varyings>* out) {
+    { S::vertexBatch(in, u, out) } -> std::same_as<void>;
+};
+
 // A shader whose fragment function returns std::optional<vec4> may discard fragments.
 template <Shader S>
 inline constexpr bool kMayDiscard =

@@ -3,6 +3,7 @@
 // varyings and the clip outcode of every vertex), reused from draw to draw without reallocating.
 #pragma once
 
+#include <algorithm>
 #include <cstring>
 #include <span>
 
@@ -27,12 +28,32 @@ template <Shader S>
 void shadeVertices(std::span<const typename S::Attributes> attributes, const typename S::Uniforms& uniforms,
                    std::size_t begin, std::size_t end, ShadedVertices& out) {
     constexpr int kFloats = kVaryingFloatCount<typename S::Varyings>;
-    for (std::size_t i = begin; i < end; ++i) {
-        const VertexOut<typename S::Varyings> shaded = S::vertex(attributes[i], uniforms);
+    const auto store = [&](std::size_t i, const VertexOut<typename S::Varyings>& shaded) {
         out.positions[i] = shaded.position;
         if constexpr (kFloats > 0)
             std::memcpy(out.varyings.data() + i * kFloats, &shaded.varyings, kFloats * sizeof(float));
         out.outcodes[i] = computeOutcode(shaded.position);
+    };
+    if constexpr (BatchVertexShader<S>) {
+        // Eight at a time; a vertex's result does not depend on which group or lane it lands in.
+        VertexOut<typename S::Varyings> shaded[kVertexBatch];
+        std::size_t i = begin;
+        for (; i + kVertexBatch <= end; i += kVertexBatch) {
+            S::vertexBatch(&attributes[i], uniforms, shaded);
+            for (int lane = 0; lane < kVertexBatch; ++lane)
+                store(i + lane, shaded[lane]);
+        }
+        if (i < end) {
+            typename S::Attributes group[kVertexBatch];
+            for (int lane = 0; lane < kVertexBatch; ++lane)
+                group[lane] = attributes[std::min(i + lane, end - 1)];
+            S::vertexBatch(group, uniforms, shaded);
+            for (std::size_t lane = 0; i + lane < end; ++lane)
+                store(i + lane, shaded[lane]);
+        }
+    } else {
+        for (std::size_t i = begin; i < end; ++i)
+            store(i, S::vertex(attributes[i], uniforms));
     }
 }
 

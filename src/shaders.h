@@ -218,6 +218,31 @@ struct PerVertexSurfaceShader {
         return {u.clipFromObject * vec4(in.position, 1.0f), out};
     }
 
+    // The same for eight vertices: the lighting in eight lanes, the matrices one vertex at a time.
+    static void vertexBatch(const Attributes* in, const Uniforms& u, VertexOut<Varyings>* out) {
+        Vec3x8 P, N;
+        for (int lane = 0; lane < kVertexBatch; ++lane) {
+            const vec3 p(u.viewFromObject * vec4(in[lane].position, 1.0f));
+            const vec3 n = u.normalFromObject * in[lane].normal;
+            P.x[lane] = p.x;
+            P.y[lane] = p.y;
+            P.z[lane] = p.z;
+            N.x[lane] = n.x;
+            N.y[lane] = n.y;
+            N.z[lane] = n.z;
+        }
+        const LightingTerms<Vec3x8> t = surfaceTerms<Float8, Vec3x8>(P, N, Vec3x8(u.albedo()), u);
+        Vec3x8 modulated = t.diffuse, added = t.emission + t.ambient + t.specular;
+        if (u.clampColor) {
+            modulated = detail::clamp01(t.sum());
+            added = Vec3x8(vec3(0.0f));
+        }
+        const auto at = [](const Vec3x8& v, int lane) { return vec3(v.x[lane], v.y[lane], v.z[lane]); };
+        for (int lane = 0; lane < kVertexBatch; ++lane)
+            out[lane] = {u.clipFromObject * vec4(in[lane].position, 1.0f),
+                         {at(modulated, lane), at(added, lane), at(P, lane), in[lane].uv}};
+    }
+
     static vec4 fragment(const Varyings& in, const Uniforms& u) {
         vec3 modulated = in.modulated;
         float alpha = u.opacity;

@@ -83,6 +83,40 @@ TEST(SurfaceShader, BatchMatchesScalarForEveryModelAndFrequency) {
     }
 }
 
+// The per-vertex shaders' eight-lane vertexBatch gives what vertex() gives, lane by lane, for every
+// model, with and without the GL clamp.
+TEST(SurfaceShader, VertexBatchMatchesVertex) {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    SurfaceUniforms uniforms = threeLights();
+    uniforms.viewFromObject = glm::translate(mat4(1.0f), vec3(0.1f, -0.2f, -3.0f));
+    uniforms.clipFromObject = glm::perspective(1.0f, 1.3f, 0.1f, 10.0f) * uniforms.viewFromObject;
+    using Gouraud = SurfaceShader<ShadingFrequency::Gouraud>;
+    static_assert(BatchVertexShader<Gouraud> && BatchVertexShader<SurfaceShader<ShadingFrequency::Flat>>);
+    for (ReflectionModel model :
+         {ReflectionModel::Phong, ReflectionModel::BlinnPhong, ReflectionModel::CookTorrance}) {
+        for (bool clamp : {false, true}) {
+            uniforms.reflection = model;
+            uniforms.clampColor = clamp;
+            MeshVertex in[kVertexBatch];
+            for (MeshVertex& v : in)
+                v = {vec3(u(rng), u(rng), u(rng)), normalize(vec3(u(rng), u(rng), 1.0f)),
+                     vec2(u(rng), u(rng))};
+            VertexOut<Gouraud::Varyings> out[kVertexBatch];
+            Gouraud::vertexBatch(in, uniforms, out);
+            for (int lane = 0; lane < kVertexBatch; ++lane) {
+                const VertexOut<Gouraud::Varyings> one = Gouraud::vertex(in[lane], uniforms);
+                EXPECT_EQ(out[lane].position, one.position);
+                const float* a = reinterpret_cast<const float*>(&out[lane].varyings);
+                const float* b = reinterpret_cast<const float*>(&one.varyings);
+                for (int k = 0; k < kVaryingFloatCount<Gouraud::Varyings>; ++k)
+                    EXPECT_NEAR(a[k], b[k], 2e-5f * (1.0f + std::abs(b[k])))
+                        << "float " << k << ", lane " << lane;
+            }
+        }
+    }
+}
+
 // The vertex shader of the per-vertex shaders lights the vertex; the fragment shader only adds up.
 TEST(SurfaceShader, PerVertexColourIsTheLightingAtTheVertex) {
     SurfaceUniforms u = threeLights();
@@ -211,8 +245,7 @@ TEST(ShadingFrequency, GouraudLosesAHighlightBetweenVerticesThatPhongShadingKeep
         const float perVertex = brightestSpecular<ShadingFrequency::Gouraud>(u);
         const float perPixel = brightestSpecular<ShadingFrequency::Phong>(u);
         EXPECT_LT(perVertex, 1e-3f) << "Gouraud: the corners see no highlight, so no pixel does";
-        EXPECT_GT(perPixel, 0.9f)
-            << "Phong shading: the pixels near the centre see the light's mirror image";
+        EXPECT_GT(perPixel, 0.9f) << "Phong shading: the pixels near the centre see the light's mirror image";
     }
 }
 
