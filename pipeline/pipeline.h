@@ -198,40 +198,6 @@ struct FragmentQueue {
     }
 };
 
-// The depth write and the append to the pixel's fragment list for the n shaded fragments of the
-// queue (those whose bit is set in `kept`; the others were discarded), for AppendToLists draws.
-template <class Observer>
-void appendQueue(const FragmentQueue& queue, int n, const vec4* shaded, unsigned kept, const DrawState& state,
-                 Framebuffer& target, DrawStats& stats, Observer& observer) {
-    constexpr bool kObserving = Observer::enabled;
-    const DepthState depth = state.depth;
-    FragmentLists::TileWriter lists = queue.lists;
-    for (int lane = 0; lane < n; ++lane) {
-        const int x = queue.x[lane], y = queue.y[lane];
-        FragmentEvent event;
-        if constexpr (kObserving) {
-            event = FragmentEvent{x, y, queue.triangle[lane], queue.z[lane], target.depth(x, y)};
-            event.colorBefore = event.colorAfter = target.color(x, y);
-        }
-        if (!(kept & (1u << lane))) {
-            ++stats.fragmentsDiscarded;
-            if constexpr (kObserving) {
-                event.fate = FragmentFate::Discarded;
-                observer.onFragment(event);
-            }
-            continue;
-        }
-        if (depth.testEnabled && depth.writeEnabled) target.depth(x, y) = queue.z[lane];
-        const bool stored = lists.append(x, y, shaded[lane], queue.z[lane], state.blend);
-        stats.fragmentsStored += stored;
-        if constexpr (kObserving) {
-            event.fate = stored ? FragmentFate::Stored : FragmentFate::Dropped;
-            event.shaded = shaded[lane];
-            observer.onFragment(event);
-        }
-    }
-}
-
 // The fragment shader, then the depth write and blending (or appending to the fragment lists) for the
 // queued fragments. The back end is compiled once for each FragmentOutput, and draw() chooses per draw,
 // so the blending loop is exactly what it would be without fragment lists.
@@ -257,14 +223,12 @@ void shadeQueue(FragmentQueue& queue, const DrawState& state, const typename S::
         for (int lane = 0; lane < n; ++lane) {
             for (int k = 0; k < kVaryingFloatCount<typename S::Varyings>; ++k)
                 varyings[k] = queue.batch.varyings[k][lane];
+            shaded[lane] = vec4(0.0f);  // what a discarded lane holds (never read)
             if (!shadeFragment<S>(varyings, uniforms, shaded[lane])) kept &= ~(1u << lane);
         }
     }
 
-    if constexpr (kOutput == FragmentOutput::AppendToLists) {
-        appendQueue(queue, n, shaded, kept, state, target, stats, observer);
-        return;
-    }
+    // Depth write, then blending into the colour buffer or appending to the pixel's fragment list.
     const DepthState depth = state.depth;
     for (int lane = 0; lane < n; ++lane) {
         const int x = queue.x[lane], y = queue.y[lane];
@@ -282,13 +246,21 @@ void shadeQueue(FragmentQueue& queue, const DrawState& state, const typename S::
             continue;
         }
         if (depth.testEnabled && depth.writeEnabled) target.depth(x, y) = queue.z[lane];
-        vec4& destination = target.color(x, y);
-        destination = blend(state.blend, shaded[lane], destination);
-        ++stats.fragmentsWritten;
+        if constexpr (kOutput == FragmentOutput::AppendToLists) {
+            const bool stored = queue.lists.append(x, y, shaded[lane], queue.z[lane], state.blend);
+            stats.fragmentsStored += stored;
+            if constexpr (kObserving) event.fate = stored ? FragmentFate::Stored : FragmentFate::Dropped;
+        } else {
+            vec4& destination = target.color(x, y);
+            destination = blend(state.blend, shaded[lane], destination);
+            ++stats.fragmentsWritten;
+            if constexpr (kObserving) {
+                event.fate = FragmentFate::Written;
+                event.colorAfter = destination;
+            }
+        }
         if constexpr (kObserving) {
-            event.fate = FragmentFate::Written;
             event.shaded = shaded[lane];
-            event.colorAfter = destination;
             observer.onFragment(event);
         }
     }

@@ -50,12 +50,22 @@ double median(std::vector<double> values) {
 
 }  // namespace
 
-void runBench(const BenchOptions& options, std::ostream& out) {
+namespace {
+
+// The scene a benchmark draws: options.model (an OBJ file or a scene) at the options' size.
+Scene benchScene(const BenchOptions& options) {
     if (options.frames < 1) throw InputError("--frames must be at least 1");
-    const bool isScene = options.model.extension() == ".json";
-    Scene scene = isScene ? loadScene(options.model) : sceneForModel(options.model);
+    Scene scene =
+        options.model.extension() == ".json" ? loadScene(options.model) : sceneForModel(options.model);
     scene.width = options.width;
     scene.height = options.height;
+    return scene;
+}
+
+}  // namespace
+
+void runBench(const BenchOptions& options, std::ostream& out) {
+    const Scene scene = benchScene(options);
     const PreparedScene prepared = prepareScene(scene);
 
     Framebuffer framebuffer(scene.width, scene.height);
@@ -94,11 +104,7 @@ void runBench(const BenchOptions& options, std::ostream& out) {
 // facet bench --transparency
 
 void runTransparencyBench(const BenchOptions& options, std::ostream& out) {
-    if (options.frames < 1) throw InputError("--frames must be at least 1");
-    const bool isScene = options.model.extension() == ".json";
-    Scene scene = isScene ? loadScene(options.model) : sceneForModel(options.model);
-    scene.width = options.width;
-    scene.height = options.height;
+    Scene scene = benchScene(options);
     scene.pipeline.cull = CullChoice::None;  // see-through: the back faces show
     for (ObjectSpec& object : scene.objects)
         object.material.opacity = 0.5f;

@@ -12,18 +12,6 @@ namespace facet {
 
 namespace {
 
-const char* programName(GlProgram program) {
-    switch (program) {
-        case GlProgram::FixedFunction:
-            return "fixed function";
-        case GlProgram::PerVertex:
-            return "GLSL per vertex";
-        case GlProgram::PerPixel:
-            return "GLSL per pixel";
-    }
-    return "?";
-}
-
 const char* frequencyName(ShadingFrequency frequency) {
     switch (frequency) {
         case ShadingFrequency::Flat:

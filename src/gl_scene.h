@@ -22,6 +22,19 @@ enum class GlProgram {
     PerVertex,      // a GLSL program evaluating it at every vertex (Gouraud) or, flat, once per face
 };
 
+// "fixed function", "GLSL per vertex", "GLSL per pixel": for messages and reports.
+inline const char* programName(GlProgram program) {
+    switch (program) {
+        case GlProgram::FixedFunction:
+            return "fixed function";
+        case GlProgram::PerPixel:
+            return "GLSL per pixel";
+        case GlProgram::PerVertex:
+            return "GLSL per vertex";
+    }
+    return "?";
+}
+
 struct GlDraw {
     std::vector<MeshVertex> vertices;    // object space
     std::vector<std::uint32_t> indices;  // three per triangle
@@ -46,7 +59,7 @@ struct GlDraw {
     BlendMode blend = BlendMode::Replace;  // glBlendFunc: Over (SRC_ALPHA, ONE_MINUS_SRC_ALPHA),
                                            // PremultipliedOver (ONE, ONE_MINUS_SRC_ALPHA), Additive (ONE,
                                            // ONE), Multiply (DST_COLOR, ZERO)
-    bool depthWrite = true;  // glDepthMask: off for transparent draws
+    bool depthWrite = true;                // glDepthMask: off for transparent draws
 };
 
 struct GlScene {

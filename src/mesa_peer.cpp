@@ -25,6 +25,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <sstream>
 #include <stdexcept>
 #include <vector>
 
@@ -546,43 +547,15 @@ int blendOutputCode(BlendMode blend) {
     return 0;
 }
 
-const char* programName(GlProgram program) {
-    switch (program) {
-        case GlProgram::FixedFunction:
-            return "FixedFunction";
-        case GlProgram::PerPixel:
-            return "PerPixel";
-        case GlProgram::PerVertex:
-            return "PerVertex";
-    }
-    return "?";
-}
-
-const char* blendName(BlendMode blend) {
-    switch (blend) {
-        case BlendMode::Replace:
-            return "Replace";
-        case BlendMode::Over:
-            return "Over";
-        case BlendMode::PremultipliedOver:
-            return "PremultipliedOver";
-        case BlendMode::Additive:
-            return "Additive";
-        case BlendMode::Multiply:
-            return "Multiply";
-    }
-    return "?";
-}
-
 // What OpenGL's fixed function can draw, checked before any state is set: one line for the message.
 // radialFog: the context has GL_NV_fog_distance.
 void checkFixedFunction(const GlScene& scene, std::size_t drawIndex, bool radialFog) {
     const GlDraw& draw = scene.draws[drawIndex];
-    const std::string where = "GlScene draw " + std::to_string(drawIndex) + " (FixedFunction): ";
+    const std::string where = "GlScene draw " + std::to_string(drawIndex) + " (fixed function): ";
     if (draw.reflection != ReflectionModel::BlinnPhong)
         throw std::invalid_argument(where + "fixed-function lighting is Blinn-Phong only");
     if (draw.blend != BlendMode::Replace && draw.blend != BlendMode::Over)
-        throw std::invalid_argument(where + "blend " + blendName(draw.blend) +
+        throw std::invalid_argument(where + "blend " + (std::ostringstream() << draw.blend).str() +
                                     " needs a shader writing (α·c, α) or (mix(1, c, α), α); fixed function " +
                                     "writes (c, α) only (use GlProgram::PerVertex)");
     const FogParams& fog = scene.fog;

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <optional>
+#include <set>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -170,6 +172,7 @@ PreparedScene prepareScene(const Scene& scene) {
     // Load each model once, even if several objects use it.
     std::map<std::filesystem::path, std::unique_ptr<Mesh>> meshes;
     std::map<std::filesystem::path, Texture*> textures;
+    std::set<const Texture*> texturesWithAlpha;  // see-through somewhere: their parts are transparent
     Bounds sceneBounds{vec3(std::numeric_limits<float>::max()), vec3(std::numeric_limits<float>::lowest())};
     for (const ObjectSpec& object : scene.objects) {
         auto& mesh = meshes[object.model];
@@ -273,6 +276,9 @@ PreparedScene prepareScene(const Scene& scene) {
                         for (vec4& t : owned->texels)
                             t = vec4(linearToSrgb(t.r), linearToSrgb(t.g), linearToSrgb(t.b), t.a);
                     texture = owned.get();
+                    if (std::any_of(owned->texels.begin(), owned->texels.end(),
+                                    [](const vec4& t) { return t.a < 1.0f; }))
+                        texturesWithAlpha.insert(texture);
                     prepared.textures.push_back(std::move(owned));
                 }
                 draw.uniforms.diffuseMap = texture;
@@ -280,9 +286,7 @@ PreparedScene prepareScene(const Scene& scene) {
             extractPart(mesh, part, draw);
             // Transparent: see through it (opacity, a texture's alpha) or blended other than over.
             const bool textureAlpha =
-                draw.uniforms.diffuseMap &&
-                std::any_of(draw.uniforms.diffuseMap->texels.begin(), draw.uniforms.diffuseMap->texels.end(),
-                            [](const vec4& t) { return t.a < 1.0f; });
+                draw.uniforms.diffuseMap && texturesWithAlpha.count(draw.uniforms.diffuseMap);
             draw.transparent = draw.uniforms.opacity < 1.0f || textureAlpha || blend != BlendChoice::Over;
             draw.uniforms.blend = draw.transparent ? blendMode(blend) : BlendMode::Replace;
             // Flat shading lights each face with its own normal; the GL preset keeps OpenGL's rule
@@ -339,16 +343,29 @@ void setTurntable(PreparedScene& prepared, float degrees) {
 
 namespace {
 
-// The sort key of a transparent triangle: its distance along the view direction (−z_eye), of the
-// centroid or of the farthest corner. Larger is farther.
-float depthKey(const PreparedDraw& d, std::uint32_t triangle, SortKey key) {
-    const mat4& m = d.uniforms.viewFromObject;
-    const vec3 row(m[0][2], m[1][2], m[2][2]);  // z_eye = row · p + m[3][2]
-    float z[3];
-    for (int k = 0; k < 3; ++k)
-        z[k] = dot(row, d.vertices[d.indices[3 * triangle + k]].position) + m[3][2];
-    if (key == SortKey::FarthestVertex) return -std::min({z[0], z[1], z[2]});
-    return -(z[0] + z[1] + z[2]) * (1.0f / 3.0f);
+// The sort keys of the transparent triangles: the distance along the view direction (−z_eye) of each
+// triangle's centroid or of its farthest corner; larger is farther. The triangles of one draw are
+// consecutive, so each draw's vertex depths are computed once, then shared by its triangles.
+void depthKeys(const PreparedScene& prepared, SortKey key, FrameMemory& memory) {
+    const std::vector<TransparentTriangle>& triangles = prepared.transparentTriangles;
+    memory.keys.resize(triangles.size());
+    std::uint32_t current = std::numeric_limits<std::uint32_t>::max();
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+        const PreparedDraw& d = prepared.draws[triangles[t].draw];
+        if (triangles[t].draw != current) {
+            current = triangles[t].draw;
+            const mat4& m = d.uniforms.viewFromObject;
+            const vec3 row(m[0][2], m[1][2], m[2][2]);  // z_eye = row · p + m[3][2]
+            memory.vertexDepths.resize(d.vertices.size());
+            for (std::size_t v = 0; v < d.vertices.size(); ++v)
+                memory.vertexDepths[v] = dot(row, d.vertices[v].position) + m[3][2];
+        }
+        const std::uint32_t* corner = &d.indices[3 * triangles[t].triangle];
+        const float z0 = memory.vertexDepths[corner[0]], z1 = memory.vertexDepths[corner[1]],
+                    z2 = memory.vertexDepths[corner[2]];
+        memory.keys[t] =
+            key == SortKey::FarthestVertex ? -std::min({z0, z1, z2}) : -(z0 + z1 + z2) * (1.0f / 3.0f);
+    }
 }
 
 }  // namespace
@@ -382,9 +399,7 @@ std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, TransparencyMo
 
     // Sorted back to front, then cut into runs of consecutive triangles of one draw.
     const auto start = std::chrono::steady_clock::now();
-    memory.keys.resize(triangles.size());
-    for (std::size_t t = 0; t < triangles.size(); ++t)
-        memory.keys[t] = depthKey(prepared.draws[triangles[t].draw], triangles[t].triangle, options.key);
+    depthKeys(prepared, options.key, memory);
     const std::span<const std::uint32_t> order =
         memory.sorter.sort(memory.keys, SortAlgorithm::InsertionWithMemory, stats.sort);
     stats.sortMilliseconds =

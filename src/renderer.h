@@ -68,6 +68,7 @@ void setTurntable(PreparedScene& prepared, float degrees);
 struct FrameMemory {
     TransparencySorter sorter;
     std::vector<float> keys;                // per transparent triangle
+    std::vector<float> vertexDepths;        // z_eye of one draw's vertices, for the keys
     std::vector<std::uint32_t> runIndices;  // the index lists of the transparent runs
 };
 

@@ -151,15 +151,16 @@ struct TransparentQuad {
     float alpha;
 };
 
-std::filesystem::path writeQuad(TempDir& dir, const TransparentQuad& q) {
-    dir.write(std::string(q.name) + ".mtl", "newmtl m\nKa 0 0 0\nKd 0 0 0\nKs 0 0 0\nKe " +
-                                                std::to_string(q.color.r) + " " + std::to_string(q.color.g) +
-                                                " " + std::to_string(q.color.b) + "\nd " +
-                                                std::to_string(q.alpha) + "\n");
-    const std::string z = std::to_string(q.z);
-    return dir.write(std::string(q.name) + ".obj",
-                     "mtllib " + std::string(q.name) + ".mtl\nusemtl m\nv -1 -1 " + z + "\nv 1 -1 " + z +
-                         "\nv 1 1 " + z + "\nv -1 1 " + z + "\nvn 0 0 1\nf 1//1 2//1 3//1 4//1\n");
+// A 2×2 quad whose colour is its emission alone, at opacity `alpha`; its left edge at depth zLeft, its
+// right edge at zRight (equal: facing the camera).
+std::filesystem::path writeEmissiveQuad(TempDir& dir, const std::string& name, float zLeft, float zRight,
+                                        vec3 color, float alpha) {
+    dir.write(name + ".mtl", "newmtl m\nKa 0 0 0\nKd 0 0 0\nKs 0 0 0\nKe " + std::to_string(color.r) + " " +
+                                 std::to_string(color.g) + " " + std::to_string(color.b) + "\nd " +
+                                 std::to_string(alpha) + "\n");
+    const std::string zl = std::to_string(zLeft), zr = std::to_string(zRight);
+    return dir.write(name + ".obj", "mtllib " + name + ".mtl\nusemtl m\nv -1 -1 " + zl + "\nv 1 -1 " + zr +
+                                        "\nv 1 1 " + zr + "\nv -1 1 " + zl + "\nf 1 2 3 4\n");
 }
 
 TEST(Render, TransparentQuadsGiveTheOverOperatorInEveryOrderWhenSorted) {
@@ -169,7 +170,8 @@ TEST(Render, TransparentQuadsGiveTheOverOperatorInEveryOrderWhenSorted) {
                                       {"near", 1.0f, vec3(0.0f, 0.0f, 1.0f), 0.75f}};
     std::filesystem::path files[3];
     for (int k = 0; k < 3; ++k)
-        files[k] = writeQuad(dir, quads[k]);
+        files[k] =
+            writeEmissiveQuad(dir, quads[k].name, quads[k].z, quads[k].z, quads[k].color, quads[k].alpha);
     vec3 expected(0.0f);  // the black background, then over, back to front
     for (const TransparentQuad& q : quads)
         expected = q.alpha * q.color + (1.0f - q.alpha) * expected;
@@ -278,19 +280,10 @@ TEST(Render, TextureAlphaMakesThePartTransparent) {
 // surface over the farther one at every pixel.
 TEST(Render, ExactTransparencyIsRightWhereSortingCannotBe) {
     TempDir dir;
-    const auto quad = [&](const char* name, float slope, vec3 color) {
-        dir.write(std::string(name) + ".mtl", "newmtl m\nKa 0 0 0\nKd 0 0 0\nKs 0 0 0\nKe " +
-                                                  std::to_string(color.r) + " " + std::to_string(color.g) +
-                                                  " " + std::to_string(color.b) + "\nd 0.5\n");
-        const std::string zl = std::to_string(-slope), zr = std::to_string(slope);
-        return dir.write(std::string(name) + ".obj",
-                         "mtllib " + std::string(name) + ".mtl\nusemtl m\nv -1 -1 " + zl + "\nv 1 -1 " + zr +
-                             "\nv 1 1 " + zr + "\nv -1 1 " + zl + "\nf 1 2 3 4\n");
-    };
     const vec3 red(1.0f, 0.0f, 0.0f), blue(0.0f, 0.0f, 1.0f);
-    Scene scene = headOnScene(quad("rising", 0.5f, red));
+    Scene scene = headOnScene(writeEmissiveQuad(dir, "rising", -0.5f, 0.5f, red, 0.5f));
     ObjectSpec falling;
-    falling.model = quad("falling", -0.5f, blue);
+    falling.model = writeEmissiveQuad(dir, "falling", 0.5f, -0.5f, blue, 0.5f);
     scene.objects.push_back(falling);
     scene.lighting.preset = LightingPreset::GL;
     scene.background = vec4(0.0f, 0.0f, 0.0f, 1.0f);
