@@ -10,6 +10,11 @@
 
 namespace facet {
 
+// The largest colour component or light intensity a scene or MTL file may give. Light can be bright,
+// but decoded from sRGB (1e6 becomes 2.5e14), multiplied by a material and summed over eight lights,
+// it must stay far below the largest float, or the pixel becomes infinite.
+inline constexpr float kMaxColorComponent = 1e6f;
+
 // A material as written in an MTL file (colours are the file's numbers, not yet decoded to linear).
 struct Material {
     std::string name = "default";

@@ -31,6 +31,7 @@
 #include <tiny_obj_loader.h>
 
 #include "errors.h"
+#include "quote.h"
 
 namespace facet {
 namespace {
@@ -61,11 +62,8 @@ std::string located(const std::string& file, std::size_t line, std::string_view 
     throw InputError(located(file, line, what));
 }
 
-std::string inQuotes(std::string_view s) {
-    std::string quoted = "'";
-    quoted += s;
-    quoted += '\'';
-    return quoted;
+std::string inSingleQuotes(std::string_view s) {
+    return inQuotes(s, '\'');
 }
 
 // ---- Files ----------------------------------------------------------------------------------------
@@ -340,9 +338,9 @@ void checkNumbers(std::string_view body, std::size_t required, const char* what,
     while (tokens.next(token)) {
         switch (checkNumber(token)) {
             case NumberCheck::kNotANumber:
-                fail(file, line, std::string(what) + " " + inQuotes(token) + " is not a number");
+                fail(file, line, std::string(what) + " " + inSingleQuotes(token) + " is not a number");
             case NumberCheck::kNotFinite:
-                fail(file, line, std::string(what) + " " + inQuotes(token) + " is not a finite number");
+                fail(file, line, std::string(what) + " " + inSingleQuotes(token) + " is not a finite number");
             case NumberCheck::kFinite:
                 break;
         }
@@ -387,7 +385,7 @@ bool parseCorner(std::string_view token, CornerRef& corner, const std::string& f
             case IndexParse::kMalformed:
                 return false;
             case IndexParse::kTooLarge:
-                fail(file, line, "face index " + inQuotes(parts[i]) + " is out of range");
+                fail(file, line, "face index " + inSingleQuotes(parts[i]) + " is out of range");
             case IndexParse::kOk:
                 break;
         }
@@ -435,7 +433,7 @@ ObjScan scanObj(std::string& text, const std::string& file) {
                     CornerRef corner;
                     if (!parseCorner(token, corner, file, line)) {
                         fail(file, line,
-                             "malformed corner " + inQuotes(token) +
+                             "malformed corner " + inSingleQuotes(token) +
                                  " (expected v, v/vt, v//vn or v/vt/vn with integer indices)");
                     }
                     if (isFace) {
@@ -492,7 +490,8 @@ ObjScan scanObj(std::string& text, const std::string& file) {
 
 struct Library {
     fs::path path;
-    std::string problem;                                 // why it was not read; empty when it was
+    std::string problem;  // why it was not read; empty when it was
+    std::string error;    // "file:line: ..." of a number that cannot be used: loading the OBJ fails with it
     std::vector<std::string> warnings;                   // "file:line: ..." about its contents
     std::map<std::string, std::size_t> diffuseMapLines;  // material name → line of its map_Kd
 };
@@ -513,7 +512,8 @@ class LibraryReader final : public tinyobj::MaterialReader {
         library.path = objFolder_ / name;
         std::string text;
         library.problem = readTextFile(library.path, text);
-        if (library.problem.empty()) {
+        if (library.problem.empty()) library.error = checkMtlNumbers(text, library.path.string());
+        if (library.problem.empty() && library.error.empty()) {
             std::istringstream stream(text);
             std::string ignoredWarnings, ignoredErrors;  // LoadMtl only warns of d + Tr, even when they agree
             tinyobj::LoadMtl(materialIds, materials, &stream, &ignoredWarnings, &ignoredErrors);
@@ -535,6 +535,97 @@ class LibraryReader final : public tinyobj::MaterialReader {
     }
 
   private:
+    // The first numeric statement of an MTL file whose numbers cannot be used, as "file:line: ...",
+    // or "". tinyobjloader reads what it cannot parse (nan, a word, a missing number) as 0 and
+    // 1e39 as inf, so "Kd nan 1 1" would silently lose its red; each statement it reads numbers from
+    // is checked first, its numbers as it takes them (the first one or three; the rest it ignores,
+    // like the "illum 2" that follows "Tr 0" on one line of cube-mcguire's MTL).
+    static std::string checkMtlNumbers(std::string_view text, const std::string& file) {
+        struct Rule {
+            std::string_view keyword;
+            int count;               // numbers read: 3 (a colour) or 1
+            double lowest, highest;  // the range allowed, both included
+            bool whole;
+        };
+        constexpr double kAny = std::numeric_limits<float>::max();
+        constexpr double kColor = kMaxColorComponent;
+        constexpr Rule kRules[] = {
+            {"Ka", 3, 0, kColor, false},
+            {"Kd", 3, 0, kColor, false},
+            {"Ks", 3, 0, kColor, false},
+            {"Ke", 3, 0, kColor, false},
+            {"Kt", 3, 0, kColor, false},
+            {"Tf", 3, 0, kColor, false},
+            {"Ns", 1, 0, kAny, false},
+            {"Ni", 1, -kAny, kAny, false},
+            {"d", 1, 0, 1, false},
+            {"Tr", 1, 0, 1, false},
+            {"illum", 1, 0, 10, true},
+            {"Pr", 1, -kAny, kAny, false},
+            {"Pm", 1, -kAny, kAny, false},
+            {"Ps", 1, -kAny, kAny, false},
+            {"Pc", 1, -kAny, kAny, false},
+            {"Pcr", 1, -kAny, kAny, false},
+            {"aniso", 1, -kAny, kAny, false},
+            {"anisor", 1, -kAny, kAny, false},
+        };
+        std::size_t lineNumber = 0;
+        std::size_t pos = 0;
+        while (pos < text.size()) {
+            const std::size_t end = std::min(text.find_first_of("\r\n", pos), text.size());
+            std::string_view s = text.substr(pos, end - pos);
+            pos = end + ((end + 1 < text.size() && text[end] == '\r' && text[end + 1] == '\n') ? 2 : 1);
+            ++lineNumber;
+            while (!s.empty() && isBlank(s.front()))
+                s.remove_prefix(1);
+            // Matched as LoadMtl matches: the keyword, then a blank (so "Kd" alone is no statement).
+            const Rule* rule = nullptr;
+            for (const Rule& r : kRules) {
+                if (s.size() > r.keyword.size() && s.substr(0, r.keyword.size()) == r.keyword &&
+                    isBlank(s[r.keyword.size()]))
+                    rule = &r;
+            }
+            if (rule == nullptr) continue;
+
+            Tokens tokens(s.substr(rule->keyword.size()));
+            std::string_view token;
+            std::string got;
+            bool usable = true, inRange = true;
+            for (int i = 0; i < rule->count; ++i) {
+                if (!tokens.next(token)) {
+                    usable = false;
+                    break;
+                }
+                if (!got.empty()) got += ' ';
+                got.append(token);
+                if (checkNumber(token) != NumberCheck::kFinite) {
+                    usable = false;
+                    continue;
+                }
+                const double value = std::strtod(std::string(token).c_str(), nullptr);
+                if (value < rule->lowest || value > rule->highest ||
+                    (rule->whole && value != std::floor(value)))
+                    inRange = false;
+            }
+            const std::string keyword(rule->keyword);
+            if (!usable || (rule->whole && !inRange)) {
+                const std::string expected = rule->whole        ? "a whole number from 0 to 10"
+                                             : rule->count == 3 ? "three finite numbers"
+                                                                : "a finite number";
+                return located(file, lineNumber,
+                               keyword + " expects " + expected + " (got " + inQuotes(got) + ")");
+            }
+            if (!inRange) {
+                std::string range = rule->highest == kAny
+                                        ? "must not be negative"
+                                        : "must be from 0 to " + std::to_string(int(rule->highest));
+                if (rule->count == 3) range += " in each component";
+                return located(file, lineNumber, keyword + " " + range + " (got " + inQuotes(got) + ")");
+            }
+        }
+        return "";
+    }
+
     // Finds each material's map_Kd line, and d and Tr that disagree (d 1 with Tr 0 is common and
     // fine), splitting lines and names the way LoadMtl does.
     static void scanMtl(const std::string& text, Library& library) {
@@ -547,7 +638,7 @@ class LibraryReader final : public tinyobj::MaterialReader {
         auto checkOpacity = [&] {
             if (d.line != kNoLine && tr.line != kNoLine && std::abs(d.value - tr.value) > 1e-6) {
                 std::ostringstream what;
-                what << "material " << inQuotes(material) << " sets opacity twice, d " << d.value
+                what << "material " << inSingleQuotes(material) << " sets opacity twice, d " << d.value
                      << " and Tr " << 1.0 - tr.value << " (opacity " << tr.value << "); d wins";
                 library.warnings.push_back(
                     located(library.path.string(), std::max(d.line, tr.line), what.str()));
@@ -591,8 +682,8 @@ class LibraryReader final : public tinyobj::MaterialReader {
     std::vector<std::size_t> materialLibrary_;  // tinyobjloader material index → libraries_ index
 };
 
-// A used MTL material in facet's terms. Non-finite numbers (1e39 reads as inf) fall back to the
-// defaults; opacity is clamped because `Tr` above 1 or below 0 would give one outside [0, 1].
+// A used MTL material in facet's terms. checkMtlNumbers has refused non-finite and out-of-range
+// numbers; should tinyobjloader still read one differently, the default is used and opacity clamped.
 Material convertMaterial(const tinyobj::material_t& source, std::vector<std::string>& warnings,
                          const std::string& libraryFile) {
     Material m;
@@ -619,7 +710,7 @@ Material convertMaterial(const tinyobj::material_t& source, std::vector<std::str
     if (replaced) {
         warnings.push_back(
             located(libraryFile, kNoLine,
-                    "material " + inQuotes(m.name) + " has a non-finite number; its default is used"));
+                    "material " + inSingleQuotes(m.name) + " has a non-finite number; its default is used"));
     }
     return m;
 }
@@ -1106,9 +1197,11 @@ Mesh loadObj(const std::filesystem::path& path, const ObjOptions& options) {
         for (const std::string& name : statement.names) {
             const Library* library = libraries.find(name);
             if (library == nullptr || !reported.insert(name).second) continue;
+            if (!library->error.empty()) throw InputError(library->error);
             if (!library->problem.empty()) {
                 warnings.push_back(located(file, statement.line,
-                                           "material library " + inQuotes(name) + ": " + library->problem +
+                                           "material library " + inSingleQuotes(name) + ": " +
+                                               library->problem +
                                                "; its materials fall back to the default"));
             }
             warnings.insert(warnings.end(), library->warnings.begin(), library->warnings.end());
@@ -1160,9 +1253,9 @@ Mesh loadObj(const std::filesystem::path& path, const ObjOptions& options) {
                 if (use >= 0) {
                     const UseMaterial& statement = scan.useMaterials[std::size_t(use)];
                     if (unknownReported.insert(statement.name).second) {
-                        warnings.push_back(located(
-                            file, statement.line,
-                            "unknown material " + inQuotes(statement.name) + "; using the default material"));
+                        warnings.push_back(located(file, statement.line,
+                                                   "unknown material " + inSingleQuotes(statement.name) +
+                                                       "; using the default material"));
                     }
                 }
             }
@@ -1219,13 +1312,14 @@ Mesh loadObj(const std::filesystem::path& path, const ObjOptions& options) {
             material.diffuseTexture = findTexture(folder, source.diffuse_texname);
             if (material.diffuseTexture.empty()) {
                 warnings.push_back(located(libraryFile, mapLine,
-                                           "texture " + inQuotes(source.diffuse_texname) + " of material " +
-                                               inQuotes(source.name) + " not found; drawing without it"));
+                                           "texture " + inSingleQuotes(source.diffuse_texname) +
+                                               " of material " + inSingleQuotes(source.name) +
+                                               " not found; drawing without it"));
             }
         } else if (mapLine != kNoLine) {
             // tinyobjloader's "-o u [v [w]]" and "-s", "-t" eat the file name when given fewer numbers.
             warnings.push_back(located(libraryFile, mapLine,
-                                       "map_Kd of material " + inQuotes(source.name) +
+                                       "map_Kd of material " + inSingleQuotes(source.name) +
                                            " names no texture file that could be read; drawing without it"));
         }
         mesh.materials.push_back(std::move(material));

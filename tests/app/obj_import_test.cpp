@@ -763,6 +763,51 @@ TEST_F(ObjImport, MaterialFieldsAndTrOnlyOpacity) {
     EXPECT_TRUE(m.diffuseTexture.empty());
 }
 
+// tinyobjloader reads an MTL number it cannot parse as 0 and 1e39 as infinity; each numeric statement
+// is checked first, with its line, the way the OBJ's numbers are.
+TEST_F(ObjImport, MtlNumbersThatCannotBeUsedNameFileAndLine) {
+    const std::pair<std::string, std::string> cases[] = {
+        {"Kd nan 1 1", R"(:3: Kd expects three finite numbers (got "nan 1 1"))"},
+        {"Ka 1 1", R"(:3: Ka expects three finite numbers (got "1 1"))"},
+        {"Ks 0 inf 0", R"(:3: Ks expects three finite numbers (got "0 inf 0"))"},
+        {"Kd 0.5 1e39 0.5", R"(:3: Kd expects three finite numbers (got "0.5 1e39 0.5"))"},
+        {"Ke 3e38 0 0", R"(:3: Ke must be from 0 to 1000000 in each component (got "3e38 0 0"))"},
+        {"Kd -0.5 0 0", R"(:3: Kd must be from 0 to 1000000 in each component (got "-0.5 0 0"))"},
+        {"Tf 0 0 2e6", R"(:3: Tf must be from 0 to 1000000 in each component (got "0 0 2e6"))"},
+        {"Ns -5", R"(:3: Ns must not be negative (got "-5"))"},
+        {"Ns nan", R"(:3: Ns expects a finite number (got "nan"))"},
+        {"Ni inf", R"(:3: Ni expects a finite number (got "inf"))"},
+        {"d 1.5", R"(:3: d must be from 0 to 1 (got "1.5"))"},
+        {"Tr -0.25", R"(:3: Tr must be from 0 to 1 (got "-0.25"))"},
+        {"d", ""},  // no blank after the keyword: not a statement, as for LoadMtl
+        {"d  ", R"(:3: d expects a finite number (got ""))"},
+        {"illum two", R"(:3: illum expects a whole number from 0 to 10 (got "two"))"},
+        {"illum 2.5", R"(:3: illum expects a whole number from 0 to 10 (got "2.5"))"},
+        {"Pr nan", R"(:3: Pr expects a finite number (got "nan"))"},
+        // What LoadMtl ignores after the numbers it reads is not checked (cube-mcguire has "Tr 0  illum 2").
+        {"Tr 0  illum 2", ""},
+        {"Ka 0.63 0.065 0.05 # Red", ""},
+        {"Ke 1000000 0 0", ""},
+        {"Ns 0", ""},
+    };
+    const fs::path obj = write("m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n");
+    const std::string mtl = (dir_ / "m.mtl").string();
+    for (const auto& [line, expected] : cases) {
+        SCOPED_TRACE(line);
+        write("m.mtl", "newmtl a\nKd 0.5 0.5 0.5\n" + line + "\n");
+        EXPECT_EQ(errorOf(obj), expected.empty() ? "" : mtl + expected);
+    }
+}
+
+// A value quoted from an MTL file is cut short and its raw bytes escaped.
+TEST_F(ObjImport, MtlValuesInMessagesAreShortAndPrintable) {
+    const fs::path obj = write("m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    write("m.mtl", "newmtl a\nNs \xFF\x1B[31m" + std::string(100000, '9') + "x\n");
+    EXPECT_EQ(errorOf(obj), (dir_ / "m.mtl").string() +
+                                R"(:2: Ns expects a finite number (got "\xFF\x1B[31m)" +
+                                std::string(34, '9') + "…\")");
+}
+
 TEST_F(ObjImport, DWinsOverTrInEitherOrder) {
     // Material.001 has d 0.75 then Tr 0.5; Material.002 the other way round. d wins in both.
     const fs::path path = kModels / "tinyobjloader-tests" / "tr-and-d-issue-43.obj";
