@@ -55,8 +55,7 @@ namespace {
 // The scene a benchmark draws: options.model (an OBJ file or a scene) at the options' size.
 Scene benchScene(const BenchOptions& options) {
     if (options.frames < 1) throw InputError("--frames must be at least 1");
-    Scene scene =
-        options.model.extension() == ".json" ? loadScene(options.model) : sceneForModel(options.model);
+    Scene scene = loadSceneOrModel(options.model);
     scene.width = options.width;
     scene.height = options.height;
     return scene;
@@ -1128,9 +1127,7 @@ std::string countText(double count) {
 
 void runSortBench(const BenchOptions& options, std::ostream& out) {
     if (options.frames < 1) throw InputError("--frames must be at least 1");
-    const bool isScene = options.model.extension() == ".json";
-    const PreparedScene prepared =
-        prepareScene(isScene ? loadScene(options.model) : sceneForModel(options.model));
+    const PreparedScene prepared = prepareScene(loadSceneOrModel(options.model));
     Turntable turntable(prepared);
     const std::size_t n = turntable.triangles();
     if (n < kSortMinTriangles)

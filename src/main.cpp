@@ -18,9 +18,6 @@
 
 namespace {
 
-// The largest image facet renders: 64 Mpixel (e.g. 8192 × 8192) keeps the buffers near 1.3 GB.
-constexpr long long kMaxPixels = 1LL << 26;
-
 // Parses "x,y,z" into a vec3; CLI11 hands us the raw text so the error can quote it.
 glm::vec3 parseVec3(const std::string& option, const std::string& text) {
     std::stringstream in(text);
@@ -39,9 +36,9 @@ void checkSize(int width, int height) {
             throw facet::InputError(std::string(name) + " must be between 1 and " +
                                     std::to_string(facet::kMaxImageSide) + " (got " + std::to_string(value) +
                                     ")");
-    if (static_cast<long long>(width) * height > kMaxPixels)
+    if (static_cast<long long>(width) * height > facet::kMaxPixels)
         throw facet::InputError("an image of " + std::to_string(width) + "x" + std::to_string(height) +
-                                " pixels is larger than the limit of " + std::to_string(kMaxPixels) +
+                                " pixels is larger than the limit of " + std::to_string(facet::kMaxPixels) +
                                 " pixels");
 }
 
@@ -193,7 +190,7 @@ void printFrameStats(int frame, const facet::PreparedScene& prepared, const face
 
 int render(const RenderArgs& args) {
     const std::filesystem::path input = args.input;
-    facet::Scene scene = input.extension() == ".json" ? facet::loadScene(input) : facet::sceneForModel(input);
+    facet::Scene scene = facet::loadSceneOrModel(input);
     if (args.width) scene.width = *args.width;
     if (args.height) scene.height = *args.height;
     checkSize(scene.width, scene.height);
@@ -286,7 +283,7 @@ constexpr int kImagesDiffer = 3;
 
 int compare(const CompareArgs& args) {
     const std::filesystem::path input = args.scene.input;
-    facet::Scene scene = input.extension() == ".json" ? facet::loadScene(input) : facet::sceneForModel(input);
+    facet::Scene scene = facet::loadSceneOrModel(input);
     if (args.scene.width) scene.width = *args.scene.width;
     if (args.scene.height) scene.height = *args.scene.height;
     checkSize(scene.width, scene.height);

@@ -223,8 +223,11 @@ PreparedScene prepareScene(const Scene& scene) {
         out.kind = l.type == LightType::Directional ? LightKind::Directional
                    : l.type == LightType::Point     ? LightKind::Point
                                                     : LightKind::Spot;
-        if (out.kind == LightKind::Directional) out.direction = normalize(toView(l.direction, 0.0f));
-        if (out.kind == LightKind::Spot) out.spotDirection = normalize(toView(l.direction, 0.0f));
+        // Made unit length in double first: in float, the squared length of [0, -1e-30, 0] underflows
+        // to 0 and that of [-3e38, 0, 0] overflows, and normalize would give NaN (a black image).
+        const vec3 direction = vec3(glm::normalize(glm::dvec3(l.direction)));
+        if (out.kind == LightKind::Directional) out.direction = normalize(toView(direction, 0.0f));
+        if (out.kind == LightKind::Spot) out.spotDirection = normalize(toView(direction, 0.0f));
         if (out.kind != LightKind::Directional) out.position = toView(l.position, 1.0f);
         out.ambient = decode(l.ambient.value_or(vec3(0.0f))) * l.intensity;
         out.diffuse = decode(l.diffuse.value_or(l.color)) * l.intensity;

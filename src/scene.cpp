@@ -23,6 +23,9 @@
 #include <nlohmann/json.hpp>
 
 #include "errors.h"
+#include "mesh.h"
+#include "quote.h"
+#include "shaders.h"
 
 namespace facet {
 namespace {
@@ -34,11 +37,6 @@ using Json = nlohmann::json;
 using KeyList = std::span<const std::string_view>;
 
 // ---- Text helpers --------------------------------------------------------------------------------
-
-// A string in double quotes with JSON escapes, so a key holding a newline cannot break the one-line rule.
-std::string inQuotes(std::string_view text) {
-    return Json(std::string(text)).dump(-1, ' ', false, Json::error_handler_t::replace);
-}
 
 std::string formatNumber(double value) {
     char buffer[32];
@@ -135,37 +133,39 @@ std::string lineAndColumn(std::string_view text, std::size_t offset) {
 // ---- Duplicate keys ------------------------------------------------------------------------------
 
 // JSON allows a key twice in one object and nlohmann keeps the last, silently dropping the first
-// (a second "camera" block would win unnoticed). This parse callback records the first repeat's path.
-class DuplicateKeyFinder {
+// (a second "camera" block would win unnoticed). This SAX handler records the first repeat's path.
+// A pass of its own over the text, rather than a parse callback: nlohmann's callback parser scans
+// the whole enclosing array after each element, so 200,000 lights took 24 s to parse.
+class DuplicateKeyFinder : public nlohmann::json_sax<Json> {
   public:
-    bool operator()(int /*depth*/, Json::parse_event_t event, Json& parsed) {
-        using Event = Json::parse_event_t;
-        const bool startsValue =
-            event == Event::object_start || event == Event::array_start || event == Event::value;
-        if (startsValue && !frames_.empty() && !frames_.back().isObject) ++frames_.back().index;
-        switch (event) {
-            case Event::object_start:
-                frames_.push_back({true, {}, {}, 0});
-                break;
-            case Event::array_start:
-                frames_.push_back({false, {}, {}, 0});
-                break;
-            case Event::object_end:
-            case Event::array_end:
-                if (!frames_.empty()) frames_.pop_back();
-                break;
-            case Event::key: {
-                Frame& frame = frames_.back();
-                frame.key = parsed.get<std::string>();
-                if (!frame.keys.insert(frame.key).second && firstDuplicate_.empty()) {
-                    firstDuplicate_ = currentPath();
-                }
-                break;
-            }
-            case Event::value:
-                break;
-        }
+    bool null() override { return value(); }
+    bool boolean(bool) override { return value(); }
+    bool number_integer(number_integer_t) override { return value(); }
+    bool number_unsigned(number_unsigned_t) override { return value(); }
+    bool number_float(number_float_t, const string_t&) override { return value(); }
+    bool string(string_t&) override { return value(); }
+    bool binary(binary_t&) override { return value(); }
+    bool start_object(std::size_t) override {
+        value();
+        frames_.push_back({true, {}, {}, 0});
         return true;
+    }
+    bool start_array(std::size_t) override {
+        value();
+        frames_.push_back({false, {}, {}, 0});
+        return true;
+    }
+    bool end_object() override { return end(); }
+    bool end_array() override { return end(); }
+    bool key(string_t& key) override {
+        Frame& frame = frames_.back();
+        frame.key = key;
+        if (!frame.keys.insert(frame.key).second && firstDuplicate_.empty()) firstDuplicate_ = currentPath();
+        return true;
+    }
+    // The text was parsed before this pass, so there are no errors left to report.
+    bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
+        return false;
     }
 
     const std::string& firstDuplicate() const { return firstDuplicate_; }
@@ -177,6 +177,16 @@ class DuplicateKeyFinder {
         std::string key;             // object: the key being read
         std::size_t index;           // array: 1 + the index of the element being read
     };
+
+    // Every value starts an array's next element.
+    bool value() {
+        if (!frames_.empty() && !frames_.back().isObject) ++frames_.back().index;
+        return true;
+    }
+    bool end() {
+        if (!frames_.empty()) frames_.pop_back();
+        return true;
+    }
 
     std::string currentPath() const {
         std::string path;
@@ -282,9 +292,23 @@ class SceneReader {
         return v;
     }
 
-    // A colour: three non-negative numbers (above 1 is allowed: light can be bright).
+    // A colour component or an intensity: from 0 to kMaxColorComponent (above 1 is allowed: light can
+    // be bright, but not so bright that summing the lights overflows to an infinite, white pixel).
+    float brightness(const Json& value, const std::string& path) const {
+        const float x = nonNegative(value, path);
+        if (x > kMaxColorComponent) {
+            fail(inQuotes(path) + " must be at most " +
+                 std::to_string(static_cast<long>(kMaxColorComponent)) + " (got " + describe(value) + ")");
+        }
+        return x;
+    }
+
+    // A colour: three numbers from 0 to kMaxColorComponent.
     glm::vec3 color(const Json& value, const std::string& path) const {
-        return nonNegativeVector(value, path, "[1, 0.5, 0.2]");
+        const glm::vec3 c = nonNegativeVector(value, path, "[1, 0.5, 0.2]");
+        for (int i = 0; i < 3; ++i)
+            brightness(value[i], elementPath(path, i));
+        return c;
     }
 
     glm::vec3 nonZeroVector(const Json& value, const std::string& path) const {
@@ -319,11 +343,16 @@ class SceneReader {
     void checkModelFile(const fs::path& model, const std::string& written, const std::string& path) const {
         std::error_code error;
         const fs::file_status status = fs::status(model, error);
-        std::string where = model.string() == written ? "" : " (looked for " + inQuotes(model.string()) + ")";
+        std::string where =
+            model.string() == written ? "" : " (looked for " + quotedPath(model.string()) + ")";
         if (!fs::exists(status))
             fail(inQuotes(path) + ": model file " + inQuotes(written) + " not found" + where);
         if (fs::is_directory(status))
             fail(inQuotes(path) + ": model file " + inQuotes(written) + " is a folder" + where);
+        if (!fs::is_regular_file(status)) {
+            fail(inQuotes(path) + ": model file " + inQuotes(written) +
+                 " is not a regular file (a device, a pipe or a socket)" + where);
+        }
     }
 
   private:
@@ -376,7 +405,7 @@ glm::vec4 readBackground(const SceneReader& reader, const Json& value) {
     }
     glm::vec4 background{0.0f, 0.0f, 0.0f, 1.0f};
     for (std::size_t i = 0; i < value.size(); ++i)
-        background[i] = reader.nonNegative(value[i], elementPath(path, i));
+        background[i] = reader.brightness(value[i], elementPath(path, i));
     if (background.a > 1.0f) {
         reader.fail(inQuotes(elementPath(path, 3)) + " (alpha) must be from 0 to 1 (got " +
                     formatNumber(background.a) + ")");
@@ -393,7 +422,10 @@ CameraSpec readCamera(const SceneReader& reader, const Json& camera) {
     if (const Json* v = reader.find(camera, "eye")) spec.eye = reader.vec3(*v, "camera.eye", "[0, 1, 5]");
     if (const Json* v = reader.find(camera, "target"))
         spec.target = reader.vec3(*v, "camera.target", "[0, 0, 0]");
-    if (const Json* v = reader.find(camera, "up")) spec.up = reader.nonZeroVector(*v, "camera.up");
+    // Normalised here, in double: in float, the squared length of [0, 1e-30, 0] underflows to 0 and
+    // that of [0, 1e20, 0] overflows, and the camera would be built from NaNs.
+    if (const Json* v = reader.find(camera, "up"))
+        spec.up = glm::vec3(glm::normalize(glm::dvec3(reader.nonZeroVector(*v, "camera.up"))));
     if (const Json* v = reader.find(camera, "fovy")) {
         spec.fovyDegrees = reader.number(*v, "camera.fovy");
         if (!(spec.fovyDegrees > 0.0f && spec.fovyDegrees < 180.0f)) {
@@ -474,7 +506,7 @@ LightSpec readLight(const SceneReader& reader, const Json& light, const std::str
         spec.position = reader.vec3(*v, childPath(path, "position"));
     if (const Json* v = reader.find(light, "color")) spec.color = reader.color(*v, childPath(path, "color"));
     if (const Json* v = reader.find(light, "intensity"))
-        spec.intensity = reader.nonNegative(*v, childPath(path, "intensity"));
+        spec.intensity = reader.brightness(*v, childPath(path, "intensity"));
     if (const Json* v = reader.find(light, "ambient"))
         spec.ambient = reader.color(*v, childPath(path, "ambient"));
     if (const Json* v = reader.find(light, "diffuse"))
@@ -838,25 +870,51 @@ GammaOptions readGamma(const SceneReader& reader, const Json& gamma) {
 // ---- File reading and parsing --------------------------------------------------------------------
 
 std::string readText(const SceneReader& reader, const fs::path& path) {
+    // Checked before opening: reading /dev/zero never ends and opening a FIFO blocks until someone
+    // writes to it; a huge file would be held in memory twice (text and document) before any check.
     std::error_code error;
     const fs::file_status status = fs::status(path, error);
     if (!fs::exists(status)) reader.fail("scene file not found");
     if (fs::is_directory(status)) reader.fail("is a folder, not a scene file");
+    if (!fs::is_regular_file(status))
+        reader.fail("is not a regular file (a device, a pipe or a socket), not a scene file");
+    const std::uintmax_t size = fs::file_size(path, error);
+    if (error) reader.fail("cannot read the scene file: " + error.message());
+    if (size > kMaxSceneFileBytes) {
+        reader.fail("the scene file is " + std::to_string(size) + " bytes, larger than the limit of " +
+                    std::to_string(kMaxSceneFileBytes) + " (64 MiB) for a scene file");
+    }
+
     std::ifstream in(path, std::ios::binary);
     if (!in) reader.fail(std::string("cannot open the scene file: ") + std::strerror(errno));
-    std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    // At most the size seen above, so a file that grows while read cannot pass the limit.
+    std::string text(static_cast<std::size_t>(size), '\0');
+    in.read(text.data(), static_cast<std::streamsize>(size));
     if (in.bad()) reader.fail(std::string("cannot read the scene file: ") + std::strerror(errno));
+    text.resize(static_cast<std::size_t>(in.gcount()));
     return text;
+}
+
+// nlohmann quotes the text it stopped at whole and raw ("last read: '...'", "number overflow parsing
+// '...'"): an unterminated 50 MB string or a byte that is not UTF-8 would go to the terminal as is.
+// Cuts that text short and escapes it like every other quoted value.
+std::string withShortToken(const std::string& detail, std::string_view marker) {
+    const std::size_t open = detail.find(marker);
+    if (open == std::string::npos) return detail;
+    const std::size_t begin = open + marker.size();
+    std::size_t end = detail.rfind("'; expected");
+    if (end == std::string::npos || end < begin) end = detail.rfind('\'');
+    if (end == std::string::npos || end < begin) return detail;
+    return detail.substr(0, begin - 1) + inQuotes(std::string_view(detail).substr(begin, end - begin), '\'') +
+           detail.substr(end + 1);
 }
 
 // Parses with comments allowed (// and /* */: a scene file is hand-written) and turns nlohmann's
 // errors into "line L, column C" messages.
 Json parseJson(const SceneReader& reader, const std::string& text) {
-    DuplicateKeyFinder duplicates;
     Json document;
     try {
-        document =
-            Json::parse(text, std::ref(duplicates), /*allow_exceptions=*/true, /*ignore_comments=*/true);
+        document = Json::parse(text, nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);
     } catch (const Json::parse_error& e) {
         // e.byte is the 1-based position of the offending byte (one past the end at end of input).
         // nlohmann's text reads "[json.exception...] parse error at line L, column C: syntax error
@@ -865,7 +923,7 @@ Json parseJson(const SceneReader& reader, const std::string& text) {
         if (const std::size_t dash = detail.find(" - "); dash != std::string::npos)
             detail = detail.substr(dash + 3);
         reader.fail("JSON syntax error at " + lineAndColumn(text, e.byte == 0 ? 0 : e.byte - 1) + ": " +
-                    detail);
+                    withShortToken(detail, "last read: '"));
     } catch (const Json::out_of_range& e) {
         // A number beyond double range ("number overflow parsing '1e400'") carries no position; find
         // the literal in the text.
@@ -878,8 +936,11 @@ Json parseJson(const SceneReader& reader, const std::string& text) {
             const std::size_t offset = text.find(detail.substr(open + 1, close - open - 1));
             if (offset != std::string::npos) where = " at " + lineAndColumn(text, offset);
         }
-        reader.fail("invalid JSON" + where + ": " + detail);
+        reader.fail("invalid JSON" + where + ": " + withShortToken(detail, "parsing '"));
     }
+    DuplicateKeyFinder duplicates;
+    Json::sax_parse(text, &duplicates, nlohmann::detail::input_format_t::json, /*strict=*/true,
+                    /*ignore_comments=*/true);
     if (!duplicates.firstDuplicate().empty()) {
         reader.fail("key " + inQuotes(duplicates.firstDuplicate()) + " is given twice");
     }
@@ -903,6 +964,13 @@ Scene loadScene(const fs::path& path) {
         scene.width = reader.wholeNumber(*v, "width", 1, kMaxImageSide);
     if (const Json* v = reader.find(document, "height"))
         scene.height = reader.wholeNumber(*v, "height", 1, kMaxImageSide);
+    if (static_cast<long long>(scene.width) * scene.height > kMaxPixels) {
+        reader.fail("\"width\" and \"height\" make an image of " + std::to_string(scene.width) + "x" +
+                    std::to_string(scene.height) + " = " +
+                    std::to_string(static_cast<long long>(scene.width) * scene.height) +
+                    " pixels, larger than the limit of " + std::to_string(kMaxPixels) +
+                    " (64 Mpixel, e.g. 8192x8192)");
+    }
     if (const Json* v = reader.find(document, "background")) scene.background = readBackground(reader, *v);
     if (const Json* v = reader.find(document, "ambient")) scene.ambientLight = reader.color(*v, "ambient");
     if (const Json* v = reader.find(document, "camera")) scene.camera = readCamera(reader, *v);
@@ -925,6 +993,11 @@ Scene loadScene(const fs::path& path) {
     if (const Json* lights = reader.find(document, "lights")) {
         if (!lights->is_array())
             reader.fail("\"lights\" must be an array of lights (got " + describe(*lights) + ")");
+        // Here, before any light is read and long before any model is loaded.
+        if (lights->size() > static_cast<std::size_t>(kMaxLights)) {
+            reader.fail("\"lights\" has " + std::to_string(lights->size()) + " lights, at most " +
+                        std::to_string(kMaxLights) + " are supported (as in OpenGL 1.x)");
+        }
         for (std::size_t i = 0; i < lights->size(); ++i) {
             scene.lights.push_back(readLight(reader, (*lights)[i], elementPath("lights", i)));
         }
@@ -950,6 +1023,10 @@ Scene loadScene(const fs::path& path) {
         reader.fail("the scene has no objects: add \"model\": \"file.obj\" or an \"objects\" array");
     }
     return scene;
+}
+
+Scene loadSceneOrModel(const fs::path& path) {
+    return path.extension() == ".json" ? loadScene(path) : sceneForModel(path);
 }
 
 Scene sceneForModel(const fs::path& objPath) {

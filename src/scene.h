@@ -3,6 +3,7 @@
 // Loaded from a JSON scene file (docs/scene-format.md) or built with defaults around one OBJ model.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -170,7 +171,15 @@ Scene loadScene(const std::filesystem::path& path);
 // The scene "facet render model.obj" uses: that one model and every default.
 Scene sceneForModel(const std::filesystem::path& objPath);
 
+// What every command reads: a .json path as a scene file (loadScene), any other as a model
+// (sceneForModel; the OBJ loader checks that file when the scene is prepared).
+Scene loadSceneOrModel(const std::filesystem::path& path);
+
 // Size limits shared by the scene loader and the command line (absurd sizes are rejected).
 inline constexpr int kMaxImageSide = 16384;
+// The largest image: 64 Mpixel (e.g. 8192 × 8192) keeps the buffers near 1.3 GB.
+inline constexpr long long kMaxPixels = 1LL << 26;
+// A scene file is a few kilobytes of hand-written JSON; a larger one than this is refused unread.
+inline constexpr std::uintmax_t kMaxSceneFileBytes = std::uintmax_t{64} << 20;
 
 }  // namespace facet

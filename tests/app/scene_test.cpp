@@ -3,18 +3,28 @@
 // Scene files are written into a fresh folder under the system temp directory per test.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <fstream>
+#include <functional>
+#include <future>
 #include <regex>
 #include <set>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
+#include "bench.h"
 #include "errors.h"
+#include "mesh.h"
+#include "quote.h"
+#include "renderer.h"
 #include "scene.h"
 
 namespace facet {
@@ -249,8 +259,8 @@ TEST_F(SceneTest, EmptyLightsListMeansDefaultLight) {
 TEST_F(SceneTest, HugeButFloatSizedValuesAreAccepted) {
     touch("m.obj");
     const Scene scene = loadScene(write(
-        "scene.json", R"({"model": "m.obj", "lights": [{"intensity": 1e30}], "camera": {"far": 1e38}})"));
-    EXPECT_EQ(scene.lights[0].intensity, 1e30f);
+        "scene.json", R"({"model": "m.obj", "lights": [{"intensity": 1e6}], "camera": {"far": 1e38}})"));
+    EXPECT_EQ(scene.lights[0].intensity, kMaxColorComponent);
     EXPECT_EQ(*scene.camera.far, 1e38f);
 }
 
@@ -1340,6 +1350,33 @@ const ErrorCase kErrorCases[] = {
     {"GammaWithGlPresetObject",
      R"({"model": "m.obj", "lighting": {"preset": "gl"}, "gamma": {}})",
      {R"("gamma" cannot be used with the gl lighting preset)"}},
+    // Counts and sizes, refused while reading the file.
+    {"TooManyLights",
+     R"({"model": "m.obj", "lights": [{}, {}, {}, {}, {}, {}, {}, {}, {"type": "sopt"}]})",
+     {R"("lights" has 9 lights, at most 8 are supported)"}},
+    {"TooManyPixels",
+     R"({"model": "m.obj", "width": 16384, "height": 4097})",
+     {R"("width" and "height" make an image of 16384x4097 = 67125248 pixels, larger than the limit of )"
+      "67108864"}},
+    // Light can be bright, but not overflow.
+    {"EmissionTooBright",
+     R"({"objects": [{"model": "m.obj", "material": {"emission": [3e38, 0, 0]}}]})",
+     {R"("objects[0].material.emission[0]" must be at most 1000000 (got 3e+38))"}},
+    {"IntensityTooBright",
+     R"({"model": "m.obj", "lights": [{"intensity": 1.5e6}]})",
+     {R"("lights[0].intensity" must be at most 1000000 (got 1500000))"}},
+    {"LightColorTooBright",
+     R"({"model": "m.obj", "lights": [{"specular": [1, 1, 2e6]}]})",
+     {R"("lights[0].specular[2]" must be at most 1000000)"}},
+    {"AmbientTooBright",
+     R"({"model": "m.obj", "ambient": [1e7, 0, 0]})",
+     {R"("ambient[0]" must be at most)"}},
+    {"BackgroundTooBright",
+     R"({"model": "m.obj", "background": [0, 1e30, 0]})",
+     {R"("background[1]" must be at most 1000000 (got 1e+30))"}},
+    {"FogColorTooBright",
+     R"({"model": "m.obj", "fog": {"mode": "exp", "color": [0, 0, 1e9]}})",
+     {R"("fog.color[2]" must be at most)"}},
 };
 
 INSTANTIATE_TEST_SUITE_P(Scene, SceneErrors, ::testing::ValuesIn(kErrorCases),
@@ -1353,6 +1390,204 @@ TEST_F(SceneTest, FarFromEveryKeyGivesNoSuggestion) {
         errorOf(R"({"objects": [{"model": "m.obj", "material": {"glossiness": 1}}]})");
     EXPECT_EQ(message,
               (folder_ / "scene.json").string() + R"(: unknown key "objects[0].material.glossiness")");
+}
+
+// ---- Bad input that used to hang, fill memory or flood the terminal -------------------------------
+
+// Runs `load` on another thread and waits a second for it. Should it be blocked opening `fifo` for
+// reading, opening the other end releases it (it then reads an empty file), so the test ends.
+std::string errorWithinASecond(const fs::path& fifo, const std::function<void()>& load) {
+    std::promise<std::string> promise;
+    std::future<std::string> message = promise.get_future();
+    std::thread thread([&] {
+        try {
+            load();
+            promise.set_value("");
+        } catch (const std::exception& e) {
+            promise.set_value(e.what());
+        }
+    });
+    const bool finished = message.wait_for(std::chrono::seconds(1)) == std::future_status::ready;
+    while (message.wait_for(std::chrono::milliseconds(20)) != std::future_status::ready) {
+        const int writer = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK);
+        if (writer >= 0) ::close(writer);
+    }
+    thread.join();
+    EXPECT_TRUE(finished) << "still reading " << fifo << " after a second";
+    return message.get();
+}
+
+// A FIFO would block every command until something writes to it; each refuses it unopened.
+TEST_F(SceneTest, FifoIsRefusedByEveryCommandWithoutOpeningIt) {
+    const fs::path fifo = folder_ / "scene.json";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    const std::string expected =
+        fifo.string() + ": is not a regular file (a device, a pipe or a socket), not a scene file";
+    BenchOptions options;
+    options.model = fifo;
+    options.frames = 1;
+    std::ostringstream out;
+    EXPECT_EQ(errorWithinASecond(fifo, [&] { loadScene(fifo); }), expected);
+    EXPECT_EQ(errorWithinASecond(fifo, [&] { loadSceneOrModel(fifo); }), expected) << "render, compare";
+    EXPECT_EQ(errorWithinASecond(fifo, [&] { runBench(options, out); }), expected) << "bench";
+    EXPECT_EQ(errorWithinASecond(fifo, [&] { runSortBench(options, out); }), expected) << "bench --sort";
+}
+
+// A device never ends (/dev/zero) or reads as empty (/dev/null): refused by its type, not by its text.
+TEST_F(SceneTest, DeviceIsNotASceneFile) {
+    const fs::path link = folder_ / "null.json";
+    fs::create_symlink("/dev/null", link);
+    try {
+        loadScene(link);
+        FAIL() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  link.string() + ": is not a regular file (a device, a pipe or a socket), not a scene file");
+    }
+}
+
+TEST_F(SceneTest, ModelThatIsAFifoIsAnError) {
+    ASSERT_EQ(::mkfifo((folder_ / "pipe.obj").c_str(), 0600), 0);
+    const std::string message = errorOf(R"({"model": "pipe.obj"})");
+    EXPECT_NE(message.find(R"("model": model file "pipe.obj" is not a regular file)"), std::string::npos)
+        << message;
+}
+
+// Refused by its size alone: a sparse file, so the test writes nothing.
+TEST_F(SceneTest, SceneFileLargerThan64MiBIsRefusedUnread) {
+    const fs::path path = write("huge.json", "{}");
+    fs::resize_file(path, kMaxSceneFileBytes + 1);
+    try {
+        loadScene(path);
+        FAIL() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()), path.string() +
+                                             ": the scene file is 67108865 bytes, larger than the "
+                                             "limit of 67108864 (64 MiB) for a scene file");
+    }
+}
+
+// The light count is checked as soon as "lights" is seen, and parsing itself stays linear: nlohmann's
+// callback parser made 100,000 lights take seconds.
+TEST_F(SceneTest, HundredThousandLightsAreRefusedWithinASecond) {
+    std::string lights = "{}";
+    for (int i = 1; i < 100000; ++i)
+        lights += ", {}";
+    const auto start = std::chrono::steady_clock::now();
+    const std::string message = errorOf(R"({"model": "m.obj", "lights": [)" + lights + "]}");
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_NE(message.find(R"("lights" has 100000 lights, at most 8 are supported)"), std::string::npos)
+        << message;
+    EXPECT_LT(seconds, 1.0);
+}
+
+TEST_F(SceneTest, DuplicateKeyIsStillFoundDeepInAnArray) {
+    const std::string message = errorOf(
+        R"({"objects": [{"model": "m.obj"}, {"model": "m.obj", "rotate": [0, 0, 0], "rotate": [1, 1, 1]}]})");
+    EXPECT_NE(message.find(R"(key "objects[1].rotate" is given twice)"), std::string::npos) << message;
+}
+
+// A value quoted in a message is cut to 40 characters, and what a terminal would not show as
+// written (control characters, bytes that are not UTF-8) is escaped.
+TEST_F(SceneTest, QuotedValuesAreShortAndPrintable) {
+    const std::string file = (folder_ / "scene.json").string() + ": ";
+    const std::string longText(100000, 'a');
+    const std::string forty(40, 'a');
+    EXPECT_EQ(errorOf(R"({"model": "m.obj", "width": ")" + longText + R"("})"),
+              file + R"("width" must be a whole number (got the string ")" + forty + "…\")");
+    EXPECT_EQ(errorOf(R"({"model": "m.obj", ")" + longText + R"(": 1})"),
+              file + R"(unknown key ")" + forty + "…\"");
+    EXPECT_EQ(errorOf(R"({"model": "m.obj", "\u001b[2J": 1})"), file + R"(unknown key "\x1B[2J")");
+    // Raw bytes that are not UTF-8, and a string that never ends, stop the JSON parser itself.
+    EXPECT_EQ(errorOf("{\"model\": \"m.obj\", \"\xFF\": 1}"),
+              file + R"(JSON syntax error at line 1, column 21: invalid string: ill-formed UTF-8 byte; )"
+                     R"(last read: '"\xFF'; expected string literal)");
+    EXPECT_EQ(errorOf(R"({"model": ")" + longText),
+              file +
+                  "JSON syntax error at line 1, column 100012: invalid string: missing closing quote; "
+                  "last read: '\"" +
+                  std::string(39, 'a') + "…'");
+}
+
+// ---- Directions of any length ---------------------------------------------------------------------
+
+// The scene `text` (with "model" the bundled cube) drawn at 48×36 on one thread.
+LinearImage renderCube(const fs::path& path, const std::string& text) {
+    nlohmann::json document = nlohmann::json::parse(text);
+    document["model"] = FACET_SOURCE_DIR "/models/cube/cube.obj";
+    document["width"] = 48;
+    document["height"] = 36;
+    std::ofstream(path) << document.dump();
+    const PreparedScene prepared = prepareScene(loadScene(path));
+    Framebuffer framebuffer(48, 36);
+    DrawContext context(1);
+    renderFrame(prepared, framebuffer, context);
+    return toImage(framebuffer);
+}
+
+// Only an exactly zero vector is refused; any other length lights the model exactly as the same
+// direction at unit length (normalising in float turned 1e-30, 1e20 and -3e38 into NaN: black).
+TEST_F(SceneTest, DirectionsOfAnyLengthLightLikeUnitOnes) {
+    const std::pair<std::string, std::string> cases[] = {
+        {R"({"lights": [{"direction": [0, -1e-30, 0]}]})", R"({"lights": [{"direction": [0, -1, 0]}]})"},
+        {R"({"lights": [{"direction": [0, -1e20, 0]}]})", R"({"lights": [{"direction": [0, -1, 0]}]})"},
+        {R"({"lights": [{"direction": [-3e38, 0, 0]}]})", R"({"lights": [{"direction": [-1, 0, 0]}]})"},
+        // 2^-100 · [1, -2, -2]: scaled by a power of two, the same unit vector to the last bit.
+        {R"({"lights": [{"direction": [7.888609052210118e-31, -1.5777218104420236e-30, -1.5777218104420236e-30]}]})",
+         R"({"lights": [{"direction": [1, -2, -2]}]})"},
+        {R"({"lights": [{"type": "spot", "position": [0, 3, 0], "direction": [0, -1e-30, 0], "cutoff": 40}]})",
+         R"({"lights": [{"type": "spot", "position": [0, 3, 0], "direction": [0, -1, 0], "cutoff": 40}]})"},
+        {R"({"camera": {"eye": [2, 1, 3], "target": [0, 0, 0], "up": [0, 1e-30, 0]}})",
+         R"({"camera": {"eye": [2, 1, 3], "target": [0, 0, 0], "up": [0, 1, 0]}})"},
+        {R"({"camera": {"eye": [2, 1, 3], "target": [0, 0, 0], "up": [0, 3e38, 0]}})",
+         R"({"camera": {"eye": [2, 1, 3], "target": [0, 0, 0], "up": [0, 1, 0]}})"},
+    };
+    for (const auto& [extreme, unit] : cases) {
+        SCOPED_TRACE(extreme);
+        const LinearImage expected = renderCube(folder_ / "unit.json", unit);
+        const LinearImage actual = renderCube(folder_ / "extreme.json", extreme);
+        // The cube is drawn and lit: some pixel is brighter than the background in the corner.
+        bool lit = false;
+        for (const glm::vec4& p : expected.pixels)
+            lit = lit || p.r > expected.pixels[0].r + 0.05f;
+        EXPECT_TRUE(lit);
+        ASSERT_EQ(actual.pixels.size(), expected.pixels.size());
+        std::size_t differing = 0;
+        for (std::size_t i = 0; i < expected.pixels.size(); ++i)
+            differing += actual.pixels[i] != expected.pixels[i];
+        EXPECT_EQ(differing, 0u);
+    }
+}
+
+// ---- The quoting helper ---------------------------------------------------------------------------
+
+TEST(Quote, CutsAfterFortyCharactersAndEscapesWhatATerminalWouldNotShow) {
+    EXPECT_EQ(inQuotes("camera.fvoy"), R"("camera.fvoy")");
+    EXPECT_EQ(inQuotes("nan", '\''), "'nan'");
+    EXPECT_EQ(inQuotes(std::string(40, 'x')), '"' + std::string(40, 'x') + '"');
+    EXPECT_EQ(inQuotes(std::string(41, 'x')), '"' + std::string(40, 'x') + "…\"");
+    // Characters, not bytes, are counted, and a cut never splits one.
+    std::string accents;
+    for (int i = 0; i < 41; ++i)
+        accents += "é";
+    EXPECT_EQ(inQuotes(accents), '"' + accents.substr(0, 80) + "…\"");
+    EXPECT_EQ(inQuotes("a\nb\tc\rd"), R"("a\nb\tc\rd")");
+    EXPECT_EQ(inQuotes("say \"hi\" \\ 'x'"), R"("say \"hi\" \\ 'x'")");
+    EXPECT_EQ(inQuotes("it's", '\''), R"('it\'s')");
+    EXPECT_EQ(inQuotes("\x1B[31mred"), R"("\x1B[31mred")");
+    EXPECT_EQ(inQuotes("\x7F"), R"("\x7F")");
+    // Not UTF-8: a stray byte, a stray continuation byte, an overlong '/', a cut sequence, a surrogate.
+    EXPECT_EQ(inQuotes("\xFF"), R"("\xFF")");
+    EXPECT_EQ(inQuotes("\x80"), R"("\x80")");
+    EXPECT_EQ(inQuotes("\xC0\xAF"), R"("\xC0\xAF")");
+    EXPECT_EQ(inQuotes("\xE2\x82"), R"("\xE2\x82")");
+    EXPECT_EQ(inQuotes("\xED\xA0\x80"), R"("\xED\xA0\x80")");
+    // UTF-8 that would still move the text: a C1 control (NEL), right-to-left override, line separator.
+    EXPECT_EQ(inQuotes("a\u0085b"), R"("a\xC2\x85b")");
+    EXPECT_EQ(inQuotes("\u202Eevil"), R"("\xE2\x80\xAEevil")");
+    EXPECT_EQ(inQuotes("\u2028"), R"("\xE2\x80\xA8")");
+    // Printable UTF-8 stays as written.
+    EXPECT_EQ(inQuotes("Straße, 東京, 🙂"), R"("Straße, 東京, 🙂")");
 }
 
 TEST_F(SceneTest, ModelThatIsAFolderIsAnError) {
