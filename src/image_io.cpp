@@ -160,9 +160,20 @@ void writeImage(const fs::path& path, const LinearImage& image, ColorEncoding en
         // back as garbage (-0.25 read as 3.75), so it is stored as 0. EXR keeps every value.
         const bool clampNegative = format->extension == ".hdr";
         floats.reserve(pixelCount * channels);
-        for (const glm::vec4& p : image.pixels) {
-            for (int c = 0; c < channels; ++c)
+        for (std::size_t i = 0; i < pixelCount; ++i) {
+            const glm::vec4& p = image.pixels[i];
+            for (int c = 0; c < channels; ++c) {
+                // An 8-bit file clamps; a float file would keep +Inf or NaN, which every reader of it
+                // (compositors, image viewers, facet compare) would then have to survive.
+                if (!std::isfinite(p[c])) {
+                    fail(path, std::string("the image holds a value that is not finite (") +
+                                   (std::isnan(p[c]) ? "NaN" : "infinity") + ") at pixel (" +
+                                   std::to_string(i % static_cast<std::size_t>(image.width)) + ", " +
+                                   std::to_string(i / static_cast<std::size_t>(image.width)) +
+                                   "); nothing was written");
+                }
                 floats.push_back(clampNegative && !(p[c] > 0.0f) ? 0.0f : p[c]);
+            }
         }
     } else {
         bytes.reserve(pixelCount * channels);

@@ -7,8 +7,11 @@
 #include <cstdint>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <set>
 #include <string>
+#include <string_view>
+#include <tuple>
 #include <vector>
 
 #include <unistd.h>
@@ -296,6 +299,33 @@ TEST_F(ImageIoTest, UnknownExtensionThrowsAndWritesNothing) {
             << message;
     }
     EXPECT_EQ(listing(folder_), std::set<std::string>{});  // not even the folder "new"
+}
+
+// A float file would keep an infinite or NaN value (an 8-bit one clamps it): the writer refuses it,
+// names the output and the pixel, and leaves an existing file as it was.
+TEST_F(ImageIoTest, NonFiniteValueIsNeverWrittenToAFloatFile) {
+    const float infinity = std::numeric_limits<float>::infinity();
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    for (const auto& [name, bad, what] :
+         {std::tuple{"inf.exr", infinity, "infinity"}, std::tuple{"nan.exr", nan, "NaN"},
+          std::tuple{"inf.hdr", infinity, "infinity"}, std::tuple{"alpha.exr", -infinity, "infinity"}}) {
+        SCOPED_TRACE(name);
+        const fs::path path = folder_ / name;
+        writeImage(path, solid({0.5f, 0.5f, 0.5f, 1.0f}, 8, 2));
+        const std::string before = contents(path);
+        LinearImage image = solid({0.5f, 0.5f, 0.5f, 1.0f}, 8, 2);
+        image.at(7, 1)[std::string_view(name) == "alpha.exr" ? 3 : 0] = bad;
+        try {
+            writeImage(path, image);
+            FAIL() << "no error";
+        } catch (const InputError& e) {
+            EXPECT_EQ(std::string(e.what()), path.string() +
+                                                 ": the image holds a value that is not finite (" + what +
+                                                 ") at pixel (7, 1); nothing was written");
+        }
+        EXPECT_EQ(contents(path), before);
+    }
+    EXPECT_EQ(listing(folder_), (std::set<std::string>{"inf.exr", "nan.exr", "inf.hdr", "alpha.exr"}));
 }
 
 TEST_F(ImageIoTest, MissingExtensionThrows) {
