@@ -30,7 +30,9 @@ glm::vec3 parseVec3(const std::string& option, const std::string& text) {
     return v;
 }
 
-void checkSize(int width, int height) {
+// `fromScene` names the scene file and key a side came from when the command line did not give it
+// (the file itself never holds more than the limit, but its height with a --width can).
+void checkSize(int width, int height, const std::string& fromScene = "") {
     for (auto [name, value] : {std::pair{"--width", width}, std::pair{"--height", height}})
         if (value < 1 || value > facet::kMaxImageSide)
             throw facet::InputError(std::string(name) + " must be between 1 and " +
@@ -39,7 +41,16 @@ void checkSize(int width, int height) {
     if (static_cast<long long>(width) * height > facet::kMaxPixels)
         throw facet::InputError("an image of " + std::to_string(width) + "x" + std::to_string(height) +
                                 " pixels is larger than the limit of " + std::to_string(facet::kMaxPixels) +
-                                " pixels");
+                                " pixels" + fromScene);
+}
+
+// For checkSize: " (\"height\" from scenes/a.json)" when a side of the image comes from the scene file.
+std::string sizeFromScene(const std::filesystem::path& input, bool widthGiven, bool heightGiven) {
+    if (input.extension() != ".json" || (widthGiven && heightGiven)) return "";
+    const std::string keys = widthGiven    ? "\"height\""
+                             : heightGiven ? "\"width\""
+                                           : "\"width\" and \"height\"";
+    return " (" + keys + " from " + input.string() + ")";
 }
 
 struct RenderArgs {
@@ -193,7 +204,8 @@ int render(const RenderArgs& args) {
     facet::Scene scene = facet::loadSceneOrModel(input);
     if (args.width) scene.width = *args.width;
     if (args.height) scene.height = *args.height;
-    checkSize(scene.width, scene.height);
+    checkSize(scene.width, scene.height,
+              sizeFromScene(input, args.width.has_value(), args.height.has_value()));
     if (args.eye) scene.camera.eye = parseVec3("--eye", *args.eye);
     if (args.target) scene.camera.target = parseVec3("--target", *args.target);
     if (args.fovy) {
@@ -286,7 +298,8 @@ int compare(const CompareArgs& args) {
     facet::Scene scene = facet::loadSceneOrModel(input);
     if (args.scene.width) scene.width = *args.scene.width;
     if (args.scene.height) scene.height = *args.scene.height;
-    checkSize(scene.width, scene.height);
+    checkSize(scene.width, scene.height,
+              sizeFromScene(input, args.scene.width.has_value(), args.scene.height.has_value()));
     applyLightingOptions(args.scene, scene);
     for (const auto& path : {args.facetImage, args.mesaImage, args.diffImage})
         if (path) facet::checkImageDestination(*path, scene.width, scene.height);
