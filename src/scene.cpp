@@ -157,9 +157,9 @@ class DuplicateKeyFinder : public nlohmann::json_sax<Json> {
     }
     bool end_object() override { return end(); }
     bool end_array() override { return end(); }
-    bool key(string_t& key) override {
+    bool key(string_t& name) override {
         Frame& frame = frames_.back();
-        frame.key = key;
+        frame.key = name;
         if (!frame.keys.insert(frame.key).second && firstDuplicate_.empty()) firstDuplicate_ = currentPath();
         return true;
     }
