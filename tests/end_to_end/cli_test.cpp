@@ -23,10 +23,13 @@ struct RunResult {
     std::string err;
 };
 
-RunResult runFacet(const std::string& args, const TempDir& dir) {
+// Runs facet with `args`, its output captured in `dir`; in `workingFolder` when one is given.
+RunResult runFacet(const std::string& args, const TempDir& dir,
+                   const std::filesystem::path& workingFolder = {}) {
     const auto outFile = dir.path() / "stdout.txt", errFile = dir.path() / "stderr.txt";
     // Built with a stream: GCC 12 reports a false -Wrestrict on chains of std::string operator+.
     std::ostringstream command;
+    if (!workingFolder.empty()) command << "cd '" << workingFolder.string() << "' && ";
     command << "'" << FACET_BINARY << "' " << args << " >'" << outFile.string() << "' 2>'" << errFile.string()
             << "' </dev/null";
     const int raw = std::system(command.str().c_str());
@@ -227,6 +230,16 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"OnlyAndComponents", nullptr, nullptr, "--only diffuse --components", "do not go together"},
         BadInput{"CreaseAngleOutOfRange", nullptr, nullptr, "--crease-angle 200", "--crease-angle"},
         BadInput{"BackwardFrames", nullptr, nullptr, "--frames 9-3", "--frames"},
+        // Frame numbers near the largest int used to overflow the frame counter and never stop.
+        BadInput{"FramesAtTheLargestInt", nullptr, nullptr, "--frames 2147483646-2147483647", "0 to 9999999"},
+        BadInput{"FrameNumberBeyondSevenDigits", nullptr, nullptr, "--frames 10000000", "0 to 9999999"},
+        BadInput{"ThreadsNotANumber", nullptr, nullptr, "--threads abc",
+                 "--threads: expects a whole number from 0 to 1024 (got \"abc\")", 2},
+        BadInput{"WidthNotANumber", nullptr, nullptr, "--width 12px", "--width: expects a whole number", 2},
+        BadInput{"FovyNotANumber", nullptr, nullptr, "--fovy nan", "--fovy: expects a finite number", 2},
+        BadInput{"TurntableInfinite", nullptr, nullptr, "--frames 0-1 --turntable inf",
+                 "--turntable: expects a finite number", 2},
+        BadInput{"GammaBeyondFloat", nullptr, nullptr, "--gamma 1e39", "--gamma: expects a finite number", 2},
         BadInput{"TurntableWithoutFrames", nullptr, nullptr, "--turntable 90", "--turntable needs --frames"},
         BadInput{"GammaWithLinear", nullptr, nullptr, "--encode linear --gamma 2.2", "--gamma goes with"},
         BadInput{"GammaWithGlPreset", nullptr, nullptr, "--lighting gl --gamma 2.2", "gl preset"}),
@@ -241,6 +254,78 @@ TEST(Cli, UnknownImageFormatWritesNothing) {
     EXPECT_EQ(lineCount(run.err), 1) << run.err;
     EXPECT_NE(run.err.find("x.notaformat"), std::string::npos) << run.err;
     EXPECT_FALSE(std::filesystem::exists(dir.path() / "x.notaformat"));
+}
+
+// Counts are checked before the model is loaded: with a model that is not even there, the error is
+// about the images --frames and --components would write, and it comes at once.
+TEST(Cli, ImageCountIsCheckedBeforeTheModelIsLoaded) {
+    TempDir dir;
+    const RunResult run = runFacet("render " + quoted(dir.path() / "missing.obj") + " -o " +
+                                       quoted(dir.path() / "x.png") + " --frames 0-20000 --components",
+                                   dir);
+    EXPECT_EQ(run.status, 1);
+    EXPECT_EQ(lineCount(run.err), 1) << run.err;
+    EXPECT_NE(run.err.find("would write 100005 images"), std::string::npos) << run.err;
+    EXPECT_EQ(run.err.find("missing.obj"), std::string::npos) << run.err;
+}
+
+TEST(Cli, OutputPathsGetPlainMessages) {
+    TempDir dir;
+    const auto obj = quoted(dir.write("ok.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
+    const auto file = dir.write("file.png", "a file, not a folder");
+    const struct {
+        std::string output;
+        std::string expected;  // the whole error line
+    } cases[] = {
+        {"", "facet: error: no output file given: name one with -o, like -o out/image.png\n"},
+        {(dir.path() / ".png").string(), "facet: error: " + (dir.path() / ".png").string() +
+                                             ": has no file name before the extension (like " +
+                                             (dir.path() / "image.png").string() + ")\n"},
+        {(file / "x.png").string(),
+         "facet: error: " + (file / "x.png").string() + ": cannot write: Not a directory\n"},
+    };
+    for (const auto& c : cases) {
+        const RunResult run = runFacet(
+            "render " + obj + " -o " + quoted(std::filesystem::path(c.output)) + " --width 8 --height 8",
+            dir);
+        EXPECT_EQ(run.status, 1) << c.output;
+        EXPECT_EQ(run.err, c.expected);
+    }
+    EXPECT_EQ(readText(file), "a file, not a folder");
+}
+
+// A folder that refuses new files: the error names the user's path and the system's reason, never the
+// hidden temporary file the image is first written to. (/sys refuses files even to root.)
+TEST(Cli, UnwritableFolderNamesThePathAndTheReason) {
+    if (!std::filesystem::is_directory("/sys")) GTEST_SKIP() << "no /sys here";
+    TempDir dir;
+    const auto obj = quoted(dir.write("ok.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
+    const RunResult run = runFacet("render " + obj + " -o /sys/facet-test.png --width 8 --height 8", dir);
+    EXPECT_EQ(run.status, 1);
+    EXPECT_EQ(lineCount(run.err), 1) << run.err;
+    EXPECT_EQ(run.err.rfind("facet: error: /sys/facet-test.png: cannot write: ", 0), 0u) << run.err;
+    EXPECT_EQ(run.err.find(".tmp"), std::string::npos) << run.err;
+}
+
+// facet bench finds its default model beside the repository it was built in, from any folder.
+TEST(Cli, BenchFindsItsDefaultModelFromAnyFolder) {
+    const auto bunny = std::filesystem::path(FACET_SHARED_MODELS) / "stanford-bunny/stanford-bunny.obj";
+    if (!std::filesystem::exists(bunny)) GTEST_SKIP() << bunny << " is not here";
+    TempDir dir;
+    const RunResult run = runFacet("bench --frames 1 --width 16 --height 16 --threads 1", dir, dir.path());
+    EXPECT_EQ(run.status, 0) << run.err;
+    EXPECT_NE(run.out.find("stanford-bunny.obj"), std::string::npos) << run.out;
+}
+
+TEST(Cli, BenchRefusesNonFiniteSteps) {
+    TempDir dir;
+    for (const char* value : {"nan", "inf", "-inf"}) {
+        const RunResult run = runFacet(std::string("bench --transparency --degrees-per-frame ") + value +
+                                           " " + quoted(dir.path() / "missing.obj"),
+                                       dir);
+        EXPECT_EQ(run.status, 2) << value;
+        EXPECT_NE(run.err.find("--degrees-per-frame: expects a finite number"), std::string::npos) << run.err;
+    }
 }
 
 TEST(Cli, MissingMaterialFileWarnsAndRenders) {
