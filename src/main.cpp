@@ -208,6 +208,19 @@ std::filesystem::path framePath(const std::filesystem::path& output, int frame) 
     return path;
 }
 
+// The last line of defence against a blank image reported as success: what became of the triangles
+// of a frame that drew nothing, and the likely reasons.
+std::string emptyFrameWarning(const std::string& where, const facet::DrawStats& stats) {
+    std::ostringstream text;
+    text << where << " nothing was drawn, only the background: of " << stats.triangles << " triangles, "
+         << stats.trianglesRejected << " lay outside the view (or were cut off by the near and far planes), "
+         << stats.trianglesCulled << " were culled as back faces, "
+         << stats.trianglesZeroArea + stats.trianglesMissingSamples << " covered no pixel centre, and "
+         << stats.fragmentsDepthFailed << " fragments failed the depth test; the camera may look away from "
+         << "the model";
+    return text.str();
+}
+
 void printFrameStats(int frame, const facet::PreparedScene& prepared, const facet::FrameStats& stats) {
     std::cout << "frame " << frame << ": " << stats.draw.fragmentsShaded << " fragments shaded";
     const std::size_t transparent = prepared.transparentTriangles.size();
@@ -270,9 +283,12 @@ int render(const RenderArgs& args) {
     if (args.eye) scene.camera.eye = parseVec3("--eye", *args.eye);
     if (args.target) scene.camera.target = parseVec3("--target", *args.target);
     if (args.fovy) {
-        if (!(*args.fovy > 0.0f && *args.fovy < 180.0f))
-            throw facet::InputError("--fovy must be between 0 and 180 degrees (got " +
-                                    std::to_string(*args.fovy) + ")");
+        if (!(*args.fovy >= facet::kMinFovyDegrees && *args.fovy <= facet::kMaxFovyDegrees)) {
+            std::ostringstream message;
+            message << "--fovy must be from " << facet::kMinFovyDegrees << " to " << facet::kMaxFovyDegrees
+                    << " degrees (got " << *args.fovy << ")";
+            throw facet::InputError(message.str());
+        }
         scene.camera.fovyDegrees = *args.fovy;
     }
     if (scene.camera.eye && scene.camera.target &&
@@ -295,6 +311,9 @@ int render(const RenderArgs& args) {
     facet::FrameMemory memory;  // the transparent triangles' order, carried from frame to frame
     std::vector<std::filesystem::path> written;
     facet::DrawStats total;
+    int emptyFrames = 0;
+    facet::DrawStats firstEmptyStats;  // and its name, written.front() of those frames
+    std::filesystem::path firstEmpty;
     for (int k = 0; k < frameCount; ++k) {
         const int frame = firstFrame + k;
         // A turntable: frame k of n turns the objects by turntable·k/n degrees.
@@ -303,6 +322,10 @@ int render(const RenderArgs& args) {
             args.frames ? framePath(args.output, frame) : std::filesystem::path(args.output);
         const facet::FrameStats stats = facet::renderFrame(prepared, framebuffer, context, memory, terms);
         total += stats.draw;
+        if (stats.draw.fragmentsWritten + stats.draw.fragmentsStored == 0 && emptyFrames++ == 0) {
+            firstEmptyStats = stats.draw;
+            firstEmpty = output;
+        }
         if (args.stats) printFrameStats(frame, prepared, stats);
         facet::writeImage(output, facet::toImage(framebuffer), prepared.encoding);
         written.push_back(output);
@@ -317,6 +340,15 @@ int render(const RenderArgs& args) {
         }
     }
     const auto rendered = std::chrono::steady_clock::now();
+    if (emptyFrames > 0)
+        std::cerr << "facet: warning: "
+                  << emptyFrameWarning(emptyFrames == 1
+                                           ? firstEmpty.string() + ":"
+                                           : std::to_string(emptyFrames) + " of " +
+                                                 std::to_string(frameCount) + " frames (the first " +
+                                                 firstEmpty.string() + "):",
+                                       firstEmptyStats)
+                  << "\n";
 
     if (!args.quiet) {
         const double ms = std::chrono::duration<double, std::milli>(rendered - start).count();

@@ -173,4 +173,10 @@ Scene sceneForModel(const std::filesystem::path& objPath);
 // Size limits shared by the scene loader and the command line (absurd sizes are rejected).
 inline constexpr int kMaxImageSide = 16384;
 
+// The vertical field of view facet accepts, in degrees: below 0.01° the view is narrower than float
+// coordinates can aim (a model a thousand times its size away would be placed to a fraction of a
+// pixel); at 180° the projection is infinite.
+inline constexpr double kMinFovyDegrees = 0.01;
+inline constexpr double kMaxFovyDegrees = 179.0;
+
 }  // namespace facet
