@@ -359,5 +359,38 @@ INSTANTIATE_TEST_SUITE_P(Models, BundledModel,
                              return name;
                          });
 
+// A point light exactly in the plane of a face, at its centre: every point of the face sees it at
+// grazing incidence (N·L = 0), so the face gets neither diffuse nor specular light, everywhere alike.
+// Rounding used to put N·L a hair above 0 at some pixels and a hair below at others: highlights
+// speckled the face at random, and at the light's own position L was 0/0.
+TEST(Render, PointLightOnAFaceLightsItEvenly) {
+    TempDir dir;
+    const auto obj = dir.write("square.obj", std::string("mtllib square.mtl\nusemtl shiny\n") + kSquareObj);
+    dir.write("square.mtl", "newmtl shiny\nKa 0 0 0\nKd 0.5 0.5 0.5\nKs 1 1 1\nNs 10\n");
+    for (const ReflectionModel model :
+         {ReflectionModel::BlinnPhong, ReflectionModel::Phong, ReflectionModel::CookTorrance})
+        for (const ShadingFrequency frequency : {ShadingFrequency::Phong, ShadingFrequency::Gouraud}) {
+            Scene scene = headOnScene(obj);
+            scene.background = vec4(0.25f, 0.5f, 0.75f, 1.0f);
+            scene.lights[0].type = LightType::Point;
+            scene.lights[0].position = vec3(0.1f, 0.2f, 0.0f);  // in the square's plane
+            scene.camera.eye = vec3(0.7f, 1.3f, 4.1f);          // at an angle: eye space rounds
+            scene.lighting.model = model;
+            scene.lighting.shading = frequency;
+            const LinearImage image = renderScene(scene);
+            const vec4 first = image.at(30, 26);
+            int differing = 0, notFinite = 0;
+            for (int y = 14; y < 34; ++y)  // well inside the square
+                for (int x = 22; x < 42; ++x) {
+                    const vec4 p = image.at(x, y);
+                    notFinite += !(std::isfinite(p.r) && std::isfinite(p.g) && std::isfinite(p.b));
+                    differing +=
+                        std::abs(p.r - first.r) + std::abs(p.g - first.g) + std::abs(p.b - first.b) > 1e-3f;
+                }
+            EXPECT_EQ(notFinite, 0) << int(model) << " " << int(frequency);
+            EXPECT_EQ(differing, 0) << int(model) << " " << int(frequency) << " centre " << first.r;
+        }
+}
+
 }  // namespace
 }  // namespace facet
