@@ -102,9 +102,6 @@ Camera frameCamera(const CameraSpec& spec, const Bounds& bounds, float aspect) {
     const double toCentre = glm::length(centre - eye);
     const double near = spec.near ? double(*spec.near) : std::max(0.95 * (toCentre - radius), 1e-3 * radius);
     const double far = spec.far ? double(*spec.far) : std::max(1.05 * (toCentre + radius), near * 2.0);
-    if (!(near > 0.0 && far > near && std::isfinite(far)))
-        throw InputError(
-            text("the camera's near and far planes (", near, ", ", far, ") must satisfy 0 < near < far"));
 
     // What the depth buffer can tell apart. The scene's bounding sphere spans depths zFront..zBack
     // along the view; a point at depth z lands at window depth f(z − n)/(z(f − n)) in [0, 1], stored
@@ -117,6 +114,9 @@ Camera frameCamera(const CameraSpec& spec, const Bounds& bounds, float aspect) {
     if (zFront > far)
         throw InputError(text("the whole scene is beyond the camera's far plane (", far,
                               "; the scene starts ", zFront, " from the eye): nothing would be drawn"));
+    if (!(near > 0.0 && far > near && std::isfinite(far)))
+        throw InputError(
+            text("the camera's near and far planes (", near, ", ", far, ") must satisfy 0 < near < far"));
     if (zBack > 0.0) {
         const auto windowDepth = [&](double z) { return float(far * (z - near) / (z * (far - near))); };
         const double z0 = std::max(zFront, near), z1 = std::min(zBack, far);

@@ -328,6 +328,82 @@ TEST(Cli, BenchRefusesNonFiniteSteps) {
     }
 }
 
+constexpr const char* kCubeObj =
+    "v -1 -1 -1\nv 1 -1 -1\nv -1 1 -1\nv 1 1 -1\nv -1 -1 1\nv 1 -1 1\nv -1 1 1\nv 1 1 1\n"
+    "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+
+// The last line of defence: a frame that draws nothing says so, and what became of its triangles.
+TEST(Cli, FrameThatDrawsNothingIsWarnedAbout) {
+    TempDir dir;
+    const auto obj = quoted(dir.write("cube.obj", kCubeObj));
+    const RunResult away = runFacet("render " + obj + " -o " + quoted(dir.path() / "away.png") +
+                                        " --width 32 --height 24 --eye 0,0,5 --target 0,0,10",
+                                    dir);
+    EXPECT_EQ(away.status, 0) << away.err;
+    EXPECT_EQ(lineCount(away.err), 1) << away.err;
+    EXPECT_NE(
+        away.err.find("facet: warning: " + (dir.path() / "away.png").string() +
+                      ": nothing was drawn, only the background: of 12 triangles, 12 lay outside the view"),
+        std::string::npos)
+        << away.err;
+    const RunResult seen = runFacet(
+        "render " + obj + " -o " + quoted(dir.path() / "seen.png") + " --width 32 --height 24 --eye 0,0,5",
+        dir);
+    EXPECT_EQ(seen.status, 0) << seen.err;
+    EXPECT_EQ(seen.err, "");
+}
+
+// Straight above the target with the default up vector: drawn, with the up vector chosen and named.
+TEST(Cli, EyeStraightAboveTheTargetRendersWithAWarning) {
+    TempDir dir;
+    const auto obj = quoted(dir.write("cube.obj", kCubeObj));
+    const auto scene = dir.write("above.json", "{\"model\": \"cube.obj\", \"camera\": {\"eye\": [0, 5, 0]}}");
+    for (const std::string& input :
+         {"render " + obj + " --eye 0,5,0 --target 0,0,0", "render " + quoted(scene)}) {
+        const RunResult run =
+            runFacet(input + " -o " + quoted(dir.path() / "above.png") + " --width 32 --height 24", dir);
+        EXPECT_EQ(run.status, 0) << run.err;
+        EXPECT_EQ(lineCount(run.err), 1) << run.err;
+        EXPECT_NE(run.err.find("facet: warning: "), std::string::npos) << run.err;
+        EXPECT_NE(run.err.find("looks straight down"), std::string::npos) << run.err;
+        EXPECT_EQ(run.out.find(" 0 fragments shaded"), std::string::npos) << run.out;
+    }
+}
+
+// Camera numbers that leave nothing to see are refused with the scene file's name; extreme ones that
+// still work render.
+TEST(Cli, ImpossibleNearPlaneIsRefusedAndExtremeFarPlaneRenders) {
+    TempDir dir;
+    dir.write("cube.obj", kCubeObj);
+    const auto tiny = dir.write("tiny-near.json", "{\"model\": \"cube.obj\", \"camera\": {\"near\": 1e-10}}");
+    const RunResult refused = runFacet("render " + quoted(tiny) + " -o " + quoted(dir.path() / "x.png"), dir);
+    EXPECT_EQ(refused.status, 1);
+    EXPECT_EQ(lineCount(refused.err), 1) << refused.err;
+    EXPECT_NE(refused.err.find("tiny-near.json: the camera's near plane (1e-10) is too small"),
+              std::string::npos)
+        << refused.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / "x.png"));
+
+    const auto huge = dir.write("huge-far.json", "{\"model\": \"cube.obj\", \"camera\": {\"far\": 3e38}}");
+    const RunResult drawn = runFacet(
+        "render " + quoted(huge) + " -o " + quoted(dir.path() / "y.png") + " --width 32 --height 24", dir);
+    EXPECT_EQ(drawn.status, 0) << drawn.err;
+    EXPECT_EQ(drawn.out.find(" 0 fragments shaded"), std::string::npos) << drawn.out;
+}
+
+// A model of size 2 at 1e7 from the origin, where floats are 1 apart: drawn, with a warning.
+TEST(Cli, ModelFarFromTheOriginForItsSizeIsWarnedAbout) {
+    TempDir dir;
+    const auto obj = dir.write("far.obj", "v 10000000 0 0\nv 10000002 0 0\nv 10000000 2 0\nf 1 2 3\n");
+    const RunResult run = runFacet(
+        "render " + quoted(obj) + " -o " + quoted(dir.path() / "far.png") + " --width 32 --height 24", dir);
+    EXPECT_EQ(run.status, 0) << run.err;
+    EXPECT_EQ(lineCount(run.err), 1) << run.err;
+    EXPECT_NE(run.err.find("far.obj: coordinates reach 1e+07 while the model is only 2.82843 across"),
+              std::string::npos)
+        << run.err;
+}
+
 TEST(Cli, MissingMaterialFileWarnsAndRenders) {
     TempDir dir;
     const auto obj =
