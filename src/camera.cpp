@@ -24,7 +24,7 @@ std::string text(const Parts&... parts) {
     return out.str();
 }
 
-std::string vector(dvec3 v) {
+std::string describe(dvec3 v) {
     return text("(", v.x, ", ", v.y, ", ", v.z, ")");
 }
 
@@ -41,9 +41,9 @@ dvec3 upAcross(dvec3 forward, dvec3 up, std::vector<std::string>& warnings) {
     const bool lookingUp = glm::dot(forward, unitUp) > 0.0;
     const dvec3 chosen = (lookingUp ? axis : -axis) + dvec3(0.0);  // + 0: no "-0" in the message
     warnings.push_back(text("the camera looks straight ", lookingUp ? "up" : "down", " along its up vector ",
-                            vector(up),
+                            describe(up),
                             ", which leaves the image's rotation open: the top of the image faces ",
-                            vector(chosen), " (a scene file's \"camera.up\" chooses another)"));
+                            describe(chosen), " (a scene file's \"camera.up\" chooses another)"));
     return chosen;
 }
 
@@ -71,7 +71,7 @@ Camera frameCamera(const CameraSpec& spec, const Bounds& bounds, float aspect) {
         eye = dvec3(*spec.eye);
     } else {
         if (!(radius > 0.0))
-            throw InputError(text("the scene has no size to frame (every vertex is at ", vector(centre),
+            throw InputError(text("the scene has no size to frame (every vertex is at ", describe(centre),
                                   "): give the camera an eye and a target"));
         // Look from the front, a little from above and to the right, at the distance where all eight
         // corners of the box fit the view: a corner at (x, y) across and z towards the eye from the
@@ -141,7 +141,7 @@ Camera frameCamera(const CameraSpec& spec, const Bounds& bounds, float aspect) {
     camera.far = float(far);
     if (!std::isfinite(camera.eye.x) || !std::isfinite(camera.eye.y) || !std::isfinite(camera.eye.z) ||
         !std::isfinite(camera.far))
-        throw InputError(text("the camera is too far out for 32-bit floats (eye at ", vector(eye),
+        throw InputError(text("the camera is too far out for 32-bit floats (eye at ", describe(eye),
                               ", far plane ", far, ")"));
 
     camera.viewScale = viewScaleFor(radius);
