@@ -6,13 +6,16 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <string>
 #include <string_view>
 #include <system_error>
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <OpenImageIO/imageio.h>
@@ -103,6 +106,15 @@ void checkImageDestination(const fs::path& path, int width, int height) {
     const FileFormat* format = findFormat(path);
     if (format == nullptr) {
         const std::string extension = path.extension().string();
+        // "out/.png": to the file system a hidden file named ".png" without an extension.
+        // (Strings built with +=: GCC 12 warns falsely about chains of operator+.)
+        std::string named = "image";
+        named += path.filename().string();
+        if (extension.empty() && findFormat(named)) {
+            std::string message = "has no file name before the extension (like ";
+            message += (path.parent_path() / named).string();
+            fail(path, message + ")");
+        }
         if (extension.empty()) {
             fail(path,
                  "no file extension to choose the image format from (use " + std::string(kFormatList) + ")");
@@ -116,6 +128,17 @@ void checkImageDestination(const fs::path& path, int width, int height) {
     }
     std::error_code error;
     if (fs::is_directory(path, error)) fail(path, "is a folder, not an image file");
+
+    // The folder: the nearest part of it that exists must be a folder we may write into (writeImage
+    // creates the rest), so that an unwritable destination fails before a long render.
+    fs::path existing = path.parent_path();
+    while (!existing.empty() && !fs::exists(existing, error) && existing != existing.parent_path())
+        existing = existing.parent_path();
+    if (existing.empty()) existing = ".";
+    if (!fs::is_directory(existing, error))
+        fail(path, "cannot write: " + std::string(std::strerror(ENOTDIR)));
+    if (::access(existing.c_str(), W_OK | X_OK) != 0)
+        fail(path, "cannot write: " + std::string(std::strerror(errno)));
 }
 
 std::uint8_t encodeChannel(float value, ColorEncoding encoding) {
@@ -147,7 +170,8 @@ void writeImage(const fs::path& path, const LinearImage& image, ColorEncoding en
     const fs::path folder = path.parent_path();
     if (!folder.empty() && !fs::is_directory(folder, error)) {
         fs::create_directories(folder, error);
-        if (error) fail(path, "cannot create folder \"" + folder.string() + "\": " + error.message());
+        if (error)
+            fail(path, "cannot write: cannot create folder \"" + folder.string() + "\": " + error.message());
     }
 
     // Convert to the file's pixel type: float values unchanged, or 8-bit codes (sRGB-encoded by
@@ -192,9 +216,20 @@ void writeImage(const fs::path& path, const LinearImage& image, ColorEncoding en
     tempName += path.extension().string();
     const fs::path tempPath = folder / tempName;
     TempFileGuard guard(tempPath);
+    // Created here first, so that a folder that refuses files is reported with the user's path and the
+    // system's reason ("Permission denied"), not OpenImageIO's words about the hidden temporary name.
+    const int created = ::open(tempPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (created < 0) fail(path, "cannot write: " + std::string(std::strerror(errno)));
+    ::close(created);
+    // OpenImageIO's own errors name the file it was given: the user knows the destination instead.
+    const auto withUserPath = [&](std::string text) {
+        for (std::size_t at; (at = text.find(tempPath.string())) != std::string::npos;)
+            text.replace(at, tempPath.string().size(), path.string());
+        return oneLine(std::move(text));
+    };
     {
         std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create(tempPath.string());
-        if (!output) fail(path, "cannot write image: " + oneLine(OIIO::geterror()));
+        if (!output) fail(path, "cannot write image: " + withUserPath(OIIO::geterror()));
 
         OIIO::ImageSpec spec(image.width, image.height, channels,
                              format->isFloat ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
@@ -208,7 +243,7 @@ void writeImage(const fs::path& path, const LinearImage& image, ColorEncoding en
         if (!output->open(tempPath.string(), spec) ||
             !output->write_image(format->isFloat ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8, data) ||
             !output->close()) {
-            fail(path, "cannot write image: " + oneLine(output->geterror()));
+            fail(path, "cannot write image: " + withUserPath(output->geterror()));
         }
     }
 

@@ -68,13 +68,25 @@ struct LightVector {
     F distance;
 };
 
+// At the light's own position there is no direction to it: L = 0 there (no diffuse, no specular
+// light from it), never 0/0. So too where the squared distance underflows float: L is a unit vector
+// or 0, nothing between.
 template <class F, class V3 = LaneVec3<F>>
 LightVector<F, V3> lightVector(const LightParams& light, const V3& position) {
     if (light.kind == LightKind::Directional) return {V3(-normalize(light.direction)), lanes<F>(0.0f)};
     const V3 toLight = light.position - position;
-    const F distance = sqrt(dot(toLight, toLight));
-    return {toLight * (1.0f / max(distance, 1e-20f)), distance};
+    const F squared = dot(toLight, toLight);
+    const F distance = sqrt(squared);
+    constexpr float kSmallestSquare = 1e-30f;  // normal floats: sqrt and the division stay exact enough
+    const F inverse = select(squared >= kSmallestSquare, 1.0f / max(distance, 1e-15f), 0.0f);
+    return {toLight * inverse, distance};
 }
+
+// N·L at or below this counts as grazing: the light lies in the surface's plane (or behind it). The
+// rounding of eye-space positions puts N·L for a light in the plane a hair either side of 0, and a gate
+// at exactly 0 would switch highlights on and off from pixel to pixel; within 0.006° of grazing the
+// highlight is gone anyway.
+inline constexpr float kGrazingCosine = 1e-4f;
 
 // att(d) = 1/(c0 + c1·d + c2·d²) for point and spot lights, 1 for directional ones.
 template <class F>
@@ -141,8 +153,9 @@ struct LightingTerms {
 //   c = m_emission + a_global ⊗ m_ambient
 //     + Σ_lights att · spot · (l_a ⊗ m_ambient + max(N·L, 0) · l_d ⊗ m_diffuse + spec · l_s ⊗ m_specular),
 // spec = max(R·V, 0)^n (Phong) or max(N·H, 0)^n (Blinn-Phong), and 0 where N·L ≤ 0 (the light is
-// behind the surface). N is used as given (normalised, not flipped towards the viewer).
-// `diffuseColor` is m_diffuse per lane (a texture may vary it); the overload below uses the material's.
+// behind the surface; in practice N·L ≤ kGrazingCosine, see there). N is used as given (normalised, not
+// flipped towards the viewer). `diffuseColor` is m_diffuse per lane (a texture may vary it); the overload
+// below uses the material's.
 template <class F, class V3 = LaneVec3<F>>
 [[gnu::always_inline]] inline LightingTerms<V3> standardLighting(
     const V3& position, const V3& normal, const vec3& eye, const PhongMaterial& m, const V3& diffuseColor,
@@ -170,7 +183,7 @@ template <class F, class V3 = LaneVec3<F>>
         } else {
             cosine = dot(N, safeNormalize<F, V3>(L + V));
         }
-        const F spec = select(NdotL > 0.0f, pow(max(cosine, 0.0f), m.shininess), lanes<F>(0.0f));
+        const F spec = select(NdotL > kGrazingCosine, pow(max(cosine, 0.0f), m.shininess), lanes<F>(0.0f));
         terms.specular += (light.specular * m.specular) * (reach * spec);
     }
     return terms;
@@ -332,7 +345,8 @@ BrdfLobes<V3> brdfLobes(const V3& n, const V3& l, const V3& v, const PbrMaterial
     const V3 diffuse =
         (V3(vec3(1.0f)) - fresnel) * albedo * ((1.0f - m.metalness) / std::numbers::pi_v<float>);
     const V3 zero(vec3(0.0f));
-    return {select(NdotLRaw > 0.0f, diffuse, zero), select(NdotLRaw > 0.0f, specular, zero)};
+    return {select(NdotLRaw > kGrazingCosine, diffuse, zero),
+            select(NdotLRaw > kGrazingCosine, specular, zero)};
 }
 
 template <class F, class V3 = LaneVec3<F>>

@@ -1,7 +1,10 @@
 // facet: renders OBJ models and scene files to images with the Facet software rasterizer.
+#include <cfloat>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <optional>
@@ -14,9 +17,57 @@
 #include "bench.h"
 #include "compare.h"
 #include "errors.h"
+#include "quote.h"
 #include "renderer.h"
 
 namespace {
+
+// Frame numbers stay within seven digits, so FIRST-LAST can never step past the largest int, and one
+// run writes at most this many images (frames, times five with --components): a typo in --frames
+// stops at once instead of filling the disk.
+constexpr int kMaxFrameNumber = 9'999'999;
+constexpr int kMaxImagesPerRun = 100'000;
+constexpr int kMaxBenchFrames = 100'000;  // timed frames per measurement
+
+// Command-line numbers, checked on the text before CLI11 converts it, so a bad value is named with
+// what is expected rather than CLI11's "Could not convert" or "not in range".
+CLI::Validator wholeNumber(long long lowest, long long highest) {
+    const std::string range = "from " + std::to_string(lowest) + " to " + std::to_string(highest);
+    return CLI::Validator(
+        [lowest, highest, range](std::string& text) -> std::string {
+            long long value = 0;
+            const char* end = text.data() + text.size();
+            const auto [stop, error] = std::from_chars(text.data(), end, value);
+            if (error != std::errc() || stop != end || value < lowest || value > highest)
+                return "expects a whole number " + range + " (got " + facet::inQuotes(text) + ")";
+            return "";
+        },
+        "INT " + range);
+}
+
+// A whole number whose range the program checks afterwards with its own message (--width, --height).
+const CLI::Validator kWholeNumber(
+    [](std::string& text) -> std::string {
+        int value = 0;
+        const char* end = text.data() + text.size();
+        const auto [stop, error] = std::from_chars(text.data(), end, value);
+        if (error != std::errc() || stop != end)
+            return "expects a whole number (got " + facet::inQuotes(text) + ")";
+        return "";
+    },
+    "INT");
+
+// Any finite number: "nan", "inf" and values beyond a float (1e39) are refused; each option checks
+// its own range afterwards.
+const CLI::Validator kFiniteNumber(
+    [](std::string& text) -> std::string {
+        char* stop = nullptr;
+        const double value = std::strtod(text.c_str(), &stop);
+        if (text.empty() || *stop != '\0' || !std::isfinite(value) || std::abs(value) > FLT_MAX)
+            return "expects a finite number (got " + facet::inQuotes(text) + ")";
+        return "";
+    },
+    "NUMBER");
 
 // Parses "x,y,z" into a vec3; CLI11 hands us the raw text so the error can quote it.
 glm::vec3 parseVec3(const std::string& option, const std::string& text) {
@@ -25,8 +76,8 @@ glm::vec3 parseVec3(const std::string& option, const std::string& text) {
     char comma1 = 0, comma2 = 0;
     if (!(in >> v.x >> comma1 >> v.y >> comma2 >> v.z) || comma1 != ',' || comma2 != ',' ||
         !(in >> std::ws).eof() || !std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
-        throw facet::InputError(option + " expects three numbers separated by commas, like 0,1.5,4 (got \"" +
-                                text + "\")");
+        throw facet::InputError(option + " expects three numbers separated by commas, like 0,1.5,4 (got " +
+                                facet::inQuotes(text) + ")");
     return v;
 }
 
@@ -142,22 +193,21 @@ void applyLightingOptions(const RenderArgs& args, facet::Scene& scene) {
     }
 }
 
-// "0-59" or "12": the first and last frame numbers.
+// "0-59" or "12": the first and last frame numbers, each from 0 to kMaxFrameNumber.
 std::pair<int, int> parseFrames(const std::string& text) {
     std::stringstream in(text);
-    int first = 0, last = 0;
+    long long first = 0, last = 0;
     char dash = 0;
     bool ok = static_cast<bool>(in >> first);
     if (ok && !(in >> std::ws).eof())
         ok = (in >> dash) && dash == '-' && (in >> last) && (in >> std::ws).eof();
     else
         last = first;
-    if (!ok || first < 0 || last < first || last - first >= 100000)
-        throw facet::InputError(
-            "--frames expects FIRST-LAST (like 0-59) or one frame number, FIRST <= LAST, at most "
-            "100000 frames (got \"" +
-            text + "\")");
-    return {first, last};
+    if (!ok || first < 0 || last < first || last > kMaxFrameNumber)
+        throw facet::InputError("--frames expects FIRST-LAST (like 0-59) or one frame number, from 0 to " +
+                                std::to_string(kMaxFrameNumber) + ", FIRST <= LAST (got " +
+                                facet::inQuotes(text) + ")");
+    return {static_cast<int>(first), static_cast<int>(last)};
 }
 
 // "out/spin.png", frame 7 -> "out/spin-0007.png".
@@ -167,6 +217,19 @@ std::filesystem::path framePath(const std::filesystem::path& output, int frame) 
     std::filesystem::path path = output;
     path.replace_filename(output.stem().string() + number + output.extension().string());
     return path;
+}
+
+// The last line of defence against a blank image reported as success: what became of the triangles
+// of a frame that drew nothing, and the likely reasons.
+std::string emptyFrameWarning(const std::string& where, const facet::DrawStats& stats) {
+    std::ostringstream text;
+    text << where << " nothing was drawn, only the background: of " << stats.triangles << " triangles, "
+         << stats.trianglesRejected << " lay outside the view (or were cut off by the near and far planes), "
+         << stats.trianglesCulled << " were culled as back faces, "
+         << stats.trianglesZeroArea + stats.trianglesMissingSamples << " covered no pixel centre, and "
+         << stats.fragmentsDepthFailed << " fragments failed the depth test; the camera may look away from "
+         << "the model";
+    return text.str();
 }
 
 void printFrameStats(int frame, const facet::PreparedScene& prepared, const facet::FrameStats& stats) {
@@ -199,7 +262,30 @@ void printFrameStats(int frame, const facet::PreparedScene& prepared, const face
     std::cout << "\n";
 }
 
+// The output name alone, before anything is loaded: "-o ''" or a folder-only path.
+void checkOutputName(const std::string& output) {
+    if (output.empty())
+        throw facet::InputError("no output file given: name one with -o, like -o out/image.png");
+}
+
 int render(const RenderArgs& args) {
+    // Everything the command line alone decides is checked before a model is loaded: a typo in
+    // --frames must not wait for a large model, nor start writing images.
+    checkOutputName(args.output);
+    if (args.only && args.components) throw facet::InputError("--only and --components do not go together");
+    if (args.turntable && !args.frames)
+        throw facet::InputError("--turntable needs --frames (like --frames 0-59)");
+    const auto [firstFrame, lastFrame] = args.frames ? parseFrames(*args.frames) : std::pair{0, 0};
+    const int frameCount = lastFrame - firstFrame + 1;
+    const int imagesPerFrame = args.components ? 1 + static_cast<int>(std::size(kTermNames)) : 1;
+    if (static_cast<long long>(frameCount) * imagesPerFrame > kMaxImagesPerRun)
+        throw facet::InputError("--frames " + *args.frames + " would write " +
+                                std::to_string(static_cast<long long>(frameCount) * imagesPerFrame) +
+                                " images; one run writes at most " + std::to_string(kMaxImagesPerRun) +
+                                (args.components ? " (--components writes five per frame)" : ""));
+    const float turntable = args.turntable.value_or(args.frames ? 360.0f : 0.0f);
+    if (!std::isfinite(turntable)) throw facet::InputError("--turntable must be a number of degrees");
+
     const std::filesystem::path input = args.input;
     facet::Scene scene = facet::loadSceneOrModel(input);
     if (args.width) scene.width = *args.width;
@@ -209,9 +295,12 @@ int render(const RenderArgs& args) {
     if (args.eye) scene.camera.eye = parseVec3("--eye", *args.eye);
     if (args.target) scene.camera.target = parseVec3("--target", *args.target);
     if (args.fovy) {
-        if (!(*args.fovy > 0.0f && *args.fovy < 180.0f))
-            throw facet::InputError("--fovy must be between 0 and 180 degrees (got " +
-                                    std::to_string(*args.fovy) + ")");
+        if (!(*args.fovy >= facet::kMinFovyDegrees && *args.fovy <= facet::kMaxFovyDegrees)) {
+            std::ostringstream message;
+            message << "--fovy must be from " << facet::kMinFovyDegrees << " to " << facet::kMaxFovyDegrees
+                    << " degrees (got " << *args.fovy << ")";
+            throw facet::InputError(message.str());
+        }
         scene.camera.fovyDegrees = *args.fovy;
     }
     if (scene.camera.eye && scene.camera.target &&
@@ -219,17 +308,10 @@ int render(const RenderArgs& args) {
         throw facet::InputError("the camera's eye and target are the same point");
 
     applyLightingOptions(args, scene);
-    if (args.only && args.components) throw facet::InputError("--only and --components do not go together");
     std::uint8_t terms = facet::kAllTerms;
     if (args.only)
         for (const TermName& term : kTermNames)
             if (*args.only == term.name) terms = term.bits;
-    if (args.turntable && !args.frames)
-        throw facet::InputError("--turntable needs --frames (like --frames 0-59)");
-    const auto [firstFrame, lastFrame] = args.frames ? parseFrames(*args.frames) : std::pair{0, 0};
-    const int frameCount = lastFrame - firstFrame + 1;
-    const float turntable = args.turntable.value_or(args.frames ? 360.0f : 0.0f);
-    if (!std::isfinite(turntable)) throw facet::InputError("--turntable must be a number of degrees");
     facet::checkImageDestination(args.output, scene.width, scene.height);
 
     const auto start = std::chrono::steady_clock::now();
@@ -241,14 +323,21 @@ int render(const RenderArgs& args) {
     facet::FrameMemory memory;  // the transparent triangles' order, carried from frame to frame
     std::vector<std::filesystem::path> written;
     facet::DrawStats total;
-    for (int frame = firstFrame; frame <= lastFrame; ++frame) {
+    int emptyFrames = 0;
+    facet::DrawStats firstEmptyStats;  // and its name, written.front() of those frames
+    std::filesystem::path firstEmpty;
+    for (int k = 0; k < frameCount; ++k) {
+        const int frame = firstFrame + k;
         // A turntable: frame k of n turns the objects by turntable·k/n degrees.
-        if (args.frames)
-            facet::setTurntable(prepared, turntable * float(frame - firstFrame) / float(frameCount));
+        if (args.frames) facet::setTurntable(prepared, turntable * float(k) / float(frameCount));
         const std::filesystem::path output =
             args.frames ? framePath(args.output, frame) : std::filesystem::path(args.output);
         const facet::FrameStats stats = facet::renderFrame(prepared, framebuffer, context, memory, terms);
         total += stats.draw;
+        if (stats.draw.fragmentsWritten + stats.draw.fragmentsStored == 0 && emptyFrames++ == 0) {
+            firstEmptyStats = stats.draw;
+            firstEmpty = output;
+        }
         if (args.stats) printFrameStats(frame, prepared, stats);
         facet::writeImage(output, facet::toImage(framebuffer), prepared.encoding);
         written.push_back(output);
@@ -263,6 +352,15 @@ int render(const RenderArgs& args) {
         }
     }
     const auto rendered = std::chrono::steady_clock::now();
+    if (emptyFrames > 0)
+        std::cerr << "facet: warning: "
+                  << emptyFrameWarning(emptyFrames == 1
+                                           ? firstEmpty.string() + ":"
+                                           : std::to_string(emptyFrames) + " of " +
+                                                 std::to_string(frameCount) + " frames (the first " +
+                                                 firstEmpty.string() + "):",
+                                       firstEmptyStats)
+                  << "\n";
 
     if (!args.quiet) {
         const double ms = std::chrono::duration<double, std::milli>(rendered - start).count();
@@ -282,6 +380,38 @@ int render(const RenderArgs& args) {
                           << " term alone)\n";
     }
     return 0;
+}
+
+// The repository this program was built in, found from the executable (REPO/build/src/facet): the
+// nearest folder above it holding the bundled models/ and, beside it, the shared ../shared/models.
+// Empty when the program has been moved out of its build tree.
+std::filesystem::path repositoryOfExecutable() {
+    std::error_code error;
+    const std::filesystem::path executable = std::filesystem::read_symlink("/proc/self/exe", error);
+    if (error) return {};
+    for (std::filesystem::path folder = executable.parent_path();
+         !folder.empty() && folder != folder.root_path(); folder = folder.parent_path())
+        if (std::filesystem::is_directory(folder / "models", error) &&
+            std::filesystem::is_directory(folder / "../shared/models", error))
+            return folder;
+    return {};
+}
+
+// The benchmark's models when the command line names none: beside the repository the program was
+// built in, so that `facet bench` works from any folder; else relative to the working folder.
+void chooseDefaultBenchModels(facet::BenchOptions& options, bool modelGiven) {
+    const std::filesystem::path bunny = "stanford-bunny/stanford-bunny.obj";
+    const std::filesystem::path repository = repositoryOfExecutable();
+    if (!repository.empty()) {
+        options.sharedModels = (repository / "../shared/models").lexically_normal();
+        options.smallModel = repository / "models/spot/spot_triangulated.obj";
+    }
+    if (modelGiven) return;
+    options.model = options.sharedModels / bunny;
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(options.model, error))
+        throw facet::InputError("the default benchmark model " + options.model.string() +
+                                " is not there; name a model to time: facet bench MODEL.obj");
 }
 
 struct CompareArgs {
@@ -329,16 +459,19 @@ int main(int argc, char** argv) {
         ->add_option("-o,--output", renderArgs.output,
                      "Image to write; the extension picks the format (.png .exr .ppm .jpg .tif)")
         ->required();
-    renderCommand->add_option("--width", renderArgs.width, "Image width in pixels (default 1280)");
-    renderCommand->add_option("--height", renderArgs.height, "Image height in pixels (default 960)");
+    renderCommand->add_option("--width", renderArgs.width, "Image width in pixels (default 1280)")
+        ->check(kWholeNumber);
+    renderCommand->add_option("--height", renderArgs.height, "Image height in pixels (default 960)")
+        ->check(kWholeNumber);
     renderCommand->add_option("--eye", renderArgs.eye,
                               "Camera position x,y,z (default: framed from the front)");
     renderCommand->add_option("--target", renderArgs.target,
                               "Point the camera looks at, x,y,z (default: the model's centre)");
-    renderCommand->add_option("--fovy", renderArgs.fovy, "Vertical field of view in degrees (default 40)");
+    renderCommand->add_option("--fovy", renderArgs.fovy, "Vertical field of view in degrees (default 40)")
+        ->check(kFiniteNumber);
     renderCommand
         ->add_option("--threads", renderArgs.threads, "Worker threads (default: one per hardware thread)")
-        ->check(CLI::Range(0, 1024));
+        ->check(wholeNumber(0, 1024));
     renderCommand->add_flag("-q,--quiet", renderArgs.quiet, "Print nothing on success");
     renderCommand
         ->add_option("--lighting", renderArgs.lighting,
@@ -355,9 +488,11 @@ int main(int argc, char** argv) {
             "Shading frequency for every object: flat (per face), gouraud (per vertex) or phong (per "
             "pixel, the default)")
         ->check(CLI::IsMember({"flat", "gouraud", "phong"}));
-    renderCommand->add_option("--crease-angle", renderArgs.creaseAngle,
-                              "Computed normals: faces meeting at a sharper angle (degrees) keep a hard edge "
-                              "(default 60)");
+    renderCommand
+        ->add_option("--crease-angle", renderArgs.creaseAngle,
+                     "Computed normals: faces meeting at a sharper angle (degrees) keep a hard edge "
+                     "(default 60)")
+        ->check(kFiniteNumber);
     renderCommand
         ->add_option("--only", renderArgs.only,
                      "Render one term of the lighting equation alone: emission, ambient, diffuse or specular")
@@ -365,9 +500,10 @@ int main(int argc, char** argv) {
     renderCommand->add_option(
         "--frames", renderArgs.frames,
         "Render frames FIRST-LAST (like 0-59) of a turntable, writing NAME-0000.png ...");
-    renderCommand->add_option(
-        "--turntable", renderArgs.turntable,
-        "Degrees the objects turn about the vertical axis over the frames (default 360)");
+    renderCommand
+        ->add_option("--turntable", renderArgs.turntable,
+                     "Degrees the objects turn about the vertical axis over the frames (default 360)")
+        ->check(kFiniteNumber);
     renderCommand->add_flag(
         "--stats", renderArgs.stats,
         "Print per frame the fragments and the sorting of transparent triangles (comparisons, "
@@ -385,7 +521,8 @@ int main(int argc, char** argv) {
             "--encode", renderArgs.encode,
             "8-bit output encoding: srgb (the exact curve, default), power (1/gamma) or linear (none)")
         ->check(CLI::IsMember({"srgb", "power", "linear"}));
-    renderCommand->add_option("--gamma", renderArgs.gamma, "Encode 8-bit output as c^(1/GAMMA) (e.g. 2.2)");
+    renderCommand->add_option("--gamma", renderArgs.gamma, "Encode 8-bit output as c^(1/GAMMA) (e.g. 2.2)")
+        ->check(kFiniteNumber);
     renderCommand->add_flag("--components", renderArgs.components,
                             "Also write each term alone next to the output: NAME-emission, NAME-ambient, "
                             "NAME-diffuse, NAME-specular (the output is their sum)");
@@ -394,8 +531,10 @@ int main(int argc, char** argv) {
     CLI::App* compareCommand = app.add_subcommand(
         "compare", "Render a model or scene with Facet and with OpenGL (Mesa) and compare the pixels");
     compareCommand->add_option("input", compareArgs.scene.input, "Model (.obj) or scene (.json)")->required();
-    compareCommand->add_option("--width", compareArgs.scene.width, "Image width in pixels");
-    compareCommand->add_option("--height", compareArgs.scene.height, "Image height in pixels");
+    compareCommand->add_option("--width", compareArgs.scene.width, "Image width in pixels")
+        ->check(kWholeNumber);
+    compareCommand->add_option("--height", compareArgs.scene.height, "Image height in pixels")
+        ->check(kWholeNumber);
     compareCommand
         ->add_option("--driver", compareArgs.driver,
                      "Mesa's rasterizer: softpipe (its reference implementation, the default) or llvmpipe")
@@ -407,7 +546,8 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember({"phong", "blinn-phong", "cook-torrance"}));
     compareCommand->add_option("--shading", compareArgs.scene.shading, "flat, gouraud or phong")
         ->check(CLI::IsMember({"flat", "gouraud", "phong"}));
-    compareCommand->add_option("--crease-angle", compareArgs.scene.creaseAngle, "as for render");
+    compareCommand->add_option("--crease-angle", compareArgs.scene.creaseAngle, "as for render")
+        ->check(kFiniteNumber);
     compareCommand->add_option("--facet", compareArgs.facetImage, "Also write Facet's image here");
     compareCommand->add_option("--mesa", compareArgs.mesaImage, "Also write OpenGL's image here");
     compareCommand->add_option(
@@ -416,22 +556,24 @@ int main(int argc, char** argv) {
     compareCommand
         ->add_option("--threads", compareArgs.scene.threads,
                      "Facet's worker threads (default: one per hardware thread)")
-        ->check(CLI::Range(0, 1024));
+        ->check(wholeNumber(0, 1024));
     compareCommand->footer(
         "Exit status: 0 when at least 99.5% of the pixels are within 2/255 on every channel, 3 when not, "
         "1 for bad input, 2 for a bad command line.");
 
     facet::BenchOptions benchOptions;
-    benchOptions.model = "../shared/models/stanford-bunny/stanford-bunny.obj";
     CLI::App* benchCommand = app.add_subcommand("bench", "Time frames of a model (median ms per frame)");
     benchCommand->add_option("model", benchOptions.model,
                              "Model or scene (default: the Stanford bunny in ../shared/models)");
-    benchCommand->add_option("--width", benchOptions.width, "Image width (default 1920)");
-    benchCommand->add_option("--height", benchOptions.height, "Image height (default 1080)");
-    benchCommand->add_option("--frames", benchOptions.frames, "Timed frames (default 30)");
+    benchCommand->add_option("--width", benchOptions.width, "Image width (default 1920)")
+        ->check(kWholeNumber);
+    benchCommand->add_option("--height", benchOptions.height, "Image height (default 1080)")
+        ->check(kWholeNumber);
+    benchCommand->add_option("--frames", benchOptions.frames, "Timed frames (default 30)")
+        ->check(wholeNumber(1, kMaxBenchFrames));
     benchCommand
         ->add_option("--threads", benchOptions.threads, "Worker threads (default: one per hardware thread)")
-        ->check(CLI::Range(0, 1024));
+        ->check(wholeNumber(0, 1024));
     benchCommand->add_flag("--vs-mesa", benchOptions.vsMesa,
                            "Compare with Mesa llvmpipe (OSMesa, if installed) on fixed scenes and sweeps, "
                            "same thread count");
@@ -450,8 +592,10 @@ int main(int argc, char** argv) {
         "--transparency", benchOptions.transparency,
         "Time the transparency modes (sorted, unsorted, exact) on a turntable of MODEL made "
         "half transparent");
-    benchCommand->add_option("--degrees-per-frame", benchOptions.degreesPerFrame,
-                             "With --transparency: the turntable's step (default 1)");
+    benchCommand
+        ->add_option("--degrees-per-frame", benchOptions.degreesPerFrame,
+                     "With --transparency: the turntable's step (default 1)")
+        ->check(kFiniteNumber);
 
     if (argc == 1) {  // no command at all: show what there is to do
         std::cerr << app.help();
@@ -475,6 +619,7 @@ int main(int argc, char** argv) {
         if (*renderCommand) return render(renderArgs);
         if (*compareCommand) return compare(compareArgs);
         if (*benchCommand) {
+            chooseDefaultBenchModels(benchOptions, benchCommand->count("model") > 0);
             if (benchOptions.transparency) {
                 for (const char* option : {"--vs-mesa", "--quick", "--csv", "--chart", "--sort"})
                     if (benchCommand->count(option))

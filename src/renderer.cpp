@@ -7,6 +7,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -101,20 +102,57 @@ FogParams fogParams(const Scene& scene, const Bounds& bounds, const Camera& came
     fog.color = decode(scene.fog.color);
     fog.density = scene.fog.density;
     fog.distance = scene.fog.distance;
-    const vec3 centre = 0.5f * (bounds.min + bounds.max);
-    const float radius = 0.5f * length(bounds.max - bounds.min);
-    const float distance = length(camera.eye - centre);
-    fog.start = scene.fog.start.value_or(std::max(distance - radius, 0.0f));
-    fog.end = scene.fog.end.value_or(distance + radius);
+    // In double: the squared distances of a 1e30 model overflow float.
+    const glm::dvec3 centre = 0.5 * (glm::dvec3(bounds.min) + glm::dvec3(bounds.max));
+    const double radius = 0.5 * glm::length(glm::dvec3(bounds.max) - glm::dvec3(bounds.min));
+    const double distance = glm::length(glm::dvec3(camera.eye) - centre);
+    double start = scene.fog.start ? double(*scene.fog.start) : std::max(distance - radius, 0.0);
+    double end = scene.fog.end ? double(*scene.fog.end) : distance + radius;
     // One end given, the other derived on its wrong side: keep the given one and a range of the
     // sphere's diameter.
-    if (fog.end <= fog.start) {
+    if (end <= start) {
         if (scene.fog.start)
-            fog.end = fog.start + 2.0f * radius;
+            end = start + 2.0 * radius;
         else
-            fog.start = std::max(fog.end - 2.0f * radius, 0.0f);
+            start = std::max(end - 2.0 * radius, 0.0);
     }
+    // Eye space is world space times viewScale: distances scale with it, densities inversely.
+    fog.start = float(start * camera.viewScale);
+    fog.end = float(end * camera.viewScale);
+    fog.density = float(fog.density / camera.viewScale);
     return fog;
+}
+
+// Vertices are 32-bit floats: at coordinates of 1e7 they are 1 apart. A model far from the origin
+// compared with its size lands on that coarse grid, and the vertex transform's float arithmetic
+// loses as much again: a warning once the grid is coarser than 1/1000 of the model's size.
+std::optional<std::string> coordinatePrecisionWarning(const Mesh& mesh, const std::filesystem::path& source) {
+    const glm::dvec3 low(mesh.boundsMin), high(mesh.boundsMax);
+    const double size = glm::length(high - low);
+    const float reach = float(std::max({std::abs(low.x), std::abs(low.y), std::abs(low.z), std::abs(high.x),
+                                        std::abs(high.y), std::abs(high.z)}));
+    const double spacing = std::nextafter(reach, std::numeric_limits<float>::infinity()) - reach;
+    if (!(size > 0.0) || spacing * 1000.0 <= size) return std::nullopt;
+    std::ostringstream message;
+    message << source.string() << ": coordinates reach " << reach << " while the model is only " << size
+            << " across: 32-bit floats there are " << spacing
+            << " apart, so its shape and position are coarse (move the model near the origin)";
+    return message.str();
+}
+
+// The draw's matrices for an object placed by `worldFromObject`: composed in double with the camera's
+// and rounded to float once, so that a model far from the origin or of extreme size (1e30, 1e-30)
+// keeps its precision. The normal matrix is scaled to determinant 1: the shaders renormalise
+// normals, and a matrix of a scaled view would otherwise shrink them to nothing.
+void placeDraw(SurfaceUniforms& u, const Camera& camera, const glm::dmat4& worldFromObject) {
+    const glm::dmat4 viewFromObject = camera.viewFromWorldExact * worldFromObject;
+    u.viewFromObject = mat4(viewFromObject);
+    u.clipFromObject = mat4(camera.clipFromViewExact * viewFromObject);
+    glm::dmat3 normalFromObject = glm::transpose(glm::inverse(glm::dmat3(viewFromObject)));
+    const double determinant = glm::determinant(normalFromObject);
+    if (determinant != 0.0 && std::isfinite(determinant))
+        normalFromObject /= std::cbrt(std::abs(determinant));
+    u.normalFromObject = mat3(normalFromObject);
 }
 
 // One vertex per triangle corner, each with its face's normal: flat shading's input. The face normal
@@ -181,6 +219,8 @@ PreparedScene prepareScene(const Scene& scene) {
                 std::make_unique<Mesh>(loadObj(object.model, ObjOptions{scene.lighting.creaseAngleDegrees}));
             prepared.warnings.insert(prepared.warnings.end(), mesh->warnings.begin(), mesh->warnings.end());
             prepared.degenerateSkipped += mesh->stats.degenerateSkipped;
+            if (std::optional<std::string> warning = coordinatePrecisionWarning(*mesh, object.model))
+                prepared.warnings.push_back(*warning);
         }
         const Bounds b = transformedBounds(*mesh, object.worldFromObject);
         sceneBounds.min = min(sceneBounds.min, b.min);
@@ -191,8 +231,13 @@ PreparedScene prepareScene(const Scene& scene) {
 
     // Camera.
     const float aspect = static_cast<float>(scene.width) / static_cast<float>(scene.height);
-    prepared.camera = frameCamera(scene.camera, sceneBounds, aspect);
+    try {
+        prepared.camera = frameCamera(scene.camera, sceneBounds, aspect);
+    } catch (const InputError& e) {
+        throw InputError(scene.source.string() + ": " + e.what());
+    }
     const Camera& camera = prepared.camera;
+    prepared.warnings.insert(prepared.warnings.end(), camera.warnings.begin(), camera.warnings.end());
 
     // Lights, in eye space; without any, one white key light from the upper left, behind the viewer.
     std::vector<LightSpec> lights = scene.lights;
@@ -213,12 +258,15 @@ PreparedScene prepareScene(const Scene& scene) {
     common.twoSidedFlip = !glPreset;
     common.clampColor = glPreset;
     common.fog = fogParams(scene, sceneBounds, camera, decode);
-    const mat4& viewFromWorld = camera.viewFromWorld;
+    const glm::dmat4& viewFromWorld = camera.viewFromWorldExact;
+    const double s = camera.viewScale;
     for (std::size_t i = 0; i < lights.size(); ++i) {
         const LightSpec& l = lights[i];
         LightParams& out = common.lights[i];
+        // Camera-relative lights are given in world units: eye space is scaled by viewScale.
         const auto toView = [&](vec3 v, float w) {
-            return l.cameraRelative ? v : vec3(viewFromWorld * vec4(v, w));
+            return l.cameraRelative ? vec3(glm::dvec3(v) * s)
+                                    : vec3(viewFromWorld * glm::dvec4(glm::dvec3(v), double(w)));
         };
         out.kind = l.type == LightType::Directional ? LightKind::Directional
                    : l.type == LightType::Point     ? LightKind::Point
@@ -232,9 +280,10 @@ PreparedScene prepareScene(const Scene& scene) {
         out.ambient = decode(l.ambient.value_or(vec3(0.0f))) * l.intensity;
         out.diffuse = decode(l.diffuse.value_or(l.color)) * l.intensity;
         out.specular = decode(l.specular.value_or(l.color)) * l.intensity;
+        // att = 1/(c0 + c1·d + c2·d²) with d in world units, d = d_eye / viewScale.
         out.c0 = l.attenuation.x;
-        out.c1 = l.attenuation.y;
-        out.c2 = l.attenuation.z;
+        out.c1 = float(l.attenuation.y / s);
+        out.c2 = float(l.attenuation.z / (s * s));
         out.spotCutoffDegrees = out.kind == LightKind::Spot ? l.spotCutoffDegrees : 180.0f;
         out.spotExponent = l.spotExponent;
         if (l.spotInnerDegrees && l.spotOuterDegrees) {
@@ -248,9 +297,7 @@ PreparedScene prepareScene(const Scene& scene) {
     for (const ObjectSpec& object : scene.objects) {
         const Mesh& mesh = *meshes[object.model];
         SurfaceUniforms uniforms = common;
-        uniforms.viewFromObject = viewFromWorld * object.worldFromObject;
-        uniforms.clipFromObject = camera.clipFromView * uniforms.viewFromObject;
-        uniforms.normalFromObject = transpose(inverse(mat3(uniforms.viewFromObject)));
+        placeDraw(uniforms, camera, glm::dmat4(object.worldFromObject));
         uniforms.reflection = object.reflection.value_or(
             object.material.physicallyBased() ? ReflectionModel::CookTorrance : scene.lighting.model);
         const ShadingFrequency frequency = object.shading.value_or(scene.lighting.shadingOrDefault());
@@ -330,18 +377,13 @@ PreparedScene prepareScene(const Scene& scene) {
 }
 
 void setTurntable(PreparedScene& prepared, float degrees) {
-    const vec3 c = prepared.turntableCentre;
+    const glm::dvec3 c(prepared.turntableCentre);
     // turn(p) = c + Ry(θ)(p − c): about the vertical axis through the centre.
-    const mat4 turn = glm::translate(mat4(1.0f), c) *
-                      glm::rotate(mat4(1.0f), glm::radians(degrees), vec3(0.0f, 1.0f, 0.0f)) *
-                      glm::translate(mat4(1.0f), -c);
-    const Camera& camera = prepared.camera;
-    for (PreparedDraw& d : prepared.draws) {
-        SurfaceUniforms& u = d.uniforms;
-        u.viewFromObject = camera.viewFromWorld * turn * d.worldFromObject;
-        u.clipFromObject = camera.clipFromView * u.viewFromObject;
-        u.normalFromObject = transpose(inverse(mat3(u.viewFromObject)));
-    }
+    const glm::dmat4 turn = glm::translate(glm::dmat4(1.0), c) *
+                            glm::rotate(glm::dmat4(1.0), glm::radians(double(degrees)), glm::dvec3(0, 1, 0)) *
+                            glm::translate(glm::dmat4(1.0), -c);
+    for (PreparedDraw& d : prepared.draws)
+        placeDraw(d.uniforms, prepared.camera, turn * glm::dmat4(d.worldFromObject));
 }
 
 namespace {

@@ -428,9 +428,9 @@ CameraSpec readCamera(const SceneReader& reader, const Json& camera) {
         spec.up = glm::vec3(glm::normalize(glm::dvec3(reader.nonZeroVector(*v, "camera.up"))));
     if (const Json* v = reader.find(camera, "fovy")) {
         spec.fovyDegrees = reader.number(*v, "camera.fovy");
-        if (!(spec.fovyDegrees > 0.0f && spec.fovyDegrees < 180.0f)) {
-            reader.fail("\"camera.fovy\" must be between 0 and 180 degrees, both excluded (got " +
-                        formatNumber(spec.fovyDegrees) + ")");
+        if (!(spec.fovyDegrees >= kMinFovyDegrees && spec.fovyDegrees <= kMaxFovyDegrees)) {
+            reader.fail("\"camera.fovy\" must be from " + formatNumber(kMinFovyDegrees) + " to " +
+                        formatNumber(kMaxFovyDegrees) + " degrees (got " + formatNumber(spec.fovyDegrees) + ")");
         }
     }
     if (const Json* v = reader.find(camera, "near")) {

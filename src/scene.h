@@ -182,4 +182,10 @@ inline constexpr long long kMaxPixels = 1LL << 26;
 // A scene file is a few kilobytes of hand-written JSON; a larger one than this is refused unread.
 inline constexpr std::uintmax_t kMaxSceneFileBytes = std::uintmax_t{64} << 20;
 
+// The vertical field of view facet accepts, in degrees: below 0.01° the view is narrower than float
+// coordinates can aim (a model a thousand times its size away would be placed to a fraction of a
+// pixel); at 180° the projection is infinite.
+inline constexpr double kMinFovyDegrees = 0.01;
+inline constexpr double kMaxFovyDegrees = 179.0;
+
 }  // namespace facet

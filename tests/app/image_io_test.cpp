@@ -369,7 +369,7 @@ TEST_F(ImageIoTest, FailedWriteKeepsExistingFileAndLeavesNoTemporary) {
         FAIL() << "no error";
     } catch (const InputError& e) {
         const std::string message = e.what();
-        EXPECT_EQ(message.rfind(path.string() + ": cannot write image: ", 0), 0u) << message;
+        EXPECT_EQ(message.rfind(path.string() + ": cannot write", 0), 0u) << message;
         EXPECT_EQ(message.find('\n'), std::string::npos) << message;
     }
     EXPECT_EQ(contents(path), before);
@@ -384,14 +384,25 @@ TEST_F(ImageIoTest, FolderInTheWayIsAnError) {
         writeImage(file / "image.png", solid({1, 0, 0, 1}));
         FAIL() << "no error";
     } catch (const InputError& e) {
-        EXPECT_EQ(std::string(e.what()).rfind((file / "image.png").string() + ": cannot create folder", 0),
-                  0u)
-            << e.what();
+        // The user's path and the system's reason, found before anything is written.
+        EXPECT_EQ(std::string(e.what()), (file / "image.png").string() + ": cannot write: Not a directory");
     }
     fs::create_directory(folder_ / "dir.png");
     EXPECT_THROW(writeImage(folder_ / "dir.png", solid({1, 0, 0, 1})), InputError);
     EXPECT_EQ(listing(folder_), (std::set<std::string>{"file.txt", "dir.png"}));
     EXPECT_EQ(contents(file), "not a folder");
+}
+
+// "out/.png" is, to the file system, a hidden file without an extension: say what is missing.
+TEST_F(ImageIoTest, ExtensionWithoutANameIsAnError) {
+    try {
+        checkImageDestination(folder_ / ".png", 4, 4);
+        FAIL() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()), (folder_ / ".png").string() +
+                                             ": has no file name before the extension (like " +
+                                             (folder_ / "image.png").string() + ")");
+    }
 }
 
 TEST_F(ImageIoTest, ReadingAMissingFileNamesIt) {

@@ -354,6 +354,66 @@ TEST(LightingWide, StandardLightingMatchesScalar) {
             }
 }
 
+// Where a point light is seen from: at the light itself L = 0 with distance 0 (no NaN), and where the
+// squared distance underflows float L is still 0 or a unit vector, in one lane and in eight.
+TEST(LightingWide, LightVectorAtTheLightIsZeroElseUnit) {
+    LightParams light;
+    light.kind = LightKind::Point;
+    light.position = vec3(0.0f);  // at the origin, so that the tiny offsets are not rounded away
+    const vec3 offsets[8] = {vec3(0.0f),         vec3(1e-25f, 0, 0), vec3(0, 3e-21f, 0),
+                             vec3(0, 0, 1e-19f), vec3(1.0f, 0, 0),   vec3(0.3f, -0.4f, 0.1f),
+                             vec3(0, 0, -1e-3f), vec3(1e-10f)};
+    Vec3x8 positions;
+    for (int i = 0; i < 8; ++i) {
+        const vec3 p = light.position + offsets[i];
+        positions.x[i] = p.x;
+        positions.y[i] = p.y;
+        positions.z[i] = p.z;
+    }
+    const LightVector<Float8> wide = lightVector<Float8>(light, positions);
+    for (int i = 0; i < 8; ++i) {
+        const LightVector<float> one = lightVector<float>(light, lane(positions, i));
+        for (const vec3 L : {one.L, lane(wide.L, i)}) {
+            ASSERT_TRUE(std::isfinite(L.x) && std::isfinite(L.y) && std::isfinite(L.z)) << i;
+            const float length = glm::length(L);
+            EXPECT_TRUE(length == 0.0f || std::abs(length - 1.0f) < 1e-5f)
+                << "lane " << i << ": |L| = " << length;
+        }
+        EXPECT_EQ(one.L, lane(wide.L, i)) << i;
+    }
+    EXPECT_EQ(lightVector<float>(light, light.position).L, vec3(0.0f));
+    EXPECT_EQ(lightVector<float>(light, light.position).distance, 0.0f);
+}
+
+// A point light a hair above a surface's plane (N·L = 1e-5, as rounding leaves a light placed in the
+// plane) gives no highlight, as exactly in the plane: otherwise rounding speckles the face.
+TEST(LightingEquation, GrazingLightGivesNoSpecular) {
+    PhongMaterial m;
+    m.diffuse = vec3(0.5f);
+    m.specular = vec3(1.0f);
+    m.shininess = 10.0f;
+    LightParams light;
+    light.kind = LightKind::Point;
+    light.position = vec3(1.0f, 0.0f, 1e-5f);
+    const vec3 position(0.0f), normal(0.0f, 0.0f, 1.0f), eye(-1.0f, 0.0f, 1.0f);
+    const std::vector<LightParams> lights{light};
+    for (SpecularModel model : {SpecularModel::Phong, SpecularModel::BlinnPhong}) {
+        const LightingTerms<vec3> one =
+            standardLighting<float>(position, normal, eye, m, vec3(0.0f), lights, model);
+        EXPECT_EQ(one.specular, vec3(0.0f)) << int(model);
+        EXPECT_LT(one.diffuse.x, 1e-4f);
+        const LightingTerms<Vec3x8> wide =
+            standardLighting<Float8>(Vec3x8(position), Vec3x8(normal), eye, m, vec3(0.0f), lights, model);
+        EXPECT_EQ(lane(wide.specular, 3), vec3(0.0f)) << int(model);
+    }
+    PbrMaterial pbr;
+    pbr.roughness = 0.3f;
+    const LightingTerms<vec3> cookTorrance = physicallyBasedTerms<float>(
+        position, normal, eye, pbr, pbr.baseColor, vec3(0.0f), vec3(0.0f), lights);
+    EXPECT_EQ(cookTorrance.specular, vec3(0.0f));
+    EXPECT_EQ(cookTorrance.diffuse, vec3(0.0f));
+}
+
 TEST(BrdfWide, BrdfAndPhysicallyBasedLightingMatchScalar) {
     RandomLanes random;
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);

@@ -23,10 +23,13 @@ struct RunResult {
     std::string err;
 };
 
-RunResult runFacet(const std::string& args, const TempDir& dir) {
+// Runs facet with `args`, its output captured in `dir`; in `workingFolder` when one is given.
+RunResult runFacet(const std::string& args, const TempDir& dir,
+                   const std::filesystem::path& workingFolder = {}) {
     const auto outFile = dir.path() / "stdout.txt", errFile = dir.path() / "stderr.txt";
     // Built with a stream: GCC 12 reports a false -Wrestrict on chains of std::string operator+.
     std::ostringstream command;
+    if (!workingFolder.empty()) command << "cd '" << workingFolder.string() << "' && ";
     command << "'" << FACET_BINARY << "' " << args << " >'" << outFile.string() << "' 2>'" << errFile.string()
             << "' </dev/null";
     const int raw = std::system(command.str().c_str());
@@ -230,6 +233,16 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"OnlyAndComponents", nullptr, nullptr, "--only diffuse --components", "do not go together"},
         BadInput{"CreaseAngleOutOfRange", nullptr, nullptr, "--crease-angle 200", "--crease-angle"},
         BadInput{"BackwardFrames", nullptr, nullptr, "--frames 9-3", "--frames"},
+        // Frame numbers near the largest int used to overflow the frame counter and never stop.
+        BadInput{"FramesAtTheLargestInt", nullptr, nullptr, "--frames 2147483646-2147483647", "0 to 9999999"},
+        BadInput{"FrameNumberBeyondSevenDigits", nullptr, nullptr, "--frames 10000000", "0 to 9999999"},
+        BadInput{"ThreadsNotANumber", nullptr, nullptr, "--threads abc",
+                 "--threads: expects a whole number from 0 to 1024 (got \"abc\")", 2},
+        BadInput{"WidthNotANumber", nullptr, nullptr, "--width 12px", "--width: expects a whole number", 2},
+        BadInput{"FovyNotANumber", nullptr, nullptr, "--fovy nan", "--fovy: expects a finite number", 2},
+        BadInput{"TurntableInfinite", nullptr, nullptr, "--frames 0-1 --turntable inf",
+                 "--turntable: expects a finite number", 2},
+        BadInput{"GammaBeyondFloat", nullptr, nullptr, "--gamma 1e39", "--gamma: expects a finite number", 2},
         BadInput{"TurntableWithoutFrames", nullptr, nullptr, "--turntable 90", "--turntable needs --frames"},
         BadInput{"GammaWithLinear", nullptr, nullptr, "--encode linear --gamma 2.2", "--gamma goes with"},
         BadInput{"GammaWithGlPreset", nullptr, nullptr, "--lighting gl --gamma 2.2", "gl preset"}),
@@ -244,6 +257,154 @@ TEST(Cli, UnknownImageFormatWritesNothing) {
     EXPECT_EQ(lineCount(run.err), 1) << run.err;
     EXPECT_NE(run.err.find("x.notaformat"), std::string::npos) << run.err;
     EXPECT_FALSE(std::filesystem::exists(dir.path() / "x.notaformat"));
+}
+
+// Counts are checked before the model is loaded: with a model that is not even there, the error is
+// about the images --frames and --components would write, and it comes at once.
+TEST(Cli, ImageCountIsCheckedBeforeTheModelIsLoaded) {
+    TempDir dir;
+    const RunResult run = runFacet("render " + quoted(dir.path() / "missing.obj") + " -o " +
+                                       quoted(dir.path() / "x.png") + " --frames 0-20000 --components",
+                                   dir);
+    EXPECT_EQ(run.status, 1);
+    EXPECT_EQ(lineCount(run.err), 1) << run.err;
+    EXPECT_NE(run.err.find("would write 100005 images"), std::string::npos) << run.err;
+    EXPECT_EQ(run.err.find("missing.obj"), std::string::npos) << run.err;
+}
+
+TEST(Cli, OutputPathsGetPlainMessages) {
+    TempDir dir;
+    const auto obj = quoted(dir.write("ok.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
+    const auto file = dir.write("file.png", "a file, not a folder");
+    const struct {
+        std::string output;
+        std::string expected;  // the whole error line
+    } cases[] = {
+        {"", "facet: error: no output file given: name one with -o, like -o out/image.png\n"},
+        {(dir.path() / ".png").string(), "facet: error: " + (dir.path() / ".png").string() +
+                                             ": has no file name before the extension (like " +
+                                             (dir.path() / "image.png").string() + ")\n"},
+        {(file / "x.png").string(),
+         "facet: error: " + (file / "x.png").string() + ": cannot write: Not a directory\n"},
+    };
+    for (const auto& c : cases) {
+        const RunResult run = runFacet(
+            "render " + obj + " -o " + quoted(std::filesystem::path(c.output)) + " --width 8 --height 8",
+            dir);
+        EXPECT_EQ(run.status, 1) << c.output;
+        EXPECT_EQ(run.err, c.expected);
+    }
+    EXPECT_EQ(readText(file), "a file, not a folder");
+}
+
+// A folder that refuses new files: the error names the user's path and the system's reason, never the
+// hidden temporary file the image is first written to. (/sys refuses files even to root.)
+TEST(Cli, UnwritableFolderNamesThePathAndTheReason) {
+    if (!std::filesystem::is_directory("/sys")) GTEST_SKIP() << "no /sys here";
+    TempDir dir;
+    const auto obj = quoted(dir.write("ok.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
+    const RunResult run = runFacet("render " + obj + " -o /sys/facet-test.png --width 8 --height 8", dir);
+    EXPECT_EQ(run.status, 1);
+    EXPECT_EQ(lineCount(run.err), 1) << run.err;
+    EXPECT_EQ(run.err.rfind("facet: error: /sys/facet-test.png: cannot write: ", 0), 0u) << run.err;
+    EXPECT_EQ(run.err.find(".tmp"), std::string::npos) << run.err;
+}
+
+// facet bench finds its default model beside the repository it was built in, from any folder.
+TEST(Cli, BenchFindsItsDefaultModelFromAnyFolder) {
+    const auto bunny = std::filesystem::path(FACET_SHARED_MODELS) / "stanford-bunny/stanford-bunny.obj";
+    if (!std::filesystem::exists(bunny)) GTEST_SKIP() << bunny << " is not here";
+    TempDir dir;
+    const RunResult run = runFacet("bench --frames 1 --width 16 --height 16 --threads 1", dir, dir.path());
+    EXPECT_EQ(run.status, 0) << run.err;
+    EXPECT_NE(run.out.find("stanford-bunny.obj"), std::string::npos) << run.out;
+}
+
+TEST(Cli, BenchRefusesNonFiniteSteps) {
+    TempDir dir;
+    for (const char* value : {"nan", "inf", "-inf"}) {
+        const RunResult run = runFacet(std::string("bench --transparency --degrees-per-frame ") + value +
+                                           " " + quoted(dir.path() / "missing.obj"),
+                                       dir);
+        EXPECT_EQ(run.status, 2) << value;
+        EXPECT_NE(run.err.find("--degrees-per-frame: expects a finite number"), std::string::npos) << run.err;
+    }
+}
+
+constexpr const char* kCubeObj =
+    "v -1 -1 -1\nv 1 -1 -1\nv -1 1 -1\nv 1 1 -1\nv -1 -1 1\nv 1 -1 1\nv -1 1 1\nv 1 1 1\n"
+    "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+
+// The last line of defence: a frame that draws nothing says so, and what became of its triangles.
+TEST(Cli, FrameThatDrawsNothingIsWarnedAbout) {
+    TempDir dir;
+    const auto obj = quoted(dir.write("cube.obj", kCubeObj));
+    const RunResult away = runFacet("render " + obj + " -o " + quoted(dir.path() / "away.png") +
+                                        " --width 32 --height 24 --eye 0,0,5 --target 0,0,10",
+                                    dir);
+    EXPECT_EQ(away.status, 0) << away.err;
+    EXPECT_EQ(lineCount(away.err), 1) << away.err;
+    EXPECT_NE(
+        away.err.find("facet: warning: " + (dir.path() / "away.png").string() +
+                      ": nothing was drawn, only the background: of 12 triangles, 12 lay outside the view"),
+        std::string::npos)
+        << away.err;
+    const RunResult seen = runFacet(
+        "render " + obj + " -o " + quoted(dir.path() / "seen.png") + " --width 32 --height 24 --eye 0,0,5",
+        dir);
+    EXPECT_EQ(seen.status, 0) << seen.err;
+    EXPECT_EQ(seen.err, "");
+}
+
+// Straight above the target with the default up vector: drawn, with the up vector chosen and named.
+TEST(Cli, EyeStraightAboveTheTargetRendersWithAWarning) {
+    TempDir dir;
+    const auto obj = quoted(dir.write("cube.obj", kCubeObj));
+    const auto scene = dir.write("above.json", "{\"model\": \"cube.obj\", \"camera\": {\"eye\": [0, 5, 0]}}");
+    for (const std::string& input :
+         {"render " + obj + " --eye 0,5,0 --target 0,0,0", "render " + quoted(scene)}) {
+        const RunResult run =
+            runFacet(input + " -o " + quoted(dir.path() / "above.png") + " --width 32 --height 24", dir);
+        EXPECT_EQ(run.status, 0) << run.err;
+        EXPECT_EQ(lineCount(run.err), 1) << run.err;
+        EXPECT_NE(run.err.find("facet: warning: "), std::string::npos) << run.err;
+        EXPECT_NE(run.err.find("looks straight down"), std::string::npos) << run.err;
+        EXPECT_EQ(run.out.find(" 0 fragments shaded"), std::string::npos) << run.out;
+    }
+}
+
+// Camera numbers that leave nothing to see are refused with the scene file's name; extreme ones that
+// still work render.
+TEST(Cli, ImpossibleNearPlaneIsRefusedAndExtremeFarPlaneRenders) {
+    TempDir dir;
+    dir.write("cube.obj", kCubeObj);
+    const auto tiny = dir.write("tiny-near.json", "{\"model\": \"cube.obj\", \"camera\": {\"near\": 1e-10}}");
+    const RunResult refused = runFacet("render " + quoted(tiny) + " -o " + quoted(dir.path() / "x.png"), dir);
+    EXPECT_EQ(refused.status, 1);
+    EXPECT_EQ(lineCount(refused.err), 1) << refused.err;
+    EXPECT_NE(refused.err.find("tiny-near.json: the camera's near plane (1e-10) is too small"),
+              std::string::npos)
+        << refused.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / "x.png"));
+
+    const auto huge = dir.write("huge-far.json", "{\"model\": \"cube.obj\", \"camera\": {\"far\": 3e38}}");
+    const RunResult drawn = runFacet(
+        "render " + quoted(huge) + " -o " + quoted(dir.path() / "y.png") + " --width 32 --height 24", dir);
+    EXPECT_EQ(drawn.status, 0) << drawn.err;
+    EXPECT_EQ(drawn.out.find(" 0 fragments shaded"), std::string::npos) << drawn.out;
+}
+
+// A model of size 2 at 1e7 from the origin, where floats are 1 apart: drawn, with a warning.
+TEST(Cli, ModelFarFromTheOriginForItsSizeIsWarnedAbout) {
+    TempDir dir;
+    const auto obj = dir.write("far.obj", "v 10000000 0 0\nv 10000002 0 0\nv 10000000 2 0\nf 1 2 3\n");
+    const RunResult run = runFacet(
+        "render " + quoted(obj) + " -o " + quoted(dir.path() / "far.png") + " --width 32 --height 24", dir);
+    EXPECT_EQ(run.status, 0) << run.err;
+    EXPECT_EQ(lineCount(run.err), 1) << run.err;
+    EXPECT_NE(run.err.find("far.obj: coordinates reach 1e+07 while the model is only 2.82843 across"),
+              std::string::npos)
+        << run.err;
 }
 
 TEST(Cli, MissingMaterialFileWarnsAndRenders) {

@@ -1,6 +1,7 @@
 // Rendering whole scenes through the renderer: hand-computed pixels, and every bundled model.
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include <gtest/gtest.h>
 
@@ -358,6 +359,85 @@ INSTANTIATE_TEST_SUITE_P(Models, BundledModel,
                                  if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
                              return name;
                          });
+
+// A point light exactly in the plane of a face, at its centre: every point of the face sees it at
+// grazing incidence (N·L = 0), so the face gets neither diffuse nor specular light, everywhere alike.
+// Rounding used to put N·L a hair above 0 at some pixels and a hair below at others: highlights
+// speckled the face at random, and at the light's own position L was 0/0.
+TEST(Render, PointLightOnAFaceLightsItEvenly) {
+    TempDir dir;
+    const auto obj = dir.write("square.obj", std::string("mtllib square.mtl\nusemtl shiny\n") + kSquareObj);
+    dir.write("square.mtl", "newmtl shiny\nKa 0 0 0\nKd 0.5 0.5 0.5\nKs 1 1 1\nNs 10\n");
+    for (const ReflectionModel model :
+         {ReflectionModel::BlinnPhong, ReflectionModel::Phong, ReflectionModel::CookTorrance})
+        for (const ShadingFrequency frequency : {ShadingFrequency::Phong, ShadingFrequency::Gouraud}) {
+            Scene scene = headOnScene(obj);
+            scene.background = vec4(0.25f, 0.5f, 0.75f, 1.0f);
+            scene.lights[0].type = LightType::Point;
+            scene.lights[0].position = vec3(0.1f, 0.2f, 0.0f);  // in the square's plane
+            scene.camera.eye = vec3(0.7f, 1.3f, 4.1f);          // at an angle: eye space rounds
+            scene.lighting.model = model;
+            scene.lighting.shading = frequency;
+            const LinearImage image = renderScene(scene);
+            const vec4 first = image.at(30, 26);
+            int differing = 0, notFinite = 0;
+            for (int y = 14; y < 34; ++y)  // well inside the square
+                for (int x = 22; x < 42; ++x) {
+                    const vec4 p = image.at(x, y);
+                    notFinite += !(std::isfinite(p.r) && std::isfinite(p.g) && std::isfinite(p.b));
+                    differing +=
+                        std::abs(p.r - first.r) + std::abs(p.g - first.g) + std::abs(p.b - first.b) > 1e-3f;
+                }
+            EXPECT_EQ(notFinite, 0) << int(model) << " " << int(frequency);
+            EXPECT_EQ(differing, 0) << int(model) << " " << int(frequency) << " centre " << first.r;
+        }
+}
+
+// A cube whose coordinates are multiplied by `scale`, with a shiny material, written as OBJ text.
+std::string scaledCubeObj(double scale) {
+    std::ostringstream obj;
+    obj.precision(9);
+    obj << "mtllib cube.mtl\nusemtl shiny\n";
+    for (int corner = 0; corner < 8; ++corner)
+        obj << "v " << ((corner & 1) ? scale : -scale) << " " << ((corner & 2) ? scale : -scale) << " "
+            << ((corner & 4) ? 0.5 * scale : -0.5 * scale) << "\n";
+    obj << "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+    return obj.str();
+}
+
+// Framing, view and projection are computed in double and eye space is scaled to the scene's size:
+// a model of 1e30 or 1e-30 units (which the OBJ importer accepts) renders as the same image as the
+// unit-sized one, lighting and highlight included; so does one of 1e-7, once framed five times too
+// small. (1e30 used to overflow the float projection, 1e-30 to underflow it: blank images.)
+TEST(Render, ExtremeScalesRenderTheSameImageAsUnitSize) {
+    TempDir dir;
+    dir.write("cube.mtl", "newmtl shiny\nKa 0 0 0\nKd 0.6 0.4 0.2\nKs 0.5 0.5 0.5\nNs 20\n");
+    const auto render = [&](double scale) {
+        Scene scene = sceneForModel(dir.write("cube.obj", scaledCubeObj(scale)));
+        scene.width = 48;
+        scene.height = 36;
+        LightSpec light;  // a point light, so that attenuation and distances are scaled too
+        light.type = LightType::Point;
+        light.position = vec3(glm::dvec3(2.0, 3.0, 4.0) * scale);
+        light.attenuation = vec3(0.5f, float(0.3 / scale), 0.0f);  // (c2 / scale² is beyond float)
+        scene.lights = {light};
+        return renderScene(scene);
+    };
+    const LinearImage unit = render(1.0);
+    int covered = 0;
+    for (const vec4& p : unit.pixels)
+        covered += p != unit.pixels[0];
+    ASSERT_GT(covered, 200);
+    for (const double scale : {1e30, 1e-30, 1e-7}) {
+        const LinearImage scaled = render(scale);
+        int differing = 0;
+        for (std::size_t i = 0; i < unit.pixels.size(); ++i) {
+            const vec4 d = abs(scaled.pixels[i] - unit.pixels[i]);
+            differing += std::max({d.r, d.g, d.b, d.a}) > 1e-3f;
+        }
+        EXPECT_LE(differing, 2) << "scale " << scale;  // a pixel centre exactly on an edge may flip
+    }
+}
 
 }  // namespace
 }  // namespace facet
