@@ -106,7 +106,8 @@ struct PlannedDraw {
 
 // The frame's draw calls: opaque draws first, then the transparent triangles in the order `mode` gives
 // (sorted back to front; file order; file order into the framebuffer's fragment lists, to be resolved
-// after the last one). Fills stats.sort and sortMilliseconds.
+// after the last one). Fills stats.sort and sortMilliseconds. The draws' spans point into `prepared`
+// and `memory`: valid until `memory` plans the next frame.
 std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, TransparencyMode mode, FrameMemory& memory,
                                    FrameStats& stats);
 
