@@ -63,7 +63,8 @@ struct DrawContext {
     ShadedVertices shaded;
     std::vector<WindowVertex> window;  // viewport transform of each vertex that needs no clipping
     std::vector<SetupChunk> chunks;
-    std::vector<DrawStats> threadStats;  // back-end counters, one per thread
+    std::vector<std::uint32_t> activeTiles;  // the tiles a batch's triangles touch, in tile order
+    std::vector<DrawStats> threadStats;      // back-end counters, one per thread
 };
 
 // Work sizes: vertices are shaded in chunks of kVertexChunk, triangles set up in chunks of
@@ -455,7 +456,19 @@ DrawStats draw(const DrawState& state, const typename S::Uniforms& uniforms,
             }
             detail::shadeQueue<S, kOutput>(queue, state, uniforms, target, stats, observer);
         };
-        forEach(static_cast<std::size_t>(grid.count()), [&](std::size_t tile, int thread) {
+        // Only the tiles some triangle touches: a draw of a few triangles (such as a short run of the
+        // transparent pass) then costs little more than its triangles, and a single tile is drawn on
+        // the calling thread without waking the pool.
+        context.activeTiles.clear();
+        for (int tile = 0; tile < grid.count(); ++tile)
+            for (std::size_t c = 0; c < chunkCount; ++c)
+                if (!context.chunks[c].bins[static_cast<std::size_t>(tile)].empty()) {
+                    context.activeTiles.push_back(static_cast<std::uint32_t>(tile));
+                    break;
+                }
+        total.tilesDrawn += context.activeTiles.size();
+        forEach(context.activeTiles.size(), [&](std::size_t active, int thread) {
+            const std::size_t tile = context.activeTiles[active];
             if (appending)
                 drawTile(std::integral_constant<FragmentOutput, FragmentOutput::AppendToLists>{}, tile,
                          thread);

@@ -19,6 +19,7 @@ DrawStats& DrawStats::operator+=(const DrawStats& o) {
     fragmentsDiscarded += o.fragmentsDiscarded;
     fragmentsWritten += o.fragmentsWritten;
     fragmentsStored += o.fragmentsStored;
+    tilesDrawn += o.tilesDrawn;
     return *this;
 }
 

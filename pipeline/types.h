@@ -193,6 +193,7 @@ struct DrawStats {
     std::uint64_t fragmentsDiscarded = 0;
     std::uint64_t fragmentsWritten = 0;
     std::uint64_t fragmentsStored = 0;  // appended to fragment lists (FragmentOutput::AppendToLists)
+    std::uint64_t tilesDrawn = 0;       // screen tiles the back end visited: those some triangle touches
 
     DrawStats& operator+=(const DrawStats& other);
 };

@@ -419,8 +419,10 @@ std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, TransparencyMo
                                    FrameStats& stats) {
     std::vector<PlannedDraw> plan;
     // Opaque draws, with depth writes, in file order.
-    for (std::uint32_t k = 0; k < prepared.draws.size(); ++k)
-        if (!prepared.draws[k].transparent) plan.push_back({k, prepared.draws[k].indices, prepared.state});
+    for (std::uint32_t k = 0; k < prepared.draws.size(); ++k) {
+        const PreparedDraw& d = prepared.draws[k];
+        if (!d.transparent) plan.push_back({k, d.vertices, d.indices, prepared.state});
+    }
     const std::vector<TransparentTriangle>& triangles = prepared.transparentTriangles;
     if (triangles.empty()) return plan;
 
@@ -436,7 +438,8 @@ std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, TransparencyMo
     if (mode != TransparencyMode::Sorted) {
         for (std::uint32_t k = 0; k < prepared.draws.size(); ++k)
             if (prepared.draws[k].transparent) {
-                plan.push_back({k, prepared.draws[k].indices, transparentState(k)});
+                plan.push_back(
+                    {k, prepared.draws[k].vertices, prepared.draws[k].indices, transparentState(k)});
                 ++stats.transparentRuns;
             }
         return plan;
@@ -450,7 +453,15 @@ std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, TransparencyMo
     stats.sortMilliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 
+    // A run with all of its draw's triangles uses the draw's vertex array (every vertex of it is used:
+    // extractPart); any other run gets a compact array of the vertices it uses, each once, and its
+    // indices are renumbered into it. The vertex stage then shades, over all runs, at most three
+    // vertices per transparent triangle, instead of the whole draw once per run. The image is the same:
+    // a vertex is shaded alike wherever it sits in the array.
     memory.runIndices.resize(3 * triangles.size());
+    memory.runVertices.clear();
+    memory.runVertexRanges.clear();
+    const std::size_t firstRun = plan.size();
     std::size_t written = 0;
     for (std::size_t i = 0; i < order.size();) {
         const std::uint32_t k = triangles[order[i]].draw;
@@ -461,9 +472,34 @@ std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, TransparencyMo
             for (int c = 0; c < 3; ++c)
                 memory.runIndices[written++] = d.indices[3 * t + c];
         }
-        plan.push_back({k, std::span<const std::uint32_t>(memory.runIndices).subspan(first, written - first),
-                        transparentState(k)});
+        const std::span<std::uint32_t> run = std::span(memory.runIndices).subspan(first, written - first);
+        const std::size_t start = memory.runVertices.size();
+        if (run.size() < d.indices.size()) {
+            if (memory.runVertexOf.size() < d.vertices.size())
+                memory.runVertexOf.resize(d.vertices.size(), FrameMemory::kNotInRun);
+            memory.runVertexSources.clear();
+            for (std::uint32_t& index : run) {
+                std::uint32_t& local = memory.runVertexOf[index];
+                if (local == FrameMemory::kNotInRun) {
+                    local = static_cast<std::uint32_t>(memory.runVertexSources.size());
+                    memory.runVertexSources.push_back(index);
+                    memory.runVertices.push_back(d.vertices[index]);
+                }
+                index = local;
+            }
+            for (const std::uint32_t source : memory.runVertexSources)
+                memory.runVertexOf[source] = FrameMemory::kNotInRun;
+        }
+        memory.runVertexRanges.push_back({start, memory.runVertices.size()});
+        plan.push_back({k, d.vertices, run, transparentState(k)});
         ++stats.transparentRuns;
+    }
+    // runVertices has stopped growing: point the compacted runs at their vertices.
+    for (std::size_t r = 0; r < memory.runVertexRanges.size(); ++r) {
+        const auto [begin, end] = memory.runVertexRanges[r];
+        if (end > begin)
+            plan[firstRun + r].vertices =
+                std::span<const MeshVertex>(memory.runVertices).subspan(begin, end - begin);
     }
     return plan;
 }
@@ -471,10 +507,10 @@ std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, TransparencyMo
 namespace {
 
 template <ShadingFrequency kFrequency>
-DrawStats drawSurface(const PreparedDraw& d, const PlannedDraw& call, const SurfaceUniforms& uniforms,
-                      Framebuffer& target, DrawContext& context) {
-    return draw<SurfaceShader<kFrequency>>(call.state, uniforms, std::span<const MeshVertex>(d.vertices),
-                                           call.indices, target, context);
+DrawStats drawSurface(const PlannedDraw& call, const SurfaceUniforms& uniforms, Framebuffer& target,
+                      DrawContext& context) {
+    return draw<SurfaceShader<kFrequency>>(call.state, uniforms, call.vertices, call.indices, target,
+                                           context);
 }
 
 }  // namespace
@@ -496,13 +532,13 @@ FrameStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawC
         }
         switch (d.frequency) {
             case ShadingFrequency::Flat:
-                stats.draw += drawSurface<ShadingFrequency::Flat>(d, call, *uniforms, target, context);
+                stats.draw += drawSurface<ShadingFrequency::Flat>(call, *uniforms, target, context);
                 break;
             case ShadingFrequency::Gouraud:
-                stats.draw += drawSurface<ShadingFrequency::Gouraud>(d, call, *uniforms, target, context);
+                stats.draw += drawSurface<ShadingFrequency::Gouraud>(call, *uniforms, target, context);
                 break;
             case ShadingFrequency::Phong:
-                stats.draw += drawSurface<ShadingFrequency::Phong>(d, call, *uniforms, target, context);
+                stats.draw += drawSurface<ShadingFrequency::Phong>(call, *uniforms, target, context);
                 break;
         }
     }
@@ -553,7 +589,7 @@ GlScene toGlScene(const PreparedScene& prepared) {
     for (const PlannedDraw& call : planFrame(prepared, mode, memory, stats)) {
         const PreparedDraw& d = prepared.draws[call.draw];
         GlDraw out;
-        out.vertices = d.vertices;
+        out.vertices.assign(call.vertices.begin(), call.vertices.end());  // a run's: only what it uses
         out.indices.assign(call.indices.begin(), call.indices.end());
         out.viewFromObject = d.uniforms.viewFromObject;
         out.normalFromObject = d.uniforms.normalFromObject;

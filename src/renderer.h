@@ -6,6 +6,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "camera.h"
@@ -70,6 +71,17 @@ struct FrameMemory {
     std::vector<float> keys;                // per transparent triangle
     std::vector<float> vertexDepths;        // z_eye of one draw's vertices, for the keys
     std::vector<std::uint32_t> runIndices;  // the index lists of the transparent runs
+    // The runs' compact vertex arrays, one after another: each run carries only the vertices it uses,
+    // so that a draw cut into thousands of runs is not shaded whole thousands of times.
+    std::vector<MeshVertex> runVertices;
+    // Per run, its vertices' range [first, last) in runVertices; empty: the run has all of its draw's
+    // triangles and uses the draw's own vertex array.
+    std::vector<std::pair<std::size_t, std::size_t>> runVertexRanges;
+    // While a run is compacted: for each vertex of its draw, its index in the run's array, or kNotInRun;
+    // and the draw's indices of the vertices copied so far, to put kNotInRun back after the run.
+    std::vector<std::uint32_t> runVertexOf;
+    std::vector<std::uint32_t> runVertexSources;
+    static constexpr std::uint32_t kNotInRun = 0xffffffffu;
 };
 
 struct FrameStats {
@@ -84,14 +96,18 @@ struct FrameStats {
 // One draw call of a frame, in order: an opaque part whole, or a run of consecutive transparent
 // triangles of one part (back to front across all transparent parts).
 struct PlannedDraw {
-    std::uint32_t draw;                      // index into PreparedScene::draws
-    std::span<const std::uint32_t> indices;  // the draw's own indices, or a run from FrameMemory
-    DrawState state;                         // depth writes off and blending for transparent runs
+    std::uint32_t draw;  // index into PreparedScene::draws: its uniforms and shading
+    // The draw's own vertices and indices; or, for a run of some of its triangles, a compact copy of
+    // just the vertices the run uses and the run's indices into it (both in FrameMemory).
+    std::span<const MeshVertex> vertices;
+    std::span<const std::uint32_t> indices;
+    DrawState state;  // depth writes off and blending for transparent runs
 };
 
 // The frame's draw calls: opaque draws first, then the transparent triangles in the order `mode` gives
 // (sorted back to front; file order; file order into the framebuffer's fragment lists, to be resolved
-// after the last one). Fills stats.sort and sortMilliseconds.
+// after the last one). Fills stats.sort and sortMilliseconds. The draws' spans point into `prepared`
+// and `memory`: valid until `memory` plans the next frame.
 std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, TransparencyMode mode, FrameMemory& memory,
                                    FrameStats& stats);
 

@@ -1,7 +1,9 @@
 // Rendering whole scenes through the renderer: hand-computed pixels, and every bundled model.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <sstream>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -308,6 +310,176 @@ TEST(Render, ExactTransparencyIsRightWhereSortingCannotBe) {
         }
     }
     EXPECT_GT(sortedWrong, 0) << "sorting per triangle should get some of these pixels wrong";
+}
+
+// Many small see-through quads of three materials, one behind the other with the materials taking
+// turns, so that back to front they make one run per quad; a fourth see-through material with a single
+// quad at the back (a run with all of its part), and an opaque quad behind everything. The quads are
+// scattered and tilted, some across the image's edge (clipped). Draws of the transparent pass: quadCount + 1.
+std::filesystem::path writeInterleavedQuads(TempDir& dir, int quadCount) {
+    dir.write(
+        "quads.mtl",
+        "newmtl red\nKd 1 0.2 0.2\nd 0.5\nnewmtl green\nKd 0.2 1 0.2\nd 0.4\nnewmtl blue\nKd 0.2 0.2 1\n"
+        "d 0.6\nnewmtl alone\nKd 1 1 0.2\nd 0.3\nnewmtl wall\nKd 0.5 0.5 0.5\n");
+    std::string obj = "mtllib quads.mtl\n";
+    std::uint32_t seed = 12345;
+    const auto random = [&seed] {  // [0, 1)
+        seed = seed * 1664525u + 1013904223u;
+        return static_cast<float>(seed >> 8) / 16777216.0f;
+    };
+    int vertexCount = 0;
+    const auto quad = [&](const char* material, float x, float y, float z, float size, float tilt) {
+        obj += std::string("usemtl ") + material + "\n";
+        for (const vec2 corner : {vec2(-1, -1), vec2(1, -1), vec2(1, 1), vec2(-1, 1)})
+            obj += "v " + std::to_string(x + size * corner.x) + " " + std::to_string(y + size * corner.y) +
+                   " " + std::to_string(z + tilt * corner.x) + "\n";
+        obj += "f " + std::to_string(vertexCount + 1) + " " + std::to_string(vertexCount + 2) + " " +
+               std::to_string(vertexCount + 3) + " " + std::to_string(vertexCount + 4) + "\n";
+        vertexCount += 4;
+    };
+    quad("wall", 0.0f, 0.0f, -4.0f, 3.0f, 0.0f);
+    quad("alone", 0.0f, 0.0f, -3.0f, 1.5f, 0.0f);
+    const char* const materials[3] = {"red", "green", "blue"};
+    for (int q = 0; q < quadCount; ++q)
+        quad(materials[q % 3], 3.0f * random() - 1.5f, 3.0f * random() - 1.5f, -2.0f + 0.04f * q,
+             0.3f + 0.6f * random(), 0.01f * (random() - 0.5f));
+    return dir.write("quads.obj", obj);
+}
+
+// The straightforward way of drawing a sorted frame: every run with its part's whole vertex array and
+// the part's own indices. `sorter` sees the same keys as the renderer's, frame after frame, so both
+// order ties alike.
+void drawRunsWithWholeParts(const PreparedScene& prepared, TransparencySorter& sorter, Framebuffer& target,
+                            DrawContext& context) {
+    FrameMemory keys;
+    FrameStats unused;
+    planFrame(prepared, TransparencyMode::Sorted, keys, unused);  // for keys.keys
+    SortStats sortStats;
+    const std::span<const std::uint32_t> order =
+        sorter.sort(keys.keys, SortAlgorithm::InsertionWithMemory, sortStats);
+    const auto drawPart = [&](const PreparedDraw& d, const DrawState& state,
+                              std::span<const std::uint32_t> indices) {
+        ASSERT_EQ(d.frequency, ShadingFrequency::Phong);
+        draw<SurfaceShader<ShadingFrequency::Phong>>(
+            state, d.uniforms, std::span<const MeshVertex>(d.vertices), indices, target, context);
+    };
+    target.clear(prepared.clearColor, 1.0f, context.pool);
+    for (const PreparedDraw& d : prepared.draws)
+        if (!d.transparent) drawPart(d, prepared.state, d.indices);
+    const std::vector<TransparentTriangle>& triangles = prepared.transparentTriangles;
+    std::vector<std::uint32_t> run;
+    for (std::size_t i = 0; i < order.size();) {
+        const PreparedDraw& d = prepared.draws[triangles[order[i]].draw];
+        run.clear();
+        for (; i < order.size() && &prepared.draws[triangles[order[i]].draw] == &d; ++i)
+            for (int c = 0; c < 3; ++c)
+                run.push_back(d.indices[3 * triangles[order[i]].triangle + c]);
+        DrawState state = prepared.state;
+        state.depth.writeEnabled = false;
+        state.blend = d.uniforms.blend;
+        drawPart(d, state, run);
+    }
+}
+
+Scene interleavedQuadsScene(const std::filesystem::path& obj) {
+    Scene scene = headOnScene(obj);
+    scene.width = 96;
+    scene.height = 72;
+    scene.camera.near = 0.5f;
+    scene.camera.far = 20.0f;
+    scene.pipeline.cull = CullChoice::None;
+    return scene;
+}
+
+std::size_t opaqueVertexCount(const PreparedScene& prepared) {
+    std::size_t count = 0;
+    for (const PreparedDraw& d : prepared.draws)
+        if (!d.transparent) count += d.vertices.size();
+    return count;
+}
+
+// A sorted frame cut into many runs shades, over all runs, at most three vertices per transparent
+// triangle (a run's own vertices), not its part's whole vertex array once per run.
+TEST(Render, SortedRunsShadeOnlyTheVerticesTheyUse) {
+    TempDir dir;
+    const int quadCount = 60;
+    PreparedScene prepared = prepareScene(interleavedQuadsScene(writeInterleavedQuads(dir, quadCount)));
+    ASSERT_EQ(prepared.draws.size(), 5u);
+    Framebuffer framebuffer(prepared.scene.width, prepared.scene.height);
+    DrawContext context(2);
+    FrameMemory memory;
+    const FrameStats stats = renderFrame(prepared, framebuffer, context, memory);
+    EXPECT_EQ(stats.transparentRuns, static_cast<std::size_t>(quadCount) + 1);
+    EXPECT_LE(stats.draw.vertices, opaqueVertexCount(prepared) + 3 * prepared.transparentTriangles.size());
+    EXPECT_GT(stats.draw.fragmentsWritten, 0u);
+
+    // Each run's vertex array holds exactly the vertices its indices use, each once.
+    FrameStats planStats;
+    for (const PlannedDraw& call : planFrame(prepared, TransparencyMode::Sorted, memory, planStats)) {
+        std::vector<bool> used(call.vertices.size(), false);
+        for (const std::uint32_t index : call.indices) {
+            ASSERT_LT(index, call.vertices.size());
+            used[index] = true;
+        }
+        EXPECT_EQ(std::count(used.begin(), used.end(), true), static_cast<std::ptrdiff_t>(used.size()));
+    }
+}
+
+// Runs with their own compact vertex arrays draw the same bytes as runs drawn against their part's whole
+// vertex array, frame after frame of a turntable (the order remembered), with one thread or two.
+TEST(Render, SortedRunsDrawTheSameBytesAsRunsOverWholeParts) {
+    TempDir dir;
+    PreparedScene prepared = prepareScene(interleavedQuadsScene(writeInterleavedQuads(dir, 45)));
+    for (const int threads : {1, 2}) {
+        DrawContext context(threads);
+        FrameMemory memory;
+        TransparencySorter referenceSorter;
+        for (const float degrees : {0.0f, 10.0f, 25.0f, 60.0f}) {
+            setTurntable(prepared, degrees);
+            Framebuffer runs(prepared.scene.width, prepared.scene.height);
+            Framebuffer whole(prepared.scene.width, prepared.scene.height);
+            renderFrame(prepared, runs, context, memory);
+            drawRunsWithWholeParts(prepared, referenceSorter, whole, context);
+            const std::vector<vec4> a = runs.colorPixels(), b = whole.colorPixels();
+            ASSERT_EQ(a.size(), b.size());
+            EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(vec4)), 0)
+                << threads << " threads, " << degrees << " degrees";
+        }
+    }
+}
+
+// The scene handed to OpenGL keeps each run's compact vertex array, not a copy of its part's whole one:
+// its vertices add up to at most the opaque parts' and three per transparent triangle, and each run's
+// corners are, in order, those of its part's triangles back to front.
+TEST(Render, GlSceneRunsCarryOnlyTheVerticesTheyUse) {
+    TempDir dir;
+    const PreparedScene prepared = prepareScene(interleavedQuadsScene(writeInterleavedQuads(dir, 60)));
+    const GlScene gl = toGlScene(prepared);
+    std::size_t stored = 0;
+    std::vector<MeshVertex> drawnCorners;
+    for (const GlDraw& draw : gl.draws) {
+        stored += draw.vertices.size();
+        if (draw.depthWrite) continue;  // opaque
+        for (const std::uint32_t index : draw.indices)
+            drawnCorners.push_back(draw.vertices.at(index));
+    }
+    EXPECT_LE(stored, opaqueVertexCount(prepared) + 3 * prepared.transparentTriangles.size());
+
+    FrameMemory keys;
+    FrameStats unused;
+    planFrame(prepared, TransparencyMode::Sorted, keys, unused);
+    TransparencySorter sorter;
+    SortStats sortStats;
+    std::vector<MeshVertex> sortedCorners;
+    for (const std::uint32_t t : sorter.sort(keys.keys, SortAlgorithm::InsertionWithMemory, sortStats)) {
+        const TransparentTriangle& triangle = prepared.transparentTriangles[t];
+        const PreparedDraw& d = prepared.draws[triangle.draw];
+        for (int c = 0; c < 3; ++c)
+            sortedCorners.push_back(d.vertices[d.indices[3 * triangle.triangle + c]]);
+    }
+    ASSERT_EQ(drawnCorners.size(), sortedCorners.size());
+    EXPECT_EQ(
+        std::memcmp(drawnCorners.data(), sortedCorners.data(), sortedCorners.size() * sizeof(MeshVertex)), 0);
 }
 
 // Each bundled model, and the classic ones in ../shared/models, render with every default: the corner

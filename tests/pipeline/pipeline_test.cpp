@@ -253,6 +253,36 @@ TEST(PipelineStages, VertexShaderOncePerVertexAndDiscardWritesNothing) {
         ASSERT_EQ(d, 1.0f);  // a discarded fragment writes no depth
 }
 
+// The back end visits only the tiles some triangle touches: a small triangle costs one tile, not the
+// whole framebuffer's, and its pixels are the same as when it is drawn among triangles covering every tile.
+TEST(PipelineStages, OnlyTheTilesTrianglesTouchAreDrawn) {
+    Framebuffer alone(4 * kDefaultTileSize, 3 * kDefaultTileSize), among(alone.width(), alone.height());
+    const vec2 corner(1.5f * kDefaultTileSize, 1.25f * kDefaultTileSize);  // inside tile (1, 1)
+    const std::vector<ClipSpaceColorShader::Attributes> small = {
+        {testing::clipFromWindow(corner, alone), vec4(1, 0, 0, 1)},
+        {testing::clipFromWindow(corner + vec2(20, 0), alone), vec4(0, 1, 0, 1)},
+        {testing::clipFromWindow(corner + vec2(0, 20), alone), vec4(0, 0, 1, 1)}};
+    for (Framebuffer* fb : {&alone, &among}) {
+        fb->clearColor(vec4(0));
+        fb->clearDepth(1.0f);
+    }
+    DrawState state = testing::stateFor(alone);
+    state.depth.testEnabled = false;
+    state.blend = BlendMode::Additive;
+    const DrawStats smallStats = testing::drawTriangles<ClipSpaceColorShader>(state, small, alone);
+    EXPECT_EQ(smallStats.tilesDrawn, 1u);
+    EXPECT_GT(smallStats.fragmentsWritten, 100u);
+
+    // The same triangle after two covering the whole framebuffer in black (adding nothing).
+    std::vector<ClipSpaceColorShader::Attributes> both;
+    for (const vec2 p : {vec2(0, 0), vec2(1, 0), vec2(1, 1), vec2(0, 0), vec2(1, 1), vec2(0, 1)})
+        both.push_back({testing::clipFromWindow(p * vec2(among.width(), among.height()), among), vec4(0)});
+    both.insert(both.end(), small.begin(), small.end());
+    const DrawStats bothStats = testing::drawTriangles<ClipSpaceColorShader>(state, both, among);
+    EXPECT_EQ(bothStats.tilesDrawn, 12u);
+    EXPECT_EQ(alone.colorPixels(), among.colorPixels());
+}
+
 // Varyings of several types arrive interpolated: at a vertex sitting on a pixel centre they are exact.
 struct MixedVaryingShader {
     struct Attributes {
