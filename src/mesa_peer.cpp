@@ -960,13 +960,14 @@ struct MesaPeer::Impl {
                       fog.distance == FogDistance::Radial ? GL_EYE_RADIAL_NV : GL_EYE_PLANE_ABSOLUTE_NV);
     }
 
-    // A linear float RGBA texture sampled as Facet samples (bilinear, repeat, no mipmaps). Facet's
-    // row 0 is the top of the image (v = 1); GL's first row is t = 0, so rows go up in reverse.
+    // A texture as linear float RGBA (8-bit texels decoded as Facet's sampler decodes them), sampled
+    // as Facet samples (bilinear, repeat, no mipmaps). Facet's row 0 is the top of the image (v = 1);
+    // GL's first row is t = 0, so rows go up in reverse.
     GLuint uploadTexture(const Texture& texture) {
-        std::vector<vec4> rows(texture.texels.size());
+        std::vector<vec4> rows(static_cast<std::size_t>(texture.width) * texture.height);
         for (int y = 0; y < texture.height; ++y)
-            std::copy_n(&texture.texel(0, texture.height - 1 - y), texture.width,
-                        rows.begin() + static_cast<std::ptrdiff_t>(y) * texture.width);
+            for (int x = 0; x < texture.width; ++x)
+                rows[static_cast<std::size_t>(y) * texture.width + x] = texture.texel(x, texture.height - 1 - y);
         GLuint name = 0;
         gl.glGenTextures(1, &name);
         gl.glBindTexture(GL_TEXTURE_2D, name);
