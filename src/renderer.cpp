@@ -284,7 +284,11 @@ PreparedScene prepareScene(const Scene& scene, const TextureLimits& limits) {
             draw.uniforms = uniforms;
             draw.frequency = frequency;
             draw.worldFromObject = object.worldFromObject;
-            const Material& material = mesh.materials.at(part.material);
+            Material material = mesh.materials.at(part.material);
+            if (!material.emissionTexture.empty())
+                draw.uniforms.emissionMap = loadTexture(material.emissionTexture, material.name);
+            // map_Ke without Ke (or with Ke 0) means the texture is the emission, as exporters write it.
+            if (draw.uniforms.emissionMap && material.emission == vec3(0.0f)) material.emission = vec3(1.0f);
             draw.uniforms.material = phongMaterial(material, object.material, decode);
             draw.uniforms.pbr = pbrMaterial(draw.uniforms.material, object.material, decode, scene.source);
             draw.uniforms.opacity = object.material.opacity.value_or(material.opacity);
@@ -524,13 +528,14 @@ GlScene toGlScene(const PreparedScene& prepared) {
         out.material = d.uniforms.material;
         out.pbr = d.uniforms.pbr;
         out.diffuseMap = d.uniforms.diffuseMap;
+        out.emissionMap = d.uniforms.emissionMap;
         out.clampColor = d.uniforms.clampColor;
         out.opacity = d.uniforms.opacity;
         out.blend = call.state.blend;
         out.depthWrite = call.state.depth.writeEnabled;
         // OpenGL 1.x itself where it can say the same: the GL preset's per-vertex Blinn-Phong, opaque or
-        // blended with straight alpha.
-        const bool fixedFunction = glPreset && d.frequency != ShadingFrequency::Phong &&
+        // blended with straight alpha, without an emission map.
+        const bool fixedFunction = glPreset && d.frequency != ShadingFrequency::Phong && !out.emissionMap &&
                                    d.uniforms.reflection == ReflectionModel::BlinnPhong && !smoothSpot &&
                                    d.uniforms.material.shininess <= 128.0f &&
                                    (out.blend == BlendMode::Replace || out.blend == BlendMode::Over);
