@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "color.h"
+#include "errors.h"
 #include "renderer.h"
 #include "test_files.h"
 
@@ -297,6 +298,33 @@ TEST(Render, EmissionMapWithoutKeGlowsWithTheTexture) {
     EXPECT_NEAR(centre.r, texel.r, 1e-5f);
     EXPECT_NEAR(centre.g, texel.g, 1e-5f);
     EXPECT_NEAR(centre.b, texel.b, 1e-5f);
+}
+
+// The memory budget covers all textures of a render together: the second texture that would pass it
+// is refused, named, before it is decoded.
+TEST(Render, TexturesTogetherBeyondTheBudgetAreAnError) {
+    TempDir dir;
+    LinearImage texture;
+    texture.width = texture.height = 64;  // 16 KiB each as 8-bit texels
+    texture.pixels.assign(64 * 64, vec4(0.5f, 0.5f, 0.5f, 1.0f));
+    writeImage(dir.path() / "first.png", texture);
+    writeImage(dir.path() / "second.png", texture);
+    const auto obj = dir.write("two.obj", std::string("mtllib two.mtl\n") +
+                                              "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvn 0 0 1\n"
+                                              "usemtl a\nf 1/1/1 2/1/1 3/1/1\nusemtl b\nf 1/1/1 3/1/1 4/1/1\n");
+    dir.write("two.mtl", "newmtl a\nmap_Kd first.png\nnewmtl b\nmap_Kd second.png\n");
+    const Scene scene = headOnScene(obj);
+    TextureLimits limits;
+    limits.maxTotalBytes = 2 * 64 * 64 * 4;
+    EXPECT_EQ(prepareScene(scene, limits).textures.size(), 2u);  // exactly fits
+    limits.maxTotalBytes -= 1;
+    try {
+        prepareScene(scene, limits);
+        FAIL() << "no error";
+    } catch (const InputError& e) {
+        const std::string message = e.what();
+        EXPECT_EQ(message.rfind((dir.path() / "second.png").string() + ": ", 0), 0u) << message;
+    }
 }
 
 // Two half-transparent quads that cross each other along x = 0 (z = x/2 and z = −x/2): left of the
