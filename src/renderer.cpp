@@ -188,8 +188,8 @@ PreparedScene prepareScene(const Scene& scene, const TextureLimits& limits) {
         if (!first) return it->second;
         TextureRead read = readTexture(file, decodeInputs, limits, limits.maxTotalBytes - textureBytes);
         if (read.texture.empty()) {
-            prepared.warnings.push_back(file.string() + ": " + read.problem + "; drawing material \"" +
-                                        material + "\" without this texture");
+            prepared.warnings.push_back(file.string() + ": " + read.problem + "; drawing material '" +
+                                        material + "' without this texture");
             return nullptr;
         }
         auto owned = std::make_unique<Texture>(std::move(read.texture));
