@@ -21,8 +21,8 @@ struct Texture {
     int width = 0;
     int height = 0;
     // Row-major, row 0 at v = 1 (the top of the image file). Exactly one of the two is filled.
-    std::vector<vec4> texels;  // linear RGBA
-    std::vector<Codes> codes;  // 8-bit RGBA codes, decoded by the tables below
+    std::vector<vec4> texels;                // linear RGBA
+    std::vector<Codes> codes;                // 8-bit RGBA codes, decoded by the tables below
     std::array<float, 256> colorFromCode{};  // an R, G or B code's linear value (sRGB-decoded, or code/255)
     std::array<float, 256> alphaFromCode{};  // an alpha code's value (code/255: alpha is not encoded)
 

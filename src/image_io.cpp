@@ -418,7 +418,8 @@ TextureRead readTexture(const fs::path& path, bool decodeSrgb, const TextureLimi
         for (int c = 0; c < 256; ++c)
             codes[c] = static_cast<std::uint8_t>(c);
         std::array<float, 256> values;
-        OIIO::convert_pixel_values(OIIO::TypeDesc::UINT8, codes.data(), OIIO::TypeDesc::FLOAT, values.data(), 256);
+        OIIO::convert_pixel_values(OIIO::TypeDesc::UINT8, codes.data(), OIIO::TypeDesc::FLOAT, values.data(),
+                                   256);
         for (int c = 0; c < 256; ++c) {
             texture.colorFromCode[c] = finish(values[c]);
             texture.alphaFromCode[c] = values[c];
@@ -431,7 +432,8 @@ TextureRead readTexture(const fs::path& path, bool decodeSrgb, const TextureLimi
     } else {
         if (!readTexels(*input, OIIO::TypeDesc::FLOAT, texture.texels))
             return problem("cannot read it: " + oneLine(input->geterror()));
-        arrangeTexels(spec, texture.texels, finish, [](float a) { return a; }, 1.0f);
+        arrangeTexels(
+            spec, texture.texels, finish, [](float a) { return a; }, 1.0f);
     }
     input->close();
     const std::string printed = libraryOutput.finish();

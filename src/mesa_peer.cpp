@@ -715,20 +715,19 @@ struct MesaPeer::Impl {
                                : draw.reflection == ReflectionModel::BlinnPhong ? 1
                                                                                 : 2;
         const bool costTerms = reflection == 2;  // the BRDF's choices matter to Cook-Torrance only
-        std::string header = versionLine + "\n#define MAX_LIGHTS " + std::to_string(kMaxGlLights) +
-                             "\n#define PER_VERTEX " + (perVertex ? "1" : "0") + "\n#define INTERPOLATION " +
-                             (draw.frequency == ShadingFrequency::Flat ? "flat" : "smooth") +
-                             "\n#define REFLECTION " + std::to_string(reflection) +
-                             "\n#define DISTRIBUTION_GGX " +
-                             (costTerms && scene.brdf.distribution == NormalDistribution::GGX ? "1" : "0") +
-                             "\n#define FRESNEL_EXACT " +
-                             (costTerms && scene.brdf.fresnel == FresnelModel::Exact ? "1" : "0") +
-                             "\n#define GEOMETRY_SMITH " +
-                             (costTerms && scene.brdf.geometry == GeometryTerm::SmithGGX ? "1" : "0") +
-                             "\n#define HAS_DIFFUSE_MAP " + (hasDiffuseMap ? "1" : "0") +
-                             "\n#define HAS_EMISSION_MAP " + (hasEmissionMap ? "1" : "0") +
-                             "\n#define CLAMP_COLOR " + (draw.clampColor ? "1" : "0") +
-                             "\n#define TWO_SIDED_FLIP " + (scene.twoSidedFlip ? "1" : "0") + "\n";
+        std::string header =
+            versionLine + "\n#define MAX_LIGHTS " + std::to_string(kMaxGlLights) + "\n#define PER_VERTEX " +
+            (perVertex ? "1" : "0") + "\n#define INTERPOLATION " +
+            (draw.frequency == ShadingFrequency::Flat ? "flat" : "smooth") + "\n#define REFLECTION " +
+            std::to_string(reflection) + "\n#define DISTRIBUTION_GGX " +
+            (costTerms && scene.brdf.distribution == NormalDistribution::GGX ? "1" : "0") +
+            "\n#define FRESNEL_EXACT " +
+            (costTerms && scene.brdf.fresnel == FresnelModel::Exact ? "1" : "0") +
+            "\n#define GEOMETRY_SMITH " +
+            (costTerms && scene.brdf.geometry == GeometryTerm::SmithGGX ? "1" : "0") +
+            "\n#define HAS_DIFFUSE_MAP " + (hasDiffuseMap ? "1" : "0") + "\n#define HAS_EMISSION_MAP " +
+            (hasEmissionMap ? "1" : "0") + "\n#define CLAMP_COLOR " + (draw.clampColor ? "1" : "0") +
+            "\n#define TWO_SIDED_FLIP " + (scene.twoSidedFlip ? "1" : "0") + "\n";
         header += "#define FOG_MODE " + std::to_string(fogModeCode(scene.fog.mode)) +
                   "\n#define FOG_RADIAL " + (scene.fog.distance == FogDistance::Radial ? "1" : "0") +
                   "\n#define BLEND_OUTPUT " + std::to_string(blendOutputCode(draw.blend)) + "\n";
@@ -988,7 +987,8 @@ struct MesaPeer::Impl {
         std::vector<vec4> rows(static_cast<std::size_t>(texture.width) * texture.height);
         for (int y = 0; y < texture.height; ++y)
             for (int x = 0; x < texture.width; ++x)
-                rows[static_cast<std::size_t>(y) * texture.width + x] = texture.texel(x, texture.height - 1 - y);
+                rows[static_cast<std::size_t>(y) * texture.width + x] =
+                    texture.texel(x, texture.height - 1 - y);
         GLuint name = 0;
         gl.glGenTextures(1, &name);
         gl.glBindTexture(GL_TEXTURE_2D, name);

@@ -495,7 +495,7 @@ struct Library {
     fs::path path;
     std::string problem;                                 // why it was not read; empty when it was
     std::vector<std::string> warnings;                   // "file:line: ..." about its contents
-    std::map<std::string, std::size_t> diffuseMapLines;   // material name → line of its map_Kd
+    std::map<std::string, std::size_t> diffuseMapLines;  // material name → line of its map_Kd
     std::map<std::string, std::size_t> emissionMapLines;  // material name → line of its map_Ke
 };
 
@@ -610,7 +610,8 @@ class LibraryReader final : public tinyobj::MaterialReader {
         static constexpr std::string_view kOthers[] = {"bump", "disp", "decal", "refl", "norm"};
         const std::string_view word = s.substr(0, s.find_first_of(" \t"));
         if (word.size() == s.size()) return {};  // a statement needs a file name after it
-        if (word.rfind("map_", 0) == 0) return word == "map_Kd" || word == "map_Ke" ? std::string_view{} : word;
+        if (word.rfind("map_", 0) == 0)
+            return word == "map_Kd" || word == "map_Ke" ? std::string_view{} : word;
         for (const std::string_view other : kOthers)
             if (word == other) return word;
         return {};
@@ -697,13 +698,15 @@ FoundTexture findTexture(const fs::path& folder, const std::string& name) {
             std::string names;
             for (const fs::path& match : matches)
                 names += (names.empty() ? "" : ", ") + inQuotes(match.filename().string());
-            return {{}, "differs only in case from " + names + " in " + inQuotes(found.string()) +
-                            ", which is ambiguous"};
+            return {{},
+                    "differs only in case from " + names + " in " + inQuotes(found.string()) +
+                        ", which is ambiguous"};
         }
         found = matches.front();
     }
     if (!fs::is_regular_file(found, error)) return {};
-    return {found, "not found as written; using " + inQuotes(found.string()) + ", whose name differs in case"};
+    return {found,
+            "not found as written; using " + inQuotes(found.string()) + ", whose name differs in case"};
 }
 
 // ---- Mesh building --------------------------------------------------------------------------------
@@ -1290,10 +1293,12 @@ Mesh loadObj(const std::filesystem::path& path, const ObjOptions& options) {
                 return fs::path();
             }
             const FoundTexture found = findTexture(folder, texname);
-            const std::string texture = "texture " + inQuotes(texname) + " of material " + inQuotes(source.name);
+            const std::string texture =
+                "texture " + inQuotes(texname) + " of material " + inQuotes(source.name);
             if (found.path.empty())
                 warnings.push_back(located(libraryFile, line,
-                                           texture + (found.warning.empty() ? " not found" : " " + found.warning) +
+                                           texture +
+                                               (found.warning.empty() ? " not found" : " " + found.warning) +
                                                "; drawing without it"));
             else if (!found.warning.empty())
                 warnings.push_back(located(libraryFile, line, texture + " " + found.warning));
@@ -1304,7 +1309,8 @@ Mesh loadObj(const std::filesystem::path& path, const ObjOptions& options) {
             const auto it = (library->*lines).find(source.name);
             return it == (library->*lines).end() ? kNoLine : it->second;
         };
-        material.diffuseTexture = resolve("map_Kd", source.diffuse_texname, lineOf(&Library::diffuseMapLines));
+        material.diffuseTexture =
+            resolve("map_Kd", source.diffuse_texname, lineOf(&Library::diffuseMapLines));
         material.emissionTexture =
             resolve("map_Ke", source.emissive_texname, lineOf(&Library::emissionMapLines));
         mesh.materials.push_back(std::move(material));

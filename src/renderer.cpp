@@ -144,7 +144,8 @@ bool hasTranslucentTexel(const Texture& texture) {
     if (!texture.codes.empty())
         return std::any_of(texture.codes.begin(), texture.codes.end(),
                            [&](const Texture::Codes& c) { return texture.alphaFromCode[c[3]] < 1.0f; });
-    return std::any_of(texture.texels.begin(), texture.texels.end(), [](const vec4& t) { return t.a < 1.0f; });
+    return std::any_of(texture.texels.begin(), texture.texels.end(),
+                       [](const vec4& t) { return t.a < 1.0f; });
 }
 
 // Splits one part of a mesh into its own vertex array, so its draw shades only the vertices it uses.

@@ -840,10 +840,11 @@ TEST_F(ObjImport, TextureNameMatchingSeveralFilesInAnotherCaseWarnsAndUsesNone) 
     EXPECT_TRUE(mesh.materials[0].diffuseTexture.empty());
     ASSERT_EQ(mesh.warnings.size(), 1u);
     const std::string& warning = mesh.warnings[0];
-    EXPECT_EQ(warning.rfind(mtl.string() + ":2: texture 'Wood.png' of material 'floor' differs only in case from "
-                                           "'WOOD.png', 'wood.png'",
-                            0),
-              0u)
+    EXPECT_EQ(
+        warning.rfind(mtl.string() + ":2: texture 'Wood.png' of material 'floor' differs only in case from "
+                                     "'WOOD.png', 'wood.png'",
+                      0),
+        0u)
         << warning;
     EXPECT_NE(warning.find("drawing without it"), std::string::npos) << warning;
 }
@@ -868,11 +869,12 @@ TEST_F(ObjImport, UnusedTextureMapsWarnOnceEach) {
     const Mesh mesh = loadObj(write("m.obj",
                                     "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n"
                                     "usemtl b\nf 1 3 2\n"));
-    EXPECT_EQ(mesh.warnings, (std::vector<std::string>{
-                                 mtl.string() + ":2: map_Ks is not supported and is ignored (2 times in this file)",
-                                 mtl.string() + ":3: bump is not supported and is ignored",
-                                 mtl.string() + ":6: map_d is not supported and is ignored",
-                             }));
+    EXPECT_EQ(mesh.warnings,
+              (std::vector<std::string>{
+                  mtl.string() + ":2: map_Ks is not supported and is ignored (2 times in this file)",
+                  mtl.string() + ":3: bump is not supported and is ignored",
+                  mtl.string() + ":6: map_d is not supported and is ignored",
+              }));
 }
 
 TEST_F(ObjImport, TextureNameEatenByAnOptionWarns) {

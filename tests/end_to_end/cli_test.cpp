@@ -328,8 +328,8 @@ TEST(Cli, UnreadableTextureWarnsAndDrawsWithoutIt) {
     for (const char* name : {"truncated.png", "text.png"}) {
         const auto obj = writeTexturedSquare(dir, std::string("map_Kd ") + name + "\n");
         const auto png = dir.path() / "x.png";
-        const RunResult run = runFacet("render " + quoted(obj) + " -o " + quoted(png) + " --width 32 --height 32",
-                                       dir);
+        const RunResult run =
+            runFacet("render " + quoted(obj) + " -o " + quoted(png) + " --width 32 --height 32", dir);
         EXPECT_EQ(run.status, 0) << run.err;
         EXPECT_EQ(lineCount(run.err), 1) << run.err;
         EXPECT_EQ(run.err.rfind("facet: warning: " + (dir.path() / name).string() + ": ", 0), 0u) << run.err;

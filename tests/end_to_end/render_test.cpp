@@ -309,9 +309,10 @@ TEST(Render, TexturesTogetherBeyondTheBudgetAreAnError) {
     texture.pixels.assign(64 * 64, vec4(0.5f, 0.5f, 0.5f, 1.0f));
     writeImage(dir.path() / "first.png", texture);
     writeImage(dir.path() / "second.png", texture);
-    const auto obj = dir.write("two.obj", std::string("mtllib two.mtl\n") +
-                                              "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvn 0 0 1\n"
-                                              "usemtl a\nf 1/1/1 2/1/1 3/1/1\nusemtl b\nf 1/1/1 3/1/1 4/1/1\n");
+    const auto obj =
+        dir.write("two.obj", std::string("mtllib two.mtl\n") +
+                                 "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvn 0 0 1\n"
+                                 "usemtl a\nf 1/1/1 2/1/1 3/1/1\nusemtl b\nf 1/1/1 3/1/1 4/1/1\n");
     dir.write("two.mtl", "newmtl a\nmap_Kd first.png\nnewmtl b\nmap_Kd second.png\n");
     const Scene scene = headOnScene(obj);
     TextureLimits limits;
