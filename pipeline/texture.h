@@ -1,22 +1,39 @@
-// Textures: a linear RGBA image sampled with bilinear filtering and repeat wrapping (GL_LINEAR,
-// GL_REPEAT), texel centres at (i + ½)/size as in OpenGL. Read-only during a draw.
+// Textures: an RGBA image sampled with bilinear filtering and repeat wrapping (GL_LINEAR, GL_REPEAT),
+// texel centres at (i + ½)/size as in OpenGL. Read-only during a draw.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "glsl.h"
 
 namespace facet {
 
+// Texels are kept at their file's precision: an 8-bit file as its codes (4 bytes a texel, a quarter of
+// float RGBA), decoded to linear values when sampled through a 256-entry table per channel kind; float
+// and 16-bit files as linear float RGBA.
 struct Texture {
+    using Codes = std::array<std::uint8_t, 4>;  // R, G, B, A
+
     int width = 0;
     int height = 0;
-    std::vector<vec4> texels;  // row-major, row 0 at v = 1 (the top of the image file), linear RGBA
+    // Row-major, row 0 at v = 1 (the top of the image file). Exactly one of the two is filled.
+    std::vector<vec4> texels;                // linear RGBA
+    std::vector<Codes> codes;                // 8-bit RGBA codes, decoded by the tables below
+    std::array<float, 256> colorFromCode{};  // an R, G or B code's linear value (sRGB-decoded, or code/255)
+    std::array<float, 256> alphaFromCode{};  // an alpha code's value (code/255: alpha is not encoded)
 
-    bool empty() const { return texels.empty(); }
-    const vec4& texel(int x, int y) const { return texels[static_cast<std::size_t>(y) * width + x]; }
+    bool empty() const { return texels.empty() && codes.empty(); }
+    std::size_t bytes() const { return texels.size() * sizeof(vec4) + codes.size() * sizeof(Codes); }
+    vec4 texel(int x, int y) const {
+        const std::size_t i = static_cast<std::size_t>(y) * width + x;
+        if (codes.empty()) return texels[i];
+        const Codes& c = codes[i];
+        return {colorFromCode[c[0]], colorFromCode[c[1]], colorFromCode[c[2]], alphaFromCode[c[3]]};
+    }
 };
 
 // texture(sampler, uv) in GLSL terms. v = 0 is the bottom row of the image, as OBJ texture coordinates

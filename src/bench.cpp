@@ -455,7 +455,7 @@ void measureFacetMemory(BenchScene& bench, int threads) {
     for (const PreparedDraw& draw : prepared.draws)
         meshBytes += draw.vertices.size() * sizeof(MeshVertex) + draw.indices.size() * sizeof(std::uint32_t);
     for (const auto& texture : prepared.textures)
-        textureBytes += texture->texels.size() * sizeof(vec4);
+        textureBytes += texture->bytes();
     bench.meshMiB = static_cast<double>(meshBytes) / kMiB;
     bench.textureMiB = static_cast<double>(textureBytes) / kMiB;
     bench.framebufferMiB =

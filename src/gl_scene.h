@@ -50,6 +50,9 @@ struct GlDraw {
     // (emission + ambient + specular), except with clampColor, where the whole clamped colour is
     // multiplied, as fixed function's GL_MODULATE does.
     const Texture* diffuseMap = nullptr;
+    // With an emission map, m_emission is multiplied by its texel per pixel; per vertex and flat, the
+    // emission is left out of the vertex colour and added so per fragment (GLSL programs only).
+    const Texture* emissionMap = nullptr;
     bool clampColor = false;  // clamp the lit colour to [0, 1] before interpolation, as fixed function does
 
     // Transparency. The fragment's alpha is opacity (× the diffuse map's alpha). What the shader writes

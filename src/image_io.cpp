@@ -15,6 +15,8 @@
 #include <string_view>
 #include <system_error>
 
+#include <cstdio>
+
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -98,6 +100,95 @@ class TempFileGuard {
     fs::path path_;
     bool armed_ = true;
 };
+
+// Captures what libraries write straight to standard error (libpng's "libpng error: ..." lines) while
+// it lives, so that their messages become part of ours instead of raw lines on the terminal.
+class StderrCapture {
+  public:
+    StderrCapture() {
+        std::fflush(stderr);
+        file_ = std::tmpfile();
+        if (file_ == nullptr) return;
+        saved_ = ::dup(STDERR_FILENO);
+        if (saved_ < 0 || ::dup2(::fileno(file_), STDERR_FILENO) < 0) restore();
+    }
+    StderrCapture(const StderrCapture&) = delete;
+    StderrCapture& operator=(const StderrCapture&) = delete;
+    ~StderrCapture() {
+        restore();
+        if (file_ != nullptr) std::fclose(file_);
+    }
+
+    // Ends the capture and returns what was written, on one line.
+    std::string finish() {
+        restore();
+        std::string text;
+        if (file_ == nullptr) return text;
+        std::rewind(file_);
+        char buffer[512];
+        std::size_t count;
+        while ((count = std::fread(buffer, 1, sizeof buffer, file_)) > 0 && text.size() < 4096)
+            text.append(buffer, count);
+        std::replace(text.begin(), text.end(), '\n', ' ');
+        while (!text.empty() && text.back() == ' ')
+            text.pop_back();
+        return text;
+    }
+
+  private:
+    void restore() {
+        if (saved_ < 0) return;
+        std::fflush(stderr);
+        ::dup2(saved_, STDERR_FILENO);
+        ::close(saved_);
+        saved_ = -1;
+    }
+
+    std::FILE* file_ = nullptr;
+    int saved_ = -1;
+};
+
+std::string gibibytes(std::size_t bytes) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2f GiB", static_cast<double>(bytes) / double(std::size_t{1} << 30));
+    return text;
+}
+
+// The texture's texels, read into `texture` (its size set): channels 0..3 of each pixel into the four
+// slots of one texel of type T (vec4 or Codes) as `type`, then the alpha channel into slot 3 when it
+// lies beyond them. Returns false on a read error.
+template <class T>
+bool readTexels(OIIO::ImageInput& input, OIIO::TypeDesc type, std::vector<T>& texels) {
+    const OIIO::ImageSpec& spec = input.spec();
+    const std::size_t pixelCount = static_cast<std::size_t>(spec.width) * spec.height;
+    texels.assign(pixelCount, T{});
+    const int channels = std::min(spec.nchannels, 4);
+    if (!input.read_image(0, 0, 0, channels, type, texels.data(), sizeof(T))) return false;
+    if (spec.alpha_channel >= 4 && spec.alpha_channel < spec.nchannels) {
+        auto* alpha = reinterpret_cast<unsigned char*>(texels.data()) + 3 * (sizeof(T) / 4);
+        if (!input.read_image(0, 0, spec.alpha_channel, spec.alpha_channel + 1, type, alpha, sizeof(T)))
+            return false;
+    }
+    return true;
+}
+
+// Puts each texel's values where Texture expects them, in place: grey (one or two channels) copied to
+// R, G and B, alpha to slot 3 (opaque when the file has none), each colour value through `color` and
+// alpha through `alpha`, as readImage lays out its pixels.
+template <class T, class Color, class Alpha, class Opaque>
+void arrangeTexels(const OIIO::ImageSpec& spec, std::vector<T>& texels, Color color, Alpha alpha,
+                   Opaque opaque) {
+    const int alphaSlot =
+        spec.alpha_channel < 0 || spec.alpha_channel >= spec.nchannels ? -1 : std::min(spec.alpha_channel, 3);
+    const bool gray = spec.nchannels < 3;
+    for (T& t : texels) {
+        const T v = t;
+        t[0] = color(v[0]);
+        t[1] = gray ? t[0] : color(v[1]);
+        t[2] = gray ? t[0] : color(v[2]);
+        t[3] = alphaSlot >= 0 ? alpha(v[alphaSlot]) : opaque;
+    }
+}
 
 }  // namespace
 
@@ -297,6 +388,103 @@ LinearImage readImage(const fs::path& path) {
         p.a = alphaChannel >= 0 ? v[alphaChannel] : 1.0f;
     }
     return image;
+}
+
+TextureRead readTexture(const fs::path& path, bool decodeSrgb, const TextureLimits& limits,
+                        std::size_t bytesLeft) {
+    TextureRead result;
+    std::error_code error;
+    if (!fs::exists(path, error)) {
+        result.problem = "file not found";
+        return result;
+    }
+    if (fs::is_directory(path, error)) {
+        result.problem = "is a folder, not an image file";
+        return result;
+    }
+    StderrCapture libraryOutput;
+    const auto problem = [&](std::string what) {
+        // libpng prints "libpng error: X" and OpenImageIO usually repeats X: add only what is new.
+        std::string printed = libraryOutput.finish();
+        for (const std::string_view prefix : {"libpng error: ", "libpng warning: "})
+            for (std::size_t at; (at = printed.find(prefix)) != std::string::npos;)
+                printed.erase(at, prefix.size());
+        if (!printed.empty() && what.find(printed) == std::string::npos) what += " (" + printed + ")";
+        result.texture = Texture{};
+        result.problem = std::move(what);
+        return std::move(result);
+    };
+
+    // Ask for the stored (unassociated) alpha: by default OpenImageIO premultiplies PNG colour by it.
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    OIIO::geterror();  // forget any earlier message
+    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path.string(), &config);
+    if (!input) return problem("cannot read it as an image: " + oneLine(OIIO::geterror()));
+
+    // The header alone decides whether the texels may be decoded at all.
+    const OIIO::ImageSpec& spec = input->spec();
+    if (spec.deep) return problem("deep images are not supported as textures");
+    if (spec.width <= 0 || spec.height <= 0 || spec.depth > 1 || spec.nchannels <= 0)
+        return problem("cannot use an image of " + std::to_string(spec.width) + "x" +
+                       std::to_string(spec.height) + " pixels with " + std::to_string(spec.nchannels) +
+                       " channels as a texture");
+    const std::string size = std::to_string(spec.width) + "x" + std::to_string(spec.height);
+    if (spec.width > limits.maxSide || spec.height > limits.maxSide) {
+        libraryOutput.finish();
+        fail(path, "the texture is " + size + " pixels; textures may be at most " +
+                       std::to_string(limits.maxSide) + " pixels on a side (scale it down)");
+    }
+    const bool eightBit = spec.format == OIIO::TypeDesc::UINT8;
+    const std::size_t bytes = static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height) *
+                              (eightBit ? sizeof(Texture::Codes) : sizeof(vec4));
+    if (bytes > bytesLeft) {
+        libraryOutput.finish();
+        const std::size_t used = limits.maxTotalBytes - std::min(bytesLeft, limits.maxTotalBytes);
+        fail(path, "the texture (" + size + " pixels, " + (eightBit ? "8-bit" : "float") + ") needs " +
+                       gibibytes(bytes) + "; the textures of one render may take at most " +
+                       gibibytes(limits.maxTotalBytes) + " together" +
+                       (used > 0 ? " (" + gibibytes(used) + " taken by the ones before it)" : "") +
+                       " (scale it down)");
+    }
+
+    // A colour value read as float: integer data is display-encoded (sRGB), float data linear already.
+    const bool encoded = !spec.format.is_floating_point();
+    const auto finish = [encoded, decodeSrgb](float value) {
+        const float linear = encoded ? srgbToLinear(value) : value;
+        return decodeSrgb ? linear : linearToSrgb(linear);
+    };
+    Texture& texture = result.texture;
+    texture.width = spec.width;
+    texture.height = spec.height;
+    if (eightBit) {
+        // Each code's value exactly as OpenImageIO converts it to float, so that sampling gives the
+        // values a float read would.
+        std::array<std::uint8_t, 256> codes;
+        for (int c = 0; c < 256; ++c)
+            codes[c] = static_cast<std::uint8_t>(c);
+        std::array<float, 256> values;
+        OIIO::convert_pixel_values(OIIO::TypeDesc::UINT8, codes.data(), OIIO::TypeDesc::FLOAT, values.data(),
+                                   256);
+        for (int c = 0; c < 256; ++c) {
+            texture.colorFromCode[c] = finish(values[c]);
+            texture.alphaFromCode[c] = values[c];
+        }
+        if (!readTexels(*input, OIIO::TypeDesc::UINT8, texture.codes))
+            return problem("cannot read it: " + oneLine(input->geterror()));
+        const auto same = [](std::uint8_t code) { return code; };
+        arrangeTexels(spec, texture.codes, same, same, std::uint8_t{255});
+        texture.alphaFromCode[255] = 1.0f;  // opaque, also where the file has no alpha
+    } else {
+        if (!readTexels(*input, OIIO::TypeDesc::FLOAT, texture.texels))
+            return problem("cannot read it: " + oneLine(input->geterror()));
+        arrangeTexels(
+            spec, texture.texels, finish, [](float a) { return a; }, 1.0f);
+    }
+    input->close();
+    const std::string printed = libraryOutput.finish();
+    (void)printed;  // a successful read may have printed warnings; a texture that reads is used as it is
+    return result;
 }
 
 }  // namespace facet

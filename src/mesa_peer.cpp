@@ -399,6 +399,9 @@ void main() {
     gl_Position = clipFromView * eye;
 #if PER_VERTEX
     Terms terms = shade(eye.xyz, n, vec3(1.0));
+#if HAS_EMISSION_MAP
+    terms.emission = vec3(0.0);  // added per fragment, textured
+#endif
 #if CLAMP_COLOR
     shadedColor = clamp(sum(terms), 0.0, 1.0);
 #elif HAS_DIFFUSE_MAP
@@ -420,7 +423,8 @@ void main() {
 // The fragment's colour c: lit (per pixel, or interpolated and textured), fogged (fog.h's formulas, the
 // distance taken per pixel from the interpolated eye-space position), then written as the blend wants
 // it (gl_scene.h): BLEND_OUTPUT 0 (Replace, Over) (c, α), 1 (PremultipliedOver, Additive) (α·c, α),
-// 2 (Multiply) (mix(1, c, α), α), with α = opacity × the diffuse map's alpha.
+// 2 (Multiply) (mix(1, c, α), α), with α = opacity × the diffuse map's alpha. An emission map
+// multiplies m_emission, per pixel (per vertex: the emission is added here, not interpolated).
 const char* const kFragmentGlsl = R"(
 in vec2 texcoord;
 #if PER_VERTEX
@@ -436,6 +440,10 @@ in vec3 eyePosition;
 in vec3 eyeNormal;
 #endif
 uniform sampler2D diffuseMap;
+uniform sampler2D emissionMap;
+#if PER_VERTEX && HAS_EMISSION_MAP
+uniform vec3 materialEmission;
+#endif
 uniform float opacity;
 #if FOG_MODE
 uniform vec3 fogColor;
@@ -475,8 +483,15 @@ void main() {
 #else
     vec3 color = shadedColor * texel;
 #endif
+#if HAS_EMISSION_MAP
+    color += materialEmission * texture(emissionMap, texcoord).rgb;
+#endif
 #else
-    vec3 color = sum(shade(eyePosition, eyeNormal, texel));
+    Terms terms = shade(eyePosition, eyeNormal, texel);
+#if HAS_EMISSION_MAP
+    terms.emission *= texture(emissionMap, texcoord).rgb;
+#endif
+    vec3 color = sum(terms);
 #if CLAMP_COLOR
     color = clamp(color, 0.0, 1.0);
 #endif
@@ -554,6 +569,8 @@ void checkFixedFunction(const GlScene& scene, std::size_t drawIndex, bool radial
     const std::string where = "GlScene draw " + std::to_string(drawIndex) + " (fixed function): ";
     if (draw.reflection != ReflectionModel::BlinnPhong)
         throw std::invalid_argument(where + "fixed-function lighting is Blinn-Phong only");
+    if (draw.emissionMap && !draw.emissionMap->empty())
+        throw std::invalid_argument(where + "an emission map needs a shader (use GlProgram::PerVertex)");
     if (draw.blend != BlendMode::Replace && draw.blend != BlendMode::Over)
         throw std::invalid_argument(where + "blend " + (std::ostringstream() << draw.blend).str() +
                                     " needs a shader writing (α·c, α) or (mix(1, c, α), α); fixed function " +
@@ -629,6 +646,7 @@ struct MesaPeer::Impl {
         GLuint vertexArray = 0, vertexBuffer = 0, indexBuffer = 0;
         GLsizei indexCount = 0;
         GLuint texture = 0;                // 0: no diffuse map
+        GLuint emissionTexture = 0;        // 0: no emission map (GLSL programs only)
         const Program* program = nullptr;  // nullptr: fixed function
         bool flat = false;
         mat4 viewFromObject{1.0f};
@@ -692,23 +710,24 @@ struct MesaPeer::Impl {
     const Program& program(const GlScene& scene, const GlDraw& draw) {
         const bool perVertex = draw.program == GlProgram::PerVertex;
         const bool hasDiffuseMap = draw.diffuseMap && !draw.diffuseMap->empty();
+        const bool hasEmissionMap = draw.emissionMap && !draw.emissionMap->empty();
         const int reflection = draw.reflection == ReflectionModel::Phong        ? 0
                                : draw.reflection == ReflectionModel::BlinnPhong ? 1
                                                                                 : 2;
         const bool costTerms = reflection == 2;  // the BRDF's choices matter to Cook-Torrance only
-        std::string header = versionLine + "\n#define MAX_LIGHTS " + std::to_string(kMaxGlLights) +
-                             "\n#define PER_VERTEX " + (perVertex ? "1" : "0") + "\n#define INTERPOLATION " +
-                             (draw.frequency == ShadingFrequency::Flat ? "flat" : "smooth") +
-                             "\n#define REFLECTION " + std::to_string(reflection) +
-                             "\n#define DISTRIBUTION_GGX " +
-                             (costTerms && scene.brdf.distribution == NormalDistribution::GGX ? "1" : "0") +
-                             "\n#define FRESNEL_EXACT " +
-                             (costTerms && scene.brdf.fresnel == FresnelModel::Exact ? "1" : "0") +
-                             "\n#define GEOMETRY_SMITH " +
-                             (costTerms && scene.brdf.geometry == GeometryTerm::SmithGGX ? "1" : "0") +
-                             "\n#define HAS_DIFFUSE_MAP " + (hasDiffuseMap ? "1" : "0") +
-                             "\n#define CLAMP_COLOR " + (draw.clampColor ? "1" : "0") +
-                             "\n#define TWO_SIDED_FLIP " + (scene.twoSidedFlip ? "1" : "0") + "\n";
+        std::string header =
+            versionLine + "\n#define MAX_LIGHTS " + std::to_string(kMaxGlLights) + "\n#define PER_VERTEX " +
+            (perVertex ? "1" : "0") + "\n#define INTERPOLATION " +
+            (draw.frequency == ShadingFrequency::Flat ? "flat" : "smooth") + "\n#define REFLECTION " +
+            std::to_string(reflection) + "\n#define DISTRIBUTION_GGX " +
+            (costTerms && scene.brdf.distribution == NormalDistribution::GGX ? "1" : "0") +
+            "\n#define FRESNEL_EXACT " +
+            (costTerms && scene.brdf.fresnel == FresnelModel::Exact ? "1" : "0") +
+            "\n#define GEOMETRY_SMITH " +
+            (costTerms && scene.brdf.geometry == GeometryTerm::SmithGGX ? "1" : "0") +
+            "\n#define HAS_DIFFUSE_MAP " + (hasDiffuseMap ? "1" : "0") + "\n#define HAS_EMISSION_MAP " +
+            (hasEmissionMap ? "1" : "0") + "\n#define CLAMP_COLOR " + (draw.clampColor ? "1" : "0") +
+            "\n#define TWO_SIDED_FLIP " + (scene.twoSidedFlip ? "1" : "0") + "\n";
         header += "#define FOG_MODE " + std::to_string(fogModeCode(scene.fog.mode)) +
                   "\n#define FOG_RADIAL " + (scene.fog.distance == FogDistance::Radial ? "1" : "0") +
                   "\n#define BLEND_OUTPUT " + std::to_string(blendOutputCode(draw.blend)) + "\n";
@@ -778,7 +797,8 @@ struct MesaPeer::Impl {
         p.fogColor = uniform("fogColor");  // -1 without fog: glUniform ignores it
         p.fogRange = uniform("fogRange");
         gl.glUseProgram(p.name);
-        gl.glUniform1i(uniform("diffuseMap"), 0);  // texture unit 0
+        gl.glUniform1i(uniform("diffuseMap"), 0);   // texture unit 0
+        gl.glUniform1i(uniform("emissionMap"), 1);  // texture unit 1
         checkGl("building a shader program");
         return p;
     }
@@ -960,13 +980,15 @@ struct MesaPeer::Impl {
                       fog.distance == FogDistance::Radial ? GL_EYE_RADIAL_NV : GL_EYE_PLANE_ABSOLUTE_NV);
     }
 
-    // A linear float RGBA texture sampled as Facet samples (bilinear, repeat, no mipmaps). Facet's
-    // row 0 is the top of the image (v = 1); GL's first row is t = 0, so rows go up in reverse.
+    // A texture as linear float RGBA (8-bit texels decoded as Facet's sampler decodes them), sampled
+    // as Facet samples (bilinear, repeat, no mipmaps). Facet's row 0 is the top of the image (v = 1);
+    // GL's first row is t = 0, so rows go up in reverse.
     GLuint uploadTexture(const Texture& texture) {
-        std::vector<vec4> rows(texture.texels.size());
+        std::vector<vec4> rows(static_cast<std::size_t>(texture.width) * texture.height);
         for (int y = 0; y < texture.height; ++y)
-            std::copy_n(&texture.texel(0, texture.height - 1 - y), texture.width,
-                        rows.begin() + static_cast<std::ptrdiff_t>(y) * texture.width);
+            for (int x = 0; x < texture.width; ++x)
+                rows[static_cast<std::size_t>(y) * texture.width + x] =
+                    texture.texel(x, texture.height - 1 - y);
         GLuint name = 0;
         gl.glGenTextures(1, &name);
         gl.glBindTexture(GL_TEXTURE_2D, name);
@@ -1261,6 +1283,11 @@ void MesaPeer::load(const GlScene& scene) {
             if (!name) name = p.uploadTexture(*map);
             draw.texture = name;
         }
+        if (const Texture* map = source.emissionMap; map && !map->empty()) {
+            GLuint& name = textureNames[map];
+            if (!name) name = p.uploadTexture(*map);
+            draw.emissionTexture = name;
+        }
         if (source.program != GlProgram::FixedFunction) {
             draw.program = &p.program(scene, source);
             if (std::find(used.begin(), used.end(), draw.program) == used.end()) used.push_back(draw.program);
@@ -1327,6 +1354,11 @@ void MesaPeer::renderFrame() {
             p.setDrawUniforms(draw);
         } else {
             p.setFixedFunctionDraw(draw);
+        }
+        if (draw.emissionTexture) {
+            gl.glActiveTexture(GL_TEXTURE1);
+            gl.glBindTexture(GL_TEXTURE_2D, draw.emissionTexture);
+            gl.glActiveTexture(GL_TEXTURE0);
         }
         gl.glBindTexture(GL_TEXTURE_2D, draw.texture);
         gl.glBindVertexArray(draw.vertexArray);

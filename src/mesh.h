@@ -26,6 +26,7 @@ struct Material {
     float opacity = 1.0f;      // d, or 1 - Tr
     std::filesystem::path
         diffuseTexture;  // map_Kd, resolved against the MTL's folder; empty if none or missing
+    std::filesystem::path emissionTexture;  // map_Ke, the same way
 };
 
 struct MeshVertex {

@@ -7,6 +7,7 @@
 #include "obj_import.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -492,8 +493,9 @@ struct Library {
     fs::path path;
     std::string problem;  // why it was not read; empty when it was
     std::string error;    // "file:line: ..." of a number that cannot be used: loading the OBJ fails with it
-    std::vector<std::string> warnings;                   // "file:line: ..." about its contents
-    std::map<std::string, std::size_t> diffuseMapLines;  // material name → line of its map_Kd
+    std::vector<std::string> warnings;                    // "file:line: ..." about its contents
+    std::map<std::string, std::size_t> diffuseMapLines;   // material name → line of its map_Kd
+    std::map<std::string, std::size_t> emissionMapLines;  // material name → line of its map_Ke
 };
 
 // Reads the MTL files an OBJ names, relative to the OBJ's folder, and remembers where each material
@@ -634,7 +636,8 @@ class LibraryReader final : public tinyobj::MaterialReader {
             std::size_t line = kNoLine;
         };
         std::string material;
-        Opacity d, tr;  // tr.value holds 1 - Tr
+        Opacity d, tr;                                                  // tr.value holds 1 - Tr
+        std::map<std::string, std::pair<std::size_t, int>> unusedMaps;  // statement → first line, uses
         auto checkOpacity = [&] {
             if (d.line != kNoLine && tr.line != kNoLine && std::abs(d.value - tr.value) > 1e-6) {
                 std::ostringstream what;
@@ -667,6 +670,11 @@ class LibraryReader final : public tinyobj::MaterialReader {
                 material = std::string(s.substr(7));
             } else if (keyword("map_Kd")) {
                 library.diffuseMapLines[material] = lineNumber;
+            } else if (keyword("map_Ke")) {
+                library.emissionMapLines[material] = lineNumber;
+            } else if (const std::string_view map = unusedMap(s); !map.empty()) {
+                auto& [firstLine, materials] = unusedMaps[std::string(map)];
+                if (materials++ == 0) firstLine = lineNumber;
             } else if (keyword("d")) {
                 d = {number(2), lineNumber};
             } else if (keyword("Tr")) {
@@ -674,6 +682,30 @@ class LibraryReader final : public tinyobj::MaterialReader {
             }
         }
         checkOpacity();
+        // Texture statements Facet does not use: one warning each, at the first, so that an image
+        // without the bumps or the specular map does not surprise.
+        std::vector<std::pair<std::size_t, std::string>> byLine;
+        for (const auto& [statement, use] : unusedMaps) {
+            std::string what = statement + " is not supported and is ignored";
+            if (use.second > 1) what += " (" + std::to_string(use.second) + " times in this file)";
+            byLine.emplace_back(use.first, what);
+        }
+        std::sort(byLine.begin(), byLine.end());
+        for (const auto& [line, what] : byLine)
+            library.warnings.push_back(located(library.path.string(), line, what));
+    }
+
+    // The texture statement starting `s` if Facet ignores it ("map_Ks", "bump", ...), else empty.
+    // map_Kd and map_Ke are used.
+    static std::string_view unusedMap(std::string_view s) {
+        static constexpr std::string_view kOthers[] = {"bump", "disp", "decal", "refl", "norm"};
+        const std::string_view word = s.substr(0, s.find_first_of(" \t"));
+        if (word.size() == s.size()) return {};  // a statement needs a file name after it
+        if (word.rfind("map_", 0) == 0)
+            return word == "map_Kd" || word == "map_Ke" ? std::string_view{} : word;
+        for (const std::string_view other : kOthers)
+            if (word == other) return word;
+        return {};
     }
 
     fs::path objFolder_;
@@ -715,18 +747,57 @@ Material convertMaterial(const tinyobj::material_t& source, std::vector<std::str
     return m;
 }
 
+std::string lowerCase(std::string text) {
+    std::transform(text.begin(), text.end(), text.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return text;
+}
+
+// A texture file found for an MTL's name, and what to say about how.
+struct FoundTexture {
+    fs::path path;        // empty when not found
+    std::string warning;  // found by a case-insensitive match, or several such matches: why none
+};
+
 // The texture file `name` from the MTL in `folder`; a Windows path ("maps\wood.png") is tried with '/'.
-fs::path findTexture(const fs::path& folder, const std::string& name) {
+// Models made on Windows or macOS often name files in another case than they have on disk
+// ("SP_LUK.JPG" for sp_luk.JPG): when the exact name is missing, each component of the path that is
+// missing is matched without regard to case in its folder, if exactly one entry matches.
+FoundTexture findTexture(const fs::path& folder, const std::string& name) {
     std::error_code error;
     fs::path candidate = folder / name;
-    if (fs::is_regular_file(candidate, error)) return candidate;
-    if (name.find('\\') != std::string::npos) {
-        std::string slashed = name;
-        std::replace(slashed.begin(), slashed.end(), '\\', '/');
-        candidate = folder / slashed;
-        if (fs::is_regular_file(candidate, error)) return candidate;
+    if (fs::is_regular_file(candidate, error)) return {candidate, {}};
+    std::string slashed = name;
+    std::replace(slashed.begin(), slashed.end(), '\\', '/');
+    candidate = folder / slashed;
+    if (fs::is_regular_file(candidate, error)) return {candidate, {}};
+
+    fs::path found = fs::path(slashed).is_absolute() ? fs::path(slashed).root_path() : folder;
+    for (const fs::path& component : fs::path(slashed).relative_path()) {
+        const fs::path exact = found / component;
+        if (fs::exists(exact, error) || component == "." || component == "..") {
+            found = exact;
+            continue;
+        }
+        const std::string wanted = lowerCase(component.string());
+        std::vector<fs::path> matches;
+        for (fs::directory_iterator it(found, error), end; !error && it != end; it.increment(error))
+            if (lowerCase(it->path().filename().string()) == wanted) matches.push_back(it->path());
+        if (matches.empty()) return {};
+        if (matches.size() > 1) {
+            std::sort(matches.begin(), matches.end());
+            std::string names;
+            for (const fs::path& match : matches)
+                names += (names.empty() ? "" : ", ") + inSingleQuotes(match.filename().string());
+            return {{},
+                    "differs only in case from " + names + " in " + inSingleQuotes(found.string()) +
+                        ", which is ambiguous"};
+        }
+        found = matches.front();
     }
-    return {};
+    if (!fs::is_regular_file(found, error)) return {};
+    return {found,
+            "not found as written; using " + inSingleQuotes(found.string()) + ", whose name differs in case"};
 }
 
 // ---- Mesh building --------------------------------------------------------------------------------
@@ -1302,26 +1373,39 @@ Mesh loadObj(const std::filesystem::path& path, const ObjOptions& options) {
         const Library* library = libraries.libraryOf(std::size_t(tinyMaterial));
         const std::string libraryFile = library ? library->path.string() : file;
         Material material = convertMaterial(source, warnings, libraryFile);
-        std::size_t mapLine = kNoLine;
-        if (library) {
-            const auto it = library->diffuseMapLines.find(source.name);
-            if (it != library->diffuseMapLines.end()) mapLine = it->second;
-        }
-        if (!source.diffuse_texname.empty()) {
-            const fs::path folder = library ? library->path.parent_path() : path.parent_path();
-            material.diffuseTexture = findTexture(folder, source.diffuse_texname);
-            if (material.diffuseTexture.empty()) {
-                warnings.push_back(located(libraryFile, mapLine,
-                                           "texture " + inSingleQuotes(source.diffuse_texname) +
-                                               " of material " + inSingleQuotes(source.name) +
-                                               " not found; drawing without it"));
+        const fs::path folder = library ? library->path.parent_path() : path.parent_path();
+        // A texture statement's file, or a warning why there is none.
+        const auto resolve = [&](const std::string& statement, const std::string& texname, std::size_t line) {
+            if (texname.empty()) {
+                // tinyobjloader's "-o u [v [w]]" and "-s", "-t" eat the file name when given fewer numbers.
+                if (line != kNoLine)
+                    warnings.push_back(located(libraryFile, line,
+                                               statement + " of material " + inSingleQuotes(source.name) +
+                                                   " names no texture file that could be read; drawing "
+                                                   "without it"));
+                return fs::path();
             }
-        } else if (mapLine != kNoLine) {
-            // tinyobjloader's "-o u [v [w]]" and "-s", "-t" eat the file name when given fewer numbers.
-            warnings.push_back(located(libraryFile, mapLine,
-                                       "map_Kd of material " + inSingleQuotes(source.name) +
-                                           " names no texture file that could be read; drawing without it"));
-        }
+            const FoundTexture found = findTexture(folder, texname);
+            const std::string texture =
+                "texture " + inSingleQuotes(texname) + " of material " + inSingleQuotes(source.name);
+            if (found.path.empty())
+                warnings.push_back(located(libraryFile, line,
+                                           texture +
+                                               (found.warning.empty() ? " not found" : " " + found.warning) +
+                                               "; drawing without it"));
+            else if (!found.warning.empty())
+                warnings.push_back(located(libraryFile, line, texture + " " + found.warning));
+            return found.path;
+        };
+        const auto lineOf = [&](std::map<std::string, std::size_t> Library::*lines) {
+            if (!library) return kNoLine;
+            const auto it = (library->*lines).find(source.name);
+            return it == (library->*lines).end() ? kNoLine : it->second;
+        };
+        material.diffuseTexture =
+            resolve("map_Kd", source.diffuse_texname, lineOf(&Library::diffuseMapLines));
+        material.emissionTexture =
+            resolve("map_Ke", source.emissive_texname, lineOf(&Library::emissionMapLines));
         mesh.materials.push_back(std::move(material));
     }
 

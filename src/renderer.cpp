@@ -177,6 +177,15 @@ void unweldWithFaceNormals(PreparedDraw& draw) {
         draw.indices[k] = static_cast<std::uint32_t>(k);
 }
 
+// Whether a texture is see-through anywhere (an alpha below 1).
+bool hasTranslucentTexel(const Texture& texture) {
+    if (!texture.codes.empty())
+        return std::any_of(texture.codes.begin(), texture.codes.end(),
+                           [&](const Texture::Codes& c) { return texture.alphaFromCode[c[3]] < 1.0f; });
+    return std::any_of(texture.texels.begin(), texture.texels.end(),
+                       [](const vec4& t) { return t.a < 1.0f; });
+}
+
 // Splits one part of a mesh into its own vertex array, so its draw shades only the vertices it uses.
 void extractPart(const Mesh& mesh, const MeshPart& part, PreparedDraw& draw) {
     std::unordered_map<std::uint32_t, std::uint32_t> local;
@@ -192,7 +201,7 @@ void extractPart(const Mesh& mesh, const MeshPart& part, PreparedDraw& draw) {
 
 }  // namespace
 
-PreparedScene prepareScene(const Scene& scene) {
+PreparedScene prepareScene(const Scene& scene, const TextureLimits& limits) {
     PreparedScene prepared;
     prepared.scene = scene;
     if (scene.width < 1 || scene.height < 1 || scene.width > kMaxImageSide || scene.height > kMaxImageSide)
@@ -209,8 +218,26 @@ PreparedScene prepareScene(const Scene& scene) {
 
     // Load each model once, even if several objects use it.
     std::map<std::filesystem::path, std::unique_ptr<Mesh>> meshes;
-    std::map<std::filesystem::path, Texture*> textures;
-    std::set<const Texture*> texturesWithAlpha;  // see-through somewhere: their parts are transparent
+    std::map<std::filesystem::path, Texture*> textures;  // nullptr: could not be read, said once
+    std::set<const Texture*> texturesWithAlpha;          // see-through somewhere: their parts are transparent
+    std::size_t textureBytes = 0;
+    // A texture file, read once; one that cannot be read is a warning and its parts go untextured.
+    const auto loadTexture = [&](const std::filesystem::path& file, const std::string& material) -> Texture* {
+        const auto [it, first] = textures.try_emplace(file, nullptr);
+        if (!first) return it->second;
+        TextureRead read = readTexture(file, decodeInputs, limits, limits.maxTotalBytes - textureBytes);
+        if (read.texture.empty()) {
+            prepared.warnings.push_back(file.string() + ": " + read.problem + "; drawing material '" +
+                                        material + "' without this texture");
+            return nullptr;
+        }
+        auto owned = std::make_unique<Texture>(std::move(read.texture));
+        textureBytes += owned->bytes();
+        if (hasTranslucentTexel(*owned)) texturesWithAlpha.insert(owned.get());
+        it->second = owned.get();
+        prepared.textures.push_back(std::move(owned));
+        return it->second;
+    };
     Bounds sceneBounds{vec3(std::numeric_limits<float>::max()), vec3(std::numeric_limits<float>::lowest())};
     for (const ObjectSpec& object : scene.objects) {
         auto& mesh = meshes[object.model];
@@ -308,31 +335,16 @@ PreparedScene prepareScene(const Scene& scene) {
             draw.uniforms = uniforms;
             draw.frequency = frequency;
             draw.worldFromObject = object.worldFromObject;
-            const Material& material = mesh.materials.at(part.material);
+            Material material = mesh.materials.at(part.material);
+            if (!material.emissionTexture.empty())
+                draw.uniforms.emissionMap = loadTexture(material.emissionTexture, material.name);
+            // map_Ke without Ke (or with Ke 0) means the texture is the emission, as exporters write it.
+            if (draw.uniforms.emissionMap && material.emission == vec3(0.0f)) material.emission = vec3(1.0f);
             draw.uniforms.material = phongMaterial(material, object.material, decode);
             draw.uniforms.pbr = pbrMaterial(draw.uniforms.material, object.material, decode, scene.source);
             draw.uniforms.opacity = object.material.opacity.value_or(material.opacity);
-            if (!material.diffuseTexture.empty()) {
-                Texture*& texture = textures[material.diffuseTexture];
-                if (!texture) {
-                    const LinearImage image = readImage(material.diffuseTexture);
-                    auto owned = std::make_unique<Texture>();
-                    owned->width = image.width;
-                    owned->height = image.height;
-                    owned->texels = image.pixels;
-                    // readImage decodes 8-bit files from sRGB; without decoding, texels are the file's
-                    // codes/255.
-                    if (!decodeInputs)
-                        for (vec4& t : owned->texels)
-                            t = vec4(linearToSrgb(t.r), linearToSrgb(t.g), linearToSrgb(t.b), t.a);
-                    texture = owned.get();
-                    if (std::any_of(owned->texels.begin(), owned->texels.end(),
-                                    [](const vec4& t) { return t.a < 1.0f; }))
-                        texturesWithAlpha.insert(texture);
-                    prepared.textures.push_back(std::move(owned));
-                }
-                draw.uniforms.diffuseMap = texture;
-            }
+            if (!material.diffuseTexture.empty())
+                draw.uniforms.diffuseMap = loadTexture(material.diffuseTexture, material.name);
             extractPart(mesh, part, draw);
             // Transparent: see through it (opacity, a texture's alpha) or blended other than over.
             const bool textureAlpha =
@@ -598,13 +610,14 @@ GlScene toGlScene(const PreparedScene& prepared) {
         out.material = d.uniforms.material;
         out.pbr = d.uniforms.pbr;
         out.diffuseMap = d.uniforms.diffuseMap;
+        out.emissionMap = d.uniforms.emissionMap;
         out.clampColor = d.uniforms.clampColor;
         out.opacity = d.uniforms.opacity;
         out.blend = call.state.blend;
         out.depthWrite = call.state.depth.writeEnabled;
         // OpenGL 1.x itself where it can say the same: the GL preset's per-vertex Blinn-Phong, opaque or
-        // blended with straight alpha.
-        const bool fixedFunction = glPreset && d.frequency != ShadingFrequency::Phong &&
+        // blended with straight alpha, without an emission map.
+        const bool fixedFunction = glPreset && d.frequency != ShadingFrequency::Phong && !out.emissionMap &&
                                    d.uniforms.reflection == ReflectionModel::BlinnPhong && !smoothSpot &&
                                    d.uniforms.material.shininess <= 128.0f &&
                                    (out.blend == BlendMode::Replace || out.blend == BlendMode::Over);

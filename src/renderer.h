@@ -57,8 +57,8 @@ struct PreparedScene {
 // ambient) is taken as an sRGB-encoded value, as a colour picker shows it, and decoded to linear light
 // here; lighting and blending then happen in linear space. GL preset: colours are used as given and
 // written without encoding (docs/lighting.md). Lights end up in eye space. Throws InputError for
-// unusable input.
-PreparedScene prepareScene(const Scene& scene);
+// unusable input, textures beyond `limits` included (an unreadable texture is a warning instead).
+PreparedScene prepareScene(const Scene& scene, const TextureLimits& limits = {});
 
 // Turns every object by `degrees` about the vertical (world y) axis through turntableCentre, as on a
 // turntable: camera and lights stay where they are. 0 is the scene as written.

@@ -47,6 +47,10 @@ struct SurfaceUniforms {
     // The diffuse colour (m_diffuse, or Cook-Torrance's albedo c_base) is multiplied by this texture:
     // before lighting when lighting per pixel; per vertex, the interpolated diffuse term is.
     const Texture* diffuseMap = nullptr;
+    // The emission term (m_emission) is multiplied by this texture's colour (MTL map_Ke), per pixel at
+    // every shading frequency: per vertex, the emission is left out of the vertex colours and added
+    // in the fragment, textured.
+    const Texture* emissionMap = nullptr;
     bool twoSidedFlip = true;  // light the side of a surface that faces the viewer (N·V < 0: N = −N)
     bool clampColor = false;   // clamp lit colours to [0, 1] (per vertex before interpolation), as OpenGL 1.x
     std::uint8_t terms = kAllTerms;        // LightingTerm bits: which terms reach the image
@@ -60,6 +64,8 @@ struct SurfaceUniforms {
     vec3 albedo() const {
         return reflection == ReflectionModel::CookTorrance ? pbr.baseColor : material.diffuse;
     }
+    // The emission term as the selected terms have it, before its texture.
+    vec3 emissionTerm() const { return (terms & kEmissionTerm) ? material.emission : vec3(0.0f); }
 };
 
 // The lighting equation's terms at one point (or eight), as the uniforms choose: the model, the
@@ -119,8 +125,8 @@ template <class F, class V3>
 
 namespace detail {
 
-// The diffuse map's texels for the batch's lanes (opaque white where the lane is empty).
-inline Vec4x8 diffuseTexels(const Texture& map, const Vec2x8& uv, unsigned mask) {
+// A texture's texels for the batch's lanes (opaque white where the lane is empty).
+inline Vec4x8 texels(const Texture& map, const Vec2x8& uv, unsigned mask) {
     Vec4x8 texel{splat(1.0f), splat(1.0f), splat(1.0f), splat(1.0f)};
     for (int lane = 0; lane < 8; ++lane) {
         if (!((mask >> lane) & 1)) continue;
@@ -167,7 +173,9 @@ struct SurfaceShader<ShadingFrequency::Phong> {
             albedo *= vec3(texel);
             alpha *= texel.a;
         }
-        vec3 c = surfaceTerms<float, vec3>(in.position, in.normal, albedo, u).sum();
+        LightingTerms<vec3> t = surfaceTerms<float, vec3>(in.position, in.normal, albedo, u);
+        if (u.emissionMap) t.emission *= vec3(sampleBilinear(*u.emissionMap, in.uv));
+        vec3 c = t.sum();
         if (u.clampColor) c = detail::clamp01(c);
         return vec4(surfaceOutput<float, vec3>(c, alpha, in.position, u), alpha);
     }
@@ -180,12 +188,17 @@ struct SurfaceShader<ShadingFrequency::Phong> {
         Vec3x8 albedo(u.albedo());
         Float8 alpha = splat(u.opacity);
         if (u.diffuseMap) {
-            const Vec4x8 texel = detail::diffuseTexels(*u.diffuseMap, in.vec2At(kUv), in.mask);
+            const Vec4x8 texel = detail::texels(*u.diffuseMap, in.vec2At(kUv), in.mask);
             albedo = albedo * Vec3x8{texel.x, texel.y, texel.z};
             alpha = alpha * texel.w;
         }
         const Vec3x8 P = in.vec3At(kPosition);
-        Vec3x8 c = surfaceTerms<Float8, Vec3x8>(P, in.vec3At(kNormal), albedo, u).sum();
+        LightingTerms<Vec3x8> t = surfaceTerms<Float8, Vec3x8>(P, in.vec3At(kNormal), albedo, u);
+        if (u.emissionMap) {
+            const Vec4x8 texel = detail::texels(*u.emissionMap, in.vec2At(kUv), in.mask);
+            t.emission = t.emission * Vec3x8{texel.x, texel.y, texel.z};
+        }
+        Vec3x8 c = t.sum();
         if (u.clampColor) c = detail::clamp01(c);
         c = surfaceOutput<Float8, Vec3x8>(c, alpha, P, u);
         return {c.x, c.y, c.z, alpha};
@@ -195,8 +208,9 @@ struct SurfaceShader<ShadingFrequency::Phong> {
 // Lighting per vertex (Gouraud 1971). The colour travels in two parts so that a diffuse map can tint
 // the diffuse light only: `modulated` (the diffuse term) is multiplied by the texel, `added`
 // (emission + ambient + specular) is not. With clampColor (OpenGL 1.x) the clamped sum is modulated
-// whole, as fixed function's GL_MODULATE does. Flat shading is the same with the colour flat: the
-// provoking vertex's colour fills the triangle.
+// whole, as fixed function's GL_MODULATE does. With an emission map the emission is neither: it is
+// added per fragment, m_emission ⊗ the emission texel. Flat shading is the same with the colour flat:
+// the provoking vertex's colour fills the triangle.
 template <ShadingFrequency kFrequency>
 struct PerVertexSurfaceShader {
     using Attributes = MeshVertex;
@@ -211,8 +225,8 @@ struct PerVertexSurfaceShader {
 
     static VertexOut<Varyings> vertex(const Attributes& in, const Uniforms& u) {
         const vec3 P(u.viewFromObject * vec4(in.position, 1.0f));
-        const LightingTerms<vec3> t =
-            surfaceTerms<float, vec3>(P, u.normalFromObject * in.normal, u.albedo(), u);
+        LightingTerms<vec3> t = surfaceTerms<float, vec3>(P, u.normalFromObject * in.normal, u.albedo(), u);
+        if (u.emissionMap) t.emission = vec3(0.0f);  // added, textured, per fragment
         Varyings out{t.diffuse, t.emission + t.ambient + t.specular, P, in.uv};
         if (u.clampColor) out = {detail::clamp01(t.sum()), vec3(0.0f), P, in.uv};
         return {u.clipFromObject * vec4(in.position, 1.0f), out};
@@ -231,7 +245,8 @@ struct PerVertexSurfaceShader {
             N.y[lane] = n.y;
             N.z[lane] = n.z;
         }
-        const LightingTerms<Vec3x8> t = surfaceTerms<Float8, Vec3x8>(P, N, Vec3x8(u.albedo()), u);
+        LightingTerms<Vec3x8> t = surfaceTerms<Float8, Vec3x8>(P, N, Vec3x8(u.albedo()), u);
+        if (u.emissionMap) t.emission = Vec3x8(vec3(0.0f));  // added, textured, per fragment
         Vec3x8 modulated = t.diffuse, added = t.emission + t.ambient + t.specular;
         if (u.clampColor) {
             modulated = detail::clamp01(t.sum());
@@ -251,7 +266,9 @@ struct PerVertexSurfaceShader {
             modulated *= vec3(texel);
             alpha *= texel.a;
         }
-        return vec4(surfaceOutput<float, vec3>(modulated + in.added, alpha, in.position, u), alpha);
+        vec3 added = in.added;
+        if (u.emissionMap) added += u.emissionTerm() * vec3(sampleBilinear(*u.emissionMap, in.uv));
+        return vec4(surfaceOutput<float, vec3>(modulated + added, alpha, in.position, u), alpha);
     }
 
     static Vec4x8 fragmentBatch(const FragmentBatch& in, const Uniforms& u) {
@@ -262,12 +279,16 @@ struct PerVertexSurfaceShader {
         Vec3x8 modulated = in.vec3At(kModulated);
         Float8 alpha = splat(u.opacity);
         if (u.diffuseMap) {
-            const Vec4x8 texel = detail::diffuseTexels(*u.diffuseMap, in.vec2At(kUv), in.mask);
+            const Vec4x8 texel = detail::texels(*u.diffuseMap, in.vec2At(kUv), in.mask);
             modulated = modulated * Vec3x8{texel.x, texel.y, texel.z};
             alpha = alpha * texel.w;
         }
-        const Vec3x8 c =
-            surfaceOutput<Float8, Vec3x8>(modulated + in.vec3At(kAdded), alpha, in.vec3At(kPosition), u);
+        Vec3x8 added = in.vec3At(kAdded);
+        if (u.emissionMap) {
+            const Vec4x8 texel = detail::texels(*u.emissionMap, in.vec2At(kUv), in.mask);
+            added = added + Vec3x8(u.emissionTerm()) * Vec3x8{texel.x, texel.y, texel.z};
+        }
+        const Vec3x8 c = surfaceOutput<Float8, Vec3x8>(modulated + added, alpha, in.vec3At(kPosition), u);
         return {c.x, c.y, c.z, alpha};
     }
 };

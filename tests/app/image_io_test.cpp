@@ -428,5 +428,144 @@ TEST_F(ImageIoTest, ReadingAFileThatIsNotAnImageFails) {
     }
 }
 
+// ---- Textures ------------------------------------------------------------------------------------
+
+// PNG's chunk checksum (CRC-32, ISO 3309), to write a header by hand.
+std::uint32_t pngCrc(const std::string& bytes) {
+    std::uint32_t crc = 0xFFFFFFFFu;
+    for (unsigned char byte : bytes) {
+        crc ^= byte;
+        for (int bit = 0; bit < 8; ++bit)
+            crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
+    }
+    return ~crc;
+}
+
+// A small valid PNG whose header then declares width × height: a file of a few hundred bytes that
+// would decode to gigabytes.
+void writePngDeclaring(const fs::path& path, std::uint32_t width, std::uint32_t height) {
+    writeImage(path, solid(glm::vec4(0.5f, 0.5f, 0.5f, 1.0f), 4, 4));
+    std::string bytes;
+    {
+        std::ifstream in(path, std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    ASSERT_EQ(bytes.substr(12, 4), "IHDR");
+    const auto put32 = [&](std::size_t at, std::uint32_t value) {
+        for (int k = 0; k < 4; ++k)
+            bytes[at + k] = static_cast<char>((value >> (24 - 8 * k)) & 0xFF);
+    };
+    put32(16, width);
+    put32(20, height);
+    put32(29, pngCrc(bytes.substr(12, 17)));  // over the chunk type and its 13 bytes of data
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+}
+
+TEST_F(ImageIoTest, EightBitTextureKeepsFourBytesATexel) {
+    const fs::path path = folder_ / "t.png";
+    writeImage(path, gradient(64, 4));
+    const TextureRead read = readTexture(path, true, TextureLimits{}, TextureLimits{}.maxTotalBytes);
+    ASSERT_TRUE(read.problem.empty()) << read.problem;
+    EXPECT_EQ(read.texture.width, 64);
+    EXPECT_EQ(read.texture.height, 4);
+    EXPECT_TRUE(read.texture.texels.empty());
+    EXPECT_EQ(read.texture.codes.size(), 64u * 4u);
+    EXPECT_EQ(read.texture.bytes(), 64u * 4u * 4u);
+}
+
+// The 8-bit texture's texels are exactly the values readImage gives (sRGB-decoded colour, alpha as
+// stored); without decoding, the codes/255 that re-encoding readImage's values gives.
+TEST_F(ImageIoTest, EightBitTextureTexelsEqualTheImageValues) {
+    const fs::path path = folder_ / "t.png";
+    writeImage(path, gradient(256, 4));
+    const LinearImage image = readImage(path);
+    for (bool decode : {true, false}) {
+        const TextureRead read = readTexture(path, decode, TextureLimits{}, TextureLimits{}.maxTotalBytes);
+        ASSERT_FALSE(read.texture.codes.empty()) << read.problem;
+        for (int y = 0; y < image.height; ++y)
+            for (int x = 0; x < image.width; ++x) {
+                glm::vec4 expected = image.at(x, y);
+                if (!decode)
+                    expected = glm::vec4(linearToSrgb(expected.r), linearToSrgb(expected.g),
+                                         linearToSrgb(expected.b), expected.a);
+                ASSERT_EQ(read.texture.texel(x, y), expected) << x << "," << y << " decode " << decode;
+            }
+    }
+}
+
+// Grey files fill R, G and B; a file without alpha is opaque, exactly 1.
+TEST_F(ImageIoTest, GreyTextureWithoutAlphaIsOpaqueGrey) {
+    const fs::path path = folder_ / "grey.png";
+    writeGrayBytes(path, {0, 128, 255});
+    const TextureRead read = readTexture(path, true, TextureLimits{}, TextureLimits{}.maxTotalBytes);
+    ASSERT_EQ(read.texture.codes.size(), 3u) << read.problem;
+    const glm::vec4 middle = read.texture.texel(1, 0);
+    EXPECT_FLOAT_EQ(middle.r, srgbToLinear(128.0f / 255.0f));
+    EXPECT_EQ(middle.g, middle.r);
+    EXPECT_EQ(middle.b, middle.r);
+    for (int x = 0; x < 3; ++x)
+        EXPECT_EQ(read.texture.texel(x, 0).a, 1.0f);
+}
+
+// Float files stay float and linear, the values unchanged.
+TEST_F(ImageIoTest, FloatTextureKeepsItsValues) {
+    const fs::path path = folder_ / "t.exr";
+    const LinearImage image = gradient(16, 3);
+    writeImage(path, image);
+    const TextureRead read = readTexture(path, true, TextureLimits{}, TextureLimits{}.maxTotalBytes);
+    ASSERT_TRUE(read.texture.codes.empty()) << read.problem;
+    ASSERT_EQ(read.texture.texels.size(), image.pixels.size());
+    EXPECT_EQ(read.texture.texels, image.pixels);
+}
+
+// A few hundred bytes declaring 30000 × 30000 pixels are refused from the header, at once, with the
+// file and the limit named.
+TEST_F(ImageIoTest, TextureDeclaringAHugeSizeIsRefusedBeforeDecoding) {
+    const fs::path path = folder_ / "huge.png";
+    writePngDeclaring(path, 30000, 30000);
+    try {
+        readTexture(path, true, TextureLimits{}, TextureLimits{}.maxTotalBytes);
+        FAIL() << "no error";
+    } catch (const InputError& e) {
+        const std::string message = e.what();
+        EXPECT_EQ(message.rfind(path.string() + ": ", 0), 0u) << message;
+        EXPECT_NE(message.find("30000x30000"), std::string::npos) << message;
+        EXPECT_NE(message.find("16384"), std::string::npos) << message;
+    }
+}
+
+// Texels beyond the memory left for a render's textures are refused, naming the limit.
+TEST_F(ImageIoTest, TextureBeyondTheMemoryLeftIsRefused) {
+    const fs::path path = folder_ / "t.png";
+    writeImage(path, gradient(64, 64));  // 16 KiB as 8-bit codes
+    TextureLimits limits;
+    limits.maxTotalBytes = 20000;
+    EXPECT_FALSE(readTexture(path, true, limits, 20000).texture.empty());
+    try {
+        readTexture(path, true, limits, 20000 - 16384 + 1);
+        FAIL() << "no error";
+    } catch (const InputError& e) {
+        const std::string message = e.what();
+        EXPECT_EQ(message.rfind(path.string() + ": ", 0), 0u) << message;
+        EXPECT_NE(message.find("at most"), std::string::npos) << message;
+    }
+}
+
+// Unreadable files are a problem to report, not an error, in one line; a truncated PNG included
+// (libpng's own message is captured, not printed).
+TEST_F(ImageIoTest, UnreadableTexturesReportAProblem) {
+    const fs::path text = folder_ / "text.png";
+    std::ofstream(text) << "this is not a PNG";
+    const fs::path truncated = folder_ / "truncated.png";
+    writeImage(truncated, gradient(256, 256));
+    fs::resize_file(truncated, fs::file_size(truncated) / 2);
+    for (const fs::path& path : {text, truncated, folder_ / "missing.png"}) {
+        const TextureRead read = readTexture(path, true, TextureLimits{}, TextureLimits{}.maxTotalBytes);
+        EXPECT_TRUE(read.texture.empty()) << path;
+        EXPECT_FALSE(read.problem.empty()) << path;
+        EXPECT_EQ(read.problem.find('\n'), std::string::npos) << read.problem;
+    }
+}
+
 }  // namespace
 }  // namespace facet

@@ -857,6 +857,71 @@ TEST_F(ObjImport, TexturesResolveAgainstTheMtlFolder) {
                                        "drawing without it"});
 }
 
+// Models made on case-insensitive file systems: Sponza's MTL names "SP_LUK.JPG" for sp_luk.JPG.
+TEST_F(ObjImport, TextureNameInAnotherCaseFindsTheFileAndWarns) {
+    write("Maps/sp_luk.JPG", "not really a jpeg");
+    const fs::path mtl = write("m.mtl", "newmtl wall\nKd 1 1 1\nmap_Kd maps\\SP_LUK.JPG\n");
+    const Mesh mesh =
+        loadObj(write("m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl wall\nf 1 2 3\n"));
+
+    ASSERT_EQ(mesh.materials.size(), 1u);
+    EXPECT_EQ(mesh.materials[0].diffuseTexture, dir_ / "Maps" / "sp_luk.JPG");
+    EXPECT_EQ(mesh.warnings, std::vector<std::string>{mtl.string() +
+                                                      ":3: texture 'maps\\SP_LUK.JPG' of material 'wall' not "
+                                                      "found as written; using '" +
+                                                      (dir_ / "Maps" / "sp_luk.JPG").string() +
+                                                      "', whose name differs in case"});
+}
+
+// Two files that differ only in case are two candidates: neither is guessed.
+TEST_F(ObjImport, TextureNameMatchingSeveralFilesInAnotherCaseWarnsAndUsesNone) {
+    write("wood.png", "not really a png");
+    write("WOOD.png", "not really a png either");
+    const fs::path mtl = write("m.mtl", "newmtl floor\nmap_Kd Wood.png\n");
+    const Mesh mesh =
+        loadObj(write("m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl floor\nf 1 2 3\n"));
+
+    ASSERT_EQ(mesh.materials.size(), 1u);
+    EXPECT_TRUE(mesh.materials[0].diffuseTexture.empty());
+    ASSERT_EQ(mesh.warnings.size(), 1u);
+    const std::string& warning = mesh.warnings[0];
+    EXPECT_EQ(
+        warning.rfind(mtl.string() + ":2: texture 'Wood.png' of material 'floor' differs only in case from "
+                                     "'WOOD.png', 'wood.png'",
+                      0),
+        0u)
+        << warning;
+    EXPECT_NE(warning.find("drawing without it"), std::string::npos) << warning;
+}
+
+TEST_F(ObjImport, EmissionMapResolvesLikeTheDiffuseMap) {
+    write("glow.png", "not really a png");
+    write("m.mtl", "newmtl lamp\nKe 1 1 1\nmap_Ke glow.png\n");
+    const Mesh mesh =
+        loadObj(write("m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl lamp\nf 1 2 3\n"));
+
+    ASSERT_EQ(mesh.materials.size(), 1u);
+    EXPECT_EQ(mesh.materials[0].emissionTexture, dir_ / "glow.png");
+    EXPECT_TRUE(mesh.materials[0].diffuseTexture.empty());
+    EXPECT_TRUE(mesh.warnings.empty()) << mesh.warnings.front();
+}
+
+// Texture statements Facet does not draw are named once each per file, not ignored in silence.
+TEST_F(ObjImport, UnusedTextureMapsWarnOnceEach) {
+    const fs::path mtl = write("m.mtl",
+                               "newmtl a\nmap_Ks spec.png\nbump normal.png\n"
+                               "newmtl b\nmap_Ks spec.png\nmap_d mask.png\n");
+    const Mesh mesh = loadObj(write("m.obj",
+                                    "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n"
+                                    "usemtl b\nf 1 3 2\n"));
+    EXPECT_EQ(mesh.warnings,
+              (std::vector<std::string>{
+                  mtl.string() + ":2: map_Ks is not supported and is ignored (2 times in this file)",
+                  mtl.string() + ":3: bump is not supported and is ignored",
+                  mtl.string() + ":6: map_d is not supported and is ignored",
+              }));
+}
+
 TEST_F(ObjImport, TextureNameEatenByAnOptionWarns) {
     // tinyobjloader reads "-o u [v [w]]" greedily, so "tex.png" becomes v and the name is lost.
     write("tex.png", "not really a png");

@@ -42,6 +42,15 @@ SurfaceUniforms threeLights() {
     return u;
 }
 
+// A 2 × 2 texture of four colours, for the emission map.
+Texture fourColours() {
+    Texture t;
+    t.width = t.height = 2;
+    t.texels = {vec4(0.2f, 0.5f, 1.0f, 1.0f), vec4(1.0f, 0.1f, 0.3f, 1.0f), vec4(0.0f, 0.8f, 0.4f, 1.0f),
+                vec4(0.6f, 0.6f, 0.1f, 0.5f)};
+    return t;
+}
+
 template <ShadingFrequency kFrequency>
 void expectBatchMatchesScalar(const SurfaceUniforms& uniforms, std::mt19937& rng, const char* what) {
     using S = SurfaceShader<kFrequency>;
@@ -81,6 +90,10 @@ TEST(SurfaceShader, BatchMatchesScalarForEveryModelAndFrequency) {
             expectBatchMatchesScalar<ShadingFrequency::Gouraud>(uniforms, rng, "per vertex");
         }
     }
+    const Texture map = fourColours();
+    uniforms.emissionMap = &map;
+    expectBatchMatchesScalar<ShadingFrequency::Phong>(uniforms, rng, "per pixel, emission map");
+    expectBatchMatchesScalar<ShadingFrequency::Gouraud>(uniforms, rng, "per vertex, emission map");
 }
 
 // The per-vertex shaders' eight-lane vertexBatch gives what vertex() gives, lane by lane, for every
@@ -132,6 +145,55 @@ TEST(SurfaceShader, PerVertexColourIsTheLightingAtTheVertex) {
     const vec4 perPixel = SurfaceShader<ShadingFrequency::Phong>::fragment(pixel, u);
     EXPECT_NEAR(perPixel.r, expected.r, 1e-6f);
     EXPECT_NEAR(perPixel.g, expected.g, 1e-6f);
+}
+
+// The colour of one shader at one surface point, through its scalar path or its eight-lane path.
+template <ShadingFrequency kFrequency>
+vec3 shadeOnce(const MeshVertex& v, const SurfaceUniforms& u, bool batch) {
+    using S = SurfaceShader<kFrequency>;
+    const VertexOut<typename S::Varyings> out = S::vertex(v, u);
+    if (!batch) return vec3(S::fragment(out.varyings, u));
+    FragmentBatch in;
+    in.mask = 0xff;
+    const float* f = reinterpret_cast<const float*>(&out.varyings);
+    for (int k = 0; k < kVaryingFloatCount<typename S::Varyings>; ++k)
+        for (int lane = 0; lane < 8; ++lane)
+            in.varyings[k][lane] = f[k];
+    const Vec4x8 c = S::fragmentBatch(in, u);
+    return vec3(c.x[3], c.y[3], c.z[3]);
+}
+
+// An emission map multiplies the emission term by its texel, at every shading frequency and on both
+// paths; the other terms are what they are without it (so the emission is counted once, textured).
+template <ShadingFrequency kFrequency>
+void expectEmissionTextured(const char* what) {
+    const Texture map = fourColours();
+    SurfaceUniforms plain = threeLights();
+    plain.material.emission = vec3(0.3f, 0.2f, 0.1f);
+    SurfaceUniforms mapped = plain;
+    mapped.emissionMap = &map;
+    const MeshVertex v{vec3(0.2f, -0.1f, -3.0f), normalize(vec3(0.1f, 0.3f, 1.0f)), vec2(0.3f, 0.8f)};
+    const vec3 texel(sampleBilinear(map, v.uv));
+    for (bool batch : {false, true}) {
+        const vec3 expected = shadeOnce<kFrequency>(v, plain, batch) - plain.material.emission +
+                              plain.material.emission * texel;
+        const vec3 got = shadeOnce<kFrequency>(v, mapped, batch);
+        EXPECT_NEAR(got.r, expected.r, 1e-5f) << what << (batch ? ", eight lanes" : ", one fragment");
+        EXPECT_NEAR(got.g, expected.g, 1e-5f) << what << (batch ? ", eight lanes" : ", one fragment");
+        EXPECT_NEAR(got.b, expected.b, 1e-5f) << what << (batch ? ", eight lanes" : ", one fragment");
+    }
+    // The emission image alone is m_emission ⊗ texel.
+    mapped.terms = kEmissionTerm;
+    const vec3 alone = shadeOnce<kFrequency>(v, mapped, false);
+    EXPECT_NEAR(alone.r, 0.3f * texel.r, 1e-6f) << what;
+    EXPECT_NEAR(alone.g, 0.2f * texel.g, 1e-6f) << what;
+    EXPECT_NEAR(alone.b, 0.1f * texel.b, 1e-6f) << what;
+}
+
+TEST(SurfaceShader, EmissionMapMultipliesTheEmissionAtEveryFrequency) {
+    expectEmissionTextured<ShadingFrequency::Phong>("per pixel");
+    expectEmissionTextured<ShadingFrequency::Gouraud>("per vertex");
+    expectEmissionTextured<ShadingFrequency::Flat>("flat");
 }
 
 // Each term bit selects one term; the four component images add up to the full image.

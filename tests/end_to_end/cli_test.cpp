@@ -1,6 +1,7 @@
 // The facet program as a user runs it: exit status, the one-line error, and no partial images.
 #include <sys/wait.h>
 
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
@@ -424,6 +425,85 @@ TEST(Cli, NoArgumentsPrintsUsageAndFails) {
     const RunResult run = runFacet("", dir);
     EXPECT_NE(run.status, 0);
     EXPECT_NE((run.out + run.err).find("render"), std::string::npos);
+}
+
+// ---- Textures ------------------------------------------------------------------------------------
+
+// A square facing the camera, its material's MTL statements given (e.g. "map_Kd t.png\n").
+std::filesystem::path writeTexturedSquare(const TempDir& dir, const std::string& mtlStatements) {
+    dir.write("square.mtl", "newmtl square\nKd 1 1 1\n" + mtlStatements);
+    return dir.write("square.obj",
+                     "mtllib square.mtl\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n"
+                     "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl square\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n");
+}
+
+// Every line of standard error is Facet's own ("facet: ..."): no raw library output.
+bool onlyFacetLines(const std::string& err) {
+    std::istringstream lines(err);
+    for (std::string line; std::getline(lines, line);)
+        if (line.rfind("facet: ", 0) != 0) return false;
+    return true;
+}
+
+// A PNG header declaring 30000 × 30000 pixels (about 29 GB as float RGBA) in a file of a few hundred
+// bytes: refused from the header at once, naming the texture and the limit.
+TEST(Cli, TextureDeclaringAHugeSizeFailsNamingIt) {
+    TempDir dir;
+    const auto texture = dir.path() / "huge.png";
+    LinearImage small;
+    small.width = small.height = 4;
+    small.pixels.assign(16, glm::vec4(0.5f, 0.5f, 0.5f, 1.0f));
+    writeImage(texture, small);
+    std::string bytes = readText(texture);
+    ASSERT_EQ(bytes.substr(12, 4), "IHDR");
+    for (int k = 0; k < 8; ++k)  // width and height: 30000 = 0x7530
+        bytes[16 + k] = "\0\0\x75\x30\0\0\x75\x30"[k];
+    std::uint32_t crc = 0xFFFFFFFFu;  // the chunk's CRC-32 over its type and 13 bytes of data
+    for (int k = 12; k < 29; ++k) {
+        crc ^= static_cast<unsigned char>(bytes[k]);
+        for (int bit = 0; bit < 8; ++bit)
+            crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
+    }
+    crc = ~crc;
+    for (int k = 0; k < 4; ++k)
+        bytes[29 + k] = static_cast<char>((crc >> (24 - 8 * k)) & 0xFF);
+    dir.write("huge.png", bytes);
+    const auto obj = writeTexturedSquare(dir, "map_Kd huge.png\n");
+    const RunResult run = runFacet("render " + quoted(obj) + " -o " + quoted(dir.path() / "x.png"), dir);
+    EXPECT_EQ(run.status, 1) << run.err;
+    EXPECT_EQ(lineCount(run.err), 1) << run.err;
+    EXPECT_EQ(run.err.rfind("facet: error: " + texture.string() + ": ", 0), 0u) << run.err;
+    EXPECT_NE(run.err.find("16384"), std::string::npos) << run.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / "x.png"));
+}
+
+// A texture that is not an image, or a truncated one, is a warning like a missing one: one line
+// naming the file and the reason, no library output, and the square drawn untextured.
+TEST(Cli, UnreadableTextureWarnsAndDrawsWithoutIt) {
+    TempDir dir;
+    LinearImage checker;
+    checker.width = checker.height = 256;
+    for (int i = 0; i < 256 * 256; ++i)
+        checker.pixels.push_back(glm::vec4(float((i / 256 + i) % 7) / 6.0f, 0.2f, 0.7f, 1.0f));
+    writeImage(dir.path() / "whole.png", checker);
+    const std::string whole = readText(dir.path() / "whole.png");
+    dir.write("truncated.png", whole.substr(0, whole.size() / 2));
+    dir.write("text.png", "this is not a PNG");
+    for (const char* name : {"truncated.png", "text.png"}) {
+        const auto obj = writeTexturedSquare(dir, std::string("map_Kd ") + name + "\n");
+        const auto png = dir.path() / "x.png";
+        const RunResult run =
+            runFacet("render " + quoted(obj) + " -o " + quoted(png) + " --width 32 --height 32", dir);
+        EXPECT_EQ(run.status, 0) << run.err;
+        EXPECT_EQ(lineCount(run.err), 1) << run.err;
+        EXPECT_EQ(run.err.rfind("facet: warning: " + (dir.path() / name).string() + ": ", 0), 0u) << run.err;
+        EXPECT_TRUE(onlyFacetLines(run.err)) << run.err;
+        // The square is there, lit white-ish (Kd 1): the centre is far from the black background.
+        const LinearImage image = readImage(png);
+        const glm::vec4 centre = image.at(16, 16);
+        EXPECT_GT(centre.r + centre.g + centre.b, 0.5f) << name;
+        EXPECT_NEAR(centre.r, centre.b, 1e-3f) << name;  // untextured: grey, not the texture's blue
+    }
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "color.h"
+#include "errors.h"
 #include "renderer.h"
 #include "test_files.h"
 
@@ -275,6 +276,59 @@ TEST(Render, TextureAlphaMakesThePartTransparent) {
     EXPECT_EQ(prepared.transparentTriangles.size(), 2u);
     const vec4 centre = renderScene(scene).at(32, 24);
     EXPECT_NEAR(centre.r, 0.5f, 2e-3f);  // white at α = 0.5 over black (the 8-bit alpha is 128/255)
+}
+
+// map_Ke without Ke: the texture is the emission (Ke taken as 1); unlit, the square shows the texel.
+TEST(Render, EmissionMapWithoutKeGlowsWithTheTexture) {
+    TempDir dir;
+    LinearImage texture;
+    texture.width = texture.height = 2;
+    texture.pixels.assign(4, vec4(0.2f, 0.6f, 0.9f, 1.0f));
+    writeImage(dir.path() / "glow.png", texture);
+    const vec4 texel = readImage(dir.path() / "glow.png").at(0, 0);  // the 8-bit file's value
+    const auto obj =
+        dir.write("square.obj", std::string("mtllib square.mtl\nusemtl t\n") +
+                                    "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                                    "vn 0 0 1\nf 1/1/1 2/2/1 3/3/1 4/4/1\n");
+    dir.write("square.mtl", "newmtl t\nKa 0 0 0\nKd 0 0 0\nKs 0 0 0\nmap_Ke glow.png\n");
+    Scene scene = headOnScene(obj);
+    scene.background = vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    const PreparedScene prepared = prepareScene(scene);
+    ASSERT_EQ(prepared.draws.size(), 1u);
+    EXPECT_NE(prepared.draws.front().uniforms.emissionMap, nullptr);
+    EXPECT_EQ(prepared.draws.front().uniforms.material.emission, vec3(1.0f));
+    const vec4 centre = renderScene(scene).at(32, 24);
+    EXPECT_NEAR(centre.r, texel.r, 1e-5f);
+    EXPECT_NEAR(centre.g, texel.g, 1e-5f);
+    EXPECT_NEAR(centre.b, texel.b, 1e-5f);
+}
+
+// The memory budget covers all textures of a render together: the second texture that would pass it
+// is refused, named, before it is decoded.
+TEST(Render, TexturesTogetherBeyondTheBudgetAreAnError) {
+    TempDir dir;
+    LinearImage texture;
+    texture.width = texture.height = 64;  // 16 KiB each as 8-bit texels
+    texture.pixels.assign(64 * 64, vec4(0.5f, 0.5f, 0.5f, 1.0f));
+    writeImage(dir.path() / "first.png", texture);
+    writeImage(dir.path() / "second.png", texture);
+    const auto obj =
+        dir.write("two.obj", std::string("mtllib two.mtl\n") +
+                                 "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvn 0 0 1\n"
+                                 "usemtl a\nf 1/1/1 2/1/1 3/1/1\nusemtl b\nf 1/1/1 3/1/1 4/1/1\n");
+    dir.write("two.mtl", "newmtl a\nmap_Kd first.png\nnewmtl b\nmap_Kd second.png\n");
+    const Scene scene = headOnScene(obj);
+    TextureLimits limits;
+    limits.maxTotalBytes = 2 * 64 * 64 * 4;
+    EXPECT_EQ(prepareScene(scene, limits).textures.size(), 2u);  // exactly fits
+    limits.maxTotalBytes -= 1;
+    try {
+        prepareScene(scene, limits);
+        FAIL() << "no error";
+    } catch (const InputError& e) {
+        const std::string message = e.what();
+        EXPECT_EQ(message.rfind((dir.path() / "second.png").string() + ": ", 0), 0u) << message;
+    }
 }
 
 // Two half-transparent quads that cross each other along x = 0 (z = x/2 and z = −x/2): left of the
