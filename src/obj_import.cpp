@@ -67,6 +67,14 @@ std::string inSingleQuotes(std::string_view s) {
     return inQuotes(s, '\'');
 }
 
+// A path the importer resolved: shown whole (up to PATH_MAX), escaped like every quoted value.
+std::string pathInSingleQuotes(const fs::path& path) {
+    std::string quoted(1, '\'');
+    quoted += printable(path.string(), 4096, '\'');
+    quoted += '\'';
+    return quoted;
+}
+
 // ---- Files ----------------------------------------------------------------------------------------
 
 // Why a file cannot be read, or "" when `path` is a readable regular file; `text` gets its bytes.
@@ -319,6 +327,13 @@ std::vector<ScannedStatement> cleanAndSplit(std::string& text, ObjScan& scan) {
                           text.begin() + static_cast<std::ptrdiff_t>(end), ' ');
                 break;
             }
+        }
+        // Skin weights (`vw joint weight ...`) are not used by Facet, and tinyobjloader converts their joint
+        // ids to int unchecked (undefined for 1e999 or 3e9): blank the statement out.
+        if (end - first > 2 && text.compare(first, 2, "vw") == 0 && isBlank(text[first + 2])) {
+            std::fill(text.begin() + static_cast<std::ptrdiff_t>(first),
+                      text.begin() + static_cast<std::ptrdiff_t>(end), ' ');
+            continue;
         }
         Statement kind;
         if (!classify(std::string_view(text).substr(first, end - first), kind)) continue;
@@ -790,14 +805,14 @@ FoundTexture findTexture(const fs::path& folder, const std::string& name) {
             for (const fs::path& match : matches)
                 names += (names.empty() ? "" : ", ") + inSingleQuotes(match.filename().string());
             return {{},
-                    "differs only in case from " + names + " in " + inSingleQuotes(found.string()) +
+                    "differs only in case from " + names + " in " + pathInSingleQuotes(found) +
                         ", which is ambiguous"};
         }
         found = matches.front();
     }
     if (!fs::is_regular_file(found, error)) return {};
     return {found,
-            "not found as written; using " + inSingleQuotes(found.string()) + ", whose name differs in case"};
+            "not found as written; using " + pathInSingleQuotes(found) + ", whose name differs in case"};
 }
 
 // ---- Mesh building --------------------------------------------------------------------------------

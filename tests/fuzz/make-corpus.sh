@@ -66,5 +66,11 @@ for seed in "$out"/obj/*; do
     (($(stat -c %s "$seed") <= max_render_bytes)) || continue
     { printf '{"model": "model.obj"}\0'; cat "$seed"; } >"$out/render/model-$(basename "$seed")"
 done
+# Inputs that once were findings, each in its target's format: kept as seeds so that CI replays them.
+for target in obj scene render; do
+    for seed in "$repo/tests/fuzz/regressions/$target"/*; do
+        [[ -f "$seed" ]] && cp "$seed" "$out/$target/regression-$(basename "$seed")"
+    done
+done
 echo "make-corpus.sh: $(ls "$out/obj" | wc -l) OBJ, $(ls "$out/scene" | wc -l) scene and" \
      "$(ls "$out/render" | wc -l) render seeds in $out"
