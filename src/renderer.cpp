@@ -254,6 +254,15 @@ PreparedScene prepareScene(const Scene& scene, const TextureLimits& limits) {
         sceneBounds.max = max(sceneBounds.max, b.max);
     }
 
+    // Every object copies its model's vertices into its draws: bound the total before making them.
+    std::size_t sceneTriangles = 0;
+    for (const ObjectSpec& object : scene.objects)
+        sceneTriangles += meshes[object.model]->stats.trianglesKept;
+    if (sceneTriangles > kMaxSceneTriangles)
+        throw InputError(scene.source.string() + ": the scene draws " + std::to_string(sceneTriangles) +
+                         " triangles (each object counts its model's), more than the limit of " +
+                         std::to_string(kMaxSceneTriangles) + "; use fewer objects or lighter models");
+
     prepared.turntableCentre = 0.5f * (sceneBounds.min + sceneBounds.max);
 
     // Camera.

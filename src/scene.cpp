@@ -430,7 +430,8 @@ CameraSpec readCamera(const SceneReader& reader, const Json& camera) {
         spec.fovyDegrees = reader.number(*v, "camera.fovy");
         if (!(spec.fovyDegrees >= kMinFovyDegrees && spec.fovyDegrees <= kMaxFovyDegrees)) {
             reader.fail("\"camera.fovy\" must be from " + formatNumber(kMinFovyDegrees) + " to " +
-                        formatNumber(kMaxFovyDegrees) + " degrees (got " + formatNumber(spec.fovyDegrees) + ")");
+                        formatNumber(kMaxFovyDegrees) + " degrees (got " + formatNumber(spec.fovyDegrees) +
+                        ")");
         }
     }
     if (const Json* v = reader.find(camera, "near")) {
@@ -1015,6 +1016,10 @@ Scene loadScene(const fs::path& path) {
     } else if (objects) {
         if (!objects->is_array())
             reader.fail("\"objects\" must be an array of objects (got " + describe(*objects) + ")");
+        if (objects->size() > kMaxObjects) {
+            reader.fail("\"objects\" has " + std::to_string(objects->size()) + " objects, at most " +
+                        std::to_string(kMaxObjects) + " are supported in one scene");
+        }
         for (std::size_t i = 0; i < objects->size(); ++i) {
             scene.objects.push_back(readObject(reader, (*objects)[i], elementPath("objects", i), folder));
         }

@@ -181,6 +181,12 @@ inline constexpr int kMaxImageSide = 16384;
 inline constexpr long long kMaxPixels = 1LL << 26;
 // A scene file is a few kilobytes of hand-written JSON; a larger one than this is refused unread.
 inline constexpr std::uintmax_t kMaxSceneFileBytes = std::uintmax_t{64} << 20;
+// Objects in one scene. Each object is its own draw with its own copy of its model's vertices, so the
+// memory a scene needs grows with objects × their models' size: the count is refused while reading
+// (a 64 MiB file could otherwise list millions), and the triangles drawn are bounded once the
+// distinct models are loaded, before any object's copy is made.
+inline constexpr std::size_t kMaxObjects = 100'000;
+inline constexpr std::size_t kMaxSceneTriangles = 50'000'000;  // ~3-5 GB of draws at the most
 
 // The vertical field of view facet accepts, in degrees: below 0.01° the view is narrower than float
 // coordinates can aim (a model a thousand times its size away would be placed to a fraction of a

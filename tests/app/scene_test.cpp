@@ -1488,6 +1488,17 @@ TEST_F(SceneTest, HundredThousandLightsAreRefusedWithinASecond) {
     EXPECT_LT(seconds, 1.0);
 }
 
+// Breaks if the object count is checked after reading every object (or not at all).
+TEST_F(SceneTest, ObjectsBeyondTheLimitAreRefusedWhileReading) {
+    std::string objects = R"({"model": "m.obj"})";
+    for (std::size_t i = 1; i <= kMaxObjects; ++i)
+        objects += R"(, {"model": "missing.obj"})";  // never opened: the count is refused first
+    const std::string message = errorOf(R"({"objects": [)" + objects + "]}");
+    EXPECT_NE(message.find(R"("objects" has 100001 objects, at most 100000 are supported)"),
+              std::string::npos)
+        << message;
+}
+
 TEST_F(SceneTest, DuplicateKeyIsStillFoundDeepInAnArray) {
     const std::string message = errorOf(
         R"({"objects": [{"model": "m.obj"}, {"model": "m.obj", "rotate": [0, 0, 0], "rotate": [1, 1, 1]}]})");

@@ -331,6 +331,39 @@ TEST(Render, TexturesTogetherBeyondTheBudgetAreAnError) {
     }
 }
 
+// Every object copies its model: the scene's triangles (objects × their models') are bounded before
+// the copies are made. Breaks if the total counts each model once, or is checked after the draws.
+TEST(Render, SceneDrawingTooManyTrianglesIsAnError) {
+    TempDir dir;
+    std::string strip = "v 0 0 0\nv 0 1 0\n";
+    constexpr int kTriangles = 20000;
+    for (int i = 1; i <= kTriangles / 2; ++i)
+        strip += "v " + std::to_string(i) + " 0 0\nv " + std::to_string(i) + " 1 0\n";
+    for (int i = 0; i < kTriangles / 2; ++i) {
+        const int a = 2 * i + 1;  // (a, a+1) is the left edge of quad i, (a+2, a+3) its right edge
+        strip += "f " + std::to_string(a) + " " + std::to_string(a + 2) + " " + std::to_string(a + 3) + "\n";
+        strip += "f " + std::to_string(a) + " " + std::to_string(a + 3) + " " + std::to_string(a + 1) + "\n";
+    }
+    dir.write("strip.obj", strip);
+    const std::size_t fits = kMaxSceneTriangles / kTriangles;
+    const auto sceneOf = [&](std::size_t objects) {
+        std::string list = R"({"model": "strip.obj"})";
+        for (std::size_t i = 1; i < objects; ++i)
+            list += R"(, {"model": "strip.obj"})";
+        return loadScene(dir.write("scene.json", R"({"width": 8, "height": 8, "objects": [)" + list + "]}"));
+    };
+    try {
+        prepareScene(sceneOf(fits + 1));
+        FAIL() << "no error";
+    } catch (const InputError& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("the scene draws " + std::to_string((fits + 1) * kTriangles) + " triangles"),
+                  std::string::npos)
+            << message;
+    }
+    EXPECT_EQ(prepareScene(sceneOf(2)).triangleCount, 2u * kTriangles);
+}
+
 // Two half-transparent quads that cross each other along x = 0 (z = x/2 and z = −x/2): left of the
 // crossing the second is nearer, right of it the first. No order of their triangles is right on both
 // sides; exact transparency (per-pixel fragment lists) is, and gives the over operator of the nearer
