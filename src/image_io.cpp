@@ -24,6 +24,7 @@
 
 #include "color.h"
 #include "errors.h"
+#include "quote.h"
 
 namespace facet {
 namespace {
@@ -67,10 +68,17 @@ const FileFormat* findFormat(const fs::path& path) {
 }
 
 // OpenImageIO messages may span several lines; ours are one line.
-std::string oneLine(std::string text) {
+// A library's message on one line, bounded, with bytes a terminal would not show escaped (it may quote
+// a file's metadata). "" when there is none.
+std::string libraryMessage(std::string text) {
     std::replace(text.begin(), text.end(), '\n', ' ');
     while (!text.empty() && text.back() == ' ')
         text.pop_back();
+    return printable(text, 300);
+}
+
+std::string oneLine(std::string text) {
+    text = libraryMessage(std::move(text));
     return text.empty() ? "unknown OpenImageIO error" : text;
 }
 
@@ -129,10 +137,7 @@ class StderrCapture {
         std::size_t count;
         while ((count = std::fread(buffer, 1, sizeof buffer, file_)) > 0 && text.size() < 4096)
             text.append(buffer, count);
-        std::replace(text.begin(), text.end(), '\n', ' ');
-        while (!text.empty() && text.back() == ' ')
-            text.pop_back();
-        return text;
+        return libraryMessage(std::move(text));
     }
 
   private:

@@ -262,7 +262,7 @@ void printFrameStats(int frame, const facet::PreparedScene& prepared, const face
     std::cout << "\n";
 }
 
-// The output name alone, before anything is loaded: "-o ''" or a folder-only path.
+// The output name alone, before anything is loaded: "-o ''" (checkImageDestination checks the rest).
 void checkOutputName(const std::string& output) {
     if (output.empty())
         throw facet::InputError("no output file given: name one with -o, like -o out/image.png");
@@ -283,8 +283,7 @@ int render(const RenderArgs& args) {
                                 std::to_string(static_cast<long long>(frameCount) * imagesPerFrame) +
                                 " images; one run writes at most " + std::to_string(kMaxImagesPerRun) +
                                 (args.components ? " (--components writes five per frame)" : ""));
-    const float turntable = args.turntable.value_or(args.frames ? 360.0f : 0.0f);
-    if (!std::isfinite(turntable)) throw facet::InputError("--turntable must be a number of degrees");
+    const float turntable = args.turntable.value_or(args.frames ? 360.0f : 0.0f);  // finite: kFiniteNumber
 
     const std::filesystem::path input = args.input;
     facet::Scene scene = facet::loadSceneOrModel(input);

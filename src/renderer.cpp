@@ -14,6 +14,7 @@
 #include "color.h"
 #include "errors.h"
 #include "obj_import.h"
+#include "quote.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -227,8 +228,8 @@ PreparedScene prepareScene(const Scene& scene, const TextureLimits& limits) {
         if (!first) return it->second;
         TextureRead read = readTexture(file, decodeInputs, limits, limits.maxTotalBytes - textureBytes);
         if (read.texture.empty()) {
-            prepared.warnings.push_back(file.string() + ": " + read.problem + "; drawing material '" +
-                                        material + "' without this texture");
+            prepared.warnings.push_back(file.string() + ": " + read.problem + "; drawing material " +
+                                        inQuotes(material, '\'') + " without this texture");
             return nullptr;
         }
         auto owned = std::make_unique<Texture>(std::move(read.texture));
