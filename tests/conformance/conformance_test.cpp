@@ -15,8 +15,8 @@
 
 #include <gtest/gtest.h>
 
-#include "compare.h"
-#include "errors.h"
+#include "base/errors.h"
+#include "oracle/compare.h"
 
 namespace facet {
 namespace {

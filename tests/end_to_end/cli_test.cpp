@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "image_io.h"
+#include "io/image_io.h"
 #include "test_files.h"
 
 namespace facet {

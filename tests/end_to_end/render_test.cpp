@@ -7,9 +7,10 @@
 
 #include <gtest/gtest.h>
 
-#include "color.h"
-#include "errors.h"
-#include "renderer.h"
+#include "base/errors.h"
+#include "oracle/gl_scene.h"
+#include "pipeline/color.h"
+#include "render/renderer.h"
 #include "test_files.h"
 
 namespace facet {

@@ -6,9 +6,9 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "errors.h"
+#include "base/errors.h"
 #include "fuzz_files.h"
-#include "obj_import.h"
+#include "io/obj_import.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     static const facet::fuzz::ScratchFolder folder;

@@ -9,11 +9,11 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "errors.h"
+#include "base/errors.h"
 #include "fuzz_files.h"
-#include "pipeline.h"
-#include "renderer.h"
-#include "scene.h"
+#include "pipeline/pipeline.h"
+#include "render/renderer.h"
+#include "scene/scene.h"
 
 namespace {
 

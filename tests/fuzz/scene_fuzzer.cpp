@@ -6,9 +6,9 @@
 #include <cstdint>
 #include <string_view>
 
-#include "errors.h"
+#include "base/errors.h"
 #include "fuzz_files.h"
-#include "scene.h"
+#include "scene/scene.h"
 
 namespace {
 

@@ -5,7 +5,7 @@
 #include <span>
 #include <vector>
 
-#include "pipeline.h"
+#include "pipeline/pipeline.h"
 
 namespace facet::testing {
 

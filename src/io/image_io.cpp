@@ -1,0 +1,475 @@
+// Image files through OpenImageIO: LinearImage -> PNG/JPEG/PPM/TIFF/BMP/TGA (8-bit, sRGB-encoded) or
+// EXR/HDR (32-bit float, linear), and any readable file back to linear RGBA.
+// A write goes to a hidden temporary file beside the destination and is renamed into place once
+// complete, so a failure never leaves a partial image nor destroys the previous one.
+#include "io/image_io.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <string_view>
+#include <system_error>
+
+#include <cstdio>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include "base/errors.h"
+#include "base/quote.h"
+#include "pipeline/color.h"
+
+namespace facet {
+namespace {
+
+namespace fs = std::filesystem;
+
+// How each extension is written. Channel counts follow what the format (or its usual readers) can
+// hold: PPM and JPEG have no alpha; BMP alpha is ignored by most viewers; Radiance HDR is RGB only.
+struct FileFormat {
+    std::string_view extension;  // lower case, with the dot
+    int channels;                // 3 (RGB) or 4 (RGBA)
+    bool isFloat;                // true: 32-bit float linear; false: 8-bit sRGB-encoded
+    int maxSide;                 // pixels; checked first, as libjpeg exits the process beyond its limit
+};
+
+constexpr int kNoLimit = std::numeric_limits<int>::max();
+constexpr int kJpegMaxSide = 65500;  // libjpeg's JPEG_MAX_DIMENSION
+constexpr int kTgaMaxSide = 65535;   // 16-bit width and height fields
+
+constexpr FileFormat kFormats[] = {
+    {".png", 4, false, kNoLimit}, {".jpg", 3, false, kJpegMaxSide}, {".jpeg", 3, false, kJpegMaxSide},
+    {".ppm", 3, false, kNoLimit}, {".tif", 4, false, kNoLimit},     {".tiff", 4, false, kNoLimit},
+    {".bmp", 3, false, kNoLimit}, {".tga", 4, false, kTgaMaxSide},  {".exr", 4, true, kNoLimit},
+    {".hdr", 3, true, kNoLimit},
+};
+
+constexpr std::string_view kFormatList = ".png, .jpg, .jpeg, .ppm, .tif, .tiff, .bmp, .tga, .exr, .hdr";
+
+std::string lowerCase(std::string text) {
+    std::transform(text.begin(), text.end(), text.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return text;
+}
+
+const FileFormat* findFormat(const fs::path& path) {
+    const std::string extension = lowerCase(path.extension().string());
+    for (const FileFormat& format : kFormats) {
+        if (format.extension == extension) return &format;
+    }
+    return nullptr;
+}
+
+// OpenImageIO messages may span several lines; ours are one line.
+// A library's message on one line, bounded, with bytes a terminal would not show escaped (it may quote
+// a file's metadata). "" when there is none.
+std::string libraryMessage(std::string text) {
+    std::replace(text.begin(), text.end(), '\n', ' ');
+    while (!text.empty() && text.back() == ' ')
+        text.pop_back();
+    return printable(text, 300);
+}
+
+std::string oneLine(std::string text) {
+    text = libraryMessage(std::move(text));
+    return text.empty() ? "unknown OpenImageIO error" : text;
+}
+
+[[noreturn]] void fail(const fs::path& path, const std::string& what) {
+    throw InputError(path.string() + ": " + what);
+}
+
+// Removes the temporary file unless the write completed and the file was renamed into place.
+class TempFileGuard {
+  public:
+    explicit TempFileGuard(fs::path path) : path_(std::move(path)) {}
+    TempFileGuard(const TempFileGuard&) = delete;
+    TempFileGuard& operator=(const TempFileGuard&) = delete;
+    ~TempFileGuard() {
+        if (armed_) ::unlink(path_.c_str());  // unlink, not remove: never deletes a folder of that name
+    }
+    void release() { armed_ = false; }
+
+  private:
+    fs::path path_;
+    bool armed_ = true;
+};
+
+// Captures what libraries write straight to standard error (libpng's "libpng error: ..." lines) while
+// it lives, so that their messages become part of ours instead of raw lines on the terminal.
+class StderrCapture {
+  public:
+    StderrCapture() {
+        std::fflush(stderr);
+        file_ = std::tmpfile();
+        if (file_ == nullptr) return;
+        saved_ = ::dup(STDERR_FILENO);
+        if (saved_ < 0 || ::dup2(::fileno(file_), STDERR_FILENO) < 0) restore();
+    }
+    StderrCapture(const StderrCapture&) = delete;
+    StderrCapture& operator=(const StderrCapture&) = delete;
+    ~StderrCapture() {
+        restore();
+        if (file_ != nullptr) std::fclose(file_);
+    }
+
+    // Ends the capture and returns what was written, on one line.
+    std::string finish() {
+        restore();
+        std::string text;
+        if (file_ == nullptr) return text;
+        std::rewind(file_);
+        char buffer[512];
+        std::size_t count;
+        while ((count = std::fread(buffer, 1, sizeof buffer, file_)) > 0 && text.size() < 4096)
+            text.append(buffer, count);
+        return libraryMessage(std::move(text));
+    }
+
+  private:
+    void restore() {
+        if (saved_ < 0) return;
+        std::fflush(stderr);
+        ::dup2(saved_, STDERR_FILENO);
+        ::close(saved_);
+        saved_ = -1;
+    }
+
+    std::FILE* file_ = nullptr;
+    int saved_ = -1;
+};
+
+std::string gibibytes(std::size_t bytes) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2f GiB", static_cast<double>(bytes) / double(std::size_t{1} << 30));
+    return text;
+}
+
+// The texture's texels, read into `texture` (its size set): channels 0..3 of each pixel into the four
+// slots of one texel of type T (vec4 or Codes) as `type`, then the alpha channel into slot 3 when it
+// lies beyond them. Returns false on a read error.
+template <class T>
+bool readTexels(OIIO::ImageInput& input, OIIO::TypeDesc type, std::vector<T>& texels) {
+    const OIIO::ImageSpec& spec = input.spec();
+    const std::size_t pixelCount = static_cast<std::size_t>(spec.width) * spec.height;
+    texels.assign(pixelCount, T{});
+    const int channels = std::min(spec.nchannels, 4);
+    if (!input.read_image(0, 0, 0, channels, type, texels.data(), sizeof(T))) return false;
+    if (spec.alpha_channel >= 4 && spec.alpha_channel < spec.nchannels) {
+        auto* alpha = reinterpret_cast<unsigned char*>(texels.data()) + 3 * (sizeof(T) / 4);
+        if (!input.read_image(0, 0, spec.alpha_channel, spec.alpha_channel + 1, type, alpha, sizeof(T)))
+            return false;
+    }
+    return true;
+}
+
+// Puts each texel's values where Texture expects them, in place: grey (one or two channels) copied to
+// R, G and B, alpha to slot 3 (opaque when the file has none), each colour value through `color` and
+// alpha through `alpha`, as readImage lays out its pixels.
+template <class T, class Color, class Alpha, class Opaque>
+void arrangeTexels(const OIIO::ImageSpec& spec, std::vector<T>& texels, Color color, Alpha alpha,
+                   Opaque opaque) {
+    const int alphaSlot =
+        spec.alpha_channel < 0 || spec.alpha_channel >= spec.nchannels ? -1 : std::min(spec.alpha_channel, 3);
+    const bool gray = spec.nchannels < 3;
+    for (T& t : texels) {
+        const T v = t;
+        t[0] = color(v[0]);
+        t[1] = gray ? t[0] : color(v[1]);
+        t[2] = gray ? t[0] : color(v[2]);
+        t[3] = alphaSlot >= 0 ? alpha(v[alphaSlot]) : opaque;
+    }
+}
+
+}  // namespace
+
+void checkImageDestination(const fs::path& path, int width, int height) {
+    // Choose the format before touching the disk, so a typo writes nothing.
+    const FileFormat* format = findFormat(path);
+    if (format == nullptr) {
+        const std::string extension = path.extension().string();
+        // "out/.png": to the file system a hidden file named ".png" without an extension.
+        // (Strings built with +=: GCC 12 warns falsely about chains of operator+.)
+        std::string named = "image";
+        named += path.filename().string();
+        if (extension.empty() && findFormat(named)) {
+            std::string message = "has no file name before the extension (like ";
+            message += (path.parent_path() / named).string();
+            fail(path, message + ")");
+        }
+        if (extension.empty()) {
+            fail(path,
+                 "no file extension to choose the image format from (use " + std::string(kFormatList) + ")");
+        }
+        fail(path, "unknown image format \"" + extension + "\" (use " + std::string(kFormatList) + ")");
+    }
+    if (width > format->maxSide || height > format->maxSide) {
+        fail(path, "the " + std::string(format->extension.substr(1)) + " format cannot hold " +
+                       std::to_string(width) + "x" + std::to_string(height) + " pixels (at most " +
+                       std::to_string(format->maxSide) + " per side)");
+    }
+    std::error_code error;
+    if (fs::is_directory(path, error)) fail(path, "is a folder, not an image file");
+
+    // The folder: the nearest part of it that exists must be a folder we may write into (writeImage
+    // creates the rest), so that an unwritable destination fails before a long render.
+    fs::path existing = path.parent_path();
+    while (!existing.empty() && !fs::exists(existing, error) && existing != existing.parent_path())
+        existing = existing.parent_path();
+    if (existing.empty()) existing = ".";
+    if (!fs::is_directory(existing, error))
+        fail(path, "cannot write: " + std::string(std::strerror(ENOTDIR)));
+    if (::access(existing.c_str(), W_OK | X_OK) != 0)
+        fail(path, "cannot write: " + std::string(std::strerror(errno)));
+}
+
+void writeImage(const fs::path& path, const LinearImage& image, ColorEncoding encoding) {
+    checkImageDestination(path, image.width, image.height);
+    const FileFormat* format = findFormat(path);
+    const std::size_t pixelCount = static_cast<std::size_t>(std::max(image.width, 0)) *
+                                   static_cast<std::size_t>(std::max(image.height, 0));
+    if (image.width <= 0 || image.height <= 0 || image.pixels.size() != pixelCount) {
+        fail(path, "cannot write an image of " + std::to_string(image.width) + "x" +
+                       std::to_string(image.height) + " pixels holding " +
+                       std::to_string(image.pixels.size()) + " values");
+    }
+
+    // The destination folder is created when missing: "-o renders/spot.png" should just work.
+    std::error_code error;
+    const fs::path folder = path.parent_path();
+    if (!folder.empty() && !fs::is_directory(folder, error)) {
+        fs::create_directories(folder, error);
+        if (error)
+            fail(path, "cannot write: cannot create folder \"" + folder.string() + "\": " + error.message());
+    }
+
+    // Convert to the file's pixel type: float values unchanged, or 8-bit codes (sRGB-encoded by
+    // default). Alpha is coverage, not light, so it is stored linearly.
+    const int channels = format->channels;
+    std::vector<float> floats;
+    std::vector<std::uint8_t> bytes;
+    if (format->isFloat) {
+        // RGBE (.hdr) shares one exponent between positive mantissas: a negative value would come
+        // back as garbage (-0.25 read as 3.75), so it is stored as 0. EXR keeps every value.
+        const bool clampNegative = format->extension == ".hdr";
+        floats.reserve(pixelCount * channels);
+        for (std::size_t i = 0; i < pixelCount; ++i) {
+            const glm::vec4& p = image.pixels[i];
+            for (int c = 0; c < channels; ++c) {
+                // An 8-bit file clamps; a float file would keep +Inf or NaN, which every reader of it
+                // (compositors, image viewers, facet compare) would then have to survive.
+                if (!std::isfinite(p[c])) {
+                    fail(path, std::string("the image holds a value that is not finite (") +
+                                   (std::isnan(p[c]) ? "NaN" : "infinity") + ") at pixel (" +
+                                   std::to_string(i % static_cast<std::size_t>(image.width)) + ", " +
+                                   std::to_string(i / static_cast<std::size_t>(image.width)) +
+                                   "); nothing was written");
+                }
+                floats.push_back(clampNegative && !(p[c] > 0.0f) ? 0.0f : p[c]);
+            }
+        }
+    } else {
+        bytes.reserve(pixelCount * channels);
+        for (const glm::vec4& p : image.pixels) {
+            for (int c = 0; c < 3; ++c)
+                bytes.push_back(encodeChannel(p[c], encoding));
+            if (channels == 4) bytes.push_back(toByte(p.a));
+        }
+    }
+
+    // The temporary name keeps the real extension last, as OpenImageIO picks the writer from it.
+    // ("out/.spot.tmp-1234.png"; hidden, and named by process so two programs never share one.)
+    std::string tempName = ".";
+    tempName += path.stem().string();
+    tempName += ".tmp-" + std::to_string(::getpid());
+    tempName += path.extension().string();
+    const fs::path tempPath = folder / tempName;
+    TempFileGuard guard(tempPath);
+    // Created here first, so that a folder that refuses files is reported with the user's path and the
+    // system's reason ("Permission denied"), not OpenImageIO's words about the hidden temporary name.
+    const int created = ::open(tempPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (created < 0) fail(path, "cannot write: " + std::string(std::strerror(errno)));
+    ::close(created);
+    // OpenImageIO's own errors name the file it was given: the user knows the destination instead.
+    const auto withUserPath = [&](std::string text) {
+        for (std::size_t at; (at = text.find(tempPath.string())) != std::string::npos;)
+            text.replace(at, tempPath.string().size(), path.string());
+        return oneLine(std::move(text));
+    };
+    {
+        std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create(tempPath.string());
+        if (!output) fail(path, "cannot write image: " + withUserPath(OIIO::geterror()));
+
+        OIIO::ImageSpec spec(image.width, image.height, channels,
+                             format->isFloat ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+        spec.attribute("oiio:ColorSpace", format->isFloat ? "Linear" : "sRGB");
+        // Store the values as given: without this, the PNG writer would divide colour by alpha.
+        spec.attribute("oiio:UnassociatedAlpha", 1);
+        spec.attribute("Software", "Facet");
+
+        const void* data = format->isFloat ? static_cast<const void*>(floats.data())
+                                           : static_cast<const void*>(bytes.data());
+        if (!output->open(tempPath.string(), spec) ||
+            !output->write_image(format->isFloat ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8, data) ||
+            !output->close()) {
+            fail(path, "cannot write image: " + withUserPath(output->geterror()));
+        }
+    }
+
+    fs::rename(tempPath, path, error);
+    if (error) fail(path, "cannot move the finished image into place: " + error.message());
+    guard.release();
+}
+
+LinearImage readImage(const fs::path& path) {
+    std::error_code error;
+    if (!fs::exists(path, error)) fail(path, "image file not found");
+    if (fs::is_directory(path, error)) fail(path, "is a folder, not an image file");
+
+    // Ask for the stored (unassociated) alpha: by default OpenImageIO premultiplies PNG colour by it.
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path.string(), &config);
+    if (!input) fail(path, "cannot read image: " + oneLine(OIIO::geterror()));
+
+    const OIIO::ImageSpec& spec = input->spec();
+    if (spec.deep) fail(path, "deep images are not supported");
+    if (spec.width <= 0 || spec.height <= 0 || spec.depth > 1 || spec.nchannels <= 0) {
+        fail(path, "cannot read an image of " + std::to_string(spec.width) + "x" +
+                       std::to_string(spec.height) + " pixels");
+    }
+
+    const int channels = spec.nchannels;
+    const std::size_t pixelCount = static_cast<std::size_t>(spec.width) * spec.height;
+    std::vector<float> values(pixelCount * channels);
+    if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, values.data())) {
+        fail(path, "cannot read image: " + oneLine(input->geterror()));
+    }
+
+    // Integer data holds display-encoded (sRGB) colour; float data is linear already.
+    const bool encoded = !spec.format.is_floating_point();
+    const auto decode = [encoded](float value) { return encoded ? srgbToLinear(value) : value; };
+    const int alphaChannel =
+        spec.alpha_channel >= 0 && spec.alpha_channel < channels ? spec.alpha_channel : -1;
+    const bool gray = channels < 3;
+
+    LinearImage image;
+    image.width = spec.width;
+    image.height = spec.height;
+    image.pixels.resize(pixelCount);
+    for (std::size_t i = 0; i < pixelCount; ++i) {
+        const float* v = &values[i * channels];
+        glm::vec4& p = image.pixels[i];
+        p.r = decode(v[0]);
+        p.g = gray ? p.r : decode(v[1]);
+        p.b = gray ? p.r : decode(v[2]);
+        p.a = alphaChannel >= 0 ? v[alphaChannel] : 1.0f;
+    }
+    return image;
+}
+
+TextureRead readTexture(const fs::path& path, bool decodeSrgb, const TextureLimits& limits,
+                        std::size_t bytesLeft) {
+    TextureRead result;
+    std::error_code error;
+    if (!fs::exists(path, error)) {
+        result.problem = "file not found";
+        return result;
+    }
+    if (fs::is_directory(path, error)) {
+        result.problem = "is a folder, not an image file";
+        return result;
+    }
+    StderrCapture libraryOutput;
+    const auto problem = [&](std::string what) {
+        // libpng prints "libpng error: X" and OpenImageIO usually repeats X: add only what is new.
+        std::string printed = libraryOutput.finish();
+        for (const std::string_view prefix : {"libpng error: ", "libpng warning: "})
+            for (std::size_t at; (at = printed.find(prefix)) != std::string::npos;)
+                printed.erase(at, prefix.size());
+        if (!printed.empty() && what.find(printed) == std::string::npos) what += " (" + printed + ")";
+        result.texture = Texture{};
+        result.problem = std::move(what);
+        return std::move(result);
+    };
+
+    // Ask for the stored (unassociated) alpha: by default OpenImageIO premultiplies PNG colour by it.
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    OIIO::geterror();  // forget any earlier message
+    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path.string(), &config);
+    if (!input) return problem("cannot read it as an image: " + oneLine(OIIO::geterror()));
+
+    // The header alone decides whether the texels may be decoded at all.
+    const OIIO::ImageSpec& spec = input->spec();
+    if (spec.deep) return problem("deep images are not supported as textures");
+    if (spec.width <= 0 || spec.height <= 0 || spec.depth > 1 || spec.nchannels <= 0)
+        return problem("cannot use an image of " + std::to_string(spec.width) + "x" +
+                       std::to_string(spec.height) + " pixels with " + std::to_string(spec.nchannels) +
+                       " channels as a texture");
+    const std::string size = std::to_string(spec.width) + "x" + std::to_string(spec.height);
+    if (spec.width > limits.maxSide || spec.height > limits.maxSide) {
+        libraryOutput.finish();
+        fail(path, "the texture is " + size + " pixels; textures may be at most " +
+                       std::to_string(limits.maxSide) + " pixels on a side (scale it down)");
+    }
+    const bool eightBit = spec.format == OIIO::TypeDesc::UINT8;
+    const std::size_t bytes = static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height) *
+                              (eightBit ? sizeof(Texture::Codes) : sizeof(vec4));
+    if (bytes > bytesLeft) {
+        libraryOutput.finish();
+        const std::size_t used = limits.maxTotalBytes - std::min(bytesLeft, limits.maxTotalBytes);
+        fail(path, "the texture (" + size + " pixels, " + (eightBit ? "8-bit" : "float") + ") needs " +
+                       gibibytes(bytes) + "; the textures of one render may take at most " +
+                       gibibytes(limits.maxTotalBytes) + " together" +
+                       (used > 0 ? " (" + gibibytes(used) + " taken by the ones before it)" : "") +
+                       " (scale it down)");
+    }
+
+    // A colour value read as float: integer data is display-encoded (sRGB), float data linear already.
+    const bool encoded = !spec.format.is_floating_point();
+    const auto finish = [encoded, decodeSrgb](float value) {
+        const float linear = encoded ? srgbToLinear(value) : value;
+        return decodeSrgb ? linear : linearToSrgb(linear);
+    };
+    Texture& texture = result.texture;
+    texture.width = spec.width;
+    texture.height = spec.height;
+    if (eightBit) {
+        // Each code's value exactly as OpenImageIO converts it to float, so that sampling gives the
+        // values a float read would.
+        std::array<std::uint8_t, 256> codes;
+        for (int c = 0; c < 256; ++c)
+            codes[c] = static_cast<std::uint8_t>(c);
+        std::array<float, 256> values;
+        OIIO::convert_pixel_values(OIIO::TypeDesc::UINT8, codes.data(), OIIO::TypeDesc::FLOAT, values.data(),
+                                   256);
+        for (int c = 0; c < 256; ++c) {
+            texture.colorFromCode[c] = finish(values[c]);
+            texture.alphaFromCode[c] = values[c];
+        }
+        if (!readTexels(*input, OIIO::TypeDesc::UINT8, texture.codes))
+            return problem("cannot read it: " + oneLine(input->geterror()));
+        const auto same = [](std::uint8_t code) { return code; };
+        arrangeTexels(spec, texture.codes, same, same, std::uint8_t{255});
+        texture.alphaFromCode[255] = 1.0f;  // opaque, also where the file has no alpha
+    } else {
+        if (!readTexels(*input, OIIO::TypeDesc::FLOAT, texture.texels))
+            return problem("cannot read it: " + oneLine(input->geterror()));
+        arrangeTexels(
+            spec, texture.texels, finish, [](float a) { return a; }, 1.0f);
+    }
+    input->close();
+    const std::string printed = libraryOutput.finish();
+    (void)printed;  // a successful read may have printed warnings; a texture that reads is used as it is
+    return result;
+}
+
+}  // namespace facet

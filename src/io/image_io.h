@@ -1,0 +1,67 @@
+// Image output and input through OpenImageIO, format by file extension.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "pipeline/texture.h"
+#include "shading/gamma.h"
+
+namespace facet {
+
+// A linear, floating-point RGBA image, rows top to bottom.
+struct LinearImage {
+    int width = 0;
+    int height = 0;
+    std::vector<glm::vec4> pixels;  // width * height, row-major, row 0 at the top
+    glm::vec4& at(int x, int y) { return pixels[static_cast<std::size_t>(y) * width + x]; }
+    const glm::vec4& at(int x, int y) const { return pixels[static_cast<std::size_t>(y) * width + x]; }
+};
+
+// Writes `image` to `path`, its format chosen by the extension (.png .exr .ppm .jpg/.jpeg .tif/.tiff ...).
+// Float formats (EXR) keep the buffer's values unchanged; 8-bit formats get `encoding`, clamped to
+// [0,1] (encodeChannel). PPM and JPEG have no alpha: RGB only. The
+// image is written to a temporary file in the same folder and renamed into place, so a failure never leaves a
+// partial file nor destroys an existing one. Throws InputError ("out/x.bmpx: unknown image format ...",
+// "out/: cannot write ...").
+void writeImage(const std::filesystem::path& path, const LinearImage& image,
+                ColorEncoding encoding = kSrgbEncoding);
+
+// Checks, without writing anything, that `path` names an image format facet writes and that a
+// width × height image fits it; throws InputError otherwise. Lets a command fail before a long render.
+void checkImageDestination(const std::filesystem::path& path, int width, int height);
+
+// Reads any image OpenImageIO knows into linear RGBA (8-bit data is decoded from sRGB; float data as is).
+// Throws InputError if the file is missing or unreadable.
+LinearImage readImage(const std::filesystem::path& path);
+
+// What the textures of one render may take, checked from each file's header before it is decoded:
+// a 16384² 8-bit texture (1 GiB) fits, a file declaring 30000² does not.
+struct TextureLimits {
+    int maxSide = 16384;                               // pixels, either side
+    std::size_t maxTotalBytes = std::size_t{1} << 30;  // all textures of a render together, in memory
+};
+
+// How texture colour becomes linear: integer data (8- and 16-bit) holds sRGB-encoded codes and float
+// data linear values, as readImage reads them. Without `decodeSrgb` colours are taken as written
+// (codes/255, float values sRGB-encoded), as untouched inputs are elsewhere.
+struct TextureRead {
+    Texture texture;      // empty when the file could not be read
+    std::string problem;  // why not, one line ("not a PNG file"), library messages included
+};
+
+// Reads a texture file: its header first, then the texels straight into the texture at the file's
+// precision (8-bit files as codes, others as float; see Texture). A side above limits.maxSide, or
+// texels needing more than `bytesLeft` of limits.maxTotalBytes, throws InputError naming the file and
+// the limit, before anything is decoded. A missing, corrupt, truncated or non-image file is not an
+// error: `problem` says why and the texture is empty. Nothing is printed (the messages libpng and
+// others write to standard error are captured into `problem`).
+TextureRead readTexture(const std::filesystem::path& path, bool decodeSrgb, const TextureLimits& limits,
+                        std::size_t bytesLeft);
+
+}  // namespace facet

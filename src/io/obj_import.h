@@ -1,0 +1,49 @@
+// OBJ import: reads a Wavefront OBJ (and its MTL files) into a welded, triangulated Mesh.
+#pragma once
+
+#include <filesystem>
+
+#include "scene/mesh.h"
+
+namespace facet {
+
+// Loads `path` with tinyobjloader, validates it and builds the mesh:
+// - polygons are fan-triangulated; degenerate triangles (repeated corners, zero area) are skipped
+//   and counted in stats.degenerateSkipped. A face with fewer than 3 corners is skipped too, counted
+//   there as one degenerate triangle, and reported once as a warning (as Blender and tinyobjloader do);
+// - corners are welded on their (position, normal, texcoord) index triple; a zero-length file normal
+//   counts as no normal;
+// - vertices without a normal in the file get a computed one, per face corner: the normalised sum of
+//   the vector areas (unnormalised cross products: area weighting) of those faces around the corner's
+//   position whose unit normal is within options.creaseAngleDegrees of the corner's own face's normal
+//   (the face itself always counts; a face is the file's polygon, its normal its normalised vector
+//   area). Corners welded on their index triple but ending up with different sets of faces become
+//   separate vertices (counted in stats.creaseSplits); corners with the same set share one. So at 60°
+//   a cube without normals has 24 vertices, at 180° (smooth everything) 8, and a finely tessellated
+//   sphere one per position. At a position with more than 64 faces the faces are clustered greedily
+//   instead (each joins the first cluster whose first face is within the angle). If a sum is zero
+//   (opposite faces cancelling), the normal of the first triangle that used the vertex. File
+//   normals are never changed;
+// - positive indices may refer forward; negative ones count back from the statement that uses them;
+// - a `\` at the end of a line continues the statement on the next line, and `#` after a blank starts
+//   a comment (tinyobjloader knows neither; the text is rewritten for it, keeping line numbers);
+// - a missing MTL file, an unknown material or a missing texture is a warning (Mesh::warnings)
+//   and falls back to the default material (or, for a texture, to the material without it). Every
+//   file on an `mtllib` line is read. `d` wins over `Tr` whichever comes first (tinyobjloader's rule);
+//   `Tr` alone gives opacity 1 - Tr. Mesh::materials holds the materials faces use, in first-use order;
+// - huge but finite coordinates (1e30) are accepted.
+// Throws InputError with "file:line: what" for: a missing or unreadable file, a malformed statement,
+// a face index out of range or zero, NaN/Inf coordinates (or ones beyond float range), a face with
+// more than 255 corners, or a file with no triangles at all ("file: no triangles to draw ...").
+// Throws std::invalid_argument if options.creaseAngleDegrees is NaN or outside [0, 180] (a caller's
+// bug: the scene loader validates user input).
+struct ObjOptions {
+    // Computed normals only: two faces sharing a position are smoothed together when their face
+    // normals differ by at most this angle (degrees, 0..180); a sharper edge stays hard (the vertex
+    // is split). 180 smooths everything, 0 gives every face its own normal (faces of the same
+    // direction, to within about 1e-4 degrees, still share one).
+    float creaseAngleDegrees = 60.0f;
+};
+Mesh loadObj(const std::filesystem::path& path, const ObjOptions& options = {});
+
+}  // namespace facet

@@ -1,0 +1,591 @@
+#include "render/renderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <unordered_map>
+
+#include "base/errors.h"
+#include "base/quote.h"
+#include "io/obj_import.h"
+#include "pipeline/color.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace facet {
+
+namespace {
+
+vec3 decodeSrgb(vec3 encoded) {
+    return {srgbToLinear(encoded.r), srgbToLinear(encoded.g), srgbToLinear(encoded.b)};
+}
+
+Bounds transformedBounds(const Mesh& mesh, const mat4& worldFromObject) {
+    Bounds b{vec3(std::numeric_limits<float>::max()), vec3(std::numeric_limits<float>::lowest())};
+    for (int corner = 0; corner < 8; ++corner) {
+        const vec3 p((corner & 1) ? mesh.boundsMax.x : mesh.boundsMin.x,
+                     (corner & 2) ? mesh.boundsMax.y : mesh.boundsMin.y,
+                     (corner & 4) ? mesh.boundsMax.z : mesh.boundsMin.z);
+        const vec3 world = vec3(worldFromObject * vec4(p, 1.0f));
+        b.min = min(b.min, world);
+        b.max = max(b.max, world);
+    }
+    return b;
+}
+
+// The standard equation's material: the MTL values with the scene's overrides, decoded.
+template <class Decode>
+PhongMaterial phongMaterial(const Material& file, const MaterialOverride& override, Decode decode) {
+    PhongMaterial m;
+    m.ambient = decode(override.ambient.value_or(file.ambient));
+    m.diffuse = decode(override.diffuse.value_or(file.diffuse));
+    m.specular = decode(override.specular.value_or(file.specular));
+    m.emission = decode(override.emission.value_or(file.emission));
+    m.shininess = override.shininess.value_or(file.shininess);
+    return m;
+}
+
+// Cook-Torrance's material. From the MTL: the diffuse colour as base colour, a dielectric (F0 = 0.04),
+// and the roughness whose Beckmann lobe matches the Phong exponent Ns: α = √(2/(Ns + 2)) (Walter et al.
+// 2007, eq. 8 inverted), roughness = √α. Then the preset, then the scene's explicit keys.
+template <class Decode>
+PbrMaterial pbrMaterial(const PhongMaterial& phong, const MaterialOverride& override, Decode decode,
+                        const std::filesystem::path& source) {
+    PbrMaterial m;
+    m.baseColor = phong.diffuse;
+    m.metalness = 0.0f;
+    m.roughness = std::sqrt(std::sqrt(2.0f / (std::max(phong.shininess, 0.0f) + 2.0f)));
+    m.f0 = vec3(0.04f);
+    if (override.preset) {
+        const std::optional<MaterialPreset> preset = findMaterialPreset(*override.preset);
+        if (!preset)
+            throw InputError(source.string() + ": unknown material preset \"" + *override.preset + "\"");
+        if (preset->metal) {
+            m.baseColor = preset->f0;  // linear already: measured reflectances
+            m.metalness = 1.0f;
+        } else {
+            m.f0 = preset->f0;
+        }
+    }
+    if (override.baseColor) m.baseColor = decode(*override.baseColor);
+    if (override.metalness) m.metalness = *override.metalness;
+    if (override.roughness) m.roughness = *override.roughness;
+    if (override.f0) m.f0 = *override.f0;
+    return m;
+}
+
+BlendMode blendMode(BlendChoice choice) {
+    switch (choice) {
+        case BlendChoice::Over:
+            return BlendMode::Over;
+        case BlendChoice::Additive:
+            return BlendMode::Additive;
+        case BlendChoice::Multiply:
+            return BlendMode::Multiply;
+        case BlendChoice::Premultiplied:
+            return BlendMode::PremultipliedOver;
+    }
+    return BlendMode::Over;
+}
+
+// The scene's fog for the shaders. Linear fog without start and end spans the bounding sphere: from
+// its nearest point to the eye to its farthest.
+template <class Decode>
+FogParams fogParams(const Scene& scene, const Bounds& bounds, const Camera& camera, Decode decode) {
+    FogParams fog;
+    fog.mode = scene.fog.mode;
+    fog.color = decode(scene.fog.color);
+    fog.density = scene.fog.density;
+    fog.distance = scene.fog.distance;
+    // In double: the squared distances of a 1e30 model overflow float.
+    const glm::dvec3 centre = 0.5 * (glm::dvec3(bounds.min) + glm::dvec3(bounds.max));
+    const double radius = 0.5 * glm::length(glm::dvec3(bounds.max) - glm::dvec3(bounds.min));
+    const double distance = glm::length(glm::dvec3(camera.eye) - centre);
+    double start = scene.fog.start ? double(*scene.fog.start) : std::max(distance - radius, 0.0);
+    double end = scene.fog.end ? double(*scene.fog.end) : distance + radius;
+    // One end given, the other derived on its wrong side: keep the given one and a range of the
+    // sphere's diameter.
+    if (end <= start) {
+        if (scene.fog.start)
+            end = start + 2.0 * radius;
+        else
+            start = std::max(end - 2.0 * radius, 0.0);
+    }
+    // Eye space is world space times viewScale: distances scale with it, densities inversely.
+    fog.start = float(start * camera.viewScale);
+    fog.end = float(end * camera.viewScale);
+    fog.density = float(fog.density / camera.viewScale);
+    return fog;
+}
+
+// Vertices are 32-bit floats: at coordinates of 1e7 they are 1 apart. A model far from the origin
+// compared with its size lands on that coarse grid, and the vertex transform's float arithmetic
+// loses as much again: a warning once the grid is coarser than 1/1000 of the model's size.
+std::optional<std::string> coordinatePrecisionWarning(const Mesh& mesh, const std::filesystem::path& source) {
+    const glm::dvec3 low(mesh.boundsMin), high(mesh.boundsMax);
+    const double size = glm::length(high - low);
+    const float reach = float(std::max({std::abs(low.x), std::abs(low.y), std::abs(low.z), std::abs(high.x),
+                                        std::abs(high.y), std::abs(high.z)}));
+    const double spacing = std::nextafter(reach, std::numeric_limits<float>::infinity()) - reach;
+    if (!(size > 0.0) || spacing * 1000.0 <= size) return std::nullopt;
+    std::ostringstream message;
+    message << source.string() << ": coordinates reach " << reach << " while the model is only " << size
+            << " across: 32-bit floats there are " << spacing
+            << " apart, so its shape and position are coarse (move the model near the origin)";
+    return message.str();
+}
+
+// The draw's matrices for an object placed by `worldFromObject`: composed in double with the camera's
+// and rounded to float once, so that a model far from the origin or of extreme size (1e30, 1e-30)
+// keeps its precision. The normal matrix is scaled to determinant 1: the shaders renormalise
+// normals, and a matrix of a scaled view would otherwise shrink them to nothing.
+void placeDraw(SurfaceUniforms& u, const Camera& camera, const glm::dmat4& worldFromObject) {
+    const glm::dmat4 viewFromObject = camera.viewFromWorldExact * worldFromObject;
+    u.viewFromObject = mat4(viewFromObject);
+    u.clipFromObject = mat4(camera.clipFromViewExact * viewFromObject);
+    glm::dmat3 normalFromObject = glm::transpose(glm::inverse(glm::dmat3(viewFromObject)));
+    const double determinant = glm::determinant(normalFromObject);
+    if (determinant != 0.0 && std::isfinite(determinant))
+        normalFromObject /= std::cbrt(std::abs(determinant));
+    u.normalFromObject = mat3(normalFromObject);
+}
+
+// One vertex per triangle corner, each with its face's normal: flat shading's input. The face normal
+// is the cross product of two edges, turned to agree with the corners' own normals (so a model whose
+// winding disagrees with its normals still lights the side its normals show).
+void unweldWithFaceNormals(PreparedDraw& draw) {
+    std::vector<MeshVertex> corners;
+    corners.reserve(draw.indices.size());
+    for (std::size_t t = 0; t + 2 < draw.indices.size(); t += 3) {
+        const MeshVertex& a = draw.vertices[draw.indices[t]];
+        const MeshVertex& b = draw.vertices[draw.indices[t + 1]];
+        const MeshVertex& c = draw.vertices[draw.indices[t + 2]];
+        vec3 n = cross(b.position - a.position, c.position - a.position);
+        if (dot(n, a.normal + b.normal + c.normal) < 0.0f) n = -n;
+        const float length = glm::length(n);
+        n = length > 0.0f && std::isfinite(length) ? n / length : normalize(a.normal + b.normal + c.normal);
+        for (const MeshVertex* v : {&a, &b, &c})
+            corners.push_back({v->position, n, v->uv});
+    }
+    draw.vertices = std::move(corners);
+    for (std::size_t k = 0; k < draw.indices.size(); ++k)
+        draw.indices[k] = static_cast<std::uint32_t>(k);
+}
+
+// Whether a texture is see-through anywhere (an alpha below 1).
+bool hasTranslucentTexel(const Texture& texture) {
+    if (!texture.codes.empty())
+        return std::any_of(texture.codes.begin(), texture.codes.end(),
+                           [&](const Texture::Codes& c) { return texture.alphaFromCode[c[3]] < 1.0f; });
+    return std::any_of(texture.texels.begin(), texture.texels.end(),
+                       [](const vec4& t) { return t.a < 1.0f; });
+}
+
+// Splits one part of a mesh into its own vertex array, so its draw shades only the vertices it uses.
+void extractPart(const Mesh& mesh, const MeshPart& part, PreparedDraw& draw) {
+    std::unordered_map<std::uint32_t, std::uint32_t> local;
+    local.reserve(part.indexCount);
+    draw.indices.reserve(part.indexCount);
+    for (std::uint32_t k = part.firstIndex; k < part.firstIndex + part.indexCount; ++k) {
+        const std::uint32_t global = mesh.indices[k];
+        auto [it, inserted] = local.try_emplace(global, static_cast<std::uint32_t>(draw.vertices.size()));
+        if (inserted) draw.vertices.push_back(mesh.vertices[global]);
+        draw.indices.push_back(it->second);
+    }
+}
+
+}  // namespace
+
+PreparedScene prepareScene(const Scene& scene, const TextureLimits& limits) {
+    PreparedScene prepared;
+    prepared.scene = scene;
+    if (scene.width < 1 || scene.height < 1 || scene.width > kMaxImageSide || scene.height > kMaxImageSide)
+        throw InputError(scene.source.string() + ": image size " + std::to_string(scene.width) + "x" +
+                         std::to_string(scene.height) + " is outside 1.." + std::to_string(kMaxImageSide));
+    if (scene.objects.empty())
+        throw InputError(scene.source.string() + ": the scene has no objects to render");
+
+    const bool glPreset = scene.lighting.preset == LightingPreset::GL;
+    // Facet: colours are sRGB-encoded as written (unless "gamma": {"decode_inputs": false}); GL: taken
+    // as given (OpenGL 1.x knows no gamma).
+    const bool decodeInputs = !glPreset && scene.gamma.decodeInputs;
+    const auto decode = [decodeInputs](vec3 c) { return decodeInputs ? decodeSrgb(c) : c; };
+
+    // Load each model once, even if several objects use it.
+    std::map<std::filesystem::path, std::unique_ptr<Mesh>> meshes;
+    std::map<std::filesystem::path, Texture*> textures;  // nullptr: could not be read, said once
+    std::set<const Texture*> texturesWithAlpha;          // see-through somewhere: their parts are transparent
+    std::size_t textureBytes = 0;
+    // A texture file, read once; one that cannot be read is a warning and its parts go untextured.
+    const auto loadTexture = [&](const std::filesystem::path& file, const std::string& material) -> Texture* {
+        const auto [it, first] = textures.try_emplace(file, nullptr);
+        if (!first) return it->second;
+        TextureRead read = readTexture(file, decodeInputs, limits, limits.maxTotalBytes - textureBytes);
+        if (read.texture.empty()) {
+            prepared.warnings.push_back(file.string() + ": " + read.problem + "; drawing material " +
+                                        inQuotes(material, '\'') + " without this texture");
+            return nullptr;
+        }
+        auto owned = std::make_unique<Texture>(std::move(read.texture));
+        textureBytes += owned->bytes();
+        if (hasTranslucentTexel(*owned)) texturesWithAlpha.insert(owned.get());
+        it->second = owned.get();
+        prepared.textures.push_back(std::move(owned));
+        return it->second;
+    };
+    Bounds sceneBounds{vec3(std::numeric_limits<float>::max()), vec3(std::numeric_limits<float>::lowest())};
+    for (const ObjectSpec& object : scene.objects) {
+        auto& mesh = meshes[object.model];
+        if (!mesh) {
+            mesh =
+                std::make_unique<Mesh>(loadObj(object.model, ObjOptions{scene.lighting.creaseAngleDegrees}));
+            prepared.warnings.insert(prepared.warnings.end(), mesh->warnings.begin(), mesh->warnings.end());
+            prepared.degenerateSkipped += mesh->stats.degenerateSkipped;
+            if (std::optional<std::string> warning = coordinatePrecisionWarning(*mesh, object.model))
+                prepared.warnings.push_back(*warning);
+        }
+        const Bounds b = transformedBounds(*mesh, object.worldFromObject);
+        sceneBounds.min = min(sceneBounds.min, b.min);
+        sceneBounds.max = max(sceneBounds.max, b.max);
+    }
+
+    // Every object copies its model's vertices into its draws: bound the total before making them.
+    std::size_t sceneTriangles = 0;
+    for (const ObjectSpec& object : scene.objects)
+        sceneTriangles += meshes[object.model]->stats.trianglesKept;
+    if (sceneTriangles > kMaxSceneTriangles)
+        throw InputError(scene.source.string() + ": the scene draws " + std::to_string(sceneTriangles) +
+                         " triangles (each object counts its model's), more than the limit of " +
+                         std::to_string(kMaxSceneTriangles) + "; use fewer objects or lighter models");
+
+    prepared.turntableCentre = 0.5f * (sceneBounds.min + sceneBounds.max);
+
+    // Camera.
+    const float aspect = static_cast<float>(scene.width) / static_cast<float>(scene.height);
+    try {
+        prepared.camera = frameCamera(scene.camera, sceneBounds, aspect);
+    } catch (const InputError& e) {
+        throw InputError(scene.source.string() + ": " + e.what());
+    }
+    const Camera& camera = prepared.camera;
+    prepared.warnings.insert(prepared.warnings.end(), camera.warnings.begin(), camera.warnings.end());
+
+    // Lights, in eye space; without any, one white key light from the upper left, behind the viewer.
+    std::vector<LightSpec> lights = scene.lights;
+    if (lights.empty()) {
+        LightSpec key;
+        key.type = LightType::Directional;
+        key.direction = vec3(0.45f, -0.55f, -1.0f);
+        key.cameraRelative = true;
+        lights.push_back(key);
+    }
+    if (lights.size() > static_cast<std::size_t>(kMaxLights))
+        throw InputError(scene.source.string() + ": " + std::to_string(lights.size()) +
+                         " lights given, at most " + std::to_string(kMaxLights) + " are supported");
+    SurfaceUniforms common;
+    common.globalAmbient = decode(scene.ambientLight);
+    common.lightCount = static_cast<int>(lights.size());
+    common.brdf = scene.lighting.brdf;
+    common.twoSidedFlip = !glPreset;
+    common.clampColor = glPreset;
+    common.fog = fogParams(scene, sceneBounds, camera, decode);
+    const glm::dmat4& viewFromWorld = camera.viewFromWorldExact;
+    const double s = camera.viewScale;
+    for (std::size_t i = 0; i < lights.size(); ++i) {
+        const LightSpec& l = lights[i];
+        LightParams& out = common.lights[i];
+        // Camera-relative lights are given in world units: eye space is scaled by viewScale.
+        const auto toView = [&](vec3 v, float w) {
+            return l.cameraRelative ? vec3(glm::dvec3(v) * s)
+                                    : vec3(viewFromWorld * glm::dvec4(glm::dvec3(v), double(w)));
+        };
+        out.kind = l.type == LightType::Directional ? LightKind::Directional
+                   : l.type == LightType::Point     ? LightKind::Point
+                                                    : LightKind::Spot;
+        // Made unit length in double first: in float, the squared length of [0, -1e-30, 0] underflows
+        // to 0 and that of [-3e38, 0, 0] overflows, and normalize would give NaN (a black image).
+        const vec3 direction = vec3(glm::normalize(glm::dvec3(l.direction)));
+        if (out.kind == LightKind::Directional) out.direction = normalize(toView(direction, 0.0f));
+        if (out.kind == LightKind::Spot) out.spotDirection = normalize(toView(direction, 0.0f));
+        if (out.kind != LightKind::Directional) out.position = toView(l.position, 1.0f);
+        out.ambient = decode(l.ambient.value_or(vec3(0.0f))) * l.intensity;
+        out.diffuse = decode(l.diffuse.value_or(l.color)) * l.intensity;
+        out.specular = decode(l.specular.value_or(l.color)) * l.intensity;
+        // att = 1/(c0 + c1·d + c2·d²) with d in world units, d = d_eye / viewScale.
+        out.c0 = l.attenuation.x;
+        out.c1 = float(l.attenuation.y / s);
+        out.c2 = float(l.attenuation.z / (s * s));
+        out.spotCutoffDegrees = out.kind == LightKind::Spot ? l.spotCutoffDegrees : 180.0f;
+        out.spotExponent = l.spotExponent;
+        if (l.spotInnerDegrees && l.spotOuterDegrees) {
+            out.spotProfile = SpotProfile::Smooth;
+            out.spotInnerDegrees = *l.spotInnerDegrees;
+            out.spotOuterDegrees = *l.spotOuterDegrees;
+        }
+    }
+
+    // One draw per (object, material part).
+    for (const ObjectSpec& object : scene.objects) {
+        const Mesh& mesh = *meshes[object.model];
+        SurfaceUniforms uniforms = common;
+        placeDraw(uniforms, camera, glm::dmat4(object.worldFromObject));
+        uniforms.reflection = object.reflection.value_or(
+            object.material.physicallyBased() ? ReflectionModel::CookTorrance : scene.lighting.model);
+        const ShadingFrequency frequency = object.shading.value_or(scene.lighting.shadingOrDefault());
+        const BlendChoice blend = object.blend.value_or(BlendChoice::Over);
+        for (const MeshPart& part : mesh.parts) {
+            if (part.indexCount == 0) continue;
+            PreparedDraw draw;
+            draw.uniforms = uniforms;
+            draw.frequency = frequency;
+            draw.worldFromObject = object.worldFromObject;
+            Material material = mesh.materials.at(part.material);
+            if (!material.emissionTexture.empty())
+                draw.uniforms.emissionMap = loadTexture(material.emissionTexture, material.name);
+            // map_Ke without Ke (or with Ke 0) means the texture is the emission, as exporters write it.
+            if (draw.uniforms.emissionMap && material.emission == vec3(0.0f)) material.emission = vec3(1.0f);
+            draw.uniforms.material = phongMaterial(material, object.material, decode);
+            draw.uniforms.pbr = pbrMaterial(draw.uniforms.material, object.material, decode, scene.source);
+            draw.uniforms.opacity = object.material.opacity.value_or(material.opacity);
+            if (!material.diffuseTexture.empty())
+                draw.uniforms.diffuseMap = loadTexture(material.diffuseTexture, material.name);
+            extractPart(mesh, part, draw);
+            // Transparent: see through it (opacity, a texture's alpha) or blended other than over.
+            const bool textureAlpha =
+                draw.uniforms.diffuseMap && texturesWithAlpha.count(draw.uniforms.diffuseMap);
+            draw.transparent = draw.uniforms.opacity < 1.0f || textureAlpha || blend != BlendChoice::Over;
+            draw.uniforms.blend = draw.transparent ? blendMode(blend) : BlendMode::Replace;
+            // Flat shading lights each face with its own normal; the GL preset keeps OpenGL's rule
+            // instead: the provoking vertex's colour, lit with that vertex's normal.
+            if (frequency == ShadingFrequency::Flat && !glPreset) unweldWithFaceNormals(draw);
+            prepared.triangleCount += draw.indices.size() / 3;
+            if (draw.transparent) {
+                const auto drawIndex = static_cast<std::uint32_t>(prepared.draws.size());
+                for (std::uint32_t t = 0; t < draw.indices.size() / 3; ++t)
+                    prepared.transparentTriangles.push_back({drawIndex, t});
+            }
+            prepared.draws.push_back(std::move(draw));
+        }
+    }
+
+    // Pipeline state.
+    DrawState& state = prepared.state;
+    state.viewport = {0, 0, scene.width, scene.height};
+    switch (scene.pipeline.cull) {
+        case CullChoice::Back:
+            state.raster.cull = CullMode::Back;
+            break;
+        case CullChoice::Front:
+            state.raster.cull = CullMode::Front;
+            break;
+        case CullChoice::None:
+            state.raster.cull = CullMode::None;
+            break;
+    }
+    state.raster.subpixelBits = scene.pipeline.subpixelBits;
+    state.interpolation = scene.pipeline.interpolation == InterpolationChoice::Affine
+                              ? Interpolation::Affine
+                              : Interpolation::PerspectiveCorrect;
+    state.raster.provokingVertex = ProvokingVertex::Last;  // OpenGL's convention
+    prepared.clearColor = vec4(decode(vec3(scene.background)), scene.background.a);
+    prepared.encoding = glPreset ? kLinearEncoding : ColorEncoding{scene.gamma.encode, scene.gamma.exponent};
+    return prepared;
+}
+
+void setTurntable(PreparedScene& prepared, float degrees) {
+    const glm::dvec3 c(prepared.turntableCentre);
+    // turn(p) = c + Ry(θ)(p − c): about the vertical axis through the centre.
+    const glm::dmat4 turn = glm::translate(glm::dmat4(1.0), c) *
+                            glm::rotate(glm::dmat4(1.0), glm::radians(double(degrees)), glm::dvec3(0, 1, 0)) *
+                            glm::translate(glm::dmat4(1.0), -c);
+    for (PreparedDraw& d : prepared.draws)
+        placeDraw(d.uniforms, prepared.camera, turn * glm::dmat4(d.worldFromObject));
+}
+
+namespace {
+
+// The sort keys of the transparent triangles: the distance along the view direction (−z_eye) of each
+// triangle's centroid or of its farthest corner; larger is farther. The triangles of one draw are
+// consecutive, so each draw's vertex depths are computed once, then shared by its triangles.
+void depthKeys(const PreparedScene& prepared, SortKey key, FrameMemory& memory) {
+    const std::vector<TransparentTriangle>& triangles = prepared.transparentTriangles;
+    memory.keys.resize(triangles.size());
+    std::uint32_t current = std::numeric_limits<std::uint32_t>::max();
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+        const PreparedDraw& d = prepared.draws[triangles[t].draw];
+        if (triangles[t].draw != current) {
+            current = triangles[t].draw;
+            const mat4& m = d.uniforms.viewFromObject;
+            const vec3 row(m[0][2], m[1][2], m[2][2]);  // z_eye = row · p + m[3][2]
+            memory.vertexDepths.resize(d.vertices.size());
+            for (std::size_t v = 0; v < d.vertices.size(); ++v)
+                memory.vertexDepths[v] = dot(row, d.vertices[v].position) + m[3][2];
+        }
+        const std::uint32_t* corner = &d.indices[3 * triangles[t].triangle];
+        const float z0 = memory.vertexDepths[corner[0]], z1 = memory.vertexDepths[corner[1]],
+                    z2 = memory.vertexDepths[corner[2]];
+        memory.keys[t] =
+            key == SortKey::FarthestVertex ? -std::min({z0, z1, z2}) : -(z0 + z1 + z2) * (1.0f / 3.0f);
+    }
+}
+
+}  // namespace
+
+std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, TransparencyMode mode, FrameMemory& memory,
+                                   FrameStats& stats) {
+    std::vector<PlannedDraw> plan;
+    // Opaque draws, with depth writes, in file order.
+    for (std::uint32_t k = 0; k < prepared.draws.size(); ++k) {
+        const PreparedDraw& d = prepared.draws[k];
+        if (!d.transparent) plan.push_back({k, d.vertices, d.indices, prepared.state});
+    }
+    const std::vector<TransparentTriangle>& triangles = prepared.transparentTriangles;
+    if (triangles.empty()) return plan;
+
+    // The transparent pass: depth test on, depth writes off, each draw's own blend.
+    const TransparencyOptions& options = prepared.scene.transparency;
+    const auto transparentState = [&](std::uint32_t k) {
+        DrawState state = prepared.state;
+        state.depth.writeEnabled = false;
+        state.blend = prepared.draws[k].uniforms.blend;
+        if (mode == TransparencyMode::Exact) state.output = FragmentOutput::AppendToLists;
+        return state;
+    };
+    if (mode != TransparencyMode::Sorted) {
+        for (std::uint32_t k = 0; k < prepared.draws.size(); ++k)
+            if (prepared.draws[k].transparent) {
+                plan.push_back(
+                    {k, prepared.draws[k].vertices, prepared.draws[k].indices, transparentState(k)});
+                ++stats.transparentRuns;
+            }
+        return plan;
+    }
+
+    // Sorted back to front, then cut into runs of consecutive triangles of one draw.
+    const auto start = std::chrono::steady_clock::now();
+    depthKeys(prepared, options.key, memory);
+    const std::span<const std::uint32_t> order =
+        memory.sorter.sort(memory.keys, SortAlgorithm::InsertionWithMemory, stats.sort);
+    stats.sortMilliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+
+    // A run with all of its draw's triangles uses the draw's vertex array (every vertex of it is used:
+    // extractPart); any other run gets a compact array of the vertices it uses, each once, and its
+    // indices are renumbered into it. The vertex stage then shades, over all runs, at most three
+    // vertices per transparent triangle, instead of the whole draw once per run. The image is the same:
+    // a vertex is shaded alike wherever it sits in the array.
+    memory.runIndices.resize(3 * triangles.size());
+    memory.runVertices.clear();
+    memory.runVertexRanges.clear();
+    const std::size_t firstRun = plan.size();
+    std::size_t written = 0;
+    for (std::size_t i = 0; i < order.size();) {
+        const std::uint32_t k = triangles[order[i]].draw;
+        const PreparedDraw& d = prepared.draws[k];
+        const std::size_t first = written;
+        for (; i < order.size() && triangles[order[i]].draw == k; ++i) {
+            const std::uint32_t t = triangles[order[i]].triangle;
+            for (int c = 0; c < 3; ++c)
+                memory.runIndices[written++] = d.indices[3 * t + c];
+        }
+        const std::span<std::uint32_t> run = std::span(memory.runIndices).subspan(first, written - first);
+        const std::size_t start = memory.runVertices.size();
+        if (run.size() < d.indices.size()) {
+            if (memory.runVertexOf.size() < d.vertices.size())
+                memory.runVertexOf.resize(d.vertices.size(), FrameMemory::kNotInRun);
+            memory.runVertexSources.clear();
+            for (std::uint32_t& index : run) {
+                std::uint32_t& local = memory.runVertexOf[index];
+                if (local == FrameMemory::kNotInRun) {
+                    local = static_cast<std::uint32_t>(memory.runVertexSources.size());
+                    memory.runVertexSources.push_back(index);
+                    memory.runVertices.push_back(d.vertices[index]);
+                }
+                index = local;
+            }
+            for (const std::uint32_t source : memory.runVertexSources)
+                memory.runVertexOf[source] = FrameMemory::kNotInRun;
+        }
+        memory.runVertexRanges.push_back({start, memory.runVertices.size()});
+        plan.push_back({k, d.vertices, run, transparentState(k)});
+        ++stats.transparentRuns;
+    }
+    // runVertices has stopped growing: point the compacted runs at their vertices.
+    for (std::size_t r = 0; r < memory.runVertexRanges.size(); ++r) {
+        const auto [begin, end] = memory.runVertexRanges[r];
+        if (end > begin)
+            plan[firstRun + r].vertices =
+                std::span<const MeshVertex>(memory.runVertices).subspan(begin, end - begin);
+    }
+    return plan;
+}
+
+namespace {
+
+template <ShadingFrequency kFrequency>
+DrawStats drawSurface(const PlannedDraw& call, const SurfaceUniforms& uniforms, Framebuffer& target,
+                      DrawContext& context) {
+    return draw<SurfaceShader<kFrequency>>(call.state, uniforms, call.vertices, call.indices, target,
+                                           context);
+}
+
+}  // namespace
+
+FrameStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawContext& context,
+                       FrameMemory& memory, std::uint8_t terms) {
+    FrameStats stats;
+    const TransparencyMode mode = prepared.scene.transparency.mode;
+    const std::vector<PlannedDraw> plan = planFrame(prepared, mode, memory, stats);
+    target.clear(prepared.clearColor, 1.0f, context.pool);
+    for (const PlannedDraw& call : plan) {
+        const PreparedDraw& d = prepared.draws[call.draw];
+        const SurfaceUniforms* uniforms = &d.uniforms;
+        SurfaceUniforms selected;
+        if (terms != kAllTerms) {
+            selected = d.uniforms;
+            selected.terms = terms;
+            uniforms = &selected;
+        }
+        switch (d.frequency) {
+            case ShadingFrequency::Flat:
+                stats.draw += drawSurface<ShadingFrequency::Flat>(call, *uniforms, target, context);
+                break;
+            case ShadingFrequency::Gouraud:
+                stats.draw += drawSurface<ShadingFrequency::Gouraud>(call, *uniforms, target, context);
+                break;
+            case ShadingFrequency::Phong:
+                stats.draw += drawSurface<ShadingFrequency::Phong>(call, *uniforms, target, context);
+                break;
+        }
+    }
+    // Exact transparency: every pixel's fragments sorted by depth and composited, farthest first.
+    if (mode == TransparencyMode::Exact && !prepared.transparentTriangles.empty()) {
+        const auto start = std::chrono::steady_clock::now();
+        stats.fragmentLists = resolveFragmentLists(target, context.pool);
+        stats.resolveMilliseconds =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    }
+    return stats;
+}
+
+DrawStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawContext& context,
+                      std::uint8_t terms) {
+    FrameMemory memory;
+    return renderFrame(prepared, target, context, memory, terms).draw;
+}
+
+LinearImage toImage(const Framebuffer& framebuffer) {
+    LinearImage image;
+    image.width = framebuffer.width();
+    image.height = framebuffer.height();
+    image.pixels = framebuffer.colorPixels();
+    return image;
+}
+
+}  // namespace facet

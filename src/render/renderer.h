@@ -1,0 +1,126 @@
+// Renders a Scene with the pipeline: loads its models once (prepareScene), then draws frames
+// (renderFrame) with the built-in surface shaders (shaders.h), one draw per object part (material).
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "io/image_io.h"
+#include "pipeline/pipeline.h"
+#include "render/transparency_sort.h"
+#include "scene/camera.h"
+#include "scene/mesh.h"
+#include "scene/scene.h"
+#include "shaders/shaders.h"
+
+namespace facet {
+
+// One draw: the triangles of one material of one object, with their own compact vertex array.
+struct PreparedDraw {
+    std::vector<MeshVertex> vertices;  // flat shading (Facet preset): one vertex per corner, face normals
+    std::vector<std::uint32_t> indices;
+    SurfaceUniforms uniforms;  // uniforms.blend: Replace for opaque draws
+    ShadingFrequency frequency = ShadingFrequency::Phong;
+    mat4 worldFromObject{1.0f};  // the object's placement (the turntable turns it)
+    // Drawn in the transparent pass: opacity or texture alpha below 1, or a blend other than over.
+    bool transparent = false;
+};
+
+// A transparent triangle, for sorting: which draw, which triangle of it.
+struct TransparentTriangle {
+    std::uint32_t draw;
+    std::uint32_t triangle;
+};
+
+struct PreparedScene {
+    Scene scene;
+    Camera camera;
+    DrawState state;
+    vec4 clearColor{0.0f};                   // linear (Facet preset) or as given (GL preset)
+    ColorEncoding encoding = kSrgbEncoding;  // how 8-bit image files encode the colour buffer
+    std::vector<PreparedDraw> draws;
+    std::vector<TransparentTriangle> transparentTriangles;  // of every transparent draw, in file order
+    vec3 turntableCentre{0.0f};                             // world space: the centre of the bounding box
+    std::vector<std::unique_ptr<Texture>> textures;
+    std::vector<std::string> warnings;  // from the importer, one line each
+    std::size_t triangleCount = 0;
+    std::size_t degenerateSkipped = 0;
+};
+
+// Loads every model and texture the scene names and computes camera, lights and materials.
+// Facet preset: every colour a user writes (MTL Ka/Kd/Ks/Ke, scene materials, lights, background,
+// ambient) is taken as an sRGB-encoded value, as a colour picker shows it, and decoded to linear light
+// here; lighting and blending then happen in linear space. GL preset: colours are used as given and
+// written without encoding (docs/lighting.md). Lights end up in eye space. Throws InputError for
+// unusable input, textures beyond `limits` included (an unreadable texture is a warning instead).
+PreparedScene prepareScene(const Scene& scene, const TextureLimits& limits = {});
+
+// Turns every object by `degrees` about the vertical (world y) axis through turntableCentre, as on a
+// turntable: camera and lights stay where they are. 0 is the scene as written.
+void setTurntable(PreparedScene& prepared, float degrees);
+
+// What a frame keeps for the next one: the back-to-front order of the transparent triangles (so that
+// insertion sort starts from an almost sorted order), and scratch buffers.
+struct FrameMemory {
+    TransparencySorter sorter;
+    std::vector<float> keys;                // per transparent triangle
+    std::vector<float> vertexDepths;        // z_eye of one draw's vertices, for the keys
+    std::vector<std::uint32_t> runIndices;  // the index lists of the transparent runs
+    // The runs' compact vertex arrays, one after another: each run carries only the vertices it uses,
+    // so that a draw cut into thousands of runs is not shaded whole thousands of times.
+    std::vector<MeshVertex> runVertices;
+    // Per run, its vertices' range [first, last) in runVertices; empty: the run has all of its draw's
+    // triangles and uses the draw's own vertex array.
+    std::vector<std::pair<std::size_t, std::size_t>> runVertexRanges;
+    // While a run is compacted: for each vertex of its draw, its index in the run's array, or kNotInRun;
+    // and the draw's indices of the vertices copied so far, to put kNotInRun back after the run.
+    std::vector<std::uint32_t> runVertexOf;
+    std::vector<std::uint32_t> runVertexSources;
+    static constexpr std::uint32_t kNotInRun = 0xffffffffu;
+};
+
+struct FrameStats {
+    DrawStats draw;
+    SortStats sort;                   // transparent triangles sorted this frame (elements = 0: none)
+    double sortMilliseconds = 0;      // keys and sort
+    std::size_t transparentRuns = 0;  // draw calls of the transparent pass
+    FragmentListStats fragmentLists;  // exact transparency: fragments stored, the longest list, bytes held
+    double resolveMilliseconds = 0;   // exact transparency: sorting and compositing the lists
+};
+
+// One draw call of a frame, in order: an opaque part whole, or a run of consecutive transparent
+// triangles of one part (back to front across all transparent parts).
+struct PlannedDraw {
+    std::uint32_t draw;  // index into PreparedScene::draws: its uniforms and shading
+    // The draw's own vertices and indices; or, for a run of some of its triangles, a compact copy of
+    // just the vertices the run uses and the run's indices into it (both in FrameMemory).
+    std::span<const MeshVertex> vertices;
+    std::span<const std::uint32_t> indices;
+    DrawState state;  // depth writes off and blending for transparent runs
+};
+
+// The frame's draw calls: opaque draws first, then the transparent triangles in the order `mode` gives
+// (sorted back to front; file order; file order into the framebuffer's fragment lists, to be resolved
+// after the last one). Fills stats.sort and sortMilliseconds. The draws' spans point into `prepared`
+// and `memory`: valid until `memory` plans the next frame.
+std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, TransparencyMode mode, FrameMemory& memory,
+                                   FrameStats& stats);
+
+// Clears `target` to the scene's background and draws every object. `target` must be scene-sized.
+// `terms` (LightingTerm bits) selects the lighting terms drawn: all of them, or one for a component image.
+// `memory` carries the transparent triangles' order from frame to frame.
+FrameStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawContext& context,
+                       FrameMemory& memory, std::uint8_t terms = kAllTerms);
+
+// The same without memory between frames (the transparent triangles are sorted from scratch).
+DrawStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawContext& context,
+                      std::uint8_t terms = kAllTerms);
+
+// The framebuffer's colour as an image (same linear values).
+LinearImage toImage(const Framebuffer& framebuffer);
+
+}  // namespace facet

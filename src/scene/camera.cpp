@@ -1,0 +1,157 @@
+#include "scene/camera.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "base/errors.h"
+
+namespace facet {
+
+namespace {
+
+using glm::dvec3;
+
+// One message from its parts; numbers as %g prints them. (A stream, not chains of std::string +,
+// which GCC 12 reports with a false -Wrestrict.)
+template <class... Parts>
+std::string text(const Parts&... parts) {
+    std::ostringstream out;
+    (out << ... << parts);
+    return out.str();
+}
+
+std::string describe(dvec3 v) {
+    return text("(", v.x, ", ", v.y, ", ", v.z, ")");
+}
+
+// `up` when it lies across the unit view direction `forward`. Looking straight along it leaves the
+// image's rotation undefined (lookAt would divide 0 by 0 and draw nothing); the top of the image then
+// faces the world axis least aligned with up (z first), on the side a camera tilted down (or up) from
+// the default front view would see there: −z looking down along +y, +z looking up.
+dvec3 upAcross(dvec3 forward, dvec3 up, std::vector<std::string>& warnings) {
+    const dvec3 unitUp = glm::normalize(up);
+    if (glm::length(glm::cross(forward, unitUp)) >= 1e-6) return up;
+    dvec3 axis(0.0, 0.0, 1.0);
+    if (std::abs(unitUp.z) > 0.5)
+        axis = std::abs(unitUp.y) < std::abs(unitUp.x) ? dvec3(0, 1, 0) : dvec3(1, 0, 0);
+    const bool lookingUp = glm::dot(forward, unitUp) > 0.0;
+    const dvec3 chosen = (lookingUp ? axis : -axis) + dvec3(0.0);  // + 0: no "-0" in the message
+    warnings.push_back(text("the camera looks straight ", lookingUp ? "up" : "down", " along its up vector ",
+                            describe(up),
+                            ", which leaves the image's rotation open: the top of the image faces ",
+                            describe(chosen), " (a scene file's \"camera.up\" chooses another)"));
+    return chosen;
+}
+
+// A power of two near 1/radius for scenes far from unit size, else 1 (ordinary scenes keep eye space
+// in world units): eye-space coordinates then stay near 1 (Camera::viewScale).
+double viewScaleFor(double radius) {
+    if (!(radius > 0.0) || (radius >= 0x1p-16 && radius <= 0x1p16)) return 1.0;
+    return std::exp2(-std::round(std::log2(radius)));
+}
+
+}  // namespace
+
+Camera frameCamera(const CameraSpec& spec, const Bounds& bounds, float aspect) {
+    Camera camera;
+    camera.fovyDegrees = spec.fovyDegrees;
+    // Double throughout: squared lengths of a 1e30 model overflow float, those of a 1e-30 one underflow.
+    const dvec3 boxMin(bounds.min), boxMax(bounds.max);
+    const dvec3 centre = 0.5 * (boxMin + boxMax);
+    const double radius = 0.5 * glm::length(boxMax - boxMin);
+    const dvec3 target = spec.target ? dvec3(*spec.target) : centre;
+    dvec3 up(spec.up);
+
+    dvec3 eye;
+    if (spec.eye) {
+        eye = dvec3(*spec.eye);
+    } else {
+        if (!(radius > 0.0))
+            throw InputError(text("the scene has no size to frame (every vertex is at ", describe(centre),
+                                  "): give the camera an eye and a target"));
+        // Look from the front, a little from above and to the right, at the distance where all eight
+        // corners of the box fit the view: a corner at (x, y) across and z towards the eye from the
+        // target is inside when |x| ≤ tan(fovx/2)·(d − z) and |y| ≤ tan(fovy/2)·(d − z).
+        const dvec3 towardsEye = glm::normalize(dvec3(0.3, 0.3, 1.0));
+        up = upAcross(-towardsEye, up, camera.warnings);
+        const dvec3 right = glm::normalize(glm::cross(up, towardsEye));
+        const dvec3 screenUp = glm::cross(towardsEye, right);
+        const double tanHalfFovy = std::tan(glm::radians(double(spec.fovyDegrees)) * 0.5);
+        const double tanHalfFovx = tanHalfFovy * aspect;
+        double distance = 0.0;
+        for (int corner = 0; corner < 8; ++corner) {
+            const dvec3 p((corner & 1) ? boxMax.x : boxMin.x, (corner & 2) ? boxMax.y : boxMin.y,
+                          (corner & 4) ? boxMax.z : boxMin.z);
+            const dvec3 d = p - target;
+            const double z = glm::dot(d, towardsEye);
+            distance = std::max({distance, z + std::abs(glm::dot(d, right)) / tanHalfFovx,
+                                 z + std::abs(glm::dot(d, screenUp)) / tanHalfFovy});
+        }
+        // A small margin, and never inside the bounding sphere.
+        eye = target + std::max(1.1 * distance, 1.05 * radius) * towardsEye;
+    }
+    const dvec3 forward = glm::normalize(target - eye);
+    up = upAcross(forward, up, camera.warnings);
+
+    // Near and far hug the bounding sphere as seen from the eye; an eye inside the sphere keeps a near
+    // plane at a thousandth of the scene's size.
+    const double toCentre = glm::length(centre - eye);
+    const double near = spec.near ? double(*spec.near) : std::max(0.95 * (toCentre - radius), 1e-3 * radius);
+    const double far = spec.far ? double(*spec.far) : std::max(1.05 * (toCentre + radius), near * 2.0);
+
+    // What the depth buffer can tell apart. The scene's bounding sphere spans depths zFront..zBack
+    // along the view; a point at depth z lands at window depth f(z − n)/(z(f − n)) in [0, 1], stored
+    // as a 32-bit float, whose steps just below 1 are 2^-24.
+    const double zCentre = glm::dot(centre - eye, forward);
+    const double zFront = zCentre - radius, zBack = zCentre + radius;
+    if (zBack > 0.0 && zBack < near)
+        throw InputError(text("the whole scene is nearer than the camera's near plane (", near,
+                              "; the scene ends ", zBack, " from the eye): nothing would be drawn"));
+    if (zFront > far)
+        throw InputError(text("the whole scene is beyond the camera's far plane (", far,
+                              "; the scene starts ", zFront, " from the eye): nothing would be drawn"));
+    if (!(near > 0.0 && far > near && std::isfinite(far)))
+        throw InputError(
+            text("the camera's near and far planes (", near, ", ", far, ") must satisfy 0 < near < far"));
+    if (zBack > 0.0) {
+        const auto windowDepth = [&](double z) { return float(far * (z - near) / (z * (far - near))); };
+        const double z0 = std::max(zFront, near), z1 = std::min(zBack, far);
+        const float d0 = windowDepth(z0), d1 = windowDepth(z1);
+        if (d0 >= 1.0f)
+            throw InputError(text("the camera's near plane (", near, ") is too small for a scene ", z0,
+                                  " away: every depth rounds to the far plane in the 32-bit depth "
+                                  "buffer and nothing would be drawn (a near plane of ",
+                                  z0 * 1e-3, " or more works)"));
+        const double steps = double(d1 - d0) * 0x1p24;
+        if (steps < 1024.0)
+            camera.warnings.push_back(text(
+                "the camera's near and far planes (", near, ", ", far, ") leave about ", std::floor(steps),
+                " steps of the 32-bit depth buffer across the scene: surfaces close together may show "
+                "through each other (move the near plane towards the scene)"));
+    }
+
+    camera.eye = vec3(eye);
+    camera.target = vec3(target);
+    camera.up = vec3(up);
+    camera.near = float(near);
+    camera.far = float(far);
+    if (!std::isfinite(camera.eye.x) || !std::isfinite(camera.eye.y) || !std::isfinite(camera.eye.z) ||
+        !std::isfinite(camera.far))
+        throw InputError(text("the camera is too far out for 32-bit floats (eye at ", describe(eye),
+                              ", far plane ", far, ")"));
+
+    camera.viewScale = viewScaleFor(radius);
+    const double s = camera.viewScale;
+    camera.viewFromWorldExact = glm::scale(glm::dmat4(1.0), dvec3(s)) * glm::lookAt(eye, target, up);
+    camera.clipFromViewExact =
+        glm::perspective(glm::radians(double(camera.fovyDegrees)), double(aspect), near * s, far * s);
+    camera.viewFromWorld = mat4(camera.viewFromWorldExact);
+    camera.clipFromView = mat4(camera.clipFromViewExact);
+    return camera;
+}
+
+}  // namespace facet

@@ -1,0 +1,49 @@
+// The camera: view and projection matrices from a CameraSpec, framing the scene's bounding box where
+// the scene leaves eye, target, near or far unset.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "pipeline/glsl.h"
+#include "scene/scene.h"
+
+namespace facet {
+
+struct Bounds {
+    vec3 min{0.0f};
+    vec3 max{0.0f};
+    vec3 centre() const { return 0.5f * (min + max); }
+    float radius() const { return 0.5f * length(max - min); }  // of the bounding sphere around the box
+};
+
+struct Camera {
+    vec3 eye{0.0f};
+    vec3 target{0.0f, 0.0f, -1.0f};
+    vec3 up{0.0f, 1.0f, 0.0f};  // as used: replaced when the spec's up is along the view direction
+    float fovyDegrees = 40.0f;
+    float near = 0.1f;
+    float far = 100.0f;
+    // Eye space is world space scaled by this power of two (1 for scenes of ordinary size), so that
+    // eye-space coordinates stay near 1 for models of 1e30 or 1e-30 units: the shaders' float
+    // lengths and dot products would overflow or underflow there. Lengths in eye space are world
+    // lengths times viewScale (the renderer scales attenuation and fog to match).
+    double viewScale = 1.0;
+    // Computed in double, as a model far from the origin or of extreme size needs: compose other
+    // matrices with these, then round to float once.
+    glm::dmat4 viewFromWorldExact{1.0};
+    glm::dmat4 clipFromViewExact{1.0};
+    mat4 viewFromWorld{1.0f};  // the same, in float
+    mat4 clipFromView{1.0f};
+    std::vector<std::string> warnings;  // one line each: a replaced up vector, poor depth precision
+};
+
+// Fills in what `spec` leaves unset: the eye looks at the box's centre from the front (+z), a little from
+// above and to the right, just far enough for the whole box to fit the view with a 10% margin; the near
+// and far planes hug the box's bounding sphere (a tight near/far ratio keeps depth precision).
+// Throws InputError (without a file name) when no image could show the scene: a box of no size to
+// frame, a scene wholly before the near plane or beyond the far one, or a near plane so small for the
+// scene's distance that every depth rounds to the far plane.
+Camera frameCamera(const CameraSpec& spec, const Bounds& bounds, float aspect);
+
+}  // namespace facet

@@ -1,0 +1,196 @@
+// A scene: what to render (objects, camera, lights) and how (image size, pipeline options).
+// Every colour in a Scene is as the user wrote it: sRGB-encoded (renderer.h decodes it).
+// Loaded from a JSON scene file (docs/scene-format.md) or built with defaults around one OBJ model.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "shading/fog.h"
+#include "shading/gamma.h"
+#include "shading/lighting.h"
+
+namespace facet {
+
+struct CameraSpec {
+    std::optional<glm::vec3> eye;     // world space; absent: framed from the scene's bounding box
+    std::optional<glm::vec3> target;  // absent: the centre of the bounding box
+    glm::vec3 up{0.0f, 1.0f, 0.0f};
+    float fovyDegrees = 40.0f;  // vertical field of view
+    std::optional<float> near;  // absent: derived from the bounding box
+    std::optional<float> far;
+};
+
+enum class LightType { Directional, Point, Spot };
+
+struct LightSpec {
+    LightType type = LightType::Directional;
+    // Directional: the direction light travels, world space. Spot: the cone's axis (pointing away from
+    // the light). Absent from the file: [-0.4, -0.6, -0.7] for a directional light, [0, -1, 0] for a spot.
+    glm::vec3 direction{-0.4f, -0.6f, -0.7f};
+    glm::vec3 position{0.0f};  // point and spot: world space
+    glm::vec3 color{1.0f};     // sRGB-encoded, decoded to linear by the renderer
+    float intensity = 1.0f;    // multiplies every colour of the light (color, ambient, diffuse, specular)
+    // The standard equation's per-term light colours (sRGB-encoded): l_a (absent: black),
+    // l_d and l_s (absent: color). The physically based model uses l_d as c_light.
+    std::optional<glm::vec3> ambient, diffuse, specular;
+    glm::vec3 attenuation{1.0f, 0.0f, 0.0f};  // c0, c1, c2 of 1/(c0 + c1·d + c2·d²); point and spot
+    float spotCutoffDegrees = 30.0f;          // spot, OpenGL profile: half-angle of the cone, 0..90
+    float spotExponent = 0.0f;                // spot, OpenGL profile: cos^exponent falloff, 0..128
+    // Spot, smooth profile (used when both are given): full intensity inside `inner`, none outside
+    // `outer`, smoothstep between. 0 ≤ inner < outer ≤ 90.
+    std::optional<float> spotInnerDegrees, spotOuterDegrees;
+    bool cameraRelative = false;  // direction/position given in the camera's view space
+};
+
+// Optional per-object material override; each field overrides the MTL value when present.
+struct MaterialOverride {
+    std::optional<glm::vec3> ambient, diffuse, specular, emission;  // sRGB-encoded
+    std::optional<float> shininess, opacity;
+    // Physically based parameters (the Cook-Torrance model). A preset names an entry of
+    // kMaterialPresets (lighting.h): a metal sets base_color to its F0 colour and metalness to 1, a
+    // dielectric sets f0; keys given next to the preset win over it.
+    std::optional<std::string> preset;
+    std::optional<glm::vec3> baseColor;  // sRGB-encoded; absent: the diffuse colour
+    std::optional<float> metalness;      // 0..1
+    std::optional<float> roughness;      // 0..1, perceptual (α = roughness²)
+    std::optional<glm::vec3>
+        f0;  // linear reflectance at normal incidence, 0..1 (a number in the file sets all three)
+
+    // Whether any physically based key (or a preset) is given.
+    bool physicallyBased() const { return preset || baseColor || metalness || roughness || f0; }
+};
+
+enum class BlendChoice {
+    Over,           // c = α·c_s + (1 − α)·c_d: glass, smoke
+    Additive,       // c = α·c_s + c_d: light that adds up (glow, fire)
+    Multiply,       // c = mix(1, c_s, α) ⊗ c_d: a coloured filter
+    Premultiplied,  // c = (α·c_s) + (1 − α)·c_d through premultiplied colour: the same picture as over
+};
+
+struct ObjectSpec {
+    std::filesystem::path model;      // resolved against the scene file's folder
+    glm::mat4 worldFromObject{1.0f};  // translate · rotate(Z·Y·X degrees) · scale
+    MaterialOverride material;
+    // Per-object "lighting": {"model", "shading"}; absent: the scene's "lighting" settings (an object
+    // whose material is physically based, see MaterialOverride::physicallyBased, defaults to Cook-Torrance).
+    std::optional<ReflectionModel> reflection;
+    std::optional<ShadingFrequency> shading;
+    // How the object's colour combines with what is behind it ("blend"). Absent: over. An object whose
+    // opacity (material d / 1 − Tr, the override, or a texture's alpha) is below 1, or whose blend is
+    // not over, is transparent: drawn after the opaque ones, without depth writes, sorted.
+    std::optional<BlendChoice> blend;
+};
+
+// How the scene is lit ("lighting" in the scene file).
+enum class LightingPreset {
+    Facet,  // linear-light rendering: colours decoded from sRGB, output encoded, per-pixel by default
+    GL,     // OpenGL 1.x fixed function: colours as given, no gamma, Gouraud by default (docs/lighting.md)
+};
+
+struct LightingOptions {
+    LightingPreset preset = LightingPreset::Facet;
+    ReflectionModel model = ReflectionModel::BlinnPhong;
+    std::optional<ShadingFrequency> shading;  // absent: Phong (Facet preset) or Gouraud (GL preset)
+    float creaseAngleDegrees = 60.0f;  // computed normals: faces meeting at a sharper angle keep a hard edge
+    BrdfModel brdf;                    // Cook-Torrance's D, F and G
+    ShadingFrequency shadingOrDefault() const {
+        return shading.value_or(preset == LightingPreset::GL ? ShadingFrequency::Gouraud
+                                                             : ShadingFrequency::Phong);
+    }
+};
+
+enum class CullChoice { Back, Front, None };
+enum class InterpolationChoice { Perspective, Affine };
+
+struct PipelineOptions {
+    CullChoice cull = CullChoice::Back;
+    InterpolationChoice interpolation = InterpolationChoice::Perspective;
+    int subpixelBits = 8;  // 0..8
+};
+
+// How transparent triangles are ordered ("transparency").
+enum class TransparencyMode {
+    Sorted,    // back to front by the sort key, insertion sort remembering the last frame's order (default)
+    Unsorted,  // in the order of the file: wrong wherever transparent surfaces overlap (for comparison)
+    Exact,  // per-pixel fragment lists sorted by depth (an A-buffer): right even for intersecting triangles
+};
+enum class SortKey {
+    Centroid,        // the view-space depth of the triangle's centroid
+    FarthestVertex,  // the view-space depth of its farthest vertex
+};
+struct TransparencyOptions {
+    TransparencyMode mode = TransparencyMode::Sorted;
+    SortKey key = SortKey::Centroid;
+};
+
+// Fog ("fog"); the colour is sRGB-encoded as every colour of a scene.
+struct FogSpec {
+    FogMode mode = FogMode::None;
+    glm::vec3 color{0.5f};
+    // Linear fog's range along the fog distance; absent: from the scene's bounding sphere, start at its
+    // nearest point to the eye and end at its farthest.
+    std::optional<float> start, end;
+    float density = 1.0f;  // exp and exp²: per unit of length
+    FogDistance distance = FogDistance::EyeDepth;
+};
+
+// Colour encoding of inputs and outputs ("gamma"). The gl preset ignores it: no decoding, no encoding.
+struct GammaOptions {
+    TransferCurve encode = TransferCurve::Srgb;  // 8-bit outputs; EXR always keeps the linear values
+    float exponent = 2.2f;                       // TransferCurve::Power: code = 255·c^(1/exponent)
+    bool decodeInputs = true;                    // read scene and MTL colours as sRGB-encoded
+};
+
+struct Scene {
+    std::filesystem::path source;  // the scene or model file this came from (for messages)
+    int width = 1280;
+    int height = 960;
+    glm::vec4 background{0.05f, 0.05f, 0.07f, 1.0f};  // sRGB-encoded RGB, alpha as is
+    glm::vec3 ambientLight{0.15f};                    // global ambient, sRGB-encoded
+    CameraSpec camera;
+    std::vector<LightSpec> lights;    // empty in a file: one default light is used
+    std::vector<ObjectSpec> objects;  // at least one
+    PipelineOptions pipeline;
+    LightingOptions lighting;
+    TransparencyOptions transparency;
+    FogSpec fog;
+    GammaOptions gamma;
+};
+
+// Reads a JSON scene file. Throws InputError with a one-line message naming the file and the
+// offending key (unknown keys are errors, e.g. "scene.json: unknown key \"camera.fvoy\"").
+Scene loadScene(const std::filesystem::path& path);
+
+// The scene "facet render model.obj" uses: that one model and every default.
+Scene sceneForModel(const std::filesystem::path& objPath);
+
+// What every command reads: a .json path as a scene file (loadScene), any other as a model
+// (sceneForModel; the OBJ loader checks that file when the scene is prepared).
+Scene loadSceneOrModel(const std::filesystem::path& path);
+
+// Size limits shared by the scene loader and the command line (absurd sizes are rejected).
+inline constexpr int kMaxImageSide = 16384;
+// The largest image: 64 Mpixel (e.g. 8192 × 8192) keeps the buffers near 1.3 GB.
+inline constexpr long long kMaxPixels = 1LL << 26;
+// A scene file is a few kilobytes of hand-written JSON; a larger one than this is refused unread.
+inline constexpr std::uintmax_t kMaxSceneFileBytes = std::uintmax_t{64} << 20;
+// Objects in one scene. Each object is its own draw with its own copy of its model's vertices, so the
+// memory a scene needs grows with objects × their models' size: the count is refused while reading
+// (a 64 MiB file could otherwise list millions), and the triangles drawn are bounded once the
+// distinct models are loaded, before any object's copy is made.
+inline constexpr std::size_t kMaxObjects = 100'000;
+inline constexpr std::size_t kMaxSceneTriangles = 50'000'000;  // ~3-5 GB of draws at the most
+
+// The vertical field of view facet accepts, in degrees: below 0.01° the view is narrower than float
+// coordinates can aim (a model a thousand times its size away would be placed to a fraction of a
+// pixel); at 180° the projection is infinite.
+inline constexpr double kMinFovyDegrees = 0.01;
+inline constexpr double kMaxFovyDegrees = 179.0;
+
+}  // namespace facet

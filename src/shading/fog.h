@@ -1,0 +1,65 @@
+// Fog: blending a fragment's colour towards a fog colour with its distance from the eye, as OpenGL's
+// fixed-function fog (glFog; OpenGL 2.1 §3.10):
+//   c = f·c_s + (1 − f)·c_fog,  f clamped to [0, 1],
+//   linear:  f = (end − z)/(end − start)
+//   exp:     f = e^(−density·z)
+//   exp²:    f = e^(−(density·z)²)
+// with z the fragment's distance from the eye: |z_eye| (the eye-space depth, OpenGL's default) or the
+// radial distance |P_eye| (NV_fog_distance's GL_EYE_RADIAL_NV). Written once for 1 and 8 lanes.
+#pragma once
+
+#include "pipeline/glsl.h"
+#include "pipeline/wide.h"
+
+namespace facet {
+
+enum class FogMode { None, Linear, Exponential, ExponentialSquared };
+
+enum class FogDistance {
+    EyeDepth,  // |z_eye|: constant across a plane facing the viewer (OpenGL's default)
+    Radial,    // |P_eye|: constant on a sphere around the eye, so fog does not change as the view turns
+};
+
+struct FogParams {
+    FogMode mode = FogMode::None;
+    vec3 color{0.5f};                // c_fog, in the colour buffer's values (linear with the facet preset)
+    float start = 0.0f, end = 1.0f;  // linear
+    float density = 1.0f;            // exp, exp²
+    FogDistance distance = FogDistance::EyeDepth;
+};
+
+// The distance fog uses for an eye-space position.
+template <class F, class V3 = LaneVec3<F>>
+F fogDistance(const FogParams& fog, const V3& eyePosition) {
+    return fog.distance == FogDistance::Radial ? sqrt(dot(eyePosition, eyePosition)) : abs(eyePosition.z);
+}
+
+// The fog factor f: 1 = no fog, 0 = only fog.
+template <class F>
+F fogFactor(const FogParams& fog, F z) {
+    switch (fog.mode) {
+        case FogMode::None:
+            return lanes<F>(1.0f);
+        case FogMode::Linear:
+            // A degenerate range (end = start) is a wall: everything at or beyond it fully fogged.
+            if (fog.end == fog.start) return select(z < fog.start, lanes<F>(1.0f), lanes<F>(0.0f));
+            return saturate((fog.end - z) * (1.0f / (fog.end - fog.start)));
+        case FogMode::Exponential:
+            return saturate(exp(-fog.density * z));
+        case FogMode::ExponentialSquared: {
+            const F dz = fog.density * z;
+            return saturate(exp(-(dz * dz)));
+        }
+    }
+    return lanes<F>(1.0f);
+}
+
+// c = f·c_s + (1 − f)·c_fog.
+template <class F, class V3 = LaneVec3<F>>
+V3 applyFog(const FogParams& fog, const V3& color, const V3& eyePosition) {
+    if (fog.mode == FogMode::None) return color;
+    const F f = fogFactor(fog, fogDistance<F, V3>(fog, eyePosition));
+    return color * f + V3(fog.color) * (1.0f - f);
+}
+
+}  // namespace facet

@@ -1,0 +1,442 @@
+// Lighting formulas as the lectures write them: light sources (attenuation, spot cones), the standard
+// (OpenGL fixed-function) lighting equation with Phong or Blinn-Phong specular, and a physically based
+// Cook-Torrance microfacet BRDF. Header only; every formula is one template over the lane type, for
+// F, V3 = float, vec3 (one fragment) and Float8, Vec3x8 (eight), as BlinnPhongShader::lighting is.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <numbers>
+#include <optional>
+#include <span>
+#include <string_view>
+
+#include "pipeline/glsl.h"
+#include "pipeline/wide.h"
+
+namespace facet {
+
+// =====================================================================================================
+// 1. Light sources and the standard lighting equation
+// =====================================================================================================
+
+// Which reflection model lights a surface.
+enum class ReflectionModel {
+    Phong,         // standard equation, specular max(R·V, 0)^n
+    BlinnPhong,    // standard equation, specular max(N·H, 0)^n
+    CookTorrance,  // physically based: Lambert c_base/π + D·F·G / (4 (N·L)(N·V))
+};
+
+// How often the lighting equation is evaluated (the lecture's "shading frequency").
+enum class ShadingFrequency {
+    Flat,     // once per face: every pixel of a triangle gets its provoking vertex's colour
+    Gouraud,  // once per vertex, the colours interpolated across the triangle
+    Phong,    // once per pixel, with the interpolated normal renormalised
+};
+
+enum class LightKind { Directional, Point, Spot };
+
+// How a spot light falls off towards the edge of its cone.
+enum class SpotProfile {
+    OpenGL,  // hard edge at the cutoff, cos^exponent inside (glLight GL_SPOT_CUTOFF, GL_SPOT_EXPONENT)
+    Smooth,  // smoothstep(cos outer, cos inner, cos angle): a soft rim between the two cones
+};
+
+struct LightParams {
+    LightKind kind = LightKind::Point;
+    vec3 position{0.0f};                    // world space; point and spot lights
+    vec3 direction{0.0f, -1.0f, 0.0f};      // world space, the way the light travels; directional
+    vec3 spotDirection{0.0f, -1.0f, 0.0f};  // world space, unit: the spot's axis, pointing away from it
+    SpotProfile spotProfile = SpotProfile::OpenGL;
+    float spotCutoffDegrees = 180.0f;       // half-angle of the cone; 180 = no cone (OpenGL's default)
+    float spotExponent = 0.0f;              // concentration inside the cone
+    float spotInnerDegrees = 20.0f;         // Smooth profile: full intensity inside this half-angle
+    float spotOuterDegrees = 30.0f;         // Smooth profile: none outside this half-angle
+    float c0 = 1.0f, c1 = 0.0f, c2 = 0.0f;  // attenuation 1/(c0 + c1·d + c2·d²); point and spot
+    vec3 ambient{0.0f};                     // l_a, linear RGB
+    vec3 diffuse{1.0f};                     // l_d, linear RGB (c_light in the physically based model)
+    vec3 specular{1.0f};                    // l_s, linear RGB
+};
+
+inline constexpr int kMaxLights = 8;  // lights in one scene, as OpenGL 1.x guarantees (GL_MAX_LIGHTS)
+
+// Where a light is seen from a surface point: L, the unit vector towards the light, and the distance d
+// (0 for a directional light, which has none).
+template <class F, class V3 = LaneVec3<F>>
+struct LightVector {
+    V3 L;
+    F distance;
+};
+
+// At the light's own position there is no direction to it: L = 0 there (no diffuse, no specular
+// light from it), never 0/0. So too where the squared distance underflows float: L is a unit vector
+// or 0, nothing between.
+template <class F, class V3 = LaneVec3<F>>
+LightVector<F, V3> lightVector(const LightParams& light, const V3& position) {
+    if (light.kind == LightKind::Directional) return {V3(-normalize(light.direction)), lanes<F>(0.0f)};
+    const V3 toLight = light.position - position;
+    const F squared = dot(toLight, toLight);
+    const F distance = sqrt(squared);
+    constexpr float kSmallestSquare = 1e-30f;  // normal floats: sqrt and the division stay exact enough
+    const F inverse = select(squared >= kSmallestSquare, 1.0f / max(distance, 1e-15f), 0.0f);
+    return {toLight * inverse, distance};
+}
+
+// N·L at or below this counts as grazing: the light lies in the surface's plane (or behind it). The
+// rounding of eye-space positions puts N·L for a light in the plane a hair either side of 0, and a gate
+// at exactly 0 would switch highlights on and off from pixel to pixel; within 0.006° of grazing the
+// highlight is gone anyway.
+inline constexpr float kGrazingCosine = 1e-4f;
+
+// att(d) = 1/(c0 + c1·d + c2·d²) for point and spot lights, 1 for directional ones.
+template <class F>
+F attenuation(const LightParams& light, F distance) {
+    if (light.kind == LightKind::Directional) return lanes<F>(1.0f);
+    // Constant attenuation alone (the default) needs no per-pixel division.
+    if (light.c1 == 0.0f && light.c2 == 0.0f) return lanes<F>(1.0f / light.c0);
+    return 1.0f / (light.c0 + distance * (light.c1 + distance * light.c2));
+}
+
+// OpenGL's spot factor (glLight, OpenGL 2.1 §2.14.1), with L the unit vector from the surface to the
+// light and s the spot direction: 0 where the angle between −L and s exceeds the cutoff,
+// max(−L·s, 0)^exponent inside, and 1 when the cutoff is 180° (no cone). 1 for non-spot lights.
+template <class F, class V3 = LaneVec3<F>>
+F spotFactorOpenGL(const LightParams& light, const V3& L) {
+    if (light.kind != LightKind::Spot || light.spotCutoffDegrees >= 180.0f) return lanes<F>(1.0f);
+    const F cosAngle = dot(-L, normalize(light.spotDirection));
+    const float cosCutoff = std::cos(glm::radians(light.spotCutoffDegrees));
+    return select(cosAngle >= cosCutoff, pow(max(cosAngle, 0.0f), light.spotExponent), lanes<F>(0.0f));
+}
+
+// The smooth variant: smoothstep(cos θ_outer, cos θ_inner, −L·s), 1 inside the inner cone, 0 outside
+// the outer one and a C¹ ramp between them. 1 for non-spot lights.
+template <class F, class V3 = LaneVec3<F>>
+F spotFactorSmooth(const LightParams& light, const V3& L) {
+    if (light.kind != LightKind::Spot) return lanes<F>(1.0f);
+    const F cosAngle = dot(-L, normalize(light.spotDirection));
+    return smoothstep(std::cos(glm::radians(light.spotOuterDegrees)),
+                      std::cos(glm::radians(light.spotInnerDegrees)), cosAngle);
+}
+
+// The light's spot factor under its own profile.
+template <class F, class V3 = LaneVec3<F>>
+F spotFactor(const LightParams& light, const V3& L) {
+    return light.spotProfile == SpotProfile::Smooth ? spotFactorSmooth<F, V3>(light, L)
+                                                    : spotFactorOpenGL<F, V3>(light, L);
+}
+
+// Material of the standard lighting equation; linear RGB.
+struct PhongMaterial {
+    vec3 emission{0.0f};   // m_emission
+    vec3 ambient{0.0f};    // m_ambient
+    vec3 diffuse{0.8f};    // m_diffuse
+    vec3 specular{0.0f};   // m_specular
+    float shininess = 32;  // n
+};
+
+enum class SpecularModel {
+    Phong,       // max(R·V, 0)^n, R = 2(N·L)N − L (Phong 1975)
+    BlinnPhong,  // max(N·H, 0)^n, H = normalize(L + V) (Blinn 1977)
+};
+
+// The equation's four terms apart, so each can be drawn as its own image; sum() is the colour.
+template <class V3>
+struct LightingTerms {
+    V3 emission;
+    V3 ambient;  // the global ambient term included
+    V3 diffuse;
+    V3 specular;
+    V3 sum() const { return emission + ambient + diffuse + specular; }
+};
+
+// The standard lighting equation (OpenGL 2.1 §2.14.1; Akenine-Möller et al., RTR 2nd ed. §5.5):
+//   c = m_emission + a_global ⊗ m_ambient
+//     + Σ_lights att · spot · (l_a ⊗ m_ambient + max(N·L, 0) · l_d ⊗ m_diffuse + spec · l_s ⊗ m_specular),
+// spec = max(R·V, 0)^n (Phong) or max(N·H, 0)^n (Blinn-Phong), and 0 where N·L ≤ 0 (the light is
+// behind the surface; in practice N·L ≤ kGrazingCosine, see there). N is used as given (normalised, not
+// flipped towards the viewer). `diffuseColor` is m_diffuse per lane (a texture may vary it); the overload
+// below uses the material's.
+template <class F, class V3 = LaneVec3<F>>
+[[gnu::always_inline]] inline LightingTerms<V3> standardLighting(
+    const V3& position, const V3& normal, const vec3& eye, const PhongMaterial& m, const V3& diffuseColor,
+    const vec3& globalAmbient, std::span<const LightParams> lights,
+    SpecularModel specularModel = SpecularModel::BlinnPhong) {
+    const V3 N = safeNormalize<F, V3>(normal);
+    const V3 V = safeNormalize<F, V3>(eye - position);
+    LightingTerms<V3> terms{V3(m.emission), V3(globalAmbient * m.ambient), V3(vec3(0.0f)), V3(vec3(0.0f))};
+    for (const LightParams& light : lights) {
+        // Where the light is and how much of it arrives.
+        const LightVector<F, V3> toLight = lightVector<F, V3>(light, position);
+        const V3& L = toLight.L;
+        const F reach = attenuation(light, toLight.distance) * spotFactor<F, V3>(light, L);
+
+        // Ambient and Lambert diffuse.
+        const F NdotL = dot(N, L);
+        if (light.ambient != vec3(0.0f)) terms.ambient += (light.ambient * m.ambient) * reach;
+        terms.diffuse += diffuseColor * light.diffuse * (reach * max(NdotL, 0.0f));
+
+        // Specular, only where the light is in front of the surface.
+        F cosine;
+        if (specularModel == SpecularModel::Phong) {
+            const V3 R = N * (2.0f * NdotL) - L;
+            cosine = dot(R, V);
+        } else {
+            cosine = dot(N, safeNormalize<F, V3>(L + V));
+        }
+        const F spec = select(NdotL > kGrazingCosine, pow(max(cosine, 0.0f), m.shininess), lanes<F>(0.0f));
+        terms.specular += (light.specular * m.specular) * (reach * spec);
+    }
+    return terms;
+}
+
+template <class F, class V3 = LaneVec3<F>>
+LightingTerms<V3> standardLighting(const V3& position, const V3& normal, const vec3& eye,
+                                   const PhongMaterial& m, const vec3& globalAmbient,
+                                   std::span<const LightParams> lights,
+                                   SpecularModel specularModel = SpecularModel::BlinnPhong) {
+    return standardLighting<F, V3>(position, normal, eye, m, V3(m.diffuse), globalAmbient, lights,
+                                   specularModel);
+}
+
+// =====================================================================================================
+// 2. Physically based shading: Lambert diffuse + Cook-Torrance microfacet specular
+// =====================================================================================================
+
+struct PbrMaterial {
+    vec3 baseColor{0.8f};    // linear RGB: albedo for dielectrics, F0 for metals
+    float metalness = 0;     // 0 dielectric, 1 metal; blends F0 and removes the diffuse term
+    float roughness = 0.5f;  // perceptual, α = roughness²
+    vec3 f0{0.04f};          // dielectric reflectance at normal incidence (linear)
+};
+
+enum class NormalDistribution { Beckmann, GGX };
+enum class FresnelModel { Schlick, Exact };
+enum class GeometryTerm { CookTorrance, SmithGGX };
+
+struct BrdfModel {
+    NormalDistribution distribution = NormalDistribution::GGX;
+    FresnelModel fresnel = FresnelModel::Schlick;
+    GeometryTerm geometry = GeometryTerm::SmithGGX;
+};
+
+// α = roughness² (Burley 2012), kept ≥ 1e−3 so D stays finite for a mirror.
+inline float alphaFromRoughness(float roughness) {
+    return std::max(roughness * roughness, 1e-3f);
+}
+
+// Beckmann: D(h) = exp((n·h² − 1)/(α² n·h²)) / (π α² n·h⁴) for n·h > 0, else 0.
+template <class F>
+F distributionBeckmann(F NdotH, float alpha) {
+    const F c = max(NdotH, 1e-4f);
+    const F c2 = c * c;
+    const float a2 = alpha * alpha;
+    const F d = exp((c2 - 1.0f) / (a2 * c2)) / (std::numbers::pi_v<float> * a2 * c2 * c2);
+    return select(NdotH > 0.0f, d, lanes<F>(0.0f));
+}
+
+// GGX / Trowbridge-Reitz (Walter et al. 2007): D(h) = α² / (π ((n·h)²(α² − 1) + 1)²) for n·h > 0, else 0.
+template <class F>
+F distributionGGX(F NdotH, float alpha) {
+    const float a2 = alpha * alpha;
+    const F c = max(NdotH, 0.0f);
+    const F denominator = c * c * (a2 - 1.0f) + 1.0f;
+    const F d = a2 / (std::numbers::pi_v<float> * denominator * denominator);
+    return select(NdotH > 0.0f, d, lanes<F>(0.0f));
+}
+
+// Schlick 1994: F = F0 + (1 − F0)(1 − cos θ)^5, cos θ = v·h clamped to [0, 1].
+template <class F>
+F fresnelSchlick(float f0, F cosTheta) {
+    const F m = 1.0f - saturate(cosTheta);
+    const F m2 = m * m;
+    return f0 + (1.0f - f0) * (m2 * m2 * m);
+}
+template <class F, class V3 = LaneVec3<F>>
+V3 fresnelSchlick(const vec3& f0, F cosTheta) {
+    const F m = 1.0f - saturate(cosTheta);
+    const F m2 = m * m;
+    return (vec3(1.0f) - f0) * (m2 * m2 * m) + f0;
+}
+
+// The index of refraction whose normal-incidence reflectance is F0: F0 = ((η − 1)/(η + 1))², so
+// η = (1 + √F0)/(1 − √F0). F0 is kept below 1 (η finite).
+inline float etaFromF0(float f0) {
+    const float s = std::sqrt(std::clamp(f0, 0.0f, 0.9999f));
+    return (1.0f + s) / (1.0f - s);
+}
+
+// Exact Fresnel reflectance of unpolarised light at a dielectric interface (Cook & Torrance 1982):
+//   g = √(η² − 1 + c²), F = ½ ((g − c)/(g + c))² (1 + ((c(g + c) − 1)/(c(g − c) + 1))²), c = cos θ,
+// and total internal reflection (η² − 1 + c² < 0) reflects everything: F = 1.
+template <class F>
+F fresnelExact(F cosTheta, float eta) {
+    const F c = saturate(cosTheta);
+    const F g2 = eta * eta - 1.0f + c * c;
+    const F g = sqrt(max(g2, 0.0f));
+    const F a = (g - c) / max(g + c, 1e-7f);
+    const F b = (c * (g + c) - 1.0f) / (c * (g - c) + 1.0f);
+    return select(g2 < 0.0f, lanes<F>(1.0f), 0.5f * a * a * (1.0f + b * b));
+}
+template <class F, class V3 = LaneVec3<F>>
+V3 fresnelExact(const vec3& f0, F cosTheta) {
+    return V3(fresnelExact(cosTheta, etaFromF0(f0.x)), fresnelExact(cosTheta, etaFromF0(f0.y)),
+              fresnelExact(cosTheta, etaFromF0(f0.z)));
+}
+
+// Cook-Torrance 1982: G = min(1, 2(n·h)(n·v)/(v·h), 2(n·h)(n·l)/(v·h)).
+template <class F>
+F geometryCookTorrance(F NdotH, F NdotV, F NdotL, F VdotH) {
+    const F k = 2.0f * max(NdotH, 0.0f) / max(VdotH, 1e-4f);
+    return min(min(k * NdotV, k * NdotL), lanes<F>(1.0f));
+}
+
+// Smith's separable masking-shadowing for GGX: G = G1(n·l) G1(n·v),
+// G1(x) = 2(n·x) / ((n·x) + √(α² + (1 − α²)(n·x)²)).
+template <class F>
+F smithG1GGX(F NdotX, float alpha) {
+    const float a2 = alpha * alpha;
+    const F c = max(NdotX, 0.0f);
+    return 2.0f * c / max(c + sqrt(a2 + (1.0f - a2) * c * c), 1e-7f);
+}
+template <class F>
+F geometrySmithGGX(F NdotV, F NdotL, float alpha) {
+    return smithG1GGX(NdotV, alpha) * smithG1GGX(NdotL, alpha);
+}
+
+// The BRDF (Cook & Torrance 1982; Karis 2013):
+//   f(l, v) = (1 − F)(1 − metalness) · c_base/π + D·F·G / (4 (n·l)(n·v)),
+// F0 = mix(F0_dielectric, c_base, metalness) (metals reflect their colour), and f = 0 where n·l ≤ 0.
+// n, l, v need not be unit; zero vectors give 0, never NaN.
+// The two lobes of the BRDF apart: diffuse (1 − F)(1 − metalness)·albedo/π and specular D·F·G/(4 (n·l)(n·v)).
+template <class V3>
+struct BrdfLobes {
+    V3 diffuse;
+    V3 specular;
+};
+
+// `albedo` is the base colour the Lambert lobe reflects, per lane (a texture may vary it); F0 always
+// comes from the material.
+template <class F, class V3 = LaneVec3<F>>
+BrdfLobes<V3> brdfLobes(const V3& n, const V3& l, const V3& v, const PbrMaterial& m, const V3& albedo,
+                        const BrdfModel& model = {}) {
+    // The cosines, clamped away from the divisions' zeros.
+    const V3 N = safeNormalize<F, V3>(n);
+    const V3 L = safeNormalize<F, V3>(l);
+    const V3 V = safeNormalize<F, V3>(v);
+    const V3 H = safeNormalize<F, V3>(L + V);
+    const F NdotLRaw = dot(N, L);
+    const F NdotL = max(NdotLRaw, 1e-4f);
+    const F NdotV = max(dot(N, V), 1e-4f);
+    const F NdotH = dot(N, H);
+    const F VdotH = saturate(dot(V, H));
+    const float alpha = alphaFromRoughness(m.roughness);
+    const vec3 f0 = mix(m.f0, m.baseColor, m.metalness);
+
+    // D, F, G.
+    const F D = model.distribution == NormalDistribution::GGX ? distributionGGX(NdotH, alpha)
+                                                              : distributionBeckmann(NdotH, alpha);
+    const V3 fresnel = model.fresnel == FresnelModel::Schlick ? fresnelSchlick<F, V3>(f0, VdotH)
+                                                              : fresnelExact<F, V3>(f0, VdotH);
+    const F G = model.geometry == GeometryTerm::SmithGGX ? geometrySmithGGX(NdotV, NdotL, alpha)
+                                                         : geometryCookTorrance(NdotH, NdotV, NdotL, VdotH);
+
+    // Diffuse and specular lobes, nothing where the light is behind the surface.
+    const V3 specular = fresnel * (D * G / (4.0f * NdotL * NdotV));
+    const V3 diffuse =
+        (V3(vec3(1.0f)) - fresnel) * albedo * ((1.0f - m.metalness) / std::numbers::pi_v<float>);
+    const V3 zero(vec3(0.0f));
+    return {select(NdotLRaw > kGrazingCosine, diffuse, zero),
+            select(NdotLRaw > kGrazingCosine, specular, zero)};
+}
+
+template <class F, class V3 = LaneVec3<F>>
+V3 brdf(const V3& n, const V3& l, const V3& v, const PbrMaterial& m, const BrdfModel& model = {}) {
+    const BrdfLobes<V3> lobes = brdfLobes<F, V3>(n, l, v, m, V3(m.baseColor), model);
+    return lobes.diffuse + lobes.specular;
+}
+
+// Outgoing radiance from punctual lights: L_o = Σ f(l, v) ⊗ (π c_light) · falloff · spot · max(n·l, 0),
+// c_light = the light's l_d, π c_light the incoming radiance scaled so that a white Lambertian surface
+// lit head-on shows c_light (Hoffman 2013), falloff = 1/r² for point and spot lights, 1 for directional.
+//
+// As terms for the component images: the diffuse and specular lobes summed over the lights, plus
+//   emission = m_emission and ambient = a_global ⊗ albedo
+// (a constant stand-in for the light that arrives from everywhere, as the standard equation's
+// a_global ⊗ m_ambient; image-based ambient is out of scope). `albedo` is the base colour per lane.
+template <class F, class V3 = LaneVec3<F>>
+LightingTerms<V3> physicallyBasedTerms(const V3& position, const V3& normal, const vec3& eye,
+                                       const PbrMaterial& m, const V3& albedo, const vec3& emission,
+                                       const vec3& globalAmbient, std::span<const LightParams> lights,
+                                       const BrdfModel& model = {}) {
+    const V3 N = safeNormalize<F, V3>(normal);
+    const V3 V = safeNormalize<F, V3>(eye - position);
+    LightingTerms<V3> terms{V3(emission), albedo * globalAmbient, V3(vec3(0.0f)), V3(vec3(0.0f))};
+    for (const LightParams& light : lights) {
+        const LightVector<F, V3> toLight = lightVector<F, V3>(light, position);
+        const F falloff = light.kind == LightKind::Directional
+                              ? lanes<F>(1.0f)
+                              : 1.0f / max(toLight.distance * toLight.distance, 1e-8f);
+        const F irradiance = falloff * spotFactor<F, V3>(light, toLight.L) * max(dot(N, toLight.L), 0.0f);
+        const BrdfLobes<V3> lobes = brdfLobes<F, V3>(N, toLight.L, V, m, albedo, model);
+        const V3 incoming = V3(light.diffuse * std::numbers::pi_v<float>) * irradiance;
+        terms.diffuse += lobes.diffuse * incoming;
+        terms.specular += lobes.specular * incoming;
+    }
+    return terms;
+}
+
+// The reflected light alone (no emission, no ambient), the material's own base colour.
+template <class F, class V3 = LaneVec3<F>>
+V3 physicallyBasedLighting(const V3& position, const V3& normal, const vec3& eye, const PbrMaterial& m,
+                           std::span<const LightParams> lights, const BrdfModel& model = {}) {
+    const LightingTerms<V3> terms = physicallyBasedTerms<F, V3>(position, normal, eye, m, V3(m.baseColor),
+                                                                vec3(0.0f), vec3(0.0f), lights, model);
+    return terms.diffuse + terms.specular;
+}
+
+// ---- Material presets -------------------------------------------------------------------------------
+
+struct MaterialPreset {
+    std::string_view name;
+    vec3 f0;     // reflectance at normal incidence, linear RGB
+    bool metal;  // true: use as base colour with metalness 1; false: a dielectric's F0
+};
+
+// F0 values from Real-Time Rendering, 4th ed. (Akenine-Möller et al. 2018): dielectrics from table 9.1,
+// metals (linear RGB) from table 9.2.
+inline const std::array<MaterialPreset, 16> kMaterialPresets{{
+    {"water", vec3(0.02f), false},
+    {"skin", vec3(0.028f), false},
+    {"hair", vec3(0.046f), false},
+    {"titanium", vec3(0.542f, 0.497f, 0.449f), true},
+    {"chromium", vec3(0.549f, 0.556f, 0.554f), true},
+    {"iron", vec3(0.562f, 0.565f, 0.578f), true},
+    {"nickel", vec3(0.660f, 0.609f, 0.526f), true},
+    {"platinum", vec3(0.673f, 0.637f, 0.585f), true},
+    {"copper", vec3(0.955f, 0.638f, 0.538f), true},
+    {"palladium", vec3(0.733f, 0.697f, 0.652f), true},
+    {"mercury", vec3(0.781f, 0.780f, 0.778f), true},
+    {"brass", vec3(0.910f, 0.778f, 0.423f), true},
+    {"zinc", vec3(0.664f, 0.824f, 0.850f), true},
+    {"gold", vec3(1.000f, 0.782f, 0.344f), true},
+    {"aluminium", vec3(0.913f, 0.922f, 0.924f), true},
+    {"silver", vec3(0.972f, 0.960f, 0.915f), true},
+}};
+
+// The preset of that name, ignoring case ("aluminum" is accepted too); nullopt for an unknown name.
+inline std::optional<MaterialPreset> findMaterialPreset(std::string_view name) {
+    const auto equalIgnoringCase = [](std::string_view a, std::string_view b) {
+        return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
+                   return std::tolower(static_cast<unsigned char>(x)) ==
+                          std::tolower(static_cast<unsigned char>(y));
+               });
+    };
+    if (equalIgnoringCase(name, "aluminum")) name = "aluminium";
+    for (const MaterialPreset& preset : kMaterialPresets)
+        if (equalIgnoringCase(name, preset.name)) return preset;
+    return std::nullopt;
+}
+
+}  // namespace facet

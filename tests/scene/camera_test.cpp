@@ -1,0 +1,153 @@
+// The camera: framing the bounding box, the up vector, near and far planes, and models of extreme
+// size, each checked against what the image would show.
+#include "scene/camera.h"
+
+#include <cmath>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "base/errors.h"
+
+namespace facet {
+namespace {
+
+constexpr float kAspect = 4.0f / 3.0f;
+
+Bounds cube(float half, vec3 centre = vec3(0.0f)) {
+    return {centre - vec3(half), centre + vec3(half)};
+}
+
+// Where a world point lands: normalised device coordinates, and the window depth in [0, 1] as float.
+vec3 project(const Camera& camera, vec3 world) {
+    const glm::dvec4 clip =
+        camera.clipFromViewExact * camera.viewFromWorldExact * glm::dvec4(glm::dvec3(world), 1.0);
+    const glm::dvec3 ndc = glm::dvec3(clip) / clip.w;
+    return vec3(float(ndc.x), float(ndc.y), float(0.5 * ndc.z + 0.5));
+}
+
+bool allFinite(const mat4& m) {
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!std::isfinite(m[c][r])) return false;
+    return true;
+}
+
+std::string errorOf(const CameraSpec& spec, const Bounds& bounds) {
+    try {
+        frameCamera(spec, bounds, kAspect);
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+// Straight above the target with the default up (+y): lookAt alone would divide 0 by 0 and draw
+// nothing. The camera turns the image's top to −z, says so, and the target lands mid-image.
+TEST(Camera, EyeStraightAboveTheTargetGetsAnotherUpAndAWarning) {
+    CameraSpec spec;
+    spec.eye = vec3(0.0f, 5.0f, 0.0f);
+    spec.target = vec3(0.0f);
+    const Camera camera = frameCamera(spec, cube(1.0f), kAspect);
+    EXPECT_EQ(camera.up, vec3(0.0f, 0.0f, -1.0f));
+    ASSERT_EQ(camera.warnings.size(), 1u);
+    EXPECT_NE(camera.warnings[0].find("looks straight down along its up vector (0, 1, 0)"), std::string::npos)
+        << camera.warnings[0];
+    EXPECT_NE(camera.warnings[0].find("(0, 0, -1)"), std::string::npos) << camera.warnings[0];
+    EXPECT_TRUE(allFinite(camera.viewFromWorld));
+    const vec3 centre = project(camera, vec3(0.0f));
+    EXPECT_NEAR(centre.x, 0.0f, 1e-6f);
+    EXPECT_NEAR(centre.y, 0.0f, 1e-6f);
+    // −z is up in the image: the far edge of the cube (z = −1) is above the centre.
+    EXPECT_GT(project(camera, vec3(0.0f, 1.0f, -1.0f)).y, 0.1f);
+
+    spec.eye = vec3(0.0f, -5.0f, 0.0f);  // straight below, looking up: +z at the top
+    EXPECT_EQ(frameCamera(spec, cube(1.0f), kAspect).up, vec3(0.0f, 0.0f, 1.0f));
+}
+
+TEST(Camera, OrdinaryViewKeepsItsUpWithoutWarning) {
+    CameraSpec spec;
+    spec.eye = vec3(0.0f, 1.0f, 5.0f);
+    const Camera camera = frameCamera(spec, cube(1.0f), kAspect);
+    EXPECT_EQ(camera.up, vec3(0.0f, 1.0f, 0.0f));
+    EXPECT_TRUE(camera.warnings.empty());
+    EXPECT_EQ(camera.viewScale, 1.0);
+}
+
+// A near plane of 1e-10 for a scene 5 units away puts every depth at 1 - 2e-11: 1.0 in float, the
+// cleared depth, and nothing passes the depth test. Refused, with a near plane that works.
+TEST(Camera, NearPlaneTooSmallForTheSceneIsRefused) {
+    CameraSpec spec;
+    spec.eye = vec3(0.0f, 0.0f, 5.0f);
+    spec.near = 1e-10f;
+    const std::string error = errorOf(spec, cube(1.0f));
+    EXPECT_NE(error.find("near plane (1e-10) is too small"), std::string::npos) << error;
+    EXPECT_NE(error.find("nothing would be drawn"), std::string::npos) << error;
+}
+
+// A far plane of 3e38 is extreme but drawable: the projection, in double, stays finite, and the
+// scene's depths stay below 1.
+TEST(Camera, FarPlaneNearTheLargestFloatStillDraws) {
+    CameraSpec spec;
+    spec.eye = vec3(0.0f, 0.0f, 5.0f);
+    spec.near = 1.0f;
+    spec.far = 3e38f;
+    const Camera camera = frameCamera(spec, cube(1.0f), kAspect);
+    EXPECT_TRUE(allFinite(camera.clipFromView));
+    EXPECT_LT(project(camera, vec3(0.0f, 0.0f, 1.0f)).z, project(camera, vec3(0.0f, 0.0f, -1.0f)).z);
+    EXPECT_LT(project(camera, vec3(0.0f, 0.0f, -1.0f)).z, 1.0f);
+}
+
+TEST(Camera, SceneOutsideNearAndFarIsRefused) {
+    CameraSpec spec;
+    spec.eye = vec3(0.0f, 0.0f, 5.0f);
+    spec.far = 3.0f;  // the cube spans 4..6 from the eye
+    EXPECT_NE(errorOf(spec, cube(1.0f)).find("beyond the camera's far plane (3"), std::string::npos);
+    spec.far.reset();
+    spec.near = 7.0f;
+    EXPECT_NE(errorOf(spec, cube(1.0f)).find("nearer than the camera's near plane (7"), std::string::npos);
+}
+
+// Near 1e-4 and far 1e4 for a cube 4 to 6 units away: the whole cube shares about 80 depth values.
+TEST(Camera, PoorDepthPrecisionIsWarnedAbout) {
+    CameraSpec spec;
+    spec.eye = vec3(0.0f, 0.0f, 5.0f);
+    spec.near = 1e-4f;
+    spec.far = 1e4f;
+    const Camera camera = frameCamera(spec, cube(1.0f), kAspect);
+    ASSERT_EQ(camera.warnings.size(), 1u);
+    EXPECT_NE(camera.warnings[0].find("steps of the 32-bit depth buffer"), std::string::npos)
+        << camera.warnings[0];
+    spec.near = 1.0f;
+    EXPECT_TRUE(frameCamera(spec, cube(1.0f), kAspect).warnings.empty());
+}
+
+// The framing is the same at every scale: a box of 1e-7, 1e-30 or 1e30 lands where the unit box does
+// (the radius used to be clamped at 1e-6, framing a 1e-7 model five times too small).
+TEST(Camera, FramingDoesNotDependOnTheScale) {
+    const Camera unit = frameCamera({}, cube(1.0f), kAspect);
+    const vec3 corner(1.0f, 1.0f, 1.0f);
+    for (const float scale : {1e-7f, 1e-30f, 1e30f}) {
+        const Camera scaled = frameCamera({}, cube(scale), kAspect);
+        EXPECT_TRUE(allFinite(scaled.viewFromWorld) && allFinite(scaled.clipFromView)) << scale;
+        const vec3 a = project(unit, corner), b = project(scaled, corner * scale);
+        EXPECT_NEAR(b.x, a.x, 1e-5f) << scale;
+        EXPECT_NEAR(b.y, a.y, 1e-5f) << scale;
+        EXPECT_NEAR(b.z, a.z, 1e-5f) << scale;
+        EXPECT_NEAR(glm::length(glm::dvec3(scaled.eye)) / scale, glm::length(glm::dvec3(unit.eye)),
+                    1e-4 * glm::length(glm::dvec3(unit.eye)))
+            << scale;
+    }
+}
+
+// A box of no size (one point) leaves no distance to frame it from: the camera asks for an eye.
+TEST(Camera, BoxOfNoSizeAsksForAnEye) {
+    const std::string error = errorOf({}, cube(0.0f, vec3(1.0f, 2.0f, 3.0f)));
+    EXPECT_NE(error.find("no size to frame (every vertex is at (1, 2, 3))"), std::string::npos) << error;
+    CameraSpec spec;
+    spec.eye = vec3(1.0f, 2.0f, 8.0f);
+    EXPECT_EQ(frameCamera(spec, cube(0.0f, vec3(1.0f, 2.0f, 3.0f)), kAspect).target, vec3(1.0f, 2.0f, 3.0f));
+}
+
+}  // namespace
+}  // namespace facet

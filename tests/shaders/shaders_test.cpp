@@ -1,0 +1,315 @@
+// The built-in surface shaders: the eight-lane path computes what the one-fragment path computes, for
+// every reflection model and shading frequency; the term mask, the two-sided flip and the GL clamp.
+#include "shaders/shaders.h"
+
+#include "pipeline/pipeline.h"
+
+#include <random>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <gtest/gtest.h>
+
+namespace facet {
+namespace {
+
+SurfaceUniforms threeLights() {
+    SurfaceUniforms u;
+    u.globalAmbient = vec3(0.1f, 0.12f, 0.08f);
+    u.lightCount = 3;
+    u.lights[0].kind = LightKind::Directional;
+    u.lights[0].direction = normalize(vec3(-0.3f, -1.0f, -0.5f));
+    u.lights[0].diffuse = vec3(1.0f, 0.9f, 0.8f);
+    u.lights[1].kind = LightKind::Point;
+    u.lights[1].position = vec3(2.0f, 1.0f, 1.5f);
+    u.lights[1].diffuse = u.lights[1].specular = vec3(0.4f, 0.5f, 1.2f);
+    u.lights[1].c1 = 0.3f;
+    u.lights[2].kind = LightKind::Spot;
+    u.lights[2].position = vec3(-2.0f, -1.0f, 0.5f);
+    u.lights[2].spotDirection = normalize(vec3(1.0f, 0.5f, -1.0f));
+    u.lights[2].spotCutoffDegrees = 50.0f;
+    u.lights[2].spotExponent = 4.0f;
+    u.lights[2].ambient = vec3(0.05f);
+    u.lights[2].diffuse = vec3(0.7f, 0.2f, 0.1f);
+    u.material.ambient = vec3(0.3f);
+    u.material.diffuse = vec3(0.6f, 0.4f, 0.2f);
+    u.material.specular = vec3(0.5f);
+    u.material.emission = vec3(0.01f, 0.02f, 0.0f);
+    u.pbr.baseColor = vec3(0.9f, 0.6f, 0.3f);
+    u.pbr.roughness = 0.4f;
+    u.pbr.metalness = 0.3f;
+    return u;
+}
+
+// A 2 × 2 texture of four colours, for the emission map.
+Texture fourColours() {
+    Texture t;
+    t.width = t.height = 2;
+    t.texels = {vec4(0.2f, 0.5f, 1.0f, 1.0f), vec4(1.0f, 0.1f, 0.3f, 1.0f), vec4(0.0f, 0.8f, 0.4f, 1.0f),
+                vec4(0.6f, 0.6f, 0.1f, 0.5f)};
+    return t;
+}
+
+template <ShadingFrequency kFrequency>
+void expectBatchMatchesScalar(const SurfaceUniforms& uniforms, std::mt19937& rng, const char* what) {
+    using S = SurfaceShader<kFrequency>;
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f), unit(0.0f, 1.0f);
+    for (int trial = 0; trial < 100; ++trial) {
+        FragmentBatch batch;
+        batch.mask = 0xff;
+        typename S::Varyings scalar[8];
+        for (int lane = 0; lane < 8; ++lane) {
+            float* f = reinterpret_cast<float*>(&scalar[lane]);
+            for (int k = 0; k < kVaryingFloatCount<typename S::Varyings>; ++k) {
+                f[k] = k < 3 ? u(rng) - (k == 2 ? 3.0f : 0.0f) : u(rng);  // positions in front of the eye
+                batch.varyings[k][lane] = f[k];
+            }
+        }
+        const Vec4x8 wide = S::fragmentBatch(batch, uniforms);
+        for (int lane = 0; lane < 8; ++lane) {
+            const vec4 one = S::fragment(scalar[lane], uniforms);
+            const float tolerance = 2e-5f * (1.0f + std::abs(one.r) + std::abs(one.g) + std::abs(one.b));
+            EXPECT_NEAR(wide.x[lane], one.r, tolerance) << what;
+            EXPECT_NEAR(wide.y[lane], one.g, tolerance) << what;
+            EXPECT_NEAR(wide.z[lane], one.b, tolerance) << what;
+            EXPECT_EQ(wide.w[lane], one.a) << what;
+        }
+    }
+}
+
+TEST(SurfaceShader, BatchMatchesScalarForEveryModelAndFrequency) {
+    std::mt19937 rng(3);
+    SurfaceUniforms uniforms = threeLights();
+    for (ReflectionModel model :
+         {ReflectionModel::Phong, ReflectionModel::BlinnPhong, ReflectionModel::CookTorrance}) {
+        uniforms.reflection = model;
+        for (float shininess : {0.0f, 1.0f, 12.0f, 128.0f}) {
+            uniforms.material.shininess = shininess;
+            expectBatchMatchesScalar<ShadingFrequency::Phong>(uniforms, rng, "per pixel");
+            expectBatchMatchesScalar<ShadingFrequency::Gouraud>(uniforms, rng, "per vertex");
+        }
+    }
+    const Texture map = fourColours();
+    uniforms.emissionMap = &map;
+    expectBatchMatchesScalar<ShadingFrequency::Phong>(uniforms, rng, "per pixel, emission map");
+    expectBatchMatchesScalar<ShadingFrequency::Gouraud>(uniforms, rng, "per vertex, emission map");
+}
+
+// The per-vertex shaders' eight-lane vertexBatch gives what vertex() gives, lane by lane, for every
+// model, with and without the GL clamp.
+TEST(SurfaceShader, VertexBatchMatchesVertex) {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    SurfaceUniforms uniforms = threeLights();
+    uniforms.viewFromObject = glm::translate(mat4(1.0f), vec3(0.1f, -0.2f, -3.0f));
+    uniforms.clipFromObject = glm::perspective(1.0f, 1.3f, 0.1f, 10.0f) * uniforms.viewFromObject;
+    using Gouraud = SurfaceShader<ShadingFrequency::Gouraud>;
+    static_assert(BatchVertexShader<Gouraud> && BatchVertexShader<SurfaceShader<ShadingFrequency::Flat>>);
+    for (ReflectionModel model :
+         {ReflectionModel::Phong, ReflectionModel::BlinnPhong, ReflectionModel::CookTorrance}) {
+        for (bool clamp : {false, true}) {
+            uniforms.reflection = model;
+            uniforms.clampColor = clamp;
+            MeshVertex in[kVertexBatch];
+            for (MeshVertex& v : in)
+                v = {vec3(u(rng), u(rng), u(rng)), normalize(vec3(u(rng), u(rng), 1.0f)),
+                     vec2(u(rng), u(rng))};
+            VertexOut<Gouraud::Varyings> out[kVertexBatch];
+            Gouraud::vertexBatch(in, uniforms, out);
+            for (int lane = 0; lane < kVertexBatch; ++lane) {
+                const VertexOut<Gouraud::Varyings> one = Gouraud::vertex(in[lane], uniforms);
+                EXPECT_EQ(out[lane].position, one.position);
+                const float* a = reinterpret_cast<const float*>(&out[lane].varyings);
+                const float* b = reinterpret_cast<const float*>(&one.varyings);
+                for (int k = 0; k < kVaryingFloatCount<Gouraud::Varyings>; ++k)
+                    EXPECT_NEAR(a[k], b[k], 2e-5f * (1.0f + std::abs(b[k])))
+                        << "float " << k << ", lane " << lane;
+            }
+        }
+    }
+}
+
+// The vertex shader of the per-vertex shaders lights the vertex; the fragment shader only adds up.
+TEST(SurfaceShader, PerVertexColourIsTheLightingAtTheVertex) {
+    SurfaceUniforms u = threeLights();
+    const MeshVertex v{vec3(0.2f, -0.1f, -3.0f), normalize(vec3(0.1f, 0.3f, 1.0f)), vec2(0.0f)};
+    const auto out = SurfaceShader<ShadingFrequency::Gouraud>::vertex(v, u);
+    const vec4 color = SurfaceShader<ShadingFrequency::Gouraud>::fragment(out.varyings, u);
+    const vec3 expected = surfaceTerms<float, vec3>(v.position, v.normal, u.material.diffuse, u).sum();
+    EXPECT_NEAR(color.r, expected.r, 1e-6f);
+    EXPECT_NEAR(color.g, expected.g, 1e-6f);
+    EXPECT_NEAR(color.b, expected.b, 1e-6f);
+    // And per pixel at the same point with the same normal gives the same colour.
+    const SurfaceShader<ShadingFrequency::Phong>::Varyings pixel{v.position, v.normal, v.uv};
+    const vec4 perPixel = SurfaceShader<ShadingFrequency::Phong>::fragment(pixel, u);
+    EXPECT_NEAR(perPixel.r, expected.r, 1e-6f);
+    EXPECT_NEAR(perPixel.g, expected.g, 1e-6f);
+}
+
+// The colour of one shader at one surface point, through its scalar path or its eight-lane path.
+template <ShadingFrequency kFrequency>
+vec3 shadeOnce(const MeshVertex& v, const SurfaceUniforms& u, bool batch) {
+    using S = SurfaceShader<kFrequency>;
+    const VertexOut<typename S::Varyings> out = S::vertex(v, u);
+    if (!batch) return vec3(S::fragment(out.varyings, u));
+    FragmentBatch in;
+    in.mask = 0xff;
+    const float* f = reinterpret_cast<const float*>(&out.varyings);
+    for (int k = 0; k < kVaryingFloatCount<typename S::Varyings>; ++k)
+        for (int lane = 0; lane < 8; ++lane)
+            in.varyings[k][lane] = f[k];
+    const Vec4x8 c = S::fragmentBatch(in, u);
+    return vec3(c.x[3], c.y[3], c.z[3]);
+}
+
+// An emission map multiplies the emission term by its texel, at every shading frequency and on both
+// paths; the other terms are what they are without it (so the emission is counted once, textured).
+template <ShadingFrequency kFrequency>
+void expectEmissionTextured(const char* what) {
+    const Texture map = fourColours();
+    SurfaceUniforms plain = threeLights();
+    plain.material.emission = vec3(0.3f, 0.2f, 0.1f);
+    SurfaceUniforms mapped = plain;
+    mapped.emissionMap = &map;
+    const MeshVertex v{vec3(0.2f, -0.1f, -3.0f), normalize(vec3(0.1f, 0.3f, 1.0f)), vec2(0.3f, 0.8f)};
+    const vec3 texel(sampleBilinear(map, v.uv));
+    for (bool batch : {false, true}) {
+        const vec3 expected = shadeOnce<kFrequency>(v, plain, batch) - plain.material.emission +
+                              plain.material.emission * texel;
+        const vec3 got = shadeOnce<kFrequency>(v, mapped, batch);
+        EXPECT_NEAR(got.r, expected.r, 1e-5f) << what << (batch ? ", eight lanes" : ", one fragment");
+        EXPECT_NEAR(got.g, expected.g, 1e-5f) << what << (batch ? ", eight lanes" : ", one fragment");
+        EXPECT_NEAR(got.b, expected.b, 1e-5f) << what << (batch ? ", eight lanes" : ", one fragment");
+    }
+    // The emission image alone is m_emission ⊗ texel.
+    mapped.terms = kEmissionTerm;
+    const vec3 alone = shadeOnce<kFrequency>(v, mapped, false);
+    EXPECT_NEAR(alone.r, 0.3f * texel.r, 1e-6f) << what;
+    EXPECT_NEAR(alone.g, 0.2f * texel.g, 1e-6f) << what;
+    EXPECT_NEAR(alone.b, 0.1f * texel.b, 1e-6f) << what;
+}
+
+TEST(SurfaceShader, EmissionMapMultipliesTheEmissionAtEveryFrequency) {
+    expectEmissionTextured<ShadingFrequency::Phong>("per pixel");
+    expectEmissionTextured<ShadingFrequency::Gouraud>("per vertex");
+    expectEmissionTextured<ShadingFrequency::Flat>("flat");
+}
+
+// Each term bit selects one term; the four component images add up to the full image.
+TEST(SurfaceShader, TermMaskSelectsComponentsThatSumToTheWhole) {
+    SurfaceUniforms u = threeLights();
+    const vec3 P(0.3f, 0.2f, -2.0f), N = normalize(vec3(-0.2f, 0.4f, 1.0f));
+    for (ReflectionModel model :
+         {ReflectionModel::Phong, ReflectionModel::BlinnPhong, ReflectionModel::CookTorrance}) {
+        u.reflection = model;
+        u.terms = kAllTerms;
+        const LightingTerms<vec3> all = surfaceTerms<float, vec3>(P, N, u.albedo(), u);
+        vec3 sum(0.0f);
+        for (std::uint8_t bit : {kEmissionTerm, kAmbientTerm, kDiffuseTerm, kSpecularTerm}) {
+            u.terms = bit;
+            const LightingTerms<vec3> one = surfaceTerms<float, vec3>(P, N, u.albedo(), u);
+            sum += one.sum();
+            const vec3 expected = bit == kEmissionTerm  ? all.emission
+                                  : bit == kAmbientTerm ? all.ambient
+                                  : bit == kDiffuseTerm ? all.diffuse
+                                                        : all.specular;
+            EXPECT_EQ(one.sum(), expected) << int(bit);
+        }
+        EXPECT_NEAR(sum.r, all.sum().r, 1e-6f);
+        EXPECT_NEAR(sum.g, all.sum().g, 1e-6f);
+        EXPECT_GT(all.diffuse.r, 0.0f);
+        EXPECT_GT(all.specular.r, 0.0f);
+    }
+}
+
+// Facet lights the side facing the viewer; OpenGL 1.x (one-sided) leaves a back-facing normal unlit.
+TEST(SurfaceShader, TwoSidedFlipLightsTheSideFacingTheViewer) {
+    SurfaceUniforms u;
+    u.lightCount = 1;
+    u.lights[0].kind = LightKind::Directional;
+    u.lights[0].direction = vec3(0.0f, 0.0f, -1.0f);  // travelling away from the eye, like the view
+    u.material.diffuse = vec3(0.5f);
+    u.material.specular = vec3(0.0f);
+    const vec3 P(0.0f, 0.0f, -5.0f), awayFromViewer(0.0f, 0.0f, -1.0f);
+    const auto diffuse = [&] {
+        return surfaceTerms<float, vec3>(P, awayFromViewer, u.albedo(), u).diffuse.r;
+    };
+    u.twoSidedFlip = true;
+    EXPECT_FLOAT_EQ(diffuse(), 0.5f);
+    u.twoSidedFlip = false;
+    EXPECT_FLOAT_EQ(diffuse(), 0.0f);
+}
+
+// OpenGL 1.x clamps each vertex's colour to [0, 1] before interpolating it.
+TEST(SurfaceShader, ClampColorClampsPerVertexBeforeInterpolation) {
+    SurfaceUniforms u;
+    u.lightCount = 1;
+    u.lights[0].kind = LightKind::Directional;
+    u.lights[0].direction = vec3(0.0f, 0.0f, -1.0f);
+    u.lights[0].diffuse = vec3(4.0f, 0.5f, 0.0f);
+    u.material.diffuse = vec3(1.0f);
+    u.material.specular = vec3(0.0f);
+    const MeshVertex v{vec3(0.0f, 0.0f, -5.0f), vec3(0.0f, 0.0f, 1.0f), vec2(0.0f)};
+    using Gouraud = SurfaceShader<ShadingFrequency::Gouraud>;
+    EXPECT_FLOAT_EQ(Gouraud::fragment(Gouraud::vertex(v, u).varyings, u).r, 4.0f);
+    u.clampColor = true;
+    const vec4 clamped = Gouraud::fragment(Gouraud::vertex(v, u).varyings, u);
+    EXPECT_FLOAT_EQ(clamped.r, 1.0f);
+    EXPECT_FLOAT_EQ(clamped.g, 0.5f);
+}
+
+}  // namespace
+}  // namespace facet
+
+namespace facet {
+namespace {
+
+// The lecture's argument for Phong shading, as a test: a highlight that falls between the vertices of a
+// coarse mesh is lost by Gouraud shading (the vertices see almost no specular light, and interpolating
+// their colours cannot make a peak), while Phong shading, lighting every pixel with the interpolated
+// normal, keeps it. Two triangles, a quad 2 × 2 units at 3 units from the eye; a point light one unit
+// in front of its centre, so the mirror direction hits the eye only at the centre.
+template <ShadingFrequency kFrequency>
+float brightestSpecular(const SurfaceUniforms& uniforms) {
+    const std::vector<MeshVertex> quad = {{vec3(-1, -1, -3), vec3(0, 0, 1), vec2(0)},
+                                          {vec3(1, -1, -3), vec3(0, 0, 1), vec2(0)},
+                                          {vec3(1, 1, -3), vec3(0, 0, 1), vec2(0)},
+                                          {vec3(-1, 1, -3), vec3(0, 0, 1), vec2(0)}};
+    const std::vector<std::uint32_t> indices = {0, 1, 2, 0, 2, 3};
+    Framebuffer fb(64, 64);
+    DrawContext context(1);
+    fb.clear(vec4(0.0f), 1.0f, context.pool);
+    DrawState state;
+    state.viewport = {0, 0, 64, 64};
+    draw<SurfaceShader<kFrequency>>(state, uniforms, std::span<const MeshVertex>(quad),
+                                    std::span<const std::uint32_t>(indices), fb, context);
+    float brightest = 0.0f;
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x)
+            brightest = std::max(brightest, fb.color(x, y).r);
+    return brightest;
+}
+
+TEST(ShadingFrequency, GouraudLosesAHighlightBetweenVerticesThatPhongShadingKeeps) {
+    SurfaceUniforms u;
+    u.clipFromObject = glm::perspective(glm::radians(50.0f), 1.0f, 0.1f, 10.0f);  // the eye at the origin
+    u.lightCount = 1;
+    u.lights[0].kind = LightKind::Point;
+    u.lights[0].position = vec3(0.0f, 0.0f, -2.0f);
+    u.material.diffuse = vec3(0.0f);
+    u.material.specular = vec3(1.0f);
+    u.material.shininess = 64.0f;
+    u.terms = kSpecularTerm;
+    for (ReflectionModel model : {ReflectionModel::Phong, ReflectionModel::BlinnPhong}) {
+        u.reflection = model;
+        // At a corner, e.g. (1, 1, −3): N·H ≈ 0.79 (Blinn) or R·V ≈ 0.35 (Phong), and 0.79^64 ≈ 3·10⁻⁷.
+        const float perVertex = brightestSpecular<ShadingFrequency::Gouraud>(u);
+        const float perPixel = brightestSpecular<ShadingFrequency::Phong>(u);
+        EXPECT_LT(perVertex, 1e-3f) << "Gouraud: the corners see no highlight, so no pixel does";
+        EXPECT_GT(perPixel, 0.9f) << "Phong shading: the pixels near the centre see the light's mirror image";
+    }
+}
+
+}  // namespace
+}  // namespace facet

@@ -1,0 +1,470 @@
+// The lighting formulas: hand-computed light sources and lighting-equation terms, Fresnel against its
+// closed forms, the microfacet distributions' normalisation and the Lambert white furnace by numerical
+// integration, the eight-lane templates against the one-lane ones, and the material presets.
+#include "shading/lighting.h"
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+namespace facet {
+namespace {
+
+constexpr float kPi = std::numbers::pi_v<float>;
+
+void expectVec3Near(const vec3& actual, const vec3& expected, float tolerance) {
+    EXPECT_NEAR(actual.x, expected.x, tolerance);
+    EXPECT_NEAR(actual.y, expected.y, tolerance);
+    EXPECT_NEAR(actual.z, expected.z, tolerance);
+}
+
+// ---- Light sources ----------------------------------------------------------------------------------
+
+TEST(LightAttenuation, KnownDistances) {
+    LightParams light;
+    light.kind = LightKind::Point;
+    light.c0 = 1.0f;
+    light.c1 = 0.5f;
+    light.c2 = 0.25f;
+    EXPECT_FLOAT_EQ(attenuation(light, 0.0f), 1.0f);          // 1/1
+    EXPECT_FLOAT_EQ(attenuation(light, 1.0f), 1.0f / 1.75f);  // 1/(1 + 0.5 + 0.25)
+    EXPECT_FLOAT_EQ(attenuation(light, 2.0f), 1.0f / 3.0f);   // 1/(1 + 1 + 1)
+    light.kind = LightKind::Directional;
+    EXPECT_FLOAT_EQ(attenuation(light, 2.0f), 1.0f);
+}
+
+// A spot at the origin shining down −y, and a surface point 5 units away at `degrees` from its axis:
+// the spot factor there.
+float spotAt(const LightParams& light, float degrees) {
+    const float theta = glm::radians(degrees);
+    const vec3 position = 5.0f * vec3(std::sin(theta), -std::cos(theta), 0.0f);
+    return spotFactor<float>(light, lightVector<float>(light, position).L);
+}
+
+LightParams downwardSpot() {
+    LightParams light;
+    light.kind = LightKind::Spot;
+    light.position = vec3(0.0f);
+    light.spotDirection = vec3(0.0f, -1.0f, 0.0f);
+    light.spotCutoffDegrees = 30.0f;
+    return light;
+}
+
+TEST(LightSpot, OpenGLConeEdgeWithExponentZero) {
+    const LightParams light = downwardSpot();
+    EXPECT_FLOAT_EQ(spotAt(light, 0.0f), 1.0f);
+    EXPECT_FLOAT_EQ(spotAt(light, 29.9f), 1.0f);  // just inside: cos^0 = 1
+    EXPECT_EQ(spotAt(light, 30.1f), 0.0f);        // just outside
+    EXPECT_EQ(spotAt(light, 120.0f), 0.0f);
+}
+
+TEST(LightSpot, OpenGLConeEdgeWithExponentTwo) {
+    LightParams light = downwardSpot();
+    light.spotExponent = 2.0f;
+    const float c = std::cos(glm::radians(29.9f));        // 0.866897
+    EXPECT_NEAR(spotAt(light, 29.9f), c * c, 1e-5f);      // 0.751511
+    EXPECT_NEAR(spotAt(light, 10.0f), 0.969846f, 1e-5f);  // cos²10°
+    EXPECT_EQ(spotAt(light, 30.1f), 0.0f);
+}
+
+TEST(LightSpot, CutoffOf180MeansNoCone) {
+    LightParams light = downwardSpot();
+    light.spotCutoffDegrees = 180.0f;
+    light.spotExponent = 2.0f;
+    EXPECT_EQ(spotAt(light, 45.0f), 1.0f);
+    EXPECT_EQ(spotAt(light, 170.0f), 1.0f);  // even behind the spot
+}
+
+TEST(LightSpot, SmoothVariantAtInnerOuterAndHalfway) {
+    LightParams light = downwardSpot();
+    light.spotProfile = SpotProfile::Smooth;
+    light.spotInnerDegrees = 20.0f;
+    light.spotOuterDegrees = 30.0f;
+    EXPECT_NEAR(spotAt(light, 20.0f), 1.0f, 1e-4f);
+    EXPECT_EQ(spotAt(light, 10.0f), 1.0f);
+    EXPECT_NEAR(spotAt(light, 30.0f), 0.0f, 1e-4f);
+    EXPECT_EQ(spotAt(light, 35.0f), 0.0f);
+    // Halfway in cosine: t = ½, smoothstep = ½²(3 − 1) = ½.
+    const float halfwayCos = 0.5f * (std::cos(glm::radians(20.0f)) + std::cos(glm::radians(30.0f)));
+    EXPECT_NEAR(spotAt(light, glm::degrees(std::acos(halfwayCos))), 0.5f, 1e-4f);
+    // A quarter of the way in from the outer edge: t = ¼, ¼²(3 − ½) = 0.15625.
+    const float quarterCos = 0.75f * std::cos(glm::radians(30.0f)) + 0.25f * std::cos(glm::radians(20.0f));
+    EXPECT_NEAR(spotAt(light, glm::degrees(std::acos(quarterCos))), 0.15625f, 1e-4f);
+}
+
+// ---- The standard lighting equation -----------------------------------------------------------------
+
+PhongMaterial testMaterial() {
+    PhongMaterial m;
+    m.emission = vec3(0.01f, 0.02f, 0.03f);
+    m.ambient = vec3(0.2f, 0.3f, 0.4f);
+    m.diffuse = vec3(0.5f, 0.5f, 1.0f);
+    m.specular = vec3(1.0f);
+    m.shininess = 2.0f;
+    return m;
+}
+
+TEST(LightingEquation, LightStraightAboveGivesDiffuseProduct) {
+    LightParams light;
+    light.kind = LightKind::Point;
+    light.position = vec3(0.0f, 5.0f, 0.0f);
+    light.ambient = vec3(0.1f);
+    light.diffuse = vec3(0.8f, 0.6f, 0.4f);
+    const PhongMaterial m = testMaterial();
+    const vec3 globalAmbient(0.5f);
+    const std::vector<LightParams> lights{light};
+    const LightingTerms<vec3> t = standardLighting<float>(vec3(0.0f), vec3(0.0f, 1.0f, 0.0f),
+                                                          vec3(3.0f, 4.0f, 0.0f), m, globalAmbient, lights);
+    EXPECT_FLOAT_EQ(t.diffuse.x, 0.4f);  // 0.8·0.5, N·L = 1
+    EXPECT_FLOAT_EQ(t.diffuse.y, 0.3f);  // 0.6·0.5
+    EXPECT_FLOAT_EQ(t.diffuse.z, 0.4f);  // 0.4·1
+    expectVec3Near(t.emission, m.emission, 0.0f);
+    expectVec3Near(t.ambient,
+                   vec3(0.5f * 0.2f + 0.1f * 0.2f, 0.5f * 0.3f + 0.1f * 0.3f, 0.5f * 0.4f + 0.1f * 0.4f),
+                   1e-6f);
+    expectVec3Near(t.sum(), t.emission + t.ambient + t.diffuse + t.specular, 1e-6f);
+
+    // The same from a directional light travelling straight down.
+    LightParams sun = light;
+    sun.kind = LightKind::Directional;
+    sun.direction = vec3(0.0f, -1.0f, 0.0f);
+    const std::vector<LightParams> suns{sun};
+    const LightingTerms<vec3> s = standardLighting<float>(vec3(0.0f), vec3(0.0f, 1.0f, 0.0f),
+                                                          vec3(3.0f, 4.0f, 0.0f), m, globalAmbient, suns);
+    EXPECT_FLOAT_EQ(s.diffuse.x, 0.4f);
+    EXPECT_FLOAT_EQ(s.diffuse.y, 0.3f);
+    EXPECT_FLOAT_EQ(s.diffuse.z, 0.4f);
+}
+
+TEST(LightingEquation, LightBehindSurfaceGivesNoDiffuseNorSpecular) {
+    LightParams light;
+    light.kind = LightKind::Point;
+    light.position = vec3(1.0f, -5.0f, 0.5f);  // below the face: N·L < 0
+    light.ambient = vec3(0.1f);
+    const std::vector<LightParams> lights{light};
+    for (SpecularModel model : {SpecularModel::Phong, SpecularModel::BlinnPhong}) {
+        const LightingTerms<vec3> t =
+            standardLighting<float>(vec3(0.0f), vec3(0.0f, 1.0f, 0.0f), vec3(0.0f, -3.0f, 1.0f),
+                                    testMaterial(), vec3(0.0f), lights, model);
+        EXPECT_EQ(t.diffuse, vec3(0.0f));
+        EXPECT_EQ(t.specular, vec3(0.0f));
+        expectVec3Near(t.ambient, vec3(0.02f, 0.03f, 0.04f), 1e-7f);  // ambient does not care
+    }
+}
+
+// N = +y, light travelling along −(1, 1, 0) so L = (√½, √½, 0), eye straight above so V = +y, n = 2:
+//   Phong:       R = 2(N·L)N − L = (−√½, √½, 0), R·V = √½, spec = ½;
+//   Blinn-Phong: H = normalize(L + V), N·H = cos 22.5°, spec = cos² 22.5° = (2 + √2)/4 = 0.853553.
+TEST(LightingEquation, PhongAndBlinnPhongSpecularDiffer) {
+    LightParams light;
+    light.kind = LightKind::Directional;
+    light.direction = vec3(-1.0f, -1.0f, 0.0f);
+    const std::vector<LightParams> lights{light};
+    const auto specular = [&](SpecularModel model) {
+        return standardLighting<float>(vec3(0.0f), vec3(0.0f, 1.0f, 0.0f), vec3(0.0f, 10.0f, 0.0f),
+                                       testMaterial(), vec3(0.0f), lights, model)
+            .specular;
+    };
+    expectVec3Near(specular(SpecularModel::Phong), vec3(0.5f), 1e-6f);
+    expectVec3Near(specular(SpecularModel::BlinnPhong), vec3((2.0f + std::sqrt(2.0f)) / 4.0f), 1e-6f);
+}
+
+// ---- Fresnel ----------------------------------------------------------------------------------------
+
+TEST(BrdfFresnel, SchlickVersusExactForEta1_5) {
+    const float eta = 1.5f;
+    const float f0 = 0.04f;  // ((η − 1)/(η + 1))² = (0.5/2.5)²
+    EXPECT_NEAR(etaFromF0(f0), eta, 1e-6f);
+    for (float degrees : {0.0f, 60.0f, 89.0f}) {
+        const float c = std::cos(glm::radians(degrees));
+        std::printf("Fresnel, eta 1.5, %2.0f deg: Schlick %.6f, exact %.6f\n", degrees, fresnelSchlick(f0, c),
+                    fresnelExact(c, eta));
+    }
+    EXPECT_NEAR(fresnelExact(1.0f, eta), 0.04f, 1e-6f);
+    EXPECT_NEAR(fresnelSchlick(f0, 1.0f), f0, 1e-7f);
+    // 60°: Schlick 0.04 + 0.96·0.5⁵ = 0.07; exact ½(R_s + R_p) = ½(0.176571 + 0.001802) = 0.089187.
+    EXPECT_NEAR(fresnelSchlick(f0, 0.5f), 0.07f, 1e-6f);
+    EXPECT_NEAR(fresnelExact(0.5f, eta), 0.089187f, 1e-5f);
+    // 89°: both close to 1. Schlick 0.04 + 0.96·(1 − 0.017452)⁵ = 0.919102; exact, g = 1.118171:
+    // ½ (1.100719/1.135623)² (1 + (−0.980181/1.019210)²) = 0.904186.
+    const float c89 = std::cos(glm::radians(89.0f));
+    EXPECT_NEAR(fresnelSchlick(f0, c89), 0.919102f, 1e-5f);
+    EXPECT_NEAR(fresnelExact(c89, eta), 0.904186f, 2e-5f);
+    EXPECT_NEAR(fresnelExact(0.0f, eta), 1.0f, 1e-6f);  // grazing
+}
+
+TEST(BrdfFresnel, TotalInternalReflectionReflectsEverything) {
+    // From glass into air (η = 1/1.5): the critical angle is asin(1/1.5) = 41.8°.
+    EXPECT_EQ(fresnelExact(std::cos(glm::radians(60.0f)), 1.0f / 1.5f), 1.0f);
+    EXPECT_LT(fresnelExact(std::cos(glm::radians(20.0f)), 1.0f / 1.5f), 0.1f);
+}
+
+// ---- Microfacet distributions and the Lambert term: numerical integration over the hemisphere -------
+
+// ∫_Ω f(cos θ) dω = 2π ∫_0^{π/2} f(cos θ) sin θ dθ, by the midpoint rule.
+template <class Integrand>
+double integrateHemisphere(Integrand f) {
+    constexpr int kSteps = 200000;
+    const double step = (std::numbers::pi / 2) / kSteps;
+    double sum = 0;
+    for (int i = 0; i < kSteps; ++i) {
+        const double theta = (i + 0.5) * step;
+        sum += f(static_cast<float>(std::cos(theta))) * std::sin(theta);
+    }
+    return 2 * std::numbers::pi * sum * step;
+}
+
+TEST(BrdfDistribution, GgxAndBeckmannNormalise) {
+    for (float alpha : {0.1f, 0.3f, 0.7f}) {
+        const double ggx = integrateHemisphere([&](float c) { return distributionGGX(c, alpha) * c; });
+        const double beckmann =
+            integrateHemisphere([&](float c) { return distributionBeckmann(c, alpha) * c; });
+        EXPECT_NEAR(ggx, 1.0, 0.01) << "GGX, alpha " << alpha;
+        EXPECT_NEAR(beckmann, 1.0, 0.01) << "Beckmann, alpha " << alpha;
+    }
+}
+
+TEST(BrdfDistribution, ZeroBelowTheHorizon) {
+    EXPECT_EQ(distributionGGX(-0.5f, 0.3f), 0.0f);
+    EXPECT_EQ(distributionBeckmann(-0.5f, 0.3f), 0.0f);
+    EXPECT_EQ(distributionBeckmann(0.0f, 0.3f), 0.0f);
+}
+
+// A white Lambertian surface (F = 0: the exact Fresnel of η = 1) reflects all it receives:
+// ∫_Ω (1/π) cos θ dω = 1, integrating the BRDF itself over the light directions.
+TEST(BrdfLambert, WhiteFurnace) {
+    PbrMaterial white;
+    white.baseColor = vec3(1.0f);
+    white.metalness = 0.0f;
+    white.f0 = vec3(0.0f);
+    const BrdfModel model{NormalDistribution::GGX, FresnelModel::Exact, GeometryTerm::SmithGGX};
+    const vec3 n(0.0f, 0.0f, 1.0f), v = normalize(vec3(0.3f, 0.1f, 1.0f));
+    const double reflected = integrateHemisphere([&](float c) {
+        const vec3 l(std::sqrt(std::max(1.0f - c * c, 0.0f)), 0.0f, c);
+        return brdf<float>(n, l, v, white, model).x * c;
+    });
+    EXPECT_NEAR(reflected, 1.0, 1e-4);
+    EXPECT_NEAR(integrateHemisphere([](float c) { return c / kPi; }), 1.0, 1e-6);
+}
+
+TEST(BrdfMicrofacet, MetalsReflectTheirBaseColour) {
+    PbrMaterial gold;
+    gold.baseColor = findMaterialPreset("gold")->f0;
+    gold.metalness = 1.0f;
+    gold.roughness = 0.5f;
+    const vec3 n(0.0f, 0.0f, 1.0f);
+    // Head-on: F = F0 = base colour, no diffuse, so f ∝ base colour.
+    const vec3 f = brdf<float>(n, n, n, gold);
+    const float alpha = 0.25f;
+    const float expected = distributionGGX(1.0f, alpha) * geometrySmithGGX(1.0f, 1.0f, alpha) / 4.0f;
+    expectVec3Near(f, gold.baseColor * expected, 1e-5f * expected);
+}
+
+TEST(BrdfMicrofacet, ZeroVectorsGiveNoNaN) {
+    const PbrMaterial m;
+    const vec3 zero(0.0f), up(0.0f, 0.0f, 1.0f), side = normalize(vec3(1.0f, 0.0f, 0.2f));
+    for (NormalDistribution d : {NormalDistribution::Beckmann, NormalDistribution::GGX})
+        for (FresnelModel fr : {FresnelModel::Schlick, FresnelModel::Exact})
+            for (GeometryTerm g : {GeometryTerm::CookTorrance, GeometryTerm::SmithGGX}) {
+                const BrdfModel model{d, fr, g};
+                for (const auto& [n, l, v] : {std::array{zero, up, up}, std::array{up, zero, up},
+                                              std::array{up, up, zero}, std::array{up, side, -side}}) {
+                    const vec3 f = brdf<float>(n, l, v, m, model);
+                    EXPECT_TRUE(std::isfinite(f.x) && std::isfinite(f.y) && std::isfinite(f.z));
+                }
+            }
+}
+
+// ---- Eight lanes = one lane ---------------------------------------------------------------------------
+
+vec3 lane(const Vec3x8& v, int i) {
+    return vec3(v.x[i], v.y[i], v.z[i]);
+}
+
+void expectLaneNear(const vec3& wide, const vec3& scalar, const char* what) {
+    for (int k = 0; k < 3; ++k)
+        EXPECT_NEAR(wide[k], scalar[k], 1e-4f * std::max(std::abs(scalar[k]), 1e-3f)) << what;
+}
+
+struct RandomLanes {
+    std::mt19937 rng{7};
+    std::uniform_real_distribution<float> u{-1.0f, 1.0f};
+    vec3 next() { return vec3(u(rng), u(rng), u(rng)); }
+    void fill(vec3 (&scalar)[8], Vec3x8& wide, float scale = 1.0f) {
+        for (int i = 0; i < 8; ++i) {
+            scalar[i] = next() * scale;
+            wide.x[i] = scalar[i].x;
+            wide.y[i] = scalar[i].y;
+            wide.z[i] = scalar[i].z;
+        }
+    }
+};
+
+std::vector<LightParams> testLights() {
+    LightParams sun;
+    sun.kind = LightKind::Directional;
+    sun.direction = vec3(-0.3f, -1.0f, -0.5f);
+    sun.ambient = vec3(0.05f);
+    sun.diffuse = vec3(1.0f, 0.9f, 0.8f);
+    LightParams point;
+    point.position = vec3(2.0f, 1.0f, 1.5f);
+    point.c1 = 0.3f;
+    point.c2 = 0.1f;
+    point.diffuse = vec3(0.4f, 0.5f, 1.2f);
+    LightParams spot;
+    spot.kind = LightKind::Spot;
+    spot.position = vec3(0.0f, 3.0f, 0.0f);
+    spot.spotCutoffDegrees = 50.0f;
+    spot.spotExponent = 3.0f;
+    LightParams soft = spot;
+    soft.spotProfile = SpotProfile::Smooth;
+    soft.position = vec3(1.0f, 2.5f, -1.0f);
+    soft.spotInnerDegrees = 25.0f;
+    soft.spotOuterDegrees = 45.0f;
+    return {sun, point, spot, soft};
+}
+
+TEST(LightingWide, StandardLightingMatchesScalar) {
+    RandomLanes random;
+    const std::vector<LightParams> lights = testLights();
+    PhongMaterial m = testMaterial();
+    for (float shininess : {1.0f, 12.0f, 128.0f})
+        for (SpecularModel model : {SpecularModel::Phong, SpecularModel::BlinnPhong})
+            for (int trial = 0; trial < 100; ++trial) {
+                m.shininess = shininess;
+                vec3 position[8], normal[8];
+                Vec3x8 positionWide, normalWide;
+                random.fill(position, positionWide);
+                random.fill(normal, normalWide);
+                const vec3 eye(0.3f, 0.5f, 4.0f);
+                const LightingTerms<Vec3x8> wide =
+                    standardLighting<Float8>(positionWide, normalWide, eye, m, vec3(0.1f), lights, model);
+                for (int i = 0; i < 8; ++i) {
+                    const LightingTerms<vec3> one =
+                        standardLighting<float>(position[i], normal[i], eye, m, vec3(0.1f), lights, model);
+                    expectLaneNear(lane(wide.emission, i), one.emission, "emission");
+                    expectLaneNear(lane(wide.ambient, i), one.ambient, "ambient");
+                    expectLaneNear(lane(wide.diffuse, i), one.diffuse, "diffuse");
+                    expectLaneNear(lane(wide.specular, i), one.specular, "specular");
+                }
+            }
+}
+
+// Where a point light is seen from: at the light itself L = 0 with distance 0 (no NaN), and where the
+// squared distance underflows float L is still 0 or a unit vector, in one lane and in eight.
+TEST(LightingWide, LightVectorAtTheLightIsZeroElseUnit) {
+    LightParams light;
+    light.kind = LightKind::Point;
+    light.position = vec3(0.0f);  // at the origin, so that the tiny offsets are not rounded away
+    const vec3 offsets[8] = {vec3(0.0f),         vec3(1e-25f, 0, 0), vec3(0, 3e-21f, 0),
+                             vec3(0, 0, 1e-19f), vec3(1.0f, 0, 0),   vec3(0.3f, -0.4f, 0.1f),
+                             vec3(0, 0, -1e-3f), vec3(1e-10f)};
+    Vec3x8 positions;
+    for (int i = 0; i < 8; ++i) {
+        const vec3 p = light.position + offsets[i];
+        positions.x[i] = p.x;
+        positions.y[i] = p.y;
+        positions.z[i] = p.z;
+    }
+    const LightVector<Float8> wide = lightVector<Float8>(light, positions);
+    for (int i = 0; i < 8; ++i) {
+        const LightVector<float> one = lightVector<float>(light, lane(positions, i));
+        for (const vec3 L : {one.L, lane(wide.L, i)}) {
+            ASSERT_TRUE(std::isfinite(L.x) && std::isfinite(L.y) && std::isfinite(L.z)) << i;
+            const float length = glm::length(L);
+            EXPECT_TRUE(length == 0.0f || std::abs(length - 1.0f) < 1e-5f)
+                << "lane " << i << ": |L| = " << length;
+        }
+        EXPECT_EQ(one.L, lane(wide.L, i)) << i;
+    }
+    EXPECT_EQ(lightVector<float>(light, light.position).L, vec3(0.0f));
+    EXPECT_EQ(lightVector<float>(light, light.position).distance, 0.0f);
+}
+
+// A point light a hair above a surface's plane (N·L = 1e-5, as rounding leaves a light placed in the
+// plane) gives no highlight, as exactly in the plane: otherwise rounding speckles the face.
+TEST(LightingEquation, GrazingLightGivesNoSpecular) {
+    PhongMaterial m;
+    m.diffuse = vec3(0.5f);
+    m.specular = vec3(1.0f);
+    m.shininess = 10.0f;
+    LightParams light;
+    light.kind = LightKind::Point;
+    light.position = vec3(1.0f, 0.0f, 1e-5f);
+    const vec3 position(0.0f), normal(0.0f, 0.0f, 1.0f), eye(-1.0f, 0.0f, 1.0f);
+    const std::vector<LightParams> lights{light};
+    for (SpecularModel model : {SpecularModel::Phong, SpecularModel::BlinnPhong}) {
+        const LightingTerms<vec3> one =
+            standardLighting<float>(position, normal, eye, m, vec3(0.0f), lights, model);
+        EXPECT_EQ(one.specular, vec3(0.0f)) << int(model);
+        EXPECT_LT(one.diffuse.x, 1e-4f);
+        const LightingTerms<Vec3x8> wide =
+            standardLighting<Float8>(Vec3x8(position), Vec3x8(normal), eye, m, vec3(0.0f), lights, model);
+        EXPECT_EQ(lane(wide.specular, 3), vec3(0.0f)) << int(model);
+    }
+    PbrMaterial pbr;
+    pbr.roughness = 0.3f;
+    const LightingTerms<vec3> cookTorrance = physicallyBasedTerms<float>(
+        position, normal, eye, pbr, pbr.baseColor, vec3(0.0f), vec3(0.0f), lights);
+    EXPECT_EQ(cookTorrance.specular, vec3(0.0f));
+    EXPECT_EQ(cookTorrance.diffuse, vec3(0.0f));
+}
+
+TEST(BrdfWide, BrdfAndPhysicallyBasedLightingMatchScalar) {
+    RandomLanes random;
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    const std::vector<LightParams> lights = testLights();
+    for (NormalDistribution d : {NormalDistribution::Beckmann, NormalDistribution::GGX})
+        for (FresnelModel fr : {FresnelModel::Schlick, FresnelModel::Exact})
+            for (GeometryTerm g : {GeometryTerm::CookTorrance, GeometryTerm::SmithGGX})
+                for (int trial = 0; trial < 50; ++trial) {
+                    const BrdfModel model{d, fr, g};
+                    PbrMaterial m;
+                    m.baseColor = vec3(unit(random.rng), unit(random.rng), unit(random.rng));
+                    m.metalness = unit(random.rng);
+                    m.roughness = 0.05f + 0.95f * unit(random.rng);
+                    m.f0 = vec3(0.02f + 0.06f * unit(random.rng));
+                    vec3 n[8], l[8], v[8];
+                    Vec3x8 nWide, lWide, vWide;
+                    random.fill(n, nWide);
+                    random.fill(l, lWide);
+                    random.fill(v, vWide);
+                    const Vec3x8 f = brdf<Float8>(nWide, lWide, vWide, m, model);
+                    const Vec3x8 lit = physicallyBasedLighting<Float8>(lWide, nWide, vec3(0.3f, 0.5f, 4.0f),
+                                                                       m, lights, model);
+                    for (int i = 0; i < 8; ++i) {
+                        expectLaneNear(lane(f, i), brdf<float>(n[i], l[i], v[i], m, model), "brdf");
+                        expectLaneNear(lane(lit, i),
+                                       physicallyBasedLighting<float>(l[i], n[i], vec3(0.3f, 0.5f, 4.0f), m,
+                                                                      lights, model),
+                                       "physically based lighting");
+                    }
+                }
+}
+
+// ---- Presets -----------------------------------------------------------------------------------------
+
+TEST(BrdfPresets, LookupIgnoresCaseAndRejectsUnknownNames) {
+    const std::optional<MaterialPreset> gold = findMaterialPreset("GoLd");
+    ASSERT_TRUE(gold.has_value());
+    EXPECT_TRUE(gold->metal);
+    expectVec3Near(gold->f0, vec3(1.000f, 0.782f, 0.344f), 0.02f);  // RTR4 table 9.2
+    EXPECT_EQ(findMaterialPreset("aluminum")->f0, findMaterialPreset("Aluminium")->f0);
+    EXPECT_FLOAT_EQ(findMaterialPreset("water")->f0.x, 0.02f);
+    EXPECT_FLOAT_EQ(findMaterialPreset("skin")->f0.x, 0.028f);
+    EXPECT_FLOAT_EQ(findMaterialPreset("hair")->f0.x, 0.046f);
+    EXPECT_FALSE(findMaterialPreset("hair")->metal);
+    for (std::string_view name : {"gold", "silver", "copper", "iron", "aluminium", "titanium", "chromium",
+                                  "nickel", "platinum", "brass", "zinc", "mercury", "palladium"})
+        EXPECT_TRUE(findMaterialPreset(name).has_value()) << name;
+    EXPECT_FALSE(findMaterialPreset("unobtainium").has_value());
+    EXPECT_FALSE(findMaterialPreset("").has_value());
+    EXPECT_FALSE(findMaterialPreset("gol").has_value());
+}
+
+}  // namespace
+}  // namespace facet
