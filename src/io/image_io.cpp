@@ -313,6 +313,8 @@ void writeImage(const fs::path& path, const LinearImage& image, ColorEncoding en
         // Store the values as given: without this, the PNG writer would divide colour by alpha.
         spec.attribute("oiio:UnassociatedAlpha", 1);
         spec.attribute("Software", "Facet");
+        // No time of writing (OpenEXR and TIFF would stamp one): the same scene gives the same bytes.
+        spec.attribute("DateTime", "");
 
         const void* data = format->isFloat ? static_cast<const void*>(floats.data())
                                            : static_cast<const void*>(bytes.data());

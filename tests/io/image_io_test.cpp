@@ -159,6 +159,18 @@ TEST_F(ImageIoTest, ExrKeepsFloatValuesExactly) {
         EXPECT_EQ(back.pixels[i], image.pixels[i]) << i;
 }
 
+// The same image gives the same bytes: no file carries the time it was written (OpenEXR's writer
+// and TIFF writers stamp the current time unless told a date; Facet gives an empty one).
+TEST_F(ImageIoTest, FilesCarryNoTimeOfWriting) {
+    for (const char* name : {"stamp.exr", "stamp.png", "stamp.tif", "stamp.jpg", "stamp.ppm"}) {
+        const fs::path path = folder_ / name;
+        writeImage(path, gradient());
+        auto input = OIIO::ImageInput::open(path.string());
+        ASSERT_TRUE(input) << name;
+        EXPECT_EQ(input->spec().get_string_attribute("DateTime"), "") << name;
+    }
+}
+
 TEST_F(ImageIoTest, PpmHasThreeChannelsAndReadsBackOpaque) {
     const fs::path path = folder_ / "image.ppm";
     writeImage(path, solid({0.5f, 0.25f, 1.0f, 0.3f}));
