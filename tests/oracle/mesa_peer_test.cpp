@@ -1,10 +1,7 @@
-// The Mesa peer. compareImages() tells a like-for-like pair of renderings from a different silhouette, a
-// flipped image or different shading; comparePixels() counts 8-bit code differences. Where OSMesa can be
-// opened: hand-computed values that OpenGL's fixed-function lighting and the peer's GLSL programs must
-// give on softpipe (Mesa's reference rasterizer), and Mesa llvmpipe drawing the image Facet draws (the
-// benchmark's check). Tests skip, with the reason, where OSMesa cannot be opened. Mesa takes one Gallium
-// driver per process: ctest runs every test in a process of its own, so each test picks its driver;
-// running the whole binary at once skips the tests of the driver not opened first.
+// Mesa's OSMesa as the oracle: hand-computed values that OpenGL's fixed-function lighting and the peer's
+// GLSL programs must give on softpipe (Mesa's reference rasterizer), and Mesa llvmpipe drawing the image
+// Facet draws (the benchmark's check). Every test needs OSMesa: it derives from MesaTest
+// (support/mesa_fixture.h), which skips it, with the reason, where OSMesa cannot be opened.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,123 +12,10 @@
 
 #include "oracle/mesa_peer.h"
 #include "render/renderer.h"
+#include "support/mesa_fixture.h"
 
 namespace facet {
 namespace {
-
-const vec4 kBackground(0.1f, 0.1f, 0.1f, 1.0f);
-
-// A disc of radius r centred at (cx, cy), shaded from left to right, on the background.
-LinearImage disc(int width, int height, float cx, float cy, float r) {
-    LinearImage image;
-    image.width = width;
-    image.height = height;
-    image.pixels.assign(static_cast<std::size_t>(width) * height, kBackground);
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) {
-            const float dx = x + 0.5f - cx, dy = y + 0.5f - cy;
-            if (dx * dx + dy * dy <= r * r) image.at(x, y) = vec4(0.3f + 0.5f * x / width, 0.4f, 0.5f, 1.0f);
-        }
-    return image;
-}
-
-TEST(CompareImages, IdenticalImagesAgree) {
-    const LinearImage a = disc(64, 48, 30.0f, 20.0f, 15.0f);
-    const ImageAgreement agreement = compareImages(a, a, kBackground);
-    EXPECT_TRUE(agreement.agrees());
-    EXPECT_EQ(agreement.coverageAgreement, 1.0);
-    EXPECT_EQ(agreement.colorWithinTolerance, 1.0);
-    EXPECT_EQ(agreement.meanColorDifference, 0.0);
-    EXPECT_EQ(agreement.foregroundA, agreement.foregroundB);
-    EXPECT_GT(agreement.foregroundA, 600u);
-}
-
-TEST(CompareImages, EdgePixelsAloneDoNotMatter) {
-    // Radius 15 vs 15.2: only a ring of edge pixels differs.
-    const ImageAgreement agreement =
-        compareImages(disc(64, 48, 30.0f, 20.0f, 15.0f), disc(64, 48, 30.0f, 20.0f, 15.2f), kBackground);
-    EXPECT_TRUE(agreement.agrees());
-    EXPECT_LT(agreement.coverageAgreement, 1.0);
-}
-
-TEST(CompareImages, AnotherSilhouetteDisagrees) {
-    const ImageAgreement agreement =
-        compareImages(disc(64, 48, 30.0f, 20.0f, 15.0f), disc(64, 48, 36.0f, 20.0f, 15.0f), kBackground);
-    EXPECT_FALSE(agreement.agrees());
-    EXPECT_LT(agreement.coverageAgreement, 0.98);
-}
-
-TEST(CompareImages, AnUpsideDownImageDisagrees) {
-    // GL's row 0 is the bottom, Facet's the top: forgetting the flip moves an off-centre shape.
-    const LinearImage a = disc(64, 48, 30.0f, 14.0f, 10.0f);
-    LinearImage flipped = a;
-    for (int y = 0; y < a.height; ++y)
-        for (int x = 0; x < a.width; ++x)
-            flipped.at(x, y) = a.at(x, a.height - 1 - y);
-    EXPECT_FALSE(compareImages(a, flipped, kBackground).agrees());
-}
-
-TEST(CompareImages, OtherShadingDisagrees) {
-    const LinearImage a = disc(64, 48, 30.0f, 20.0f, 15.0f);
-    LinearImage brighter = a;
-    for (vec4& p : brighter.pixels)
-        if (p != kBackground) p += vec4(0.1f, 0.0f, 0.0f, 0.0f);
-    const ImageAgreement agreement = compareImages(a, brighter, kBackground);
-    EXPECT_EQ(agreement.coverageAgreement, 1.0);
-    EXPECT_FALSE(agreement.agrees());
-}
-
-TEST(CompareImages, EmptyImagesDoNotAgree) {
-    // Nothing drawn on either side proves nothing.
-    const LinearImage empty = disc(16, 16, 0.0f, 0.0f, 0.0f);
-    EXPECT_FALSE(compareImages(empty, empty, kBackground).agrees());
-}
-
-TEST(CompareImages, SizesMustMatch) {
-    EXPECT_THROW(compareImages(disc(16, 16, 8, 8, 4), disc(16, 15, 8, 8, 4), kBackground),
-                 std::invalid_argument);
-}
-
-// ---- encodeChannel and comparePixels --------------------------------------------------------------------
-
-TEST(Quantize8, RoundsAsTheImageWriterDoes) {
-    EXPECT_EQ(encodeChannel(0.5f, kLinearEncoding), 128);  // 127.5 rounds up
-    EXPECT_EQ(encodeChannel(0.5f, kSrgbEncoding), 188);    // 1.055·0.5^(1/2.4) − 0.055 = 0.73536 → 187.5
-    EXPECT_EQ(encodeChannel(0.0031308f * 0.5f, kSrgbEncoding), 5);  // the linear toe: 12.92 c · 255 = 5.16
-    EXPECT_EQ(encodeChannel(-1.0f, kSrgbEncoding), 0);
-    EXPECT_EQ(encodeChannel(std::nanf(""), kLinearEncoding), 0);
-    EXPECT_EQ(encodeChannel(7.0f, kSrgbEncoding), 255);
-    EXPECT_EQ(encodeChannel(1.0f, kLinearEncoding), 255);
-}
-
-TEST(ComparePixels, CountsCodeStepsAndSilhouettePixels) {
-    const LinearImage a = disc(64, 48, 30.0f, 20.0f, 15.0f);
-    const PixelDifference same = comparePixels(a, a, kSrgbEncoding, kBackground);
-    EXPECT_EQ(same.pixels, 64u * 48u);
-    EXPECT_EQ(same.differing, 0u);
-    EXPECT_EQ(same.maxDifference, 0);
-    EXPECT_EQ(same.within1, 1.0);
-
-    // One interior pixel 2 codes brighter in red (linear encoding: 2/255), one silhouette pixel
-    // (background in a, drawn in b) far off.
-    LinearImage b = a;
-    b.at(30, 20).r = a.at(30, 20).r + 2.0f / 255.0f;
-    ASSERT_EQ(a.at(30, 4), kBackground);  // just above the disc (centre 20, radius 15)
-    b.at(30, 4) = vec4(0.9f, 0.4f, 0.5f, 1.0f);
-    const PixelDifference d = comparePixels(a, b, kLinearEncoding, kBackground);
-    EXPECT_EQ(d.differing, 2u);
-    EXPECT_EQ(d.differingAtEdges, 1u);
-    EXPECT_EQ(d.maxInteriorDifference, 2);
-    EXPECT_GT(d.maxDifference, 100);
-    EXPECT_DOUBLE_EQ(d.within1, 1.0 - 2.0 / d.pixels);
-    EXPECT_DOUBLE_EQ(d.within2, 1.0 - 1.0 / d.pixels);
-
-    // Without a background colour there is no silhouette.
-    const PixelDifference plain = comparePixels(a, b, kLinearEncoding);
-    EXPECT_EQ(plain.differingAtEdges, 0u);
-    EXPECT_EQ(plain.maxInteriorDifference, 0);
-    EXPECT_THROW(comparePixels(a, disc(64, 47, 30, 20, 15), kSrgbEncoding), std::invalid_argument);
-}
 
 // ---- OpenGL as the oracle: hand-computed values on softpipe ------------------------------------------
 
@@ -142,11 +26,8 @@ constexpr int kSize = 65;
 constexpr int kCentre = 32;
 const vec4 kClear(0.0f, 0.0f, 0.0f, 0.0f);  // alpha 0: drawn pixels have alpha 1
 
-std::unique_ptr<MesaPeer> openSoftpipe(std::string& whyNot) {
-    MesaOptions options;
-    options.driver = MesaDriver::Softpipe;
-    return MesaPeer::open(options, whyNot);
-}
+// Every test of this suite runs on softpipe (skipped where OSMesa cannot give it).
+class MesaOracle : public SoftpipeTest {};
 
 GlScene eyeScene() {
     GlScene scene;
@@ -204,25 +85,21 @@ bool drawn(const vec4& pixel) {
         EXPECT_NEAR(a_.b, e_.b, tolerance) << "blue";  \
     } while (false)
 
-TEST(MesaOracle, SoftpipeGivesACompatibilityContext) {
-    std::string whyNot;
-    const std::unique_ptr<MesaPeer> mesa = openSoftpipe(whyNot);
-    if (!mesa) GTEST_SKIP() << "Mesa softpipe (OSMesa) cannot be opened: " << whyNot;
-    EXPECT_EQ(mesa->driver(), MesaDriver::Softpipe);
-    EXPECT_NE(mesa->renderer().find("softpipe"), std::string::npos) << mesa->renderer();
-    EXPECT_NE(mesa->version().find("Compatibility"), std::string::npos) << mesa->version();
-    EXPECT_GE(std::stod(mesa->shadingLanguageVersion()), 1.3) << mesa->shadingLanguageVersion();
-    EXPECT_TRUE(mesa->floatColor());
-    RecordProperty("renderer", mesa->renderer());
-    RecordProperty("version", mesa->version());
-    RecordProperty("glsl", mesa->shadingLanguageVersion());
+TEST_F(MesaOracle, SoftpipeGivesACompatibilityContext) {
+    EXPECT_EQ(mesa().driver(), MesaDriver::Softpipe);
+    EXPECT_NE(mesa().renderer().find("softpipe"), std::string::npos) << mesa().renderer();
+    EXPECT_NE(mesa().version().find("Compatibility"), std::string::npos) << mesa().version();
+    EXPECT_GE(std::stod(mesa().shadingLanguageVersion()), 1.3) << mesa().shadingLanguageVersion();
+    EXPECT_TRUE(mesa().floatColor());
+    RecordProperty("renderer", mesa().renderer());
+    RecordProperty("version", mesa().version());
+    RecordProperty("glsl", mesa().shadingLanguageVersion());
 }
 
-TEST(MesaOracle, OneDriverPerProcess) {
+TEST_F(MesaOracle, OneDriverPerProcess) {
     std::string whyNot;
-    const std::unique_ptr<MesaPeer> mesa = openSoftpipe(whyNot);
-    if (!mesa) GTEST_SKIP() << "Mesa softpipe (OSMesa) cannot be opened: " << whyNot;
-    const std::unique_ptr<MesaPeer> second = openSoftpipe(whyNot);  // the same driver: fine
+    const std::unique_ptr<MesaPeer> second =
+        MesaPeer::open(MesaOptions{MesaDriver::Softpipe, 1}, whyNot);  // the same driver: fine
     EXPECT_NE(second, nullptr) << whyNot;
     whyNot.clear();
     EXPECT_EQ(MesaPeer::open(MesaOptions{MesaDriver::Llvmpipe, 1}, whyNot), nullptr);
@@ -234,14 +111,11 @@ TEST(MesaOracle, OneDriverPerProcess) {
 
 // Fixed function, m_diffuse = (0.5, 0.25, 0.125), a white light straight at the square, nothing else:
 // every pixel is m_diffuse, exactly but for float rounding.
-TEST(MesaOracle, FixedFunctionHeadOnDiffuseIsTheMaterial) {
-    std::string whyNot;
-    const std::unique_ptr<MesaPeer> mesa = openSoftpipe(whyNot);
-    if (!mesa) GTEST_SKIP() << "Mesa softpipe (OSMesa) cannot be opened: " << whyNot;
+TEST_F(MesaOracle, FixedFunctionHeadOnDiffuseIsTheMaterial) {
     GlScene scene = eyeScene();
     scene.lights = {headOnLight()};
     scene.draws = {fanSquare(GlProgram::FixedFunction, ShadingFrequency::Gouraud)};
-    const LinearImage image = drawScene(*mesa, scene);
+    const LinearImage image = drawScene(mesa(), scene);
     std::size_t covered = 0;
     for (const vec4& pixel : image.pixels) {
         if (!drawn(pixel)) continue;
@@ -255,10 +129,7 @@ TEST(MesaOracle, FixedFunctionHeadOnDiffuseIsTheMaterial) {
 
 // A point light 1.5 in front of the square's centre, attenuation 1/(c0 + c1 d + c2 d²) with
 // (c0, c1, c2) = (0.5, 0.25, 0.125): at the centre, 1/(0.5 + 0.375 + 0.28125) = 1/1.15625.
-TEST(MesaOracle, PointLightAttenuates) {
-    std::string whyNot;
-    const std::unique_ptr<MesaPeer> mesa = openSoftpipe(whyNot);
-    if (!mesa) GTEST_SKIP() << "Mesa softpipe (OSMesa) cannot be opened: " << whyNot;
+TEST_F(MesaOracle, PointLightAttenuates) {
     GlScene scene = eyeScene();
     LightParams light;
     light.kind = LightKind::Point;
@@ -273,17 +144,14 @@ TEST(MesaOracle, PointLightAttenuates) {
                                              std::pair{GlProgram::PerVertex, ShadingFrequency::Gouraud}}) {
         SCOPED_TRACE(int(program));
         scene.draws = {fanSquare(program, frequency)};
-        EXPECT_RGB_NEAR(drawScene(*mesa, scene).at(kCentre, kCentre), expected, 1e-5);
+        EXPECT_RGB_NEAR(drawScene(mesa(), scene).at(kCentre, kCentre), expected, 1e-5);
     }
 }
 
 // A spot at the eye: pointing at the square with a 30° cone, the square's centre gets the full light
 // (cos 0 = 1, any exponent), its ambient included; turned 45° away with a 10° cone, the square gets
 // none (every vertex is outside the cone): black.
-TEST(MesaOracle, FixedFunctionSpotCone) {
-    std::string whyNot;
-    const std::unique_ptr<MesaPeer> mesa = openSoftpipe(whyNot);
-    if (!mesa) GTEST_SKIP() << "Mesa softpipe (OSMesa) cannot be opened: " << whyNot;
+TEST_F(MesaOracle, FixedFunctionSpotCone) {
     GlScene scene = eyeScene();
     LightParams spot;
     spot.kind = LightKind::Spot;
@@ -296,13 +164,13 @@ TEST(MesaOracle, FixedFunctionSpotCone) {
     GlDraw draw = fanSquare(GlProgram::FixedFunction, ShadingFrequency::Gouraud);
     draw.material.ambient = vec3(0.2f);
     scene.draws = {draw};
-    EXPECT_RGB_NEAR(drawScene(*mesa, scene).at(kCentre, kCentre),
+    EXPECT_RGB_NEAR(drawScene(mesa(), scene).at(kCentre, kCentre),
                     vec3(0.5f, 0.25f, 0.125f) + vec3(0.5f * 0.2f), 1e-5);
 
     scene.lights[0].spotDirection = normalize(vec3(1.0f, 0.0f, -1.0f));
     scene.lights[0].spotCutoffDegrees = 10.0f;
     std::size_t covered = 0;
-    for (const vec4& pixel : drawScene(*mesa, scene).pixels) {
+    for (const vec4& pixel : drawScene(mesa(), scene).pixels) {
         if (!drawn(pixel)) continue;
         ++covered;
         EXPECT_EQ(vec3(pixel), vec3(0.0f));
@@ -360,18 +228,12 @@ void expectProvokingVertexColours(MesaPeer& mesa, GlProgram program) {
     EXPECT_GT(most - least, 0.2f);  // blended between the vertices' 0.6 … 1
 }
 
-TEST(MesaOracle, FixedFunctionFlatShadingTakesTheLastVertex) {
-    std::string whyNot;
-    const std::unique_ptr<MesaPeer> mesa = openSoftpipe(whyNot);
-    if (!mesa) GTEST_SKIP() << "Mesa softpipe (OSMesa) cannot be opened: " << whyNot;
-    expectProvokingVertexColours(*mesa, GlProgram::FixedFunction);
+TEST_F(MesaOracle, FixedFunctionFlatShadingTakesTheLastVertex) {
+    expectProvokingVertexColours(mesa(), GlProgram::FixedFunction);
 }
 
-TEST(MesaOracle, PerVertexFlatShadingTakesTheLastVertex) {
-    std::string whyNot;
-    const std::unique_ptr<MesaPeer> mesa = openSoftpipe(whyNot);
-    if (!mesa) GTEST_SKIP() << "Mesa softpipe (OSMesa) cannot be opened: " << whyNot;
-    expectProvokingVertexColours(*mesa, GlProgram::PerVertex);
+TEST_F(MesaOracle, PerVertexFlatShadingTakesTheLastVertex) {
+    expectProvokingVertexColours(mesa(), GlProgram::PerVertex);
 }
 
 // The standard equation at the centre: N = V = (0, 0, 1), a directional light from L = (0.6, 0, 0.8)
@@ -401,13 +263,10 @@ GlScene standardScene(GlProgram program, ShadingFrequency frequency, ReflectionM
     return scene;
 }
 
-TEST(MesaOracle, StandardEquationAtTheCentre) {
-    std::string whyNot;
-    const std::unique_ptr<MesaPeer> mesa = openSoftpipe(whyNot);
-    if (!mesa) GTEST_SKIP() << "Mesa softpipe (OSMesa) cannot be opened: " << whyNot;
+TEST_F(MesaOracle, StandardEquationAtTheCentre) {
     const vec3 blinn = standardAtCentre(0.59049), phong = standardAtCentre(0.1073741824);
     auto centre = [&](GlProgram program, ShadingFrequency frequency, ReflectionModel reflection) {
-        return drawScene(*mesa, standardScene(program, frequency, reflection)).at(kCentre, kCentre);
+        return drawScene(mesa(), standardScene(program, frequency, reflection)).at(kCentre, kCentre);
     };
     EXPECT_RGB_NEAR(centre(GlProgram::PerPixel, ShadingFrequency::Phong, ReflectionModel::BlinnPhong), blinn,
                     2e-5);
@@ -429,10 +288,7 @@ TEST(MesaOracle, StandardEquationAtTheCentre) {
 // plus a_global c_base = 0.1 c_base and m_emission (0.01, 0.02, 0.03). Gold (metal, F0 = c_base):
 // F0/(4α²) = 4 F0, unclamped in the float buffer, + 0.1 c_base + emission. Exact Fresnel at normal
 // incidence is ((η − 1)/(η + 1))² = F0 with η from F0 kept below 1: gold's red F0 = 1 reflects 0.9999.
-TEST(MesaOracle, CookTorranceHeadOn) {
-    std::string whyNot;
-    const std::unique_ptr<MesaPeer> mesa = openSoftpipe(whyNot);
-    if (!mesa) GTEST_SKIP() << "Mesa softpipe (OSMesa) cannot be opened: " << whyNot;
+TEST_F(MesaOracle, CookTorranceHeadOn) {
     const vec3 emission(0.01f, 0.02f, 0.03f);
     const vec3 dielectric(0.5f, 0.25f, 0.125f), gold(1.0f, 0.782f, 0.344f);
     for (const NormalDistribution d : {NormalDistribution::GGX, NormalDistribution::Beckmann})
@@ -461,16 +317,13 @@ TEST(MesaOracle, CookTorranceHeadOn) {
                         const vec3 expected = metal
                                                   ? 4.0f * goldF0 + 0.1f * gold + emission
                                                   : 0.16f + 0.96f * dielectric + 0.1f * dielectric + emission;
-                        EXPECT_RGB_NEAR(drawScene(*mesa, scene).at(kCentre, kCentre), expected, 5e-5);
+                        EXPECT_RGB_NEAR(drawScene(mesa(), scene).at(kCentre, kCentre), expected, 5e-5);
                     }
 }
 
 // A diffuse map of one texel colour t: per pixel and per vertex, t multiplies the diffuse term only;
 // with clampColor and in fixed function (GL_MODULATE) it multiplies the whole clamped colour.
-TEST(MesaOracle, DiffuseMapMultipliesAsDocumented) {
-    std::string whyNot;
-    const std::unique_ptr<MesaPeer> mesa = openSoftpipe(whyNot);
-    if (!mesa) GTEST_SKIP() << "Mesa softpipe (OSMesa) cannot be opened: " << whyNot;
+TEST_F(MesaOracle, DiffuseMapMultipliesAsDocumented) {
     Texture map;
     map.width = map.height = 2;
     map.texels.assign(4, vec4(0.5f, 0.75f, 1.0f, 1.0f));
@@ -486,7 +339,7 @@ TEST(MesaOracle, DiffuseMapMultipliesAsDocumented) {
         draw.diffuseMap = &map;
         draw.clampColor = clampColor;
         scene.draws = {draw};
-        return drawScene(*mesa, scene).at(kCentre, kCentre);
+        return drawScene(mesa(), scene).at(kCentre, kCentre);
     };
     const vec3 diffuseOnly = emission + ambient + diffuse * t;
     const vec3 whole = t * (emission + ambient + diffuse);
@@ -498,10 +351,7 @@ TEST(MesaOracle, DiffuseMapMultipliesAsDocumented) {
 }
 
 // Fixed function clamps the lit vertex colour to [0, 1]; the GLSL programs only with clampColor.
-TEST(MesaOracle, ColourClamping) {
-    std::string whyNot;
-    const std::unique_ptr<MesaPeer> mesa = openSoftpipe(whyNot);
-    if (!mesa) GTEST_SKIP() << "Mesa softpipe (OSMesa) cannot be opened: " << whyNot;
+TEST_F(MesaOracle, ColourClamping) {
     GlScene scene = eyeScene();
     LightParams light = headOnLight();
     light.diffuse = vec3(4.0f);
@@ -510,7 +360,7 @@ TEST(MesaOracle, ColourClamping) {
         GlDraw draw = fanSquare(program, frequency);
         draw.clampColor = clampColor;
         scene.draws = {draw};
-        return drawScene(*mesa, scene).at(kCentre, kCentre);
+        return drawScene(mesa(), scene).at(kCentre, kCentre);
     };
     const vec3 clamped(1.0f, 1.0f, 0.5f), unclamped(2.0f, 1.0f, 0.5f);
     EXPECT_RGB_NEAR(centre(GlProgram::FixedFunction, ShadingFrequency::Gouraud, false), clamped, 1e-6);
@@ -521,10 +371,7 @@ TEST(MesaOracle, ColourClamping) {
 
 // A smooth spot through the GLSL programs: at 25° off its axis, between the 20° inner and 30° outer
 // cones, smoothstep(cos 30°, cos 20°, cos 25°).
-TEST(MesaOracle, SmoothSpotThroughGlsl) {
-    std::string whyNot;
-    const std::unique_ptr<MesaPeer> mesa = openSoftpipe(whyNot);
-    if (!mesa) GTEST_SKIP() << "Mesa softpipe (OSMesa) cannot be opened: " << whyNot;
+TEST_F(MesaOracle, SmoothSpotThroughGlsl) {
     GlScene scene = eyeScene();
     LightParams spot;
     spot.kind = LightKind::Spot;
@@ -538,23 +385,20 @@ TEST(MesaOracle, SmoothSpotThroughGlsl) {
     const double c30 = std::cos(30.0 * pi / 180.0), c20 = std::cos(20.0 * pi / 180.0);
     const double t = (std::cos(25.0 * pi / 180.0) - c30) / (c20 - c30);
     const float factor = float(t * t * (3.0 - 2.0 * t));
-    EXPECT_RGB_NEAR(drawScene(*mesa, scene).at(kCentre, kCentre), factor * vec3(0.5f, 0.25f, 0.125f), 2e-5);
+    EXPECT_RGB_NEAR(drawScene(mesa(), scene).at(kCentre, kCentre), factor * vec3(0.5f, 0.25f, 0.125f), 2e-5);
 
     // Fixed function has no smooth spot.
     scene.draws = {fanSquare(GlProgram::FixedFunction, ShadingFrequency::Gouraud)};
-    EXPECT_THROW(mesa->load(scene), std::invalid_argument);
+    EXPECT_THROW(mesa().load(scene), std::invalid_argument);
 }
 
-TEST(MesaOracle, RefusesWhatOpenGlCannotDraw) {
-    std::string whyNot;
-    const std::unique_ptr<MesaPeer> mesa = openSoftpipe(whyNot);
-    if (!mesa) GTEST_SKIP() << "Mesa softpipe (OSMesa) cannot be opened: " << whyNot;
+TEST_F(MesaOracle, RefusesWhatOpenGlCannotDraw) {
     GlScene scene = eyeScene();
     scene.lights = {headOnLight()};
     auto loads = [&](const GlDraw& draw) {
         scene.draws = {draw};
         try {
-            mesa->load(scene);
+            mesa().load(scene);
             return std::string();
         } catch (const std::invalid_argument& error) {
             EXPECT_EQ(std::string(error.what()).find('\n'), std::string::npos) << error.what();
@@ -683,10 +527,7 @@ vec4 blended(BlendMode blend, const vec3& c, float a, const vec4& destination) {
 // every blend mode through the GLSL programs; Replace and Over in fixed function (the others need a
 // shader's output, RefusesWhatOpenGlCannotDraw). The framebuffer's alpha follows state.h too:
 // glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA) alone would give Over α² + (1 − α)·α_d.
-TEST(MesaOracle, BlendModesOverAnOpaqueSquare) {
-    std::string whyNot;
-    const std::unique_ptr<MesaPeer> mesa = openSoftpipe(whyNot);
-    if (!mesa) GTEST_SKIP() << "Mesa softpipe (OSMesa) cannot be opened: " << whyNot;
+TEST_F(MesaOracle, BlendModesOverAnOpaqueSquare) {
     const float a = 0.25f;
     for (const Lighting& lighting : {kFixedFunction, kPerPixel, kPerVertex, kPerVertexFlat})
         for (const BlendMode blend : {BlendMode::Replace, BlendMode::Over, BlendMode::PremultipliedOver,
@@ -695,7 +536,7 @@ TEST(MesaOracle, BlendModesOverAnOpaqueSquare) {
                 blend != BlendMode::Over)
                 continue;
             SCOPED_TRACE(describe(lighting) << ", blend " << blend);
-            const LinearImage image = drawScene(*mesa, overlapScene(lighting, blend, a));
+            const LinearImage image = drawScene(mesa(), overlapScene(lighting, blend, a));
             EXPECT_RGBA_NEAR(image.at(kCentre, kCentre), blended(blend, kTransparent, a, vec4(kOpaque, 1.0f)),
                              1e-6);
             EXPECT_RGBA_NEAR(image.at(kFrontOnly, kCentre), blended(blend, kTransparent, a, kClear), 1e-6);
@@ -704,10 +545,7 @@ TEST(MesaOracle, BlendModesOverAnOpaqueSquare) {
 
 // α = opacity × the diffuse map's alpha: opacity 0.5 with a white map of alpha 0.5 is α = 0.25 (fixed
 // function: GL_MODULATE multiplies the lit alpha, the material's diffuse alpha, by the texel's).
-TEST(MesaOracle, DiffuseMapAlphaMultipliesOpacity) {
-    std::string whyNot;
-    const std::unique_ptr<MesaPeer> mesa = openSoftpipe(whyNot);
-    if (!mesa) GTEST_SKIP() << "Mesa softpipe (OSMesa) cannot be opened: " << whyNot;
+TEST_F(MesaOracle, DiffuseMapAlphaMultipliesOpacity) {
     Texture map;
     map.width = map.height = 2;
     map.texels.assign(4, vec4(1.0f, 1.0f, 1.0f, 0.5f));
@@ -715,7 +553,7 @@ TEST(MesaOracle, DiffuseMapAlphaMultipliesOpacity) {
         SCOPED_TRACE(describe(lighting));
         GlScene scene = overlapScene(lighting, BlendMode::Over, 0.5f);
         scene.draws[1].diffuseMap = &map;
-        EXPECT_RGBA_NEAR(drawScene(*mesa, scene).at(kCentre, kCentre),
+        EXPECT_RGBA_NEAR(drawScene(mesa(), scene).at(kCentre, kCentre),
                          blended(BlendMode::Over, kTransparent, 0.25f, vec4(kOpaque, 1.0f)), 1e-6);
     }
 }
@@ -724,26 +562,23 @@ TEST(MesaOracle, DiffuseMapAlphaMultipliesOpacity) {
 // so the opaque square at z = −3 drawn after it passes GL_LESS and replaces it: OpenGL draws in the
 // order given, which is why transparent draws come last. With depth writes on, the farther square
 // fails the depth test there, and the nearer one's α·s over the clear colour stays.
-TEST(MesaOracle, DepthWritesOffLetALaterFartherDrawReplace) {
-    std::string whyNot;
-    const std::unique_ptr<MesaPeer> mesa = openSoftpipe(whyNot);
-    if (!mesa) GTEST_SKIP() << "Mesa softpipe (OSMesa) cannot be opened: " << whyNot;
+TEST_F(MesaOracle, DepthWritesOffLetALaterFartherDrawReplace) {
     for (const Lighting& lighting : {kFixedFunction, kPerPixel}) {
         SCOPED_TRACE(describe(lighting));
         GlScene scene = overlapScene(lighting, BlendMode::Over, 0.25f);
         std::swap(scene.draws[0], scene.draws[1]);  // the transparent square first
-        EXPECT_RGBA_NEAR(drawScene(*mesa, scene).at(kCentre, kCentre), vec4(kOpaque, 1.0f), 1e-6);
+        EXPECT_RGBA_NEAR(drawScene(mesa(), scene).at(kCentre, kCentre), vec4(kOpaque, 1.0f), 1e-6);
         scene.draws[0].depthWrite = true;
-        EXPECT_RGBA_NEAR(drawScene(*mesa, scene).at(kCentre, kCentre), vec4(0.25f * kTransparent, 0.25f),
+        EXPECT_RGBA_NEAR(drawScene(mesa(), scene).at(kCentre, kCentre), vec4(0.25f * kTransparent, 0.25f),
                          1e-6);
     }
 
     // A frame whose last draw turned depth writes off: the next frame still starts from a cleared depth
     // buffer (else the opaque square would fail GL_LESS against its own depth of the frame before).
     const GlScene scene = overlapScene(kPerPixel, BlendMode::Over, 0.25f);
-    const LinearImage first = drawScene(*mesa, scene);
-    mesa->renderFrame();
-    EXPECT_EQ(mesa->readImage().pixels, first.pixels);
+    const LinearImage first = drawScene(mesa(), scene);
+    mesa().renderFrame();
+    EXPECT_EQ(mesa().readImage().pixels, first.pixels);
 }
 
 // A fog of colour (0.2, 0.4, 0.6) and the factor f it should have.
@@ -774,10 +609,7 @@ vec3 fogged(const vec3& c, const FogParams& fog, float f) {
 // Every pixel, fixed function included: |z_eye| is linear across the square, so fixed function's
 // interpolating it from the vertices is exact. Then the GLSL programs' linear fog with end = start (a
 // wall, fog.h): at 2, the square is behind it (f = 0); at 2.5, in front of it (f = 1).
-TEST(MesaOracle, FogAtAKnownDepth) {
-    std::string whyNot;
-    const std::unique_ptr<MesaPeer> mesa = openSoftpipe(whyNot);
-    if (!mesa) GTEST_SKIP() << "Mesa softpipe (OSMesa) cannot be opened: " << whyNot;
+TEST_F(MesaOracle, FogAtAKnownDepth) {
     const std::vector<FogCase> cases = {
         {fogParams(FogMode::Linear, 2.0f, 4.0f), 1.0f},
         {fogParams(FogMode::Linear, 1.0f, 3.0f), 0.5f},
@@ -796,7 +628,7 @@ TEST(MesaOracle, FogAtAKnownDepth) {
         scene.draws = {fanSquare(lighting)};
         const vec3 expected = fogged(kOpaque, fogCase.fog, fogCase.f);
         std::size_t covered = 0;
-        for (const vec4& pixel : drawScene(*mesa, scene).pixels) {
+        for (const vec4& pixel : drawScene(mesa(), scene).pixels) {
             if (!drawn(pixel)) continue;
             ++covered;
             const vec3 difference = abs(vec3(pixel) - expected);
@@ -820,10 +652,7 @@ TEST(MesaOracle, FogAtAKnownDepth) {
 // The fog distance is |z_eye|, not −z_eye: a projection looking down +z (clip space does not care which
 // way the eye looks) shows a square at z = +2, fogged as at z = −2 (linear from 1 to 3: f = 0.5);
 // −z_eye = −2 would leave it unfogged. Emission only, without lights: c = m_emission.
-TEST(MesaOracle, FogDistanceIsTheAbsoluteEyeDepth) {
-    std::string whyNot;
-    const std::unique_ptr<MesaPeer> mesa = openSoftpipe(whyNot);
-    if (!mesa) GTEST_SKIP() << "Mesa softpipe (OSMesa) cannot be opened: " << whyNot;
+TEST_F(MesaOracle, FogDistanceIsTheAbsoluteEyeDepth) {
     const FogParams fog = fogParams(FogMode::Linear, 1.0f, 3.0f);
     for (const Lighting& lighting : {kFixedFunction, kPerPixel, kPerVertex}) {
         SCOPED_TRACE(describe(lighting));
@@ -835,7 +664,7 @@ TEST(MesaOracle, FogDistanceIsTheAbsoluteEyeDepth) {
         draw.material.diffuse = vec3(0.0f);
         draw.material.emission = kOpaque;
         scene.draws = {draw};
-        EXPECT_RGB_NEAR(drawScene(*mesa, scene).at(kCentre, kCentre), fogged(kOpaque, fog, 0.5f), 1e-6);
+        EXPECT_RGB_NEAR(drawScene(mesa(), scene).at(kCentre, kCentre), fogged(kOpaque, fog, 0.5f), 1e-6);
     }
 }
 
@@ -846,10 +675,7 @@ TEST(MesaOracle, FogDistanceIsTheAbsoluteEyeDepth) {
 // between the centre (|P| = 2) and the corners (1, ±1, −2) (|P| = √6), (1 − x)·2 + x·√6, farther than
 // √(4 + x²). Then exp² radial fog (density 0.25) in fixed function: its factor is computed per
 // fragment from the interpolated distance, e^(−(0.25·d)²), not interpolated from the vertices' factors.
-TEST(MesaOracle, RadialFog) {
-    std::string whyNot;
-    const std::unique_ptr<MesaPeer> mesa = openSoftpipe(whyNot);
-    if (!mesa) GTEST_SKIP() << "Mesa softpipe (OSMesa) cannot be opened: " << whyNot;
+TEST_F(MesaOracle, RadialFog) {
     FogParams fog = fogParams(FogMode::Linear, 1.0f, 3.0f);
     fog.distance = FogDistance::Radial;
     constexpr int column = 48;
@@ -862,7 +688,7 @@ TEST(MesaOracle, RadialFog) {
         scene.lights = {headOnLight()};
         scene.fog = params;
         scene.draws = {fanSquare(lighting)};
-        return drawScene(*mesa, scene);
+        return drawScene(mesa(), scene);
     };
     for (const Lighting& lighting : {kPerPixel, kPerVertex, kPerVertexFlat}) {
         SCOPED_TRACE(describe(lighting));
@@ -889,10 +715,7 @@ TEST(MesaOracle, RadialFog) {
 // Fog before the blend: linear fog from 1 to 5 fogs the opaque square at z = −3 with f = 0.5 and the
 // transparent one (α = 0.25) at z = −2 with f = 0.75; the blend then combines s' = 0.75·s + 0.25·c_fog
 // with d' = 0.5·d + 0.5·c_fog.
-TEST(MesaOracle, FogBeforeTheBlend) {
-    std::string whyNot;
-    const std::unique_ptr<MesaPeer> mesa = openSoftpipe(whyNot);
-    if (!mesa) GTEST_SKIP() << "Mesa softpipe (OSMesa) cannot be opened: " << whyNot;
+TEST_F(MesaOracle, FogBeforeTheBlend) {
     const FogParams fog = fogParams(FogMode::Linear, 1.0f, 5.0f);
     const vec3 d = fogged(kOpaque, fog, 0.5f), s = fogged(kTransparent, fog, 0.75f);
     for (const auto& [lighting, blend] :
@@ -902,7 +725,7 @@ TEST(MesaOracle, FogBeforeTheBlend) {
         SCOPED_TRACE(describe(lighting) << ", blend " << blend);
         GlScene scene = overlapScene(lighting, blend, 0.25f);
         scene.fog = fog;
-        EXPECT_RGBA_NEAR(drawScene(*mesa, scene).at(kCentre, kCentre),
+        EXPECT_RGBA_NEAR(drawScene(mesa(), scene).at(kCentre, kCentre),
                          blended(blend, s, 0.25f, vec4(d, 1.0f)), 1e-6);
     }
 }
@@ -910,11 +733,10 @@ TEST(MesaOracle, FogBeforeTheBlend) {
 // ---- The benchmark's peer: llvmpipe draws what Facet draws -------------------------------------------
 
 // The cow, textured, lit by the default directional light and a point light, at 160×120.
-TEST(MesaPeer, DrawsTheSameImageAsFacet) {
-    std::string whyNot;
-    const std::unique_ptr<MesaPeer> mesa = MesaPeer::open(MesaOptions{MesaDriver::Llvmpipe, 1}, whyNot);
-    if (!mesa) GTEST_SKIP() << "Mesa llvmpipe (OSMesa) cannot be loaded: " << whyNot;
-    EXPECT_NE(mesa->renderer().find("llvmpipe"), std::string::npos) << mesa->renderer();
+class BenchmarkPeer : public LlvmpipeTest {};
+
+TEST_F(BenchmarkPeer, DrawsTheSameImageAsFacet) {
+    EXPECT_NE(mesa().renderer().find("llvmpipe"), std::string::npos) << mesa().renderer();
 
     Scene scene = sceneForModel(FACET_SOURCE_DIR "/models/spot/spot_triangulated.obj");
     scene.width = 160;
@@ -935,10 +757,10 @@ TEST(MesaPeer, DrawsTheSameImageAsFacet) {
     DrawContext context(1);
     renderFrame(prepared, framebuffer, context);
     const GlScene glScene = toGlScene(prepared);
-    mesa->load(glScene);
-    mesa->renderFrame();
-    const LinearImage mesaImage = mesa->readImage();
-    const float tolerance = mesa->floatColor() ? 1e-5f : 0.5f / 255.0f + 1e-5f;
+    mesa().load(glScene);
+    mesa().renderFrame();
+    const LinearImage mesaImage = mesa().readImage();
+    const float tolerance = mesa().floatColor() ? 1e-5f : 0.5f / 255.0f + 1e-5f;
     const ImageAgreement agreement =
         compareImages(toImage(framebuffer), mesaImage, prepared.clearColor, tolerance);
     EXPECT_TRUE(agreement.agrees()) << "coverage " << agreement.coverageAgreement << ", colour within "
@@ -948,9 +770,9 @@ TEST(MesaPeer, DrawsTheSameImageAsFacet) {
     EXPECT_GT(agreement.foregroundA, 2000u);  // the cow fills a good part of the frame
 
     // A second frame of a reloaded scene is the same.
-    mesa->load(glScene);
-    mesa->renderFrame();
-    EXPECT_EQ(mesa->readImage().pixels, mesaImage.pixels);
+    mesa().load(glScene);
+    mesa().renderFrame();
+    EXPECT_EQ(mesa().readImage().pixels, mesaImage.pixels);
 }
 
 }  // namespace

@@ -21,9 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "base/errors.h"
-#include "base/quote.h"
 #include "bench/bench.h"
-#include "render/renderer.h"
 #include "scene/mesh.h"
 #include "scene/scene.h"
 
@@ -1525,87 +1523,6 @@ TEST_F(SceneTest, QuotedValuesAreShortAndPrintable) {
                   "JSON syntax error at line 1, column 100012: invalid string: missing closing quote; "
                   "last read: '\"" +
                   std::string(39, 'a') + "…'");
-}
-
-// ---- Directions of any length ---------------------------------------------------------------------
-
-// The scene `text` (with "model" the bundled cube) drawn at 48×36 on one thread.
-LinearImage renderCube(const fs::path& path, const std::string& text) {
-    nlohmann::json document = nlohmann::json::parse(text);
-    document["model"] = FACET_SOURCE_DIR "/models/cube/cube.obj";
-    document["width"] = 48;
-    document["height"] = 36;
-    std::ofstream(path) << document.dump();
-    const PreparedScene prepared = prepareScene(loadScene(path));
-    Framebuffer framebuffer(48, 36);
-    DrawContext context(1);
-    renderFrame(prepared, framebuffer, context);
-    return toImage(framebuffer);
-}
-
-// Only an exactly zero vector is refused; any other length lights the model exactly as the same
-// direction at unit length (normalising in float turned 1e-30, 1e20 and -3e38 into NaN: black).
-TEST_F(SceneTest, DirectionsOfAnyLengthLightLikeUnitOnes) {
-    const std::pair<std::string, std::string> cases[] = {
-        {R"({"lights": [{"direction": [0, -1e-30, 0]}]})", R"({"lights": [{"direction": [0, -1, 0]}]})"},
-        {R"({"lights": [{"direction": [0, -1e20, 0]}]})", R"({"lights": [{"direction": [0, -1, 0]}]})"},
-        {R"({"lights": [{"direction": [-3e38, 0, 0]}]})", R"({"lights": [{"direction": [-1, 0, 0]}]})"},
-        // 2^-100 · [1, -2, -2]: scaled by a power of two, the same unit vector to the last bit.
-        {R"({"lights": [{"direction": [7.888609052210118e-31, -1.5777218104420236e-30, -1.5777218104420236e-30]}]})",
-         R"({"lights": [{"direction": [1, -2, -2]}]})"},
-        {R"({"lights": [{"type": "spot", "position": [0, 3, 0], "direction": [0, -1e-30, 0], "cutoff": 40}]})",
-         R"({"lights": [{"type": "spot", "position": [0, 3, 0], "direction": [0, -1, 0], "cutoff": 40}]})"},
-        {R"({"camera": {"eye": [2, 1, 3], "target": [0, 0, 0], "up": [0, 1e-30, 0]}})",
-         R"({"camera": {"eye": [2, 1, 3], "target": [0, 0, 0], "up": [0, 1, 0]}})"},
-        {R"({"camera": {"eye": [2, 1, 3], "target": [0, 0, 0], "up": [0, 3e38, 0]}})",
-         R"({"camera": {"eye": [2, 1, 3], "target": [0, 0, 0], "up": [0, 1, 0]}})"},
-    };
-    for (const auto& [extreme, unit] : cases) {
-        SCOPED_TRACE(extreme);
-        const LinearImage expected = renderCube(folder_ / "unit.json", unit);
-        const LinearImage actual = renderCube(folder_ / "extreme.json", extreme);
-        // The cube is drawn and lit: some pixel is brighter than the background in the corner.
-        bool lit = false;
-        for (const glm::vec4& p : expected.pixels)
-            lit = lit || p.r > expected.pixels[0].r + 0.05f;
-        EXPECT_TRUE(lit);
-        ASSERT_EQ(actual.pixels.size(), expected.pixels.size());
-        std::size_t differing = 0;
-        for (std::size_t i = 0; i < expected.pixels.size(); ++i)
-            differing += actual.pixels[i] != expected.pixels[i];
-        EXPECT_EQ(differing, 0u);
-    }
-}
-
-// ---- The quoting helper ---------------------------------------------------------------------------
-
-TEST(Quote, CutsAfterFortyCharactersAndEscapesWhatATerminalWouldNotShow) {
-    EXPECT_EQ(inQuotes("camera.fvoy"), R"("camera.fvoy")");
-    EXPECT_EQ(inQuotes("nan", '\''), "'nan'");
-    EXPECT_EQ(inQuotes(std::string(40, 'x')), '"' + std::string(40, 'x') + '"');
-    EXPECT_EQ(inQuotes(std::string(41, 'x')), '"' + std::string(40, 'x') + "…\"");
-    // Characters, not bytes, are counted, and a cut never splits one.
-    std::string accents;
-    for (int i = 0; i < 41; ++i)
-        accents += "é";
-    EXPECT_EQ(inQuotes(accents), '"' + accents.substr(0, 80) + "…\"");
-    EXPECT_EQ(inQuotes("a\nb\tc\rd"), R"("a\nb\tc\rd")");
-    EXPECT_EQ(inQuotes("say \"hi\" \\ 'x'"), R"("say \"hi\" \\ 'x'")");
-    EXPECT_EQ(inQuotes("it's", '\''), R"('it\'s')");
-    EXPECT_EQ(inQuotes("\x1B[31mred"), R"("\x1B[31mred")");
-    EXPECT_EQ(inQuotes("\x7F"), R"("\x7F")");
-    // Not UTF-8: a stray byte, a stray continuation byte, an overlong '/', a cut sequence, a surrogate.
-    EXPECT_EQ(inQuotes("\xFF"), R"("\xFF")");
-    EXPECT_EQ(inQuotes("\x80"), R"("\x80")");
-    EXPECT_EQ(inQuotes("\xC0\xAF"), R"("\xC0\xAF")");
-    EXPECT_EQ(inQuotes("\xE2\x82"), R"("\xE2\x82")");
-    EXPECT_EQ(inQuotes("\xED\xA0\x80"), R"("\xED\xA0\x80")");
-    // UTF-8 that would still move the text: a C1 control (NEL), right-to-left override, line separator.
-    EXPECT_EQ(inQuotes("a\u0085b"), R"("a\xC2\x85b")");
-    EXPECT_EQ(inQuotes("\u202Eevil"), R"("\xE2\x80\xAEevil")");
-    EXPECT_EQ(inQuotes("\u2028"), R"("\xE2\x80\xA8")");
-    // Printable UTF-8 stays as written.
-    EXPECT_EQ(inQuotes("Straße, 東京, 🙂"), R"("Straße, 東京, 🙂")");
 }
 
 TEST_F(SceneTest, ModelThatIsAFolderIsAnError) {

@@ -1,0 +1,285 @@
+// The renderer (render/renderer.h) without Mesa: a prepared scene's frame plan (planFrame) holds every
+// object's draws, opaque ones first with depth writes, then the transparent triangles back to front in
+// runs without depth writes and with their object's blend; renderFrame draws that plan (a bundled scene
+// covers pixels); a texture's top row is the top of the textured surface; and light directions of any
+// length light like unit ones. The conformance tests compare these frames with OpenGL's, but only where
+// OSMesa is installed, and two empty frames agree: these tests keep the plumbing honest everywhere.
+#include "render/renderer.h"
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
+
+#include "end_to_end/test_files.h"
+
+namespace facet {
+namespace {
+
+using testing::TempDir;
+
+const std::filesystem::path kModels = std::filesystem::path(FACET_SOURCE_DIR) / "models";
+
+// Pixels whose colour is not the clear colour (the framebuffer is cleared to exactly it).
+std::size_t coveredPixels(const LinearImage& image, const vec4& clearColor) {
+    std::size_t covered = 0;
+    for (const vec4& pixel : image.pixels)
+        covered += pixel != clearColor;
+    return covered;
+}
+
+// ---- renderFrame draws the plan --------------------------------------------------------------------
+
+// The bundled intersecting quads (an opaque floor and wall, three transparent panes) at 160×120:
+// the floor and the wall fill most of the frame. Breaks if planFrame returns no draws, or renderFrame
+// draws none of the plan.
+TEST(Renderer, BundledSceneCoversMostOfTheFrame) {
+    Scene scene = loadScene(kModels / "intersecting-quads.json");
+    scene.width = 160;
+    scene.height = 120;
+    const PreparedScene prepared = prepareScene(scene);
+    Framebuffer framebuffer(scene.width, scene.height);
+    DrawContext context(1);
+    FrameMemory memory;
+    const FrameStats stats = renderFrame(prepared, framebuffer, context, memory);
+    const LinearImage image = toImage(framebuffer);
+    EXPECT_GT(coveredPixels(image, prepared.clearColor), image.pixels.size() / 2);
+    EXPECT_GT(stats.draw.fragmentsShaded, image.pixels.size() / 2);
+    EXPECT_GT(stats.transparentRuns, 0u);  // the panes are drawn too
+}
+
+// ---- planFrame -------------------------------------------------------------------------------------
+
+// The intersecting quads (draw 0: the opaque backdrop; 1–3: the red, blue and green panes, d 0.5,
+// blended over) and three cubes: 4 opaque but added ("blend": "additive"), 5 half transparent and
+// multiplied, 6 opaque. Opaque and transparent draws alternate in file order on purpose.
+PreparedScene mixedScene() {
+    Scene scene = loadScene(kModels / "intersecting-quads.json");
+    scene.width = 80;
+    scene.height = 60;
+    ObjectSpec cube;
+    cube.model = kModels / "cube/cube.obj";
+    cube.worldFromObject = glm::translate(mat4(1.0f), vec3(-0.6f, 0.5f, 0.8f));
+    ObjectSpec added = cube;
+    added.blend = BlendChoice::Additive;
+    ObjectSpec multiplied = cube;
+    multiplied.worldFromObject = glm::translate(mat4(1.0f), vec3(0.6f, 0.5f, 0.6f));
+    multiplied.material.opacity = 0.5f;
+    multiplied.blend = BlendChoice::Multiply;
+    ObjectSpec opaque = cube;
+    opaque.worldFromObject = glm::translate(mat4(1.0f), vec3(0.0f, 0.5f, -0.5f));
+    scene.objects.push_back(added);
+    scene.objects.push_back(multiplied);
+    scene.objects.push_back(opaque);
+    return prepareScene(scene);
+}
+
+// Every draw's state is the scene's state; transparent ones have depth writes off and their own blend.
+void expectOpaqueState(const PlannedDraw& call, const PreparedScene& prepared) {
+    EXPECT_TRUE(call.state.depth.testEnabled);
+    EXPECT_TRUE(call.state.depth.writeEnabled);
+    EXPECT_EQ(call.state.blend, BlendMode::Replace);
+    EXPECT_EQ(call.state.raster.cull, prepared.state.raster.cull);
+}
+
+void expectTransparentState(const PlannedDraw& call, const PreparedScene& prepared) {
+    EXPECT_TRUE(call.state.depth.testEnabled);
+    EXPECT_FALSE(call.state.depth.writeEnabled);
+    EXPECT_EQ(call.state.blend, prepared.draws[call.draw].uniforms.blend);
+    EXPECT_EQ(call.state.raster.cull, prepared.state.raster.cull);
+}
+
+// The scene's draws are what the objects ask for: the blend of each transparent object.
+TEST(Renderer, PreparedDrawsCarryTheirObjectsBlend) {
+    const PreparedScene prepared = mixedScene();
+    ASSERT_EQ(prepared.draws.size(), 7u);
+    const std::vector<bool> transparent = {false, true, true, true, true, true, false};
+    const std::vector<BlendMode> blend = {BlendMode::Replace, BlendMode::Over,     BlendMode::Over,
+                                          BlendMode::Over,    BlendMode::Additive, BlendMode::Multiply,
+                                          BlendMode::Replace};
+    for (std::size_t k = 0; k < prepared.draws.size(); ++k) {
+        SCOPED_TRACE(k);
+        EXPECT_EQ(prepared.draws[k].transparent, transparent[k]);
+        EXPECT_EQ(prepared.draws[k].uniforms.blend, blend[k]);
+    }
+}
+
+// Unsorted: the opaque draws whole in file order, then the transparent ones whole in file order.
+TEST(Renderer, UnsortedPlanIsOpaqueDrawsThenTransparentDrawsInFileOrder) {
+    const PreparedScene prepared = mixedScene();
+    FrameMemory memory;
+    FrameStats stats;
+    const std::vector<PlannedDraw> plan = planFrame(prepared, TransparencyMode::Unsorted, memory, stats);
+    std::vector<std::uint32_t> order;
+    for (const PlannedDraw& call : plan)
+        order.push_back(call.draw);
+    EXPECT_EQ(order, (std::vector<std::uint32_t>{0, 6, 1, 2, 3, 4, 5}));
+    EXPECT_EQ(stats.transparentRuns, 5u);
+    for (const PlannedDraw& call : plan) {
+        SCOPED_TRACE(call.draw);
+        const PreparedDraw& draw = prepared.draws[call.draw];
+        EXPECT_EQ(call.indices.size(), draw.indices.size());  // whole
+        if (draw.transparent)
+            expectTransparentState(call, prepared);
+        else
+            expectOpaqueState(call, prepared);
+    }
+}
+
+// Sorted: the opaque draws whole in file order, then runs of transparent triangles that together hold
+// every transparent triangle once, farthest first (the key is the centroid's −z_eye, as sort_key
+// "centroid" says: each run's triangles, and the runs one after another, never come nearer and then
+// farther again).
+TEST(Renderer, SortedPlanIsOpaqueDrawsThenEveryTransparentTriangleBackToFront) {
+    const PreparedScene prepared = mixedScene();
+    ASSERT_EQ(prepared.scene.transparency.key, SortKey::Centroid);
+    FrameMemory memory;
+    FrameStats stats;
+    const std::vector<PlannedDraw> plan = planFrame(prepared, TransparencyMode::Sorted, memory, stats);
+    ASSERT_GE(plan.size(), 2u + 5u);
+    EXPECT_EQ(plan[0].draw, 0u);
+    EXPECT_EQ(plan[1].draw, 6u);
+    for (int i = 0; i < 2; ++i) {
+        EXPECT_EQ(plan[i].indices.size(), prepared.draws[plan[i].draw].indices.size());
+        expectOpaqueState(plan[i], prepared);
+    }
+    EXPECT_EQ(stats.transparentRuns, plan.size() - 2);
+    EXPECT_EQ(stats.sort.elements, prepared.transparentTriangles.size());
+
+    std::map<std::uint32_t, std::size_t> trianglesOf;  // per transparent draw, over its runs
+    float previousDistance = INFINITY;
+    for (std::size_t r = 2; r < plan.size(); ++r) {
+        const PlannedDraw& run = plan[r];
+        SCOPED_TRACE(::testing::Message() << "run " << r << ", draw " << run.draw);
+        ASSERT_TRUE(prepared.draws[run.draw].transparent);
+        expectTransparentState(run, prepared);
+        ASSERT_EQ(run.indices.size() % 3, 0u);
+        trianglesOf[run.draw] += run.indices.size() / 3;
+        const mat4& viewFromObject = prepared.draws[run.draw].uniforms.viewFromObject;
+        for (std::size_t i = 0; i < run.indices.size(); i += 3) {
+            float zSum = 0.0f;
+            for (std::size_t c = 0; c < 3; ++c)
+                zSum += (viewFromObject * vec4(run.vertices[run.indices[i + c]].position, 1.0f)).z;
+            const float distance = -zSum / 3.0f;
+            EXPECT_LE(distance, previousDistance + 1e-5f * std::abs(previousDistance))
+                << "triangle " << i / 3;
+            previousDistance = distance;
+        }
+    }
+    for (std::uint32_t k = 1; k <= 5; ++k)
+        EXPECT_EQ(trianglesOf[k], prepared.draws[k].indices.size() / 3) << "draw " << k;
+    EXPECT_EQ(trianglesOf.size(), 5u);
+}
+
+// ---- Textures ------------------------------------------------------------------------------------
+
+// A square facing the camera, textured with an image whose top half is red and bottom half blue
+// (OBJ texture coordinates: v = 1 is the top row of the image file). Lit head on with Kd 1 and no
+// specular, the top of the square is red and its bottom blue; a texture read upside down swaps them.
+TEST(Renderer, TextureTopRowIsDrawnAtTheTop) {
+    TempDir dir;
+    LinearImage texture;
+    texture.width = 2;
+    texture.height = 4;
+    for (int y = 0; y < texture.height; ++y)
+        for (int x = 0; x < texture.width; ++x)
+            texture.pixels.push_back(y < 2 ? vec4(1.0f, 0.0f, 0.0f, 1.0f) : vec4(0.0f, 0.0f, 1.0f, 1.0f));
+    writeImage(dir.path() / "red-over-blue.png", texture);
+    dir.write("square.mtl", "newmtl t\nKa 0 0 0\nKd 1 1 1\nKs 0 0 0\nmap_Kd red-over-blue.png\n");
+    const auto obj = dir.write("square.obj",
+                               "mtllib square.mtl\nusemtl t\n"
+                               "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                               "vn 0 0 1\nf 1/1/1 2/2/1 3/3/1 4/4/1\n");
+    Scene scene = sceneForModel(obj);
+    scene.width = 64;
+    scene.height = 48;
+    scene.camera.eye = vec3(0.0f, 0.0f, 5.0f);
+    scene.camera.target = vec3(0.0f);
+    scene.ambientLight = vec3(0.0f);
+    LightSpec light;
+    light.direction = vec3(0.0f, 0.0f, -1.0f);  // straight onto the square
+    scene.lights = {light};
+    const PreparedScene prepared = prepareScene(scene);
+    ASSERT_EQ(prepared.draws.size(), 1u);
+    ASSERT_NE(prepared.draws.front().uniforms.diffuseMap, nullptr);
+    Framebuffer framebuffer(scene.width, scene.height);
+    DrawContext context(1);
+    renderFrame(prepared, framebuffer, context);
+    const LinearImage image = toImage(framebuffer);
+
+    // Down the middle column: red rows, then blue rows, nothing red below blue.
+    int lastRed = -1, firstBlue = scene.height, reds = 0, blues = 0;
+    for (int y = 0; y < scene.height; ++y) {
+        const vec4 p = image.at(scene.width / 2, y);
+        if (p.r > 0.5f && p.b < 0.05f) {
+            lastRed = y;
+            ++reds;
+        } else if (p.b > 0.5f && p.r < 0.05f) {
+            firstBlue = std::min(firstBlue, y);
+            ++blues;
+        }
+    }
+    EXPECT_GT(reds, 5);
+    EXPECT_GT(blues, 5);
+    EXPECT_LT(lastRed, firstBlue) << "red must be above blue";
+}
+
+// ---- Light directions ----------------------------------------------------------------------------
+
+// The scene `text` (with "model" the bundled cube) drawn at 48×36 on one thread.
+LinearImage renderCube(const std::filesystem::path& path, const std::string& text) {
+    nlohmann::json document = nlohmann::json::parse(text);
+    document["model"] = (kModels / "cube/cube.obj").string();
+    document["width"] = 48;
+    document["height"] = 36;
+    std::ofstream(path) << document.dump();
+    const PreparedScene prepared = prepareScene(loadScene(path));
+    Framebuffer framebuffer(48, 36);
+    DrawContext context(1);
+    renderFrame(prepared, framebuffer, context);
+    return toImage(framebuffer);
+}
+
+// Only an exactly zero vector is refused; any other length lights the model exactly as the same
+// direction at unit length (normalising in float turned 1e-30, 1e20 and -3e38 into NaN: black).
+TEST(Renderer, DirectionsOfAnyLengthLightLikeUnitOnes) {
+    TempDir dir;
+    const std::pair<std::string, std::string> cases[] = {
+        {R"({"lights": [{"direction": [0, -1e-30, 0]}]})", R"({"lights": [{"direction": [0, -1, 0]}]})"},
+        {R"({"lights": [{"direction": [0, -1e20, 0]}]})", R"({"lights": [{"direction": [0, -1, 0]}]})"},
+        {R"({"lights": [{"direction": [-3e38, 0, 0]}]})", R"({"lights": [{"direction": [-1, 0, 0]}]})"},
+        // 2^-100 · [1, -2, -2]: scaled by a power of two, the same unit vector to the last bit.
+        {R"({"lights": [{"direction": [7.888609052210118e-31, -1.5777218104420236e-30, -1.5777218104420236e-30]}]})",
+         R"({"lights": [{"direction": [1, -2, -2]}]})"},
+        {R"({"lights": [{"type": "spot", "position": [0, 3, 0], "direction": [0, -1e-30, 0], "cutoff": 40}]})",
+         R"({"lights": [{"type": "spot", "position": [0, 3, 0], "direction": [0, -1, 0], "cutoff": 40}]})"},
+        {R"({"camera": {"eye": [2, 1, 3], "target": [0, 0, 0], "up": [0, 1e-30, 0]}})",
+         R"({"camera": {"eye": [2, 1, 3], "target": [0, 0, 0], "up": [0, 1, 0]}})"},
+        {R"({"camera": {"eye": [2, 1, 3], "target": [0, 0, 0], "up": [0, 3e38, 0]}})",
+         R"({"camera": {"eye": [2, 1, 3], "target": [0, 0, 0], "up": [0, 1, 0]}})"},
+    };
+    for (const auto& [extreme, unit] : cases) {
+        SCOPED_TRACE(extreme);
+        const LinearImage expected = renderCube(dir.path() / "unit.json", unit);
+        const LinearImage actual = renderCube(dir.path() / "extreme.json", extreme);
+        // The cube is drawn and lit: some pixel is brighter than the background in the corner.
+        bool lit = false;
+        for (const glm::vec4& p : expected.pixels)
+            lit = lit || p.r > expected.pixels[0].r + 0.05f;
+        EXPECT_TRUE(lit);
+        ASSERT_EQ(actual.pixels.size(), expected.pixels.size());
+        std::size_t differing = 0;
+        for (std::size_t i = 0; i < expected.pixels.size(); ++i)
+            differing += actual.pixels[i] != expected.pixels[i];
+        EXPECT_EQ(differing, 0u);
+    }
+}
+
+}  // namespace
+}  // namespace facet
