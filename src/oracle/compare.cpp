@@ -74,6 +74,9 @@ std::string describe(const MesaComparison& c) {
     out << "image      " << c.facet.width << "x" << c.facet.height << ", 8-bit "
         << (c.encoding.curve == TransferCurve::Srgb ? "sRGB-encoded" : "unencoded (gl preset)") << "\n";
     out << "opengl     " << c.mesaRenderer << "; " << c.programs << "\n";
+    out << "drawn      Facet " << d.coveredA << " pixels (" << percent(double(d.coveredA) / double(d.pixels))
+        << "), OpenGL " << d.coveredB << " (" << percent(double(d.coveredB) / double(d.pixels))
+        << "); the rest is the background\n";
     out << "differing  " << d.differing << " of " << d.pixels << " pixels ("
         << percent(double(d.differing) / double(d.pixels)) << "), the largest difference " << d.maxDifference
         << "/255\n";
@@ -82,8 +85,12 @@ std::string describe(const MesaComparison& c) {
         << " of the differing pixels are on silhouettes (coverage decided "
         << "differently by the two rasterizers); inside, the largest difference is "
         << d.maxInteriorDifference << "/255\n";
-    out << "verdict    " << (c.agrees() ? "agrees" : "DIFFERS") << " (the bar: at least "
-        << percent(MesaComparison::kMinWithin2) << " of pixels within 2/255)\n";
+    out << "verdict    "
+        << (c.agrees()          ? "agrees"
+            : c.drewSomething() ? "DIFFERS"
+                                : "NOTHING DRAWN")
+        << " (the bar: both draw something, and at least " << percent(MesaComparison::kMinWithin2)
+        << " of pixels within 2/255)\n";
     return out.str();
 }
 

@@ -52,6 +52,7 @@ PixelDifference comparePixels(const LinearImage& a, const LinearImage& b, ColorE
 
     // Background pixels of either image, when there is a background to tell.
     std::vector<bool> backgroundEither;
+    std::size_t coveredA = 0, coveredB = 0;
     if (background) {
         auto isBackground = [&](const vec4& c) {
             for (int channel = 0; channel < 4; ++channel)
@@ -59,8 +60,12 @@ PixelDifference comparePixels(const LinearImage& a, const LinearImage& b, ColorE
             return true;
         };
         backgroundEither.resize(count);
-        for (std::size_t i = 0; i < count; ++i)
-            backgroundEither[i] = isBackground(a.pixels[i]) || isBackground(b.pixels[i]);
+        for (std::size_t i = 0; i < count; ++i) {
+            const bool backgroundA = isBackground(a.pixels[i]), backgroundB = isBackground(b.pixels[i]);
+            backgroundEither[i] = backgroundA || backgroundB;
+            coveredA += !backgroundA;
+            coveredB += !backgroundB;
+        }
     }
     auto atEdge = [&](int x, int y) {
         auto background = [&](int px, int py) {
@@ -73,6 +78,8 @@ PixelDifference comparePixels(const LinearImage& a, const LinearImage& b, ColorE
 
     PixelDifference result;
     result.pixels = count;
+    result.coveredA = coveredA;
+    result.coveredB = coveredB;
     std::size_t within1 = 0, within2 = 0;
     for (int y = 0; y < a.height; ++y)
         for (int x = 0; x < a.width; ++x) {

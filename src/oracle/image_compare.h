@@ -48,8 +48,9 @@ struct PixelDifference {
     double within2 = 0.0;       // ... within 2 codes
     // With a background colour only (else 0): silhouette pixels are those that are background, or have
     // a 4-neighbour that is background, in either image; interior ones are the rest.
-    std::size_t differingAtEdges = 0;  // differing pixels on the silhouette
-    int maxInteriorDifference = 0;     // maxDifference over interior pixels
+    std::size_t coveredA = 0, coveredB = 0;  // pixels each image drew (not background)
+    std::size_t differingAtEdges = 0;        // differing pixels on the silhouette
+    int maxInteriorDifference = 0;           // maxDifference over interior pixels
 };
 
 // Throws std::invalid_argument when the sizes differ. A pixel is background when each of its four

@@ -92,6 +92,11 @@ TEST(ComparePixels, CountsCodeStepsAndSilhouettePixels) {
     EXPECT_EQ(same.differing, 0u);
     EXPECT_EQ(same.maxDifference, 0);
     EXPECT_EQ(same.within1, 1.0);
+    std::size_t discPixels = 0;
+    for (const vec4& p : a.pixels)
+        discPixels += p != kBackground;
+    EXPECT_EQ(same.coveredA, discPixels);
+    EXPECT_EQ(same.coveredB, discPixels);
 
     // One interior pixel 2 codes brighter in red (linear encoding: 2/255), one silhouette pixel
     // (background in a, drawn in b) far off.
@@ -106,9 +111,12 @@ TEST(ComparePixels, CountsCodeStepsAndSilhouettePixels) {
     EXPECT_GT(d.maxDifference, 100);
     EXPECT_DOUBLE_EQ(d.within1, 1.0 - 2.0 / d.pixels);
     EXPECT_DOUBLE_EQ(d.within2, 1.0 - 1.0 / d.pixels);
+    EXPECT_EQ(d.coveredA, discPixels);
+    EXPECT_EQ(d.coveredB, discPixels + 1);  // the silhouette pixel b drew
 
     // Without a background colour there is no silhouette.
     const PixelDifference plain = comparePixels(a, b, kLinearEncoding);
+    EXPECT_EQ(plain.coveredA + plain.coveredB, 0u);
     EXPECT_EQ(plain.differingAtEdges, 0u);
     EXPECT_EQ(plain.maxInteriorDifference, 0);
     EXPECT_THROW(comparePixels(a, disc(64, 47, 30, 20, 15), kSrgbEncoding), std::invalid_argument);

@@ -1,0 +1,55 @@
+// facet compare's verdict (src/oracle/compare.h), without Mesa: a comparison is built from two images
+// as compareWithMesa builds it, and its verdict and description are checked.
+#include "oracle/compare.h"
+
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace facet {
+namespace {
+
+const vec4 kBackground(0.2f, 0.2f, 0.2f, 0.0f);
+
+LinearImage filled(vec4 color) {
+    LinearImage image;
+    image.width = 8;
+    image.height = 6;
+    image.pixels.assign(48, color);
+    return image;
+}
+
+MesaComparison comparison(const LinearImage& facet, const LinearImage& mesa) {
+    MesaComparison c;
+    c.facet = facet;
+    c.mesa = mesa;
+    c.difference = comparePixels(facet, mesa, c.encoding, kBackground);
+    return c;
+}
+
+// Two empty frames agree pixel for pixel, and prove nothing: a renderer that draws nothing must not pass
+// (breaks caught: agrees() without drewSomething(); comparePixels not counting covered pixels).
+TEST(MesaComparison, TwoEmptyFramesAreNotAnAgreement) {
+    const MesaComparison empty = comparison(filled(kBackground), filled(kBackground));
+    EXPECT_EQ(empty.difference.within2, 1.0);
+    EXPECT_FALSE(empty.drewSomething());
+    EXPECT_FALSE(empty.agrees());
+    EXPECT_NE(describe(empty).find("verdict    NOTHING DRAWN"), std::string::npos) << describe(empty);
+
+    // One side drawing and the other not is a difference, not agreement on nothing.
+    LinearImage drawn = filled(kBackground);
+    drawn.at(3, 3) = vec4(0.8f, 0.5f, 0.1f, 1.0f);
+    EXPECT_FALSE(comparison(drawn, filled(kBackground)).agrees());
+}
+
+TEST(MesaComparison, EqualDrawnFramesAgree) {
+    const LinearImage drawn = filled(vec4(0.8f, 0.5f, 0.1f, 1.0f));
+    const MesaComparison same = comparison(drawn, drawn);
+    EXPECT_TRUE(same.agrees());
+    const std::string text = describe(same);
+    EXPECT_NE(text.find("verdict    agrees"), std::string::npos) << text;
+    EXPECT_NE(text.find("drawn      Facet 48 pixels (100.000%), OpenGL 48"), std::string::npos) << text;
+}
+
+}  // namespace
+}  // namespace facet
