@@ -99,13 +99,12 @@ TEST(Interpolate, PerspectiveFormulaOnHandValues) {
     s.dInvW1 = 0.25f - 1.0f;
     s.dInvW2 = 0.5f - 1.0f;
     const float planes[3] = {2.0f, 10.0f / 4 - 2.0f, 6.0f / 2 - 2.0f};
-    s.varyingPlanes = planes;
     float out[1];
     // Halfway from v0 to v1 on screen: (a0/w0 + a1/w1)/2 ÷ (1/w0 + 1/w1)/2 = (2 + 2.5)/2 ÷ (1 + 0.25)/2
     // = 3.6, not the affine midpoint 6: the far vertex (w = 4) weighs less.
-    interpolateVaryings(s, 0.5f, 0.0f, out);
+    interpolateVaryings(s, planes, 0.5f, 0.0f, out);
     EXPECT_FLOAT_EQ(out[0], 3.6f);
-    interpolateVaryings(s, 0.0f, 1.0f, out);
+    interpolateVaryings(s, planes, 0.0f, 1.0f, out);
     EXPECT_FLOAT_EQ(out[0], 6.0f);
 }
 
