@@ -190,8 +190,10 @@ struct FragmentEvent {
     vec4 colorBefore{0.0f};
     vec4 colorAfter{0.0f};
     // The interpolation stage's inputs and outputs at the pixel's sample (for every fate).
-    vec3 barycentrics{0.0f};  // λ0, λ1, λ2 (λ0 = 1 − λ1 − λ2), from the exact edge values
-    float invW = 0.0f;        // 1/w_clip, affine in screen space: the perspective weight
+    // λ0, λ1, λ2 (λ0 = 1 − λ1 − λ2), from the exact edge values, for the setup's vertex order: the
+    // window triangle's, with v1 and v2 exchanged when its signed area was negative (triangle_setup).
+    vec3 barycentrics{0.0f};
+    float invW = 0.0f;  // 1/w_clip, affine in screen space: the perspective weight
     int varyingCount = 0;
     std::array<float, kMaxVaryingFloats> varyings{};  // the interpolated varyings (the shader's input)
 };

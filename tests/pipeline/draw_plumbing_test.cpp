@@ -2,6 +2,7 @@
 // back end calls the stages' formulas with the right operands. Each test fails when one line of that
 // plumbing is broken (the break is named above the test); the stages' formulas have their own tests.
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -79,18 +80,22 @@ TEST(DrawPlumbing, EarlyDepthIsThePlaneThroughTheVertices) {
 }
 
 // The pixels a right triangle covers, its legs on the top and left borders and its hypotenuse from
-// (c, 0) to (0, c), drawn through draw() with the given sub-pixel bits.
-int coveredPixels(float c, int subpixelBits) {
+// (c, 0) to (0, c), drawn through draw() with the given sub-pixel bits. `clipped`: the same pixels as
+// the window's part of a larger triangle, (−10, −10), (c + 10, −10), (−10, c + 10), which the left and
+// top planes cut, so its corners come from the clipper and are snapped on the fan path.
+int coveredPixels(float c, int subpixelBits, bool clipped) {
     Framebuffer fb(16, 16);
     fb.clearColor(vec4(0));
     DrawState state = testing::stateFor(fb);
     state.raster.subpixelBits = subpixelBits;
     state.blend = BlendMode::Additive;
     state.depth.testEnabled = false;
-    const std::vector<CountingShader::Attributes> v = {{testing::clipFromWindow({0, 0}, fb)},
-                                                       {testing::clipFromWindow({c, 0}, fb)},
-                                                       {testing::clipFromWindow({0, c}, fb)}};
-    testing::drawTriangles<CountingShader>(state, v, fb);
+    const float o = clipped ? -10.0f : 0.0f;
+    const std::vector<CountingShader::Attributes> v = {{testing::clipFromWindow({o, o}, fb)},
+                                                       {testing::clipFromWindow({c - o, o}, fb)},
+                                                       {testing::clipFromWindow({o, c - o}, fb)}};
+    const DrawStats stats = testing::drawTriangles<CountingShader>(state, v, fb);
+    EXPECT_EQ(stats.trianglesClipped, clipped ? 1u : 0u);
     int covered = 0;
     for (int y = 0; y < 16; ++y)
         for (int x = 0; x < 16; ++x)
@@ -101,11 +106,35 @@ int coveredPixels(float c, int subpixelBits) {
 // The hypotenuse's ends at 8.03 px lie between 1/16-pixel positions: with 8 sub-pixel bits they stay
 // at 8.03 and the pixels with x + y ≤ 7 are inside (36); snapped to 1/16 or whole pixels they move to
 // 8, the hypotenuse runs through the centres with x + y = 7, which a right edge does not take (28).
-// Break caught: draw() ignoring RasterState::subpixelBits (snapping with 8 bits whatever the state).
+// Breaks caught: draw() ignoring RasterState::subpixelBits (snapping with 8 bits whatever the state),
+// for the vertices no plane clips or for the clipped polygon's fan.
 TEST(DrawPlumbing, SubpixelBitsReachTheSnapping) {
-    EXPECT_EQ(coveredPixels(8.03f, 8), 36);
-    EXPECT_EQ(coveredPixels(8.03f, 4), 28);
-    EXPECT_EQ(coveredPixels(8.03f, 0), 28);
+    for (bool clipped : {false, true}) {
+        EXPECT_EQ(coveredPixels(8.03f, 8, clipped), 36) << (clipped ? "clipped" : "whole");
+        EXPECT_EQ(coveredPixels(8.03f, 4, clipped), 28) << (clipped ? "clipped" : "whole");
+        EXPECT_EQ(coveredPixels(8.03f, 0, clipped), 28) << (clipped ? "clipped" : "whole");
+    }
+}
+
+// Two small triangles of one draw on the same pixels, the nearer first: the farther one's fragments
+// fail the depth test against the nearer one's, although the nearer ones may still wait in the back
+// end's queue of eight when the farther ones are tested.
+// Break caught: the queue not shaded (its depths not written) before a pixel it holds is tested again.
+TEST(DrawPlumbing, QueuedFragmentsReachTheDepthBufferBeforeTheirPixelIsTestedAgain) {
+    Framebuffer fb(16, 16);
+    fb.clearColor(vec4(0));
+    fb.clearDepth();
+    const vec4 red(1, 0, 0, 1), green(0, 1, 0, 1);
+    std::vector<ClipSpaceColorShader::Attributes> v;
+    for (const auto& [z, color] : {std::pair{-0.5f, red}, std::pair{0.5f, green}})
+        for (vec2 p : {vec2(4, 4), vec2(6.6f, 4), vec2(4, 6.6f)})  // three pixels: fewer than eight
+            v.push_back({testing::clipFromWindow(p, fb, z), color});
+    const DrawStats stats = testing::drawTriangles<ClipSpaceColorShader>(testing::stateFor(fb), v, fb);
+    EXPECT_EQ(stats.fragmentsWritten, 3u);
+    EXPECT_EQ(stats.fragmentsDepthFailed, 3u);
+    EXPECT_EQ(fb.color(4, 4), red);
+    EXPECT_EQ(fb.color(5, 4), red);
+    EXPECT_EQ(fb.color(4, 5), red);
 }
 
 // OpenGL: with GL_DEPTH_TEST disabled the depth buffer is not written, even with the depth mask on;
@@ -148,6 +177,24 @@ TEST(DrawPlumbing, EachTriangleInterpolatesItsOwnVaryings) {
     EXPECT_EQ(fb.color(1, 1), red);
     EXPECT_EQ(fb.color(9, 1), blue);
     EXPECT_EQ(fb.color(10, 3), blue);
+}
+
+// A draw's blend mode reaches the output merger: a quad of each mode over a known colour gives what
+// blend() gives for that mode.
+// Break caught: the back end blending every Blend draw with one fixed mode.
+TEST(DrawPlumbing, TheDrawsBlendModeReachesTheOutputMerger) {
+    const vec4 destination(0.25f, 0.5f, 0.75f, 0.5f), source(0.5f, 0.25f, 1.0f, 0.25f);
+    for (BlendMode mode : {BlendMode::Replace, BlendMode::Additive, BlendMode::Over,
+                           BlendMode::PremultipliedOver, BlendMode::Multiply}) {
+        Framebuffer fb(4, 4);
+        fb.clearColor(destination);
+        DrawState state = testing::stateFor(fb);
+        state.blend = mode;
+        const std::vector<ClipSpaceColorShader::Attributes> v = {
+            {{-1, -1, 0, 1}, source}, {{3, -1, 0, 1}, source}, {{-1, 3, 0, 1}, source}};
+        testing::drawTriangles<ClipSpaceColorShader>(state, v, fb);
+        EXPECT_EQ(fb.color(2, 1), blend(mode, source, destination)) << mode;
+    }
 }
 
 }  // namespace

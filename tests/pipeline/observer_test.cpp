@@ -264,7 +264,15 @@ TEST(Observer, FragmentsCarryTheirInterpolation) {
     for (const FragmentEvent& e : observer.fragments) {
         ASSERT_EQ(e.varyingCount, 4);
         const vec4 varyings(e.varyings[0], e.varyings[1], e.varyings[2], e.varyings[3]);
+        // λ at the pixel's centre in screen space, from the window positions (0.5, 0.5), (8, 0), (0, 8);
+        // 1/w is affine in it, from 1/w = ½, 1, 1.
+        // (x, y) − v0 = λ1·(7.5, −0.5) + λ2·(−0.5, 7.5), solved by Cramer's rule (determinant 56).
+        const float dx = e.x, dy = e.y;
+        const float lambda1 = (7.5f * dx + 0.5f * dy) / 56.0f, lambda2 = (0.5f * dx + 7.5f * dy) / 56.0f;
+        EXPECT_NEAR(e.barycentrics.y, lambda1, 1e-5f) << e;
+        EXPECT_NEAR(e.barycentrics.z, lambda2, 1e-5f) << e;
         EXPECT_NEAR(e.barycentrics.x + e.barycentrics.y + e.barycentrics.z, 1.0f, 1e-6f);
+        EXPECT_NEAR(e.invW, 0.5f * e.barycentrics.x + e.barycentrics.y + e.barycentrics.z, 1e-6f) << e;
         if (e.x == 0 && e.y == 0) {
             EXPECT_EQ(e.barycentrics, vec3(1, 0, 0)) << e;
             EXPECT_EQ(e.invW, 0.5f) << e;
