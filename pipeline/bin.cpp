@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "sample_position.h"
+
 namespace facet {
 
 TileGrid makeTileGrid(const Viewport& viewport, int tileSize) {
@@ -38,8 +40,8 @@ void binTriangle(const TileGrid& grid, const TriangleSetup& setup, std::uint32_t
                 const PixelRect rect = grid.tileRect(tile);
                 bool outside = false;
                 for (const EdgeFunction& e : setup.edges) {
-                    const std::int64_t x = (e.a > 0 ? rect.maxX : rect.minX) * kFixedOne + kFixedOne / 2;
-                    const std::int64_t y = (e.b > 0 ? rect.maxY : rect.minY) * kFixedOne + kFixedOne / 2;
+                    const std::int64_t x = sampleCoordinate(e.a > 0 ? rect.maxX : rect.minX);
+                    const std::int64_t y = sampleCoordinate(e.b > 0 ? rect.maxY : rect.minY);
                     outside |= e.at(x, y) + e.bias < 0;
                 }
                 if (outside) continue;

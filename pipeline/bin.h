@@ -31,4 +31,19 @@ TileGrid makeTileGrid(const Viewport& viewport, int tileSize);
 void binTriangle(const TileGrid& grid, const TriangleSetup& setup, std::uint32_t setupIndex,
                  std::vector<std::vector<std::uint32_t>>& bins);
 
+// What the front end hands the back end for one chunk of consecutive triangles: their setups, the
+// setups' varying planes, and for every tile the setups that may touch it, in submission order.
+struct SetupChunk {
+    std::vector<TriangleSetup> setups;
+    std::vector<float> varyingPlanes;              // 3 · varyingCount floats per setup, in order
+    std::vector<std::vector<std::uint32_t>> bins;  // per tile: indices into setups
+    DrawStats stats;
+    ClipPolygon polygon;  // clipping scratch
+
+    // The varying planes of one of this chunk's setups.
+    const float* planesOf(const TriangleSetup& setup) const {
+        return varyingPlanes.data() + setup.varyingPlaneOffset;
+    }
+};
+
 }  // namespace facet

@@ -6,35 +6,12 @@
 #include <stdexcept>
 #include <string>
 
-#include "blend.h"
-#include "framebuffer.h"
-#include "thread_pool.h"
+#include "fragment_lists_resolve.h"
 
 namespace facet {
 
 static_assert(sizeof(FragmentLists::Node) == 24, "a stored fragment is 24 bytes");
 static_assert(static_cast<std::uint32_t>(BlendMode::Multiply) < 8, "a BlendMode fits in a node's 3 bits");
-
-namespace {
-
-// Lists no longer than this are sorted by insertion (stable, and linear on lists submitted in order);
-// longer ones by std::sort. Keys are unique, so both give the same order.
-constexpr std::size_t kInsertionSortLimit = 24;
-
-// Each resolving thread's gather array starts with room for lists this long (4 KB), so that which thread
-// meets the longest list does not change the memory held; longer lists grow it, once.
-constexpr std::size_t kScratchEntries = 256;
-
-// A key whose unsigned order is "farther first, then older first": the depth's bits mapped to an
-// unsigned integer that orders like the float (negatives flipped), inverted so that larger depths
-// come first, above the fragment's position in submission order.
-std::uint64_t sortKey(float depth, std::uint32_t submission) {
-    const auto bits = std::bit_cast<std::uint32_t>(depth + 0.0f);  // −0 → +0: equal depths tie
-    const std::uint32_t ordered = (bits & 0x80000000u) ? ~bits : (bits | 0x80000000u);
-    return (std::uint64_t{~ordered} << 32) | submission;
-}
-
-}  // namespace
 
 std::ostream& operator<<(std::ostream& os, const FragmentListStats& s) {
     os << s.fragments << " fragments in " << s.pixels << " pixel lists (longest " << s.longestList << "), "
@@ -123,86 +100,9 @@ std::vector<FragmentLists::Node> FragmentLists::fragmentsAt(int x, int y) const 
     return list;
 }
 
-void FragmentLists::resolveTile(int tile, Framebuffer& target, ResolveScratch& scratch) const {
-    const TilePool& pool = pools_[static_cast<std::size_t>(tile)];
-    scratch.stats.dropped += pool.dropped;
-    if (pool.nodes.empty()) return;
-    const Node* nodes = pool.nodes.data();
-    std::vector<Entry>& entries = scratch.entries;
-    const PixelRect rect = tileRect(tile);
-    for (int y = rect.minY; y <= rect.maxY; ++y) {
-        const std::uint32_t* heads = &heads_[pixelIndex(0, y)];
-        for (int x = rect.minX; x <= rect.maxX; ++x) {
-            const std::uint32_t head = heads[x];
-            if (head == kEnd) continue;
-            vec4& color = target.color(x, y);
-            const Node& newest = nodes[head];
-            if (newest.previous() == kEnd) {
-                // One fragment: nothing to sort.
-                color = blend(newest.blend(), newest.color, color);
-                ++scratch.stats.fragments;
-                ++scratch.stats.pixels;
-                scratch.stats.longestList = std::max(scratch.stats.longestList, 1u);
-                continue;
-            }
-            // Gather the list (newest first), then put it in submission order.
-            entries.clear();
-            for (std::uint32_t k = head; k != kEnd; k = nodes[k].previous())
-                entries.push_back(Entry{0, k});
-            std::reverse(entries.begin(), entries.end());
-            const std::size_t n = entries.size();
-            for (std::size_t i = 0; i < n; ++i)
-                entries[i].key = sortKey(nodes[entries[i].node].depth, static_cast<std::uint32_t>(i));
-
-            // Farthest first, equal depths in submission order.
-            if (n <= kInsertionSortLimit) {
-                for (std::size_t i = 1; i < n; ++i) {
-                    const Entry e = entries[i];
-                    std::size_t j = i;
-                    for (; j > 0 && entries[j - 1].key > e.key; --j)
-                        entries[j] = entries[j - 1];
-                    entries[j] = e;
-                }
-            } else {
-                std::sort(entries.begin(), entries.end(),
-                          [](const Entry& a, const Entry& b) { return a.key < b.key; });
-            }
-
-            vec4 c = color;
-            for (const Entry& e : entries) {
-                const Node& node = nodes[e.node];
-                c = blend(node.blend(), node.color, c);
-            }
-            color = c;
-            scratch.stats.fragments += n;
-            ++scratch.stats.pixels;
-            scratch.stats.longestList = std::max(scratch.stats.longestList, static_cast<std::uint32_t>(n));
-        }
-    }
-}
-
 FragmentListStats resolveFragmentLists(Framebuffer& target, ThreadPool& pool) {
-    FragmentLists& lists = target.fragmentLists();
-    if (lists.scratch_.size() < static_cast<std::size_t>(pool.threads())) {
-        lists.scratch_.resize(static_cast<std::size_t>(pool.threads()));
-        for (FragmentLists::ResolveScratch& s : lists.scratch_)
-            s.entries.reserve(kScratchEntries);
-    }
-    for (FragmentLists::ResolveScratch& s : lists.scratch_)
-        s.stats = FragmentListStats{};
-    const FragmentLists& reading = lists;
-    pool.parallelFor(lists.pools_.size(), [&](std::size_t tile, int thread) {
-        reading.resolveTile(static_cast<int>(tile), target, lists.scratch_[static_cast<std::size_t>(thread)]);
-    });
-    FragmentListStats total;
-    for (const FragmentLists::ResolveScratch& s : lists.scratch_) {
-        total.fragments += s.stats.fragments;
-        total.pixels += s.stats.pixels;
-        total.longestList = std::max(total.longestList, s.stats.longestList);
-        total.dropped += s.stats.dropped;
-    }
-    total.bytesHeld = lists.bytesHeld();
-    return total;
+    NullObserver none;
+    return target.fragmentLists().resolve(target, pool, none);
 }
 
 }  // namespace facet

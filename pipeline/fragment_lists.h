@@ -134,6 +134,11 @@ class FragmentLists {
     // The fragments of pixel (x, y) in submission order, oldest first (tests, the step mode).
     std::vector<Node> fragmentsAt(int x, int y) const;
 
+    // resolveFragmentLists() for the lists of `target` (which must be this object's framebuffer),
+    // telling the observer how each pixel was composited (fragment_lists_resolve.h defines it).
+    template <class Observer>
+    FragmentListStats resolve(Framebuffer& target, ThreadPool& pool, Observer& observer);
+
   private:
     // One fragment of the list being resolved: its sort key (depth, farthest first, then submission
     // order) and where its node is.
@@ -148,7 +153,8 @@ class FragmentLists {
 
     std::size_t pixelIndex(int x, int y) const { return static_cast<std::size_t>(y) * width_ + x; }
     PixelRect tileRect(int tile) const;
-    void resolveTile(int tile, Framebuffer& target, ResolveScratch& scratch) const;
+    template <class Observer>
+    void resolveTile(int tile, Framebuffer& target, ResolveScratch& scratch, Observer& observer) const;
 
     int width_ = 0, height_ = 0;
     int tileSize_ = 0;
@@ -156,8 +162,6 @@ class FragmentLists {
     std::vector<std::uint32_t> heads_;     // per pixel, row-major: newest node in its tile's pool, or kEnd
     std::vector<TilePool> pools_;          // per tile, row-major
     std::vector<ResolveScratch> scratch_;  // per resolving thread
-
-    friend FragmentListStats resolveFragmentLists(Framebuffer& target, ThreadPool& pool);
 };
 
 // Composites every pixel's list over target's colour, tiles in parallel on the pool's threads: the list
@@ -165,6 +169,8 @@ class FragmentLists {
 // submission order, and each fragment is blended with its own mode: c = blend(mode, fragment, c).
 // The lists are left as they are (clear them, or the framebuffer, before the next frame: resolving
 // twice composites twice). Returns what the lists held and the memory they hold.
+// resolveFragmentLists(target, pool, observer) (fragment_lists_resolve.h) does the same on the calling
+// thread and shows every pixel's resolve to the observer (Observer::onResolve).
 FragmentListStats resolveFragmentLists(Framebuffer& target, ThreadPool& pool);
 
 }  // namespace facet

@@ -10,17 +10,17 @@ Framebuffer::Framebuffer(int width, int height)
     : width_(width),
       height_(height),
       color_(static_cast<std::size_t>(width) * height, vec4(0.0f)),
-      depth_(static_cast<std::size_t>(width) * height, 1.0f) {}
+      depth_(static_cast<std::size_t>(width) * height, DepthFormat::kClear) {}
 
 void Framebuffer::clearColor(vec4 color) {
     std::fill(color_.begin(), color_.end(), color);
 }
 
-void Framebuffer::clearDepth(float depth) {
+void Framebuffer::clearDepth(DepthFormat::Stored depth) {
     std::fill(depth_.begin(), depth_.end(), depth);
 }
 
-void Framebuffer::clear(vec4 color, float depth, ThreadPool& pool) {
+void Framebuffer::clear(vec4 color, DepthFormat::Stored depth, ThreadPool& pool) {
     constexpr int kRowsPerItem = 32;
     const int items = (height_ + kRowsPerItem - 1) / kRowsPerItem;
     pool.parallelFor(static_cast<std::size_t>(items), [&](std::size_t item, int) {

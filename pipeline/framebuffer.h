@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "depth_format.h"
 #include "fragment_lists.h"
 #include "glsl.h"
 
@@ -21,19 +22,19 @@ class Framebuffer {
     int height() const { return height_; }
 
     void clearColor(vec4 color);
-    void clearDepth(float depth = 1.0f);
+    void clearDepth(DepthFormat::Stored depth = DepthFormat::kClear);
     // Colour and depth at once, rows spread over the pool's threads (a 1080p float buffer is 41 MB to
     // write), and the fragment lists emptied (their memory kept for the next frame).
-    void clear(vec4 color, float depth, ThreadPool& pool);
+    void clear(vec4 color, DepthFormat::Stored depth, ThreadPool& pool);
 
     vec4& color(int x, int y) { return color_[index(x, y)]; }
     const vec4& color(int x, int y) const { return color_[index(x, y)]; }
-    float& depth(int x, int y) { return depth_[index(x, y)]; }
-    float depth(int x, int y) const { return depth_[index(x, y)]; }
+    DepthFormat::Stored& depth(int x, int y) { return depth_[index(x, y)]; }
+    DepthFormat::Stored depth(int x, int y) const { return depth_[index(x, y)]; }
 
     // Row-major, row 0 at the top of the image.
     const std::vector<vec4>& colorPixels() const { return color_; }
-    const std::vector<float>& depthPixels() const { return depth_; }
+    const std::vector<DepthFormat::Stored>& depthPixels() const { return depth_; }
 
     // Where AppendToLists draws put their fragments, until resolveFragmentLists() composites them.
     FragmentLists& fragmentLists() { return lists_; }
@@ -44,9 +45,9 @@ class Framebuffer {
 
     int width_ = 0;
     int height_ = 0;
-    std::vector<vec4> color_;   // linear RGBA
-    std::vector<float> depth_;  // window depth in [0,1]; 1 is the far plane
-    FragmentLists lists_;       // empty (no memory) until an AppendToLists draw
+    std::vector<vec4> color_;                 // linear RGBA
+    std::vector<DepthFormat::Stored> depth_;  // window depth as DepthFormat stores it
+    FragmentLists lists_;                     // empty (no memory) until an AppendToLists draw
 };
 
 }  // namespace facet

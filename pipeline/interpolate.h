@@ -1,27 +1,77 @@
-// Interpolation: a fragment's depth and varyings from its barycentric weights λ1, λ2 (λ0 = 1 − λ1 − λ2).
-// In: TriangleSetup + λ. Out: window depth, and the varyings as a flat float array.
+// Interpolation: a fragment's barycentrics, depth, 1/w and varyings at its sample.
+// In: TriangleSetup (+ its varying planes) and the sample. Out: λ1, λ2 (λ0 = 1 − λ1 − λ2), window
+// depth, 1/w, and the varyings as a flat float array.
+//
+// Every formula is written once, as a template on the lane type F: float for one fragment, Float8
+// for eight (wide.h). The back end picks the lane width row by row (eight lanes when several
+// fragments of a row survive the depth test, one when a sliver leaves one or two), so both widths
+// must give the same bits: they run the same operations in the same order, and the perspective
+// divide is an exact IEEE division in both (reciprocal()). An approximate reciprocal or any other
+// speed/accuracy trade belongs here, chosen per draw for both widths, never by lane width.
 #pragma once
 
+#include "sample_position.h"
 #include "types.h"
 #include "wide.h"
 
 namespace facet {
 
+// λ1 and λ2 at the samples of an 8×8 block, from the exact edge values: λᵢ = Eᵢ / (2·area). The edge
+// values at the block's first sample and their per-pixel steps are integers below 2^47, exact in
+// double, so each λ is rounded once, to float, whichever row or lane it is.
+struct BlockBarycentrics {
+    double invArea, e1, e2, e1x, e1y, e2x, e2y;
+
+    BlockBarycentrics(const TriangleSetup& setup, int blockX, int blockY)
+        : invArea(1.0 / static_cast<double>(setup.doubleArea)) {
+        const SamplePoint first = samplePosition(blockX, blockY);
+        e1 = static_cast<double>(setup.edges[1].at(first.x, first.y));
+        e2 = static_cast<double>(setup.edges[2].at(first.x, first.y));
+        e1x = static_cast<double>(setup.edges[1].a * kFixedOne);
+        e1y = static_cast<double>(setup.edges[1].b * kFixedOne);
+        e2x = static_cast<double>(setup.edges[2].a * kFixedOne);
+        e2y = static_cast<double>(setup.edges[2].b * kFixedOne);
+    }
+
+    // The eight samples of block row `row`, lane = column.
+    void row(int row, Float8& b1, Float8& b2) const {
+        for (int lane = 0; lane < kBlockSize; ++lane) {
+            b1[lane] = static_cast<float>((e1 + lane * e1x + row * e1y) * invArea);
+            b2[lane] = static_cast<float>((e2 + lane * e2x + row * e2y) * invArea);
+        }
+    }
+};
+
 // Window depth is an affine function of screen position: z = z0 + λ1·(z1 − z0) + λ2·(z2 − z0).
-inline float interpolateDepth(const TriangleSetup& s, float b1, float b2) {
+template <class F>
+inline F interpolateDepth(const TriangleSetup& s, F b1, F b2) {
     return s.z0 + b1 * s.dz1 + b2 * s.dz2;
+}
+
+// 1/w is affine in screen space too: 1/w = 1/w0 + λ1·(1/w1 − 1/w0) + λ2·(1/w2 − 1/w0).
+template <class F>
+inline F interpolateInvW(const TriangleSetup& s, F b1, F b2) {
+    return s.invW0 + b1 * s.dInvW1 + b2 * s.dInvW2;
+}
+
+// 1/x for the perspective divide: an exact IEEE division for one lane and eight alike (see the top).
+template <class F>
+inline F reciprocal(F x) {
+    return 1.0f / x;
 }
 
 // Perspective-correct: a = (Σ λᵢ·aᵢ/wᵢ) / (Σ λᵢ/wᵢ); the planes already hold aᵢ/wᵢ (triangle_setup).
 // Affine: a = Σ λᵢ·aᵢ, which is only right when w is the same at all three vertices.
 // After clipping every wᵢ ≥ kMinClipW and λᵢ ≥ 0, so Σ λᵢ/wᵢ > 0 and the divide is safe.
 // Flat varyings (the first s.flatVaryingCount) are copied: the provoking vertex's value, exactly.
-inline void interpolateVaryings(const TriangleSetup& s, float b1, float b2, float* out) {
-    const float* plane = s.varyingPlanes;
+// `planes` are the setup's 3 · varyingCount floats; out[k] receives varying k.
+template <class F>
+inline void interpolateVaryings(const TriangleSetup& s, const float* planes, F b1, F b2, F* out) {
+    const float* plane = planes;
     for (int k = 0; k < s.flatVaryingCount; ++k, plane += 3)
-        out[k] = plane[0];
+        out[k] = lanes<F>(plane[0]);
     if (s.perspective) {
-        const float w = 1.0f / (s.invW0 + b1 * s.dInvW1 + b2 * s.dInvW2);
+        const F w = reciprocal(interpolateInvW(s, b1, b2));
         for (int k = s.flatVaryingCount; k < s.varyingCount; ++k, plane += 3)
             out[k] = (plane[0] + b1 * plane[1] + b2 * plane[2]) * w;
     } else {
@@ -30,19 +80,10 @@ inline void interpolateVaryings(const TriangleSetup& s, float b1, float b2, floa
     }
 }
 
-// The same for eight fragments at once, into a FragmentBatch (structure of arrays).
-inline void interpolateVaryings(const TriangleSetup& s, Float8 b1, Float8 b2, FragmentBatch& out) {
-    const float* plane = s.varyingPlanes;
-    for (int k = 0; k < s.flatVaryingCount; ++k, plane += 3)
-        out.varyings[k] = splat(plane[0]);
-    if (s.perspective) {
-        const Float8 w = 1.0f / (s.invW0 + b1 * s.dInvW1 + b2 * s.dInvW2);
-        for (int k = s.flatVaryingCount; k < s.varyingCount; ++k, plane += 3)
-            out.varyings[k] = (plane[0] + b1 * plane[1] + b2 * plane[2]) * w;
-    } else {
-        for (int k = s.flatVaryingCount; k < s.varyingCount; ++k, plane += 3)
-            out.varyings[k] = plane[0] + b1 * plane[1] + b2 * plane[2];
-    }
+// Eight fragments at once, into a FragmentBatch (structure of arrays).
+inline void interpolateVaryings(const TriangleSetup& s, const float* planes, Float8 b1, Float8 b2,
+                                FragmentBatch& out) {
+    interpolateVaryings<Float8>(s, planes, b1, b2, out.varyings);
 }
 
 }  // namespace facet

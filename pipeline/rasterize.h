@@ -12,19 +12,38 @@
 #include <climits>
 #include <cstdint>
 
+#include "sample_position.h"
 #include "types.h"
 #include "wide.h"
 
 namespace facet {
 
-// The plain per-pixel test: is the centre of pixel (x, y) inside the triangle under the top-left rule?
-// (Ignores the bounding box; used by tests as the reference the block walk must match.)
+// The plain per-pixel test, edge by edge: is the sample of pixel (x, y) inside the triangle under the
+// top-left rule, which edges put it outside, and which edges it lies exactly on (ties the fill rule
+// settles)? Ignores the bounding box. The reference the block walk must match (tests), and what an
+// observer sees of coverage (pixel history).
+inline CoverageEvent coverageAt(const TriangleSetup& setup, int x, int y) {
+    const SamplePoint p = samplePosition(x, y);
+    CoverageEvent event;
+    event.x = x;
+    event.y = y;
+    event.triangle = setup.triangle;
+    for (int i = 0; i < 3; ++i) {
+        const EdgeFunction& e = setup.edges[static_cast<std::size_t>(i)];
+        const std::int64_t value = e.at(p.x, p.y);
+        event.edgeValues[static_cast<std::size_t>(i)] = value;
+        const auto bit = static_cast<std::uint8_t>(1u << i);
+        if (value == 0) event.tiedEdges |= bit;
+        if (e.bias == 0) event.topLeftEdges |= bit;
+        if (value + e.bias < 0) event.excludingEdges |= bit;
+    }
+    event.covered = event.excludingEdges == 0;
+    return event;
+}
+
+// Is the sample of pixel (x, y) inside the triangle under the top-left rule?
 inline bool coversSample(const TriangleSetup& setup, int x, int y) {
-    const std::int64_t px = std::int64_t{x} * kFixedOne + kFixedOne / 2;
-    const std::int64_t py = std::int64_t{y} * kFixedOne + kFixedOne / 2;
-    for (const EdgeFunction& e : setup.edges)
-        if (e.at(px, py) + e.bias < 0) return false;
-    return true;
+    return coverageAt(setup, x, y).covered;
 }
 
 // Bits of an 8×8 block's mask for the pixels inside `rect`.
@@ -125,13 +144,12 @@ void rasterizeBlocks(const TriangleSetup& setup, const PixelRect& area, BlockVis
     CoverageBlock block;
     for (int by = firstBlockY; by <= rect.maxY; by += kBlockSize) {
         for (int bx = firstBlockX; bx <= rect.maxX; bx += kBlockSize) {
-            // Biased edge values at the block's first sample, the centre of pixel (bx, by).
-            const std::int64_t px = std::int64_t{bx} * kFixedOne + kFixedOne / 2;
-            const std::int64_t py = std::int64_t{by} * kFixedOne + kFixedOne / 2;
+            // Biased edge values at the block's first sample, that of pixel (bx, by).
+            const SamplePoint first = samplePosition(bx, by);
             std::int64_t origin[3];
             bool outside = false, inside = true;
             for (int i = 0; i < 3; ++i) {
-                origin[i] = setup.edges[i].at(px, py) + setup.edges[i].bias;
+                origin[i] = setup.edges[i].at(first.x, first.y) + setup.edges[i].bias;
                 outside |= origin[i] + maxOffset[i] < 0;
                 inside &= origin[i] + minOffset[i] >= 0;
             }

@@ -44,4 +44,16 @@ class ThreadPool {
     bool stopping_ = false;
 };
 
+// pool.parallelFor(count, body), or the same items in order on the calling thread (thread 0) when
+// `inOrder`: observed draws run so, and their hooks see a stable order.
+template <class Body>
+void forEachItem(ThreadPool& pool, bool inOrder, std::size_t count, const Body& body) {
+    if (inOrder) {
+        for (std::size_t item = 0; item < count; ++item)
+            body(item, 0);
+    } else {
+        pool.parallelFor(count, body);
+    }
+}
+
 }  // namespace facet

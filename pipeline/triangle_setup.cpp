@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <utility>
 
+#include "sample_position.h"
+
 namespace facet {
 
 namespace {
@@ -20,16 +22,6 @@ EdgeFunction makeEdge(const WindowVertex& from, const WindowVertex& to) {
     e.c = from.xFixed * to.yFixed - from.yFixed * to.xFixed;
     e.bias = isTopLeft(to.xFixed - from.xFixed, to.yFixed - from.yFixed) ? 0 : -1;
     return e;
-}
-
-std::int64_t floorDiv(std::int64_t a, std::int64_t b) {
-    std::int64_t q = a / b;
-    if ((a % b != 0) && ((a < 0) != (b < 0))) --q;
-    return q;
-}
-
-std::int64_t ceilDiv(std::int64_t a, std::int64_t b) {
-    return -floorDiv(-a, b);
 }
 
 }  // namespace
@@ -57,23 +49,20 @@ TriangleFate setupTriangle(const WindowTriangle& triangle, const DrawState& stat
     // Cull on the snapped area: zero area in fixed point covers no sample, whatever its float size.
     const std::int64_t area = signedDoubleArea(triangle);
     if (area == 0) return TriangleFate::ZeroArea;
-    // Bounding box of the pixels whose centre (x + ½, y + ½) may be inside, clamped to the viewport
-    // and to the fixed-point budget before any loop runs.
+    // Bounding box of the pixels whose sample (sample_position.h) may be inside, clamped to the
+    // viewport and to the fixed-point budget before any loop runs.
     const WindowVertex& t0 = triangle.vertices[0];
     const WindowVertex& t1 = triangle.vertices[1];
     const WindowVertex& t2 = triangle.vertices[2];
-    const std::int64_t half = kFixedOne / 2;
     const std::int64_t minXf = std::min({t0.xFixed, t1.xFixed, t2.xFixed});
     const std::int64_t maxXf = std::max({t0.xFixed, t1.xFixed, t2.xFixed});
     const std::int64_t minYf = std::min({t0.yFixed, t1.yFixed, t2.yFixed});
     const std::int64_t maxYf = std::max({t0.yFixed, t1.yFixed, t2.yFixed});
     const Viewport& vp = state.viewport;
-    setup.minX = static_cast<int>(std::max<std::int64_t>(ceilDiv(minXf - half, kFixedOne), vp.x));
-    setup.minY = static_cast<int>(std::max<std::int64_t>(ceilDiv(minYf - half, kFixedOne), vp.y));
-    setup.maxX =
-        static_cast<int>(std::min<std::int64_t>(floorDiv(maxXf - half, kFixedOne), vp.x + vp.width - 1));
-    setup.maxY =
-        static_cast<int>(std::min<std::int64_t>(floorDiv(maxYf - half, kFixedOne), vp.y + vp.height - 1));
+    setup.minX = static_cast<int>(std::max<std::int64_t>(firstPixelSampledFrom(minXf), vp.x));
+    setup.minY = static_cast<int>(std::max<std::int64_t>(firstPixelSampledFrom(minYf), vp.y));
+    setup.maxX = static_cast<int>(std::min<std::int64_t>(lastPixelSampledUpTo(maxXf), vp.x + vp.width - 1));
+    setup.maxY = static_cast<int>(std::min<std::int64_t>(lastPixelSampledUpTo(maxYf), vp.y + vp.height - 1));
 
     // A triangle between sample points covers none: common for the sub-pixel triangles of dense meshes.
     if (setup.minX > setup.maxX || setup.minY > setup.maxY) return TriangleFate::MissesSamples;
@@ -122,7 +111,7 @@ TriangleFate setupTriangle(const WindowTriangle& triangle, const DrawState& stat
         varyingPlanes[3 * k + 1] = a1[k] * s1 - p0;
         varyingPlanes[3 * k + 2] = a2[k] * s2 - p0;
     }
-    setup.varyingPlanes = varyingPlanes;
+    setup.varyingPlaneOffset = 0;  // the caller's buffer; the front end sets its offset in the chunk
     return TriangleFate::Drawn;
 }
 

@@ -25,7 +25,7 @@ bool isTopLeft(std::int64_t dx, std::int64_t dy);
 // Culls (facing, zero area) and, for a triangle that survives, computes its TriangleSetup:
 // orientation made positive, edge functions with fill-rule bias, the pixel bounding box clamped to
 // the viewport, and the attribute planes for depth, 1/w and each varying (written to `varyingPlanes`,
-// room for 3 · varyingCount floats, which setup.varyingPlanes then points to).
+// room for 3 · varyingCount floats; setup.varyingPlaneOffset is set to 0, an offset into that buffer).
 // Returns the fate: Drawn when `setup` was filled in.
 TriangleFate setupTriangle(const WindowTriangle& triangle, const DrawState& state, TriangleSetup& setup,
                            float* varyingPlanes);

@@ -88,6 +88,29 @@ std::ostream& operator<<(std::ostream& os, const CoverageBlock& b) {
     return os;
 }
 
+std::ostream& operator<<(std::ostream& os, const CoverageEvent& e) {
+    os << "sample (" << e.x << ", " << e.y << ") of triangle " << e.triangle << ": "
+       << (e.covered ? "covered" : "not covered") << (e.culled ? " (culled: would have been)" : "")
+       << "; E =";
+    for (int i = 0; i < 3; ++i) {
+        os << " " << e.edgeValues[static_cast<std::size_t>(i)];
+        if ((e.tiedEdges >> i) & 1)
+            os << ((e.topLeftEdges >> i) & 1 ? " (tie on a top-left edge: inside)" : " (tie: outside)");
+    }
+    return os;
+}
+
+std::ostream& operator<<(std::ostream& os, const ResolveEvent& e) {
+    os << "resolve (" << e.x << ", " << e.y << "): " << e.fragments.size() << " fragments, farthest first";
+    print(os << "; colour ", e.colorBefore);
+    for (const ResolvedFragment& f : e.fragments) {
+        os << "\n  #" << f.submission << " depth " << f.depth << " " << f.blend;
+        print(os << " ", f.color);
+        print(os << " -> ", f.colorAfter);
+    }
+    return os;
+}
+
 std::ostream& operator<<(std::ostream& os, FragmentFate fate) {
     switch (fate) {
         case FragmentFate::Written:
@@ -105,7 +128,8 @@ std::ostream& operator<<(std::ostream& os, FragmentFate fate) {
 }
 
 std::ostream& operator<<(std::ostream& os, const FragmentEvent& e) {
-    os << "fragment (" << e.x << ", " << e.y << ") of triangle " << e.triangle << ": depth " << e.depth
+    os << "fragment (" << e.x << ", " << e.y << ") of triangle " << e.triangle << ": λ (" << e.barycentrics.x
+       << ", " << e.barycentrics.y << ", " << e.barycentrics.z << "), 1/w " << e.invW << ", depth " << e.depth
        << " vs stored " << e.depthBefore << ", " << e.fate;
     if (e.fate == FragmentFate::Written || e.fate == FragmentFate::Stored) {
         print(os << "; shaded ", e.shaded);

@@ -9,9 +9,12 @@
 #include <array>
 #include <cstdint>
 #include <iosfwd>
+#include <span>
+#include <string>
 #include <vector>
 
 #include "glsl.h"
+#include "state.h"
 
 namespace facet {
 
@@ -125,10 +128,12 @@ struct TriangleSetup {
     float invW0 = 0, dInvW1 = 0, dInvW2 = 0;  // 1/w
     int varyingCount = 0;
     int flatVaryingCount = 0;  // the first ones: constant, their plane is [value, 0, 0]
-    // For each varying k: [3k] value at v0, [3k+1] and [3k+2] its differences to v1 and v2;
-    // premultiplied by 1/w when interpolation is perspective-correct. Storage belongs to the caller of
-    // setupTriangle (3 · varyingCount floats), so a setup stays small whatever the shader.
-    const float* varyingPlanes = nullptr;
+    // Where this setup's varying planes start in the array of planes that holds them (the front end's
+    // SetupChunk::varyingPlanes; 0 for planes setupTriangle wrote to a caller's buffer). For each
+    // varying k: [3k] value at v0, [3k+1] and [3k+2] its differences to v1 and v2; premultiplied by
+    // 1/w when interpolation is perspective-correct. An offset, not a pointer, so a setup stays small
+    // whatever the shader and a copy of it never dangles when the array grows.
+    std::uint32_t varyingPlaneOffset = 0;
 };
 
 // The rasterizer's unit of work: an 8×8 block of pixels with one coverage bit per pixel.
@@ -151,6 +156,25 @@ struct PixelRect {
 
 // ---- Fragment → output -------------------------------------------------------------------------------
 
+// The rasterizer's decision at one pixel's sample for one triangle, edge by edge: a pixel history's view
+// of coverage. Edge i is opposite vertex i (TriangleSetup::edges). A sample exactly on an edge (Eᵢ = 0,
+// a tie) is inside only when that edge is a top or left edge (the top-left fill rule), so two
+// triangles sharing the edge never both cover it.
+struct CoverageEvent {
+    int x = 0, y = 0;
+    std::uint32_t triangle = 0;                // index of the triangle in the draw
+    std::array<std::int64_t, 3> edgeValues{};  // Eᵢ at the sample, unbiased: > 0 inside, 0 on the edge
+    std::uint8_t tiedEdges = 0;                // bit i: the sample lies exactly on edge i
+    std::uint8_t topLeftEdges = 0;             // bit i: edge i is a top or left edge
+    std::uint8_t excludingEdges = 0;           // bit i: edge i puts the sample outside (Eᵢ + biasᵢ < 0)
+    bool covered = false;                      // no edge excludes the sample
+    bool culled = false;  // the triangle was culled for its facing: what it would have covered
+
+    // Ties the fill rule settled: included (on a top-left edge) and excluded (on another edge).
+    std::uint8_t tiesIncluded() const { return tiedEdges & topLeftEdges; }
+    std::uint8_t tiesExcluded() const { return tiedEdges & static_cast<std::uint8_t>(~topLeftEdges); }
+};
+
 // What happened to one fragment (a pixel history verdict, in the step mode's vocabulary).
 // Stored: appended to the pixel's fragment list (FragmentOutput::AppendToLists), the colour buffer
 // untouched until the lists are resolved; Dropped: not stored, its tile's node pool being full.
@@ -165,6 +189,30 @@ struct FragmentEvent {
     vec4 shaded{0.0f};  // the fragment shader's output (when it ran and did not discard)
     vec4 colorBefore{0.0f};
     vec4 colorAfter{0.0f};
+    // The interpolation stage's inputs and outputs at the pixel's sample (for every fate).
+    // λ0, λ1, λ2 (λ0 = 1 − λ1 − λ2), from the exact edge values, for the setup's vertex order: the
+    // window triangle's, with v1 and v2 exchanged when its signed area was negative (triangle_setup).
+    vec3 barycentrics{0.0f};
+    float invW = 0.0f;  // 1/w_clip, affine in screen space: the perspective weight
+    int varyingCount = 0;
+    std::array<float, kMaxVaryingFloats> varyings{};  // the interpolated varyings (the shader's input)
+};
+
+// One fragment of a pixel's list as resolveFragmentLists composites it (fragment_lists.h).
+struct ResolvedFragment {
+    std::uint32_t submission = 0;  // its place in the pixel's list, oldest first
+    float depth = 0.0f;            // window depth, the sort key
+    BlendMode blend = BlendMode::Replace;
+    vec4 color{0.0f};       // the fragment shader's output
+    vec4 colorAfter{0.0f};  // the pixel's colour once this fragment is blended over it
+};
+
+// The resolve of one pixel: its fragments in compositing order (farthest first, equal depths in
+// submission order), each blended with its own mode over the colour before.
+struct ResolveEvent {
+    int x = 0, y = 0;
+    vec4 colorBefore{0.0f};
+    std::span<const ResolvedFragment> fragments;  // valid during the hook only
 };
 
 // Why a triangle produced no fragments.
@@ -205,6 +253,8 @@ std::ostream& operator<<(std::ostream& os, const WindowTriangle& triangle);
 std::ostream& operator<<(std::ostream& os, const EdgeFunction& edge);
 std::ostream& operator<<(std::ostream& os, const TriangleSetup& setup);
 std::ostream& operator<<(std::ostream& os, const CoverageBlock& block);
+std::ostream& operator<<(std::ostream& os, const CoverageEvent& event);
+std::ostream& operator<<(std::ostream& os, const ResolveEvent& event);
 std::ostream& operator<<(std::ostream& os, FragmentFate fate);
 std::ostream& operator<<(std::ostream& os, const FragmentEvent& event);
 std::ostream& operator<<(std::ostream& os, TriangleFate fate);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "depth_format.h"
+
 namespace facet {
 
 namespace {
@@ -25,8 +27,7 @@ WindowVertex toWindow(const vec4& clip, const Viewport& viewport, int subpixelBi
     WindowVertex v;
     v.window.x = static_cast<float>(viewport.x) + (ndc.x + 1.0f) * 0.5f * static_cast<float>(viewport.width);
     v.window.y = static_cast<float>(viewport.y) + (1.0f - ndc.y) * 0.5f * static_cast<float>(viewport.height);
-    const float depth01 = std::clamp((ndc.z + 1.0f) * 0.5f, 0.0f, 1.0f);
-    v.z = viewport.minDepth + depth01 * (viewport.maxDepth - viewport.minDepth);
+    v.z = DepthFormat::windowDepth(ndc.z, viewport.minDepth, viewport.maxDepth);
     v.invW = invW;
 
     // Snap to fixed point. Clipping keeps |x_ndc|, |y_ndc| ≤ 1 up to rounding, so the values stay far

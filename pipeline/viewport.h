@@ -9,7 +9,8 @@
 namespace facet {
 
 // x_w = x_vp + (x_ndc + 1)/2 · width,  y_w = y_vp + (1 − y_ndc)/2 · height  (window y grows downwards),
-// z_w = minDepth + (z_ndc + 1)/2 · (maxDepth − minDepth), clamped to the depth range as OpenGL does.
+// z_w = minDepth + (z_ndc + 1)/2 · (maxDepth − minDepth), clamped to the depth range as OpenGL does
+// (DepthFormat::windowDepth).
 // x and y are rounded to the nearest 1/2^subpixelBits of a pixel. Requires w ≥ kMinClipW (clipped).
 WindowVertex toWindow(const vec4& clipPosition, const Viewport& viewport, int subpixelBits);
 

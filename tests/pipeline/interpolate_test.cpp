@@ -1,6 +1,8 @@
 #include "interpolate.h"
 
+#include <bit>
 #include <cmath>
+#include <random>
 
 #include <gtest/gtest.h>
 
@@ -99,14 +101,58 @@ TEST(Interpolate, PerspectiveFormulaOnHandValues) {
     s.dInvW1 = 0.25f - 1.0f;
     s.dInvW2 = 0.5f - 1.0f;
     const float planes[3] = {2.0f, 10.0f / 4 - 2.0f, 6.0f / 2 - 2.0f};
-    s.varyingPlanes = planes;
     float out[1];
     // Halfway from v0 to v1 on screen: (a0/w0 + a1/w1)/2 ÷ (1/w0 + 1/w1)/2 = (2 + 2.5)/2 ÷ (1 + 0.25)/2
     // = 3.6, not the affine midpoint 6: the far vertex (w = 4) weighs less.
-    interpolateVaryings(s, 0.5f, 0.0f, out);
+    interpolateVaryings(s, planes, 0.5f, 0.0f, out);
     EXPECT_FLOAT_EQ(out[0], 3.6f);
-    interpolateVaryings(s, 0.0f, 1.0f, out);
+    interpolateVaryings(s, planes, 0.0f, 1.0f, out);
     EXPECT_FLOAT_EQ(out[0], 6.0f);
+}
+
+// The back end interpolates a row's fragments eight at a time or one at a time depending on how many
+// survived the depth test, so both lane widths must give the same bits for depth, 1/w and every
+// varying, perspective-correct or affine, flat or not.
+// Break caught: an approximate reciprocal (or any other shortcut) in the eight-lane path only.
+TEST(Interpolate, OneLaneAndEightLanesGiveTheSameBits) {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> value(-10.0f, 10.0f), invW(0.01f, 3.0f), lambda(0.0f, 1.0f);
+    for (int trial = 0; trial < 200; ++trial) {
+        TriangleSetup s;
+        s.perspective = trial % 2 == 0;
+        s.varyingCount = 5;
+        s.flatVaryingCount = trial % 3 == 0 ? 2 : 0;
+        s.z0 = lambda(rng);
+        s.dz1 = value(rng) * 0.05f;
+        s.dz2 = value(rng) * 0.05f;
+        const float w0 = invW(rng), w1 = invW(rng), w2 = invW(rng);
+        s.invW0 = w0;
+        s.dInvW1 = w1 - w0;
+        s.dInvW2 = w2 - w0;
+        float planes[3 * 5];
+        for (float& p : planes)
+            p = value(rng);
+        Float8 b1, b2;
+        for (int lane = 0; lane < 8; ++lane) {
+            b1[lane] = lambda(rng);
+            b2[lane] = (1.0f - b1[lane]) * lambda(rng);
+        }
+        FragmentBatch wide;
+        interpolateVaryings(s, planes, b1, b2, wide);
+        const Float8 depth = interpolateDepth(s, b1, b2), weight = interpolateInvW(s, b1, b2);
+        for (int lane = 0; lane < 8; ++lane) {
+            float narrow[5];
+            interpolateVaryings(s, planes, b1[lane], b2[lane], narrow);
+            for (int k = 0; k < 5; ++k)
+                ASSERT_EQ(std::bit_cast<std::uint32_t>(narrow[k]),
+                          std::bit_cast<std::uint32_t>(wide.varyings[k][lane]))
+                    << "trial " << trial << " lane " << lane << " varying " << k;
+            ASSERT_EQ(std::bit_cast<std::uint32_t>(interpolateDepth(s, b1[lane], b2[lane])),
+                      std::bit_cast<std::uint32_t>(depth[lane]));
+            ASSERT_EQ(std::bit_cast<std::uint32_t>(interpolateInvW(s, b1[lane], b2[lane])),
+                      std::bit_cast<std::uint32_t>(weight[lane]));
+        }
+    }
 }
 
 }  // namespace

@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include "rasterize.h"
-#include "viewport.h"
 
 namespace facet {
 namespace {
@@ -151,15 +150,6 @@ TEST(TriangleSetup, BarycentricsAreOneAtTheirVertex) {
     EXPECT_EQ(setup.edges[0].at(kFixedOne / 2, kFixedOne / 2), setup.doubleArea);
     EXPECT_FLOAT_EQ(setup.z0 + setup.dz1, 0.2f);
     EXPECT_FLOAT_EQ(setup.z0 + setup.dz2, 0.3f);
-}
-
-TEST(TriangleSetup, SnappingFollowsSubpixelBits) {
-    Viewport vp{0, 0, 100, 100};
-    // NDC x = 0.00123 → window x = 50.0615 px.
-    const vec4 clip{0.00123f, 0.0f, 0.0f, 1.0f};
-    EXPECT_EQ(toWindow(clip, vp, 8).xFixed, std::llround(50.0615 * 256));  // 1/256 px
-    EXPECT_EQ(toWindow(clip, vp, 4).xFixed, 50 * 256 + 16 * 1);            // nearest 1/16 px: 50 + 1/16
-    EXPECT_EQ(toWindow(clip, vp, 0).xFixed, 50 * 256);                     // whole pixels
 }
 
 }  // namespace

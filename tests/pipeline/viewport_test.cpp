@@ -1,5 +1,7 @@
 #include "viewport.h"
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 namespace facet {
@@ -33,6 +35,15 @@ TEST(Viewport, SnapsToNearestSubpixel) {
     const WindowVertex v = toWindow({-1.0f + 1.0f / 256.0f, 0, 0, 1}, vp, 8);
     EXPECT_EQ(v.xFixed, 128);
     EXPECT_EQ(toWindow({-1.0f + 1.0f / 256.0f, 0, 0, 1}, vp, 0).xFixed, 0);  // 0.5 rounds to even: 0
+}
+
+TEST(Viewport, SnappingFollowsSubpixelBits) {
+    Viewport vp{0, 0, 100, 100};
+    // NDC x = 0.00123 → window x = 50.0615 px.
+    const vec4 clip{0.00123f, 0.0f, 0.0f, 1.0f};
+    EXPECT_EQ(toWindow(clip, vp, 8).xFixed, std::llround(50.0615 * 256));  // 1/256 px
+    EXPECT_EQ(toWindow(clip, vp, 4).xFixed, 50 * 256 + 16 * 1);            // nearest 1/16 px: 50 + 1/16
+    EXPECT_EQ(toWindow(clip, vp, 0).xFixed, 50 * 256);                     // whole pixels
 }
 
 }  // namespace

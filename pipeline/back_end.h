@@ -1,0 +1,293 @@
+// The back end of a draw, tile by tile: rasterization (8×8 blocks) → early depth test → interpolation
+// → fragment shader → blending, or appending to the per-pixel fragment lists that
+// resolveFragmentLists() composites. Tiles run in parallel; inside a tile the triangles run in
+// submission order, chunk after chunk, so the image is the same bytes for any thread count or tile size.
+#pragma once
+
+#include <bit>
+#include <cstdint>
+#include <span>
+#include <type_traits>
+#include <vector>
+
+#include "bin.h"
+#include "blend.h"
+#include "depth_format.h"
+#include "draw_plan.h"
+#include "fragment_lists.h"
+#include "fragment_stage.h"
+#include "framebuffer.h"
+#include "interpolate.h"
+#include "observer.h"
+#include "rasterize.h"
+#include "shader.h"
+#include "thread_pool.h"
+
+namespace facet {
+
+namespace detail {
+
+// Fragments that passed the depth test, waiting to be shaded eight at a time: the fragments of tiny
+// triangles share a batch. Their varyings are interpolated on the way in (each with its own triangle's
+// planes), so a batch may mix triangles of one draw. No two queued fragments share a pixel: before a
+// fragment is depth-tested at a pixel that holds a queued one, the queue is shaded, so every pixel
+// still sees its fragments in submission order, and the image does not depend on how fragments were
+// grouped.
+struct FragmentQueue {
+    int count = 0;
+    int x[kBlockSize], y[kBlockSize];
+    float z[kBlockSize];
+    std::uint32_t triangle[kBlockSize];
+    FragmentBatch batch;              // interpolated varyings, lane = queue slot
+    FragmentLists::TileWriter lists;  // the tile's fragment lists, for AppendToLists draws
+    // For an observer only (written under Observer::enabled): each slot's λ1, λ2 and 1/w.
+    float b1[kBlockSize], b2[kBlockSize], invW[kBlockSize];
+
+    // Does a queued fragment sit in row y, at a column of [x, x + 8) whose bit is set in `columns`?
+    bool holdsAny(int rowY, int firstX, unsigned columns) const {
+        bool found = false;
+        for (int i = 0; i < count; ++i) {
+            const unsigned column = static_cast<unsigned>(x[i] - firstX);
+            found |= y[i] == rowY && column < kBlockSize && ((columns >> column) & 1u);
+        }
+        return found;
+    }
+};
+
+// The interpolation stage's view of one fragment, for an observer's FragmentEvent.
+inline void describeInterpolation(FragmentEvent& event, float b1, float b2, float invW, int varyingCount) {
+    event.barycentrics = vec3(1.0f - b1 - b2, b1, b2);
+    event.invW = invW;
+    event.varyingCount = varyingCount;
+}
+
+// The fragment shader, then the depth write and blending (or appending to the fragment lists) for the
+// queued fragments. Compiled once for each FragmentOutput, chosen per draw (drawBatchTiles), so the
+// blending loop is exactly what it would be without fragment lists.
+template <Shader S, FragmentOutput kOutput, class Observer>
+void shadeQueue(FragmentQueue& queue, const DrawPlan& plan, const typename S::Uniforms& uniforms,
+                Framebuffer& target, DrawStats& stats, Observer& observer) {
+    constexpr bool kObserving = Observer::enabled;
+    const int n = queue.count;
+    if (n == 0) return;
+    queue.count = 0;
+
+    // The fragment shader: eight lanes at once when the shader can.
+    vec4 shaded[kBlockSize];
+    unsigned kept = (1u << n) - 1;
+    stats.fragmentsShaded += static_cast<unsigned>(n);
+    if constexpr (BatchShader<S>) {
+        queue.batch.mask = kept;
+        const Vec4x8 c = S::fragmentBatch(queue.batch, uniforms);
+        for (int lane = 0; lane < n; ++lane)
+            shaded[lane] = vec4(c.x[lane], c.y[lane], c.z[lane], c.w[lane]);
+    } else {
+        float varyings[kMaxVaryingFloats];
+        for (int lane = 0; lane < n; ++lane) {
+            for (int k = 0; k < kVaryingFloatCount<typename S::Varyings>; ++k)
+                varyings[k] = queue.batch.varyings[k][lane];
+            shaded[lane] = vec4(0.0f);  // what a discarded lane holds (never read)
+            if (!shadeFragment<S>(varyings, uniforms, shaded[lane])) kept &= ~(1u << lane);
+        }
+    }
+
+    // Depth write, then blending into the colour buffer or appending to the pixel's fragment list.
+    for (int lane = 0; lane < n; ++lane) {
+        const int x = queue.x[lane], y = queue.y[lane];
+        FragmentEvent event;
+        if constexpr (kObserving) {
+            event = FragmentEvent{x, y, queue.triangle[lane], queue.z[lane], target.depth(x, y)};
+            event.colorBefore = event.colorAfter = target.color(x, y);
+            constexpr int kVaryings = kVaryingFloatCount<typename S::Varyings>;
+            describeInterpolation(event, queue.b1[lane], queue.b2[lane], queue.invW[lane], kVaryings);
+            for (int k = 0; k < kVaryings; ++k)
+                event.varyings[static_cast<std::size_t>(k)] = queue.batch.varyings[k][lane];
+        }
+        if (!(kept & (1u << lane))) {
+            ++stats.fragmentsDiscarded;
+            if constexpr (kObserving) {
+                event.fate = FragmentFate::Discarded;
+                observer.onFragment(event);
+            }
+            continue;
+        }
+        if (plan.depthWrite) target.depth(x, y) = DepthFormat::store(queue.z[lane]);
+        if constexpr (kOutput == FragmentOutput::AppendToLists) {
+            const bool stored = queue.lists.append(x, y, shaded[lane], queue.z[lane], plan.blend);
+            stats.fragmentsStored += stored;
+            if constexpr (kObserving) event.fate = stored ? FragmentFate::Stored : FragmentFate::Dropped;
+        } else {
+            vec4& destination = target.color(x, y);
+            destination = blend(plan.blend, shaded[lane], destination);
+            ++stats.fragmentsWritten;
+            if constexpr (kObserving) {
+                event.fate = FragmentFate::Written;
+                event.colorAfter = destination;
+            }
+        }
+        if constexpr (kObserving) {
+            event.shaded = shaded[lane];
+            observer.onFragment(event);
+        }
+    }
+}
+
+// The covered pixels of one block: barycentrics, depth, and the depth test (before shading: the shader
+// cannot change depth, so testing early gives the same image and skips hidden fragments). Fragments
+// that pass go to the queue, which is shaded whenever it holds eight.
+template <Shader S, FragmentOutput kOutput, class Observer>
+void depthTestBlock(const TriangleSetup& setup, const float* planes, const CoverageBlock& block,
+                    FragmentQueue& queue, const DrawPlan& plan, const typename S::Uniforms& uniforms,
+                    Framebuffer& target, DrawStats& stats, Observer& observer) {
+    constexpr bool kObserving = Observer::enabled;
+    const BlockBarycentrics barycentrics(setup, block.x, block.y);
+
+    for (int row = 0; row < kBlockSize; ++row) {
+        const unsigned rowMask = static_cast<unsigned>(block.mask >> (row * kBlockSize)) & 0xffu;
+        if (!rowMask) continue;
+        const int y = block.y + row;
+
+        // Barycentrics and depth for the row's eight lanes.
+        Float8 b1{}, b2{};
+        barycentrics.row(row, b1, b2);
+        const Float8 z = interpolateDepth(setup, b1, b2);
+
+        // A queued fragment at one of these pixels must reach the framebuffer before they are tested.
+        if (queue.count && queue.holdsAny(y, block.x, rowMask))
+            shadeQueue<S, kOutput>(queue, plan, uniforms, target, stats, observer);
+
+        DepthFormat::Stored* depthRow = &target.depth(block.x, y);
+        unsigned passed = rowMask;
+        if (plan.depthTest) {
+            if (block.x + kBlockSize <= target.width()) {
+                // Eight stored depths at once (the row lies inside the framebuffer).
+                const Int8 pass = DepthFormat::passes(plan.depthCompare, z, DepthFormat::load8(depthRow));
+                passed &= signMask(pass);
+            } else {
+                for (int lane = 0; lane < kBlockSize; ++lane)
+                    if ((rowMask >> lane) & 1u)
+                        if (!DepthFormat::passes(plan.depthCompare, z[lane], depthRow[lane]))
+                            passed &= ~(1u << lane);
+            }
+        }
+        // Varyings for the row's eight lanes at once when several fragments survived; one by one when a
+        // sliver of a triangle left one or two (the same bits either way: interpolate.h).
+        FragmentBatch rowVaryings;
+        const bool wideRow = std::popcount(passed) > 2;
+        if (wideRow) interpolateVaryings(setup, planes, b1, b2, rowVaryings);
+        for (int lane = 0; lane < kBlockSize; ++lane) {
+            if (!(rowMask & (1u << lane))) continue;
+            if (!(passed & (1u << lane))) {
+                ++stats.fragmentsDepthFailed;
+                if constexpr (kObserving) {
+                    FragmentEvent event{block.x + lane, y, setup.triangle, z[lane], depthRow[lane]};
+                    event.colorBefore = event.colorAfter = target.color(block.x + lane, y);
+                    event.fate = FragmentFate::DepthFailed;
+                    describeInterpolation(event, b1[lane], b2[lane],
+                                          interpolateInvW(setup, b1[lane], b2[lane]), setup.varyingCount);
+                    interpolateVaryings(setup, planes, b1[lane], b2[lane], event.varyings.data());
+                    observer.onFragment(event);
+                }
+                continue;
+            }
+            const int slot = queue.count++;
+            queue.x[slot] = block.x + lane;
+            queue.y[slot] = y;
+            queue.z[slot] = z[lane];
+            queue.triangle[slot] = setup.triangle;
+            if constexpr (kObserving) {
+                queue.b1[slot] = b1[lane];
+                queue.b2[slot] = b2[lane];
+                queue.invW[slot] = interpolateInvW(setup, b1[lane], b2[lane]);
+            }
+            if (wideRow) {
+                for (int k = 0; k < setup.varyingCount; ++k)
+                    queue.batch.varyings[k][slot] = rowVaryings.varyings[k][lane];
+            } else {
+                float varyings[kMaxVaryingFloats];
+                interpolateVaryings(setup, planes, b1[lane], b2[lane], varyings);
+                for (int k = 0; k < setup.varyingCount; ++k)
+                    queue.batch.varyings[k][slot] = varyings[k];
+            }
+            if (queue.count == kBlockSize)
+                shadeQueue<S, kOutput>(queue, plan, uniforms, target, stats, observer);
+        }
+    }
+}
+
+// One tile: its triangles from every chunk, in submission order. An observer also sees the coverage
+// decision at every sample of a triangle's bounding box inside the tile, before its fragments.
+template <Shader S, FragmentOutput kOutput, class Observer>
+void drawTile(const PixelRect& rect, std::size_t tile, std::span<const SetupChunk> chunks,
+              const DrawPlan& plan, const typename S::Uniforms& uniforms, Framebuffer& target,
+              DrawStats& stats, Observer& observer) {
+    FragmentQueue queue;
+    if constexpr (kOutput == FragmentOutput::AppendToLists)
+        queue.lists = target.fragmentLists().writer(rect.minX, rect.minY);
+    for (const SetupChunk& chunk : chunks) {
+        const std::vector<std::uint32_t>& bin = chunk.bins[tile];
+        for (std::size_t k = 0; k < bin.size(); ++k) {
+            // Setups were written by the front end a while ago: ask for the next one early.
+            if (k + 1 < bin.size()) {
+                const TriangleSetup& next = chunk.setups[bin[k + 1]];
+                __builtin_prefetch(&next);
+                __builtin_prefetch(reinterpret_cast<const char*>(&next) + 64);
+                __builtin_prefetch(reinterpret_cast<const char*>(&next) + 128);
+                __builtin_prefetch(chunk.planesOf(next));
+            }
+            const TriangleSetup& setup = chunk.setups[bin[k]];
+            const float* planes = chunk.planesOf(setup);
+            if constexpr (Observer::enabled) {
+                for (int y = std::max(rect.minY, setup.minY); y <= std::min(rect.maxY, setup.maxY); ++y)
+                    for (int x = std::max(rect.minX, setup.minX); x <= std::min(rect.maxX, setup.maxX); ++x)
+                        observer.onCoverage(coverageAt(setup, x, y));
+            }
+            rasterizeBlocks(setup, rect, [&](const CoverageBlock& block) {
+                depthTestBlock<S, kOutput>(setup, planes, block, queue, plan, uniforms, target, stats,
+                                           observer);
+            });
+        }
+    }
+    shadeQueue<S, kOutput>(queue, plan, uniforms, target, stats, observer);
+}
+
+template <Shader S, FragmentOutput kOutput, class Observer>
+void drawTiles(std::span<const std::uint32_t> activeTiles, const TileGrid& grid,
+               std::span<const SetupChunk> chunks, const DrawPlan& plan, const typename S::Uniforms& uniforms,
+               Framebuffer& target, ThreadPool& pool, bool inOrder, std::span<DrawStats> threadStats,
+               Observer& observer) {
+    forEachItem(pool, inOrder, activeTiles.size(), [&](std::size_t active, int thread) {
+        const std::size_t tile = activeTiles[active];
+        drawTile<S, kOutput>(grid.tileRect(static_cast<int>(tile)), tile, chunks, plan, uniforms, target,
+                             threadStats[static_cast<std::size_t>(thread)], observer);
+    });
+}
+
+}  // namespace detail
+
+// The back end for one batch of set-up chunks: only the tiles some triangle touches (a draw of a few
+// triangles, such as a short run of the transparent pass, then costs little more than its triangles,
+// and a single tile is drawn on the calling thread without waking the pool), in parallel unless
+// `inOrder`. The FragmentOutput is chosen here, once per draw. Returns the number of tiles drawn.
+template <Shader S, class Observer>
+std::size_t drawBatchTiles(const TileGrid& grid, std::span<const SetupChunk> chunks, const DrawPlan& plan,
+                           const typename S::Uniforms& uniforms, Framebuffer& target, ThreadPool& pool,
+                           bool inOrder, std::vector<std::uint32_t>& activeTiles,
+                           std::span<DrawStats> threadStats, Observer& observer) {
+    activeTiles.clear();
+    for (int tile = 0; tile < grid.count(); ++tile)
+        for (const SetupChunk& chunk : chunks)
+            if (!chunk.bins[static_cast<std::size_t>(tile)].empty()) {
+                activeTiles.push_back(static_cast<std::uint32_t>(tile));
+                break;
+            }
+    if (plan.output == FragmentOutput::AppendToLists)
+        detail::drawTiles<S, FragmentOutput::AppendToLists>(activeTiles, grid, chunks, plan, uniforms, target,
+                                                            pool, inOrder, threadStats, observer);
+    else
+        detail::drawTiles<S, FragmentOutput::Blend>(activeTiles, grid, chunks, plan, uniforms, target, pool,
+                                                    inOrder, threadStats, observer);
+    return activeTiles.size();
+}
+
+}  // namespace facet
