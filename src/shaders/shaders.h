@@ -109,6 +109,7 @@ template <class F, class V3, MathPrecision kPrecision>
     return t;
 }
 
+// The same with the uniforms' precision (u.precision) for pow and exp.
 template <class F, class V3 = LaneVec3<F>>
 [[gnu::always_inline]] inline LightingTerms<V3> surfaceTerms(const V3& P, const V3& normal, const V3& albedo,
                                                              const SurfaceUniforms& u) {
