@@ -96,9 +96,11 @@ template <template <class> class Bundle>
 inline constexpr int kLaneBundleFloats = kVaryingFloatCount<Bundle<float>>;
 
 template <template <class> class Bundle>
-inline constexpr bool kIsLaneBundle =
-    kIsFloatBundle<Bundle<float>>&& std::is_trivially_copyable_v<Bundle<Float8>> &&
-    sizeof(Bundle<Float8>) == kLaneBundleFloats<Bundle> * sizeof(Float8);
+inline constexpr bool kIsLaneBundle = [] {
+    const bool floatsAtOneLane = kIsFloatBundle<Bundle<float>>;
+    return floatsAtOneLane && std::is_trivially_copyable_v<Bundle<Float8>> &&
+           sizeof(Bundle<Float8>) == kLaneBundleFloats<Bundle> * sizeof(Float8);
+}();
 
 // Lane `lane` of an eight-lane bundle, as the one-lane bundle.
 template <template <class> class Bundle>

@@ -143,13 +143,11 @@ inline float max(float a, float b) {
     return a > b ? a : b;
 }
 
-// The interpolated varyings of eight fragments, one Float8 per varying float (structure of arrays).
+// The interpolated varyings of eight fragments, one Float8 per varying float (structure of arrays); a
+// shader reads them as its VaryingsT<Float8> (shader.h's loadLanes).
 struct FragmentBatch {
     Float8 varyings[kMaxVaryingFloats];
     std::uint32_t mask = 0;  // bit i: lane i is a live fragment (others hold meaningless values)
-
-    Vec2x8 vec2At(int offset) const { return {varyings[offset], varyings[offset + 1]}; }
-    Vec3x8 vec3At(int offset) const { return {varyings[offset], varyings[offset + 1], varyings[offset + 2]}; }
 };
 
 // ---- Lane-generic helpers: one name for float and Float8 lanes, for formulas written as templates ---
@@ -253,7 +251,8 @@ F saturate(F x) {
 // bits under either choice.
 enum class MathPrecision : std::uint8_t {
     Exact,  // the C library's powf and expf, lane by lane (correctly rounded or nearly so)
-    Fast,   // polynomials on the float's bits (log2 and exp2 below): relative error below 1e−5
+    Fast,   // polynomials on the float's bits (fastLog2, fastExp2 below): within 2e−5 relative for
+            // the exponents lighting uses (pow's error grows with n)
 };
 inline constexpr std::array<std::string_view, 2> kMathPrecisionNames{"exact", "fast"};  // by value
 inline constexpr std::string_view mathPrecisionName(MathPrecision p) {
