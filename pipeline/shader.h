@@ -13,11 +13,13 @@
 #pragma once
 
 #include <concepts>
+#include <cstring>
 #include <optional>
 #include <type_traits>
 
 #include "glsl.h"
 #include "types.h"
+#include "wide.h"
 
 namespace facet {
 
@@ -82,5 +84,113 @@ inline constexpr bool kMayDiscard =
     std::same_as<decltype(S::fragment(std::declval<const typename S::Varyings&>(),
                                       std::declval<const typename S::Uniforms&>())),
                  std::optional<vec4>>;
+
+// ---- Shaders written once for one lane and for eight ------------------------------------------------
+//
+// A bundle of floats declared once as a template over the lane type F (float or Float8), its members
+// vec2/vec3/vec4 for one lane and Vec2x8/Vec3x8/Vec4x8 for eight (LaneVec2<F>…):
+//   template <class F> struct VaryingsT { LaneVec3<F> normal; LaneVec2<F> uv; };
+// Bundle<float> is then n floats (a Varyings as the pipeline wants it) and Bundle<Float8> the same n
+// members as Float8 lanes in the same order, so one is the other transposed: no per-member copies.
+template <template <class> class Bundle>
+inline constexpr int kLaneBundleFloats = kVaryingFloatCount<Bundle<float>>;
+
+template <template <class> class Bundle>
+inline constexpr bool kIsLaneBundle = [] {
+    const bool floatsAtOneLane = kIsFloatBundle<Bundle<float>>;
+    return floatsAtOneLane && std::is_trivially_copyable_v<Bundle<Float8>> &&
+           sizeof(Bundle<Float8>) == kLaneBundleFloats<Bundle> * sizeof(Float8);
+}();
+
+// Lane `lane` of an eight-lane bundle, as the one-lane bundle.
+template <template <class> class Bundle>
+Bundle<float> laneOf(const Bundle<Float8>& wide, int lane) {
+    static_assert(kIsLaneBundle<Bundle>, "a lane bundle has the same float members at both lane types");
+    constexpr int kFloats = kLaneBundleFloats<Bundle>;
+    Float8 columns[kFloats];
+    std::memcpy(columns, &wide, sizeof wide);
+    float floats[kFloats];
+    for (int k = 0; k < kFloats; ++k)
+        floats[k] = columns[k][lane];
+    Bundle<float> one;
+    std::memcpy(&one, floats, sizeof one);
+    return one;
+}
+
+// Eight one-lane bundles as one eight-lane bundle.
+template <template <class> class Bundle>
+Bundle<Float8> gatherLanes(const Bundle<float> (&perLane)[8]) {
+    static_assert(kIsLaneBundle<Bundle>, "a lane bundle has the same float members at both lane types");
+    constexpr int kFloats = kLaneBundleFloats<Bundle>;
+    Float8 columns[kFloats];
+    for (int lane = 0; lane < 8; ++lane) {
+        float floats[kFloats];
+        std::memcpy(floats, &perLane[lane], sizeof floats);
+        for (int k = 0; k < kFloats; ++k)
+            columns[k][lane] = floats[k];
+    }
+    Bundle<Float8> wide;
+    std::memcpy(&wide, columns, sizeof wide);
+    return wide;
+}
+
+// A FragmentBatch's interpolated varyings (one Float8 per varying float) as the eight-lane bundle.
+template <template <class> class Bundle>
+Bundle<Float8> loadLanes(const FragmentBatch& batch) {
+    static_assert(kIsLaneBundle<Bundle>, "a lane bundle has the same float members at both lane types");
+    Bundle<Float8> wide;
+    std::memcpy(&wide, batch.varyings, sizeof wide);
+    return wide;
+}
+
+// The pipeline's entry points of a shader whose fragment shader (and per-vertex lighting) is one body
+// for both lane types. Body declares Attributes, Uniforms, vertex(), and
+//   template <class F> struct VaryingsT;  // a lane bundle; Varyings is VaryingsT<float>
+//   template <class F>
+//   static LaneVec4<F> shade(const VaryingsT<F>&, const Uniforms&, unsigned liveLanes);
+// (liveLanes: bit i set where lane i holds a fragment; 1 for one lane). LaneShader<Body> adds
+// fragment() (F = float) and fragmentBatch() (F = Float8), so the pipeline, a test or a trace of one
+// pixel runs the very lighting the others run. A Body that lights its vertices declares as well
+//   template <class F> struct VertexInputsT;  // a lane bundle of what the lighting reads
+//   static VertexOut<VertexInputsT<float>> vertexInputs(const Attributes&, const Uniforms&);
+//   template <class F> static VaryingsT<F> lightVertex(const VertexInputsT<F>&, const Uniforms&);
+// and gets vertexBatch(): vertexInputs one vertex at a time (the matrices), lightVertex on eight lanes.
+template <class Body>
+concept LanewiseVertexLighting = requires(const typename Body::Attributes& in,
+                                          const typename Body::Uniforms& u,
+                                          const typename Body::template VertexInputsT<Float8>& wide) {
+    { Body::vertexInputs(in, u) } -> std::same_as<VertexOut<typename Body::template VertexInputsT<float>>>;
+    {
+        Body::template lightVertex<Float8>(wide, u)
+        } -> std::same_as<typename Body::template VaryingsT<Float8>>;
+};
+
+template <class Body>
+struct LaneShader : Body {
+    using Varyings = typename Body::template VaryingsT<float>;
+    using Uniforms = typename Body::Uniforms;
+    using Attributes = typename Body::Attributes;
+
+    static vec4 fragment(const Varyings& in, const Uniforms& u) {
+        return Body::template shade<float>(in, u, 1u);
+    }
+    static Vec4x8 fragmentBatch(const FragmentBatch& in, const Uniforms& u) {
+        return Body::template shade<Float8>(loadLanes<Body::template VaryingsT>(in), u, in.mask);
+    }
+    static void vertexBatch(const Attributes* in, const Uniforms& u,
+                            VertexOut<Varyings>* out) requires LanewiseVertexLighting<Body> {
+        using Inputs = typename Body::template VertexInputsT<float>;
+        Inputs inputs[kVertexBatch];
+        for (int lane = 0; lane < kVertexBatch; ++lane) {
+            const VertexOut<Inputs> prepared = Body::vertexInputs(in[lane], u);
+            out[lane].position = prepared.position;
+            inputs[lane] = prepared.varyings;
+        }
+        const typename Body::template VaryingsT<Float8> lit =
+            Body::template lightVertex<Float8>(gatherLanes<Body::template VertexInputsT>(inputs), u);
+        for (int lane = 0; lane < kVertexBatch; ++lane)
+            out[lane].varyings = laneOf<Body::template VaryingsT>(lit, lane);
+    }
+};
 
 }  // namespace facet

@@ -6,10 +6,13 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <numbers>
+#include <string_view>
 #if defined(__AVX__)
 #include <immintrin.h>
 #endif
@@ -65,45 +68,6 @@ inline Float8 sqrt(Float8 v) {
     for (int i = 0; i < 8; ++i)
         r[i] = std::sqrt(v[i]);  // one vsqrtps: the loop is vectorised
     return r;
-}
-
-// log2(x) for x > 0: x = m·2^e with m in [√½, √2), ln m = 2·atanh(t), t = (m − 1)/(m + 1), |t| ≤ 0.172,
-// from the series 2(t + t³/3 + t⁵/5 + t⁷/7 + t⁹/9); the error is below 1e−9 of a unit.
-inline Float8 log2(Float8 x) {
-    const Int8 bits = std::bit_cast<Int8>(x);
-    Int8 exponent = ((bits >> 23) & 0xff) - 127;
-    Float8 m = std::bit_cast<Float8>((bits & 0x007fffff) | 0x3f800000);  // mantissa in [1, 2)
-    const Int8 big = m > 1.41421356f;
-    m = big ? m * 0.5f : m;
-    exponent = exponent + (big & 1);
-    const Float8 t = (m - 1.0f) / (m + 1.0f);
-    const Float8 t2 = t * t;
-    const Float8 lnM = t * (2.0f + t2 * (2.0f / 3 + t2 * (2.0f / 5 + t2 * (2.0f / 7 + t2 * (2.0f / 9)))));
-    return __builtin_convertvector(exponent, Float8) + lnM * 1.44269504f;
-}
-
-// 2^y: y = n + f with n an integer and |f| ≤ ½, 2^f = e^(f·ln 2) from its Taylor series to degree 7
-// (relative error below 1e−8), 2^n assembled in the exponent bits. Clamped to the float range.
-inline Float8 exp2(Float8 y) {
-    y = max(min(y, splat(127.0f)), splat(-126.0f));
-    // Round to the nearest integer by adding and removing 1.5·2^23, which leaves no fraction bits
-    // (exact for |y| < 2^22, in the default rounding mode).
-    const Float8 rounded = (y + 12582912.0f) - 12582912.0f;
-    const Float8 u = (y - rounded) * 0.693147181f;
-    const Float8 p =
-        1.0f +
-        u * (1.0f +
-             u * (1.0f / 2 + u * (1.0f / 6 + u * (1.0f / 24 +
-                                                  u * (1.0f / 120 + u * (1.0f / 720 + u * (1.0f / 5040)))))));
-    const Int8 n = __builtin_convertvector(rounded, Int8);
-    return p * std::bit_cast<Float8>((n + 127) << 23);
-}
-
-// x^n for x ≥ 0, n ≥ 0, as GLSL's pow: 0 where x = 0 and n > 0, 1 where n = 0.
-inline Float8 pow(Float8 x, float n) {
-    if (n == 0.0f) return splat(1.0f);
-    const Float8 r = exp2(log2(x) * n);
-    return x > 0.0f ? r : splat(0.0f);
 }
 
 struct Vec2x8 {
@@ -179,13 +143,11 @@ inline float max(float a, float b) {
     return a > b ? a : b;
 }
 
-// The interpolated varyings of eight fragments, one Float8 per varying float (structure of arrays).
+// The interpolated varyings of eight fragments, one Float8 per varying float (structure of arrays); a
+// shader reads them as its VaryingsT<Float8> (shader.h's loadLanes).
 struct FragmentBatch {
     Float8 varyings[kMaxVaryingFloats];
     std::uint32_t mask = 0;  // bit i: lane i is a live fragment (others hold meaningless values)
-
-    Vec2x8 vec2At(int offset) const { return {varyings[offset], varyings[offset + 1]}; }
-    Vec3x8 vec3At(int offset) const { return {varyings[offset], varyings[offset + 1], varyings[offset + 2]}; }
 };
 
 // ---- Lane-generic helpers: one name for float and Float8 lanes, for formulas written as templates ---
@@ -194,23 +156,54 @@ template <class F>
 struct LaneTraits;
 template <>
 struct LaneTraits<float> {
+    using Int = std::int32_t;
+    using Vec2 = vec2;
     using Vec3 = vec3;
+    using Vec4 = vec4;
+    static constexpr int kCount = 1;
     static float splat(float v) { return v; }
+    static float toFloat(std::int32_t v) { return static_cast<float>(v); }
+    static std::int32_t toInt(float v) { return static_cast<std::int32_t>(v); }
 };
 template <>
 struct LaneTraits<Float8> {
+    using Int = Int8;
+    using Vec2 = Vec2x8;
     using Vec3 = Vec3x8;
+    using Vec4 = Vec4x8;
+    static constexpr int kCount = 8;
     static Float8 splat(float v) { return facet::splat(v); }
+    static Float8 toFloat(Int8 v) { return __builtin_convertvector(v, Float8); }
+    static Int8 toInt(Float8 v) { return __builtin_convertvector(v, Int8); }
 };
 
-// The three-component vector type that goes with the lane type F.
+// The vector types that go with the lane type F: vec2/vec3/vec4 for one lane, Vec2x8/Vec3x8/Vec4x8 for
+// eight.
+template <class F>
+using LaneVec2 = typename LaneTraits<F>::Vec2;
 template <class F>
 using LaneVec3 = typename LaneTraits<F>::Vec3;
+template <class F>
+using LaneVec4 = typename LaneTraits<F>::Vec4;
 
 // v in every lane of F.
 template <class F>
 F lanes(float v) {
     return LaneTraits<F>::splat(v);
+}
+
+// GLSL's c.rgb and vec4(c, a), for both lane types.
+inline vec3 rgb(const vec4& c) {
+    return vec3(c);
+}
+inline Vec3x8 rgb(const Vec4x8& c) {
+    return {c.x, c.y, c.z};
+}
+inline vec4 withAlpha(const vec3& c, float alpha) {
+    return vec4(c, alpha);
+}
+inline Vec4x8 withAlpha(const Vec3x8& c, Float8 alpha) {
+    return {c.x, c.y, c.z, alpha};
 }
 
 inline Vec3x8 operator*(const Vec3x8& a, float s) {
@@ -244,20 +237,111 @@ inline Float8 abs(Float8 x) {
     return max(x, -x);
 }
 
-// e^x = 2^(x·log2 e).
-inline float exp(float x) {
-    return std::exp(x);
-}
-inline Float8 exp(Float8 x) {
-    return exp2(x * std::numbers::log2e_v<float>);
+// clamp(x, 0, 1) (HLSL's saturate): min(x, 1), then max(·, 0), as the eight-lane min and max compare.
+template <class F>
+F saturate(F x) {
+    const F below = select(x < 1.0f, x, lanes<F>(1.0f));
+    return select(below > 0.0f, below, lanes<F>(0.0f));
 }
 
-// clamp(x, 0, 1) (HLSL's saturate).
-inline float saturate(float x) {
-    return std::clamp(x, 0.0f, 1.0f);
+// ---- Exact or fast transcendental functions, chosen explicitly -------------------------------------
+
+// How pow and exp are computed. The choice is the caller's (a shader takes it from its uniforms, the
+// same for the whole draw), never implied by the lane width: one lane and eight lanes give the same
+// bits under either choice.
+enum class MathPrecision : std::uint8_t {
+    Exact,  // the C library's powf and expf, lane by lane (correctly rounded or nearly so)
+    Fast,   // polynomials on the float's bits (fastLog2, fastExp2 below): within 2e−5 relative for
+            // the exponents lighting uses (pow's error grows with n)
+};
+inline constexpr std::array<std::string_view, 2> kMathPrecisionNames{"exact", "fast"};  // by value
+inline constexpr std::string_view mathPrecisionName(MathPrecision p) {
+    return kMathPrecisionNames[static_cast<std::size_t>(p)];
 }
-inline Float8 saturate(Float8 x) {
-    return max(min(x, 1.0f), 0.0f);
+
+// log2(x) for x > 0: x = m·2^e with m in [√½, √2), ln m = 2·atanh(t), t = (m − 1)/(m + 1), |t| ≤ 0.172,
+// from the series 2(t + t³/3 + t⁵/5 + t⁷/7 + t⁹/9); the error is below 1e−9 of a unit.
+template <class F>
+F fastLog2(F x) {
+    using Traits = LaneTraits<F>;
+    using Int = typename Traits::Int;
+    const Int bits = std::bit_cast<Int>(x);
+    Int exponent = ((bits >> 23) & 0xff) - 127;
+    F m = std::bit_cast<F>((bits & 0x007fffff) | 0x3f800000);  // mantissa in [1, 2)
+    const auto big = m > 1.41421356f;                          // bool, or all ones per lane
+    m = select(big, m * 0.5f, m);
+    exponent = exponent + (big & 1);
+    const F t = (m - 1.0f) / (m + 1.0f);
+    const F t2 = t * t;
+    const F lnM = t * (2.0f + t2 * (2.0f / 3 + t2 * (2.0f / 5 + t2 * (2.0f / 7 + t2 * (2.0f / 9)))));
+    return Traits::toFloat(exponent) + lnM * 1.44269504f;
+}
+
+// 2^y: y = n + f with n an integer and |f| ≤ ½, 2^f = e^(f·ln 2) from its Taylor series to degree 7
+// (relative error below 1e−8), 2^n assembled in the exponent bits. Clamped to the float range.
+template <class F>
+F fastExp2(F y) {
+    using Traits = LaneTraits<F>;
+    const F atMost = select(y < 127.0f, y, lanes<F>(127.0f));
+    y = select(atMost > -126.0f, atMost, lanes<F>(-126.0f));
+    // Round to the nearest integer by adding and removing 1.5·2^23, which leaves no fraction bits
+    // (exact for |y| < 2^22, in the default rounding mode).
+    const F rounded = (y + 12582912.0f) - 12582912.0f;
+    const F u = (y - rounded) * 0.693147181f;
+    const F p =
+        1.0f +
+        u * (1.0f +
+             u * (1.0f / 2 + u * (1.0f / 6 + u * (1.0f / 24 +
+                                                  u * (1.0f / 120 + u * (1.0f / 720 + u * (1.0f / 5040)))))));
+    const typename Traits::Int n = Traits::toInt(rounded);
+    return p * std::bit_cast<F>((n + 127) << 23);
+}
+
+template <MathPrecision P>
+struct Maths;
+
+template <>
+struct Maths<MathPrecision::Exact> {
+    // x^n for x ≥ 0, n ≥ 0, as GLSL's pow: 0 where x = 0 and n > 0, 1 where n = 0.
+    static float pow(float x, float n) { return std::pow(x, n); }
+    static Float8 pow(Float8 x, float n) {
+        for (int i = 0; i < 8; ++i)
+            x[i] = std::pow(x[i], n);
+        return x;
+    }
+    static float exp(float x) { return std::exp(x); }
+    static Float8 exp(Float8 x) {
+        for (int i = 0; i < 8; ++i)
+            x[i] = std::exp(x[i]);
+        return x;
+    }
+};
+
+template <>
+struct Maths<MathPrecision::Fast> {
+    // x^n = 2^(n·log2 x), with pow's edges: 0 where x = 0 and n > 0, 1 where n = 0.
+    template <class F>
+    static F pow(F x, float n) {
+        if (n == 0.0f) return lanes<F>(1.0f);
+        const F r = fastExp2(fastLog2(x) * n);
+        return select(x > 0.0f, r, lanes<F>(0.0f));
+    }
+    // e^x = 2^(x·log2 e).
+    template <class F>
+    static F exp(F x) {
+        return fastExp2(x * std::numbers::log2e_v<float>);
+    }
+};
+
+// The eight-lane log2, exp2 and pow of GLSL's vocabulary are the fast ones.
+inline Float8 log2(Float8 x) {
+    return fastLog2(x);
+}
+inline Float8 exp2(Float8 y) {
+    return fastExp2(y);
+}
+inline Float8 pow(Float8 x, float n) {
+    return Maths<MathPrecision::Fast>::pow(x, n);
 }
 
 // v/|v|, and the zero vector for the zero vector (normalize would give NaN).

@@ -5,6 +5,11 @@
 //   SurfaceShader<ShadingFrequency::Flat>     lighting per vertex, the provoking vertex's colour on the
 //                                             whole triangle (a flat varying).
 // Lighting happens in eye space: the eye is at the origin, V = normalize(−P) (a local viewer).
+//
+// Each shader's fragment shader, and the per-vertex shaders' vertex lighting, is one body written over
+// the lane type F (float: one fragment; Float8: eight), its Varyings one template VaryingsT<F>;
+// LaneShader (pipeline/shader.h) makes the pipeline's fragment/fragmentBatch/vertexBatch of it. The
+// precision of pow and exp is the draw's choice, SurfaceUniforms::precision, not the lane width's.
 #pragma once
 
 #include <array>
@@ -55,6 +60,9 @@ struct SurfaceUniforms {
     float opacity = 1.0f;                  // α, times the diffuse map's alpha when there is one
     FogParams fog;                         // applied to the lit colour, before the blend's output form
     BlendMode blend = BlendMode::Replace;  // the draw's blend, which decides the output form (surfaceOutput)
+    // pow and exp in the lighting and fog: Fast (wide.h's polynomials) is what every image has been
+    // drawn with; one lane and eight give the same bits under either choice.
+    MathPrecision precision = MathPrecision::Fast;
 
     std::span<const LightParams> activeLights() const {
         return {lights.data(), static_cast<std::size_t>(lightCount)};
@@ -68,26 +76,27 @@ struct SurfaceUniforms {
 
 // The lighting equation's terms at one point (or eight), as the uniforms choose: the model, the
 // two-sided flip, and only the selected terms (the others are zero). P and N are in eye space; N need
-// not be unit length. `albedo` is m_diffuse or c_base, per lane.
-template <class F, class V3>
-[[gnu::always_inline]] inline LightingTerms<V3> surfaceTerms(const V3& P, const V3& normal, const V3& albedo,
-                                                             const SurfaceUniforms& u) {
+// not be unit length. `albedo` is m_diffuse or c_base, per lane. kPrecision is u.precision
+// (surfaceTerms below chooses it).
+template <class F, class V3, MathPrecision kPrecision>
+[[gnu::always_inline]] inline LightingTerms<V3> surfaceTermsWith(const V3& P, const V3& normal,
+                                                                 const V3& albedo, const SurfaceUniforms& u) {
     V3 N = normal;
     if (u.twoSidedFlip) N = select(dot(N, -P) < 0.0f, -N, N);
     const vec3 eye(0.0f);
     LightingTerms<V3> t;
     switch (u.reflection) {
         case ReflectionModel::Phong:
-            t = standardLighting<F, V3>(P, N, eye, u.material, albedo, u.globalAmbient, u.activeLights(),
-                                        SpecularModel::Phong);
+            t = standardLighting<F, V3, kPrecision>(P, N, eye, u.material, albedo, u.globalAmbient,
+                                                    u.activeLights(), SpecularModel::Phong);
             break;
         case ReflectionModel::BlinnPhong:
-            t = standardLighting<F, V3>(P, N, eye, u.material, albedo, u.globalAmbient, u.activeLights(),
-                                        SpecularModel::BlinnPhong);
+            t = standardLighting<F, V3, kPrecision>(P, N, eye, u.material, albedo, u.globalAmbient,
+                                                    u.activeLights(), SpecularModel::BlinnPhong);
             break;
         case ReflectionModel::CookTorrance:
-            t = physicallyBasedTerms<F, V3>(P, N, eye, u.pbr, albedo, u.material.emission, u.globalAmbient,
-                                            u.activeLights(), u.brdf);
+            t = physicallyBasedTerms<F, V3, kPrecision>(P, N, eye, u.pbr, albedo, u.material.emission,
+                                                        u.globalAmbient, u.activeLights(), u.brdf);
             break;
     }
     if (u.terms != kAllTerms) {
@@ -100,14 +109,24 @@ template <class F, class V3>
     return t;
 }
 
+// The same with the uniforms' precision (u.precision) for pow and exp.
+template <class F, class V3 = LaneVec3<F>>
+[[gnu::always_inline]] inline LightingTerms<V3> surfaceTerms(const V3& P, const V3& normal, const V3& albedo,
+                                                             const SurfaceUniforms& u) {
+    return u.precision == MathPrecision::Exact
+               ? surfaceTermsWith<F, V3, MathPrecision::Exact>(P, normal, albedo, u)
+               : surfaceTermsWith<F, V3, MathPrecision::Fast>(P, normal, albedo, u);
+}
+
 // What a surface shader writes, from the lit colour c and its alpha α at eye-space point P: fog first,
 // c = f·c + (1 − f)·c_fog (fog.h), then the form the draw's blend expects:
 //   Replace, Over:               (c, α)            straight alpha
 //   PremultipliedOver, Additive: (α·c, α)          premultiplied (Additive: c_d + α·c)
 //   Multiply:                    (mix(1, c, α), α)  a filter that is clear (1) where α = 0
-template <class F, class V3>
+template <class F, class V3 = LaneVec3<F>>
 [[gnu::always_inline]] inline V3 surfaceOutput(V3 c, F alpha, const V3& P, const SurfaceUniforms& u) {
-    c = applyFog<F, V3>(u.fog, c, P);
+    c = u.precision == MathPrecision::Exact ? applyFog<F, V3, MathPrecision::Exact>(u.fog, c, P)
+                                            : applyFog<F, V3, MathPrecision::Fast>(u.fog, c, P);
     switch (u.blend) {
         case BlendMode::Replace:
         case BlendMode::Over:
@@ -123,18 +142,24 @@ template <class F, class V3>
 
 namespace detail {
 
-// A texture's texels for the batch's lanes (opaque white where the lane is empty).
-inline Vec4x8 texels(const Texture& map, const Vec2x8& uv, unsigned mask) {
-    Vec4x8 texel{splat(1.0f), splat(1.0f), splat(1.0f), splat(1.0f)};
-    for (int lane = 0; lane < 8; ++lane) {
-        if (!((mask >> lane) & 1)) continue;
-        const vec4 t = sampleBilinear(map, vec2(uv.x[lane], uv.y[lane]));
-        texel.x[lane] = t.r;
-        texel.y[lane] = t.g;
-        texel.z[lane] = t.b;
-        texel.w[lane] = t.a;
+// A texture's bilinear texels at uv, in the live lanes (bit i of liveLanes: lane i holds a fragment;
+// the others are opaque white and their uv, which may be anything, is not read).
+template <class F>
+LaneVec4<F> texels(const Texture& map, const LaneVec2<F>& uv, unsigned liveLanes) {
+    if constexpr (LaneTraits<F>::kCount == 1) {
+        return sampleBilinear(map, uv);
+    } else {
+        LaneVec4<F> texel{splat(1.0f), splat(1.0f), splat(1.0f), splat(1.0f)};
+        for (int lane = 0; lane < LaneTraits<F>::kCount; ++lane) {
+            if (!((liveLanes >> lane) & 1)) continue;
+            const vec4 t = texels<float>(map, vec2(uv.x[lane], uv.y[lane]), 1u);
+            texel.x[lane] = t.r;
+            texel.y[lane] = t.g;
+            texel.z[lane] = t.b;
+            texel.w[lane] = t.a;
+        }
+        return texel;
     }
-    return texel;
 }
 
 template <class V3>
@@ -148,60 +173,41 @@ template <ShadingFrequency kFrequency>
 struct SurfaceShader;
 
 // Phong shading: the eye-space position and normal are interpolated; lighting per pixel.
-template <>
-struct SurfaceShader<ShadingFrequency::Phong> {
+struct PerPixelSurface {
     using Attributes = MeshVertex;
     using Uniforms = SurfaceUniforms;
-    struct Varyings {
-        vec3 position;  // eye space
-        vec3 normal;    // eye space, renormalised per pixel by the lighting
-        vec2 uv;
+    template <class F>
+    struct VaryingsT {
+        LaneVec3<F> position;  // eye space
+        LaneVec3<F> normal;    // eye space, renormalised per pixel by the lighting
+        LaneVec2<F> uv;
     };
 
-    static VertexOut<Varyings> vertex(const Attributes& in, const Uniforms& u) {
+    static VertexOut<VaryingsT<float>> vertex(const Attributes& in, const Uniforms& u) {
         return {u.clipFromObject * vec4(in.position, 1.0f),
                 {vec3(u.viewFromObject * vec4(in.position, 1.0f)), u.normalFromObject * in.normal, in.uv}};
     }
 
-    static vec4 fragment(const Varyings& in, const Uniforms& u) {
-        vec3 albedo = u.albedo();
-        float alpha = u.opacity;
+    template <class F>
+    static LaneVec4<F> shade(const VaryingsT<F>& in, const Uniforms& u, unsigned liveLanes) {
+        using V3 = LaneVec3<F>;
+        V3 albedo(u.albedo());
+        F alpha = lanes<F>(u.opacity);
         if (u.diffuseMap) {
-            const vec4 texel = sampleBilinear(*u.diffuseMap, in.uv);
-            albedo *= vec3(texel);
-            alpha *= texel.a;
-        }
-        LightingTerms<vec3> t = surfaceTerms<float, vec3>(in.position, in.normal, albedo, u);
-        if (u.emissionMap) t.emission *= vec3(sampleBilinear(*u.emissionMap, in.uv));
-        vec3 c = t.sum();
-        if (u.clampColor) c = detail::clamp01(c);
-        return vec4(surfaceOutput<float, vec3>(c, alpha, in.position, u), alpha);
-    }
-
-    // The same for eight fragments at once (the pipeline prefers this when a shader has it).
-    static Vec4x8 fragmentBatch(const FragmentBatch& in, const Uniforms& u) {
-        constexpr int kPosition = offsetof(Varyings, position) / sizeof(float);
-        constexpr int kNormal = offsetof(Varyings, normal) / sizeof(float);
-        constexpr int kUv = offsetof(Varyings, uv) / sizeof(float);
-        Vec3x8 albedo(u.albedo());
-        Float8 alpha = splat(u.opacity);
-        if (u.diffuseMap) {
-            const Vec4x8 texel = detail::texels(*u.diffuseMap, in.vec2At(kUv), in.mask);
-            albedo = albedo * Vec3x8{texel.x, texel.y, texel.z};
+            const LaneVec4<F> texel = detail::texels<F>(*u.diffuseMap, in.uv, liveLanes);
+            albedo = albedo * rgb(texel);
             alpha = alpha * texel.w;
         }
-        const Vec3x8 P = in.vec3At(kPosition);
-        LightingTerms<Vec3x8> t = surfaceTerms<Float8, Vec3x8>(P, in.vec3At(kNormal), albedo, u);
-        if (u.emissionMap) {
-            const Vec4x8 texel = detail::texels(*u.emissionMap, in.vec2At(kUv), in.mask);
-            t.emission = t.emission * Vec3x8{texel.x, texel.y, texel.z};
-        }
-        Vec3x8 c = t.sum();
+        LightingTerms<V3> t = surfaceTerms<F>(in.position, in.normal, albedo, u);
+        if (u.emissionMap) t.emission = t.emission * rgb(detail::texels<F>(*u.emissionMap, in.uv, liveLanes));
+        V3 c = t.sum();
         if (u.clampColor) c = detail::clamp01(c);
-        c = surfaceOutput<Float8, Vec3x8>(c, alpha, P, u);
-        return {c.x, c.y, c.z, alpha};
+        return withAlpha(surfaceOutput<F>(c, alpha, in.position, u), alpha);
     }
 };
+
+template <>
+struct SurfaceShader<ShadingFrequency::Phong> : LaneShader<PerPixelSurface> {};
 
 // Lighting per vertex (Gouraud 1971). The colour travels in two parts so that a diffuse map can tint
 // the diffuse light only: `modulated` (the diffuse term) is multiplied by the texel, `added`
@@ -210,90 +216,67 @@ struct SurfaceShader<ShadingFrequency::Phong> {
 // added per fragment, m_emission ⊗ the emission texel. Flat shading is the same with the colour flat:
 // the provoking vertex's colour fills the triangle.
 template <ShadingFrequency kFrequency>
-struct PerVertexSurfaceShader {
+struct PerVertexSurface {
     using Attributes = MeshVertex;
     using Uniforms = SurfaceUniforms;
-    struct Varyings {
-        vec3 modulated;  // flat when kFrequency is Flat
-        vec3 added;      // flat when kFrequency is Flat
-        vec3 position;   // eye space, for fog
-        vec2 uv;
+    template <class F>
+    struct VaryingsT {
+        LaneVec3<F> modulated;  // flat when kFrequency is Flat
+        LaneVec3<F> added;      // flat when kFrequency is Flat
+        LaneVec3<F> position;   // eye space, for fog
+        LaneVec2<F> uv;
     };
     static constexpr int kFlatVaryingFloats = kFrequency == ShadingFrequency::Flat ? 6 : 0;
 
-    static VertexOut<Varyings> vertex(const Attributes& in, const Uniforms& u) {
-        const vec3 P(u.viewFromObject * vec4(in.position, 1.0f));
-        LightingTerms<vec3> t = surfaceTerms<float, vec3>(P, u.normalFromObject * in.normal, u.albedo(), u);
-        if (u.emissionMap) t.emission = vec3(0.0f);  // added, textured, per fragment
-        Varyings out{t.diffuse, t.emission + t.ambient + t.specular, P, in.uv};
-        if (u.clampColor) out = {detail::clamp01(t.sum()), vec3(0.0f), P, in.uv};
-        return {u.clipFromObject * vec4(in.position, 1.0f), out};
+    // What the vertex lighting reads: the vertex in eye space.
+    template <class F>
+    struct VertexInputsT {
+        LaneVec3<F> position;
+        LaneVec3<F> normal;  // not unit length
+        LaneVec2<F> uv;
+    };
+
+    // The matrices, one vertex at a time (the eight-lane vertex shader too).
+    static VertexOut<VertexInputsT<float>> vertexInputs(const Attributes& in, const Uniforms& u) {
+        return {u.clipFromObject * vec4(in.position, 1.0f),
+                {vec3(u.viewFromObject * vec4(in.position, 1.0f)), u.normalFromObject * in.normal, in.uv}};
     }
 
-    // The same for eight vertices: the lighting in eight lanes, the matrices one vertex at a time.
-    static void vertexBatch(const Attributes* in, const Uniforms& u, VertexOut<Varyings>* out) {
-        Vec3x8 P, N;
-        for (int lane = 0; lane < kVertexBatch; ++lane) {
-            const vec3 p(u.viewFromObject * vec4(in[lane].position, 1.0f));
-            const vec3 n = u.normalFromObject * in[lane].normal;
-            P.x[lane] = p.x;
-            P.y[lane] = p.y;
-            P.z[lane] = p.z;
-            N.x[lane] = n.x;
-            N.y[lane] = n.y;
-            N.z[lane] = n.z;
-        }
-        LightingTerms<Vec3x8> t = surfaceTerms<Float8, Vec3x8>(P, N, Vec3x8(u.albedo()), u);
-        if (u.emissionMap) t.emission = Vec3x8(vec3(0.0f));  // added, textured, per fragment
-        Vec3x8 modulated = t.diffuse, added = t.emission + t.ambient + t.specular;
-        if (u.clampColor) {
-            modulated = detail::clamp01(t.sum());
-            added = Vec3x8(vec3(0.0f));
-        }
-        const auto at = [](const Vec3x8& v, int lane) { return vec3(v.x[lane], v.y[lane], v.z[lane]); };
-        for (int lane = 0; lane < kVertexBatch; ++lane)
-            out[lane] = {u.clipFromObject * vec4(in[lane].position, 1.0f),
-                         {at(modulated, lane), at(added, lane), at(P, lane), in[lane].uv}};
+    // The lighting of one vertex or eight.
+    template <class F>
+    static VaryingsT<F> lightVertex(const VertexInputsT<F>& in, const Uniforms& u) {
+        using V3 = LaneVec3<F>;
+        LightingTerms<V3> t = surfaceTerms<F>(in.position, in.normal, V3(u.albedo()), u);
+        if (u.emissionMap) t.emission = V3(vec3(0.0f));  // added, textured, per fragment
+        if (u.clampColor) return {detail::clamp01(t.sum()), V3(vec3(0.0f)), in.position, in.uv};
+        return {t.diffuse, t.emission + t.ambient + t.specular, in.position, in.uv};
     }
 
-    static vec4 fragment(const Varyings& in, const Uniforms& u) {
-        vec3 modulated = in.modulated;
-        float alpha = u.opacity;
+    static VertexOut<VaryingsT<float>> vertex(const Attributes& in, const Uniforms& u) {
+        const VertexOut<VertexInputsT<float>> prepared = vertexInputs(in, u);
+        return {prepared.position, lightVertex<float>(prepared.varyings, u)};
+    }
+
+    template <class F>
+    static LaneVec4<F> shade(const VaryingsT<F>& in, const Uniforms& u, unsigned liveLanes) {
+        using V3 = LaneVec3<F>;
+        V3 modulated = in.modulated;
+        F alpha = lanes<F>(u.opacity);
         if (u.diffuseMap) {
-            const vec4 texel = sampleBilinear(*u.diffuseMap, in.uv);
-            modulated *= vec3(texel);
-            alpha *= texel.a;
-        }
-        vec3 added = in.added;
-        if (u.emissionMap) added += u.emissionTerm() * vec3(sampleBilinear(*u.emissionMap, in.uv));
-        return vec4(surfaceOutput<float, vec3>(modulated + added, alpha, in.position, u), alpha);
-    }
-
-    static Vec4x8 fragmentBatch(const FragmentBatch& in, const Uniforms& u) {
-        constexpr int kModulated = offsetof(Varyings, modulated) / sizeof(float);
-        constexpr int kAdded = offsetof(Varyings, added) / sizeof(float);
-        constexpr int kPosition = offsetof(Varyings, position) / sizeof(float);
-        constexpr int kUv = offsetof(Varyings, uv) / sizeof(float);
-        Vec3x8 modulated = in.vec3At(kModulated);
-        Float8 alpha = splat(u.opacity);
-        if (u.diffuseMap) {
-            const Vec4x8 texel = detail::texels(*u.diffuseMap, in.vec2At(kUv), in.mask);
-            modulated = modulated * Vec3x8{texel.x, texel.y, texel.z};
+            const LaneVec4<F> texel = detail::texels<F>(*u.diffuseMap, in.uv, liveLanes);
+            modulated = modulated * rgb(texel);
             alpha = alpha * texel.w;
         }
-        Vec3x8 added = in.vec3At(kAdded);
-        if (u.emissionMap) {
-            const Vec4x8 texel = detail::texels(*u.emissionMap, in.vec2At(kUv), in.mask);
-            added = added + Vec3x8(u.emissionTerm()) * Vec3x8{texel.x, texel.y, texel.z};
-        }
-        const Vec3x8 c = surfaceOutput<Float8, Vec3x8>(modulated + added, alpha, in.vec3At(kPosition), u);
-        return {c.x, c.y, c.z, alpha};
+        V3 added = in.added;
+        if (u.emissionMap)
+            added = added + V3(u.emissionTerm()) * rgb(detail::texels<F>(*u.emissionMap, in.uv, liveLanes));
+        return withAlpha(surfaceOutput<F>(modulated + added, alpha, in.position, u), alpha);
     }
 };
 
 template <>
-struct SurfaceShader<ShadingFrequency::Gouraud> : PerVertexSurfaceShader<ShadingFrequency::Gouraud> {};
+struct SurfaceShader<ShadingFrequency::Gouraud> : LaneShader<PerVertexSurface<ShadingFrequency::Gouraud>> {};
 template <>
-struct SurfaceShader<ShadingFrequency::Flat> : PerVertexSurfaceShader<ShadingFrequency::Flat> {};
+struct SurfaceShader<ShadingFrequency::Flat> : LaneShader<PerVertexSurface<ShadingFrequency::Flat>> {};
 
 }  // namespace facet

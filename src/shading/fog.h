@@ -5,7 +5,8 @@
 //   exp:     f = e^(−density·z)
 //   exp²:    f = e^(−(density·z)²)
 // with z the fragment's distance from the eye: |z_eye| (the eye-space depth, OpenGL's default) or the
-// radial distance |P_eye| (NV_fog_distance's GL_EYE_RADIAL_NV). Written once for 1 and 8 lanes.
+// radial distance |P_eye| (NV_fog_distance's GL_EYE_RADIAL_NV). Written once for 1 and 8 lanes; the
+// exponential's precision P is the caller's choice (wide.h's MathPrecision), Exact by default.
 #pragma once
 
 #include "pipeline/glsl.h"
@@ -35,7 +36,7 @@ F fogDistance(const FogParams& fog, const V3& eyePosition) {
 }
 
 // The fog factor f: 1 = no fog, 0 = only fog.
-template <class F>
+template <class F, MathPrecision P = MathPrecision::Exact>
 F fogFactor(const FogParams& fog, F z) {
     switch (fog.mode) {
         case FogMode::None:
@@ -45,20 +46,20 @@ F fogFactor(const FogParams& fog, F z) {
             if (fog.end == fog.start) return select(z < fog.start, lanes<F>(1.0f), lanes<F>(0.0f));
             return saturate((fog.end - z) * (1.0f / (fog.end - fog.start)));
         case FogMode::Exponential:
-            return saturate(exp(-fog.density * z));
+            return saturate(Maths<P>::exp(-fog.density * z));
         case FogMode::ExponentialSquared: {
             const F dz = fog.density * z;
-            return saturate(exp(-(dz * dz)));
+            return saturate(Maths<P>::exp(-(dz * dz)));
         }
     }
     return lanes<F>(1.0f);
 }
 
 // c = f·c_s + (1 − f)·c_fog.
-template <class F, class V3 = LaneVec3<F>>
+template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact>
 V3 applyFog(const FogParams& fog, const V3& color, const V3& eyePosition) {
     if (fog.mode == FogMode::None) return color;
-    const F f = fogFactor(fog, fogDistance<F, V3>(fog, eyePosition));
+    const F f = fogFactor<F, P>(fog, fogDistance<F, V3>(fog, eyePosition));
     return color * f + V3(fog.color) * (1.0f - f);
 }
 

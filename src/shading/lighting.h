@@ -1,7 +1,9 @@
 // Lighting formulas as the lectures write them: light sources (attenuation, spot cones), the standard
 // (OpenGL fixed-function) lighting equation with Phong or Blinn-Phong specular, and a physically based
 // Cook-Torrance microfacet BRDF. Header only; every formula is one template over the lane type, for
-// F, V3 = float, vec3 (one fragment) and Float8, Vec3x8 (eight), as BlinnPhongShader::lighting is.
+// F, V3 = float, vec3 (one fragment) and Float8, Vec3x8 (eight). Those with a power or an exponential
+// take a MathPrecision P (wide.h): Exact (the C library's, the default) or Fast (the polynomials), the
+// same choice giving the same bits in one lane and in eight.
 #pragma once
 
 #include <algorithm>
@@ -102,12 +104,13 @@ F attenuation(const LightParams& light, F distance) {
 // OpenGL's spot factor (glLight, OpenGL 2.1 §2.14.1), with L the unit vector from the surface to the
 // light and s the spot direction: 0 where the angle between −L and s exceeds the cutoff,
 // max(−L·s, 0)^exponent inside, and 1 when the cutoff is 180° (no cone). 1 for non-spot lights.
-template <class F, class V3 = LaneVec3<F>>
+template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact>
 F spotFactorOpenGL(const LightParams& light, const V3& L) {
     if (light.kind != LightKind::Spot || light.spotCutoffDegrees >= 180.0f) return lanes<F>(1.0f);
     const F cosAngle = dot(-L, normalize(light.spotDirection));
     const float cosCutoff = std::cos(glm::radians(light.spotCutoffDegrees));
-    return select(cosAngle >= cosCutoff, pow(max(cosAngle, 0.0f), light.spotExponent), lanes<F>(0.0f));
+    return select(cosAngle >= cosCutoff, Maths<P>::pow(max(cosAngle, 0.0f), light.spotExponent),
+                  lanes<F>(0.0f));
 }
 
 // The smooth variant: smoothstep(cos θ_outer, cos θ_inner, −L·s), 1 inside the inner cone, 0 outside
@@ -121,10 +124,10 @@ F spotFactorSmooth(const LightParams& light, const V3& L) {
 }
 
 // The light's spot factor under its own profile.
-template <class F, class V3 = LaneVec3<F>>
+template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact>
 F spotFactor(const LightParams& light, const V3& L) {
     return light.spotProfile == SpotProfile::Smooth ? spotFactorSmooth<F, V3>(light, L)
-                                                    : spotFactorOpenGL<F, V3>(light, L);
+                                                    : spotFactorOpenGL<F, V3, P>(light, L);
 }
 
 // Material of the standard lighting equation; linear RGB.
@@ -158,7 +161,7 @@ struct LightingTerms {
 // behind the surface; in practice N·L ≤ kGrazingCosine, see there). N is used as given (normalised, not
 // flipped towards the viewer). `diffuseColor` is m_diffuse per lane (a texture may vary it); the overload
 // below uses the material's.
-template <class F, class V3 = LaneVec3<F>>
+template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact>
 [[gnu::always_inline]] inline LightingTerms<V3> standardLighting(
     const V3& position, const V3& normal, const vec3& eye, const PhongMaterial& m, const V3& diffuseColor,
     const vec3& globalAmbient, std::span<const LightParams> lights,
@@ -170,7 +173,7 @@ template <class F, class V3 = LaneVec3<F>>
         // Where the light is and how much of it arrives.
         const LightVector<F, V3> toLight = lightVector<F, V3>(light, position);
         const V3& L = toLight.L;
-        const F reach = attenuation(light, toLight.distance) * spotFactor<F, V3>(light, L);
+        const F reach = attenuation(light, toLight.distance) * spotFactor<F, V3, P>(light, L);
 
         // Ambient and Lambert diffuse.
         const F NdotL = dot(N, L);
@@ -185,19 +188,20 @@ template <class F, class V3 = LaneVec3<F>>
         } else {
             cosine = dot(N, safeNormalize<F, V3>(L + V));
         }
-        const F spec = select(NdotL > kGrazingCosine, pow(max(cosine, 0.0f), m.shininess), lanes<F>(0.0f));
+        const F spec =
+            select(NdotL > kGrazingCosine, Maths<P>::pow(max(cosine, 0.0f), m.shininess), lanes<F>(0.0f));
         terms.specular += (light.specular * m.specular) * (reach * spec);
     }
     return terms;
 }
 
-template <class F, class V3 = LaneVec3<F>>
+template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact>
 LightingTerms<V3> standardLighting(const V3& position, const V3& normal, const vec3& eye,
                                    const PhongMaterial& m, const vec3& globalAmbient,
                                    std::span<const LightParams> lights,
                                    SpecularModel specularModel = SpecularModel::BlinnPhong) {
-    return standardLighting<F, V3>(position, normal, eye, m, V3(m.diffuse), globalAmbient, lights,
-                                   specularModel);
+    return standardLighting<F, V3, P>(position, normal, eye, m, V3(m.diffuse), globalAmbient, lights,
+                                      specularModel);
 }
 
 // =====================================================================================================
@@ -227,12 +231,12 @@ inline float alphaFromRoughness(float roughness) {
 }
 
 // Beckmann: D(h) = exp((n·h² − 1)/(α² n·h²)) / (π α² n·h⁴) for n·h > 0, else 0.
-template <class F>
+template <class F, MathPrecision P = MathPrecision::Exact>
 F distributionBeckmann(F NdotH, float alpha) {
     const F c = max(NdotH, 1e-4f);
     const F c2 = c * c;
     const float a2 = alpha * alpha;
-    const F d = exp((c2 - 1.0f) / (a2 * c2)) / (std::numbers::pi_v<float> * a2 * c2 * c2);
+    const F d = Maths<P>::exp((c2 - 1.0f) / (a2 * c2)) / (std::numbers::pi_v<float> * a2 * c2 * c2);
     return select(NdotH > 0.0f, d, lanes<F>(0.0f));
 }
 
@@ -318,7 +322,7 @@ struct BrdfLobes {
 
 // `albedo` is the base colour the Lambert lobe reflects, per lane (a texture may vary it); F0 always
 // comes from the material.
-template <class F, class V3 = LaneVec3<F>>
+template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact>
 BrdfLobes<V3> brdfLobes(const V3& n, const V3& l, const V3& v, const PbrMaterial& m, const V3& albedo,
                         const BrdfModel& model = {}) {
     // The cosines, clamped away from the divisions' zeros.
@@ -336,7 +340,7 @@ BrdfLobes<V3> brdfLobes(const V3& n, const V3& l, const V3& v, const PbrMaterial
 
     // D, F, G.
     const F D = model.distribution == NormalDistribution::GGX ? distributionGGX(NdotH, alpha)
-                                                              : distributionBeckmann(NdotH, alpha);
+                                                              : distributionBeckmann<F, P>(NdotH, alpha);
     const V3 fresnel = model.fresnel == FresnelModel::Schlick ? fresnelSchlick<F, V3>(f0, VdotH)
                                                               : fresnelExact<F, V3>(f0, VdotH);
     const F G = model.geometry == GeometryTerm::SmithGGX ? geometrySmithGGX(NdotV, NdotL, alpha)
@@ -351,9 +355,9 @@ BrdfLobes<V3> brdfLobes(const V3& n, const V3& l, const V3& v, const PbrMaterial
             select(NdotLRaw > kGrazingCosine, specular, zero)};
 }
 
-template <class F, class V3 = LaneVec3<F>>
+template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact>
 V3 brdf(const V3& n, const V3& l, const V3& v, const PbrMaterial& m, const BrdfModel& model = {}) {
-    const BrdfLobes<V3> lobes = brdfLobes<F, V3>(n, l, v, m, V3(m.baseColor), model);
+    const BrdfLobes<V3> lobes = brdfLobes<F, V3, P>(n, l, v, m, V3(m.baseColor), model);
     return lobes.diffuse + lobes.specular;
 }
 
@@ -365,7 +369,7 @@ V3 brdf(const V3& n, const V3& l, const V3& v, const PbrMaterial& m, const BrdfM
 //   emission = m_emission and ambient = a_global ⊗ albedo
 // (a constant stand-in for the light that arrives from everywhere, as the standard equation's
 // a_global ⊗ m_ambient; image-based ambient is out of scope). `albedo` is the base colour per lane.
-template <class F, class V3 = LaneVec3<F>>
+template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact>
 LightingTerms<V3> physicallyBasedTerms(const V3& position, const V3& normal, const vec3& eye,
                                        const PbrMaterial& m, const V3& albedo, const vec3& emission,
                                        const vec3& globalAmbient, std::span<const LightParams> lights,
@@ -378,8 +382,8 @@ LightingTerms<V3> physicallyBasedTerms(const V3& position, const V3& normal, con
         const F falloff = light.kind == LightKind::Directional
                               ? lanes<F>(1.0f)
                               : 1.0f / max(toLight.distance * toLight.distance, 1e-8f);
-        const F irradiance = falloff * spotFactor<F, V3>(light, toLight.L) * max(dot(N, toLight.L), 0.0f);
-        const BrdfLobes<V3> lobes = brdfLobes<F, V3>(N, toLight.L, V, m, albedo, model);
+        const F irradiance = falloff * spotFactor<F, V3, P>(light, toLight.L) * max(dot(N, toLight.L), 0.0f);
+        const BrdfLobes<V3> lobes = brdfLobes<F, V3, P>(N, toLight.L, V, m, albedo, model);
         const V3 incoming = V3(light.diffuse * std::numbers::pi_v<float>) * irradiance;
         terms.diffuse += lobes.diffuse * incoming;
         terms.specular += lobes.specular * incoming;
@@ -388,11 +392,11 @@ LightingTerms<V3> physicallyBasedTerms(const V3& position, const V3& normal, con
 }
 
 // The reflected light alone (no emission, no ambient), the material's own base colour.
-template <class F, class V3 = LaneVec3<F>>
+template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact>
 V3 physicallyBasedLighting(const V3& position, const V3& normal, const vec3& eye, const PbrMaterial& m,
                            std::span<const LightParams> lights, const BrdfModel& model = {}) {
-    const LightingTerms<V3> terms = physicallyBasedTerms<F, V3>(position, normal, eye, m, V3(m.baseColor),
-                                                                vec3(0.0f), vec3(0.0f), lights, model);
+    const LightingTerms<V3> terms = physicallyBasedTerms<F, V3, P>(position, normal, eye, m, V3(m.baseColor),
+                                                                   vec3(0.0f), vec3(0.0f), lights, model);
     return terms.diffuse + terms.specular;
 }
 

@@ -1,9 +1,12 @@
-// The built-in surface shaders: the eight-lane path computes what the one-fragment path computes, for
-// every reflection model and shading frequency; the term mask, the two-sided flip and the GL clamp.
+// The built-in surface shaders: the eight-lane path computes exactly what the one-fragment path
+// computes (one body), for every reflection model, shading frequency and math precision; the precision
+// is the uniforms' choice; the term mask, the two-sided flip and the GL clamp at both lane widths.
 #include "shaders/shaders.h"
 
 #include "pipeline/pipeline.h"
 
+#include <algorithm>
+#include <iterator>
 #include <random>
 #include <vector>
 
@@ -51,11 +54,24 @@ Texture fourColours() {
     return t;
 }
 
+constexpr MathPrecision kPrecisions[] = {MathPrecision::Exact, MathPrecision::Fast};
+
+// A 2 × 2 texture with translucent texels, for the diffuse map.
+Texture translucentChecker() {
+    Texture t;
+    t.width = t.height = 2;
+    t.texels = {vec4(0.9f, 0.9f, 0.9f, 1.0f), vec4(0.3f, 0.6f, 0.2f, 0.25f), vec4(0.5f, 0.1f, 0.7f, 0.8f),
+                vec4(1.0f, 1.0f, 1.0f, 0.5f)};
+    return t;
+}
+
+// The fragment shader is one body for one lane and eight: fragment() of a fragment gives exactly lane k
+// of fragmentBatch() for the same varyings, bit for bit, under either precision.
 template <ShadingFrequency kFrequency>
-void expectBatchMatchesScalar(const SurfaceUniforms& uniforms, std::mt19937& rng, const char* what) {
+void expectBatchLanesEqualOneLane(const SurfaceUniforms& uniforms, std::mt19937& rng, const char* what) {
     using S = SurfaceShader<kFrequency>;
-    std::uniform_real_distribution<float> u(-1.0f, 1.0f), unit(0.0f, 1.0f);
-    for (int trial = 0; trial < 100; ++trial) {
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    for (int trial = 0; trial < 40; ++trial) {
         FragmentBatch batch;
         batch.mask = 0xff;
         typename S::Varyings scalar[8];
@@ -69,65 +85,167 @@ void expectBatchMatchesScalar(const SurfaceUniforms& uniforms, std::mt19937& rng
         const Vec4x8 wide = S::fragmentBatch(batch, uniforms);
         for (int lane = 0; lane < 8; ++lane) {
             const vec4 one = S::fragment(scalar[lane], uniforms);
-            const float tolerance = 2e-5f * (1.0f + std::abs(one.r) + std::abs(one.g) + std::abs(one.b));
-            EXPECT_NEAR(wide.x[lane], one.r, tolerance) << what;
-            EXPECT_NEAR(wide.y[lane], one.g, tolerance) << what;
-            EXPECT_NEAR(wide.z[lane], one.b, tolerance) << what;
-            EXPECT_EQ(wide.w[lane], one.a) << what;
+            EXPECT_EQ(vec4(wide.x[lane], wide.y[lane], wide.z[lane], wide.w[lane]), one)
+                << what << ", " << mathPrecisionName(uniforms.precision) << ", lane " << lane;
         }
     }
 }
 
-TEST(SurfaceShader, BatchMatchesScalarForEveryModelAndFrequency) {
+template <ShadingFrequency kFrequency>
+void expectBatchLanesEqualOneLaneForEveryModel(SurfaceUniforms uniforms, std::mt19937& rng,
+                                               const char* what) {
+    for (MathPrecision precision : kPrecisions) {
+        uniforms.precision = precision;
+        for (ReflectionModel model :
+             {ReflectionModel::Phong, ReflectionModel::BlinnPhong, ReflectionModel::CookTorrance}) {
+            uniforms.reflection = model;
+            for (float shininess : {0.0f, 1.0f, 12.0f, 128.0f}) {
+                uniforms.material.shininess = shininess;
+                expectBatchLanesEqualOneLane<kFrequency>(uniforms, rng, what);
+            }
+        }
+    }
+}
+
+TEST(SurfaceShader, BatchLanesEqualOneLaneForEveryModelFrequencyAndPrecision) {
     std::mt19937 rng(3);
     SurfaceUniforms uniforms = threeLights();
-    for (ReflectionModel model :
-         {ReflectionModel::Phong, ReflectionModel::BlinnPhong, ReflectionModel::CookTorrance}) {
-        uniforms.reflection = model;
-        for (float shininess : {0.0f, 1.0f, 12.0f, 128.0f}) {
-            uniforms.material.shininess = shininess;
-            expectBatchMatchesScalar<ShadingFrequency::Phong>(uniforms, rng, "per pixel");
-            expectBatchMatchesScalar<ShadingFrequency::Gouraud>(uniforms, rng, "per vertex");
+    uniforms.brdf.distribution = NormalDistribution::Beckmann;  // exp in the lighting
+    const Texture emission = fourColours(), diffuse = translucentChecker();
+    for (int variant = 0; variant < 3; ++variant) {
+        if (variant >= 1) {
+            uniforms.emissionMap = &emission;
+            uniforms.diffuseMap = &diffuse;
         }
+        if (variant == 2) {  // exp fog, a premultiplied output, the GL clamp
+            uniforms.fog.mode = FogMode::Exponential;
+            uniforms.fog.density = 0.3f;
+            uniforms.blend = BlendMode::PremultipliedOver;
+            uniforms.clampColor = true;
+        }
+        expectBatchLanesEqualOneLaneForEveryModel<ShadingFrequency::Phong>(uniforms, rng, "per pixel");
+        expectBatchLanesEqualOneLaneForEveryModel<ShadingFrequency::Gouraud>(uniforms, rng, "per vertex");
+        expectBatchLanesEqualOneLaneForEveryModel<ShadingFrequency::Flat>(uniforms, rng, "flat");
     }
-    const Texture map = fourColours();
-    uniforms.emissionMap = &map;
-    expectBatchMatchesScalar<ShadingFrequency::Phong>(uniforms, rng, "per pixel, emission map");
-    expectBatchMatchesScalar<ShadingFrequency::Gouraud>(uniforms, rng, "per vertex, emission map");
 }
 
-// The per-vertex shaders' eight-lane vertexBatch gives what vertex() gives, lane by lane, for every
-// model, with and without the GL clamp.
-TEST(SurfaceShader, VertexBatchMatchesVertex) {
+// The fast maths stay within 2e−5 of the exact ones: the two precisions draw the same picture.
+TEST(SurfaceShader, FastPrecisionIsWithinToleranceOfExact) {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    SurfaceUniforms exact = threeLights();
+    exact.fog.mode = FogMode::ExponentialSquared;
+    exact.fog.density = 0.2f;
+    exact.material.shininess = 24.0f;
+    using S = SurfaceShader<ShadingFrequency::Phong>;
+    int differing = 0;
+    for (ReflectionModel model :
+         {ReflectionModel::Phong, ReflectionModel::BlinnPhong, ReflectionModel::CookTorrance}) {
+        for (NormalDistribution distribution : {NormalDistribution::GGX, NormalDistribution::Beckmann}) {
+            exact.reflection = model;
+            exact.brdf.distribution = distribution;
+            exact.precision = MathPrecision::Exact;
+            SurfaceUniforms fast = exact;
+            fast.precision = MathPrecision::Fast;
+            for (int trial = 0; trial < 200; ++trial) {
+                const S::Varyings in{vec3(u(rng), u(rng), u(rng) - 3.0f), vec3(u(rng), u(rng), u(rng)),
+                                     vec2(u(rng), u(rng))};
+                const vec4 a = S::fragment(in, exact), b = S::fragment(in, fast);
+                differing += a != b;
+                for (int k = 0; k < 3; ++k)
+                    EXPECT_NEAR(b[k], a[k], 2e-5f * (1.0f + std::abs(a[k])));
+            }
+        }
+    }
+    EXPECT_GT(differing, 0) << "the two precisions give the same bits: the choice is not honoured";
+}
+
+// The per-vertex shaders' eight-lane vertexBatch gives exactly what vertex() gives, lane by lane, for
+// every model and precision, with and without the GL clamp and an emission map.
+TEST(SurfaceShader, VertexBatchLanesEqualVertex) {
     std::mt19937 rng(5);
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);
     SurfaceUniforms uniforms = threeLights();
     uniforms.viewFromObject = glm::translate(mat4(1.0f), vec3(0.1f, -0.2f, -3.0f));
     uniforms.clipFromObject = glm::perspective(1.0f, 1.3f, 0.1f, 10.0f) * uniforms.viewFromObject;
+    uniforms.brdf.distribution = NormalDistribution::Beckmann;
+    const Texture map = fourColours();
     using Gouraud = SurfaceShader<ShadingFrequency::Gouraud>;
     static_assert(BatchVertexShader<Gouraud> && BatchVertexShader<SurfaceShader<ShadingFrequency::Flat>>);
-    for (ReflectionModel model :
-         {ReflectionModel::Phong, ReflectionModel::BlinnPhong, ReflectionModel::CookTorrance}) {
-        for (bool clamp : {false, true}) {
-            uniforms.reflection = model;
-            uniforms.clampColor = clamp;
-            MeshVertex in[kVertexBatch];
-            for (MeshVertex& v : in)
-                v = {vec3(u(rng), u(rng), u(rng)), normalize(vec3(u(rng), u(rng), 1.0f)),
-                     vec2(u(rng), u(rng))};
-            VertexOut<Gouraud::Varyings> out[kVertexBatch];
-            Gouraud::vertexBatch(in, uniforms, out);
-            for (int lane = 0; lane < kVertexBatch; ++lane) {
-                const VertexOut<Gouraud::Varyings> one = Gouraud::vertex(in[lane], uniforms);
-                EXPECT_EQ(out[lane].position, one.position);
-                const float* a = reinterpret_cast<const float*>(&out[lane].varyings);
-                const float* b = reinterpret_cast<const float*>(&one.varyings);
-                for (int k = 0; k < kVaryingFloatCount<Gouraud::Varyings>; ++k)
-                    EXPECT_NEAR(a[k], b[k], 2e-5f * (1.0f + std::abs(b[k])))
-                        << "float " << k << ", lane " << lane;
+    static_assert(!BatchVertexShader<SurfaceShader<ShadingFrequency::Phong>>);  // nothing to light per vertex
+    for (MathPrecision precision : kPrecisions)
+        for (ReflectionModel model :
+             {ReflectionModel::Phong, ReflectionModel::BlinnPhong, ReflectionModel::CookTorrance}) {
+            for (bool clamp : {false, true}) {
+                uniforms.precision = precision;
+                uniforms.reflection = model;
+                uniforms.clampColor = clamp;
+                uniforms.emissionMap = clamp ? &map : nullptr;
+                MeshVertex in[kVertexBatch];
+                for (MeshVertex& v : in)
+                    v = {vec3(u(rng), u(rng), u(rng)), normalize(vec3(u(rng), u(rng), 1.0f)),
+                         vec2(u(rng), u(rng))};
+                VertexOut<Gouraud::Varyings> out[kVertexBatch];
+                Gouraud::vertexBatch(in, uniforms, out);
+                for (int lane = 0; lane < kVertexBatch; ++lane) {
+                    const VertexOut<Gouraud::Varyings> one = Gouraud::vertex(in[lane], uniforms);
+                    EXPECT_EQ(out[lane].position, one.position);
+                    const float* a = reinterpret_cast<const float*>(&out[lane].varyings);
+                    const float* b = reinterpret_cast<const float*>(&one.varyings);
+                    for (int k = 0; k < kVaryingFloatCount<Gouraud::Varyings>; ++k)
+                        EXPECT_EQ(a[k], b[k])
+                            << "float " << k << ", lane " << lane << ", " << mathPrecisionName(precision);
+                }
             }
         }
+}
+
+// The precision is the uniforms' choice, at both lane widths: under each, the shader's colour is the
+// lighting and fog formulas' of that precision, bit for bit.
+TEST(SurfaceShader, PrecisionIsTheUniformsChoiceAtBothLaneWidths) {
+    SurfaceUniforms u = threeLights();
+    u.reflection = ReflectionModel::BlinnPhong;
+    u.material.shininess = 7.0f;
+    u.fog.mode = FogMode::Exponential;
+    u.fog.density = 0.35f;
+    using S = SurfaceShader<ShadingFrequency::Phong>;
+    int differing = 0;
+    for (int point = 0; point < 16; ++point) {
+        const vec3 P(0.1f * point - 0.7f, 0.2f, -2.0f - 0.1f * point);
+        const vec3 N = normalize(vec3(-0.2f, 0.4f - 0.05f * point, 1.0f));
+        const auto expected = [&]<MathPrecision kPrecision>() {
+            const vec3 lit = standardLighting<float, vec3, kPrecision>(
+                                 P, N, vec3(0.0f), u.material, u.material.diffuse, u.globalAmbient,
+                                 u.activeLights(), SpecularModel::BlinnPhong)
+                                 .sum();
+            return applyFog<float, vec3, kPrecision>(u.fog, lit, P);
+        };
+        const vec3 exact = expected.template operator()<MathPrecision::Exact>();
+        const vec3 fast = expected.template operator()<MathPrecision::Fast>();
+        differing += exact != fast;
+        const S::Varyings in{P, N, vec2(0.0f)};
+        FragmentBatch batch;
+        batch.mask = 0xff;
+        const float* f = reinterpret_cast<const float*>(&in);
+        for (int k = 0; k < kVaryingFloatCount<S::Varyings>; ++k)
+            for (int lane = 0; lane < 8; ++lane)
+                batch.varyings[k][lane] = f[k];
+        for (MathPrecision precision : kPrecisions) {
+            u.precision = precision;
+            const vec3 want = precision == MathPrecision::Exact ? exact : fast;
+            EXPECT_EQ(vec3(S::fragment(in, u)), want) << mathPrecisionName(precision) << ", one lane";
+            const Vec4x8 wide = S::fragmentBatch(batch, u);
+            EXPECT_EQ(vec3(wide.x[5], wide.y[5], wide.z[5]), want)
+                << mathPrecisionName(precision) << ", eight lanes";
+        }
     }
+    EXPECT_GT(differing, 4) << "the points hardly tell the two precisions apart";
+}
+
+TEST(MathPrecision, NamesByValueAndTheDrawDefault) {
+    EXPECT_EQ(mathPrecisionName(MathPrecision::Exact), "exact");
+    EXPECT_EQ(mathPrecisionName(MathPrecision::Fast), "fast");
+    EXPECT_EQ(SurfaceUniforms{}.precision, MathPrecision::Fast);  // what every image has been drawn with
 }
 
 // The vertex shader of the per-vertex shaders lights the vertex; the fragment shader only adds up.
@@ -147,12 +265,20 @@ TEST(SurfaceShader, PerVertexColourIsTheLightingAtTheVertex) {
     EXPECT_NEAR(perPixel.g, expected.g, 1e-6f);
 }
 
-// The colour of one shader at one surface point, through its scalar path or its eight-lane path.
+// The colour of one shader at one surface point, through its one-lane path or its eight-lane path
+// (vertexBatch and fragmentBatch, the point in every lane).
 template <ShadingFrequency kFrequency>
 vec3 shadeOnce(const MeshVertex& v, const SurfaceUniforms& u, bool batch) {
     using S = SurfaceShader<kFrequency>;
-    const VertexOut<typename S::Varyings> out = S::vertex(v, u);
+    VertexOut<typename S::Varyings> out = S::vertex(v, u);
     if (!batch) return vec3(S::fragment(out.varyings, u));
+    if constexpr (BatchVertexShader<S>) {
+        MeshVertex in[kVertexBatch];
+        std::fill(std::begin(in), std::end(in), v);
+        VertexOut<typename S::Varyings> outs[kVertexBatch];
+        S::vertexBatch(in, u, outs);
+        out = outs[6];
+    }
     FragmentBatch in;
     in.mask = 0xff;
     const float* f = reinterpret_cast<const float*>(&out.varyings);
@@ -239,6 +365,30 @@ TEST(SurfaceShader, TwoSidedFlipLightsTheSideFacingTheViewer) {
     EXPECT_FLOAT_EQ(diffuse(), 0.5f);
     u.twoSidedFlip = false;
     EXPECT_FLOAT_EQ(diffuse(), 0.0f);
+}
+
+// The same through each shader, in one lane and in eight: the flip is in the one body they share.
+template <ShadingFrequency kFrequency>
+void expectTwoSidedFlip(const char* what) {
+    SurfaceUniforms u;
+    u.lightCount = 1;
+    u.lights[0].kind = LightKind::Directional;
+    u.lights[0].direction = vec3(0.0f, 0.0f, -1.0f);
+    u.material.diffuse = vec3(0.5f);
+    u.material.specular = vec3(0.0f);
+    const MeshVertex v{vec3(0.0f, 0.0f, -5.0f), vec3(0.0f, 0.0f, -1.0f), vec2(0.0f)};  // facing away
+    for (bool batch : {false, true}) {
+        u.twoSidedFlip = true;
+        EXPECT_FLOAT_EQ(shadeOnce<kFrequency>(v, u, batch).r, 0.5f) << what << (batch ? ", eight lanes" : "");
+        u.twoSidedFlip = false;
+        EXPECT_FLOAT_EQ(shadeOnce<kFrequency>(v, u, batch).r, 0.0f) << what << (batch ? ", eight lanes" : "");
+    }
+}
+
+TEST(SurfaceShader, TwoSidedFlipAtEveryFrequencyAndLaneWidth) {
+    expectTwoSidedFlip<ShadingFrequency::Phong>("per pixel");
+    expectTwoSidedFlip<ShadingFrequency::Gouraud>("per vertex");
+    expectTwoSidedFlip<ShadingFrequency::Flat>("flat");
 }
 
 // OpenGL 1.x clamps each vertex's colour to [0, 1] before interpolating it.

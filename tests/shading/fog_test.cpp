@@ -81,10 +81,18 @@ TEST(Fog, EightLanesMatchOne) {
                 P.y[lane] = 0.3f * lane;
                 P.z[lane] = -1.5f * lane - 0.5f;
             }
-            const Vec3x8 wide = applyFog<Float8, Vec3x8>(f, Vec3x8(vec3(0.9f, 0.1f, 0.4f)), P);
+            constexpr MathPrecision kFast = MathPrecision::Fast;
+            const Vec3x8 color(vec3(0.9f, 0.1f, 0.4f));
+            const Vec3x8 wide = applyFog<Float8, Vec3x8, kFast>(f, color, P);
+            const Vec3x8 wideExact = applyFog<Float8, Vec3x8>(f, color, P);
             for (int lane = 0; lane < 8; ++lane) {
-                const vec3 one =
-                    applyFog<float, vec3>(f, vec3(0.9f, 0.1f, 0.4f), vec3(P.x[lane], P.y[lane], P.z[lane]));
+                const vec3 Pi(P.x[lane], P.y[lane], P.z[lane]);
+                const vec3 one = applyFog<float, vec3>(f, vec3(0.9f, 0.1f, 0.4f), Pi);
+                const vec3 oneFast = applyFog<float, vec3, kFast>(f, vec3(0.9f, 0.1f, 0.4f), Pi);
+                // Each precision gives the same bits in one lane and in eight.
+                EXPECT_EQ(vec3(wideExact.x[lane], wideExact.y[lane], wideExact.z[lane]), one);
+                EXPECT_EQ(vec3(wide.x[lane], wide.y[lane], wide.z[lane]), oneFast);
+                // The fast exponential is near the exact one.
                 EXPECT_NEAR(wide.x[lane], one.r, 2e-6f);
                 EXPECT_NEAR(wide.y[lane], one.g, 2e-6f);
                 EXPECT_NEAR(wide.z[lane], one.b, 2e-6f);

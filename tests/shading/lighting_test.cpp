@@ -328,7 +328,17 @@ std::vector<LightParams> testLights() {
     return {sun, point, spot, soft};
 }
 
-TEST(LightingWide, StandardLightingMatchesScalar) {
+// One lane and eight run one formula: under each precision lane i of the eight-lane result is the
+// one-lane result, bit for bit; and the fast maths stay within 1e−4 of the exact.
+void expectTermsEqual(const LightingTerms<Vec3x8>& wide, int i, const LightingTerms<vec3>& one,
+                      const char* what) {
+    EXPECT_EQ(lane(wide.emission, i), one.emission) << what;
+    EXPECT_EQ(lane(wide.ambient, i), one.ambient) << what;
+    EXPECT_EQ(lane(wide.diffuse, i), one.diffuse) << what;
+    EXPECT_EQ(lane(wide.specular, i), one.specular) << what;
+}
+
+TEST(LightingWide, StandardLightingEightLanesEqualOneAndFastIsNearExact) {
     RandomLanes random;
     const std::vector<LightParams> lights = testLights();
     PhongMaterial m = testMaterial();
@@ -341,11 +351,18 @@ TEST(LightingWide, StandardLightingMatchesScalar) {
                 random.fill(position, positionWide);
                 random.fill(normal, normalWide);
                 const vec3 eye(0.3f, 0.5f, 4.0f);
-                const LightingTerms<Vec3x8> wide =
+                const LightingTerms<Vec3x8> wide = standardLighting<Float8, Vec3x8, MathPrecision::Fast>(
+                    positionWide, normalWide, eye, m, vec3(0.1f), lights, model);
+                const LightingTerms<Vec3x8> wideExact =
                     standardLighting<Float8>(positionWide, normalWide, eye, m, vec3(0.1f), lights, model);
                 for (int i = 0; i < 8; ++i) {
                     const LightingTerms<vec3> one =
                         standardLighting<float>(position[i], normal[i], eye, m, vec3(0.1f), lights, model);
+                    expectTermsEqual(wideExact, i, one, "exact");
+                    expectTermsEqual(wide, i,
+                                     standardLighting<float, vec3, MathPrecision::Fast>(
+                                         position[i], normal[i], eye, m, vec3(0.1f), lights, model),
+                                     "fast");
                     expectLaneNear(lane(wide.emission, i), one.emission, "emission");
                     expectLaneNear(lane(wide.ambient, i), one.ambient, "ambient");
                     expectLaneNear(lane(wide.diffuse, i), one.diffuse, "diffuse");
@@ -414,7 +431,7 @@ TEST(LightingEquation, GrazingLightGivesNoSpecular) {
     EXPECT_EQ(cookTorrance.diffuse, vec3(0.0f));
 }
 
-TEST(BrdfWide, BrdfAndPhysicallyBasedLightingMatchScalar) {
+TEST(BrdfWide, BrdfAndPhysicallyBasedLightingEightLanesEqualOneAndFastIsNearExact) {
     RandomLanes random;
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     const std::vector<LightParams> lights = testLights();
@@ -433,10 +450,19 @@ TEST(BrdfWide, BrdfAndPhysicallyBasedLightingMatchScalar) {
                     random.fill(n, nWide);
                     random.fill(l, lWide);
                     random.fill(v, vWide);
-                    const Vec3x8 f = brdf<Float8>(nWide, lWide, vWide, m, model);
-                    const Vec3x8 lit = physicallyBasedLighting<Float8>(lWide, nWide, vec3(0.3f, 0.5f, 4.0f),
-                                                                       m, lights, model);
+                    constexpr MathPrecision kFast = MathPrecision::Fast;
+                    const Vec3x8 f = brdf<Float8, Vec3x8, kFast>(nWide, lWide, vWide, m, model);
+                    const Vec3x8 lit = physicallyBasedLighting<Float8, Vec3x8, kFast>(
+                        lWide, nWide, vec3(0.3f, 0.5f, 4.0f), m, lights, model);
+                    const Vec3x8 litExact = physicallyBasedLighting<Float8>(
+                        lWide, nWide, vec3(0.3f, 0.5f, 4.0f), m, lights, model);
                     for (int i = 0; i < 8; ++i) {
+                        EXPECT_EQ(lane(f, i), (brdf<float, vec3, kFast>(n[i], l[i], v[i], m, model)));
+                        EXPECT_EQ(lane(lit, i), (physicallyBasedLighting<float, vec3, kFast>(
+                                                    l[i], n[i], vec3(0.3f, 0.5f, 4.0f), m, lights, model)));
+                        EXPECT_EQ(lane(litExact, i),
+                                  physicallyBasedLighting<float>(l[i], n[i], vec3(0.3f, 0.5f, 4.0f), m,
+                                                                 lights, model));
                         expectLaneNear(lane(f, i), brdf<float>(n[i], l[i], v[i], m, model), "brdf");
                         expectLaneNear(lane(lit, i),
                                        physicallyBasedLighting<float>(l[i], n[i], vec3(0.3f, 0.5f, 4.0f), m,
@@ -444,6 +470,42 @@ TEST(BrdfWide, BrdfAndPhysicallyBasedLightingMatchScalar) {
                                        "physically based lighting");
                     }
                 }
+}
+
+// ---- Math precision (wide.h): the lighting's pow and exp ----------------------------------------------
+
+// The fast pow and exp are one body for one lane and eight (the same bits in every lane); the exact
+// ones are the C library's in every lane; the two differ by less than 2e−5 (relative).
+TEST(MathPrecision, EachChoiceIsTheSameInOneLaneAndEight) {
+    std::mt19937 rng(13);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f), exponent(-20.0f, 5.0f);
+    using Fast = Maths<MathPrecision::Fast>;
+    using Exact = Maths<MathPrecision::Exact>;
+    for (int trial = 0; trial < 500; ++trial) {
+        Float8 x, y;
+        for (int i = 0; i < 8; ++i) {
+            x[i] = i == 0 ? 0.0f : unit(rng);
+            y[i] = exponent(rng);
+        }
+        const float n = trial % 50 == 0 ? 0.0f : 200.0f * unit(rng);
+        const Float8 fastPow = Fast::pow(x, n), exactPow = Exact::pow(x, n);
+        const Float8 fastExp = Fast::exp(y), exactExp = Exact::exp(y);
+        for (int i = 0; i < 8; ++i) {
+            EXPECT_EQ(fastPow[i], Fast::pow(x[i], n)) << x[i] << "^" << n;
+            EXPECT_EQ(exactPow[i], std::pow(x[i], n)) << x[i] << "^" << n;
+            EXPECT_EQ(Exact::pow(x[i], n), std::pow(x[i], n));
+            EXPECT_NEAR(fastPow[i], exactPow[i], 2e-5f * exactPow[i] + 1e-30f) << x[i] << "^" << n;
+            EXPECT_EQ(fastExp[i], Fast::exp(y[i])) << y[i];
+            EXPECT_EQ(exactExp[i], std::exp(y[i])) << y[i];
+            EXPECT_EQ(Exact::exp(y[i]), std::exp(y[i]));
+            EXPECT_NEAR(fastExp[i], exactExp[i], 2e-5f * exactExp[i]) << y[i];
+        }
+    }
+    // pow's edges, as GLSL's: 0^n = 0 for n > 0, x^0 = 1 (also 0^0), in both precisions.
+    EXPECT_EQ(Fast::pow(0.0f, 3.0f), 0.0f);
+    EXPECT_EQ(Exact::pow(0.0f, 3.0f), 0.0f);
+    EXPECT_EQ(Fast::pow(0.0f, 0.0f), 1.0f);
+    EXPECT_EQ(Exact::pow(0.0f, 0.0f), 1.0f);
 }
 
 // ---- Presets -----------------------------------------------------------------------------------------
