@@ -443,7 +443,7 @@ std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, TransparencyMo
     // Opaque draws, with depth writes, in file order.
     for (std::uint32_t k = 0; k < prepared.draws.size(); ++k) {
         const PreparedDraw& d = prepared.draws[k];
-        if (!d.transparent) plan.push_back({k, d.vertices, d.indices, prepared.state});
+        if (!d.transparent) plan.push_back({k, d.vertices, d.indices, prepared.state, {}});
     }
     const std::vector<TransparentTriangle>& triangles = prepared.transparentTriangles;
     if (triangles.empty()) return plan;
@@ -461,7 +461,7 @@ std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, TransparencyMo
         for (std::uint32_t k = 0; k < prepared.draws.size(); ++k)
             if (prepared.draws[k].transparent) {
                 plan.push_back(
-                    {k, prepared.draws[k].vertices, prepared.draws[k].indices, transparentState(k)});
+                    {k, prepared.draws[k].vertices, prepared.draws[k].indices, transparentState(k), {}});
                 ++stats.transparentRuns;
             }
         return plan;
@@ -481,6 +481,7 @@ std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, TransparencyMo
     // vertices per transparent triangle, instead of the whole draw once per run. The image is the same:
     // a vertex is shaded alike wherever it sits in the array.
     memory.runIndices.resize(3 * triangles.size());
+    memory.runTriangles.resize(triangles.size());
     memory.runVertices.clear();
     memory.runVertexRanges.clear();
     const std::size_t firstRun = plan.size();
@@ -491,6 +492,7 @@ std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, TransparencyMo
         const std::size_t first = written;
         for (; i < order.size() && triangles[order[i]].draw == k; ++i) {
             const std::uint32_t t = triangles[order[i]].triangle;
+            memory.runTriangles[written / 3] = t;
             for (int c = 0; c < 3; ++c)
                 memory.runIndices[written++] = d.indices[3 * t + c];
         }
@@ -513,7 +515,9 @@ std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, TransparencyMo
                 memory.runVertexOf[source] = FrameMemory::kNotInRun;
         }
         memory.runVertexRanges.push_back({start, memory.runVertices.size()});
-        plan.push_back({k, d.vertices, run, transparentState(k)});
+        const std::span<const std::uint32_t> runTriangles =
+            std::span<const std::uint32_t>(memory.runTriangles).subspan(first / 3, run.size() / 3);
+        plan.push_back({k, d.vertices, run, transparentState(k), runTriangles});
         ++stats.transparentRuns;
     }
     // runVertices has stopped growing: point the compacted runs at their vertices.
@@ -526,52 +530,10 @@ std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, TransparencyMo
     return plan;
 }
 
-namespace {
-
-template <ShadingFrequency kFrequency>
-DrawStats drawSurface(const PlannedDraw& call, const SurfaceUniforms& uniforms, Framebuffer& target,
-                      DrawContext& context) {
-    return draw<SurfaceShader<kFrequency>>(call.state, uniforms, call.vertices, call.indices, target,
-                                           context);
-}
-
-}  // namespace
-
 FrameStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawContext& context,
                        FrameMemory& memory, std::uint8_t terms) {
-    FrameStats stats;
-    const TransparencyMode mode = prepared.scene.transparency.mode;
-    const std::vector<PlannedDraw> plan = planFrame(prepared, mode, memory, stats);
-    target.clear(prepared.clearColor, 1.0f, context.pool);
-    for (const PlannedDraw& call : plan) {
-        const PreparedDraw& d = prepared.draws[call.draw];
-        const SurfaceUniforms* uniforms = &d.uniforms;
-        SurfaceUniforms selected;
-        if (terms != kAllTerms) {
-            selected = d.uniforms;
-            selected.terms = terms;
-            uniforms = &selected;
-        }
-        switch (d.frequency) {
-            case ShadingFrequency::Flat:
-                stats.draw += drawSurface<ShadingFrequency::Flat>(call, *uniforms, target, context);
-                break;
-            case ShadingFrequency::Gouraud:
-                stats.draw += drawSurface<ShadingFrequency::Gouraud>(call, *uniforms, target, context);
-                break;
-            case ShadingFrequency::Phong:
-                stats.draw += drawSurface<ShadingFrequency::Phong>(call, *uniforms, target, context);
-                break;
-        }
-    }
-    // Exact transparency: every pixel's fragments sorted by depth and composited, farthest first.
-    if (mode == TransparencyMode::Exact && !prepared.transparentTriangles.empty()) {
-        const auto start = std::chrono::steady_clock::now();
-        stats.fragmentLists = resolveFragmentLists(target, context.pool);
-        stats.resolveMilliseconds =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    }
-    return stats;
+    NullObserver unobserved;
+    return renderFrame(prepared, target, context, memory, unobserved, terms);
 }
 
 DrawStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawContext& context,

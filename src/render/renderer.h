@@ -2,6 +2,8 @@
 // (renderFrame) with the built-in surface shaders (shaders.h), one draw per object part (material).
 #pragma once
 
+#include <chrono>
+#include <concepts>
 #include <filesystem>
 #include <memory>
 #include <span>
@@ -10,6 +12,7 @@
 #include <vector>
 
 #include "io/image_io.h"
+#include "pipeline/fragment_lists_resolve.h"
 #include "pipeline/pipeline.h"
 #include "render/transparency_sort.h"
 #include "scene/camera.h"
@@ -67,9 +70,10 @@ void setTurntable(PreparedScene& prepared, float degrees);
 // insertion sort starts from an almost sorted order), and scratch buffers.
 struct FrameMemory {
     TransparencySorter sorter;
-    std::vector<float> keys;                // per transparent triangle
-    std::vector<float> vertexDepths;        // z_eye of one draw's vertices, for the keys
-    std::vector<std::uint32_t> runIndices;  // the index lists of the transparent runs
+    std::vector<float> keys;                  // per transparent triangle
+    std::vector<float> vertexDepths;          // z_eye of one draw's vertices, for the keys
+    std::vector<std::uint32_t> runIndices;    // the index lists of the transparent runs
+    std::vector<std::uint32_t> runTriangles;  // per triangle of a run: its number in its draw (index / 3)
     // The runs' compact vertex arrays, one after another: each run carries only the vertices it uses,
     // so that a draw cut into thousands of runs is not shaded whole thousands of times.
     std::vector<MeshVertex> runVertices;
@@ -101,6 +105,11 @@ struct PlannedDraw {
     std::span<const MeshVertex> vertices;
     std::span<const std::uint32_t> indices;
     DrawState state;  // depth writes off and blending for transparent runs
+    // Empty: triangle t of this call is triangle t of the draw. A transparent run: triangle t of the run
+    // is triangle triangles[t] of the draw (so what a frame observer sees keeps the draw's numbering).
+    std::span<const std::uint32_t> triangles;
+
+    std::uint32_t triangleOfDraw(std::uint32_t t) const { return triangles.empty() ? t : triangles[t]; }
 };
 
 // The frame's draw calls: opaque draws first, then the transparent triangles in the order `mode` gives
@@ -120,7 +129,121 @@ FrameStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawC
 DrawStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawContext& context,
                       std::uint8_t terms = kAllTerms);
 
+// What the pipeline's draw() accepts as an observer (pipeline/observer.h).
+template <class O>
+concept PipelineObserver = requires {
+    { O::enabled } -> std::convertible_to<bool>;
+};
+
+// A frame watched by an observer of the pipeline (pipeline/observer.h: derive from NullObserver and
+// override the hooks wanted): every hook of every draw call of the frame, in order, then the resolve
+// of exact transparency. Triangle numbers are those of the call's draw (PreparedDraw::indices / 3),
+// for transparent runs too. An observer may also have
+//   void onPlannedDraw(const PlannedDraw& call, const PreparedDraw& draw);
+// called before each draw call. With an enabled observer every draw runs on the calling thread; the
+// image is the same bytes as without one. (renderFrame above is this with NullObserver.)
+template <PipelineObserver Observer>
+FrameStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawContext& context,
+                       FrameMemory& memory, Observer& observer, std::uint8_t terms = kAllTerms);
+
 // The framebuffer's colour as an image (same linear values).
 LinearImage toImage(const Framebuffer& framebuffer);
+
+// ---- the frame, watched or not ------------------------------------------------------------------
+
+namespace detail {
+
+// Forwards the pipeline's hooks for one draw call, the call's triangle numbers turned into its draw's.
+template <class Observer>
+struct DrawTriangleNumbers {
+    static constexpr bool enabled = Observer::enabled;
+    Observer& inner;
+    const PlannedDraw& call;
+
+    void onDrawBegin(std::uint64_t id, const DrawState& state) { inner.onDrawBegin(id, state); }
+    void onDrawEnd(std::uint64_t id, const DrawStats& stats) { inner.onDrawEnd(id, stats); }
+    void onVertex(std::uint32_t index, const vec4& clip, const float* varyings, int count,
+                  std::uint8_t outcode) {
+        inner.onVertex(index, clip, varyings, count, outcode);
+    }
+    void onAssembled(std::uint32_t t, const ClipPolygon& polygon) {
+        inner.onAssembled(call.triangleOfDraw(t), polygon);
+    }
+    void onClipped(std::uint32_t t, const ClipPolygon& polygon) {
+        inner.onClipped(call.triangleOfDraw(t), polygon);
+    }
+    void onSetup(std::uint32_t t, const WindowTriangle& window, TriangleFate fate,
+                 const TriangleSetup& setup) {
+        inner.onSetup(call.triangleOfDraw(t), window, fate, setup);
+    }
+    void onCoverage(CoverageEvent event) {
+        event.triangle = call.triangleOfDraw(event.triangle);
+        inner.onCoverage(event);
+    }
+    void onRejected(std::uint32_t t, TriangleFate fate) { inner.onRejected(call.triangleOfDraw(t), fate); }
+    void onFragment(FragmentEvent event) {
+        event.triangle = call.triangleOfDraw(event.triangle);
+        inner.onFragment(event);
+    }
+    void onResolve(const ResolveEvent& event) { inner.onResolve(event); }
+};
+
+template <ShadingFrequency kFrequency, class Observer>
+DrawStats drawSurface(const PlannedDraw& call, const SurfaceUniforms& uniforms, Framebuffer& target,
+                      DrawContext& context, Observer& observer) {
+    if constexpr (Observer::enabled)
+        return draw<SurfaceShader<kFrequency>>(call.state, uniforms, call.vertices, call.indices, target,
+                                               context, DrawTriangleNumbers<Observer>{observer, call});
+    else
+        return draw<SurfaceShader<kFrequency>>(call.state, uniforms, call.vertices, call.indices, target,
+                                               context);
+}
+
+}  // namespace detail
+
+template <PipelineObserver Observer>
+FrameStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawContext& context,
+                       FrameMemory& memory, Observer& observer, std::uint8_t terms) {
+    FrameStats stats;
+    const TransparencyMode mode = prepared.scene.transparency.mode;
+    const std::vector<PlannedDraw> plan = planFrame(prepared, mode, memory, stats);
+    target.clear(prepared.clearColor, 1.0f, context.pool);
+    for (const PlannedDraw& call : plan) {
+        const PreparedDraw& d = prepared.draws[call.draw];
+        if constexpr (requires { observer.onPlannedDraw(call, d); }) observer.onPlannedDraw(call, d);
+        const SurfaceUniforms* uniforms = &d.uniforms;
+        SurfaceUniforms selected;
+        if (terms != kAllTerms) {
+            selected = d.uniforms;
+            selected.terms = terms;
+            uniforms = &selected;
+        }
+        switch (d.frequency) {
+            case ShadingFrequency::Flat:
+                stats.draw +=
+                    detail::drawSurface<ShadingFrequency::Flat>(call, *uniforms, target, context, observer);
+                break;
+            case ShadingFrequency::Gouraud:
+                stats.draw += detail::drawSurface<ShadingFrequency::Gouraud>(call, *uniforms, target, context,
+                                                                             observer);
+                break;
+            case ShadingFrequency::Phong:
+                stats.draw +=
+                    detail::drawSurface<ShadingFrequency::Phong>(call, *uniforms, target, context, observer);
+                break;
+        }
+    }
+    // Exact transparency: every pixel's fragments sorted by depth and composited, farthest first.
+    if (mode == TransparencyMode::Exact && !prepared.transparentTriangles.empty()) {
+        const auto start = std::chrono::steady_clock::now();
+        if constexpr (Observer::enabled)
+            stats.fragmentLists = resolveFragmentLists(target, context.pool, observer);
+        else
+            stats.fragmentLists = resolveFragmentLists(target, context.pool);
+        stats.resolveMilliseconds =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    }
+    return stats;
+}
 
 }  // namespace facet

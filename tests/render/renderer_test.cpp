@@ -6,7 +6,9 @@
 // OSMesa is installed, and two empty frames agree: these tests keep the plumbing honest everywhere.
 #include "render/renderer.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <string>
@@ -161,6 +163,14 @@ TEST(Renderer, SortedPlanIsOpaqueDrawsThenEveryTransparentTriangleBackToFront) {
         expectTransparentState(run, prepared);
         ASSERT_EQ(run.indices.size() % 3, 0u);
         trianglesOf[run.draw] += run.indices.size() / 3;
+        // Each run triangle names its triangle in the draw: the same corners.
+        const PreparedDraw& d = prepared.draws[run.draw];
+        ASSERT_EQ(run.triangles.size(), run.indices.size() / 3);
+        for (std::size_t i = 0; i < run.triangles.size(); ++i)
+            for (std::size_t c = 0; c < 3; ++c)
+                EXPECT_EQ(run.vertices[run.indices[3 * i + c]].position,
+                          d.vertices[d.indices[3 * run.triangles[i] + c]].position)
+                    << "triangle " << i << ", corner " << c;
         const mat4& viewFromObject = prepared.draws[run.draw].uniforms.viewFromObject;
         for (std::size_t i = 0; i < run.indices.size(); i += 3) {
             float zSum = 0.0f;
@@ -175,6 +185,89 @@ TEST(Renderer, SortedPlanIsOpaqueDrawsThenEveryTransparentTriangleBackToFront) {
     for (std::uint32_t k = 1; k <= 5; ++k)
         EXPECT_EQ(trianglesOf[k], prepared.draws[k].indices.size() / 3) << "draw " << k;
     EXPECT_EQ(trianglesOf.size(), 5u);
+}
+
+// ---- Watching a frame ------------------------------------------------------------------------------
+
+// Records what a frame observer sees: the draw calls, and per call the triangles that reached primitive
+// assembly or were rejected before it, by the numbers the hooks give.
+struct FrameRecorder : NullObserver {
+    static constexpr bool enabled = true;
+    std::vector<std::uint32_t> callDraws;               // PlannedDraw::draw of each call, in order
+    std::vector<std::vector<std::uint32_t>> triangles;  // per call
+    std::size_t fragments = 0, resolvedPixels = 0;
+    void onPlannedDraw(const PlannedDraw& call, const PreparedDraw&) {
+        callDraws.push_back(call.draw);
+        triangles.emplace_back();
+    }
+    void onAssembled(std::uint32_t triangle, const ClipPolygon&) { triangles.back().push_back(triangle); }
+    void onRejected(std::uint32_t triangle, TriangleFate) { triangles.back().push_back(triangle); }
+    void onFragment(const FragmentEvent&) { ++fragments; }
+    void onResolve(const ResolveEvent&) { ++resolvedPixels; }
+};
+
+// Watching a frame changes no byte of colour or depth, sorted or exact (breaks caught: an observed
+// frame drawing its calls in another order, or skipping the resolve).
+TEST(Renderer, WatchingAFrameChangesNoByte) {
+    for (const TransparencyMode mode : {TransparencyMode::Sorted, TransparencyMode::Exact}) {
+        PreparedScene prepared = mixedScene();
+        prepared.scene.transparency.mode = mode;
+        Framebuffer plain(prepared.scene.width, prepared.scene.height);
+        Framebuffer watched(prepared.scene.width, prepared.scene.height);
+        DrawContext threads(3), calling(1);
+        FrameMemory plainMemory, watchedMemory;
+        renderFrame(prepared, plain, threads, plainMemory);
+        FrameRecorder recorder;
+        renderFrame(prepared, watched, calling, watchedMemory, recorder);
+        EXPECT_GT(recorder.fragments, 0u);
+        EXPECT_EQ(recorder.resolvedPixels > 0, mode == TransparencyMode::Exact);
+        EXPECT_EQ(std::memcmp(plain.colorPixels().data(), watched.colorPixels().data(),
+                              plain.colorPixels().size() * sizeof(vec4)),
+                  0);
+        for (int y = 0; y < plain.height(); ++y)
+            for (int x = 0; x < plain.width(); ++x)
+                ASSERT_EQ(plain.depth(x, y), watched.depth(x, y)) << x << "," << y;
+    }
+}
+
+// The observer sees every draw call of the plan, and a transparent draw cut into runs keeps its own
+// triangle numbers: over its runs, each of its triangles once (break caught: the run's numbers, which
+// start at 0 in every run, passed on unchanged).
+TEST(Renderer, FrameObserverSeesTheDrawsOwnTriangleNumbers) {
+    const PreparedScene prepared = mixedScene();
+    FrameMemory planMemory;
+    FrameStats stats;
+    const std::size_t calls = planFrame(prepared, TransparencyMode::Sorted, planMemory, stats).size();
+
+    Framebuffer framebuffer(prepared.scene.width, prepared.scene.height);
+    DrawContext context(1);
+    FrameMemory memory;
+    FrameRecorder recorder;
+    renderFrame(prepared, framebuffer, context, memory, recorder);
+    ASSERT_EQ(recorder.callDraws.size(), calls);
+
+    std::map<std::uint32_t, std::vector<int>> seen;  // per draw: how many runs showed each triangle
+    std::map<std::uint32_t, int> runs;
+    for (std::size_t c = 0; c < calls; ++c) {
+        const std::uint32_t k = recorder.callDraws[c];
+        ++runs[k];
+        std::vector<int>& count = seen[k];
+        count.resize(prepared.draws[k].indices.size() / 3);
+        std::vector<std::uint32_t> numbers = recorder.triangles[c];
+        std::sort(numbers.begin(), numbers.end());
+        numbers.erase(std::unique(numbers.begin(), numbers.end()), numbers.end());
+        for (const std::uint32_t t : numbers) {
+            ASSERT_LT(t, count.size()) << "draw " << k;
+            ++count[t];
+        }
+    }
+    bool someDrawInSeveralRuns = false;
+    for (const auto& [k, count] : seen) {
+        someDrawInSeveralRuns |= runs[k] > 1;
+        for (std::size_t t = 0; t < count.size(); ++t)
+            EXPECT_EQ(count[t], 1) << "draw " << k << ", triangle " << t;
+    }
+    EXPECT_TRUE(someDrawInSeveralRuns);  // else the test shows nothing
 }
 
 // ---- Textures ------------------------------------------------------------------------------------
