@@ -22,40 +22,19 @@
 
 #include "base/errors.h"
 #include "base/quote.h"
-#include "bench/bench.h"
-#include "render/renderer.h"
 #include "scene/mesh.h"
 #include "scene/scene.h"
+#include "support/temp_folder.h"
 
 namespace facet {
 namespace {
 
 namespace fs = std::filesystem;
+using testing_support::errorWithinASecond;
 
 // A fresh temporary folder holding the scene files and (empty) model files of one test.
-class SceneTest : public ::testing::Test {
+class SceneTest : public testing_support::TempFolderTest {
   protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        std::string name = std::string(info->test_suite_name()) + "-" + info->name();
-        for (char& c : name) {
-            if (c == '/') c = '-';
-        }
-        folder_ = fs::temp_directory_path() / ("facet-scene-test-" + std::to_string(::getpid()) + "-" + name);
-        fs::remove_all(folder_);
-        fs::create_directories(folder_);
-    }
-    void TearDown() override { fs::remove_all(folder_); }
-
-    fs::path write(const fs::path& relative, const std::string& text) const {
-        const fs::path path = folder_ / relative;
-        fs::create_directories(path.parent_path());
-        std::ofstream(path, std::ios::binary) << text;
-        return path;
-    }
-    // loadScene only checks that model files exist, so an empty file stands in for an OBJ.
-    fs::path touch(const fs::path& relative) const { return write(relative, ""); }
-
     // The InputError message of loading `text` as scene.json (with an m.obj beside it).
     std::string errorOf(const std::string& text) const {
         touch("m.obj");
@@ -68,8 +47,6 @@ class SceneTest : public ::testing::Test {
         ADD_FAILURE() << "no error for: " << text;
         return {};
     }
-
-    fs::path folder_;
 };
 
 void expectNear(const glm::vec3& actual, const glm::vec3& expected, float tolerance = 1e-5f) {
@@ -1401,43 +1378,15 @@ TEST_F(SceneTest, FarFromEveryKeyGivesNoSuggestion) {
 
 // ---- Bad input that used to hang, fill memory or flood the terminal -------------------------------
 
-// Runs `load` on another thread and waits a second for it. Should it be blocked opening `fifo` for
-// reading, opening the other end releases it (it then reads an empty file), so the test ends.
-std::string errorWithinASecond(const fs::path& fifo, const std::function<void()>& load) {
-    std::promise<std::string> promise;
-    std::future<std::string> message = promise.get_future();
-    std::thread thread([&] {
-        try {
-            load();
-            promise.set_value("");
-        } catch (const std::exception& e) {
-            promise.set_value(e.what());
-        }
-    });
-    const bool finished = message.wait_for(std::chrono::seconds(1)) == std::future_status::ready;
-    while (message.wait_for(std::chrono::milliseconds(20)) != std::future_status::ready) {
-        const int writer = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK);
-        if (writer >= 0) ::close(writer);
-    }
-    thread.join();
-    EXPECT_TRUE(finished) << "still reading " << fifo << " after a second";
-    return message.get();
-}
-
-// A FIFO would block every command until something writes to it; each refuses it unopened.
+// A FIFO would block every command until something writes to it; each refuses it unopened (bench:
+// tests/bench).
 TEST_F(SceneTest, FifoIsRefusedByEveryCommandWithoutOpeningIt) {
     const fs::path fifo = folder_ / "scene.json";
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
     const std::string expected =
         fifo.string() + ": is not a regular file (a device, a pipe or a socket), not a scene file";
-    BenchOptions options;
-    options.model = fifo;
-    options.frames = 1;
-    std::ostringstream out;
     EXPECT_EQ(errorWithinASecond(fifo, [&] { loadScene(fifo); }), expected);
     EXPECT_EQ(errorWithinASecond(fifo, [&] { loadSceneOrModel(fifo); }), expected) << "render, compare";
-    EXPECT_EQ(errorWithinASecond(fifo, [&] { runBench(options, out); }), expected) << "bench";
-    EXPECT_EQ(errorWithinASecond(fifo, [&] { runSortBench(options, out); }), expected) << "bench --sort";
 }
 
 // A device never ends (/dev/zero) or reads as empty (/dev/null): refused by its type, not by its text.
@@ -1525,56 +1474,6 @@ TEST_F(SceneTest, QuotedValuesAreShortAndPrintable) {
                   "JSON syntax error at line 1, column 100012: invalid string: missing closing quote; "
                   "last read: '\"" +
                   std::string(39, 'a') + "…'");
-}
-
-// ---- Directions of any length ---------------------------------------------------------------------
-
-// The scene `text` (with "model" the bundled cube) drawn at 48×36 on one thread.
-LinearImage renderCube(const fs::path& path, const std::string& text) {
-    nlohmann::json document = nlohmann::json::parse(text);
-    document["model"] = FACET_SOURCE_DIR "/models/cube/cube.obj";
-    document["width"] = 48;
-    document["height"] = 36;
-    std::ofstream(path) << document.dump();
-    const PreparedScene prepared = prepareScene(loadScene(path));
-    Framebuffer framebuffer(48, 36);
-    DrawContext context(1);
-    renderFrame(prepared, framebuffer, context);
-    return toImage(framebuffer);
-}
-
-// Only an exactly zero vector is refused; any other length lights the model exactly as the same
-// direction at unit length (normalising in float turned 1e-30, 1e20 and -3e38 into NaN: black).
-TEST_F(SceneTest, DirectionsOfAnyLengthLightLikeUnitOnes) {
-    const std::pair<std::string, std::string> cases[] = {
-        {R"({"lights": [{"direction": [0, -1e-30, 0]}]})", R"({"lights": [{"direction": [0, -1, 0]}]})"},
-        {R"({"lights": [{"direction": [0, -1e20, 0]}]})", R"({"lights": [{"direction": [0, -1, 0]}]})"},
-        {R"({"lights": [{"direction": [-3e38, 0, 0]}]})", R"({"lights": [{"direction": [-1, 0, 0]}]})"},
-        // 2^-100 · [1, -2, -2]: scaled by a power of two, the same unit vector to the last bit.
-        {R"({"lights": [{"direction": [7.888609052210118e-31, -1.5777218104420236e-30, -1.5777218104420236e-30]}]})",
-         R"({"lights": [{"direction": [1, -2, -2]}]})"},
-        {R"({"lights": [{"type": "spot", "position": [0, 3, 0], "direction": [0, -1e-30, 0], "cutoff": 40}]})",
-         R"({"lights": [{"type": "spot", "position": [0, 3, 0], "direction": [0, -1, 0], "cutoff": 40}]})"},
-        {R"({"camera": {"eye": [2, 1, 3], "target": [0, 0, 0], "up": [0, 1e-30, 0]}})",
-         R"({"camera": {"eye": [2, 1, 3], "target": [0, 0, 0], "up": [0, 1, 0]}})"},
-        {R"({"camera": {"eye": [2, 1, 3], "target": [0, 0, 0], "up": [0, 3e38, 0]}})",
-         R"({"camera": {"eye": [2, 1, 3], "target": [0, 0, 0], "up": [0, 1, 0]}})"},
-    };
-    for (const auto& [extreme, unit] : cases) {
-        SCOPED_TRACE(extreme);
-        const LinearImage expected = renderCube(folder_ / "unit.json", unit);
-        const LinearImage actual = renderCube(folder_ / "extreme.json", extreme);
-        // The cube is drawn and lit: some pixel is brighter than the background in the corner.
-        bool lit = false;
-        for (const glm::vec4& p : expected.pixels)
-            lit = lit || p.r > expected.pixels[0].r + 0.05f;
-        EXPECT_TRUE(lit);
-        ASSERT_EQ(actual.pixels.size(), expected.pixels.size());
-        std::size_t differing = 0;
-        for (std::size_t i = 0; i < expected.pixels.size(); ++i)
-            differing += actual.pixels[i] != expected.pixels[i];
-        EXPECT_EQ(differing, 0u);
-    }
 }
 
 // ---- The quoting helper ---------------------------------------------------------------------------
