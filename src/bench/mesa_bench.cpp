@@ -207,7 +207,7 @@ void useOnePointLight(PreparedScene& prepared) {
     const vec3 positionWorld =
         vec3(inverse(camera.viewFromWorld) * vec4(-0.5f * distance, 0.5f * distance, 0.0f, 1.0f));
     LightSpec light;
-    light.type = LightType::Point;
+    light.type = LightKind::Point;
     light.position = positionWorld;
     prepared.scene.lights = {light};
     LightParams eyeSpace;  // lights live in eye space in the uniforms

@@ -12,7 +12,7 @@ namespace facet {
 
 void runTransparencyBench(const BenchOptions& options, std::ostream& out) {
     Scene scene = benchScene(options);
-    scene.pipeline.cull = CullChoice::None;  // see-through: the back faces show
+    scene.pipeline.cull = CullMode::None;  // see-through: the back faces show
     for (ObjectSpec& object : scene.objects)
         object.material.opacity = 0.5f;
     PreparedScene prepared = prepareScene(scene);
@@ -29,14 +29,8 @@ void runTransparencyBench(const BenchOptions& options, std::ostream& out) {
     out << "  mode        ms/frame   sort ms   resolve ms   draws   fragments stored   longest list   lists "
            "hold\n";
 
-    struct Mode {
-        const char* name;
-        TransparencyMode mode;
-    };
-    for (const Mode mode :
-         {Mode{"sorted", TransparencyMode::Sorted}, Mode{"unsorted", TransparencyMode::Unsorted},
-          Mode{"exact", TransparencyMode::Exact}}) {
-        prepared.scene.transparency.mode = mode.mode;
+    for (const EnumName<TransparencyMode>& mode : kTransparencyModeNames) {
+        prepared.scene.transparency.mode = mode.value;
         FrameMemory memory;
         setTurntable(prepared, 0.0f);
         FrameStats stats = renderFrame(prepared, framebuffer, context, memory);  // warm-up

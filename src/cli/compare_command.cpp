@@ -25,12 +25,9 @@ CLI::App* addCompareCommand(CLI::App& app, CompareArgs& args) {
         ->add_option("--driver", args.driver,
                      "Mesa's rasterizer: softpipe (its reference implementation, the default) or llvmpipe")
         ->check(CLI::IsMember({"softpipe", "llvmpipe"}));
-    command->add_option("--lighting", args.scene.lighting, "facet or gl (as for render)")
-        ->check(CLI::IsMember({"facet", "gl"}));
-    command->add_option("--reflection", args.scene.reflection, "phong, blinn-phong or cook-torrance")
-        ->check(CLI::IsMember({"phong", "blinn-phong", "cook-torrance"}));
-    command->add_option("--shading", args.scene.shading, "flat, gouraud or phong")
-        ->check(CLI::IsMember({"flat", "gouraud", "phong"}));
+    addChoice(*command, "--lighting", args.scene.lighting, "As for render");
+    addChoice(*command, "--reflection", args.scene.reflection, "As for render");
+    addChoice(*command, "--shading", args.scene.shading, "As for render");
     command->add_option("--crease-angle", args.scene.creaseAngle, "as for render")->check(kFiniteNumber);
     command->add_option("--facet", args.facetImage, "Also write Facet's image here");
     command->add_option("--mesa", args.mesaImage, "Also write OpenGL's image here");

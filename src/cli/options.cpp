@@ -78,47 +78,31 @@ std::string sizeFromScene(const std::filesystem::path& input, bool widthGiven, b
 }
 
 void applyLightingOptions(const RenderArgs& args, facet::Scene& scene) {
-    if (args.lighting)
-        scene.lighting.preset =
-            *args.lighting == "gl" ? facet::LightingPreset::GL : facet::LightingPreset::Facet;
+    if (args.lighting) scene.lighting.preset = *args.lighting;
     if (args.reflection) {
-        const facet::ReflectionModel model = *args.reflection == "phong" ? facet::ReflectionModel::Phong
-                                             : *args.reflection == "blinn-phong"
-                                                 ? facet::ReflectionModel::BlinnPhong
-                                                 : facet::ReflectionModel::CookTorrance;
-        scene.lighting.model = model;
+        scene.lighting.model = *args.reflection;
         for (facet::ObjectSpec& object : scene.objects)
-            object.reflection = model;
+            object.reflection = *args.reflection;
     }
     if (args.shading) {
-        const facet::ShadingFrequency frequency = *args.shading == "flat" ? facet::ShadingFrequency::Flat
-                                                  : *args.shading == "gouraud"
-                                                      ? facet::ShadingFrequency::Gouraud
-                                                      : facet::ShadingFrequency::Phong;
-        scene.lighting.shading = frequency;
+        scene.lighting.shading = *args.shading;
         for (facet::ObjectSpec& object : scene.objects)
-            object.shading = frequency;
+            object.shading = *args.shading;
     }
-    if (args.transparency)
-        scene.transparency.mode = *args.transparency == "sorted"     ? facet::TransparencyMode::Sorted
-                                  : *args.transparency == "unsorted" ? facet::TransparencyMode::Unsorted
-                                                                     : facet::TransparencyMode::Exact;
-    if (args.sortKey)
-        scene.transparency.key =
-            *args.sortKey == "farthest" ? facet::SortKey::FarthestVertex : facet::SortKey::Centroid;
+    if (args.transparency) scene.transparency.mode = *args.transparency;
+    if (args.sortKey) scene.transparency.key = *args.sortKey;
     if ((args.encode || args.gamma) && scene.lighting.preset == facet::LightingPreset::GL)
         throw facet::InputError(
-            "the gl preset writes colours as OpenGL 1.x does, unencoded: --encode and --gamma do not apply");
-    if (args.encode)
-        scene.gamma.encode = *args.encode == "srgb"    ? facet::TransferCurve::Srgb
-                             : *args.encode == "power" ? facet::TransferCurve::Power
-                                                       : facet::TransferCurve::Linear;
+            "the " + std::string(nameOf(LightingPreset::GL)) +
+            " preset writes colours as OpenGL 1.x does, unencoded: --encode and --gamma do not apply");
+    if (args.encode) scene.gamma.encode = *args.encode;
     if (args.gamma) {
         if (!(*args.gamma > 0.0f && *args.gamma <= 10.0f))
             throw facet::InputError("--gamma must be above 0 and at most 10 (got " +
                                     std::to_string(*args.gamma) + ")");
-        if (args.encode && *args.encode != "power")
-            throw facet::InputError("--gamma goes with --encode power");
+        if (args.encode && *args.encode != TransferCurve::Power)
+            throw facet::InputError("--gamma goes with --encode " +
+                                    std::string(nameOf(TransferCurve::Power)));
         scene.gamma.encode = facet::TransferCurve::Power;
         scene.gamma.exponent = *args.gamma;
     }

@@ -9,7 +9,9 @@
 #include <CLI/CLI.hpp>
 #include <glm/glm.hpp>
 
+#include "pipeline/names.h"
 #include "scene/scene.h"
+#include "shaders/shaders.h"
 
 namespace facet::cli {
 
@@ -21,6 +23,24 @@ extern const CLI::Validator kWholeNumber;
 // Any finite number: "nan", "inf" and values beyond a float (1e39) are refused; each option checks
 // its own range afterwards.
 extern const CLI::Validator kFiniteNumber;
+
+// An option whose value is one of the names of E's table (pipeline/names.h): CLI11 checks the text
+// against the table's names (and lists them in the help and in its message), then `value` gets the
+// named value.
+template <class E>
+CLI::Option* addChoice(CLI::App& command, const std::string& name, std::optional<E>& value,
+                       const std::string& description) {
+    return command
+        .add_option_function<std::string>(
+            name, [&value](const std::string& text) { value = parseName<E>(text); }, description)
+        ->check(CLI::IsMember(namesOf<E>()));
+}
+
+// "... (default blinn-phong)": an option's default, by its name.
+template <class E>
+std::string byDefault(E value) {
+    return " (default " + std::string(nameOf(value)) + ")";
+}
 
 // Parses "x,y,z" into a vec3; CLI11 hands us the raw text so the error can quote it.
 glm::vec3 parseVec3(const std::string& option, const std::string& text);
@@ -40,13 +60,18 @@ struct RenderArgs {
     std::optional<float> fovy;
     int threads = 0;
     bool quiet = false;
-    std::optional<std::string> lighting, reflection, shading, only;
+    std::optional<LightingPreset> lighting;
+    std::optional<ReflectionModel> reflection;
+    std::optional<ShadingFrequency> shading;
+    std::optional<LightingTerm> only;
     std::optional<float> creaseAngle;
     bool components = false;
     std::optional<std::string> frames;  // "0-59"
     std::optional<float> turntable;     // degrees over the frames
     bool stats = false;
-    std::optional<std::string> transparency, sortKey, encode;
+    std::optional<TransparencyMode> transparency;
+    std::optional<SortKey> sortKey;
+    std::optional<TransferCurve> encode;
     std::optional<float> gamma;
 };
 

@@ -13,6 +13,20 @@
 #include "io/image_io.h"
 #include "render/renderer.h"
 
+namespace facet {
+
+// The lighting terms (shaders.h's LightingTerm bits) by the names the command line uses, in the order
+// component images are written; kAllTerms, their sum, is the main image and has no name.
+inline constexpr EnumName<LightingTerm> kLightingTermNames[] = {{kEmissionTerm, "emission"},
+                                                                {kAmbientTerm, "ambient"},
+                                                                {kDiffuseTerm, "diffuse"},
+                                                                {kSpecularTerm, "specular"}};
+constexpr std::span<const EnumName<LightingTerm>> enumNames(LightingTerm) {
+    return kLightingTermNames;
+}
+
+}  // namespace facet
+
 namespace facet::cli {
 
 namespace {
@@ -23,20 +37,10 @@ namespace {
 constexpr int kMaxFrameNumber = 9'999'999;
 constexpr int kMaxImagesPerRun = 100'000;
 
-// The lighting terms by the names the command line uses, in the order component images are written.
-struct TermName {
-    const char* name;
-    std::uint8_t bits;
-};
-constexpr TermName kTermNames[] = {{"emission", facet::kEmissionTerm},
-                                   {"ambient", facet::kAmbientTerm},
-                                   {"diffuse", facet::kDiffuseTerm},
-                                   {"specular", facet::kSpecularTerm}};
-
 // "out/spot.png" + "diffuse" -> "out/spot-diffuse.png"
-std::filesystem::path componentPath(const std::filesystem::path& output, const char* term) {
+std::filesystem::path componentPath(const std::filesystem::path& output, std::string_view term) {
     std::filesystem::path path = output;
-    path.replace_filename(output.stem().string() + "-" + term + output.extension().string());
+    path.replace_filename(output.stem().string() + "-" + std::string(term) + output.extension().string());
     return path;
 }
 
@@ -134,30 +138,20 @@ CLI::App* addRenderCommand(CLI::App& app, RenderArgs& args) {
     command->add_option("--threads", args.threads, "Worker threads (default: one per hardware thread)")
         ->check(wholeNumber(0, 1024));
     command->add_flag("-q,--quiet", args.quiet, "Print nothing on success");
-    command
-        ->add_option("--lighting", args.lighting,
-                     "facet: linear light, sRGB output (default); gl: OpenGL 1.x fixed-function conventions "
-                     "(docs/lighting.md)")
-        ->check(CLI::IsMember({"facet", "gl"}));
-    command
-        ->add_option("--reflection", args.reflection,
-                     "Reflection model for every object: phong, blinn-phong (default) or cook-torrance")
-        ->check(CLI::IsMember({"phong", "blinn-phong", "cook-torrance"}));
-    command
-        ->add_option(
-            "--shading", args.shading,
-            "Shading frequency for every object: flat (per face), gouraud (per vertex) or phong (per "
-            "pixel, the default)")
-        ->check(CLI::IsMember({"flat", "gouraud", "phong"}));
+    addChoice(*command, "--lighting", args.lighting,
+              "Conventions: linear light and sRGB output, or OpenGL 1.x fixed function (docs/lighting.md)" +
+                  byDefault(LightingPreset::Facet));
+    addChoice(*command, "--reflection", args.reflection,
+              "Reflection model for every object" + byDefault(ReflectionModel::BlinnPhong));
+    addChoice(*command, "--shading", args.shading,
+              "Shading frequency for every object: per face, per vertex or per pixel" +
+                  byDefault(ShadingFrequency::Phong));
     command
         ->add_option("--crease-angle", args.creaseAngle,
                      "Computed normals: faces meeting at a sharper angle (degrees) keep a hard edge "
                      "(default 60)")
         ->check(kFiniteNumber);
-    command
-        ->add_option("--only", args.only,
-                     "Render one term of the lighting equation alone: emission, ambient, diffuse or specular")
-        ->check(CLI::IsMember({"emission", "ambient", "diffuse", "specular"}));
+    addChoice(*command, "--only", args.only, "Render one term of the lighting equation alone");
     command->add_option("--frames", args.frames,
                         "Render frames FIRST-LAST (like 0-59) of a turntable, writing NAME-0000.png ...");
     command
@@ -167,19 +161,15 @@ CLI::App* addRenderCommand(CLI::App& app, RenderArgs& args) {
     command->add_flag("--stats", args.stats,
                       "Print per frame the fragments and the sorting of transparent triangles (comparisons, "
                       "moves, time)");
-    command
-        ->add_option("--transparency", args.transparency,
-                     "sorted (back to front, the default), unsorted (file order) or exact (per-pixel lists)")
-        ->check(CLI::IsMember({"sorted", "unsorted", "exact"}));
-    command
-        ->add_option("--sort-key", args.sortKey,
-                     "Depth that orders transparent triangles: centroid (default) or farthest (vertex)")
-        ->check(CLI::IsMember({"centroid", "farthest"}));
-    command
-        ->add_option(
-            "--encode", args.encode,
-            "8-bit output encoding: srgb (the exact curve, default), power (1/gamma) or linear (none)")
-        ->check(CLI::IsMember({"srgb", "power", "linear"}));
+    addChoice(*command, "--transparency", args.transparency,
+              "Transparent triangles back to front, in file order, or in exact per-pixel lists" +
+                  byDefault(TransparencyMode::Sorted));
+    addChoice(*command, "--sort-key", args.sortKey,
+              "Depth that orders transparent triangles: the centroid's or the farthest vertex's" +
+                  byDefault(SortKey::Centroid));
+    addChoice(*command, "--encode", args.encode,
+              "8-bit output encoding: the exact sRGB curve, a power 1/gamma, or none" +
+                  byDefault(TransferCurve::Srgb));
     command->add_option("--gamma", args.gamma, "Encode 8-bit output as c^(1/GAMMA) (e.g. 2.2)")
         ->check(kFiniteNumber);
     command->add_flag("--components", args.components,
@@ -197,7 +187,8 @@ int render(const RenderArgs& args) {
         throw facet::InputError("--turntable needs --frames (like --frames 0-59)");
     const auto [firstFrame, lastFrame] = args.frames ? parseFrames(*args.frames) : std::pair{0, 0};
     const int frameCount = lastFrame - firstFrame + 1;
-    const int imagesPerFrame = args.components ? 1 + static_cast<int>(std::size(kTermNames)) : 1;
+    const int imagesPerFrame =
+        args.components ? 1 + static_cast<int>(std::size(facet::kLightingTermNames)) : 1;
     if (static_cast<long long>(frameCount) * imagesPerFrame > kMaxImagesPerRun)
         throw facet::InputError("--frames " + *args.frames + " would write " +
                                 std::to_string(static_cast<long long>(frameCount) * imagesPerFrame) +
@@ -227,10 +218,7 @@ int render(const RenderArgs& args) {
         throw facet::InputError("the camera's eye and target are the same point");
 
     applyLightingOptions(args, scene);
-    std::uint8_t terms = facet::kAllTerms;
-    if (args.only)
-        for (const TermName& term : kTermNames)
-            if (*args.only == term.name) terms = term.bits;
+    const std::uint8_t terms = args.only.value_or(facet::kAllTerms);
     facet::checkImageDestination(args.output, scene.width, scene.height);
 
     const auto start = std::chrono::steady_clock::now();
@@ -262,9 +250,9 @@ int render(const RenderArgs& args) {
         written.push_back(output);
         // The component images: each term alone, over the same background; the main image is their sum.
         if (args.components) {
-            for (const TermName& term : kTermNames) {
+            for (const facet::EnumName<facet::LightingTerm>& term : facet::kLightingTermNames) {
                 facet::FrameMemory scratch;  // not the animation's: keeps its insertion sort honest
-                facet::renderFrame(prepared, framebuffer, context, scratch, term.bits);
+                facet::renderFrame(prepared, framebuffer, context, scratch, term.value);
                 written.push_back(componentPath(output, term.name));
                 facet::writeImage(written.back(), facet::toImage(framebuffer), prepared.encoding);
             }
@@ -295,8 +283,8 @@ int render(const RenderArgs& args) {
                   << " ms including loading)\n";
         if (!args.frames)
             for (std::size_t k = 1; k < written.size(); ++k)
-                std::cout << "facet: wrote " << written[k].string() << " (" << kTermNames[k - 1].name
-                          << " term alone)\n";
+                std::cout << "facet: wrote " << written[k].string() << " ("
+                          << facet::kLightingTermNames[k - 1].name << " term alone)\n";
     }
     return 0;
 }

@@ -181,6 +181,13 @@ std::string describe(const Json& value) {
     }
 }
 
+std::string orList(const std::vector<std::string>& names) {
+    std::string list;
+    for (std::size_t i = 0; i < names.size(); ++i)
+        list += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + inQuotes(names[i]);
+    return list;
+}
+
 std::string suggestion(std::string_view word, KeyList candidates) {
     constexpr int kMaxSuggestionDistance = 2;
     std::string_view best;

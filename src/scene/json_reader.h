@@ -8,9 +8,12 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
+
+#include "pipeline/names.h"
 
 namespace facet::scene_file {
 
@@ -32,6 +35,8 @@ std::string describe(const Json& value);
 
 // " (did you mean "fovy"?)" for the closest candidate within two edits, otherwise "".
 std::string suggestion(std::string_view word, KeyList candidates);
+// "\"a\", \"b\" or \"c\"": choices in a sentence.
+std::string orList(const std::vector<std::string>& names);
 
 // ---- The reader ----------------------------------------------------------------------------------
 
@@ -82,6 +87,14 @@ class SceneReader {
 
     // One of `choices`; returns its index.
     std::size_t choice(const Json& value, const std::string& path, KeyList choices) const;
+
+    // One of the names of E's table (pipeline/names.h) but those of `except`; returns its value.
+    template <class E>
+    E enumChoice(const Json& value, const std::string& path, std::initializer_list<E> except = {}) const {
+        const std::vector<std::string> names = namesOf<E>(except);
+        const std::vector<std::string_view> choices(names.begin(), names.end());
+        return *parseName<E>(choices[choice(value, path, choices)]);
+    }
 
     void checkModelFile(const fs::path& model, const std::string& written, const std::string& path) const;
 

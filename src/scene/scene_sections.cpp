@@ -31,25 +31,10 @@ constexpr std::string_view kPipelineKeys[] = {"cull", "interpolation", "subpixel
 constexpr std::string_view kLightingKeys[] = {"preset",       "model",   "shading", "crease_angle",
                                               "distribution", "fresnel", "geometry"};
 constexpr std::string_view kObjectLightingKeys[] = {"model", "shading"};
-constexpr std::string_view kLightTypes[] = {"directional", "point", "spot"};  // in LightType order
-constexpr std::string_view kLightingPresetNames[] = {"facet", "gl"};          // in LightingPreset order
-constexpr std::string_view kReflectionModelNames[] = {"phong", "blinn-phong", "cook-torrance"};  // enum order
-constexpr std::string_view kShadingNames[] = {"flat", "gouraud", "phong"};  // in ShadingFrequency order
-constexpr std::string_view kDistributionNames[] = {"ggx", "beckmann"};
-constexpr std::string_view kFresnelNames[] = {"schlick", "exact"};
-constexpr std::string_view kGeometryNames[] = {"smith-ggx", "cook-torrance"};
 constexpr std::string_view kLightSpaces[] = {"world", "camera"};
-constexpr std::string_view kCullNames[] = {"back", "front", "none"};  // in CullChoice order
-constexpr std::string_view kInterpolationNames[] = {"perspective", "affine"};
-constexpr std::string_view kBlendNames[] = {"over", "additive", "multiply", "premultiplied"};  // BlendChoice
 constexpr std::string_view kTransparencyKeys[] = {"mode", "sort_key"};
-constexpr std::string_view kTransparencyModeNames[] = {"sorted", "unsorted", "exact"};  // TransparencyMode
-constexpr std::string_view kSortKeyNames[] = {"centroid", "farthest"};                  // in SortKey order
 constexpr std::string_view kFogKeys[] = {"mode", "color", "start", "end", "density", "distance"};
-constexpr std::string_view kFogModeNames[] = {"linear", "exp", "exp2"};  // FogMode after None
-constexpr std::string_view kFogDistanceNames[] = {"depth", "radial"};    // in FogDistance order
 constexpr std::string_view kGammaKeys[] = {"encode", "exponent", "decode_inputs"};
-constexpr std::string_view kEncodeNames[] = {"srgb", "power", "linear"};  // in TransferCurve order
 
 }  // namespace
 
@@ -129,24 +114,23 @@ LightSpec readLight(const SceneReader& reader, const Json& light, const std::str
 
     LightSpec spec;
     if (const Json* v = reader.find(light, "type")) {
-        constexpr LightType kTypes[] = {LightType::Directional, LightType::Point, LightType::Spot};
-        spec.type = kTypes[reader.choice(*v, childPath(path, "type"), kLightTypes)];
+        spec.type = reader.enumChoice<LightKind>(*v, childPath(path, "type"));
     }
     // A key that the type ignores is almost always a forgotten "type": say so rather than ignore it.
-    if (spec.type == LightType::Directional && light.contains("position")) {
+    if (spec.type == LightKind::Directional && light.contains("position")) {
         reader.fail(key("position") + " is only for point and spot lights (add \"type\": \"point\")");
     }
-    if (spec.type == LightType::Directional && light.contains("attenuation")) {
+    if (spec.type == LightKind::Directional && light.contains("attenuation")) {
         reader.fail(key("attenuation") +
                     " is only for point and spot lights: a directional light is infinitely far and does "
                     "not fade (add \"type\": \"point\")");
     }
-    if (spec.type == LightType::Point && light.contains("direction")) {
+    if (spec.type == LightKind::Point && light.contains("direction")) {
         reader.fail(key("direction") +
                     " is only for directional and spot lights: a point light shines every way (add "
                     "\"type\": \"spot\" for a cone)");
     }
-    if (spec.type != LightType::Spot) {
+    if (spec.type != LightKind::Spot) {
         for (std::string_view name : kSpotOnlyKeys) {
             if (light.contains(name))
                 reader.fail(key(name) + " is only for spot lights (add \"type\": \"spot\")");
@@ -155,7 +139,7 @@ LightSpec readLight(const SceneReader& reader, const Json& light, const std::str
 
     if (const Json* v = reader.find(light, "direction")) {
         spec.direction = reader.nonZeroVector(*v, childPath(path, "direction"));
-    } else if (spec.type == LightType::Spot) {
+    } else if (spec.type == LightKind::Spot) {
         spec.direction = glm::vec3(0.0f, -1.0f, 0.0f);
     }
     if (const Json* v = reader.find(light, "position"))
@@ -178,7 +162,7 @@ LightSpec readLight(const SceneReader& reader, const Json& light, const std::str
     }
 
     // The spot's profile: "cutoff" and "exponent" (OpenGL's) or "inner" and "outer" (smooth), not a mix.
-    if (spec.type == LightType::Spot) {
+    if (spec.type == LightKind::Spot) {
         const Json* inner = reader.find(light, "inner");
         const Json* outer = reader.find(light, "outer");
         if ((inner == nullptr) != (outer == nullptr)) {
@@ -281,15 +265,11 @@ MaterialOverride readMaterial(const SceneReader& reader, const Json& material, c
 }
 
 ReflectionModel readReflectionModel(const SceneReader& reader, const Json& value, const std::string& path) {
-    constexpr ReflectionModel kModels[] = {ReflectionModel::Phong, ReflectionModel::BlinnPhong,
-                                           ReflectionModel::CookTorrance};
-    return kModels[reader.choice(value, path, kReflectionModelNames)];
+    return reader.enumChoice<ReflectionModel>(value, path);
 }
 
 ShadingFrequency readShading(const SceneReader& reader, const Json& value, const std::string& path) {
-    constexpr ShadingFrequency kFrequencies[] = {ShadingFrequency::Flat, ShadingFrequency::Gouraud,
-                                                 ShadingFrequency::Phong};
-    return kFrequencies[reader.choice(value, path, kShadingNames)];
+    return reader.enumChoice<ShadingFrequency>(value, path);
 }
 
 // An object's "lighting": only the reflection model and the shading frequency can differ per object.
@@ -360,9 +340,7 @@ ObjectSpec readObject(const SceneReader& reader, const Json& object, const std::
     if (const Json* v = reader.find(object, "lighting"))
         readObjectLighting(reader, *v, childPath(path, "lighting"), spec);
     if (const Json* v = reader.find(object, "blend")) {
-        constexpr BlendChoice kBlends[] = {BlendChoice::Over, BlendChoice::Additive, BlendChoice::Multiply,
-                                           BlendChoice::Premultiplied};
-        spec.blend = kBlends[reader.choice(*v, childPath(path, "blend"), kBlendNames)];
+        spec.blend = reader.enumChoice<BlendMode>(*v, childPath(path, "blend"), {BlendMode::Replace});
     }
 
     // worldFromObject = T · Rz · Ry · Rx · S: scale first, then rotate about X, Y, Z (fixed axes),
@@ -382,13 +360,10 @@ PipelineOptions readPipeline(const SceneReader& reader, const Json& pipeline) {
 
     PipelineOptions options;
     if (const Json* v = reader.find(pipeline, "cull")) {
-        constexpr CullChoice kCullChoices[] = {CullChoice::Back, CullChoice::Front, CullChoice::None};
-        options.cull = kCullChoices[reader.choice(*v, "pipeline.cull", kCullNames)];
+        options.cull = reader.enumChoice<CullMode>(*v, "pipeline.cull");
     }
     if (const Json* v = reader.find(pipeline, "interpolation")) {
-        options.interpolation = reader.choice(*v, "pipeline.interpolation", kInterpolationNames) == 0
-                                    ? InterpolationChoice::Perspective
-                                    : InterpolationChoice::Affine;
+        options.interpolation = reader.enumChoice<Interpolation>(*v, "pipeline.interpolation");
     }
     if (const Json* v = reader.find(pipeline, "subpixel_bits")) {
         options.subpixelBits = reader.wholeNumber(*v, "pipeline.subpixel_bits", 0, 8);
@@ -399,18 +374,18 @@ PipelineOptions readPipeline(const SceneReader& reader, const Json& pipeline) {
 // The scene's "lighting": a preset name alone, or an object.
 LightingOptions readLighting(const SceneReader& reader, const Json& lighting) {
     const std::string path = "lighting";
-    constexpr LightingPreset kPresets[] = {LightingPreset::Facet, LightingPreset::GL};
     LightingOptions options;
     if (lighting.is_string()) {
-        options.preset = kPresets[reader.choice(lighting, path, kLightingPresetNames)];
+        options.preset = reader.enumChoice<LightingPreset>(lighting, path);
         return options;
     }
-    reader.requireObject(lighting, path,
-                         "\"facet\", \"gl\" or an object like {\"model\": \"cook-torrance\"}");
+    reader.requireObject(
+        lighting, path,
+        orList(namesOf<LightingPreset>()) + " or an object like {\"model\": \"cook-torrance\"}");
     reader.checkKeys(lighting, path, kLightingKeys);
 
     if (const Json* v = reader.find(lighting, "preset"))
-        options.preset = kPresets[reader.choice(*v, "lighting.preset", kLightingPresetNames)];
+        options.preset = reader.enumChoice<LightingPreset>(*v, "lighting.preset");
     if (const Json* v = reader.find(lighting, "model"))
         options.model = readReflectionModel(reader, *v, "lighting.model");
     if (const Json* v = reader.find(lighting, "shading"))
@@ -418,20 +393,12 @@ LightingOptions readLighting(const SceneReader& reader, const Json& lighting) {
     if (const Json* v = reader.find(lighting, "crease_angle"))
         options.creaseAngleDegrees =
             reader.numberFromTo(*v, "lighting.crease_angle", 0.0f, 180.0f, " degrees");
-    if (const Json* v = reader.find(lighting, "distribution")) {
-        constexpr NormalDistribution kDistributions[] = {NormalDistribution::GGX,
-                                                         NormalDistribution::Beckmann};
-        options.brdf.distribution =
-            kDistributions[reader.choice(*v, "lighting.distribution", kDistributionNames)];
-    }
-    if (const Json* v = reader.find(lighting, "fresnel")) {
-        constexpr FresnelModel kFresnels[] = {FresnelModel::Schlick, FresnelModel::Exact};
-        options.brdf.fresnel = kFresnels[reader.choice(*v, "lighting.fresnel", kFresnelNames)];
-    }
-    if (const Json* v = reader.find(lighting, "geometry")) {
-        constexpr GeometryTerm kGeometries[] = {GeometryTerm::SmithGGX, GeometryTerm::CookTorrance};
-        options.brdf.geometry = kGeometries[reader.choice(*v, "lighting.geometry", kGeometryNames)];
-    }
+    if (const Json* v = reader.find(lighting, "distribution"))
+        options.brdf.distribution = reader.enumChoice<NormalDistribution>(*v, "lighting.distribution");
+    if (const Json* v = reader.find(lighting, "fresnel"))
+        options.brdf.fresnel = reader.enumChoice<FresnelModel>(*v, "lighting.fresnel");
+    if (const Json* v = reader.find(lighting, "geometry"))
+        options.brdf.geometry = reader.enumChoice<GeometryTerm>(*v, "lighting.geometry");
     return options;
 }
 
@@ -441,17 +408,12 @@ TransparencyOptions readTransparency(const SceneReader& reader, const Json& tran
     reader.checkKeys(transparency, path, kTransparencyKeys);
 
     TransparencyOptions options;
-    if (const Json* v = reader.find(transparency, "mode")) {
-        constexpr TransparencyMode kModes[] = {TransparencyMode::Sorted, TransparencyMode::Unsorted,
-                                               TransparencyMode::Exact};
-        options.mode = kModes[reader.choice(*v, "transparency.mode", kTransparencyModeNames)];
-    }
+    if (const Json* v = reader.find(transparency, "mode"))
+        options.mode = reader.enumChoice<TransparencyMode>(*v, "transparency.mode");
     // Used by "sorted" only, but accepted with every mode: switching the mode (in the file or with
     // --transparency) must not make the rest of the file wrong.
-    if (const Json* v = reader.find(transparency, "sort_key")) {
-        constexpr SortKey kKeys[] = {SortKey::Centroid, SortKey::FarthestVertex};
-        options.key = kKeys[reader.choice(*v, "transparency.sort_key", kSortKeyNames)];
-    }
+    if (const Json* v = reader.find(transparency, "sort_key"))
+        options.key = reader.enumChoice<SortKey>(*v, "transparency.sort_key");
     return options;
 }
 
@@ -463,12 +425,10 @@ FogSpec readFog(const SceneReader& reader, const Json& fog) {
     FogSpec spec;
     const Json* mode = reader.find(fog, "mode");
     if (mode == nullptr) {
-        reader.fail(
-            "\"fog.mode\" is missing: give \"linear\", \"exp\" or \"exp2\" (or remove \"fog\" for "
-            "no fog)");
+        reader.fail("\"fog.mode\" is missing: give " + orList(namesOf<FogMode>({FogMode::None})) +
+                    " (or remove \"fog\" for no fog)");
     }
-    constexpr FogMode kModes[] = {FogMode::Linear, FogMode::Exponential, FogMode::ExponentialSquared};
-    spec.mode = kModes[reader.choice(*mode, "fog.mode", kFogModeNames)];
+    spec.mode = reader.enumChoice<FogMode>(*mode, "fog.mode", {FogMode::None});  // no "fog" is none
     const std::string modeName = mode->get<std::string>();
 
     // A key the mode ignores usually means the wrong mode: say so rather than ignore it.
@@ -480,9 +440,9 @@ FogSpec readFog(const SceneReader& reader, const Json& fog) {
         }
     }
     if (linear && fog.contains("density")) {
-        reader.fail(
-            "\"fog.density\": density is for exp and exp2 fog (the mode is \"linear\", which uses \"start\" "
-            "and \"end\")");
+        reader.fail("\"fog.density\": density is for " + std::string(nameOf(FogMode::Exponential)) + " and " +
+                    std::string(nameOf(FogMode::ExponentialSquared)) + " fog (the mode is " +
+                    inQuotes(nameOf(FogMode::Linear)) + ", which uses \"start\" and \"end\")");
     }
 
     if (const Json* v = reader.find(fog, "color")) spec.color = reader.color(*v, "fog.color");
@@ -493,10 +453,8 @@ FogSpec readFog(const SceneReader& reader, const Json& fog) {
                     formatNumber(*spec.start) + ")");
     }
     if (const Json* v = reader.find(fog, "density")) spec.density = reader.nonNegative(*v, "fog.density");
-    if (const Json* v = reader.find(fog, "distance")) {
-        constexpr FogDistance kDistances[] = {FogDistance::EyeDepth, FogDistance::Radial};
-        spec.distance = kDistances[reader.choice(*v, "fog.distance", kFogDistanceNames)];
-    }
+    if (const Json* v = reader.find(fog, "distance"))
+        spec.distance = reader.enumChoice<FogDistance>(*v, "fog.distance");
     return spec;
 }
 
@@ -506,16 +464,14 @@ GammaOptions readGamma(const SceneReader& reader, const Json& gamma) {
     reader.checkKeys(gamma, path, kGammaKeys);
 
     GammaOptions options;
-    if (const Json* v = reader.find(gamma, "encode")) {
-        constexpr TransferCurve kCurves[] = {TransferCurve::Srgb, TransferCurve::Power,
-                                             TransferCurve::Linear};
-        options.encode = kCurves[reader.choice(*v, "gamma.encode", kEncodeNames)];
-    }
+    if (const Json* v = reader.find(gamma, "encode"))
+        options.encode = reader.enumChoice<TransferCurve>(*v, "gamma.encode");
     if (const Json* v = reader.find(gamma, "exponent")) {
         if (options.encode != TransferCurve::Power) {
-            const std::string curve(kEncodeNames[static_cast<std::size_t>(options.encode)]);
-            reader.fail("\"gamma.exponent\" is only for \"encode\": \"power\" (the curve is " +
-                        inQuotes(curve) + (gamma.contains("encode") ? ")" : ", the default)"));
+            const std::string curve(nameOf(options.encode));
+            reader.fail(
+                "\"gamma.exponent\" is only for \"encode\": " + inQuotes(nameOf(TransferCurve::Power)) +
+                " (the curve is " + inQuotes(curve) + (gamma.contains("encode") ? ")" : ", the default)"));
         }
         options.exponent = reader.number(*v, "gamma.exponent");
         if (!(options.exponent > 0.0f)) {

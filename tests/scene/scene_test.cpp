@@ -82,8 +82,8 @@ TEST_F(SceneTest, ModelShorthandGivesOneObjectAndEveryDefault) {
     EXPECT_EQ(scene.objects[0].worldFromObject, glm::mat4(1.0f));
     EXPECT_FALSE(scene.objects[0].material.diffuse.has_value());
     EXPECT_FALSE(scene.objects[0].material.opacity.has_value());
-    EXPECT_EQ(scene.pipeline.cull, CullChoice::Back);
-    EXPECT_EQ(scene.pipeline.interpolation, InterpolationChoice::Perspective);
+    EXPECT_EQ(scene.pipeline.cull, CullMode::Back);
+    EXPECT_EQ(scene.pipeline.interpolation, Interpolation::PerspectiveCorrect);
     EXPECT_EQ(scene.pipeline.subpixelBits, 8);
 }
 
@@ -125,18 +125,18 @@ TEST_F(SceneTest, ReadsEveryKey) {
     EXPECT_EQ(*scene.camera.far, 100.0f);
 
     ASSERT_EQ(scene.lights.size(), 3u);
-    EXPECT_EQ(scene.lights[0].type, LightType::Directional);
+    EXPECT_EQ(scene.lights[0].type, LightKind::Directional);
     EXPECT_EQ(scene.lights[0].direction, glm::vec3(0, -1, 0));
     EXPECT_EQ(scene.lights[0].color, glm::vec3(1, 0.9f, 0.8f));
     EXPECT_EQ(scene.lights[0].intensity, 2.0f);
     EXPECT_FALSE(scene.lights[0].cameraRelative);
-    EXPECT_EQ(scene.lights[1].type, LightType::Point);
+    EXPECT_EQ(scene.lights[1].type, LightKind::Point);
     EXPECT_EQ(scene.lights[1].position, glm::vec3(1, 2, 3));
     EXPECT_TRUE(scene.lights[1].cameraRelative);
     EXPECT_EQ(scene.lights[1].color, glm::vec3(1.0f));
     EXPECT_EQ(scene.lights[1].intensity, 1.0f);
     // An empty light object is the LightSpec defaults.
-    EXPECT_EQ(scene.lights[2].type, LightType::Directional);
+    EXPECT_EQ(scene.lights[2].type, LightKind::Directional);
     EXPECT_EQ(scene.lights[2].direction, LightSpec{}.direction);
 
     ASSERT_EQ(scene.objects.size(), 2u);
@@ -154,8 +154,8 @@ TEST_F(SceneTest, ReadsEveryKey) {
     EXPECT_EQ(scene.objects[1].worldFromObject, glm::mat4(glm::vec4(2, 0, 0, 0), glm::vec4(0, 2, 0, 0),
                                                           glm::vec4(0, 0, 2, 0), glm::vec4(0, 0, 0, 1)));
 
-    EXPECT_EQ(scene.pipeline.cull, CullChoice::None);
-    EXPECT_EQ(scene.pipeline.interpolation, InterpolationChoice::Affine);
+    EXPECT_EQ(scene.pipeline.cull, CullMode::None);
+    EXPECT_EQ(scene.pipeline.interpolation, Interpolation::Affine);
     EXPECT_EQ(scene.pipeline.subpixelBits, 4);
 }
 
@@ -164,8 +164,8 @@ TEST_F(SceneTest, CullFrontAndPerspectiveAreRead) {
     const Scene scene = loadScene(write(
         "scene.json", R"({"model": "m.obj", "pipeline": {"cull": "front", "interpolation": "perspective",
                                                                 "subpixel_bits": 0}})"));
-    EXPECT_EQ(scene.pipeline.cull, CullChoice::Front);
-    EXPECT_EQ(scene.pipeline.interpolation, InterpolationChoice::Perspective);
+    EXPECT_EQ(scene.pipeline.cull, CullMode::Front);
+    EXPECT_EQ(scene.pipeline.interpolation, Interpolation::PerspectiveCorrect);
     EXPECT_EQ(scene.pipeline.subpixelBits, 0);
 }
 
@@ -356,7 +356,7 @@ TEST_F(SceneTest, SpotLightReadsEveryKey) {
          "attenuation": [0.5, 0.25, 0.125], "cutoff": 25, "exponent": 12, "space": "camera"}]})"));
     ASSERT_EQ(scene.lights.size(), 1u);
     const LightSpec& light = scene.lights[0];
-    EXPECT_EQ(light.type, LightType::Spot);
+    EXPECT_EQ(light.type, LightKind::Spot);
     EXPECT_EQ(light.position, glm::vec3(1, 2, 3));
     EXPECT_EQ(light.direction, glm::vec3(0, -1, -1));
     EXPECT_EQ(light.color, glm::vec3(1, 0.5f, 0.25f));
@@ -396,14 +396,14 @@ TEST_F(SceneTest, SpotDirectionDefaultsDown) {
     const Scene scene = loadScene(write("scene.json", R"({"model": "m.obj", "lights": [
         {"type": "spot", "position": [0, 3, 0]}, {"type": "directional"}, {"type": "point"}]})"));
     ASSERT_EQ(scene.lights.size(), 3u);
-    EXPECT_EQ(scene.lights[0].type, LightType::Spot);
+    EXPECT_EQ(scene.lights[0].type, LightKind::Spot);
     EXPECT_EQ(scene.lights[0].direction, glm::vec3(0, -1, 0));
     EXPECT_EQ(scene.lights[0].position, glm::vec3(0, 3, 0));
     EXPECT_EQ(scene.lights[0].spotCutoffDegrees, 30.0f);
     EXPECT_EQ(scene.lights[0].spotExponent, 0.0f);
     EXPECT_EQ(scene.lights[0].attenuation, glm::vec3(1, 0, 0));
     EXPECT_EQ(scene.lights[1].direction, glm::vec3(-0.4f, -0.6f, -0.7f));
-    EXPECT_EQ(scene.lights[2].type, LightType::Point);
+    EXPECT_EQ(scene.lights[2].type, LightKind::Point);
 }
 
 TEST_F(SceneTest, PointLightTermColoursAndAttenuation) {
@@ -523,10 +523,10 @@ TEST_F(SceneTest, ObjectBlendMapsToItsEnum) {
         {"model": "m.obj", "blend": "premultiplied", "material": {"opacity": 0.5}},
         {"model": "m.obj"}]})"));
     ASSERT_EQ(scene.objects.size(), 5u);
-    EXPECT_EQ(scene.objects[0].blend, BlendChoice::Over);
-    EXPECT_EQ(scene.objects[1].blend, BlendChoice::Additive);
-    EXPECT_EQ(scene.objects[2].blend, BlendChoice::Multiply);
-    EXPECT_EQ(scene.objects[3].blend, BlendChoice::Premultiplied);
+    EXPECT_EQ(scene.objects[0].blend, BlendMode::Over);
+    EXPECT_EQ(scene.objects[1].blend, BlendMode::Additive);
+    EXPECT_EQ(scene.objects[2].blend, BlendMode::Multiply);
+    EXPECT_EQ(scene.objects[3].blend, BlendMode::PremultipliedOver);
     EXPECT_EQ(scene.objects[3].material.opacity, 0.5f);
     EXPECT_FALSE(scene.objects[4].blend.has_value());
 }
@@ -684,8 +684,8 @@ TEST_F(SceneTest, ExampleSceneLoads) {
     EXPECT_EQ(scene.objects[0].model, folder_ / "spot/spot_triangulated.obj");
     EXPECT_TRUE(scene.objects[0].material.diffuse.has_value());
     ASSERT_EQ(scene.lights.size(), 2u);
-    EXPECT_EQ(scene.lights[0].type, LightType::Directional);
-    EXPECT_EQ(scene.lights[1].type, LightType::Point);
+    EXPECT_EQ(scene.lights[0].type, LightKind::Directional);
+    EXPECT_EQ(scene.lights[1].type, LightKind::Point);
     EXPECT_TRUE(scene.camera.eye.has_value());
 }
 
@@ -701,7 +701,7 @@ TEST(SceneLightingExample, LoadsWithItsLightingKeys) {
 
     ASSERT_EQ(scene.lights.size(), 2u);
     const LightSpec& spot = scene.lights[0];
-    EXPECT_EQ(spot.type, LightType::Spot);
+    EXPECT_EQ(spot.type, LightKind::Spot);
     EXPECT_EQ(spot.position, glm::vec3(0.0f, 3.0f, 1.5f));
     EXPECT_EQ(spot.direction, glm::vec3(0.0f, -3.0f, -1.5f));
     EXPECT_EQ(spot.spotInnerDegrees, 18.0f);
@@ -709,7 +709,7 @@ TEST(SceneLightingExample, LoadsWithItsLightingKeys) {
     EXPECT_EQ(spot.attenuation, glm::vec3(0, 0, 1));
     EXPECT_EQ(spot.intensity, 9.0f);
     const LightSpec& point = scene.lights[1];
-    EXPECT_EQ(point.type, LightType::Point);
+    EXPECT_EQ(point.type, LightKind::Point);
     EXPECT_EQ(point.attenuation, glm::vec3(1.0f, 0.2f, 0.05f));
     EXPECT_EQ(point.ambient, glm::vec3(0.05f, 0.04f, 0.03f));
 
@@ -733,13 +733,13 @@ TEST(SceneIntersectingQuadsExample, LoadsWithItsTransparencyKeys) {
 
     EXPECT_EQ(scene.transparency.mode, TransparencyMode::Sorted);
     EXPECT_EQ(scene.transparency.key, SortKey::Centroid);
-    EXPECT_EQ(scene.pipeline.cull, CullChoice::None);
+    EXPECT_EQ(scene.pipeline.cull, CullMode::None);
     EXPECT_EQ(scene.fog.mode, FogMode::None);
     ASSERT_EQ(scene.objects.size(), 2u);
     EXPECT_EQ(scene.objects[0].model, path.parent_path() / "intersecting-quads/backdrop.obj");
     EXPECT_FALSE(scene.objects[0].blend.has_value());
     EXPECT_EQ(scene.objects[1].model, path.parent_path() / "intersecting-quads/quads.obj");
-    EXPECT_EQ(scene.objects[1].blend, BlendChoice::Over);
+    EXPECT_EQ(scene.objects[1].blend, BlendMode::Over);
     EXPECT_FALSE(scene.objects[1].material.opacity.has_value());  // the MTL's d 0.5
     EXPECT_TRUE(fs::exists(path.parent_path() / "intersecting-quads/quads.mtl"));
 }
@@ -767,7 +767,7 @@ TEST(SceneFogAndGlassExample, LoadsWithItsFogAndBlendKeys) {
     const ObjectSpec& glass = scene.objects[4];
     EXPECT_EQ(glass.model, path.parent_path() / "cube/cube.obj");
     EXPECT_EQ(glass.material.opacity, 0.4f);
-    EXPECT_EQ(glass.blend, BlendChoice::Over);
+    EXPECT_EQ(glass.blend, BlendMode::Over);
 }
 
 // Every ```json block in docs/scene-format.md is a complete scene that loads, so the documentation
