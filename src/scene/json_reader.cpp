@@ -181,10 +181,10 @@ std::string describe(const Json& value) {
     }
 }
 
-std::string orList(const std::vector<std::string>& names) {
+std::string quotedList(const std::vector<std::string>& names, std::string_view last) {
     std::string list;
     for (std::size_t i = 0; i < names.size(); ++i)
-        list += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + inQuotes(names[i]);
+        list += (i == 0 ? "" : i + 1 == names.size() ? std::string(last) : ", ") + inQuotes(names[i]);
     return list;
 }
 

@@ -35,8 +35,8 @@ std::string describe(const Json& value);
 
 // " (did you mean "fovy"?)" for the closest candidate within two edits, otherwise "".
 std::string suggestion(std::string_view word, KeyList candidates);
-// "\"a\", \"b\" or \"c\"": choices in a sentence.
-std::string orList(const std::vector<std::string>& names);
+// Choices in a sentence: "\"a\", \"b\" or \"c\"" with `last` " or ".
+std::string quotedList(const std::vector<std::string>& names, std::string_view last);
 
 // ---- The reader ----------------------------------------------------------------------------------
 

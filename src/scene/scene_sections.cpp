@@ -381,7 +381,7 @@ LightingOptions readLighting(const SceneReader& reader, const Json& lighting) {
     }
     reader.requireObject(
         lighting, path,
-        orList(namesOf<LightingPreset>()) + " or an object like {\"model\": \"cook-torrance\"}");
+        quotedList(namesOf<LightingPreset>(), ", ") + " or an object like {\"model\": \"cook-torrance\"}");
     reader.checkKeys(lighting, path, kLightingKeys);
 
     if (const Json* v = reader.find(lighting, "preset"))
@@ -425,7 +425,7 @@ FogSpec readFog(const SceneReader& reader, const Json& fog) {
     FogSpec spec;
     const Json* mode = reader.find(fog, "mode");
     if (mode == nullptr) {
-        reader.fail("\"fog.mode\" is missing: give " + orList(namesOf<FogMode>({FogMode::None})) +
+        reader.fail("\"fog.mode\" is missing: give " + quotedList(namesOf<FogMode>({FogMode::None}), " or ") +
                     " (or remove \"fog\" for no fog)");
     }
     spec.mode = reader.enumChoice<FogMode>(*mode, "fog.mode", {FogMode::None});  // no "fog" is none
