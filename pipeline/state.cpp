@@ -5,53 +5,31 @@
 namespace facet {
 
 std::ostream& operator<<(std::ostream& os, CullMode mode) {
-    switch (mode) {
-        case CullMode::None:
-            return os << "none";
-        case CullMode::Back:
-            return os << "back";
-        case CullMode::Front:
-            return os << "front";
-    }
-    return os << "?";
+    return os << nameOf(mode);
 }
 
 std::ostream& operator<<(std::ostream& os, FrontFace face) {
-    return os << (face == FrontFace::CounterClockwise ? "counter-clockwise" : "clockwise");
+    return os << nameOf(face);
 }
 
 std::ostream& operator<<(std::ostream& os, ProvokingVertex vertex) {
-    return os << (vertex == ProvokingVertex::Last ? "last" : "first");
+    return os << nameOf(vertex);
 }
 
 std::ostream& operator<<(std::ostream& os, CompareOp op) {
-    static constexpr const char* kNames[] = {"never",   "less",      "equal",         "less-equal",
-                                             "greater", "not-equal", "greater-equal", "always"};
-    return os << kNames[static_cast<int>(op)];
+    return os << nameOf(op);
 }
 
 std::ostream& operator<<(std::ostream& os, Interpolation mode) {
-    return os << (mode == Interpolation::PerspectiveCorrect ? "perspective-correct" : "affine");
+    return os << nameOf(mode);
 }
 
 std::ostream& operator<<(std::ostream& os, BlendMode mode) {
-    switch (mode) {
-        case BlendMode::Replace:
-            return os << "replace";
-        case BlendMode::Additive:
-            return os << "additive";
-        case BlendMode::Over:
-            return os << "over";
-        case BlendMode::PremultipliedOver:
-            return os << "premultiplied over";
-        case BlendMode::Multiply:
-            return os << "multiply";
-    }
-    return os << "?";
+    return os << nameOf(mode);
 }
 
 std::ostream& operator<<(std::ostream& os, FragmentOutput output) {
-    return os << (output == FragmentOutput::Blend ? "blend" : "append to fragment lists");
+    return os << nameOf(output);
 }
 
 std::ostream& operator<<(std::ostream& os, const DrawState& s) {

@@ -5,6 +5,9 @@
 
 #include <cstdint>
 #include <iosfwd>
+#include <span>
+
+#include "pipeline/names.h"
 
 namespace facet {
 
@@ -20,9 +23,19 @@ struct Viewport {
 };
 
 enum class CullMode : std::uint8_t { None, Back, Front };
+inline constexpr EnumName<CullMode> kCullModeNames[] = {
+    {CullMode::Back, "back"}, {CullMode::Front, "front"}, {CullMode::None, "none"}};
+constexpr std::span<const EnumName<CullMode>> enumNames(CullMode) {
+    return kCullModeNames;
+}
 
 // Which winding, as seen on the screen, is a front face (OpenGL's glFrontFace; CCW by default).
 enum class FrontFace : std::uint8_t { CounterClockwise, Clockwise };
+inline constexpr EnumName<FrontFace> kFrontFaceNames[] = {{FrontFace::CounterClockwise, "counter-clockwise"},
+                                                          {FrontFace::Clockwise, "clockwise"}};
+constexpr std::span<const EnumName<FrontFace>> enumNames(FrontFace) {
+    return kFrontFaceNames;
+}
 
 // Depth comparison: the fragment passes when `fragmentDepth OP storedDepth` holds (glDepthFunc).
 enum class CompareOp : std::uint8_t {
@@ -35,6 +48,17 @@ enum class CompareOp : std::uint8_t {
     GreaterEqual,
     Always
 };
+inline constexpr EnumName<CompareOp> kCompareOpNames[] = {{CompareOp::Never, "never"},
+                                                          {CompareOp::Less, "less"},
+                                                          {CompareOp::Equal, "equal"},
+                                                          {CompareOp::LessEqual, "less-equal"},
+                                                          {CompareOp::Greater, "greater"},
+                                                          {CompareOp::NotEqual, "not-equal"},
+                                                          {CompareOp::GreaterEqual, "greater-equal"},
+                                                          {CompareOp::Always, "always"}};
+constexpr std::span<const EnumName<CompareOp>> enumNames(CompareOp) {
+    return kCompareOpNames;
+}
 
 struct DepthState {
     bool testEnabled = true;
@@ -47,6 +71,11 @@ enum class Interpolation : std::uint8_t {
     PerspectiveCorrect,  // a = Σ λᵢ·aᵢ/wᵢ ÷ Σ λᵢ/wᵢ: right for a plane seen in perspective
     Affine,              // a = Σ λᵢ·aᵢ: cheaper, warps textures on tilted surfaces (kept to show that)
 };
+inline constexpr EnumName<Interpolation> kInterpolationNames[] = {
+    {Interpolation::PerspectiveCorrect, "perspective"}, {Interpolation::Affine, "affine"}};
+constexpr std::span<const EnumName<Interpolation>> enumNames(Interpolation) {
+    return kInterpolationNames;
+}
 
 // How a fragment's colour combines with the colour already in the framebuffer (glBlendFunc).
 // Only Replace ignores what was drawn before; of the others, Additive and Multiply commute (any
@@ -60,6 +89,15 @@ enum class BlendMode : std::uint8_t {
                         // GL_ONE_MINUS_SRC_ALPHA)
     Multiply,           // c = c_s ⊗ c_d, α = α_d (GL_DST_COLOR, GL_ZERO): a coloured filter, tinted glass
 };
+// Replace last: a scene's "blend" offers the others (a scene object is opaque or blended).
+inline constexpr EnumName<BlendMode> kBlendModeNames[] = {{BlendMode::Over, "over"},
+                                                          {BlendMode::Additive, "additive"},
+                                                          {BlendMode::Multiply, "multiply"},
+                                                          {BlendMode::PremultipliedOver, "premultiplied"},
+                                                          {BlendMode::Replace, "replace"}};
+constexpr std::span<const EnumName<BlendMode>> enumNames(BlendMode) {
+    return kBlendModeNames;
+}
 
 // Where a draw's fragments go after the fragment shader and the depth test.
 enum class FragmentOutput : std::uint8_t {
@@ -68,6 +106,11 @@ enum class FragmentOutput : std::uint8_t {
                     // resolveFragmentLists() to sort by depth and composite (fragment_lists.h):
                     // exact transparency, whatever the order of the draws and their triangles
 };
+inline constexpr EnumName<FragmentOutput> kFragmentOutputNames[] = {
+    {FragmentOutput::Blend, "blend"}, {FragmentOutput::AppendToLists, "append to fragment lists"}};
+constexpr std::span<const EnumName<FragmentOutput>> enumNames(FragmentOutput) {
+    return kFragmentOutputNames;
+}
 
 // Sub-pixel precision of the rasterizer: window positions are snapped to 1/2^bits of a pixel.
 // 8 bits is what Mesa llvmpipe and SwiftShader (and Vulkan's 2022 roadmap) use.
@@ -78,6 +121,11 @@ enum class ProvokingVertex : std::uint8_t {
     Last,   // the third vertex, OpenGL's default (GL_LAST_VERTEX_CONVENTION)
     First,  // the first vertex, as Direct3D and Vulkan do
 };
+inline constexpr EnumName<ProvokingVertex> kProvokingVertexNames[] = {{ProvokingVertex::Last, "last"},
+                                                                      {ProvokingVertex::First, "first"}};
+constexpr std::span<const EnumName<ProvokingVertex>> enumNames(ProvokingVertex) {
+    return kProvokingVertexNames;
+}
 
 struct RasterState {
     CullMode cull = CullMode::Back;

@@ -1,12 +1,17 @@
 // `facet bench`: times whole frames of a model and prints medians (never a pass/fail test).
 // `facet bench --vs-mesa` times Facet against Mesa's llvmpipe (mesa_peer.h) on the same scenes.
 // `facet bench --sort` times the transparency sorter (transparency_sort.h) on a turntable.
+// `facet bench --transparency` times the transparency modes side by side.
+// One file per mode (frame_bench, transparency_bench, mesa_bench, sort_bench); what they measure with
+// and draw their charts with is in process_stats.h and chart.h, for any command that times.
 #pragma once
 
 #include <filesystem>
 #include <iosfwd>
 
 namespace facet {
+
+struct Scene;
 
 struct BenchOptions {
     std::filesystem::path model;  // OBJ or scene file
@@ -30,6 +35,10 @@ struct BenchOptions {
     bool transparency = false;
     float degreesPerFrame = 1.0f;  // the turntable's step
 };
+
+// The scene a benchmark draws: options.model (an OBJ file or a scene) at the options' size. Throws
+// InputError for options.frames < 1 or a model that does not load.
+Scene benchScene(const BenchOptions& options);
 
 // Renders options.frames frames on options.threads threads and prints a report to `out`:
 // the median, minimum and maximum milliseconds per frame, the triangle and fragment counts, and the

@@ -12,18 +12,6 @@ namespace facet {
 
 namespace {
 
-const char* frequencyName(ShadingFrequency frequency) {
-    switch (frequency) {
-        case ShadingFrequency::Flat:
-            return "flat";
-        case ShadingFrequency::Gouraud:
-            return "Gouraud";
-        case ShadingFrequency::Phong:
-            return "Phong shading";
-    }
-    return "?";
-}
-
 std::string percent(double fraction) {
     char text[32];
     std::snprintf(text, sizeof text, "%.3f%%", 100.0 * fraction);
@@ -51,7 +39,7 @@ MesaComparison compareWithMesa(const Scene& scene, MesaDriver driver, int thread
     const GlScene glScene = toGlScene(prepared);
     std::map<std::string, int> programs;
     for (const GlDraw& draw : glScene.draws)
-        ++programs[std::string(programName(draw.program)) + " (" + frequencyName(draw.frequency) + ")"];
+        ++programs[std::string(programName(draw.program)) + " (" + std::string(nameOf(draw.frequency)) + ")"];
     for (const auto& [name, count] : programs) {
         if (!result.programs.empty()) result.programs += ", ";
         result.programs += std::to_string(count) + (count == 1 ? " draw: " : " draws: ") + name;

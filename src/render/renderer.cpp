@@ -80,20 +80,6 @@ PbrMaterial pbrMaterial(const PhongMaterial& phong, const MaterialOverride& over
     return m;
 }
 
-BlendMode blendMode(BlendChoice choice) {
-    switch (choice) {
-        case BlendChoice::Over:
-            return BlendMode::Over;
-        case BlendChoice::Additive:
-            return BlendMode::Additive;
-        case BlendChoice::Multiply:
-            return BlendMode::Multiply;
-        case BlendChoice::Premultiplied:
-            return BlendMode::PremultipliedOver;
-    }
-    return BlendMode::Over;
-}
-
 // The scene's fog for the shaders. Linear fog without start and end spans the bounding sphere: from
 // its nearest point to the eye to its farthest.
 template <class Decode>
@@ -280,7 +266,7 @@ PreparedScene prepareScene(const Scene& scene, const TextureLimits& limits) {
     std::vector<LightSpec> lights = scene.lights;
     if (lights.empty()) {
         LightSpec key;
-        key.type = LightType::Directional;
+        key.type = LightKind::Directional;
         key.direction = vec3(0.45f, -0.55f, -1.0f);
         key.cameraRelative = true;
         lights.push_back(key);
@@ -305,9 +291,7 @@ PreparedScene prepareScene(const Scene& scene, const TextureLimits& limits) {
             return l.cameraRelative ? vec3(glm::dvec3(v) * s)
                                     : vec3(viewFromWorld * glm::dvec4(glm::dvec3(v), double(w)));
         };
-        out.kind = l.type == LightType::Directional ? LightKind::Directional
-                   : l.type == LightType::Point     ? LightKind::Point
-                                                    : LightKind::Spot;
+        out.kind = l.type;
         // Made unit length in double first: in float, the squared length of [0, -1e-30, 0] underflows
         // to 0 and that of [-3e38, 0, 0] overflows, and normalize would give NaN (a black image).
         const vec3 direction = vec3(glm::normalize(glm::dvec3(l.direction)));
@@ -338,7 +322,7 @@ PreparedScene prepareScene(const Scene& scene, const TextureLimits& limits) {
         uniforms.reflection = object.reflection.value_or(
             object.material.physicallyBased() ? ReflectionModel::CookTorrance : scene.lighting.model);
         const ShadingFrequency frequency = object.shading.value_or(scene.lighting.shadingOrDefault());
-        const BlendChoice blend = object.blend.value_or(BlendChoice::Over);
+        const BlendMode blend = object.blend.value_or(BlendMode::Over);
         for (const MeshPart& part : mesh.parts) {
             if (part.indexCount == 0) continue;
             PreparedDraw draw;
@@ -359,8 +343,8 @@ PreparedScene prepareScene(const Scene& scene, const TextureLimits& limits) {
             // Transparent: see through it (opacity, a texture's alpha) or blended other than over.
             const bool textureAlpha =
                 draw.uniforms.diffuseMap && texturesWithAlpha.count(draw.uniforms.diffuseMap);
-            draw.transparent = draw.uniforms.opacity < 1.0f || textureAlpha || blend != BlendChoice::Over;
-            draw.uniforms.blend = draw.transparent ? blendMode(blend) : BlendMode::Replace;
+            draw.transparent = draw.uniforms.opacity < 1.0f || textureAlpha || blend != BlendMode::Over;
+            draw.uniforms.blend = draw.transparent ? blend : BlendMode::Replace;
             // Flat shading lights each face with its own normal; the GL preset keeps OpenGL's rule
             // instead: the provoking vertex's colour, lit with that vertex's normal.
             if (frequency == ShadingFrequency::Flat && !glPreset) unweldWithFaceNormals(draw);
@@ -377,21 +361,9 @@ PreparedScene prepareScene(const Scene& scene, const TextureLimits& limits) {
     // Pipeline state.
     DrawState& state = prepared.state;
     state.viewport = {0, 0, scene.width, scene.height};
-    switch (scene.pipeline.cull) {
-        case CullChoice::Back:
-            state.raster.cull = CullMode::Back;
-            break;
-        case CullChoice::Front:
-            state.raster.cull = CullMode::Front;
-            break;
-        case CullChoice::None:
-            state.raster.cull = CullMode::None;
-            break;
-    }
+    state.raster.cull = scene.pipeline.cull;
     state.raster.subpixelBits = scene.pipeline.subpixelBits;
-    state.interpolation = scene.pipeline.interpolation == InterpolationChoice::Affine
-                              ? Interpolation::Affine
-                              : Interpolation::PerspectiveCorrect;
+    state.interpolation = scene.pipeline.interpolation;
     state.raster.provokingVertex = ProvokingVertex::Last;  // OpenGL's convention
     prepared.clearColor = vec4(decode(vec3(scene.background)), scene.background.a);
     prepared.encoding = glPreset ? kLinearEncoding : ColorEncoding{scene.gamma.encode, scene.gamma.exponent};

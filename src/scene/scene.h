@@ -11,6 +11,8 @@
 
 #include <glm/glm.hpp>
 
+#include "pipeline/state.h"
+#include "scene/limits.h"
 #include "shading/fog.h"
 #include "shading/gamma.h"
 #include "shading/lighting.h"
@@ -26,10 +28,8 @@ struct CameraSpec {
     std::optional<float> far;
 };
 
-enum class LightType { Directional, Point, Spot };
-
 struct LightSpec {
-    LightType type = LightType::Directional;
+    LightKind type = LightKind::Directional;
     // Directional: the direction light travels, world space. Spot: the cone's axis (pointing away from
     // the light). Absent from the file: [-0.4, -0.6, -0.7] for a directional light, [0, -1, 0] for a spot.
     glm::vec3 direction{-0.4f, -0.6f, -0.7f};
@@ -66,13 +66,6 @@ struct MaterialOverride {
     bool physicallyBased() const { return preset || baseColor || metalness || roughness || f0; }
 };
 
-enum class BlendChoice {
-    Over,           // c = α·c_s + (1 − α)·c_d: glass, smoke
-    Additive,       // c = α·c_s + c_d: light that adds up (glow, fire)
-    Multiply,       // c = mix(1, c_s, α) ⊗ c_d: a coloured filter
-    Premultiplied,  // c = (α·c_s) + (1 − α)·c_d through premultiplied colour: the same picture as over
-};
-
 struct ObjectSpec {
     std::filesystem::path model;      // resolved against the scene file's folder
     glm::mat4 worldFromObject{1.0f};  // translate · rotate(Z·Y·X degrees) · scale
@@ -81,10 +74,12 @@ struct ObjectSpec {
     // whose material is physically based, see MaterialOverride::physicallyBased, defaults to Cook-Torrance).
     std::optional<ReflectionModel> reflection;
     std::optional<ShadingFrequency> shading;
-    // How the object's colour combines with what is behind it ("blend"). Absent: over. An object whose
-    // opacity (material d / 1 − Tr, the override, or a texture's alpha) is below 1, or whose blend is
-    // not over, is transparent: drawn after the opaque ones, without depth writes, sorted.
-    std::optional<BlendChoice> blend;
+    // How the object's colour combines with what is behind it ("blend"; never Replace). Absent: over.
+    // An object whose opacity (material d / 1 − Tr, the override, or a texture's alpha) is below 1, or
+    // whose blend is not over, is transparent: drawn after the opaque ones, without depth writes,
+    // sorted. The shaders write what each blend needs: over c with α; additive and premultiplied α·c
+    // (so additive adds α·c_s); multiply mix(1, c_s, α), a coloured filter.
+    std::optional<BlendMode> blend;
 };
 
 // How the scene is lit ("lighting" in the scene file).
@@ -92,6 +87,11 @@ enum class LightingPreset {
     Facet,  // linear-light rendering: colours decoded from sRGB, output encoded, per-pixel by default
     GL,     // OpenGL 1.x fixed function: colours as given, no gamma, Gouraud by default (docs/lighting.md)
 };
+inline constexpr EnumName<LightingPreset> kLightingPresetNames[] = {{LightingPreset::Facet, "facet"},
+                                                                    {LightingPreset::GL, "gl"}};
+constexpr std::span<const EnumName<LightingPreset>> enumNames(LightingPreset) {
+    return kLightingPresetNames;
+}
 
 struct LightingOptions {
     LightingPreset preset = LightingPreset::Facet;
@@ -105,12 +105,9 @@ struct LightingOptions {
     }
 };
 
-enum class CullChoice { Back, Front, None };
-enum class InterpolationChoice { Perspective, Affine };
-
 struct PipelineOptions {
-    CullChoice cull = CullChoice::Back;
-    InterpolationChoice interpolation = InterpolationChoice::Perspective;
+    CullMode cull = CullMode::Back;
+    Interpolation interpolation = Interpolation::PerspectiveCorrect;
     int subpixelBits = 8;  // 0..8
 };
 
@@ -120,10 +117,22 @@ enum class TransparencyMode {
     Unsorted,  // in the order of the file: wrong wherever transparent surfaces overlap (for comparison)
     Exact,  // per-pixel fragment lists sorted by depth (an A-buffer): right even for intersecting triangles
 };
+inline constexpr EnumName<TransparencyMode> kTransparencyModeNames[] = {
+    {TransparencyMode::Sorted, "sorted"},
+    {TransparencyMode::Unsorted, "unsorted"},
+    {TransparencyMode::Exact, "exact"}};
+constexpr std::span<const EnumName<TransparencyMode>> enumNames(TransparencyMode) {
+    return kTransparencyModeNames;
+}
 enum class SortKey {
     Centroid,        // the view-space depth of the triangle's centroid
     FarthestVertex,  // the view-space depth of its farthest vertex
 };
+inline constexpr EnumName<SortKey> kSortKeyNames[] = {{SortKey::Centroid, "centroid"},
+                                                      {SortKey::FarthestVertex, "farthest"}};
+constexpr std::span<const EnumName<SortKey>> enumNames(SortKey) {
+    return kSortKeyNames;
+}
 struct TransparencyOptions {
     TransparencyMode mode = TransparencyMode::Sorted;
     SortKey key = SortKey::Centroid;
@@ -173,24 +182,5 @@ Scene sceneForModel(const std::filesystem::path& objPath);
 // What every command reads: a .json path as a scene file (loadScene), any other as a model
 // (sceneForModel; the OBJ loader checks that file when the scene is prepared).
 Scene loadSceneOrModel(const std::filesystem::path& path);
-
-// Size limits shared by the scene loader and the command line (absurd sizes are rejected).
-inline constexpr int kMaxImageSide = 16384;
-// The largest image: 64 Mpixel (e.g. 8192 × 8192) keeps the buffers near 1.3 GB.
-inline constexpr long long kMaxPixels = 1LL << 26;
-// A scene file is a few kilobytes of hand-written JSON; a larger one than this is refused unread.
-inline constexpr std::uintmax_t kMaxSceneFileBytes = std::uintmax_t{64} << 20;
-// Objects in one scene. Each object is its own draw with its own copy of its model's vertices, so the
-// memory a scene needs grows with objects × their models' size: the count is refused while reading
-// (a 64 MiB file could otherwise list millions), and the triangles drawn are bounded once the
-// distinct models are loaded, before any object's copy is made.
-inline constexpr std::size_t kMaxObjects = 100'000;
-inline constexpr std::size_t kMaxSceneTriangles = 50'000'000;  // ~3-5 GB of draws at the most
-
-// The vertical field of view facet accepts, in degrees: below 0.01° the view is narrower than float
-// coordinates can aim (a model a thousand times its size away would be placed to a fraction of a
-// pixel); at 180° the projection is infinite.
-inline constexpr double kMinFovyDegrees = 0.01;
-inline constexpr double kMaxFovyDegrees = 179.0;
 
 }  // namespace facet

@@ -10,16 +10,29 @@
 #pragma once
 
 #include "pipeline/glsl.h"
+#include "pipeline/names.h"
 #include "pipeline/wide.h"
 
 namespace facet {
 
 enum class FogMode { None, Linear, Exponential, ExponentialSquared };
+inline constexpr EnumName<FogMode> kFogModeNames[] = {{FogMode::None, "none"},
+                                                      {FogMode::Linear, "linear"},
+                                                      {FogMode::Exponential, "exp"},
+                                                      {FogMode::ExponentialSquared, "exp2"}};
+constexpr std::span<const EnumName<FogMode>> enumNames(FogMode) {
+    return kFogModeNames;
+}
 
 enum class FogDistance {
     EyeDepth,  // |z_eye|: constant across a plane facing the viewer (OpenGL's default)
     Radial,    // |P_eye|: constant on a sphere around the eye, so fog does not change as the view turns
 };
+inline constexpr EnumName<FogDistance> kFogDistanceNames[] = {{FogDistance::EyeDepth, "depth"},
+                                                              {FogDistance::Radial, "radial"}};
+constexpr std::span<const EnumName<FogDistance>> enumNames(FogDistance) {
+    return kFogDistanceNames;
+}
 
 struct FogParams {
     FogMode mode = FogMode::None;

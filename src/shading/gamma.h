@@ -8,6 +8,7 @@
 #include <cstdint>
 
 #include "pipeline/color.h"
+#include "pipeline/names.h"
 
 namespace facet {
 
@@ -17,6 +18,11 @@ enum class TransferCurve {
     Power,   // a plain power: code = round(255·c^(1/γ)), the "gamma 2.2" of older pipelines
     Linear,  // none: code = round(255·c), as OpenGL 1.x writes its colours to an 8-bit framebuffer
 };
+inline constexpr EnumName<TransferCurve> kTransferCurveNames[] = {
+    {TransferCurve::Srgb, "srgb"}, {TransferCurve::Power, "power"}, {TransferCurve::Linear, "linear"}};
+constexpr std::span<const EnumName<TransferCurve>> enumNames(TransferCurve) {
+    return kTransferCurveNames;
+}
 
 struct ColorEncoding {
     TransferCurve curve = TransferCurve::Srgb;

@@ -16,6 +16,7 @@
 #include <string_view>
 
 #include "pipeline/glsl.h"
+#include "pipeline/names.h"
 #include "pipeline/wide.h"
 
 namespace facet {
@@ -30,6 +31,13 @@ enum class ReflectionModel {
     BlinnPhong,    // standard equation, specular max(N·H, 0)^n
     CookTorrance,  // physically based: Lambert c_base/π + D·F·G / (4 (N·L)(N·V))
 };
+inline constexpr EnumName<ReflectionModel> kReflectionModelNames[] = {
+    {ReflectionModel::Phong, "phong"},
+    {ReflectionModel::BlinnPhong, "blinn-phong"},
+    {ReflectionModel::CookTorrance, "cook-torrance"}};
+constexpr std::span<const EnumName<ReflectionModel>> enumNames(ReflectionModel) {
+    return kReflectionModelNames;
+}
 
 // How often the lighting equation is evaluated (the lecture's "shading frequency").
 enum class ShadingFrequency {
@@ -37,14 +45,31 @@ enum class ShadingFrequency {
     Gouraud,  // once per vertex, the colours interpolated across the triangle
     Phong,    // once per pixel, with the interpolated normal renormalised
 };
+inline constexpr EnumName<ShadingFrequency> kShadingFrequencyNames[] = {
+    {ShadingFrequency::Flat, "flat"},
+    {ShadingFrequency::Gouraud, "gouraud"},
+    {ShadingFrequency::Phong, "phong"}};
+constexpr std::span<const EnumName<ShadingFrequency>> enumNames(ShadingFrequency) {
+    return kShadingFrequencyNames;
+}
 
 enum class LightKind { Directional, Point, Spot };
+inline constexpr EnumName<LightKind> kLightKindNames[] = {
+    {LightKind::Directional, "directional"}, {LightKind::Point, "point"}, {LightKind::Spot, "spot"}};
+constexpr std::span<const EnumName<LightKind>> enumNames(LightKind) {
+    return kLightKindNames;
+}
 
 // How a spot light falls off towards the edge of its cone.
 enum class SpotProfile {
     OpenGL,  // hard edge at the cutoff, cos^exponent inside (glLight GL_SPOT_CUTOFF, GL_SPOT_EXPONENT)
     Smooth,  // smoothstep(cos outer, cos inner, cos angle): a soft rim between the two cones
 };
+inline constexpr EnumName<SpotProfile> kSpotProfileNames[] = {{SpotProfile::OpenGL, "opengl"},
+                                                              {SpotProfile::Smooth, "smooth"}};
+constexpr std::span<const EnumName<SpotProfile>> enumNames(SpotProfile) {
+    return kSpotProfileNames;
+}
 
 struct LightParams {
     LightKind kind = LightKind::Point;
@@ -218,6 +243,21 @@ struct PbrMaterial {
 enum class NormalDistribution { Beckmann, GGX };
 enum class FresnelModel { Schlick, Exact };
 enum class GeometryTerm { CookTorrance, SmithGGX };
+inline constexpr EnumName<NormalDistribution> kNormalDistributionNames[] = {
+    {NormalDistribution::GGX, "ggx"}, {NormalDistribution::Beckmann, "beckmann"}};
+constexpr std::span<const EnumName<NormalDistribution>> enumNames(NormalDistribution) {
+    return kNormalDistributionNames;
+}
+inline constexpr EnumName<FresnelModel> kFresnelModelNames[] = {{FresnelModel::Schlick, "schlick"},
+                                                                {FresnelModel::Exact, "exact"}};
+constexpr std::span<const EnumName<FresnelModel>> enumNames(FresnelModel) {
+    return kFresnelModelNames;
+}
+inline constexpr EnumName<GeometryTerm> kGeometryTermNames[] = {
+    {GeometryTerm::SmithGGX, "smith-ggx"}, {GeometryTerm::CookTorrance, "cook-torrance"}};
+constexpr std::span<const EnumName<GeometryTerm>> enumNames(GeometryTerm) {
+    return kGeometryTermNames;
+}
 
 struct BrdfModel {
     NormalDistribution distribution = NormalDistribution::GGX;

@@ -30,7 +30,7 @@ Scene headOnScene(const std::filesystem::path& model) {
     scene.camera.target = vec3(0, 0, 0);
     scene.ambientLight = vec3(0);
     LightSpec light;
-    light.type = LightType::Directional;
+    light.type = LightKind::Directional;
     light.direction = vec3(0, 0, -1);  // travelling into the screen: straight onto the square
     scene.lights = {light};
     return scene;
@@ -105,7 +105,7 @@ TEST(Render, SpotLightConeAndAttenuation) {
     Scene scene = headOnScene(obj);
     scene.lighting.preset = LightingPreset::GL;  // colours as given: the numbers stay readable
     LightSpec spot;
-    spot.type = LightType::Spot;
+    spot.type = LightKind::Spot;
     spot.position = vec3(0, 0, 2);
     spot.direction = vec3(0, 0, -1);
     spot.spotCutoffDegrees = 10.0f;
@@ -238,7 +238,7 @@ TEST(Render, TurntableTurnsAboutTheVerticalAxis) {
     const auto obj = dir.write("square.obj", std::string("mtllib square.mtl\nusemtl grey\n") + kSquareObj);
     dir.write("square.mtl", "newmtl grey\nKa 0 0 0\nKd 0.5 0.5 0.5\nKs 0 0 0\n");
     Scene scene = headOnScene(obj);
-    scene.pipeline.cull = CullChoice::None;
+    scene.pipeline.cull = CullMode::None;
     PreparedScene prepared = prepareScene(scene);
     const mat4 original = prepared.draws.front().uniforms.viewFromObject;
     setTurntable(prepared, 360.0f);
@@ -378,7 +378,7 @@ TEST(Render, ExactTransparencyIsRightWhereSortingCannotBe) {
     scene.objects.push_back(falling);
     scene.lighting.preset = LightingPreset::GL;
     scene.background = vec4(0.0f, 0.0f, 0.0f, 1.0f);
-    scene.pipeline.cull = CullChoice::None;
+    scene.pipeline.cull = CullMode::None;
 
     const auto over = [](vec3 near, vec3 far) { return 0.5f * near + 0.5f * (0.5f * far); };
     const vec3 left = over(blue, red), right = over(red, blue);  // expected either side of the crossing
@@ -475,7 +475,7 @@ Scene interleavedQuadsScene(const std::filesystem::path& obj) {
     scene.height = 72;
     scene.camera.near = 0.5f;
     scene.camera.far = 20.0f;
-    scene.pipeline.cull = CullChoice::None;
+    scene.pipeline.cull = CullMode::None;
     return scene;
 }
 
@@ -633,7 +633,7 @@ TEST(Render, PointLightOnAFaceLightsItEvenly) {
         for (const ShadingFrequency frequency : {ShadingFrequency::Phong, ShadingFrequency::Gouraud}) {
             Scene scene = headOnScene(obj);
             scene.background = vec4(0.25f, 0.5f, 0.75f, 1.0f);
-            scene.lights[0].type = LightType::Point;
+            scene.lights[0].type = LightKind::Point;
             scene.lights[0].position = vec3(0.1f, 0.2f, 0.0f);  // in the square's plane
             scene.camera.eye = vec3(0.7f, 1.3f, 4.1f);          // at an angle: eye space rounds
             scene.lighting.model = model;
@@ -677,7 +677,7 @@ TEST(Render, ExtremeScalesRenderTheSameImageAsUnitSize) {
         scene.width = 48;
         scene.height = 36;
         LightSpec light;  // a point light, so that attenuation and distances are scaled too
-        light.type = LightType::Point;
+        light.type = LightKind::Point;
         light.position = vec3(glm::dvec3(2.0, 3.0, 4.0) * scale);
         light.attenuation = vec3(0.5f, float(0.3 / scale), 0.0f);  // (c2 / scale² is beyond float)
         scene.lights = {light};

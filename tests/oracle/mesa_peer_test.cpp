@@ -745,7 +745,7 @@ TEST_F(BenchmarkPeer, DrawsTheSameImageAsFacet) {
     key.direction = vec3(0.45f, -0.55f, -1.0f);
     key.cameraRelative = true;
     LightSpec point;
-    point.type = LightType::Point;
+    point.type = LightKind::Point;
     point.position = vec3(-2.0f, 2.0f, 0.5f);
     point.color = vec3(1.0f, 0.8f, 0.6f);
     point.cameraRelative = true;

@@ -21,39 +21,19 @@
 #include <nlohmann/json.hpp>
 
 #include "base/errors.h"
-#include "bench/bench.h"
 #include "scene/mesh.h"
 #include "scene/scene.h"
+#include "support/temp_folder.h"
 
 namespace facet {
 namespace {
 
 namespace fs = std::filesystem;
+using testing_support::errorWithinASecond;
 
 // A fresh temporary folder holding the scene files and (empty) model files of one test.
-class SceneTest : public ::testing::Test {
+class SceneTest : public testing_support::TempFolderTest {
   protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        std::string name = std::string(info->test_suite_name()) + "-" + info->name();
-        for (char& c : name) {
-            if (c == '/') c = '-';
-        }
-        folder_ = fs::temp_directory_path() / ("facet-scene-test-" + std::to_string(::getpid()) + "-" + name);
-        fs::remove_all(folder_);
-        fs::create_directories(folder_);
-    }
-    void TearDown() override { fs::remove_all(folder_); }
-
-    fs::path write(const fs::path& relative, const std::string& text) const {
-        const fs::path path = folder_ / relative;
-        fs::create_directories(path.parent_path());
-        std::ofstream(path, std::ios::binary) << text;
-        return path;
-    }
-    // loadScene only checks that model files exist, so an empty file stands in for an OBJ.
-    fs::path touch(const fs::path& relative) const { return write(relative, ""); }
-
     // The InputError message of loading `text` as scene.json (with an m.obj beside it).
     std::string errorOf(const std::string& text) const {
         touch("m.obj");
@@ -66,8 +46,6 @@ class SceneTest : public ::testing::Test {
         ADD_FAILURE() << "no error for: " << text;
         return {};
     }
-
-    fs::path folder_;
 };
 
 void expectNear(const glm::vec3& actual, const glm::vec3& expected, float tolerance = 1e-5f) {
@@ -103,8 +81,8 @@ TEST_F(SceneTest, ModelShorthandGivesOneObjectAndEveryDefault) {
     EXPECT_EQ(scene.objects[0].worldFromObject, glm::mat4(1.0f));
     EXPECT_FALSE(scene.objects[0].material.diffuse.has_value());
     EXPECT_FALSE(scene.objects[0].material.opacity.has_value());
-    EXPECT_EQ(scene.pipeline.cull, CullChoice::Back);
-    EXPECT_EQ(scene.pipeline.interpolation, InterpolationChoice::Perspective);
+    EXPECT_EQ(scene.pipeline.cull, CullMode::Back);
+    EXPECT_EQ(scene.pipeline.interpolation, Interpolation::PerspectiveCorrect);
     EXPECT_EQ(scene.pipeline.subpixelBits, 8);
 }
 
@@ -146,18 +124,18 @@ TEST_F(SceneTest, ReadsEveryKey) {
     EXPECT_EQ(*scene.camera.far, 100.0f);
 
     ASSERT_EQ(scene.lights.size(), 3u);
-    EXPECT_EQ(scene.lights[0].type, LightType::Directional);
+    EXPECT_EQ(scene.lights[0].type, LightKind::Directional);
     EXPECT_EQ(scene.lights[0].direction, glm::vec3(0, -1, 0));
     EXPECT_EQ(scene.lights[0].color, glm::vec3(1, 0.9f, 0.8f));
     EXPECT_EQ(scene.lights[0].intensity, 2.0f);
     EXPECT_FALSE(scene.lights[0].cameraRelative);
-    EXPECT_EQ(scene.lights[1].type, LightType::Point);
+    EXPECT_EQ(scene.lights[1].type, LightKind::Point);
     EXPECT_EQ(scene.lights[1].position, glm::vec3(1, 2, 3));
     EXPECT_TRUE(scene.lights[1].cameraRelative);
     EXPECT_EQ(scene.lights[1].color, glm::vec3(1.0f));
     EXPECT_EQ(scene.lights[1].intensity, 1.0f);
     // An empty light object is the LightSpec defaults.
-    EXPECT_EQ(scene.lights[2].type, LightType::Directional);
+    EXPECT_EQ(scene.lights[2].type, LightKind::Directional);
     EXPECT_EQ(scene.lights[2].direction, LightSpec{}.direction);
 
     ASSERT_EQ(scene.objects.size(), 2u);
@@ -175,8 +153,8 @@ TEST_F(SceneTest, ReadsEveryKey) {
     EXPECT_EQ(scene.objects[1].worldFromObject, glm::mat4(glm::vec4(2, 0, 0, 0), glm::vec4(0, 2, 0, 0),
                                                           glm::vec4(0, 0, 2, 0), glm::vec4(0, 0, 0, 1)));
 
-    EXPECT_EQ(scene.pipeline.cull, CullChoice::None);
-    EXPECT_EQ(scene.pipeline.interpolation, InterpolationChoice::Affine);
+    EXPECT_EQ(scene.pipeline.cull, CullMode::None);
+    EXPECT_EQ(scene.pipeline.interpolation, Interpolation::Affine);
     EXPECT_EQ(scene.pipeline.subpixelBits, 4);
 }
 
@@ -185,8 +163,8 @@ TEST_F(SceneTest, CullFrontAndPerspectiveAreRead) {
     const Scene scene = loadScene(write(
         "scene.json", R"({"model": "m.obj", "pipeline": {"cull": "front", "interpolation": "perspective",
                                                                 "subpixel_bits": 0}})"));
-    EXPECT_EQ(scene.pipeline.cull, CullChoice::Front);
-    EXPECT_EQ(scene.pipeline.interpolation, InterpolationChoice::Perspective);
+    EXPECT_EQ(scene.pipeline.cull, CullMode::Front);
+    EXPECT_EQ(scene.pipeline.interpolation, Interpolation::PerspectiveCorrect);
     EXPECT_EQ(scene.pipeline.subpixelBits, 0);
 }
 
@@ -377,7 +355,7 @@ TEST_F(SceneTest, SpotLightReadsEveryKey) {
          "attenuation": [0.5, 0.25, 0.125], "cutoff": 25, "exponent": 12, "space": "camera"}]})"));
     ASSERT_EQ(scene.lights.size(), 1u);
     const LightSpec& light = scene.lights[0];
-    EXPECT_EQ(light.type, LightType::Spot);
+    EXPECT_EQ(light.type, LightKind::Spot);
     EXPECT_EQ(light.position, glm::vec3(1, 2, 3));
     EXPECT_EQ(light.direction, glm::vec3(0, -1, -1));
     EXPECT_EQ(light.color, glm::vec3(1, 0.5f, 0.25f));
@@ -417,14 +395,14 @@ TEST_F(SceneTest, SpotDirectionDefaultsDown) {
     const Scene scene = loadScene(write("scene.json", R"({"model": "m.obj", "lights": [
         {"type": "spot", "position": [0, 3, 0]}, {"type": "directional"}, {"type": "point"}]})"));
     ASSERT_EQ(scene.lights.size(), 3u);
-    EXPECT_EQ(scene.lights[0].type, LightType::Spot);
+    EXPECT_EQ(scene.lights[0].type, LightKind::Spot);
     EXPECT_EQ(scene.lights[0].direction, glm::vec3(0, -1, 0));
     EXPECT_EQ(scene.lights[0].position, glm::vec3(0, 3, 0));
     EXPECT_EQ(scene.lights[0].spotCutoffDegrees, 30.0f);
     EXPECT_EQ(scene.lights[0].spotExponent, 0.0f);
     EXPECT_EQ(scene.lights[0].attenuation, glm::vec3(1, 0, 0));
     EXPECT_EQ(scene.lights[1].direction, glm::vec3(-0.4f, -0.6f, -0.7f));
-    EXPECT_EQ(scene.lights[2].type, LightType::Point);
+    EXPECT_EQ(scene.lights[2].type, LightKind::Point);
 }
 
 TEST_F(SceneTest, PointLightTermColoursAndAttenuation) {
@@ -544,10 +522,10 @@ TEST_F(SceneTest, ObjectBlendMapsToItsEnum) {
         {"model": "m.obj", "blend": "premultiplied", "material": {"opacity": 0.5}},
         {"model": "m.obj"}]})"));
     ASSERT_EQ(scene.objects.size(), 5u);
-    EXPECT_EQ(scene.objects[0].blend, BlendChoice::Over);
-    EXPECT_EQ(scene.objects[1].blend, BlendChoice::Additive);
-    EXPECT_EQ(scene.objects[2].blend, BlendChoice::Multiply);
-    EXPECT_EQ(scene.objects[3].blend, BlendChoice::Premultiplied);
+    EXPECT_EQ(scene.objects[0].blend, BlendMode::Over);
+    EXPECT_EQ(scene.objects[1].blend, BlendMode::Additive);
+    EXPECT_EQ(scene.objects[2].blend, BlendMode::Multiply);
+    EXPECT_EQ(scene.objects[3].blend, BlendMode::PremultipliedOver);
     EXPECT_EQ(scene.objects[3].material.opacity, 0.5f);
     EXPECT_FALSE(scene.objects[4].blend.has_value());
 }
@@ -705,8 +683,8 @@ TEST_F(SceneTest, ExampleSceneLoads) {
     EXPECT_EQ(scene.objects[0].model, folder_ / "spot/spot_triangulated.obj");
     EXPECT_TRUE(scene.objects[0].material.diffuse.has_value());
     ASSERT_EQ(scene.lights.size(), 2u);
-    EXPECT_EQ(scene.lights[0].type, LightType::Directional);
-    EXPECT_EQ(scene.lights[1].type, LightType::Point);
+    EXPECT_EQ(scene.lights[0].type, LightKind::Directional);
+    EXPECT_EQ(scene.lights[1].type, LightKind::Point);
     EXPECT_TRUE(scene.camera.eye.has_value());
 }
 
@@ -722,7 +700,7 @@ TEST(SceneLightingExample, LoadsWithItsLightingKeys) {
 
     ASSERT_EQ(scene.lights.size(), 2u);
     const LightSpec& spot = scene.lights[0];
-    EXPECT_EQ(spot.type, LightType::Spot);
+    EXPECT_EQ(spot.type, LightKind::Spot);
     EXPECT_EQ(spot.position, glm::vec3(0.0f, 3.0f, 1.5f));
     EXPECT_EQ(spot.direction, glm::vec3(0.0f, -3.0f, -1.5f));
     EXPECT_EQ(spot.spotInnerDegrees, 18.0f);
@@ -730,7 +708,7 @@ TEST(SceneLightingExample, LoadsWithItsLightingKeys) {
     EXPECT_EQ(spot.attenuation, glm::vec3(0, 0, 1));
     EXPECT_EQ(spot.intensity, 9.0f);
     const LightSpec& point = scene.lights[1];
-    EXPECT_EQ(point.type, LightType::Point);
+    EXPECT_EQ(point.type, LightKind::Point);
     EXPECT_EQ(point.attenuation, glm::vec3(1.0f, 0.2f, 0.05f));
     EXPECT_EQ(point.ambient, glm::vec3(0.05f, 0.04f, 0.03f));
 
@@ -754,13 +732,13 @@ TEST(SceneIntersectingQuadsExample, LoadsWithItsTransparencyKeys) {
 
     EXPECT_EQ(scene.transparency.mode, TransparencyMode::Sorted);
     EXPECT_EQ(scene.transparency.key, SortKey::Centroid);
-    EXPECT_EQ(scene.pipeline.cull, CullChoice::None);
+    EXPECT_EQ(scene.pipeline.cull, CullMode::None);
     EXPECT_EQ(scene.fog.mode, FogMode::None);
     ASSERT_EQ(scene.objects.size(), 2u);
     EXPECT_EQ(scene.objects[0].model, path.parent_path() / "intersecting-quads/backdrop.obj");
     EXPECT_FALSE(scene.objects[0].blend.has_value());
     EXPECT_EQ(scene.objects[1].model, path.parent_path() / "intersecting-quads/quads.obj");
-    EXPECT_EQ(scene.objects[1].blend, BlendChoice::Over);
+    EXPECT_EQ(scene.objects[1].blend, BlendMode::Over);
     EXPECT_FALSE(scene.objects[1].material.opacity.has_value());  // the MTL's d 0.5
     EXPECT_TRUE(fs::exists(path.parent_path() / "intersecting-quads/quads.mtl"));
 }
@@ -788,7 +766,7 @@ TEST(SceneFogAndGlassExample, LoadsWithItsFogAndBlendKeys) {
     const ObjectSpec& glass = scene.objects[4];
     EXPECT_EQ(glass.model, path.parent_path() / "cube/cube.obj");
     EXPECT_EQ(glass.material.opacity, 0.4f);
-    EXPECT_EQ(glass.blend, BlendChoice::Over);
+    EXPECT_EQ(glass.blend, BlendMode::Over);
 }
 
 // Every ```json block in docs/scene-format.md is a complete scene that loads, so the documentation
@@ -1399,43 +1377,15 @@ TEST_F(SceneTest, FarFromEveryKeyGivesNoSuggestion) {
 
 // ---- Bad input that used to hang, fill memory or flood the terminal -------------------------------
 
-// Runs `load` on another thread and waits a second for it. Should it be blocked opening `fifo` for
-// reading, opening the other end releases it (it then reads an empty file), so the test ends.
-std::string errorWithinASecond(const fs::path& fifo, const std::function<void()>& load) {
-    std::promise<std::string> promise;
-    std::future<std::string> message = promise.get_future();
-    std::thread thread([&] {
-        try {
-            load();
-            promise.set_value("");
-        } catch (const std::exception& e) {
-            promise.set_value(e.what());
-        }
-    });
-    const bool finished = message.wait_for(std::chrono::seconds(1)) == std::future_status::ready;
-    while (message.wait_for(std::chrono::milliseconds(20)) != std::future_status::ready) {
-        const int writer = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK);
-        if (writer >= 0) ::close(writer);
-    }
-    thread.join();
-    EXPECT_TRUE(finished) << "still reading " << fifo << " after a second";
-    return message.get();
-}
-
-// A FIFO would block every command until something writes to it; each refuses it unopened.
+// A FIFO would block every command until something writes to it; each refuses it unopened (bench:
+// tests/bench).
 TEST_F(SceneTest, FifoIsRefusedByEveryCommandWithoutOpeningIt) {
     const fs::path fifo = folder_ / "scene.json";
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
     const std::string expected =
         fifo.string() + ": is not a regular file (a device, a pipe or a socket), not a scene file";
-    BenchOptions options;
-    options.model = fifo;
-    options.frames = 1;
-    std::ostringstream out;
     EXPECT_EQ(errorWithinASecond(fifo, [&] { loadScene(fifo); }), expected);
     EXPECT_EQ(errorWithinASecond(fifo, [&] { loadSceneOrModel(fifo); }), expected) << "render, compare";
-    EXPECT_EQ(errorWithinASecond(fifo, [&] { runBench(options, out); }), expected) << "bench";
-    EXPECT_EQ(errorWithinASecond(fifo, [&] { runSortBench(options, out); }), expected) << "bench --sort";
 }
 
 // A device never ends (/dev/zero) or reads as empty (/dev/null): refused by its type, not by its text.

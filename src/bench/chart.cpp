@@ -1,0 +1,175 @@
+#include "bench/chart.h"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+#include <utility>
+
+#include "pipeline/color.h"
+
+namespace facet {
+
+namespace {
+
+using glm::dvec2;
+
+struct Glyph {
+    char c;
+    std::array<std::uint8_t, 7> rows;  // top to bottom, bit 4 is the leftmost column
+};
+
+// The classic 5×7 character-LCD shapes: digits, capitals and a little punctuation (lower case is drawn
+// as upper case).
+constexpr Glyph kFont[] = {
+    {'0', {0x0E, 0x11, 0x13, 0x15, 0x19, 0x11, 0x0E}}, {'1', {0x04, 0x0C, 0x04, 0x04, 0x04, 0x04, 0x0E}},
+    {'2', {0x0E, 0x11, 0x01, 0x02, 0x04, 0x08, 0x1F}}, {'3', {0x1F, 0x02, 0x04, 0x02, 0x01, 0x11, 0x0E}},
+    {'4', {0x02, 0x06, 0x0A, 0x12, 0x1F, 0x02, 0x02}}, {'5', {0x1F, 0x10, 0x1E, 0x01, 0x01, 0x11, 0x0E}},
+    {'6', {0x06, 0x08, 0x10, 0x1E, 0x11, 0x11, 0x0E}}, {'7', {0x1F, 0x01, 0x02, 0x04, 0x08, 0x08, 0x08}},
+    {'8', {0x0E, 0x11, 0x11, 0x0E, 0x11, 0x11, 0x0E}}, {'9', {0x0E, 0x11, 0x11, 0x0F, 0x01, 0x02, 0x0C}},
+    {'A', {0x0E, 0x11, 0x11, 0x11, 0x1F, 0x11, 0x11}}, {'B', {0x1E, 0x11, 0x11, 0x1E, 0x11, 0x11, 0x1E}},
+    {'C', {0x0E, 0x11, 0x10, 0x10, 0x10, 0x11, 0x0E}}, {'D', {0x1C, 0x12, 0x11, 0x11, 0x11, 0x12, 0x1C}},
+    {'E', {0x1F, 0x10, 0x10, 0x1E, 0x10, 0x10, 0x1F}}, {'F', {0x1F, 0x10, 0x10, 0x1E, 0x10, 0x10, 0x10}},
+    {'G', {0x0E, 0x11, 0x10, 0x17, 0x11, 0x11, 0x0F}}, {'H', {0x11, 0x11, 0x11, 0x1F, 0x11, 0x11, 0x11}},
+    {'I', {0x0E, 0x04, 0x04, 0x04, 0x04, 0x04, 0x0E}}, {'J', {0x07, 0x02, 0x02, 0x02, 0x02, 0x12, 0x0C}},
+    {'K', {0x11, 0x12, 0x14, 0x18, 0x14, 0x12, 0x11}}, {'L', {0x10, 0x10, 0x10, 0x10, 0x10, 0x10, 0x1F}},
+    {'M', {0x11, 0x1B, 0x15, 0x15, 0x11, 0x11, 0x11}}, {'N', {0x11, 0x11, 0x19, 0x15, 0x13, 0x11, 0x11}},
+    {'O', {0x0E, 0x11, 0x11, 0x11, 0x11, 0x11, 0x0E}}, {'P', {0x1E, 0x11, 0x11, 0x1E, 0x10, 0x10, 0x10}},
+    {'Q', {0x0E, 0x11, 0x11, 0x11, 0x15, 0x12, 0x0D}}, {'R', {0x1E, 0x11, 0x11, 0x1E, 0x14, 0x12, 0x11}},
+    {'S', {0x0F, 0x10, 0x10, 0x0E, 0x01, 0x01, 0x1E}}, {'T', {0x1F, 0x04, 0x04, 0x04, 0x04, 0x04, 0x04}},
+    {'U', {0x11, 0x11, 0x11, 0x11, 0x11, 0x11, 0x0E}}, {'V', {0x11, 0x11, 0x11, 0x11, 0x11, 0x0A, 0x04}},
+    {'W', {0x11, 0x11, 0x11, 0x15, 0x15, 0x15, 0x0A}}, {'X', {0x11, 0x11, 0x0A, 0x04, 0x0A, 0x11, 0x11}},
+    {'Y', {0x11, 0x11, 0x11, 0x0A, 0x04, 0x04, 0x04}}, {'Z', {0x1F, 0x01, 0x02, 0x04, 0x08, 0x10, 0x1F}},
+    {'.', {0x00, 0x00, 0x00, 0x00, 0x00, 0x0C, 0x0C}}, {',', {0x00, 0x00, 0x00, 0x00, 0x0C, 0x04, 0x08}},
+    {'-', {0x00, 0x00, 0x00, 0x1F, 0x00, 0x00, 0x00}}, {'(', {0x02, 0x04, 0x08, 0x08, 0x08, 0x04, 0x02}},
+    {')', {0x08, 0x04, 0x02, 0x02, 0x02, 0x04, 0x08}}, {'/', {0x00, 0x01, 0x02, 0x04, 0x08, 0x10, 0x00}},
+    {':', {0x00, 0x0C, 0x0C, 0x00, 0x0C, 0x0C, 0x00}}, {'%', {0x18, 0x19, 0x02, 0x04, 0x08, 0x13, 0x03}},
+    {'=', {0x00, 0x00, 0x1F, 0x00, 0x1F, 0x00, 0x00}}, {'<', {0x02, 0x04, 0x08, 0x10, 0x08, 0x04, 0x02}},
+    {'>', {0x08, 0x04, 0x02, 0x01, 0x02, 0x04, 0x08}},
+};
+
+// 1, 2 or 5 times a power of ten, about range / ticks.
+double niceStep(double range, int ticks) {
+    const double raw = range / ticks;
+    const double magnitude = std::pow(10.0, std::floor(std::log10(raw)));
+    const double normal = raw / magnitude;
+    return (normal <= 1.0 ? 1.0 : normal <= 2.0 ? 2.0 : normal <= 5.0 ? 5.0 : 10.0) * magnitude;
+}
+
+std::string formatTick(double value, double step) {
+    const int decimals = step >= 1.0 ? 0 : static_cast<int>(std::ceil(-std::log10(step) - 1e-9));
+    std::ostringstream text;
+    text << std::fixed << std::setprecision(decimals) << value;
+    return text.str();
+}
+
+std::string formatCount(double value) {  // 1000 → "1K", 1000000 → "1M"
+    if (value >= 1e6) return formatTick(value / 1e6, 1.0) + "M";
+    if (value >= 1e3) return formatTick(value / 1e3, 1.0) + "K";
+    return formatTick(value, 1.0);
+}
+
+}  // namespace
+
+vec4 srgb8(int r, int g, int b) {
+    return vec4(srgbToLinear(r / 255.0f), srgbToLinear(g / 255.0f), srgbToLinear(b / 255.0f), 1.0f);
+}
+
+void Canvas::text(int x, int y, std::string_view text, int scale, vec4 color) {
+    for (const char raw : text) {
+        const char c = static_cast<char>(std::toupper(static_cast<unsigned char>(raw)));
+        for (const Glyph& glyph : kFont) {
+            if (glyph.c != c) continue;
+            for (int row = 0; row < 7; ++row)
+                for (int column = 0; column < 5; ++column)
+                    if (glyph.rows[row] & (0x10 >> column))
+                        fillRect(x + column * scale, y + row * scale, x + (column + 1) * scale,
+                                 y + (row + 1) * scale, color);
+        }
+        x += 6 * scale;
+    }
+}
+
+void drawPanel(Canvas& canvas, int left, int top, int width, int height, const std::string& title,
+               const std::string& xLabel, bool logX, const std::vector<Series>& series) {
+    const vec4 ink = srgb8(20, 20, 20), grid = srgb8(225, 225, 225);
+    const int plotLeft = left + 80, plotRight = left + width - 40;
+    const int plotTop = top + 40, plotBottom = top + height - 60;
+    canvas.text(left + (width - Canvas::textWidth(title, 2)) / 2, top + 8, title, 2, ink);
+
+    // Ranges and ticks.
+    double maxX = 0.0, minX = std::numeric_limits<double>::max(), maxY = 0.0;
+    for (const Series& s : series)
+        for (const dvec2& p : s.points) {
+            if (std::isnan(p.y)) continue;
+            maxX = std::max(maxX, p.x);
+            minX = std::min(minX, p.x);
+            maxY = std::max(maxY, p.y);
+        }
+    if (maxY <= 0.0 || maxX <= 0.0) return;
+    const double yStep = niceStep(1.05 * maxY, 5);
+    const double yMax = std::ceil(1.05 * maxY / yStep) * yStep;
+    double xLow = 0.0, xHigh = 0.0, xStep = 0.0;
+    if (logX) {
+        xLow = std::log10(minX) - 0.15;
+        xHigh = std::log10(maxX) + 0.15;
+    } else {
+        xStep = niceStep(maxX, 5);
+        xHigh = std::ceil(1.02 * maxX / xStep) * xStep;
+    }
+    auto toPixel = [&](dvec2 p) {
+        const double x = logX ? std::log10(p.x) : p.x;
+        return vec2(static_cast<float>(plotLeft + (x - xLow) / (xHigh - xLow) * (plotRight - plotLeft)),
+                    static_cast<float>(plotBottom - p.y / yMax * (plotBottom - plotTop)));
+    };
+
+    // Grid, axes and tick labels.
+    for (double y = 0.0; y <= yMax + 0.5 * yStep; y += yStep) {
+        const int py = static_cast<int>(std::lround(toPixel({logX ? 1.0 : 0.0, y}).y));
+        canvas.fillRect(plotLeft, py, plotRight, py + 1, grid);
+        const std::string label = formatTick(y, yStep);
+        canvas.text(plotLeft - 10 - Canvas::textWidth(label, 2), py - 7, label, 2, ink);
+    }
+    std::vector<std::pair<double, std::string>> xTicks;
+    if (logX) {
+        for (int decade = static_cast<int>(std::ceil(xLow)); decade <= xHigh; ++decade)
+            xTicks.emplace_back(std::pow(10.0, decade), formatCount(std::pow(10.0, decade)));
+    } else {
+        for (double x = 0.0; x <= xHigh + 0.5 * xStep; x += xStep)
+            xTicks.emplace_back(x, formatTick(x, xStep));
+    }
+    for (const auto& [x, label] : xTicks) {
+        const int px = static_cast<int>(std::lround(toPixel({x, 0.0}).x));
+        canvas.fillRect(px, plotTop, px + 1, plotBottom, grid);
+        canvas.fillRect(px, plotBottom, px + 1, plotBottom + 6, ink);
+        canvas.text(px - Canvas::textWidth(label, 2) / 2, plotBottom + 12, label, 2, ink);
+    }
+    canvas.fillRect(plotLeft, plotTop, plotLeft + 2, plotBottom + 1, ink);
+    canvas.fillRect(plotLeft, plotBottom, plotRight, plotBottom + 2, ink);
+    canvas.text(plotLeft + (plotRight - plotLeft - Canvas::textWidth(xLabel, 2)) / 2, plotBottom + 36, xLabel,
+                2, ink);
+    canvas.text(left + 4, plotTop - 22, "MS", 2, ink);
+
+    // Series, then the legend.
+    int legendY = plotTop + 12;
+    for (const Series& s : series) {
+        std::vector<vec2> pixels;
+        for (const dvec2& p : s.points)
+            if (!std::isnan(p.y)) pixels.push_back(toPixel(p));
+        if (pixels.empty()) continue;
+        for (std::size_t i = 1; i < pixels.size(); ++i)
+            canvas.line(pixels[i - 1], pixels[i], 3.0f, s.color);
+        for (const vec2& p : pixels)
+            canvas.disc(p, 6.0f, s.color);
+        canvas.line(vec2(plotLeft + 16, legendY + 7), vec2(plotLeft + 56, legendY + 7), 3.0f, s.color);
+        canvas.disc(vec2(plotLeft + 36, legendY + 7), 6.0f, s.color);
+        canvas.text(plotLeft + 68, legendY, s.name, 2, ink);
+        legendY += 26;
+    }
+}
+
+}  // namespace facet

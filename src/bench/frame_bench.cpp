@@ -1,0 +1,59 @@
+// facet bench: whole frames of a model timed, medians printed.
+#include <algorithm>
+#include <chrono>
+#include <iomanip>
+#include <ostream>
+#include <vector>
+
+#include "base/errors.h"
+#include "bench/bench.h"
+#include "bench/process_stats.h"
+#include "render/renderer.h"
+
+namespace facet {
+
+Scene benchScene(const BenchOptions& options) {
+    if (options.frames < 1) throw InputError("--frames must be at least 1");
+    Scene scene = loadSceneOrModel(options.model);
+    scene.width = options.width;
+    scene.height = options.height;
+    return scene;
+}
+
+void runBench(const BenchOptions& options, std::ostream& out) {
+    const Scene scene = benchScene(options);
+    const PreparedScene prepared = prepareScene(scene);
+
+    Framebuffer framebuffer(scene.width, scene.height);
+    DrawContext context(options.threads);
+    DrawStats stats = renderFrame(prepared, framebuffer, context);  // warm-up: caches, buffers, threads
+
+    using Clock = std::chrono::steady_clock;
+    std::vector<double> frameMs, clearMs;
+    for (int i = 0; i < options.frames; ++i) {
+        const auto start = Clock::now();
+        stats = renderFrame(prepared, framebuffer, context);
+        const auto end = Clock::now();
+        frameMs.push_back(std::chrono::duration<double, std::milli>(end - start).count());
+
+        const auto clearStart = Clock::now();
+        framebuffer.clear(prepared.clearColor, 1.0f, context.pool);  // as renderFrame clears
+        clearMs.push_back(std::chrono::duration<double, std::milli>(Clock::now() - clearStart).count());
+    }
+
+    out << std::fixed << std::setprecision(2);
+    out << "model      " << options.model.string() << "\n";
+    out << "image      " << scene.width << "x" << scene.height << ", " << context.pool.threads()
+        << (context.pool.threads() == 1 ? " thread" : " threads") << ", built-in Blinn-Phong shader\n";
+    out << "triangles  " << prepared.triangleCount << " (" << stats.trianglesRasterized
+        << " rasterized after culling and clipping)\n";
+    out << "fragments  " << stats.fragmentsShaded << " shaded, " << stats.fragmentsWritten << " written, "
+        << stats.fragmentsDepthFailed << " rejected by the depth test\n";
+    out << "frames     " << options.frames << " timed after 1 warm-up\n";
+    out << "ms/frame   median " << median(frameMs) << "  min "
+        << *std::min_element(frameMs.begin(), frameMs.end()) << "  max "
+        << *std::max_element(frameMs.begin(), frameMs.end()) << "\n";
+    out << "clear only median " << median(clearMs) << " ms (colour + depth)\n";
+}
+
+}  // namespace facet

@@ -1,0 +1,120 @@
+#include "cli/bench_command.h"
+
+#include <filesystem>
+#include <iostream>
+#include <string>
+
+#include "base/errors.h"
+#include "cli/options.h"
+
+namespace facet::cli {
+
+namespace {
+
+constexpr int kMaxBenchFrames = 100'000;  // timed frames per measurement
+
+// The repository this program was built in, found from the executable (REPO/build/src/facet): the
+// nearest folder above it holding the bundled models/ and, beside it, the shared ../shared/models.
+// Empty when the program has been moved out of its build tree.
+std::filesystem::path repositoryOfExecutable() {
+    std::error_code error;
+    const std::filesystem::path executable = std::filesystem::read_symlink("/proc/self/exe", error);
+    if (error) return {};
+    for (std::filesystem::path folder = executable.parent_path();
+         !folder.empty() && folder != folder.root_path(); folder = folder.parent_path())
+        if (std::filesystem::is_directory(folder / "models", error) &&
+            std::filesystem::is_directory(folder / "../shared/models", error))
+            return folder;
+    return {};
+}
+
+// The benchmark's models when the command line names none: beside the repository the program was
+// built in, so that `facet bench` works from any folder; else relative to the working folder.
+void chooseDefaultBenchModels(facet::BenchOptions& options, bool modelGiven) {
+    const std::filesystem::path bunny = "stanford-bunny/stanford-bunny.obj";
+    const std::filesystem::path repository = repositoryOfExecutable();
+    if (!repository.empty()) {
+        options.sharedModels = (repository / "../shared/models").lexically_normal();
+        options.smallModel = repository / "models/spot/spot_triangulated.obj";
+    }
+    if (modelGiven) return;
+    options.model = options.sharedModels / bunny;
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(options.model, error))
+        throw facet::InputError("the default benchmark model " + options.model.string() +
+                                " is not there; name a model to time: facet bench MODEL.obj");
+}
+
+}  // namespace
+
+CLI::App* addBenchCommand(CLI::App& app, facet::BenchOptions& options) {
+    CLI::App* command = app.add_subcommand("bench", "Time frames of a model (median ms per frame)");
+    command->add_option("model", options.model,
+                        "Model or scene (default: the Stanford bunny in ../shared/models)");
+    command->add_option("--width", options.width, "Image width (default 1920)")->check(kWholeNumber);
+    command->add_option("--height", options.height, "Image height (default 1080)")->check(kWholeNumber);
+    command->add_option("--frames", options.frames, "Timed frames (default 30)")
+        ->check(wholeNumber(1, kMaxBenchFrames));
+    command->add_option("--threads", options.threads, "Worker threads (default: one per hardware thread)")
+        ->check(wholeNumber(0, 1024));
+    command->add_flag("--vs-mesa", options.vsMesa,
+                      "Compare with Mesa llvmpipe (OSMesa, if installed) on fixed scenes and sweeps, "
+                      "same thread count");
+    command->add_flag("--quick", options.quick,
+                      "With --vs-mesa: a shorter sweep and 5 frames (unless --frames), for a smoke run");
+    command->add_option("--csv", options.csv,
+                        "With --vs-mesa: where the sweeps' CSV goes (default out/bench-scaling.csv)");
+    command->add_option("--chart", options.chart,
+                        "With --vs-mesa: where the sweeps' chart goes (default out/bench-scaling.png)");
+    command->add_flag("--sort", options.sort,
+                      "Time the transparency sorter on a turntable of MODEL (at least 50,000 triangles): "
+                      "insertion sort with memory against std::sort, 60 frames per step (unless --frames)");
+
+    command->add_flag("--transparency", options.transparency,
+                      "Time the transparency modes (sorted, unsorted, exact) on a turntable of MODEL made "
+                      "half transparent");
+    command
+        ->add_option("--degrees-per-frame", options.degreesPerFrame,
+                     "With --transparency: the turntable's step (default 1)")
+        ->check(kFiniteNumber);
+    return command;
+}
+
+int bench(facet::BenchOptions& options, const CLI::App& command) {
+    chooseDefaultBenchModels(options, command.count("model") > 0);
+    if (options.transparency) {
+        for (const char* option : {"--vs-mesa", "--quick", "--csv", "--chart", "--sort"})
+            if (command.count(option))
+                throw facet::InputError(std::string(option) + " does not go with --transparency");
+        checkSize(options.width, options.height);
+        facet::runTransparencyBench(options, std::cout);
+        return 0;
+    }
+    if (command.count("--degrees-per-frame"))
+        throw facet::InputError("--degrees-per-frame goes with --transparency");
+    if (options.sort) {
+        // The camera frames MODEL as facet render does; the sort runs on one thread.
+        for (const char* option :
+             {"--vs-mesa", "--quick", "--csv", "--chart", "--width", "--height", "--threads"})
+            if (command.count(option))
+                throw facet::InputError(std::string(option) + " does not go with --sort");
+        if (command.count("--frames") == 0) options.frames = 60;
+        facet::runSortBench(options, std::cout);
+        return 0;
+    }
+    if (options.vsMesa) {
+        // The scenes and their sizes are fixed; MODEL replaces the bunny.
+        if (command.count("--width") || command.count("--height"))
+            throw facet::InputError("--vs-mesa renders fixed sizes; --width and --height do not apply");
+        if (options.quick && command.count("--frames") == 0) options.frames = 5;
+        facet::runMesaComparison(options, std::cout);
+        return 0;
+    }
+    if (options.quick || command.count("--csv") || command.count("--chart"))
+        throw facet::InputError("--quick, --csv and --chart go with --vs-mesa");
+    checkSize(options.width, options.height);
+    facet::runBench(options, std::cout);
+    return 0;
+}
+
+}  // namespace facet::cli

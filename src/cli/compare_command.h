@@ -1,0 +1,26 @@
+// facet compare: one model or scene drawn by Facet and by OpenGL (Mesa), the pixels compared.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "cli/options.h"
+
+namespace facet::cli {
+
+struct CompareArgs {
+    RenderArgs scene;  // input, size and lighting choices as for render
+    std::string driver = "softpipe";
+    std::optional<std::string> facetImage, mesaImage, diffImage;
+};
+
+// Adds the `compare` command and its options to `app`, filling `args` when it is parsed.
+CLI::App* addCompareCommand(CLI::App& app, CompareArgs& args);
+
+// Renders with both and prints how they agree: 0 when they do, kImagesDiffer when not. Throws
+// InputError for bad input.
+int compare(const CompareArgs& args);
+
+}  // namespace facet::cli

@@ -1,0 +1,81 @@
+// What the commands share: the command line's number validators and value parsers, the image size
+// checks, and the scene choices (size, camera, lighting, transparency, encoding) of render and compare.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <glm/glm.hpp>
+
+#include "pipeline/names.h"
+#include "scene/scene.h"
+#include "shaders/shaders.h"
+
+namespace facet::cli {
+
+// Command-line numbers, checked on the text before CLI11 converts it, so a bad value is named with
+// what is expected rather than CLI11's "Could not convert" or "not in range".
+CLI::Validator wholeNumber(long long lowest, long long highest);
+// A whole number whose range the program checks afterwards with its own message (--width, --height).
+extern const CLI::Validator kWholeNumber;
+// Any finite number: "nan", "inf" and values beyond a float (1e39) are refused; each option checks
+// its own range afterwards.
+extern const CLI::Validator kFiniteNumber;
+
+// An option whose value is one of the names of E's table (pipeline/names.h): CLI11 checks the text
+// against the table's names (and lists them in the help and in its message), then `value` gets the
+// named value.
+template <class E>
+CLI::Option* addChoice(CLI::App& command, const std::string& name, std::optional<E>& value,
+                       const std::string& description) {
+    return command
+        .add_option_function<std::string>(
+            name, [&value](const std::string& text) { value = parseName<E>(text); }, description)
+        ->check(CLI::IsMember(namesOf<E>()));
+}
+
+// "... (default blinn-phong)": an option's default, by its name.
+template <class E>
+std::string byDefault(E value) {
+    return " (default " + std::string(nameOf(value)) + ")";
+}
+
+// Parses "x,y,z" into a vec3; CLI11 hands us the raw text so the error can quote it.
+glm::vec3 parseVec3(const std::string& option, const std::string& text);
+
+// `fromScene` names the scene file and key a side came from when the command line did not give it
+// (the file itself never holds more than the limit, but its height with a --width can).
+void checkSize(int width, int height, const std::string& fromScene = "");
+
+// For checkSize: " (\"height\" from scenes/a.json)" when a side of the image comes from the scene file.
+std::string sizeFromScene(const std::filesystem::path& input, bool widthGiven, bool heightGiven);
+
+struct RenderArgs {
+    std::string input;
+    std::string output;
+    std::optional<int> width, height;
+    std::optional<std::string> eye, target;
+    std::optional<float> fovy;
+    int threads = 0;
+    bool quiet = false;
+    std::optional<LightingPreset> lighting;
+    std::optional<ReflectionModel> reflection;
+    std::optional<ShadingFrequency> shading;
+    std::optional<LightingTerm> only;
+    std::optional<float> creaseAngle;
+    bool components = false;
+    std::optional<std::string> frames;  // "0-59"
+    std::optional<float> turntable;     // degrees over the frames
+    bool stats = false;
+    std::optional<TransparencyMode> transparency;
+    std::optional<SortKey> sortKey;
+    std::optional<TransferCurve> encode;
+    std::optional<float> gamma;
+};
+
+// Applies the command line's lighting choices to every object (they win over the scene file's).
+void applyLightingOptions(const RenderArgs& args, facet::Scene& scene);
+
+}  // namespace facet::cli

@@ -1,0 +1,278 @@
+#include "cli/render_command.h"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "base/errors.h"
+#include "base/quote.h"
+#include "io/image_io.h"
+#include "render/renderer.h"
+
+namespace facet::cli {
+
+namespace {
+
+// Frame numbers stay within seven digits, so FIRST-LAST can never step past the largest int, and one
+// run writes at most this many images (frames, times five with --components): a typo in --frames
+// stops at once instead of filling the disk.
+constexpr int kMaxFrameNumber = 9'999'999;
+constexpr int kMaxImagesPerRun = 100'000;
+
+// "out/spot.png" + "diffuse" -> "out/spot-diffuse.png"
+std::filesystem::path componentPath(const std::filesystem::path& output, std::string_view term) {
+    std::filesystem::path path = output;
+    path.replace_filename(output.stem().string() + "-" + std::string(term) + output.extension().string());
+    return path;
+}
+
+// "0-59" or "12": the first and last frame numbers, each from 0 to kMaxFrameNumber.
+std::pair<int, int> parseFrames(const std::string& text) {
+    std::stringstream in(text);
+    long long first = 0, last = 0;
+    char dash = 0;
+    bool ok = static_cast<bool>(in >> first);
+    if (ok && !(in >> std::ws).eof())
+        ok = (in >> dash) && dash == '-' && (in >> last) && (in >> std::ws).eof();
+    else
+        last = first;
+    if (!ok || first < 0 || last < first || last > kMaxFrameNumber)
+        throw facet::InputError("--frames expects FIRST-LAST (like 0-59) or one frame number, from 0 to " +
+                                std::to_string(kMaxFrameNumber) + ", FIRST <= LAST (got " +
+                                facet::inQuotes(text) + ")");
+    return {static_cast<int>(first), static_cast<int>(last)};
+}
+
+// "out/spin.png", frame 7 -> "out/spin-0007.png".
+std::filesystem::path framePath(const std::filesystem::path& output, int frame) {
+    char number[16];
+    std::snprintf(number, sizeof number, "-%04d", frame);
+    std::filesystem::path path = output;
+    path.replace_filename(output.stem().string() + number + output.extension().string());
+    return path;
+}
+
+// The last line of defence against a blank image reported as success: what became of the triangles
+// of a frame that drew nothing, and the likely reasons.
+std::string emptyFrameWarning(const std::string& where, const facet::DrawStats& stats) {
+    std::ostringstream text;
+    text << where << " nothing was drawn, only the background: of " << stats.triangles << " triangles, "
+         << stats.trianglesRejected << " lay outside the view (or were cut off by the near and far planes), "
+         << stats.trianglesCulled << " were culled as back faces, "
+         << stats.trianglesZeroArea + stats.trianglesMissingSamples << " covered no pixel centre, and "
+         << stats.fragmentsDepthFailed << " fragments failed the depth test; the camera may look away from "
+         << "the model";
+    return text.str();
+}
+
+void printFrameStats(int frame, const facet::PreparedScene& prepared, const facet::FrameStats& stats) {
+    std::cout << "frame " << frame << ": " << stats.draw.fragmentsShaded << " fragments shaded";
+    const std::size_t transparent = prepared.transparentTriangles.size();
+    if (transparent > 0) {
+        std::cout << "; " << transparent << " transparent triangles";
+        if (stats.sort.elements > 0) {
+            std::cout << " sorted "
+                      << (stats.sort.fromScratch ? "from scratch"
+                                                 : "by insertion from the last frame's order")
+                      << ": " << stats.sort.comparisons << " comparisons, " << stats.sort.moves << " moves, ";
+            char ms[32];
+            std::snprintf(ms, sizeof ms, "%.2f ms", stats.sortMilliseconds);
+            std::cout << ms;
+        }
+        std::cout << "; " << stats.transparentRuns << (stats.transparentRuns == 1 ? " draw" : " draws")
+                  << " in the transparent pass";
+        if (stats.fragmentLists.fragments > 0) {
+            char text[160];
+            std::snprintf(
+                text, sizeof text,
+                "; exact: %llu fragments in per-pixel lists (longest %u), %.1f MiB held, resolved in %.2f ms",
+                static_cast<unsigned long long>(stats.fragmentLists.fragments),
+                stats.fragmentLists.longestList, double(stats.fragmentLists.bytesHeld) / (1024.0 * 1024.0),
+                stats.resolveMilliseconds);
+            std::cout << text;
+        }
+    }
+    std::cout << "\n";
+}
+
+// The output name alone, before anything is loaded: "-o ''" (checkImageDestination checks the rest).
+void checkOutputName(const std::string& output) {
+    if (output.empty())
+        throw facet::InputError("no output file given: name one with -o, like -o out/image.png");
+}
+
+}  // namespace
+
+CLI::App* addRenderCommand(CLI::App& app, RenderArgs& args) {
+    CLI::App* command = app.add_subcommand("render", "Render an OBJ model or a JSON scene to an image");
+    command->add_option("input", args.input, "Model (.obj) or scene (.json) to render")->required();
+    command
+        ->add_option("-o,--output", args.output,
+                     "Image to write; the extension picks the format (.png .exr .ppm .jpg .tif)")
+        ->required();
+    command->add_option("--width", args.width, "Image width in pixels (default 1280)")->check(kWholeNumber);
+    command->add_option("--height", args.height, "Image height in pixels (default 960)")->check(kWholeNumber);
+    command->add_option("--eye", args.eye, "Camera position x,y,z (default: framed from the front)");
+    command->add_option("--target", args.target,
+                        "Point the camera looks at, x,y,z (default: the model's centre)");
+    command->add_option("--fovy", args.fovy, "Vertical field of view in degrees (default 40)")
+        ->check(kFiniteNumber);
+    command->add_option("--threads", args.threads, "Worker threads (default: one per hardware thread)")
+        ->check(wholeNumber(0, 1024));
+    command->add_flag("-q,--quiet", args.quiet, "Print nothing on success");
+    addChoice(*command, "--lighting", args.lighting,
+              "Conventions: linear light and sRGB output, or OpenGL 1.x fixed function (docs/lighting.md)" +
+                  byDefault(LightingPreset::Facet));
+    addChoice(*command, "--reflection", args.reflection,
+              "Reflection model for every object" + byDefault(ReflectionModel::BlinnPhong));
+    addChoice(*command, "--shading", args.shading,
+              "Shading frequency for every object: per face, per vertex or per pixel" +
+                  byDefault(ShadingFrequency::Phong));
+    command
+        ->add_option("--crease-angle", args.creaseAngle,
+                     "Computed normals: faces meeting at a sharper angle (degrees) keep a hard edge "
+                     "(default 60)")
+        ->check(kFiniteNumber);
+    addChoice(*command, "--only", args.only, "Render one term of the lighting equation alone");
+    command->add_option("--frames", args.frames,
+                        "Render frames FIRST-LAST (like 0-59) of a turntable, writing NAME-0000.png ...");
+    command
+        ->add_option("--turntable", args.turntable,
+                     "Degrees the objects turn about the vertical axis over the frames (default 360)")
+        ->check(kFiniteNumber);
+    command->add_flag("--stats", args.stats,
+                      "Print per frame the fragments and the sorting of transparent triangles (comparisons, "
+                      "moves, time)");
+    addChoice(*command, "--transparency", args.transparency,
+              "Transparent triangles back to front, in file order, or in exact per-pixel lists" +
+                  byDefault(TransparencyMode::Sorted));
+    addChoice(*command, "--sort-key", args.sortKey,
+              "Depth that orders transparent triangles: the centroid's or the farthest vertex's" +
+                  byDefault(SortKey::Centroid));
+    addChoice(*command, "--encode", args.encode,
+              "8-bit output encoding: the exact sRGB curve, a power 1/gamma, or none" +
+                  byDefault(TransferCurve::Srgb));
+    command->add_option("--gamma", args.gamma, "Encode 8-bit output as c^(1/GAMMA) (e.g. 2.2)")
+        ->check(kFiniteNumber);
+    command->add_flag("--components", args.components,
+                      "Also write each term alone next to the output: NAME-emission, NAME-ambient, "
+                      "NAME-diffuse, NAME-specular (the output is their sum)");
+    return command;
+}
+
+int render(const RenderArgs& args) {
+    // Everything the command line alone decides is checked before a model is loaded: a typo in
+    // --frames must not wait for a large model, nor start writing images.
+    checkOutputName(args.output);
+    if (args.only && args.components) throw facet::InputError("--only and --components do not go together");
+    if (args.turntable && !args.frames)
+        throw facet::InputError("--turntable needs --frames (like --frames 0-59)");
+    const auto [firstFrame, lastFrame] = args.frames ? parseFrames(*args.frames) : std::pair{0, 0};
+    const int frameCount = lastFrame - firstFrame + 1;
+    const int imagesPerFrame =
+        args.components ? 1 + static_cast<int>(std::size(facet::kLightingTermNames)) : 1;
+    if (static_cast<long long>(frameCount) * imagesPerFrame > kMaxImagesPerRun)
+        throw facet::InputError("--frames " + *args.frames + " would write " +
+                                std::to_string(static_cast<long long>(frameCount) * imagesPerFrame) +
+                                " images; one run writes at most " + std::to_string(kMaxImagesPerRun) +
+                                (args.components ? " (--components writes five per frame)" : ""));
+    const float turntable = args.turntable.value_or(args.frames ? 360.0f : 0.0f);  // finite: kFiniteNumber
+
+    const std::filesystem::path input = args.input;
+    facet::Scene scene = facet::loadSceneOrModel(input);
+    if (args.width) scene.width = *args.width;
+    if (args.height) scene.height = *args.height;
+    checkSize(scene.width, scene.height,
+              sizeFromScene(input, args.width.has_value(), args.height.has_value()));
+    if (args.eye) scene.camera.eye = parseVec3("--eye", *args.eye);
+    if (args.target) scene.camera.target = parseVec3("--target", *args.target);
+    if (args.fovy) {
+        if (!(*args.fovy >= facet::kMinFovyDegrees && *args.fovy <= facet::kMaxFovyDegrees)) {
+            std::ostringstream message;
+            message << "--fovy must be from " << facet::kMinFovyDegrees << " to " << facet::kMaxFovyDegrees
+                    << " degrees (got " << *args.fovy << ")";
+            throw facet::InputError(message.str());
+        }
+        scene.camera.fovyDegrees = *args.fovy;
+    }
+    if (scene.camera.eye && scene.camera.target &&
+        glm::length(*scene.camera.eye - *scene.camera.target) == 0.0f)
+        throw facet::InputError("the camera's eye and target are the same point");
+
+    applyLightingOptions(args, scene);
+    const std::uint8_t terms = args.only.value_or(facet::kAllTerms);
+    facet::checkImageDestination(args.output, scene.width, scene.height);
+
+    const auto start = std::chrono::steady_clock::now();
+    facet::PreparedScene prepared = facet::prepareScene(scene);
+    for (const std::string& warning : prepared.warnings)
+        std::cerr << "facet: warning: " << warning << "\n";
+    facet::Framebuffer framebuffer(scene.width, scene.height);
+    facet::DrawContext context(args.threads);
+    facet::FrameMemory memory;  // the transparent triangles' order, carried from frame to frame
+    std::vector<std::filesystem::path> written;
+    facet::DrawStats total;
+    int emptyFrames = 0;
+    facet::DrawStats firstEmptyStats;  // and its name, written.front() of those frames
+    std::filesystem::path firstEmpty;
+    for (int k = 0; k < frameCount; ++k) {
+        const int frame = firstFrame + k;
+        // A turntable: frame k of n turns the objects by turntable·k/n degrees.
+        if (args.frames) facet::setTurntable(prepared, turntable * float(k) / float(frameCount));
+        const std::filesystem::path output =
+            args.frames ? framePath(args.output, frame) : std::filesystem::path(args.output);
+        const facet::FrameStats stats = facet::renderFrame(prepared, framebuffer, context, memory, terms);
+        total += stats.draw;
+        if (stats.draw.fragmentsWritten + stats.draw.fragmentsStored == 0 && emptyFrames++ == 0) {
+            firstEmptyStats = stats.draw;
+            firstEmpty = output;
+        }
+        if (args.stats) printFrameStats(frame, prepared, stats);
+        facet::writeImage(output, facet::toImage(framebuffer), prepared.encoding);
+        written.push_back(output);
+        // The component images: each term alone, over the same background; the main image is their sum.
+        if (args.components) {
+            for (const facet::EnumName<facet::LightingTerm>& term : facet::kLightingTermNames) {
+                facet::FrameMemory scratch;  // not the animation's: keeps its insertion sort honest
+                facet::renderFrame(prepared, framebuffer, context, scratch, term.value);
+                written.push_back(componentPath(output, term.name));
+                facet::writeImage(written.back(), facet::toImage(framebuffer), prepared.encoding);
+            }
+        }
+    }
+    const auto rendered = std::chrono::steady_clock::now();
+    if (emptyFrames > 0)
+        std::cerr << "facet: warning: "
+                  << emptyFrameWarning(emptyFrames == 1
+                                           ? firstEmpty.string() + ":"
+                                           : std::to_string(emptyFrames) + " of " +
+                                                 std::to_string(frameCount) + " frames (the first " +
+                                                 firstEmpty.string() + "):",
+                                       firstEmptyStats)
+                  << "\n";
+
+    if (!args.quiet) {
+        const double ms = std::chrono::duration<double, std::milli>(rendered - start).count();
+        std::cout << "facet: wrote "
+                  << (args.frames ? std::to_string(frameCount) + " frames, " + written.front().string() +
+                                        " to " + framePath(args.output, lastFrame).string()
+                                  : args.output)
+                  << " (" << scene.width << "x" << scene.height << ", " << prepared.triangleCount
+                  << " triangles";
+        if (prepared.degenerateSkipped)
+            std::cout << ", " << prepared.degenerateSkipped << " degenerate skipped";
+        std::cout << ", " << total.fragmentsShaded << " fragments shaded, " << static_cast<long>(ms + 0.5)
+                  << " ms including loading)\n";
+        if (!args.frames)
+            for (std::size_t k = 1; k < written.size(); ++k)
+                std::cout << "facet: wrote " << written[k].string() << " ("
+                          << facet::kLightingTermNames[k - 1].name << " term alone)\n";
+    }
+    return 0;
+}
+
+}  // namespace facet::cli

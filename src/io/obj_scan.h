@@ -1,0 +1,44 @@
+// The OBJ pre-scan: the statements tinyobjloader accepts silently ("nan" and "inf" read as 0, index 0,
+// relative indices before the first vertex) caught with their line, each face mapped to its line, and
+// the text rewritten for tinyobjloader (`\` continuations, comments). Internal to the OBJ importer.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "io/obj_text.h"
+
+namespace facet::obj {
+
+struct UseMaterial {
+    std::size_t line;
+    std::string name;
+};
+
+struct LibraryStatement {
+    std::size_t line;
+    std::vector<std::string> names;
+};
+
+struct ObjScan {
+    std::size_t positions = 0, texcoords = 0, normals = 0;  // v, vt, vn statements
+    std::size_t facesRead = 0;                              // every f statement
+    std::vector<std::size_t> faceLines;                     // each face with >= 3 corners, in file order
+    std::vector<std::int32_t> faceMaterial;  // per such face: index into useMaterials, -1 before any
+    std::size_t cornerCount = 0;             // over those faces
+    std::size_t shortFaces = 0;              // f statements with < 3 corners
+    std::size_t firstShortFaceLine = kNoLine;
+    std::vector<UseMaterial> useMaterials;
+    std::vector<LibraryStatement> libraries;
+};
+
+// The OBJ file's text; InputError when it cannot be read or holds NUL bytes. `file` names it in messages.
+std::string readObjText(const std::filesystem::path& path, const std::string& file);
+
+// Pass 2: checks every statement in file order, so the error reported is the first in the file.
+ObjScan scanObj(std::string& text, const std::string& file);
+
+}  // namespace facet::obj

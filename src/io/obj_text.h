@@ -1,0 +1,64 @@
+// What the OBJ pre-scan and the MTL reader share: "file:line: what" messages, reading a file whole,
+// splitting a statement into tokens, and checking numbers and indices the way tinyobjloader reads them.
+// Internal to the OBJ importer.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+namespace facet::obj {
+
+constexpr std::size_t kNoLine = 0;
+
+// "file:line: what", or "file: what" for kNoLine.
+std::string located(const std::string& file, std::size_t line, std::string_view what);
+// Throws InputError(located(file, line, what)).
+[[noreturn]] void fail(const std::string& file, std::size_t line, std::string_view what);
+
+std::string inSingleQuotes(std::string_view s);
+// A path the importer resolved: shown whole (up to PATH_MAX), escaped like every quoted value.
+std::string pathInSingleQuotes(const std::filesystem::path& path);
+
+// Why a file cannot be read, or "" when `path` is a readable regular file; `text` gets its bytes.
+// Every filesystem call takes an error_code: a filesystem_error must never escape as a crash.
+std::string readTextFile(const std::filesystem::path& path, std::string& text);
+
+inline bool isBlank(char c) {
+    return c == ' ' || c == '\t';
+}
+
+// Splits on blanks, like tinyobjloader's strspn/strcspn(" \t").
+class Tokens {
+  public:
+    explicit Tokens(std::string_view text) : rest_(text) {}
+    bool next(std::string_view& token) {
+        std::size_t begin = 0;
+        while (begin < rest_.size() && isBlank(rest_[begin]))
+            ++begin;
+        if (begin == rest_.size()) return false;
+        std::size_t end = begin;
+        while (end < rest_.size() && !isBlank(rest_[end]))
+            ++end;
+        token = rest_.substr(begin, end - begin);
+        rest_.remove_prefix(end);
+        return true;
+    }
+
+  private:
+    std::string_view rest_;
+};
+
+enum class NumberCheck { kFinite, kNotANumber, kNotFinite };
+
+// Accepts what strtod accepts as a whole token (plus a leading '+'), and rejects what a float cannot
+// hold: tinyobjloader reads "nan" and "inf" as 0 and 1e39 as inf, so they must be caught here.
+NumberCheck checkNumber(std::string_view token);
+
+enum class IndexParse { kOk, kMalformed, kTooLarge };
+
+// An index as tinyobjloader reads it: a whole number, a leading '+' allowed.
+IndexParse parseIndex(std::string_view token, long long& index);
+
+}  // namespace facet::obj

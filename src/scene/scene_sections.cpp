@@ -1,0 +1,486 @@
+#include "scene/scene_sections.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <iterator>
+#include <set>
+#include <tuple>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "base/quote.h"
+#include "scene/limits.h"
+#include "scene/mesh.h"
+
+namespace facet::scene_file {
+
+namespace {
+
+constexpr std::string_view kCameraKeys[] = {"eye", "target", "up", "fovy", "near", "far"};
+constexpr std::string_view kLightKeys[] = {"type",     "direction", "position", "color",       "intensity",
+                                           "ambient",  "diffuse",   "specular", "attenuation", "cutoff",
+                                           "exponent", "inner",     "outer",    "space"};
+constexpr std::string_view kSpotOnlyKeys[] = {"cutoff", "exponent", "inner", "outer"};
+constexpr std::string_view kObjectKeys[] = {"model",    "translate", "rotate", "scale",
+                                            "material", "lighting",  "blend"};
+constexpr std::string_view kMaterialKeys[] = {"ambient",   "diffuse",   "specular", "emission",
+                                              "shininess", "opacity",   "preset",   "base_color",
+                                              "metalness", "roughness", "f0"};
+constexpr std::string_view kPipelineKeys[] = {"cull", "interpolation", "subpixel_bits"};
+constexpr std::string_view kLightingKeys[] = {"preset",       "model",   "shading", "crease_angle",
+                                              "distribution", "fresnel", "geometry"};
+constexpr std::string_view kObjectLightingKeys[] = {"model", "shading"};
+constexpr std::string_view kLightSpaces[] = {"world", "camera"};
+constexpr std::string_view kTransparencyKeys[] = {"mode", "sort_key"};
+constexpr std::string_view kFogKeys[] = {"mode", "color", "start", "end", "density", "distance"};
+constexpr std::string_view kGammaKeys[] = {"encode", "exponent", "decode_inputs"};
+
+}  // namespace
+
+glm::vec4 readBackground(const SceneReader& reader, const Json& value) {
+    const std::string path = "background";
+    if (!value.is_array() || (value.size() != 3 && value.size() != 4)) {
+        reader.fail(inQuotes(path) + " must be [r, g, b] or [r, g, b, a] (got " + describe(value) + ")");
+    }
+    glm::vec4 background{0.0f, 0.0f, 0.0f, 1.0f};
+    for (std::size_t i = 0; i < value.size(); ++i)
+        background[i] = reader.brightness(value[i], elementPath(path, i));
+    if (background.a > 1.0f) {
+        reader.fail(inQuotes(elementPath(path, 3)) + " (alpha) must be from 0 to 1 (got " +
+                    formatNumber(background.a) + ")");
+    }
+    return background;
+}
+
+CameraSpec readCamera(const SceneReader& reader, const Json& camera) {
+    const std::string path = "camera";
+    reader.requireObject(camera, path, "an object like {\"eye\": [0, 1, 5], \"fovy\": 40}");
+    reader.checkKeys(camera, path, kCameraKeys);
+
+    CameraSpec spec;
+    if (const Json* v = reader.find(camera, "eye")) spec.eye = reader.vec3(*v, "camera.eye", "[0, 1, 5]");
+    if (const Json* v = reader.find(camera, "target"))
+        spec.target = reader.vec3(*v, "camera.target", "[0, 0, 0]");
+    // Normalised here, in double: in float, the squared length of [0, 1e-30, 0] underflows to 0 and
+    // that of [0, 1e20, 0] overflows, and the camera would be built from NaNs.
+    if (const Json* v = reader.find(camera, "up"))
+        spec.up = glm::vec3(glm::normalize(glm::dvec3(reader.nonZeroVector(*v, "camera.up"))));
+    if (const Json* v = reader.find(camera, "fovy")) {
+        spec.fovyDegrees = reader.number(*v, "camera.fovy");
+        if (!(spec.fovyDegrees >= kMinFovyDegrees && spec.fovyDegrees <= kMaxFovyDegrees)) {
+            reader.fail("\"camera.fovy\" must be from " + formatNumber(kMinFovyDegrees) + " to " +
+                        formatNumber(kMaxFovyDegrees) + " degrees (got " + formatNumber(spec.fovyDegrees) +
+                        ")");
+        }
+    }
+    if (const Json* v = reader.find(camera, "near")) {
+        spec.near = reader.number(*v, "camera.near");
+        if (!(*spec.near > 0.0f)) {
+            reader.fail("\"camera.near\" must be greater than 0 (got " + formatNumber(*spec.near) + ")");
+        }
+    }
+    if (const Json* v = reader.find(camera, "far")) {
+        spec.far = reader.number(*v, "camera.far");
+        const float lowest = spec.near.value_or(0.0f);
+        if (!(*spec.far > lowest)) {
+            reader.fail("\"camera.far\" must be greater than " +
+                        std::string(spec.near ? "\"camera.near\" (" + formatNumber(lowest) + ")" : "0") +
+                        " (got " + formatNumber(*spec.far) + ")");
+        }
+    }
+
+    // The view direction is known only when both ends are given; otherwise the renderer frames the
+    // bounding box and must pick a direction compatible with `up` itself. Doubles, so huge
+    // coordinates cannot overflow the check.
+    if (spec.eye && spec.target) {
+        const glm::dvec3 view = glm::dvec3(*spec.target) - glm::dvec3(*spec.eye);
+        if (glm::length(view) == 0.0) reader.fail("\"camera.eye\" and \"camera.target\" must differ");
+        const glm::dvec3 side = glm::cross(glm::normalize(view), glm::normalize(glm::dvec3(spec.up)));
+        if (glm::length(side) < 1e-6) {
+            reader.fail(
+                "\"camera.up\" is parallel to the view direction (from \"camera.eye\" to "
+                "\"camera.target\"): give an \"up\" across it");
+        }
+    }
+    return spec;
+}
+
+LightSpec readLight(const SceneReader& reader, const Json& light, const std::string& path) {
+    reader.requireObject(light, path,
+                         "an object like {\"type\": \"directional\", \"direction\": [0, -1, 0]}");
+    reader.checkKeys(light, path, kLightKeys);
+    const auto key = [&](std::string_view name) { return inQuotes(childPath(path, name)); };
+
+    LightSpec spec;
+    if (const Json* v = reader.find(light, "type")) {
+        spec.type = reader.enumChoice<LightKind>(*v, childPath(path, "type"));
+    }
+    // A key that the type ignores is almost always a forgotten "type": say so rather than ignore it.
+    if (spec.type == LightKind::Directional && light.contains("position")) {
+        reader.fail(key("position") + " is only for point and spot lights (add \"type\": \"point\")");
+    }
+    if (spec.type == LightKind::Directional && light.contains("attenuation")) {
+        reader.fail(key("attenuation") +
+                    " is only for point and spot lights: a directional light is infinitely far and does "
+                    "not fade (add \"type\": \"point\")");
+    }
+    if (spec.type == LightKind::Point && light.contains("direction")) {
+        reader.fail(key("direction") +
+                    " is only for directional and spot lights: a point light shines every way (add "
+                    "\"type\": \"spot\" for a cone)");
+    }
+    if (spec.type != LightKind::Spot) {
+        for (std::string_view name : kSpotOnlyKeys) {
+            if (light.contains(name))
+                reader.fail(key(name) + " is only for spot lights (add \"type\": \"spot\")");
+        }
+    }
+
+    if (const Json* v = reader.find(light, "direction")) {
+        spec.direction = reader.nonZeroVector(*v, childPath(path, "direction"));
+    } else if (spec.type == LightKind::Spot) {
+        spec.direction = glm::vec3(0.0f, -1.0f, 0.0f);
+    }
+    if (const Json* v = reader.find(light, "position"))
+        spec.position = reader.vec3(*v, childPath(path, "position"));
+    if (const Json* v = reader.find(light, "color")) spec.color = reader.color(*v, childPath(path, "color"));
+    if (const Json* v = reader.find(light, "intensity"))
+        spec.intensity = reader.brightness(*v, childPath(path, "intensity"));
+    if (const Json* v = reader.find(light, "ambient"))
+        spec.ambient = reader.color(*v, childPath(path, "ambient"));
+    if (const Json* v = reader.find(light, "diffuse"))
+        spec.diffuse = reader.color(*v, childPath(path, "diffuse"));
+    if (const Json* v = reader.find(light, "specular"))
+        spec.specular = reader.color(*v, childPath(path, "specular"));
+    if (const Json* v = reader.find(light, "attenuation")) {
+        spec.attenuation = reader.nonNegativeVector(*v, childPath(path, "attenuation"), "[1, 0.1, 0.01]");
+        if (spec.attenuation == glm::vec3(0.0f)) {
+            reader.fail(key("attenuation") +
+                        " must not be all zero: 1/(c0 + c1*d + c2*d^2) would divide by zero (got [0, 0, 0])");
+        }
+    }
+
+    // The spot's profile: "cutoff" and "exponent" (OpenGL's) or "inner" and "outer" (smooth), not a mix.
+    if (spec.type == LightKind::Spot) {
+        const Json* inner = reader.find(light, "inner");
+        const Json* outer = reader.find(light, "outer");
+        if ((inner == nullptr) != (outer == nullptr)) {
+            reader.fail(key(inner ? "inner" : "outer") + " needs " + key(inner ? "outer" : "inner") +
+                        " too: give both for the smooth spot profile, or neither");
+        }
+        for (std::string_view name : {"cutoff", "exponent"}) {
+            if (inner && light.contains(name)) {
+                reader.fail(key(name) +
+                            " cannot be given with \"inner\" and \"outer\": \"cutoff\" and \"exponent\" set "
+                            "the OpenGL spot profile, \"inner\" and \"outer\" the smooth one; choose one");
+            }
+        }
+        if (const Json* v = reader.find(light, "cutoff"))
+            spec.spotCutoffDegrees =
+                reader.numberFromTo(*v, childPath(path, "cutoff"), 0.0f, 90.0f, " degrees");
+        if (const Json* v = reader.find(light, "exponent"))
+            spec.spotExponent = reader.numberFromTo(*v, childPath(path, "exponent"), 0.0f, 128.0f);
+        if (inner) {
+            spec.spotInnerDegrees =
+                reader.numberFromTo(*inner, childPath(path, "inner"), 0.0f, 90.0f, " degrees");
+            spec.spotOuterDegrees =
+                reader.numberFromTo(*outer, childPath(path, "outer"), 0.0f, 90.0f, " degrees");
+            if (!(*spec.spotInnerDegrees < *spec.spotOuterDegrees)) {
+                reader.fail(key("inner") + " (" + describe(*inner) + ") must be less than " + key("outer") +
+                            " (" + describe(*outer) + ")");
+            }
+        }
+    }
+    if (const Json* v = reader.find(light, "space")) {
+        spec.cameraRelative = reader.choice(*v, childPath(path, "space"), kLightSpaces) == 1;
+    }
+    return spec;
+}
+
+namespace {
+
+// f0: one number for all three channels or [r, g, b], each 0..1.
+glm::vec3 readF0(const SceneReader& reader, const Json& value, const std::string& path) {
+    if (value.is_number()) return glm::vec3(reader.numberFromTo(value, path, 0.0f, 1.0f));
+    if (!value.is_array() || value.size() != 3) {
+        reader.fail(inQuotes(path) +
+                    " must be a number or an array of 3 numbers like [0.04, 0.04, 0.04] (got " +
+                    describe(value) + ")");
+    }
+    glm::vec3 f0;
+    for (int i = 0; i < 3; ++i)
+        f0[i] = reader.numberFromTo(value[i], elementPath(path, i), 0.0f, 1.0f);
+    return f0;
+}
+
+// The preset's name as kMaterialPresets spells it ("Gold" and "aluminum" are accepted too).
+std::string readMaterialPreset(const SceneReader& reader, const Json& value, const std::string& path) {
+    const std::string name = reader.string(value, path);
+    if (const std::optional<MaterialPreset> preset = findMaterialPreset(name))
+        return std::string(preset->name);
+
+    std::array<std::string_view, std::tuple_size_v<decltype(kMaterialPresets)>> names;
+    std::string list;
+    for (std::size_t i = 0; i < names.size(); ++i) {
+        names[i] = kMaterialPresets[i].name;
+        list += (list.empty() ? "" : ", ") + inQuotes(names[i]);
+    }
+    std::string lower = name;
+    for (char& c : lower)
+        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    reader.fail(inQuotes(path) + " must be one of the material presets " + list + " (got " + inQuotes(name) +
+                ")" + suggestion(lower, names));
+}
+
+MaterialOverride readMaterial(const SceneReader& reader, const Json& material, const std::string& path) {
+    reader.requireObject(material, path, "an object like {\"diffuse\": [0.8, 0.2, 0.2]}");
+    reader.checkKeys(material, path, kMaterialKeys);
+
+    MaterialOverride spec;
+    if (const Json* v = reader.find(material, "ambient"))
+        spec.ambient = reader.color(*v, childPath(path, "ambient"));
+    if (const Json* v = reader.find(material, "diffuse"))
+        spec.diffuse = reader.color(*v, childPath(path, "diffuse"));
+    if (const Json* v = reader.find(material, "specular"))
+        spec.specular = reader.color(*v, childPath(path, "specular"));
+    if (const Json* v = reader.find(material, "emission"))
+        spec.emission = reader.color(*v, childPath(path, "emission"));
+    if (const Json* v = reader.find(material, "shininess"))
+        spec.shininess = reader.nonNegative(*v, childPath(path, "shininess"));
+    if (const Json* v = reader.find(material, "opacity"))
+        spec.opacity = reader.numberFromTo(*v, childPath(path, "opacity"), 0.0f, 1.0f);
+
+    // Physically based keys.
+    if (const Json* v = reader.find(material, "preset"))
+        spec.preset = readMaterialPreset(reader, *v, childPath(path, "preset"));
+    if (const Json* v = reader.find(material, "base_color"))
+        spec.baseColor = reader.color(*v, childPath(path, "base_color"));
+    if (const Json* v = reader.find(material, "metalness"))
+        spec.metalness = reader.numberFromTo(*v, childPath(path, "metalness"), 0.0f, 1.0f);
+    if (const Json* v = reader.find(material, "roughness"))
+        spec.roughness = reader.numberFromTo(*v, childPath(path, "roughness"), 0.0f, 1.0f);
+    if (const Json* v = reader.find(material, "f0")) spec.f0 = readF0(reader, *v, childPath(path, "f0"));
+    return spec;
+}
+
+ReflectionModel readReflectionModel(const SceneReader& reader, const Json& value, const std::string& path) {
+    return reader.enumChoice<ReflectionModel>(value, path);
+}
+
+ShadingFrequency readShading(const SceneReader& reader, const Json& value, const std::string& path) {
+    return reader.enumChoice<ShadingFrequency>(value, path);
+}
+
+// An object's "lighting": only the reflection model and the shading frequency can differ per object.
+void readObjectLighting(const SceneReader& reader, const Json& lighting, const std::string& path,
+                        ObjectSpec& spec) {
+    reader.requireObject(lighting, path,
+                         "an object like {\"model\": \"cook-torrance\", \"shading\": \"flat\"}");
+    for (const auto& [key, value] : lighting.items()) {
+        const bool perObject = std::find(std::begin(kObjectLightingKeys), std::end(kObjectLightingKeys),
+                                         key) != std::end(kObjectLightingKeys);
+        const bool sceneWide =
+            std::find(std::begin(kLightingKeys), std::end(kLightingKeys), key) != std::end(kLightingKeys);
+        if (!perObject && sceneWide) {
+            reader.fail(inQuotes(childPath(path, key)) +
+                        " cannot be set per object (only \"model\" and \"shading\" can): set it in the "
+                        "top-level \"lighting\"");
+        }
+    }
+    reader.checkKeys(lighting, path, kObjectLightingKeys);
+    if (const Json* v = reader.find(lighting, "model"))
+        spec.reflection = readReflectionModel(reader, *v, childPath(path, "model"));
+    if (const Json* v = reader.find(lighting, "shading"))
+        spec.shading = readShading(reader, *v, childPath(path, "shading"));
+}
+
+}  // namespace
+
+// The model path as written, checked for existence relative to the scene file's folder.
+fs::path readModel(const SceneReader& reader, const Json& value, const std::string& path,
+                   const fs::path& folder) {
+    const std::string written = reader.string(value, path);
+    if (written.empty()) reader.fail(inQuotes(path) + " must name an OBJ file (got an empty string)");
+    const fs::path model = folder / fs::path(written);  // an absolute path replaces the folder
+    reader.checkModelFile(model, written, path);
+    return model;
+}
+
+ObjectSpec readObject(const SceneReader& reader, const Json& object, const std::string& path,
+                      const fs::path& folder) {
+    reader.requireObject(object, path, "an object like {\"model\": \"bunny.obj\"}");
+    reader.checkKeys(object, path, kObjectKeys);
+
+    ObjectSpec spec;
+    const Json* model = reader.find(object, "model");
+    if (model == nullptr)
+        reader.fail(inQuotes(childPath(path, "model")) + " is missing: every object needs a model file");
+    spec.model = readModel(reader, *model, childPath(path, "model"), folder);
+
+    glm::vec3 translate{0.0f}, rotateDegrees{0.0f}, scale{1.0f};
+    if (const Json* v = reader.find(object, "translate"))
+        translate = reader.vec3(*v, childPath(path, "translate"));
+    if (const Json* v = reader.find(object, "rotate"))
+        rotateDegrees = reader.vec3(*v, childPath(path, "rotate"), "[0, 90, 0]");
+    if (const Json* v = reader.find(object, "scale")) {
+        const std::string scalePath = childPath(path, "scale");
+        scale = v->is_number() ? glm::vec3(reader.number(*v, scalePath))
+                               : reader.vec3(*v, scalePath, "[1, 2, 1]");
+        // A zero factor flattens the model and leaves its normals undefined (no inverse transpose).
+        for (int i = 0; i < 3; ++i) {
+            if (scale[i] == 0.0f) {
+                reader.fail(inQuotes(scalePath) + " must not be zero" +
+                            (v->is_number() ? std::string() : " in any axis"));
+            }
+        }
+    }
+    if (const Json* v = reader.find(object, "material"))
+        spec.material = readMaterial(reader, *v, childPath(path, "material"));
+    if (const Json* v = reader.find(object, "lighting"))
+        readObjectLighting(reader, *v, childPath(path, "lighting"), spec);
+    if (const Json* v = reader.find(object, "blend")) {
+        spec.blend = reader.enumChoice<BlendMode>(*v, childPath(path, "blend"), {BlendMode::Replace});
+    }
+
+    // worldFromObject = T · Rz · Ry · Rx · S: scale first, then rotate about X, Y, Z (fixed axes),
+    // then translate. glm::rotate/scale multiply on the right, so the calls read left to right.
+    glm::mat4 m = glm::translate(glm::mat4(1.0f), translate);
+    m = glm::rotate(m, glm::radians(rotateDegrees.z), glm::vec3(0.0f, 0.0f, 1.0f));
+    m = glm::rotate(m, glm::radians(rotateDegrees.y), glm::vec3(0.0f, 1.0f, 0.0f));
+    m = glm::rotate(m, glm::radians(rotateDegrees.x), glm::vec3(1.0f, 0.0f, 0.0f));
+    spec.worldFromObject = glm::scale(m, scale);
+    return spec;
+}
+
+PipelineOptions readPipeline(const SceneReader& reader, const Json& pipeline) {
+    const std::string path = "pipeline";
+    reader.requireObject(pipeline, path, "an object like {\"cull\": \"back\"}");
+    reader.checkKeys(pipeline, path, kPipelineKeys);
+
+    PipelineOptions options;
+    if (const Json* v = reader.find(pipeline, "cull")) {
+        options.cull = reader.enumChoice<CullMode>(*v, "pipeline.cull");
+    }
+    if (const Json* v = reader.find(pipeline, "interpolation")) {
+        options.interpolation = reader.enumChoice<Interpolation>(*v, "pipeline.interpolation");
+    }
+    if (const Json* v = reader.find(pipeline, "subpixel_bits")) {
+        options.subpixelBits = reader.wholeNumber(*v, "pipeline.subpixel_bits", 0, 8);
+    }
+    return options;
+}
+
+// The scene's "lighting": a preset name alone, or an object.
+LightingOptions readLighting(const SceneReader& reader, const Json& lighting) {
+    const std::string path = "lighting";
+    LightingOptions options;
+    if (lighting.is_string()) {
+        options.preset = reader.enumChoice<LightingPreset>(lighting, path);
+        return options;
+    }
+    reader.requireObject(
+        lighting, path,
+        quotedList(namesOf<LightingPreset>(), ", ") + " or an object like {\"model\": \"cook-torrance\"}");
+    reader.checkKeys(lighting, path, kLightingKeys);
+
+    if (const Json* v = reader.find(lighting, "preset"))
+        options.preset = reader.enumChoice<LightingPreset>(*v, "lighting.preset");
+    if (const Json* v = reader.find(lighting, "model"))
+        options.model = readReflectionModel(reader, *v, "lighting.model");
+    if (const Json* v = reader.find(lighting, "shading"))
+        options.shading = readShading(reader, *v, "lighting.shading");
+    if (const Json* v = reader.find(lighting, "crease_angle"))
+        options.creaseAngleDegrees =
+            reader.numberFromTo(*v, "lighting.crease_angle", 0.0f, 180.0f, " degrees");
+    if (const Json* v = reader.find(lighting, "distribution"))
+        options.brdf.distribution = reader.enumChoice<NormalDistribution>(*v, "lighting.distribution");
+    if (const Json* v = reader.find(lighting, "fresnel"))
+        options.brdf.fresnel = reader.enumChoice<FresnelModel>(*v, "lighting.fresnel");
+    if (const Json* v = reader.find(lighting, "geometry"))
+        options.brdf.geometry = reader.enumChoice<GeometryTerm>(*v, "lighting.geometry");
+    return options;
+}
+
+TransparencyOptions readTransparency(const SceneReader& reader, const Json& transparency) {
+    const std::string path = "transparency";
+    reader.requireObject(transparency, path, "an object like {\"mode\": \"exact\"}");
+    reader.checkKeys(transparency, path, kTransparencyKeys);
+
+    TransparencyOptions options;
+    if (const Json* v = reader.find(transparency, "mode"))
+        options.mode = reader.enumChoice<TransparencyMode>(*v, "transparency.mode");
+    // Used by "sorted" only, but accepted with every mode: switching the mode (in the file or with
+    // --transparency) must not make the rest of the file wrong.
+    if (const Json* v = reader.find(transparency, "sort_key"))
+        options.key = reader.enumChoice<SortKey>(*v, "transparency.sort_key");
+    return options;
+}
+
+FogSpec readFog(const SceneReader& reader, const Json& fog) {
+    const std::string path = "fog";
+    reader.requireObject(fog, path, "an object like {\"mode\": \"exp2\", \"density\": 0.2}");
+    reader.checkKeys(fog, path, kFogKeys);
+
+    FogSpec spec;
+    const Json* mode = reader.find(fog, "mode");
+    if (mode == nullptr) {
+        reader.fail("\"fog.mode\" is missing: give " + quotedList(namesOf<FogMode>({FogMode::None}), " or ") +
+                    " (or remove \"fog\" for no fog)");
+    }
+    spec.mode = reader.enumChoice<FogMode>(*mode, "fog.mode", {FogMode::None});  // no "fog" is none
+    const std::string modeName = mode->get<std::string>();
+
+    // A key the mode ignores usually means the wrong mode: say so rather than ignore it.
+    const bool linear = spec.mode == FogMode::Linear;
+    for (std::string_view name : {"start", "end"}) {
+        if (!linear && fog.contains(name)) {
+            reader.fail(inQuotes(childPath(path, name)) + ": start and end are for linear fog (the mode is " +
+                        inQuotes(modeName) + ", which uses \"density\")");
+        }
+    }
+    if (linear && fog.contains("density")) {
+        reader.fail("\"fog.density\": density is for " + std::string(nameOf(FogMode::Exponential)) + " and " +
+                    std::string(nameOf(FogMode::ExponentialSquared)) + " fog (the mode is " +
+                    inQuotes(nameOf(FogMode::Linear)) + ", which uses \"start\" and \"end\")");
+    }
+
+    if (const Json* v = reader.find(fog, "color")) spec.color = reader.color(*v, "fog.color");
+    if (const Json* v = reader.find(fog, "start")) spec.start = reader.nonNegative(*v, "fog.start");
+    if (const Json* v = reader.find(fog, "end")) spec.end = reader.nonNegative(*v, "fog.end");
+    if (spec.start && spec.end && !(*spec.end > *spec.start)) {
+        reader.fail("\"fog.end\" (" + formatNumber(*spec.end) + ") must be greater than \"fog.start\" (" +
+                    formatNumber(*spec.start) + ")");
+    }
+    if (const Json* v = reader.find(fog, "density")) spec.density = reader.nonNegative(*v, "fog.density");
+    if (const Json* v = reader.find(fog, "distance"))
+        spec.distance = reader.enumChoice<FogDistance>(*v, "fog.distance");
+    return spec;
+}
+
+GammaOptions readGamma(const SceneReader& reader, const Json& gamma) {
+    const std::string path = "gamma";
+    reader.requireObject(gamma, path, "an object like {\"encode\": \"power\", \"exponent\": 2.2}");
+    reader.checkKeys(gamma, path, kGammaKeys);
+
+    GammaOptions options;
+    if (const Json* v = reader.find(gamma, "encode"))
+        options.encode = reader.enumChoice<TransferCurve>(*v, "gamma.encode");
+    if (const Json* v = reader.find(gamma, "exponent")) {
+        if (options.encode != TransferCurve::Power) {
+            const std::string curve(nameOf(options.encode));
+            reader.fail(
+                "\"gamma.exponent\" is only for \"encode\": " + inQuotes(nameOf(TransferCurve::Power)) +
+                " (the curve is " + inQuotes(curve) + (gamma.contains("encode") ? ")" : ", the default)"));
+        }
+        options.exponent = reader.number(*v, "gamma.exponent");
+        if (!(options.exponent > 0.0f)) {
+            reader.fail("\"gamma.exponent\" must be greater than 0 (got " + describe(*v) + ")");
+        }
+    }
+    if (const Json* v = reader.find(gamma, "decode_inputs"))
+        options.decodeInputs = reader.boolean(*v, "gamma.decode_inputs");
+    return options;
+}
+
+}  // namespace facet::scene_file

@@ -1,0 +1,33 @@
+// The scene file's sections, each read and checked into its part of the Scene: background, camera,
+// lights, objects (model, transform, material, lighting, blend), pipeline, lighting, transparency, fog
+// and gamma. Internal to the scene reader (scene.cpp).
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "scene/json_reader.h"
+#include "scene/scene.h"
+
+namespace facet::scene_file {
+
+inline constexpr std::string_view kTopLevelKeys[] = {
+    "width", "height",   "background", "ambient",      "camera", "lights", "objects",
+    "model", "pipeline", "lighting",   "transparency", "fog",    "gamma"};
+
+glm::vec4 readBackground(const SceneReader& reader, const Json& value);
+CameraSpec readCamera(const SceneReader& reader, const Json& camera);
+LightSpec readLight(const SceneReader& reader, const Json& light, const std::string& path);
+// The model path as written, checked for existence relative to the scene file's folder.
+fs::path readModel(const SceneReader& reader, const Json& value, const std::string& path,
+                   const fs::path& folder);
+ObjectSpec readObject(const SceneReader& reader, const Json& object, const std::string& path,
+                      const fs::path& folder);
+PipelineOptions readPipeline(const SceneReader& reader, const Json& pipeline);
+// The scene's "lighting": a preset name alone, or an object.
+LightingOptions readLighting(const SceneReader& reader, const Json& lighting);
+TransparencyOptions readTransparency(const SceneReader& reader, const Json& transparency);
+FogSpec readFog(const SceneReader& reader, const Json& fog);
+GammaOptions readGamma(const SceneReader& reader, const Json& gamma);
+
+}  // namespace facet::scene_file

@@ -1,0 +1,88 @@
+// The command line's choices: each option's every name (from its enum's table) reaches the scene the
+// command renders, and a wrong name is refused with the table's names.
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "cli/compare_command.h"
+#include "cli/render_command.h"
+#include "pipeline/names.h"
+
+namespace facet::cli {
+namespace {
+
+// `facet render model.obj -o out.png OPTION NAME`, parsed; the arguments it fills.
+RenderArgs parseRender(const std::string& option, const std::string& name) {
+    CLI::App app;
+    RenderArgs args;
+    addRenderCommand(app, args);
+    app.parse(std::vector<std::string>{name, option, "out.png", "-o", "model.obj", "render"});  // reversed
+    return args;
+}
+
+// The scene a parsed command line makes of a one-object scene.
+Scene sceneWith(const RenderArgs& args) {
+    Scene scene = sceneForModel("model.obj");
+    applyLightingOptions(args, scene);
+    return scene;
+}
+
+// For each name E's table offers, `option NAME` gives a scene in which `reached` reads that value.
+template <class E, class Reached>
+void expectEveryNameReaches(const std::string& option, Reached reached) {
+    for (const std::string& name : namesOf<E>()) {
+        SCOPED_TRACE(option + " " + name);
+        EXPECT_EQ(reached(sceneWith(parseRender(option, name))), *parseName<E>(name));
+    }
+}
+
+TEST(CommandLineChoices, EveryNameReachesTheScene) {
+    expectEveryNameReaches<LightingPreset>("--lighting", [](const Scene& s) { return s.lighting.preset; });
+    expectEveryNameReaches<ReflectionModel>("--reflection", [](const Scene& s) {
+        EXPECT_EQ(s.objects[0].reflection, s.lighting.model);  // every object, too
+        return s.lighting.model;
+    });
+    expectEveryNameReaches<ShadingFrequency>("--shading", [](const Scene& s) {
+        EXPECT_EQ(s.objects[0].shading, s.lighting.shading);
+        return *s.lighting.shading;
+    });
+    expectEveryNameReaches<TransparencyMode>("--transparency",
+                                             [](const Scene& s) { return s.transparency.mode; });
+    expectEveryNameReaches<SortKey>("--sort-key", [](const Scene& s) { return s.transparency.key; });
+    expectEveryNameReaches<TransferCurve>("--encode", [](const Scene& s) { return s.gamma.encode; });
+}
+
+TEST(CommandLineChoices, OnlyTakesEachTermByItsName) {
+    for (const EnumName<LightingTerm>& term : kLightingTermNames) {
+        const RenderArgs args = parseRender("--only", std::string(term.name));
+        ASSERT_TRUE(args.only.has_value()) << term.name;
+        EXPECT_EQ(*args.only, term.value) << term.name;
+    }
+}
+
+// A wrong name is refused, the message listing every name of the table.
+TEST(CommandLineChoices, WrongNameListsTheTablesNames) {
+    try {
+        parseRender("--reflection", "lambert");
+        ADD_FAILURE() << "lambert accepted";
+    } catch (const CLI::ParseError& e) {
+        const std::string message = e.what();
+        for (const std::string& name : namesOf<ReflectionModel>())
+            EXPECT_NE(message.find(name), std::string::npos) << message;
+    }
+}
+
+// compare takes the same choices as render.
+TEST(CommandLineChoices, CompareTakesTheSameNames) {
+    for (const std::string& name : namesOf<ShadingFrequency>()) {
+        CLI::App app;
+        CompareArgs args;
+        addCompareCommand(app, args);
+        app.parse(std::vector<std::string>{name, "--shading", "model.obj", "compare"});
+        EXPECT_EQ(args.scene.shading, parseName<ShadingFrequency>(name)) << name;
+    }
+}
+
+}  // namespace
+}  // namespace facet::cli

@@ -1,0 +1,195 @@
+// Scenes read from files and drawn: what the scene reader's values do to the image.
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "base/errors.h"
+#include "pipeline/names.h"
+#include "render/renderer.h"
+#include "scene/scene.h"
+#include "support/temp_folder.h"
+
+namespace facet {
+namespace {
+
+namespace fs = std::filesystem;
+
+using SceneRenderTest = testing_support::TempFolderTest;
+
+// ---- Directions of any length ---------------------------------------------------------------------
+
+// The scene `text` (with "model" the bundled cube) drawn at 48×36 on one thread.
+LinearImage renderCube(const fs::path& path, const std::string& text) {
+    nlohmann::json document = nlohmann::json::parse(text);
+    document["model"] = FACET_SOURCE_DIR "/models/cube/cube.obj";
+    document["width"] = 48;
+    document["height"] = 36;
+    std::ofstream(path) << document.dump();
+    const PreparedScene prepared = prepareScene(loadScene(path));
+    Framebuffer framebuffer(48, 36);
+    DrawContext context(1);
+    renderFrame(prepared, framebuffer, context);
+    return toImage(framebuffer);
+}
+
+// Only an exactly zero vector is refused; any other length lights the model exactly as the same
+// direction at unit length (normalising in float turned 1e-30, 1e20 and -3e38 into NaN: black).
+TEST_F(SceneRenderTest, DirectionsOfAnyLengthLightLikeUnitOnes) {
+    const std::pair<std::string, std::string> cases[] = {
+        {R"({"lights": [{"direction": [0, -1e-30, 0]}]})", R"({"lights": [{"direction": [0, -1, 0]}]})"},
+        {R"({"lights": [{"direction": [0, -1e20, 0]}]})", R"({"lights": [{"direction": [0, -1, 0]}]})"},
+        {R"({"lights": [{"direction": [-3e38, 0, 0]}]})", R"({"lights": [{"direction": [-1, 0, 0]}]})"},
+        // 2^-100 · [1, -2, -2]: scaled by a power of two, the same unit vector to the last bit.
+        {R"({"lights": [{"direction": [7.888609052210118e-31, -1.5777218104420236e-30, -1.5777218104420236e-30]}]})",
+         R"({"lights": [{"direction": [1, -2, -2]}]})"},
+        {R"({"lights": [{"type": "spot", "position": [0, 3, 0], "direction": [0, -1e-30, 0], "cutoff": 40}]})",
+         R"({"lights": [{"type": "spot", "position": [0, 3, 0], "direction": [0, -1, 0], "cutoff": 40}]})"},
+        {R"({"camera": {"eye": [2, 1, 3], "target": [0, 0, 0], "up": [0, 1e-30, 0]}})",
+         R"({"camera": {"eye": [2, 1, 3], "target": [0, 0, 0], "up": [0, 1, 0]}})"},
+        {R"({"camera": {"eye": [2, 1, 3], "target": [0, 0, 0], "up": [0, 3e38, 0]}})",
+         R"({"camera": {"eye": [2, 1, 3], "target": [0, 0, 0], "up": [0, 1, 0]}})"},
+    };
+    for (const auto& [extreme, unit] : cases) {
+        SCOPED_TRACE(extreme);
+        const LinearImage expected = renderCube(folder_ / "unit.json", unit);
+        const LinearImage actual = renderCube(folder_ / "extreme.json", extreme);
+        // The cube is drawn and lit: some pixel is brighter than the background in the corner.
+        bool lit = false;
+        for (const glm::vec4& p : expected.pixels)
+            lit = lit || p.r > expected.pixels[0].r + 0.05f;
+        EXPECT_TRUE(lit);
+        ASSERT_EQ(actual.pixels.size(), expected.pixels.size());
+        std::size_t differing = 0;
+        for (std::size_t i = 0; i < expected.pixels.size(); ++i)
+            differing += actual.pixels[i] != expected.pixels[i];
+        EXPECT_EQ(differing, 0u);
+    }
+}
+
+// ---- Every scene-file choice reaches the prepared scene ------------------------------------------
+
+#define FACET_CUBE FACET_SOURCE_DIR "/models/cube/cube.obj"
+
+// The scene `json` (a JSON object's members; "model" the bundled cube unless it has "objects") read
+// and prepared.
+PreparedScene prepareCube(const fs::path& path, const std::string& json) {
+    const bool objects = json.find("\"objects\"") != std::string::npos;
+    std::ofstream(path) << "{" << (objects ? "" : R"("model": ")" FACET_CUBE R"(", )")
+                        << R"("width": 32, "height": 24, )" << json << "}";
+    return prepareScene(loadScene(path));
+}
+
+// For each name E's table offers in a scene file (all but `except`), the scene `json(name)` gives a
+// prepared scene in which `reached` reads that very value: a renderer that ignores the key, or maps
+// it to another value, fails.
+template <class E, class Json, class Reached>
+void expectEveryNameReaches(const fs::path& folder, Json json, Reached reached,
+                            std::initializer_list<E> except = {}) {
+    const std::vector<std::string> names = namesOf<E>(except);
+    ASSERT_FALSE(names.empty());
+    for (const std::string& name : names) {
+        SCOPED_TRACE(name);
+        const PreparedScene prepared = prepareCube(folder / "scene.json", json(name));
+        ASSERT_FALSE(prepared.draws.empty());
+        EXPECT_EQ(reached(prepared), *parseName<E>(name));
+    }
+}
+
+TEST_F(SceneRenderTest, PipelineChoicesReachTheDrawState) {
+    expectEveryNameReaches<CullMode>(
+        folder_, [](const std::string& n) { return R"("pipeline": {"cull": ")" + n + R"("})"; },
+        [](const PreparedScene& p) { return p.state.raster.cull; });
+    expectEveryNameReaches<Interpolation>(
+        folder_, [](const std::string& n) { return R"("pipeline": {"interpolation": ")" + n + R"("})"; },
+        [](const PreparedScene& p) { return p.state.interpolation; });
+}
+
+TEST_F(SceneRenderTest, ObjectBlendReachesTheUniforms) {
+    // Half transparent, so that "over" is blended too; a scene object is never "replace".
+    expectEveryNameReaches<BlendMode>(
+        folder_,
+        [](const std::string& n) {
+            return R"("objects": [{"model": ")" FACET_CUBE R"(", "material": {"opacity": 0.5}, "blend": ")" +
+                   n + R"("}])";
+        },
+        [](const PreparedScene& p) { return p.draws[0].uniforms.blend; }, {BlendMode::Replace});
+}
+
+TEST_F(SceneRenderTest, LightTypeReachesTheUniforms) {
+    expectEveryNameReaches<LightKind>(
+        folder_,
+        [](const std::string& n) {
+            const std::string where = n == "directional" ? "" : R"(, "position": [0, 3, 0])";
+            return R"("lights": [{"type": ")" + n + "\"" + where + "}]";
+        },
+        [](const PreparedScene& p) { return p.draws[0].uniforms.lights[0].kind; });
+}
+
+TEST_F(SceneRenderTest, LightingChoicesReachTheUniforms) {
+    expectEveryNameReaches<ReflectionModel>(
+        folder_, [](const std::string& n) { return R"("lighting": {"model": ")" + n + R"("})"; },
+        [](const PreparedScene& p) { return p.draws[0].uniforms.reflection; });
+    expectEveryNameReaches<ShadingFrequency>(
+        folder_, [](const std::string& n) { return R"("lighting": {"shading": ")" + n + R"("})"; },
+        [](const PreparedScene& p) { return p.draws[0].frequency; });
+    expectEveryNameReaches<NormalDistribution>(
+        folder_, [](const std::string& n) { return R"("lighting": {"distribution": ")" + n + R"("})"; },
+        [](const PreparedScene& p) { return p.draws[0].uniforms.brdf.distribution; });
+    expectEveryNameReaches<FresnelModel>(
+        folder_, [](const std::string& n) { return R"("lighting": {"fresnel": ")" + n + R"("})"; },
+        [](const PreparedScene& p) { return p.draws[0].uniforms.brdf.fresnel; });
+    expectEveryNameReaches<GeometryTerm>(
+        folder_, [](const std::string& n) { return R"("lighting": {"geometry": ")" + n + R"("})"; },
+        [](const PreparedScene& p) { return p.draws[0].uniforms.brdf.geometry; });
+    // The gl preset clamps lit colours as OpenGL 1.x does; the facet preset does not.
+    expectEveryNameReaches<LightingPreset>(
+        folder_, [](const std::string& n) { return R"("lighting": {"preset": ")" + n + R"("})"; },
+        [](const PreparedScene& p) {
+            return p.draws[0].uniforms.clampColor ? LightingPreset::GL : LightingPreset::Facet;
+        });
+}
+
+TEST_F(SceneRenderTest, FogTransparencyAndGammaChoicesReachThePreparedScene) {
+    expectEveryNameReaches<FogMode>(
+        folder_, [](const std::string& n) { return R"("fog": {"mode": ")" + n + R"("})"; },
+        [](const PreparedScene& p) { return p.draws[0].uniforms.fog.mode; }, {FogMode::None});
+    expectEveryNameReaches<FogDistance>(
+        folder_, [](const std::string& n) { return R"("fog": {"mode": "exp", "distance": ")" + n + R"("})"; },
+        [](const PreparedScene& p) { return p.draws[0].uniforms.fog.distance; });
+    expectEveryNameReaches<TransferCurve>(
+        folder_, [](const std::string& n) { return R"("gamma": {"encode": ")" + n + R"("})"; },
+        [](const PreparedScene& p) { return p.encoding.curve; });
+    expectEveryNameReaches<TransparencyMode>(
+        folder_, [](const std::string& n) { return R"("transparency": {"mode": ")" + n + R"("})"; },
+        [](const PreparedScene& p) { return p.scene.transparency.mode; });
+    expectEveryNameReaches<SortKey>(
+        folder_, [](const std::string& n) { return R"("transparency": {"sort_key": ")" + n + R"("})"; },
+        [](const PreparedScene& p) { return p.scene.transparency.key; });
+}
+
+// A wrong choice is refused with every name the table offers there.
+TEST_F(SceneRenderTest, WrongChoiceListsTheTablesNames) {
+    const auto messageFor = [&](const std::string& json) {
+        try {
+            prepareCube(folder_ / "scene.json", json);
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    const std::string cull = messageFor(R"("pipeline": {"cull": "sideways"})");
+    for (const std::string& name : namesOf<CullMode>())
+        EXPECT_NE(cull.find('"' + name + '"'), std::string::npos) << cull;
+    const std::string blend = messageFor(R"("objects": [{"model": ")" FACET_CUBE R"(", "blend": "screen"}])");
+    for (const std::string& name : namesOf<BlendMode>({BlendMode::Replace}))
+        EXPECT_NE(blend.find('"' + name + '"'), std::string::npos) << blend;
+    EXPECT_EQ(blend.find(std::string(nameOf(BlendMode::Replace))), std::string::npos) << blend;
+}
+
+}  // namespace
+}  // namespace facet
