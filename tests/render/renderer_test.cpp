@@ -69,11 +69,11 @@ PreparedScene mixedScene() {
     cube.model = kModels / "cube/cube.obj";
     cube.worldFromObject = glm::translate(mat4(1.0f), vec3(-0.6f, 0.5f, 0.8f));
     ObjectSpec added = cube;
-    added.blend = BlendChoice::Additive;
+    added.blend = BlendMode::Additive;
     ObjectSpec multiplied = cube;
     multiplied.worldFromObject = glm::translate(mat4(1.0f), vec3(0.6f, 0.5f, 0.6f));
     multiplied.material.opacity = 0.5f;
-    multiplied.blend = BlendChoice::Multiply;
+    multiplied.blend = BlendMode::Multiply;
     ObjectSpec opaque = cube;
     opaque.worldFromObject = glm::translate(mat4(1.0f), vec3(0.0f, 0.5f, -0.5f));
     scene.objects.push_back(added);
