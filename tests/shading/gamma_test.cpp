@@ -19,5 +19,25 @@ TEST(Quantize8, RoundsAsTheImageWriterDoes) {
     EXPECT_EQ(encodeChannel(1.0f, kLinearEncoding), 255);
 }
 
+// The three transfer curves on hand-computed values, and each one's inverse round-trips every code.
+TEST(EncodeChannel, SrgbPowerAndLinearCurves) {
+    const ColorEncoding power{TransferCurve::Power, 2.2f};
+    EXPECT_EQ(encodeChannel(0.5f, kSrgbEncoding), 188);    // 1.055·0.5^(1/2.4) − 0.055 = 0.7354
+    EXPECT_EQ(encodeChannel(0.5f, power), 186);            // 0.5^(1/2.2) = 0.7297
+    EXPECT_EQ(encodeChannel(0.5f, kLinearEncoding), 128);  // 127.5 rounds up
+    EXPECT_EQ(encodeChannel(0.2f, ColorEncoding{TransferCurve::Power, 1.0f}), 51);
+    for (const ColorEncoding& e : {kSrgbEncoding, power, kLinearEncoding}) {
+        EXPECT_EQ(encodeChannel(-0.5f, e), 0);
+        EXPECT_EQ(encodeChannel(2.0f, e), 255);
+        EXPECT_EQ(encodeChannel(std::nanf(""), e), 0);
+    }
+    for (int code = 0; code < 256; ++code) {
+        const float unit = static_cast<float>(code) / 255.0f;
+        EXPECT_EQ(encodeChannel(srgbToLinear(unit), kSrgbEncoding), code);
+        EXPECT_EQ(encodeChannel(std::pow(unit, 2.2f), power), code);
+        EXPECT_EQ(encodeChannel(unit, kLinearEncoding), code);
+    }
+}
+
 }  // namespace
 }  // namespace facet
