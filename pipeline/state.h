@@ -7,7 +7,7 @@
 #include <iosfwd>
 #include <span>
 
-#include "pipeline/names.h"
+#include "names.h"
 
 namespace facet {
 
