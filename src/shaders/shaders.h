@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <span>
 
+#include "pipeline/names.h"
 #include "pipeline/shader.h"
 #include "pipeline/state.h"
 #include "pipeline/texture.h"
@@ -35,6 +36,15 @@ enum LightingTerm : std::uint8_t {
     kSpecularTerm = 8,
     kAllTerms = 15,
 };
+// The terms by the names the command line uses (--only, --components), in the order component images
+// are written; kAllTerms, their sum, is the main image and has no name.
+inline constexpr EnumName<LightingTerm> kLightingTermNames[] = {{kEmissionTerm, "emission"},
+                                                                {kAmbientTerm, "ambient"},
+                                                                {kDiffuseTerm, "diffuse"},
+                                                                {kSpecularTerm, "specular"}};
+constexpr std::span<const EnumName<LightingTerm>> enumNames(LightingTerm) {
+    return kLightingTermNames;
+}
 
 struct SurfaceUniforms {
     mat4 clipFromObject{1.0f};
