@@ -19,18 +19,6 @@
 #include "oracle/mesa_peer_impl.h"
 #include "pipeline/color.h"
 
-// For sanitizer builds, the libraries' own leaks, which LeakSanitizer would report at exit: Mesa and LLVM
-// keep process-lifetime allocations (the library is loaded once and never closed), and OpenImageIO
-// 2.4's PNG reader loses a copy of its error message when libpng's error handler jumps out of a read
-// (a truncated texture). Every program that can load Mesa or read a texture links this file.
-extern "C" const char* __lsan_default_suppressions() {
-    return "leak:libOSMesa\nleak:libLLVM\nleak:libgallium\nleak:swrast_dri\nleak:ImageInput::geterror\n";
-}
-// ...without a report of the suppressions used at exit: the command-line tests read standard error.
-extern "C" const char* __lsan_default_options() {
-    return "print_suppressions=0";
-}
-
 namespace facet {
 
 const char* driverName(MesaDriver driver) {
