@@ -21,10 +21,8 @@ CLI::App* addCompareCommand(CLI::App& app, CompareArgs& args) {
     command->add_option("input", args.scene.input, "Model (.obj) or scene (.json)")->required();
     command->add_option("--width", args.scene.width, "Image width in pixels")->check(kWholeNumber);
     command->add_option("--height", args.scene.height, "Image height in pixels")->check(kWholeNumber);
-    command
-        ->add_option("--driver", args.driver,
-                     "Mesa's rasterizer: softpipe (its reference implementation, the default) or llvmpipe")
-        ->check(CLI::IsMember({"softpipe", "llvmpipe"}));
+    addChoice(*command, "--driver", args.driver,
+              "Mesa's rasterizer: softpipe (its reference implementation, the default) or llvmpipe");
     addChoice(*command, "--lighting", args.scene.lighting, "As for render");
     addChoice(*command, "--reflection", args.scene.reflection, "As for render");
     addChoice(*command, "--shading", args.scene.shading, "As for render");
@@ -54,8 +52,7 @@ int compare(const CompareArgs& args) {
     for (const auto& path : {args.facetImage, args.mesaImage, args.diffImage})
         if (path) facet::checkImageDestination(*path, scene.width, scene.height);
 
-    const facet::MesaDriver driver =
-        args.driver == "llvmpipe" ? facet::MesaDriver::Llvmpipe : facet::MesaDriver::Softpipe;
+    const facet::MesaDriver driver = args.driver.value_or(facet::MesaDriver::Softpipe);
     const facet::MesaComparison result = facet::compareWithMesa(scene, driver, args.scene.threads);
     std::cout << "facet compare: " << input.string() << "\n" << facet::describe(result);
     if (args.facetImage) facet::writeImage(*args.facetImage, result.facet, result.encoding);

@@ -7,12 +7,13 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/options.h"
+#include "oracle/mesa_peer.h"
 
 namespace facet::cli {
 
 struct CompareArgs {
-    RenderArgs scene;  // input, size and lighting choices as for render
-    std::string driver = "softpipe";
+    RenderArgs scene;                         // input, size and lighting choices as for render
+    std::optional<facet::MesaDriver> driver;  // absent: softpipe, the conformance oracle
     std::optional<std::string> facetImage, mesaImage, diffImage;
 };
 

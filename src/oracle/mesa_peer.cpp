@@ -21,10 +21,6 @@
 
 namespace facet {
 
-const char* driverName(MesaDriver driver) {
-    return driver == MesaDriver::Softpipe ? "softpipe" : "llvmpipe";
-}
-
 void MesaPeer::Impl::setBlendState(const Draw& draw) const {
     gl.glDepthMask(draw.depthWrite ? GL_TRUE : GL_FALSE);
     if (draw.blend == BlendMode::Replace) {

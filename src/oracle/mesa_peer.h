@@ -10,11 +10,13 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 
 #include "io/image_io.h"
 #include "oracle/gl_scene.h"
 #include "oracle/image_compare.h"
+#include "pipeline/names.h"
 
 namespace facet {
 
@@ -23,7 +25,14 @@ enum class MesaDriver {
     Llvmpipe,  // LLVM-compiled shaders, multithreaded rasterization: the benchmark's peer
     Softpipe,  // Mesa's reference rasterizer, one thread, interpreted shaders: the conformance oracle
 };
-const char* driverName(MesaDriver driver);  // "llvmpipe", "softpipe"
+inline constexpr EnumName<MesaDriver> kMesaDriverNames[] = {{MesaDriver::Softpipe, "softpipe"},
+                                                            {MesaDriver::Llvmpipe, "llvmpipe"}};
+constexpr std::span<const EnumName<MesaDriver>> enumNames(MesaDriver) {
+    return kMesaDriverNames;
+}
+inline const char* driverName(MesaDriver driver) {
+    return nameOf(driver).data();
+}  // "llvmpipe", "softpipe"
 
 struct MesaOptions {
     MesaDriver driver = MesaDriver::Llvmpipe;

@@ -82,6 +82,16 @@ TEST(CommandLineChoices, CompareTakesTheSameNames) {
         app.parse(std::vector<std::string>{name, "--shading", "model.obj", "compare"});
         EXPECT_EQ(args.scene.shading, parseName<ShadingFrequency>(name)) << name;
     }
+    // --driver: each of Mesa's rasterizers by its table's name; absent, the default (softpipe).
+    for (const std::string& name : namesOf<MesaDriver>()) {
+        CLI::App app;
+        CompareArgs args;
+        addCompareCommand(app, args);
+        app.parse(std::vector<std::string>{name, "--driver", "model.obj", "compare"});
+        EXPECT_EQ(args.driver, parseName<MesaDriver>(name)) << name;
+        EXPECT_EQ(driverName(*args.driver), name);
+    }
+    EXPECT_EQ(namesOf<MesaDriver>().size(), 2u);
 }
 
 }  // namespace
