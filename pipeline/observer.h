@@ -4,6 +4,7 @@
 // costs nothing when it is off and there is only ever one copy of the pipeline.
 #pragma once
 
+#include <concepts>
 #include <cstdint>
 
 #include "state.h"
@@ -40,6 +41,13 @@ struct NullObserver {
     // resolveFragmentLists(target, pool, observer): each pixel with fragments, its list in compositing
     // order and the colour after each blend.
     void onResolve(const ResolveEvent& /*event*/) {}
+};
+
+// What draw() and the renderer's renderFrame accept as an observer: NullObserver, or a type derived
+// from it with `enabled` set and the hooks it wants overridden.
+template <class O>
+concept PipelineObserver = requires {
+    { O::enabled } -> std::convertible_to<bool>;
 };
 
 }  // namespace facet

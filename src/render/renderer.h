@@ -3,7 +3,6 @@
 #pragma once
 
 #include <chrono>
-#include <concepts>
 #include <filesystem>
 #include <memory>
 #include <span>
@@ -128,12 +127,6 @@ FrameStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawC
 // The same without memory between frames (the transparent triangles are sorted from scratch).
 DrawStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawContext& context,
                       std::uint8_t terms = kAllTerms);
-
-// What the pipeline's draw() accepts as an observer (pipeline/observer.h).
-template <class O>
-concept PipelineObserver = requires {
-    { O::enabled } -> std::convertible_to<bool>;
-};
 
 // A frame watched by an observer of the pipeline (pipeline/observer.h: derive from NullObserver and
 // override the hooks wanted): every hook of every draw call of the frame, in order, then the resolve
