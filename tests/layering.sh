@@ -11,9 +11,10 @@ declare -A allowed=(
     [shaders]="base shading scene shaders"
     [io]="base shading scene io"
     [render]="base shading scene shaders io render"
+    [step]="base shading scene shaders io render step"
     [oracle]="base shading scene shaders io render oracle"
     [bench]="base shading scene shaders io render oracle bench"
-    [cli]="base shading scene shaders io render oracle bench cli"
+    [cli]="base shading scene shaders io render step oracle bench cli"
 )
 status=0
 for folder in "$root"/src/*/; do

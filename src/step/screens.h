@@ -1,0 +1,41 @@
+// What the step-through teaching mode (facet step) shows: a Walk, one Screen per stage, in pipeline
+// order. The terminal walk pages through the screens, --print writes them all, the web page shows them
+// beside the stage images; all three show the same text.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace facet::step {
+
+// One stage's view of the traced triangle or pixel: text of at most 80 columns a line, no colour codes
+// (a terminal adds them), readable on a projector and in a handout.
+struct Screen {
+    std::string id;  // short and stable, like "clip" or "history": `facet step` jumps and the page link by it
+    std::string title;  // one line, like "Clipping: the near plane cuts the triangle"
+    std::string text;   // the lines, each ending in '\n'
+};
+
+// A triangle of the scene as the step mode numbers it: its place among all triangles of the frame's
+// draws (PreparedScene::draws in order), and where that is in its draw.
+struct TriangleRef {
+    std::uint32_t number = 0;    // --triangle N
+    std::uint32_t draw = 0;      // index into PreparedScene::draws
+    std::uint32_t triangle = 0;  // index of the triangle in its draw (indices / 3)
+    friend bool operator==(const TriangleRef&, const TriangleRef&) = default;
+};
+
+// Everything one trace shows.
+struct Walk {
+    int x = 0, y = 0;                     // the traced pixel (window coordinates, y down)
+    std::optional<TriangleRef> triangle;  // the traced triangle; none when nothing covers the pixel
+    std::string verdict;                  // one line: what happened at the pixel
+    std::vector<Screen> screens;          // in pipeline order
+};
+
+// The screens one after another, each under a numbered title and a rule: what --print writes.
+std::string printWalk(const Walk& walk);
+
+}  // namespace facet::step

@@ -1,0 +1,23 @@
+#include "step/screens.h"
+
+#include <gtest/gtest.h>
+
+namespace facet::step {
+namespace {
+
+TEST(Screens, PrintWalkNumbersEveryScreenUnderItsTitle) {
+    Walk walk;
+    walk.x = 3;
+    walk.y = 4;
+    walk.verdict = "the shader computed this colour";
+    walk.screens = {{"clip", "Clipping", "no plane cuts it\n"},
+                    {"history", "Pixel history", "one triangle\n"}};
+    const std::string text = printWalk(walk);
+    EXPECT_EQ(text.find("Pixel (3, 4): the shader computed this colour\n"), 0u);
+    EXPECT_NE(text.find("1. Clipping\n"), std::string::npos);
+    EXPECT_NE(text.find("2. Pixel history\n" + std::string(80, '=') + "\none triangle\n"), std::string::npos);
+    EXPECT_LT(text.find("no plane cuts it"), text.find("one triangle"));
+}
+
+}  // namespace
+}  // namespace facet::step
