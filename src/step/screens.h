@@ -35,6 +35,14 @@ struct Walk {
     std::vector<Screen> screens;          // in pipeline order
 };
 
+// An image of the whole frame after one stage (facet step --stages DIR), as the web page lists it.
+struct StageImage {
+    std::string id;           // short and stable, like "depth" or "build-003"
+    std::string title;        // one line, like "Depth, linearised from near 0.1 to far 10"
+    std::string file;         // the image's file name, relative to the folder it was written to
+    std::string description;  // a sentence or two: what the image shows and how to read its colours
+};
+
 // The screens one after another, each under a numbered title and a rule: what --print writes.
 std::string printWalk(const Walk& walk);
 
