@@ -316,15 +316,13 @@ class StageRecorder : public NullObserver {
     std::size_t clipped_ = 0, culled_ = 0, windowTriangles_ = 0, outside_ = 0;
 };
 
-// "Black: 0; blue: 1; cyan: 2.5; ...": the heat scale's stops as counts.
+// The heat scale's legend in counts: "Black: 0; blue: 1; red: 9, the most at any pixel; ...".
 std::string heatLegend(std::uint32_t maxCount) {
     if (maxCount == 0) return "Black everywhere: no fragment reached any pixel.";
     if (maxCount == 1) return "Black: 0; blue: 1, the most at any pixel.";
-    const char* names[] = {"blue", "cyan", "green", "yellow", "red"};
-    std::string legend = "Black: 0";
-    for (int stop = 0; stop < 5; ++stop)
-        legend += std::string("; ") + names[stop] + ": " + number(1.0 + stop * 0.25 * (maxCount - 1.0));
-    return legend + " (the most at any pixel), in between blended.";
+    return "Black: 0; blue: 1; red: " + std::to_string(maxCount) +
+           ", the most at any pixel; in between the colours run from blue through cyan, green (" +
+           number(1.0 + 0.5 * (maxCount - 1.0)) + ") and yellow to red.";
 }
 
 LinearImage StageRecorder::heatImage(const std::vector<std::uint32_t>& counts, std::uint32_t maxCount) const {
@@ -347,14 +345,15 @@ Stage StageRecorder::wireframe() const {
     return makeStage(
         "wireframe", "Wireframe: the triangles on the screen, after clipping and the viewport",
         "Every triangle's edges after the perspective divide and the viewport transform, as the rasterizer "
-        "receives them. White: drawn (" +
+        "receives them. White: the " +
             std::to_string(windowTriangles_) +
-            " window triangles; a triangle cut by a clipping plane becomes a polygon, drawn as a fan of "
-            "triangles). Red: what clipping removed of the " +
+            " triangles drawn (a triangle cut by a clipping plane becomes a polygon, drawn as a fan of "
+            "triangles). Red: what clipping removed of the triangles it cut (" +
             std::to_string(clipped_) +
-            " triangles it cut, such as the part in front of the near plane. Grey: the " +
-            std::to_string(culled_) + " triangles culled for facing away. Not shown: " +
-            std::to_string(outside_) + " triangles wholly outside the view.",
+            " here), such as their parts in front of the near plane. Grey: "
+            "triangles culled for facing away (" +
+            std::to_string(culled_) + " here). Not shown: triangles wholly outside the view (" +
+            std::to_string(outside_) + " here).",
         std::move(image), kLinearEncoding);
 }
 
