@@ -123,9 +123,9 @@ std::vector<DrawTriangle> drawingOrder(const PreparedScene& prepared) {
 
 // `prepared` with only the first `count` triangles of `order` (drawingOrder): each draw keeps those of
 // its triangles, in its own order, and a draw left with none is left out. planFrame then draws them in
-// the same order as the whole frame does: opaque draws are prefixes of themselves in file order, and
-// the back-to-front sort is stable (ties in index order), so sorting some triangles keeps the order
-// the whole sort gave them.
+// the same order as the whole frame does: the opaque draws, and the transparent ones in file order
+// (unsorted, exact), are cut to prefixes of themselves; and the back-to-front sort is stable (ties in
+// index order), so sorting some of the transparent triangles keeps the order the whole sort gave them.
 PreparedScene firstTriangles(const PreparedScene& prepared, std::span<const DrawTriangle> order,
                              std::size_t count) {
     std::vector<std::vector<bool>> kept(prepared.draws.size());
