@@ -8,6 +8,7 @@
 #include "io/text_file.h"
 #include "render/renderer.h"
 #include "scene/limits.h"
+#include "step/stage_images.h"
 #include "step/versus.h"
 #include "step/walk.h"
 
@@ -59,6 +60,9 @@ CLI::App* addStepCommand(CLI::App& app, StepArgs& args) {
                       "Write every screen to standard output instead of the interactive walk");
     command->add_option("--json", args.json, "Also write the whole trace as data (JSON) to this file");
     command->add_option(
+        "--stages", args.stages,
+        "Also write images of the whole frame after each stage to this folder (made if missing)");
+    command->add_option(
         "--versus", args.versus,
         "Trace the pixel again with these options over the others (like \"--shading gouraud\") "
         "and print both side by side, marking where they first differ");
@@ -91,6 +95,13 @@ int step(const StepArgs& args) {
     const facet::step::StepTrace trace = facet::step::traceStep(prepared, context, request);
 
     if (args.json) facet::writeTextFile(*args.json, facet::step::toJson(trace).dump(1) + "\n");
+    if (args.stages) {
+        facet::step::StageImageOptions options;
+        options.terms = request.terms;
+        options.threads = args.threads;
+        const auto images = facet::step::writeStageImages(prepared, *args.stages, options);
+        std::cerr << "facet: wrote " << images.size() << " stage images to " << *args.stages << "\n";
+    }
 
     if (other) {
         // The same pixel and triangle under the other setting.
