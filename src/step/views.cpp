@@ -209,11 +209,14 @@ Screen clipScreen(const TriangleTrace& t) {
             const float dIn = planeDistance(polygon[made.from], step.plane);
             const float dOut = planeDistance(polygon[made.to], step.plane);
             out << "  new vertex on p" << made.from << "→p" << made.to << ": t = " << number(dIn) << " / ("
-                << number(dIn) << " − " << number(dOut) << ") = " << number(made.t) << "\n"
+                << number(dIn) << " − " << (dOut < 0 ? "(" + number(dOut) + ")" : number(dOut))
+                << ") = " << number(made.t) << "\n"
                 << "    P = " << vectorText(made.position) << "\n";
         }
         polygon = step.polygon;
         out << "  left: " << polygon.size() << " vertices\n";
+        for (std::size_t i = 0; i < polygon.size(); ++i)
+            out << "    p" << i << " " << vectorText(polygon[i]) << "\n";
     }
     if (t.rejected == TriangleFate::ClippedAway) {
         out << "\nNothing is left: the triangle is clipped away.\n";
