@@ -31,6 +31,15 @@ std::string vectorText(const vec4& v) {
 
 namespace {
 
+// "−1.5" as "(−1.5)", to be subtracted.
+std::string bracketedIfNegative(double value) {
+    if (value >= 0) return number(value);
+    std::string text = "(";
+    text += number(value);
+    text += ")";
+    return text;
+}
+
 std::string integer(std::int64_t value) {
     return std::to_string(value);
 }
@@ -209,7 +218,7 @@ Screen clipScreen(const TriangleTrace& t) {
             const float dIn = planeDistance(polygon[made.from], step.plane);
             const float dOut = planeDistance(polygon[made.to], step.plane);
             out << "  new vertex on p" << made.from << "→p" << made.to << ": t = " << number(dIn) << " / ("
-                << number(dIn) << " − " << (dOut < 0 ? "(" + number(dOut) + ")" : number(dOut))
+                << number(dIn) << " − " << bracketedIfNegative(dOut)
                 << ") = " << number(made.t) << "\n"
                 << "    P = " << vectorText(made.position) << "\n";
         }
