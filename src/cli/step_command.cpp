@@ -34,11 +34,15 @@ SceneArgs versusArgs(const SceneArgs& base, const std::string& options) {
     SceneArgs args = base;
     CLI::App app{"--versus"};
     addSceneOptions(app, args);
+    app.get_option("input")->required(false);  // the same input: only options may differ
     try {
-        app.parse(options + " " + facet::inQuotes(base.input), false);
+        app.parse(options, false);
     } catch (const CLI::ParseError& e) {
         throw facet::InputError("--versus " + facet::inQuotes(options) + ": " + e.what());
     }
+    if (args.input != base.input)
+        throw facet::InputError("--versus " + facet::inQuotes(options) +
+                                ": give only options; the input is the command's own");
     return args;
 }
 
