@@ -322,5 +322,25 @@ TEST_F(StepTraceTest, PixelOutsideTheImageAndTriangleBeyondTheSceneAreRefused) {
     }
 }
 
+// The web page's walks, traced many at once, are the walks `facet step --pixel` prints, screen for
+// screen. Catches: a view matched to the wrong pixel in traceWalks (its raster centred elsewhere),
+// or a pixel given another triangle than its default.
+TEST(TraceWalks, ManyAtOnceAreTheWalksOfOneAtATime) {
+    Scene scene = loadSceneOrModel(fs::path(FACET_SOURCE_DIR) / "models/spot/spot_triangulated.obj");
+    scene.width = 96;
+    scene.height = 72;
+    const PreparedScene prepared = prepareScene(scene);
+    DrawContext context(1);
+    const std::vector<std::pair<int, int>> pixels = {{48, 36}, {0, 0}, {40, 30}, {47, 35}, {60, 20}};
+    const std::vector<Walk> walks = traceWalks(prepared, context, pixels);
+    ASSERT_EQ(walks.size(), pixels.size());
+    for (std::size_t k = 0; k < pixels.size(); ++k) {
+        StepRequest request;
+        request.pixel = pixels[k];
+        EXPECT_EQ(printWalk(walks[k]), printWalk(traceStep(prepared, context, request).walk))
+            << pixels[k].first << "," << pixels[k].second;
+    }
+}
+
 }  // namespace
 }  // namespace facet::step
