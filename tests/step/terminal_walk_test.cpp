@@ -30,8 +30,9 @@ Walk reorderedAtFiveSix() {
     walk.x = 5;
     walk.y = 6;
     walk.verdict = "the background shows";
-    std::rotate(walk.screens.begin(), walk.screens.begin() + 1, walk.screens.end());
-    walk.screens[0].text = "no triangle here\n";
+    std::reverse(walk.screens.begin(), walk.screens.end());  // shade, history, clip
+    std::swap(walk.screens[1], walk.screens[2]);             // shade, clip, history
+    walk.screens[2].text = "no triangle here\n";
     return walk;
 }
 
@@ -109,17 +110,17 @@ TEST(TerminalWalk, ANumberOrAShortNameJumpsToThatStage) {
 
 TEST(TerminalWalk, AnotherPixelRetracesOnceAndKeepsTheStage) {
     const Session session =
-        run(threeStages(), "2\np 5,6\nb\n\n", [](const WalkRequest&) { return reorderedAtFiveSix(); });
+        run(threeStages(), "2\np 5,6\nb\n", [](const WalkRequest&) { return reorderedAtFiveSix(); });
     ASSERT_EQ(session.requests.size(), 1u);  // going back and forth afterwards costs no trace
     EXPECT_EQ(session.requests[0].pixel, std::pair(5, 6));
     EXPECT_FALSE(session.requests[0].triangle);
-    // The frame right after `p`: the same stage (history), now the new walk's first.
+    // The frame right after `p`: the same stage (history), now the new walk's last.
     const std::string& afterPixel = session.frames[2];
-    EXPECT_TRUE(shows(afterPixel, "Stage 1 of 3: Pixel history"));
+    EXPECT_TRUE(shows(afterPixel, "Stage 3 of 3: Pixel history"));
     EXPECT_TRUE(shows(afterPixel, "Pixel (5, 6), triangle 2"));
     EXPECT_TRUE(shows(afterPixel, "no triangle here\n"));
     EXPECT_TRUE(shows(afterPixel, "the background shows"));
-    EXPECT_TRUE(shows(session.last(), "Stage 2 of 3: Shading"));
+    EXPECT_TRUE(shows(session.last(), "Stage 2 of 3: Clipping"));
 }
 
 TEST(TerminalWalk, ANewWalkWithoutTheStageStartsAtItsFirst) {
@@ -254,7 +255,8 @@ TEST(TerminalWalk, TheListShowsEveryStageAndEnterReturnsToTheSameStage) {
 
 TEST(TerminalWalk, HelpNamesEveryKey) {
     const Session session = run("?\n");
-    for (const char* key : {"Enter or n", "  b ", "  3 ", "  l ", "  p X,Y ", "  t N ", "  ? ", "  q "}) {
+    for (const char* key :
+         {"\n  Enter or n ", "\n  b ", "\n  3 ", "\n  l ", "\n  p X,Y ", "\n  t N ", "\n  ? ", "\n  q "}) {
         EXPECT_TRUE(shows(session.last(), key)) << key;
     }
     EXPECT_TRUE(shows(run("?\n\n").last(), "Stage 1 of 3: Clipping"));
