@@ -24,21 +24,23 @@ cleanup() {
 }
 trap cleanup EXIT
 
-# The stage titles, as the walk shows them, from the same command without a terminal (--print).
+# The stage titles, as the walk shows them, from the same command without a terminal (--print), which
+# writes each stage as "K. TITLE" between two rules of 80 '='.
 (cd "$root" && "$facet" step "$model" --pixel "$first_pixel" --print) > "$work/print.txt"
-# title_of K: the start of stage K's title (printWalk writes "K. TITLE" under a rule of '='): up to 40
-# characters, ending before the first that is not plain ASCII, so that it matches in any locale.
-title_of() {
-    grep -A1 -x '=\{80\}' "$work/print.txt" | sed -n "s/^$1\. //p" | head -n1 |
-        LC_ALL=C sed 's/[^ -~].*//' | cut -c1-40
-}
-stages=$(grep -c -x '=\{80\}' "$work/print.txt")
-stages=$((stages / 2))
-if [ "$stages" -lt 2 ]; then
-    echo "facet step --print showed $stages stages; the walk needs at least 2:"
+rule=$(printf '=%.0s' $(seq 80))
+awk -v rule="$rule" 'prev2 == rule && $0 == rule { print prev1 } { prev2 = prev1; prev1 = $0 }' \
+    "$work/print.txt" > "$work/titles.txt"
+stages=$(wc -l < "$work/titles.txt")
+if [ "$stages" -lt 3 ]; then
+    echo "facet step --print showed $stages stages; the test needs at least 3:"
     cat "$work/print.txt"
     exit 1
 fi
+# title_of K: the start of stage K's title: up to 40 characters, ending before the first that is not
+# plain ASCII, so that it matches whatever the locale makes of the rest.
+title_of() {
+    sed -n "s/^$1\. //p" "$work/titles.txt" | LC_ALL=C sed 's/[^ -~].*//' | cut -c1-40
+}
 
 "${tmux[@]}" new-session -d -s walk -x 80 -y 30 \
     "cd '$root' && '$facet' step '$model' --pixel '$first_pixel'; echo \$? > '$work/status'; sleep 600"
