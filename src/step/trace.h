@@ -154,6 +154,79 @@ struct FrameTrace {
     std::vector<TriangleRef> transparentOrder;  // the frame's transparent triangles, in drawn order
 };
 
+// What the recorder needs to know of the frame: its size, background, file encoding, and where each
+// draw's triangles start in the step mode's numbering (the triangles of all draws, in order).
+struct FrameShape {
+    int width = 0, height = 0;
+    vec4 clearColor{0.0f};
+    ColorEncoding encoding;
+    std::vector<std::uint32_t> firstNumberOfDraw{0};
+};
+FrameShape frameShape(const PreparedScene& prepared);
+
+// The observer that records a trace: renderFrame's hooks (pipeline/observer.h, and onPlannedDraw)
+// arrive here in submission order, on the calling thread. traceFrame below runs it on a frame of a
+// scene; a caller of draw() (a test with its own shader) calls beginCall before each draw call.
+class TraceRecorder : public NullObserver {
+  public:
+    static constexpr bool enabled = true;
+
+    TraceRecorder(const TraceRequest& request, const FrameShape& frame, int tileSize);
+
+    // A draw call begins: which draw, its state, its index list (into `vertexCount` vertices), whether
+    // it is of the transparent pass, and for a run of some of the draw's triangles their numbers.
+    void beginCall(std::uint32_t draw, const DrawState& state, std::span<const std::uint32_t> indices,
+                   std::size_t vertexCount, bool transparent = false,
+                   std::span<const std::uint32_t> triangles = {});
+    void onPlannedDraw(const PlannedDraw& call, const PreparedDraw& draw);
+
+    void onVertex(std::uint32_t index, const vec4& clip, const float* varyings, int varyingCount,
+                  std::uint8_t outcode);
+    void onRejected(std::uint32_t triangle, TriangleFate fate);
+    void onAssembled(std::uint32_t triangle, const ClipPolygon& assembled);
+    void onSetup(std::uint32_t triangle, const WindowTriangle& window, TriangleFate fate,
+                 const TriangleSetup& setup);
+    void onCoverage(const CoverageEvent& event);
+    void onFragment(const FragmentEvent& event);
+    void onResolve(const ResolveEvent& event);
+
+    // The frame is drawn: the histories completed from the colour buffer (the final colours and
+    // bytes, who wrote last, who owns a lost tie). The triangle views' object-space corners and
+    // matrices are left to the caller (traceFrame fills them from the scene).
+    FrameTrace finish(const Framebuffer& target);
+
+  private:
+    struct Call {
+        std::uint32_t draw = 0;
+        DrawState state;
+        std::span<const std::uint32_t> indices;
+        std::span<const std::uint32_t> triangles;
+    };
+    int slotOf(int x, int y) const;
+    std::uint32_t localOf(std::uint32_t triangle) const;
+    TriangleRef refOf(std::uint32_t draw, std::uint32_t triangle) const {
+        return {frame_.firstNumberOfDraw[draw] + triangle, draw, triangle};
+    }
+    TriangleAtPixel& entry(std::size_t slot, std::uint32_t triangle);
+    TriangleTrace* viewOf(std::uint32_t triangle);
+    void fillVertices(TriangleTrace& view, std::uint32_t triangle);
+    void completeHistory(PixelTrace& p, const Framebuffer& target);
+
+    FrameShape frame_;
+    int tileSize_;
+    FrameTrace trace_;
+    std::vector<TriangleTrace> views_;
+    std::vector<bool> viewSeen_;
+    std::vector<int> pixelSlot_;  // per pixel of the frame: its index in trace_.pixels, or −1
+    std::uint32_t callCount_ = 0;
+    Call call_;
+    bool transparent_ = false;
+    std::uint32_t transparentBase_ = 0;
+    std::vector<std::uint32_t> localOf_;  // a run's call-local number of each of its draw's triangles
+    std::vector<vec4> clip_;              // the call's vertices in clip space (onVertex)
+    std::vector<std::uint8_t> outcodes_;
+};
+
 // Draws one frame of `prepared` into `target` through renderFrame with the recorder, and returns what
 // was asked for. `terms` as for renderFrame.
 FrameTrace traceFrame(const PreparedScene& prepared, Framebuffer& target, DrawContext& context,
