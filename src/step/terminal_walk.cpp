@@ -227,11 +227,11 @@ void retraceWalk(WalkState& state, const WalkRequest& request, const Retrace& re
     const std::string stageId = state.walk.screens.empty() ? "" : state.walk.screens[state.stage].id;
     const auto same = std::find_if(walk.screens.begin(), walk.screens.end(),
                                    [&](const Screen& screen) { return screen.id == stageId; });
+    const bool hasStage = same != walk.screens.end();
+    const auto sameStage = static_cast<std::size_t>(same - walk.screens.begin());
     state.walk = std::move(walk);
-    goToStage(state, 0);
-    if (same != state.walk.screens.end()) {
-        state.stage = static_cast<std::size_t>(same - state.walk.screens.begin());
-    } else if (!stageId.empty()) {
+    goToStage(state, hasStage ? sameStage : 0);
+    if (!hasStage && !stageId.empty()) {
         state.status = "This walk has no stage [" + stageId + "]: here is stage 1.";
     }
 }
