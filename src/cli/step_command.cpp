@@ -9,6 +9,7 @@
 #include "render/renderer.h"
 #include "scene/limits.h"
 #include "step/stage_images.h"
+#include "step/terminal_walk.h"
 #include "step/versus.h"
 #include "step/walk.h"
 
@@ -119,6 +120,17 @@ int step(const StepArgs& args) {
             facet::step::traceStep(otherPrepared, context, otherRequest);
         std::cout << facet::step::sideBySide(trace.walk, "as given", otherTrace.walk, "with " + *args.versus);
         return 0;
+    }
+    if (!args.print && facet::step::isInteractive()) {
+        // Another pixel or triangle: the frame traced again (p X,Y keeps no triangle; t N keeps the pixel).
+        const facet::step::Retrace retrace = [&](const facet::step::WalkRequest& next) {
+            facet::step::StepRequest again = request;
+            again.pixel = next.pixel;
+            again.triangle = next.triangle;
+            return facet::step::traceStep(prepared, context, again).walk;
+        };
+        return facet::step::runTerminalWalk(trace.walk, retrace, std::cin, std::cout,
+                                            facet::step::terminalSize());
     }
     std::cout << facet::step::printWalk(trace.walk);
     return 0;
