@@ -70,7 +70,7 @@ wait_for "Stage 2 of $stages: $(title_of 2)" "b (back a stage)"
 
 keys "p $second_pixel" Enter
 wait_for "Pixel (${second_pixel/,/, })" "p $second_pixel (another pixel)"
-wait_for "Stage 2 of $stages" "p $second_pixel (the same stage)"
+wait_for "Stage 2 of " "p $second_pixel (the same stage)"
 
 keys q Enter
 for _ in $(seq 600); do
