@@ -49,7 +49,8 @@ screen() { "${tmux[@]}" capture-pane -p -t walk; }
 # wait_for TEXT WHAT: waits until the window shows TEXT (a fixed string), or fails after 60 s.
 wait_for() {
     for _ in $(seq 600); do
-        if screen | grep -q -F -- "$1"; then return 0; fi
+        # The window captured first, then searched: grep -q stopping early must not fail the capture.
+        if grep -q -F -- "$1" <<< "$(screen)"; then return 0; fi
         sleep 0.1
     done
     echo "after $2 the window does not show \"$1\"; it shows:"
