@@ -12,6 +12,7 @@
 #include "pipeline/glsl.h"
 #include "pipeline/names.h"
 #include "pipeline/wide.h"
+#include "shading/record.h"
 
 namespace facet {
 
@@ -68,12 +69,33 @@ F fogFactor(const FogParams& fog, F z) {
     return lanes<F>(1.0f);
 }
 
+// The record of the fog at one point (record.h).
+struct FogRecord {
+    static constexpr bool enabled = true;
+    FogParams fog{};         // mode, distance kind, start, end, density, c_fog
+    vec3 eyePosition{0.0f};  // P_eye
+    float z = 0;             // the distance fog uses: |z_eye| or |P_eye|
+    float f = 1;             // the fog factor, clamped to [0, 1]; 1 when fog is off
+    vec3 color{0.0f};        // c_s, the colour before fog
+    vec3 fogged{0.0f};       // c_p = f·c_s + (1 − f)·c_fog
+};
+
 // c = f·c_s + (1 − f)·c_fog.
-template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact>
-V3 applyFog(const FogParams& fog, const V3& color, const V3& eyePosition) {
+template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact, class Record = NoRecord>
+V3 applyFog(const FogParams& fog, const V3& color, const V3& eyePosition, Record* record = nullptr) {
+    static_assert(!Record::enabled || std::is_same_v<F, float>, "records hold one lane");
+    if constexpr (Record::enabled)
+        *record = {.fog = fog, .eyePosition = eyePosition, .color = color, .fogged = color};
     if (fog.mode == FogMode::None) return color;
-    const F f = fogFactor<F, P>(fog, fogDistance<F, V3>(fog, eyePosition));
-    return color * f + V3(fog.color) * (1.0f - f);
+    const F z = fogDistance<F, V3>(fog, eyePosition);
+    const F f = fogFactor<F, P>(fog, z);
+    const V3 fogged = color * f + V3(fog.color) * (1.0f - f);
+    if constexpr (Record::enabled) {
+        record->z = z;
+        record->f = f;
+        record->fogged = fogged;
+    }
+    return fogged;
 }
 
 }  // namespace facet
