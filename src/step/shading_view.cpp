@@ -211,8 +211,9 @@ void writeMaterial(Lines& out, const LightingRecord& r) {
         out.add("  m_diffuse = " + rgb(r.materialDiffuse));
         out.add("  m_specular = " + rgb(r.materialSpecular) + ", n = " + num(r.shininess));
     }
-    out.add("  a_global ⊗ " + std::string(r.physicallyBased ? "c_base" : "m_ambient") + " = " +
-            rgb(r.globalAmbient) + " ⊗ " + rgb(r.materialAmbient) + " = " + rgb(r.globalAmbientTerm));
+    const std::string symbols = std::string("a_global ⊗ ") + (r.physicallyBased ? "c_base" : "m_ambient");
+    out.add("  " + symbols + " = " + rgb(r.globalAmbient) + " ⊗ " + rgb(r.materialAmbient));
+    out.add("  " + std::string(columns(symbols), ' ') + " = " + rgb(r.globalAmbientTerm));
 }
 
 std::string lightTitle(int index, const LightParams& light) {
@@ -263,7 +264,7 @@ void writeLightPosition(Lines& out, const LightRecord& r) {
 // Three lines: a term in symbols, with the numbers, and its value.
 void writeTerm(Lines& out, const std::string& name, const std::string& symbols, const std::string& numbers,
                const vec3& value) {
-    const std::string pad(name.size() + 2, ' ');
+    const std::string pad(columns(name), ' ');
     out.add("  " + name + " = " + symbols);
     out.add("  " + pad + " = " + numbers);
     out.add("  " + pad + " = " + rgb(value));
