@@ -123,7 +123,8 @@ TEST(LightingRecord, SpotInsideAndOutsideItsCone) {
     EXPECT_NEAR(inside.spot.cosAngle, 0.8f, 1e-6f);
     EXPECT_NEAR(inside.spot.cosCutoff, std::sqrt(0.5f), 1e-6f);  // cos 45°
     EXPECT_NEAR(inside.spot.factor, 0.64f, 1e-6f);               // 0.8²
-    EXPECT_NEAR(inside.reach, 0.64f / 3.0f, 1e-6f);              // att·spot
+    EXPECT_NEAR(inside.attenuation, 1.0f / 3.0f, 1e-6f);
+    EXPECT_NEAR(inside.reach, 0.64f / 3.0f, 1e-6f);  // att·spot
     expectVec3Near(inside.diffuse, 0.64f * 0.8f * vec3(0.5f, 0.125f, 0.25f) / 3.0f);
 
     light.spotCutoffDegrees = 30.0f;

@@ -4,8 +4,10 @@
 #include "step/shading_view.h"
 
 #include <cstring>
+#include <filesystem>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -122,11 +124,17 @@ void traceEveryFragment(Scene scene, ShadingChecker& checker) {
 }
 
 TEST(ShadingView, RecomputedShadingIsThePipelinesOutputBitForBit) {
-    const char* scenes[] = {"example-scene.json", "lighting-scene.json", "fog-and-glass.json",
-                            "intersecting-quads.json"};
     std::uint64_t total = 0;
-    for (const char* name : scenes) {
-        const Scene original = loadScene(std::filesystem::path(FACET_SOURCE_DIR) / "models" / name);
+    // The bundled scenes, then two of the conformance scenes on the shared models (blends, the GL preset).
+    std::vector<std::string> scenes{"models/example-scene.json", "models/lighting-scene.json",
+                                    "models/fog-and-glass.json", "models/intersecting-quads.json",
+                                    "tests/conformance/scenes/facet-emission-map-cubes.json"};
+    if (std::filesystem::exists(FACET_SHARED_MODELS)) {
+        scenes.push_back("tests/conformance/scenes/facet-blend-modes-spheres.json");
+        scenes.push_back("tests/conformance/scenes/gl-fog-exp-transparent-teapots.json");
+    }
+    for (const std::string& name : scenes) {
+        const Scene original = loadScene(std::filesystem::path(FACET_SOURCE_DIR) / name);
         for (const ReflectionModel model :
              {ReflectionModel::Phong, ReflectionModel::BlinnPhong, ReflectionModel::CookTorrance}) {
             for (const ShadingFrequency frequency :
@@ -145,8 +153,8 @@ TEST(ShadingView, RecomputedShadingIsThePipelinesOutputBitForBit) {
                 }
                 if (model == ReflectionModel::Phong && frequency == ShadingFrequency::Gouraud)
                     scene.lighting.preset = LightingPreset::GL;  // clamped colours
-                const std::string what = std::string(name) + ", " + std::string(nameOf(model)) + ", " +
-                                         std::string(nameOf(frequency));
+                const std::string what =
+                    name + ", " + std::string(nameOf(model)) + ", " + std::string(nameOf(frequency));
                 ShadingChecker checker;
                 traceEveryFragment(scene, checker);
                 EXPECT_GT(checker.fragments, 500u) << what;
