@@ -135,7 +135,7 @@ struct FragmentRecord {
     vec3 added{0.0f};
     vec3 color{0.0f};  // the colour handed to surfaceOutput
     OutputRecord output{};
-    vec4 result{0.0f};  // the fragment shader's output
+    vec4 result{0.0f};  // the fragment shader's output, recorded by the caller (shade returns it)
 };
 
 // The vertex lighting (lightVertex<float>) at one vertex.
@@ -148,7 +148,7 @@ struct VertexLightingRecord {
     bool emissionDeferred = false;  // an emission map: the emission is added per fragment instead
     bool clamped = false;           // clampColor: the sum clamped to [0, 1], all of it modulated
     vec3 sum{0.0f};                 // the terms' sum
-    vec3 modulated{0.0f};           // the varyings it hands on
+    vec3 modulated{0.0f};           // the varyings it hands on, recorded by the caller
     vec3 added{0.0f};
 };
 
@@ -220,21 +220,24 @@ template <class F, class V3 = LaneVec3<F>, class Record = NoRecord>
     auto* fogRecord = innerRecord(record, &OutputRecord::fog);
     c = u.precision == MathPrecision::Exact ? applyFog<F, V3, MathPrecision::Exact>(u.fog, c, P, fogRecord)
                                             : applyFog<F, V3, MathPrecision::Fast>(u.fog, c, P, fogRecord);
-    V3 output = c;
-    switch (u.blend) {
-        case BlendMode::Replace:
-        case BlendMode::Over:
-            break;
-        case BlendMode::PremultipliedOver:
-        case BlendMode::Additive:
-            output = c * alpha;
-            break;
-        case BlendMode::Multiply:
-            output = V3(vec3(1.0f)) + (c - V3(vec3(1.0f))) * alpha;
-            break;
+    const auto form = [&] {
+        switch (u.blend) {
+            case BlendMode::Replace:
+            case BlendMode::Over:
+                return c;
+            case BlendMode::PremultipliedOver:
+            case BlendMode::Additive:
+                return c * alpha;
+            case BlendMode::Multiply:
+                return V3(vec3(1.0f)) + (c - V3(vec3(1.0f))) * alpha;
+        }
+        return c;
+    };
+    if constexpr (Record::enabled) {
+        record->output = form();
+        return record->output;
     }
-    if constexpr (Record::enabled) record->output = output;
-    return output;
+    return form();
 }
 
 namespace detail {
@@ -307,21 +310,20 @@ struct PerPixelSurface {
             t.emission = t.emission * rgb(texel);
             if constexpr (Record::enabled) record->emissionMapped = true, record->emissionTexel = texel;
         }
-        const V3 sum = t.sum();
-        V3 c = sum;
+        V3 c = t.sum();
+        if constexpr (Record::enabled) record->sum = c;
         if (u.clampColor) c = detail::clamp01(c);
-        const LaneVec4<F> result = withAlpha(
-            surfaceOutput<F>(c, alpha, in.position, u, innerRecord(record, &FragmentRecord::output)), alpha);
         if constexpr (Record::enabled) {
             record->alpha = alpha;
             record->albedo = albedo;
             record->emission = t.emission;
-            record->sum = sum;
             record->clamped = u.clampColor;
             record->color = c;
-            record->result = result;
         }
-        return result;
+        // The output (FragmentRecord::result) is the caller's to record: returned as an expression, it
+        // is built in place.
+        return withAlpha(
+            surfaceOutput<F>(c, alpha, in.position, u, innerRecord(record, &FragmentRecord::output)), alpha);
     }
 };
 
@@ -369,11 +371,6 @@ struct PerVertexSurface {
         LightingTerms<V3> t = surfaceTerms<F>(in.position, in.normal, V3(u.albedo()), u,
                                               innerRecord(record, &VertexLightingRecord::lighting));
         if (u.emissionMap) t.emission = V3(vec3(0.0f));  // added, textured, per fragment
-        VaryingsT<F> out;
-        if (u.clampColor)
-            out = {detail::clamp01(t.sum()), V3(vec3(0.0f)), in.position, in.uv};
-        else
-            out = {t.diffuse, t.emission + t.ambient + t.specular, in.position, in.uv};
         if constexpr (Record::enabled) {
             record->position = in.position;
             record->normal = in.normal;
@@ -381,10 +378,10 @@ struct PerVertexSurface {
             record->emissionDeferred = u.emissionMap != nullptr;
             record->clamped = u.clampColor;
             record->sum = t.sum();
-            record->modulated = out.modulated;
-            record->added = out.added;
         }
-        return out;
+        // What it hands on (VertexLightingRecord::modulated, added) is the caller's to record.
+        if (u.clampColor) return {detail::clamp01(t.sum()), V3(vec3(0.0f)), in.position, in.uv};
+        return {t.diffuse, t.emission + t.ambient + t.specular, in.position, in.uv};
     }
 
     static VertexOut<VaryingsT<float>> vertex(const Attributes& in, const Uniforms& u) {
@@ -419,17 +416,16 @@ struct PerVertexSurface {
             if constexpr (Record::enabled)
                 record->emissionMapped = true, record->emissionTexel = texel, record->emission = emission;
         }
-        const V3 c = modulated + added;
-        const LaneVec4<F> result = withAlpha(
-            surfaceOutput<F>(c, alpha, in.position, u, innerRecord(record, &FragmentRecord::output)), alpha);
         if constexpr (Record::enabled) {
             record->alpha = alpha;
             record->modulated = modulated;
             record->added = added;
-            record->color = c;
-            record->result = result;
+            record->color = modulated + added;
         }
-        return result;
+        // The output (FragmentRecord::result) is the caller's to record.
+        return withAlpha(surfaceOutput<F>(modulated + added, alpha, in.position, u,
+                                          innerRecord(record, &FragmentRecord::output)),
+                         alpha);
     }
 };
 

@@ -81,6 +81,13 @@ struct FogRecord {
 };
 
 // c = f·c_s + (1 − f)·c_fog.
+template <class F, class V3 = LaneVec3<F>>
+V3 fogBlend(const V3& color, F f, const vec3& fogColor) {
+    return color * f + V3(fogColor) * (1.0f - f);
+}
+
+// The fog of the mode and distance `fog` chooses at an eye-space position. (The result is returned as
+// an expression, not a named local: GCC then builds it in place, as the eight-lane path needs.)
 template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact, class Record = NoRecord>
 V3 applyFog(const FogParams& fog, const V3& color, const V3& eyePosition, Record* record = nullptr) {
     static_assert(!Record::enabled || std::is_same_v<F, float>, "records hold one lane");
@@ -89,13 +96,13 @@ V3 applyFog(const FogParams& fog, const V3& color, const V3& eyePosition, Record
     if (fog.mode == FogMode::None) return color;
     const F z = fogDistance<F, V3>(fog, eyePosition);
     const F f = fogFactor<F, P>(fog, z);
-    const V3 fogged = color * f + V3(fog.color) * (1.0f - f);
     if constexpr (Record::enabled) {
         record->z = z;
         record->f = f;
-        record->fogged = fogged;
+        record->fogged = fogBlend<F, V3>(color, f, fog.color);
+        return record->fogged;
     }
-    return fogged;
+    return fogBlend<F, V3>(color, f, fog.color);
 }
 
 }  // namespace facet

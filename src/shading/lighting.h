@@ -480,9 +480,11 @@ BrdfLobes<V3> brdfLobes(const V3& n, const V3& l, const V3& v, const PbrMaterial
     const float diffuseScale = (1.0f - m.metalness) / std::numbers::pi_v<float>;
     const V3 diffuse = (V3(vec3(1.0f)) - fresnel) * albedo * diffuseScale;
     const V3 zero(vec3(0.0f));
-    const auto inFront = NdotLRaw > kGrazingCosine;
-    const BrdfLobes<V3> lobes{select(inFront, diffuse, zero), select(inFront, specular, zero)};
-    if constexpr (Record::enabled)
+    const auto lobes = [&] {
+        return BrdfLobes<V3>{select(NdotLRaw > kGrazingCosine, diffuse, zero),
+                             select(NdotLRaw > kGrazingCosine, specular, zero)};
+    };
+    if constexpr (Record::enabled) {
         *record = {.N = N,
                    .L = L,
                    .V = V,
@@ -500,9 +502,11 @@ BrdfLobes<V3> brdfLobes(const V3& n, const V3& l, const V3& v, const PbrMaterial
                    .G = G,
                    .specularScale = specularScale,
                    .diffuseScale = diffuseScale,
-                   .grazing = !inFront,
-                   .lobes = lobes};
-    return lobes;
+                   .grazing = !(NdotLRaw > kGrazingCosine),
+                   .lobes = lobes()};
+        return record->lobes;
+    }
+    return lobes();
 }
 
 template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact>

@@ -21,7 +21,10 @@ CornerShading shadeCorner(const SurfaceUniforms& u, const std::array<MeshVertex,
     shading.vertex = corners[static_cast<std::size_t>(corner)];
     const VertexOut<PerVertex::VertexInputsT<float>> inputs = PerVertex::vertexInputs(shading.vertex, u);
     shading.invW = 1.0f / inputs.position.w;
-    PerVertex::lightVertex<float>(inputs.varyings, u, &shading.lighting);
+    const PerVertex::VaryingsT<float> out =
+        PerVertex::lightVertex<float>(inputs.varyings, u, &shading.lighting);
+    shading.lighting.modulated = out.modulated;
+    shading.lighting.added = out.added;
     return shading;
 }
 
@@ -51,7 +54,8 @@ ShadingTrace traceShading(const SurfaceUniforms& u, ShadingFrequency frequency, 
 
     if (frequency == ShadingFrequency::Phong) {
         using Shader = PerPixelSurface;
-        Shader::shade<float>(varyingsOf<Shader::VaryingsT<float>>(f), u, 1u, &trace.fragment);
+        trace.fragment.result =
+            Shader::shade<float>(varyingsOf<Shader::VaryingsT<float>>(f), u, 1u, &trace.fragment);
     } else {
         if (frequency == ShadingFrequency::Gouraud) {
             for (int corner = 0; corner < 3; ++corner)
@@ -74,7 +78,8 @@ ShadingTrace traceShading(const SurfaceUniforms& u, ShadingFrequency frequency, 
         }
         // Flat and Gouraud run the same fragment function; only which varyings are flat differs.
         using Shader = PerVertexSurface<ShadingFrequency::Gouraud>;
-        Shader::shade<float>(varyingsOf<Shader::VaryingsT<float>>(f), u, 1u, &trace.fragment);
+        trace.fragment.result =
+            Shader::shade<float>(varyingsOf<Shader::VaryingsT<float>>(f), u, 1u, &trace.fragment);
     }
     trace.matchesPipeline = std::memcmp(&trace.fragment.result, &f.shaded, sizeof f.shaded) == 0;
     trace.uniforms = u;
