@@ -156,35 +156,37 @@ struct VertexLightingRecord {
 // two-sided flip, and only the selected terms (the others are zero). P and N are in eye space; N need
 // not be unit length. `albedo` is m_diffuse or c_base, per lane. kPrecision is u.precision
 // (surfaceTerms below chooses it). A SurfaceTermsRecord, when given, receives every number.
-template <class F, class V3, MathPrecision kPrecision, class Record = NoRecord>
+template <class F, class V3, MathPrecision kPrecision, class... Recording>
 [[gnu::always_inline]] inline LightingTerms<V3> surfaceTermsWith(const V3& P, const V3& normal,
                                                                  const V3& albedo, const SurfaceUniforms& u,
-                                                                 Record* record = nullptr) {
+                                                                 Recording*... recording) {
+    using Record = RecordOf<Recording...>;
     if constexpr (Record::enabled)
-        *record = {.position = P, .normal = normal, .reflection = u.reflection, .selectedTerms = u.terms};
+        *recordOf(recording...) = {
+            .position = P, .normal = normal, .reflection = u.reflection, .selectedTerms = u.terms};
     V3 N = normal;
     if (u.twoSidedFlip) {
         const auto facingAway = dot(N, -P) < 0.0f;
         N = select(facingAway, -N, N);
-        if constexpr (Record::enabled) record->flipped = facingAway;
+        if constexpr (Record::enabled) recordOf(recording...)->flipped = facingAway;
     }
     const vec3 eye(0.0f);
-    auto* lightingRecord = innerRecord(record, &SurfaceTermsRecord::lighting);
     LightingTerms<V3> t;
     switch (u.reflection) {
         case ReflectionModel::Phong:
             t = standardLighting<F, V3, kPrecision>(P, N, eye, u.material, albedo, u.globalAmbient,
-                                                    u.activeLights(), SpecularModel::Phong, lightingRecord);
+                                                    u.activeLights(), SpecularModel::Phong,
+                                                    &recording->lighting...);
             break;
         case ReflectionModel::BlinnPhong:
             t = standardLighting<F, V3, kPrecision>(P, N, eye, u.material, albedo, u.globalAmbient,
                                                     u.activeLights(), SpecularModel::BlinnPhong,
-                                                    lightingRecord);
+                                                    &recording->lighting...);
             break;
         case ReflectionModel::CookTorrance:
             t = physicallyBasedTerms<F, V3, kPrecision>(P, N, eye, u.pbr, albedo, u.material.emission,
                                                         u.globalAmbient, u.activeLights(), u.brdf,
-                                                        lightingRecord);
+                                                        &recording->lighting...);
             break;
     }
     if (u.terms != kAllTerms) {
@@ -194,18 +196,18 @@ template <class F, class V3, MathPrecision kPrecision, class Record = NoRecord>
         if (!(u.terms & kDiffuseTerm)) t.diffuse = zero;
         if (!(u.terms & kSpecularTerm)) t.specular = zero;
     }
-    if constexpr (Record::enabled) record->terms = t;
+    if constexpr (Record::enabled) recordOf(recording...)->terms = t;
     return t;
 }
 
 // The same with the uniforms' precision (u.precision) for pow and exp.
-template <class F, class V3 = LaneVec3<F>, class Record = NoRecord>
+template <class F, class V3 = LaneVec3<F>, class... Recording>
 [[gnu::always_inline]] inline LightingTerms<V3> surfaceTerms(const V3& P, const V3& normal, const V3& albedo,
                                                              const SurfaceUniforms& u,
-                                                             Record* record = nullptr) {
+                                                             Recording*... recording) {
     return u.precision == MathPrecision::Exact
-               ? surfaceTermsWith<F, V3, MathPrecision::Exact>(P, normal, albedo, u, record)
-               : surfaceTermsWith<F, V3, MathPrecision::Fast>(P, normal, albedo, u, record);
+               ? surfaceTermsWith<F, V3, MathPrecision::Exact>(P, normal, albedo, u, recording...)
+               : surfaceTermsWith<F, V3, MathPrecision::Fast>(P, normal, albedo, u, recording...);
 }
 
 // What a surface shader writes, from the lit colour c and its alpha α at eye-space point P: fog first,
@@ -213,31 +215,30 @@ template <class F, class V3 = LaneVec3<F>, class Record = NoRecord>
 //   Replace, Over:               (c, α)            straight alpha
 //   PremultipliedOver, Additive: (α·c, α)          premultiplied (Additive: c_d + α·c)
 //   Multiply:                    (mix(1, c, α), α)  a filter that is clear (1) where α = 0
-template <class F, class V3 = LaneVec3<F>, class Record = NoRecord>
+template <class F, class V3 = LaneVec3<F>, class... Recording>
 [[gnu::always_inline]] inline V3 surfaceOutput(V3 c, F alpha, const V3& P, const SurfaceUniforms& u,
-                                               Record* record = nullptr) {
-    if constexpr (Record::enabled) *record = {.color = c, .alpha = alpha, .blend = u.blend};
-    auto* fogRecord = innerRecord(record, &OutputRecord::fog);
-    c = u.precision == MathPrecision::Exact ? applyFog<F, V3, MathPrecision::Exact>(u.fog, c, P, fogRecord)
-                                            : applyFog<F, V3, MathPrecision::Fast>(u.fog, c, P, fogRecord);
-    const auto form = [&] {
-        switch (u.blend) {
-            case BlendMode::Replace:
-            case BlendMode::Over:
-                return c;
-            case BlendMode::PremultipliedOver:
-            case BlendMode::Additive:
-                return c * alpha;
-            case BlendMode::Multiply:
-                return V3(vec3(1.0f)) + (c - V3(vec3(1.0f))) * alpha;
-        }
-        return c;
-    };
+                                               Recording*... recording) {
+    using Record = RecordOf<Recording...>;
+    if constexpr (Record::enabled) *recordOf(recording...) = {.color = c, .alpha = alpha, .blend = u.blend};
+    c = u.precision == MathPrecision::Exact
+            ? applyFog<F, V3, MathPrecision::Exact>(u.fog, c, P, &recording->fog...)
+            : applyFog<F, V3, MathPrecision::Fast>(u.fog, c, P, &recording->fog...);
     if constexpr (Record::enabled) {
-        record->output = form();
-        return record->output;
+        OutputRecord& record = *recordOf(recording...);
+        record.output = surfaceOutput<F, V3>(record.color, alpha, P, u);
+        return record.output;
     }
-    return form();
+    switch (u.blend) {
+        case BlendMode::Replace:
+        case BlendMode::Over:
+            return c;
+        case BlendMode::PremultipliedOver:
+        case BlendMode::Additive:
+            return c * alpha;
+        case BlendMode::Multiply:
+            return V3(vec3(1.0f)) + (c - V3(vec3(1.0f))) * alpha;
+    }
+    return c;
 }
 
 namespace detail {
@@ -289,41 +290,43 @@ struct PerPixelSurface {
     }
 
     // A FragmentRecord, when given (F = float), receives every number of the shading.
-    template <class F, class Record = NoRecord>
+    template <class F, class... Recording>
     static LaneVec4<F> shade(const VaryingsT<F>& in, const Uniforms& u, unsigned liveLanes,
-                             Record* record = nullptr) {
+                             Recording*... recording) {
+        using Record = RecordOf<Recording...>;
         using V3 = LaneVec3<F>;
         V3 albedo(u.albedo());
         F alpha = lanes<F>(u.opacity);
         if constexpr (Record::enabled)
-            *record = {.perPixel = true, .uv = in.uv, .opacity = u.opacity, .materialAlbedo = albedo};
+            *recordOf(recording...) = {
+                .perPixel = true, .uv = in.uv, .opacity = u.opacity, .materialAlbedo = albedo};
         if (u.diffuseMap) {
             const LaneVec4<F> texel = detail::texels<F>(*u.diffuseMap, in.uv, liveLanes);
             albedo = albedo * rgb(texel);
             alpha = alpha * texel.w;
-            if constexpr (Record::enabled) record->diffuseMapped = true, record->diffuseTexel = texel;
+            if constexpr (Record::enabled)
+                recordOf(recording...)->diffuseMapped = true, recordOf(recording...)->diffuseTexel = texel;
         }
-        LightingTerms<V3> t = surfaceTerms<F>(in.position, in.normal, albedo, u,
-                                              innerRecord(record, &FragmentRecord::lighting));
+        LightingTerms<V3> t = surfaceTerms<F>(in.position, in.normal, albedo, u, &recording->lighting...);
         if (u.emissionMap) {
             const LaneVec4<F> texel = detail::texels<F>(*u.emissionMap, in.uv, liveLanes);
             t.emission = t.emission * rgb(texel);
-            if constexpr (Record::enabled) record->emissionMapped = true, record->emissionTexel = texel;
+            if constexpr (Record::enabled)
+                recordOf(recording...)->emissionMapped = true, recordOf(recording...)->emissionTexel = texel;
         }
         V3 c = t.sum();
-        if constexpr (Record::enabled) record->sum = c;
+        if constexpr (Record::enabled) recordOf(recording...)->sum = c;
         if (u.clampColor) c = detail::clamp01(c);
         if constexpr (Record::enabled) {
-            record->alpha = alpha;
-            record->albedo = albedo;
-            record->emission = t.emission;
-            record->clamped = u.clampColor;
-            record->color = c;
+            recordOf(recording...)->alpha = alpha;
+            recordOf(recording...)->albedo = albedo;
+            recordOf(recording...)->emission = t.emission;
+            recordOf(recording...)->clamped = u.clampColor;
+            recordOf(recording...)->color = c;
         }
         // The output (FragmentRecord::result) is the caller's to record: returned as an expression, it
         // is built in place.
-        return withAlpha(
-            surfaceOutput<F>(c, alpha, in.position, u, innerRecord(record, &FragmentRecord::output)), alpha);
+        return withAlpha(surfaceOutput<F>(c, alpha, in.position, u, &recording->output...), alpha);
     }
 };
 
@@ -365,19 +368,20 @@ struct PerVertexSurface {
 
     // The lighting of one vertex or eight. A VertexLightingRecord, when given (F = float), receives
     // every number of it.
-    template <class F, class Record = NoRecord>
-    static VaryingsT<F> lightVertex(const VertexInputsT<F>& in, const Uniforms& u, Record* record = nullptr) {
+    template <class F, class... Recording>
+    static VaryingsT<F> lightVertex(const VertexInputsT<F>& in, const Uniforms& u, Recording*... recording) {
+        using Record = RecordOf<Recording...>;
         using V3 = LaneVec3<F>;
-        LightingTerms<V3> t = surfaceTerms<F>(in.position, in.normal, V3(u.albedo()), u,
-                                              innerRecord(record, &VertexLightingRecord::lighting));
+        LightingTerms<V3> t =
+            surfaceTerms<F>(in.position, in.normal, V3(u.albedo()), u, &recording->lighting...);
         if (u.emissionMap) t.emission = V3(vec3(0.0f));  // added, textured, per fragment
         if constexpr (Record::enabled) {
-            record->position = in.position;
-            record->normal = in.normal;
-            record->uv = in.uv;
-            record->emissionDeferred = u.emissionMap != nullptr;
-            record->clamped = u.clampColor;
-            record->sum = t.sum();
+            recordOf(recording...)->position = in.position;
+            recordOf(recording...)->normal = in.normal;
+            recordOf(recording...)->uv = in.uv;
+            recordOf(recording...)->emissionDeferred = u.emissionMap != nullptr;
+            recordOf(recording...)->clamped = u.clampColor;
+            recordOf(recording...)->sum = t.sum();
         }
         // What it hands on (VertexLightingRecord::modulated, added) is the caller's to record.
         if (u.clampColor) return {detail::clamp01(t.sum()), V3(vec3(0.0f)), in.position, in.uv};
@@ -390,23 +394,25 @@ struct PerVertexSurface {
     }
 
     // A FragmentRecord, when given (F = float), receives every number of the fragment's part.
-    template <class F, class Record = NoRecord>
+    template <class F, class... Recording>
     static LaneVec4<F> shade(const VaryingsT<F>& in, const Uniforms& u, unsigned liveLanes,
-                             Record* record = nullptr) {
+                             Recording*... recording) {
+        using Record = RecordOf<Recording...>;
         using V3 = LaneVec3<F>;
         V3 modulated = in.modulated;
         F alpha = lanes<F>(u.opacity);
         if constexpr (Record::enabled)
-            *record = {.perPixel = false,
-                       .uv = in.uv,
-                       .opacity = u.opacity,
-                       .modulatedIn = in.modulated,
-                       .addedIn = in.added};
+            *recordOf(recording...) = {.perPixel = false,
+                                       .uv = in.uv,
+                                       .opacity = u.opacity,
+                                       .modulatedIn = in.modulated,
+                                       .addedIn = in.added};
         if (u.diffuseMap) {
             const LaneVec4<F> texel = detail::texels<F>(*u.diffuseMap, in.uv, liveLanes);
             modulated = modulated * rgb(texel);
             alpha = alpha * texel.w;
-            if constexpr (Record::enabled) record->diffuseMapped = true, record->diffuseTexel = texel;
+            if constexpr (Record::enabled)
+                recordOf(recording...)->diffuseMapped = true, recordOf(recording...)->diffuseTexel = texel;
         }
         V3 added = in.added;
         if (u.emissionMap) {
@@ -414,17 +420,17 @@ struct PerVertexSurface {
             const V3 emission = V3(u.emissionTerm()) * rgb(texel);
             added = added + emission;
             if constexpr (Record::enabled)
-                record->emissionMapped = true, record->emissionTexel = texel, record->emission = emission;
+                recordOf(recording...)->emissionMapped = true, recordOf(recording...)->emissionTexel = texel,
+                recordOf(recording...)->emission = emission;
         }
         if constexpr (Record::enabled) {
-            record->alpha = alpha;
-            record->modulated = modulated;
-            record->added = added;
-            record->color = modulated + added;
+            recordOf(recording...)->alpha = alpha;
+            recordOf(recording...)->modulated = modulated;
+            recordOf(recording...)->added = added;
+            recordOf(recording...)->color = modulated + added;
         }
         // The output (FragmentRecord::result) is the caller's to record.
-        return withAlpha(surfaceOutput<F>(modulated + added, alpha, in.position, u,
-                                          innerRecord(record, &FragmentRecord::output)),
+        return withAlpha(surfaceOutput<F>(modulated + added, alpha, in.position, u, &recording->output...),
                          alpha);
     }
 };

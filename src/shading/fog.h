@@ -80,29 +80,24 @@ struct FogRecord {
     vec3 fogged{0.0f};       // c_p = f·c_s + (1 − f)·c_fog
 };
 
-// c = f·c_s + (1 − f)·c_fog.
-template <class F, class V3 = LaneVec3<F>>
-V3 fogBlend(const V3& color, F f, const vec3& fogColor) {
-    return color * f + V3(fogColor) * (1.0f - f);
-}
-
-// The fog of the mode and distance `fog` chooses at an eye-space position. (The result is returned as
-// an expression, not a named local: GCC then builds it in place, as the eight-lane path needs.)
-template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact, class Record = NoRecord>
-V3 applyFog(const FogParams& fog, const V3& color, const V3& eyePosition, Record* record = nullptr) {
+// c = f·c_s + (1 − f)·c_fog. With a record, the fogged colour is recorded from this function called
+// again without one: the one-lane code without a record stays the very code it is without records.
+template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact, class... Recording>
+V3 applyFog(const FogParams& fog, const V3& color, const V3& eyePosition, Recording*... recording) {
+    using Record = RecordOf<Recording...>;
     static_assert(!Record::enabled || std::is_same_v<F, float>, "records hold one lane");
     if constexpr (Record::enabled)
-        *record = {.fog = fog, .eyePosition = eyePosition, .color = color, .fogged = color};
+        *recordOf(recording...) = {.fog = fog, .eyePosition = eyePosition, .color = color, .fogged = color};
     if (fog.mode == FogMode::None) return color;
-    const F z = fogDistance<F, V3>(fog, eyePosition);
-    const F f = fogFactor<F, P>(fog, z);
+    const F f = fogFactor<F, P>(fog, fogDistance<F, V3>(fog, eyePosition));
     if constexpr (Record::enabled) {
-        record->z = z;
-        record->f = f;
-        record->fogged = fogBlend<F, V3>(color, f, fog.color);
-        return record->fogged;
+        Record& record = *recordOf(recording...);
+        record.z = fogDistance<F, V3>(fog, eyePosition);
+        record.f = f;
+        record.fogged = applyFog<F, V3, P>(fog, color, eyePosition);
+        return record.fogged;
     }
-    return fogBlend<F, V3>(color, f, fog.color);
+    return color * f + V3(fog.color) * (1.0f - f);
 }
 
 }  // namespace facet

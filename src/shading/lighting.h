@@ -141,38 +141,44 @@ struct SpotRecord {
 // OpenGL's spot factor (glLight, OpenGL 2.1 §2.14.1), with L the unit vector from the surface to the
 // light and s the spot direction: 0 where the angle between −L and s exceeds the cutoff,
 // max(−L·s, 0)^exponent inside, and 1 when the cutoff is 180° (no cone). 1 for non-spot lights.
-template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact, class Record = NoRecord>
-F spotFactorOpenGL(const LightParams& light, const V3& L, Record* record = nullptr) {
+template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact, class... Recording>
+F spotFactorOpenGL(const LightParams& light, const V3& L, Recording*... recording) {
+    using Record = RecordOf<Recording...>;
     if (light.kind != LightKind::Spot || light.spotCutoffDegrees >= 180.0f) return lanes<F>(1.0f);
     const F cosAngle = dot(-L, normalize(light.spotDirection));
     const float cosCutoff = std::cos(glm::radians(light.spotCutoffDegrees));
-    const F factor =
-        select(cosAngle >= cosCutoff, Maths<P>::pow(max(cosAngle, 0.0f), light.spotExponent), lanes<F>(0.0f));
     if constexpr (Record::enabled)
-        *record = {.cone = true, .cosAngle = cosAngle, .cosCutoff = cosCutoff, .factor = factor};
-    return factor;
+        *recordOf(recording...) = {.cone = true,
+                                   .cosAngle = cosAngle,
+                                   .cosCutoff = cosCutoff,
+                                   .factor = spotFactorOpenGL<F, V3, P>(light, L)};
+    return select(cosAngle >= cosCutoff, Maths<P>::pow(max(cosAngle, 0.0f), light.spotExponent),
+                  lanes<F>(0.0f));
 }
 
 // The smooth variant: smoothstep(cos θ_outer, cos θ_inner, −L·s), 1 inside the inner cone, 0 outside
 // the outer one and a C¹ ramp between them. 1 for non-spot lights.
-template <class F, class V3 = LaneVec3<F>, class Record = NoRecord>
-F spotFactorSmooth(const LightParams& light, const V3& L, Record* record = nullptr) {
+template <class F, class V3 = LaneVec3<F>, class... Recording>
+F spotFactorSmooth(const LightParams& light, const V3& L, Recording*... recording) {
+    using Record = RecordOf<Recording...>;
     if (light.kind != LightKind::Spot) return lanes<F>(1.0f);
     const F cosAngle = dot(-L, normalize(light.spotDirection));
-    const float cosOuter = std::cos(glm::radians(light.spotOuterDegrees));
     const float cosInner = std::cos(glm::radians(light.spotInnerDegrees));
-    const F factor = smoothstep(cosOuter, cosInner, cosAngle);
+    const float cosOuter = std::cos(glm::radians(light.spotOuterDegrees));
     if constexpr (Record::enabled)
-        *record = {
-            .cone = true, .cosAngle = cosAngle, .cosInner = cosInner, .cosOuter = cosOuter, .factor = factor};
-    return factor;
+        *recordOf(recording...) = {.cone = true,
+                                   .cosAngle = cosAngle,
+                                   .cosInner = cosInner,
+                                   .cosOuter = cosOuter,
+                                   .factor = spotFactorSmooth<F, V3>(light, L)};
+    return smoothstep(cosOuter, cosInner, cosAngle);
 }
 
 // The light's spot factor under its own profile.
-template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact, class Record = NoRecord>
-F spotFactor(const LightParams& light, const V3& L, Record* record = nullptr) {
-    return light.spotProfile == SpotProfile::Smooth ? spotFactorSmooth<F, V3>(light, L, record)
-                                                    : spotFactorOpenGL<F, V3, P>(light, L, record);
+template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact, class... Recording>
+F spotFactor(const LightParams& light, const V3& L, Recording*... recording) {
+    return light.spotProfile == SpotProfile::Smooth ? spotFactorSmooth<F, V3>(light, L, recording...)
+                                                    : spotFactorOpenGL<F, V3, P>(light, L, recording...);
 }
 
 // Material of the standard lighting equation; linear RGB.
@@ -206,96 +212,93 @@ struct LightingTerms {
 // behind the surface; in practice N·L ≤ kGrazingCosine, see there). N is used as given (normalised, not
 // flipped towards the viewer). `diffuseColor` is m_diffuse per lane (a texture may vary it); the overload
 // below uses the material's. A LightingRecord (below), when given, receives every number of it.
-template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact, class Record = NoRecord>
+template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact, class... Recording>
 [[gnu::always_inline]] inline LightingTerms<V3> standardLighting(
     const V3& position, const V3& normal, const vec3& eye, const PhongMaterial& m, const V3& diffuseColor,
     const vec3& globalAmbient, std::span<const LightParams> lights,
-    SpecularModel specularModel = SpecularModel::BlinnPhong, Record* record = nullptr) {
+    SpecularModel specularModel = SpecularModel::BlinnPhong, Recording*... recording) {
+    using Record = RecordOf<Recording...>;
     static_assert(!Record::enabled || std::is_same_v<F, float>, "records hold one lane");
     const V3 N = safeNormalize<F, V3>(normal);
     const V3 V = safeNormalize<F, V3>(eye - position);
     LightingTerms<V3> terms{V3(m.emission), V3(globalAmbient * m.ambient), V3(vec3(0.0f)), V3(vec3(0.0f))};
     if constexpr (Record::enabled)
-        *record = {.physicallyBased = false,
-                   .specularModel = specularModel,
-                   .position = position,
-                   .normal = normal,
-                   .N = N,
-                   .V = V,
-                   .materialAmbient = m.ambient,
-                   .materialDiffuse = diffuseColor,
-                   .materialSpecular = m.specular,
-                   .shininess = m.shininess,
-                   .globalAmbient = globalAmbient,
-                   .globalAmbientTerm = terms.ambient,
-                   .lightCount = static_cast<int>(lights.size())};
+        *recordOf(recording...) = {.physicallyBased = false,
+                                   .specularModel = specularModel,
+                                   .position = position,
+                                   .normal = normal,
+                                   .N = N,
+                                   .V = V,
+                                   .materialAmbient = m.ambient,
+                                   .materialDiffuse = diffuseColor,
+                                   .materialSpecular = m.specular,
+                                   .shininess = m.shininess,
+                                   .globalAmbient = globalAmbient,
+                                   .globalAmbientTerm = terms.ambient,
+                                   .lightCount = static_cast<int>(lights.size())};
     for (const LightParams& light : lights) {
-        InnerRecord<Record, SpotRecord>* spotRecord = nullptr;
-        if constexpr (Record::enabled) spotRecord = &record->lights[&light - lights.data()].spot;
-
         // Where the light is and how much of it arrives.
         const LightVector<F, V3> toLight = lightVector<F, V3>(light, position);
         const V3& L = toLight.L;
-        const F att = attenuation(light, toLight.distance);
-        const F spot = spotFactor<F, V3, P>(light, L, spotRecord);
-        const F reach = att * spot;
+        const F reach = attenuation(light, toLight.distance) *
+                        spotFactor<F, V3, P>(light, L, &recording->lights[&light - lights.data()].spot...);
 
         // Ambient and Lambert diffuse.
         const F NdotL = dot(N, L);
-        const F lambert = max(NdotL, 0.0f);
-        V3 ambient(vec3(0.0f));
         if (light.ambient != vec3(0.0f)) {
-            ambient = (light.ambient * m.ambient) * reach;
+            const V3 ambient = (light.ambient * m.ambient) * reach;
             terms.ambient += ambient;
+            if constexpr (Record::enabled)
+                recordOf(recording...)->lights[&light - lights.data()].ambient = ambient;
         }
-        const V3 diffuse = diffuseColor * light.diffuse * (reach * lambert);
+        const V3 diffuse = diffuseColor * light.diffuse * (reach * max(NdotL, 0.0f));
         terms.diffuse += diffuse;
 
         // Specular, only where the light is in front of the surface.
         F cosine;
-        V3 reflected;  // R (Phong) or H (Blinn-Phong)
         if (specularModel == SpecularModel::Phong) {
-            reflected = N * (2.0f * NdotL) - L;
-            cosine = dot(reflected, V);
+            const V3 R = N * (2.0f * NdotL) - L;
+            cosine = dot(R, V);
+            if constexpr (Record::enabled)
+                recordOf(recording...)->lights[&light - lights.data()].reflected = R;
         } else {
-            reflected = safeNormalize<F, V3>(L + V);
-            cosine = dot(N, reflected);
+            const V3 H = safeNormalize<F, V3>(L + V);
+            cosine = dot(N, H);
+            if constexpr (Record::enabled)
+                recordOf(recording...)->lights[&light - lights.data()].reflected = H;
         }
-        const auto inFront = NdotL > kGrazingCosine;
-        const F spec = select(inFront, Maths<P>::pow(max(cosine, 0.0f), m.shininess), lanes<F>(0.0f));
+        const F spec =
+            select(NdotL > kGrazingCosine, Maths<P>::pow(max(cosine, 0.0f), m.shininess), lanes<F>(0.0f));
         const V3 specular = (light.specular * m.specular) * (reach * spec);
         terms.specular += specular;
 
         if constexpr (Record::enabled) {
-            auto& r = record->lights[&light - lights.data()];
+            auto& r = recordOf(recording...)->lights[&light - lights.data()];
             r.light = light;
             r.L = L;
             r.distance = toLight.distance;
-            r.attenuation = att;
+            r.attenuation = attenuation(light, toLight.distance);
             r.reach = reach;
             r.NdotL = NdotL;
-            r.lambert = lambert;
-            r.reflected = reflected;
             r.cosine = cosine;
-            r.grazing = !inFront;
+            r.grazing = !(NdotL > kGrazingCosine);
             r.spec = spec;
-            r.ambient = ambient;
             r.diffuse = diffuse;
             r.specular = specular;
         }
     }
-    if constexpr (Record::enabled) record->terms = terms;
+    if constexpr (Record::enabled) recordOf(recording...)->terms = terms;
     return terms;
 }
 
-template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact, class Record = NoRecord>
+template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact, class... Recording>
 LightingTerms<V3> standardLighting(const V3& position, const V3& normal, const vec3& eye,
                                    const PhongMaterial& m, const vec3& globalAmbient,
                                    std::span<const LightParams> lights,
                                    SpecularModel specularModel = SpecularModel::BlinnPhong,
-                                   Record* record = nullptr) {
+                                   Recording*... recording) {
     return standardLighting<F, V3, P>(position, normal, eye, m, V3(m.diffuse), globalAmbient, lights,
-                                      specularModel, record);
+                                      specularModel, recording...);
 }
 
 // =====================================================================================================
@@ -450,9 +453,10 @@ struct BrdfRecord {
 
 // `albedo` is the base colour the Lambert lobe reflects, per lane (a texture may vary it); F0 always
 // comes from the material.
-template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact, class Record = NoRecord>
+template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact, class... Recording>
 BrdfLobes<V3> brdfLobes(const V3& n, const V3& l, const V3& v, const PbrMaterial& m, const V3& albedo,
-                        const BrdfModel& model = {}, Record* record = nullptr) {
+                        const BrdfModel& model = {}, Recording*... recording) {
+    using Record = RecordOf<Recording...>;
     // The cosines, clamped away from the divisions' zeros.
     const V3 N = safeNormalize<F, V3>(n);
     const V3 L = safeNormalize<F, V3>(l);
@@ -480,33 +484,28 @@ BrdfLobes<V3> brdfLobes(const V3& n, const V3& l, const V3& v, const PbrMaterial
     const float diffuseScale = (1.0f - m.metalness) / std::numbers::pi_v<float>;
     const V3 diffuse = (V3(vec3(1.0f)) - fresnel) * albedo * diffuseScale;
     const V3 zero(vec3(0.0f));
-    const auto lobes = [&] {
-        return BrdfLobes<V3>{select(NdotLRaw > kGrazingCosine, diffuse, zero),
-                             select(NdotLRaw > kGrazingCosine, specular, zero)};
-    };
-    if constexpr (Record::enabled) {
-        *record = {.N = N,
-                   .L = L,
-                   .V = V,
-                   .H = H,
-                   .NdotLRaw = NdotLRaw,
-                   .NdotL = NdotL,
-                   .NdotV = NdotV,
-                   .NdotH = NdotH,
-                   .VdotH = VdotH,
-                   .alpha = alpha,
-                   .f0 = f0,
-                   .model = model,
-                   .D = D,
-                   .F = fresnel,
-                   .G = G,
-                   .specularScale = specularScale,
-                   .diffuseScale = diffuseScale,
-                   .grazing = !(NdotLRaw > kGrazingCosine),
-                   .lobes = lobes()};
-        return record->lobes;
-    }
-    return lobes();
+    if constexpr (Record::enabled)
+        *recordOf(recording...) = {.N = N,
+                                   .L = L,
+                                   .V = V,
+                                   .H = H,
+                                   .NdotLRaw = NdotLRaw,
+                                   .NdotL = NdotL,
+                                   .NdotV = NdotV,
+                                   .NdotH = NdotH,
+                                   .VdotH = VdotH,
+                                   .alpha = alpha,
+                                   .f0 = f0,
+                                   .model = model,
+                                   .D = D,
+                                   .F = fresnel,
+                                   .G = G,
+                                   .specularScale = specularScale,
+                                   .diffuseScale = diffuseScale,
+                                   .grazing = !(NdotLRaw > kGrazingCosine),
+                                   .lobes = brdfLobes<F, V3, P>(n, l, v, m, albedo, model)};
+    return {select(NdotLRaw > kGrazingCosine, diffuse, zero),
+            select(NdotLRaw > kGrazingCosine, specular, zero)};
 }
 
 template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact>
@@ -525,65 +524,60 @@ V3 brdf(const V3& n, const V3& l, const V3& v, const PbrMaterial& m, const BrdfM
 // a_global ⊗ m_ambient; image-based ambient is out of scope). `albedo` is the base colour per lane.
 // With a LightingRecord, LightRecord::attenuation is the falloff and the irradiance factor
 // falloff·spot·max(N·L, 0), incoming π·c_light and the BRDF's numbers are recorded per light.
-template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact, class Record = NoRecord>
+template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact, class... Recording>
 LightingTerms<V3> physicallyBasedTerms(const V3& position, const V3& normal, const vec3& eye,
                                        const PbrMaterial& m, const V3& albedo, const vec3& emission,
                                        const vec3& globalAmbient, std::span<const LightParams> lights,
-                                       const BrdfModel& model = {}, Record* record = nullptr) {
+                                       const BrdfModel& model = {}, Recording*... recording) {
+    using Record = RecordOf<Recording...>;
     static_assert(!Record::enabled || std::is_same_v<F, float>, "records hold one lane");
     const V3 N = safeNormalize<F, V3>(normal);
     const V3 V = safeNormalize<F, V3>(eye - position);
     LightingTerms<V3> terms{V3(emission), albedo * globalAmbient, V3(vec3(0.0f)), V3(vec3(0.0f))};
     if constexpr (Record::enabled)
-        *record = {.physicallyBased = true,
-                   .position = position,
-                   .normal = normal,
-                   .N = N,
-                   .V = V,
-                   .materialAmbient = albedo,
-                   .materialDiffuse = albedo,
-                   .pbr = m,
-                   .brdf = model,
-                   .globalAmbient = globalAmbient,
-                   .globalAmbientTerm = terms.ambient,
-                   .lightCount = static_cast<int>(lights.size())};
+        *recordOf(recording...) = {.physicallyBased = true,
+                                   .position = position,
+                                   .normal = normal,
+                                   .N = N,
+                                   .V = V,
+                                   .materialAmbient = albedo,
+                                   .materialDiffuse = albedo,
+                                   .pbr = m,
+                                   .brdf = model,
+                                   .globalAmbient = globalAmbient,
+                                   .globalAmbientTerm = terms.ambient,
+                                   .lightCount = static_cast<int>(lights.size())};
     for (const LightParams& light : lights) {
-        InnerRecord<Record, SpotRecord>* spotRecord = nullptr;
-        InnerRecord<Record, BrdfRecord>* brdfRecord = nullptr;
-        if constexpr (Record::enabled) {
-            spotRecord = &record->lights[&light - lights.data()].spot;
-            brdfRecord = &record->lights[&light - lights.data()].brdf;
-        }
         const LightVector<F, V3> toLight = lightVector<F, V3>(light, position);
         const F falloff = light.kind == LightKind::Directional
                               ? lanes<F>(1.0f)
                               : 1.0f / max(toLight.distance * toLight.distance, 1e-8f);
-        const F spot = spotFactor<F, V3, P>(light, toLight.L, spotRecord);
-        const F NdotL = dot(N, toLight.L);
-        const F lambert = max(NdotL, 0.0f);
-        const F irradiance = falloff * spot * lambert;
-        const BrdfLobes<V3> lobes = brdfLobes<F, V3, P>(N, toLight.L, V, m, albedo, model, brdfRecord);
+        const F irradiance =
+            falloff *
+            spotFactor<F, V3, P>(light, toLight.L, &recording->lights[&light - lights.data()].spot...) *
+            max(dot(N, toLight.L), 0.0f);
+        const BrdfLobes<V3> lobes = brdfLobes<F, V3, P>(N, toLight.L, V, m, albedo, model,
+                                                        &recording->lights[&light - lights.data()].brdf...);
         const V3 incoming = V3(light.diffuse * std::numbers::pi_v<float>) * irradiance;
         const V3 diffuse = lobes.diffuse * incoming;
-        const V3 specular = lobes.specular * incoming;
         terms.diffuse += diffuse;
+        const V3 specular = lobes.specular * incoming;
         terms.specular += specular;
         if constexpr (Record::enabled) {
-            auto& r = record->lights[&light - lights.data()];
+            auto& r = recordOf(recording...)->lights[&light - lights.data()];
             r.light = light;
             r.L = toLight.L;
             r.distance = toLight.distance;
             r.attenuation = falloff;
             r.reach = irradiance;
-            r.NdotL = NdotL;
-            r.lambert = lambert;
+            r.NdotL = dot(N, toLight.L);
             r.grazing = r.brdf.grazing;
             r.incoming = incoming;
             r.diffuse = diffuse;
             r.specular = specular;
         }
     }
-    if constexpr (Record::enabled) record->terms = terms;
+    if constexpr (Record::enabled) recordOf(recording...)->terms = terms;
     return terms;
 }
 
@@ -600,7 +594,6 @@ struct LightRecord {
     // Standard equation: att·spot. Cook-Torrance: the irradiance factor falloff·spot·max(N·L, 0).
     float reach = 1;
     float NdotL = 0;
-    float lambert = 0;  // max(N·L, 0)
     // Standard equation's specular: R = 2(N·L)N − L (Phong) or H = normalize(L + V) (Blinn-Phong), the
     // cosine R·V or N·H, and spec = max(cosine, 0)^n, 0 when grazing (N·L ≤ kGrazingCosine).
     vec3 reflected{0.0f};

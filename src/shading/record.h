@@ -1,32 +1,44 @@
-// The optional record the shading formulas fill (the step mode's "show the numbers"). A formula takes
-// a template parameter `class Record = NoRecord` and a `Record* record = nullptr` argument: with
-// NoRecord (the pipeline's case) every `if constexpr (Record::enabled)` block is compiled out and the
-// code is the formula alone; with a record type (LightingRecord, FogRecord, …: plain structs with
-// `enabled` true) the very values the formula computes are copied into it, for one lane (F = float).
-// So the numbers a lecture screen shows are never a second copy of a formula.
+// The optional record the shading formulas fill (the step mode's "show the numbers"). A formula ends
+// its parameters with a pack, `class... Recording` and `Recording*... recording`: empty (the pipeline's
+// case), the formula's signature and code are exactly what they are without records; one pointer to a
+// record type (LightingRecord, FogRecord, …: plain structs with `enabled` true), and the very values the
+// formula computes are copied into it, for one lane (F = float). So the numbers a lecture screen shows
+// are never a second copy of a formula. In the body,
+//   using Record = RecordOf<Recording...>;                           // NoRecord when not recording
+//   [[maybe_unused]] Record* const record = recordOf(recording...);  // null then
+//   if constexpr (Record::enabled) record->cosAngle = cosAngle;      // compiled out then
+// and a formula it calls gets its part: spotFactor(light, L, &recording->spot...), no argument at all
+// when not recording.
 #pragma once
-
-#include <type_traits>
 
 namespace facet {
 
-// No record: what every formula takes unless a caller asks for the numbers.
+// No record: what a formula records into when its caller asked for none.
 struct NoRecord {
     static constexpr bool enabled = false;
 };
 
-// The record a formula hands to a formula it calls: `Inner` when the caller records, else NoRecord.
-template <class Outer, class Inner>
-using InnerRecord = std::conditional_t<Outer::enabled, Inner, NoRecord>;
+template <class... Recording>
+struct RecordOfPack;
+template <>
+struct RecordOfPack<> {
+    using Type = NoRecord;
+};
+template <class Record>
+struct RecordOfPack<Record> {
+    using Type = Record;
+};
+// The record type of a formula's pack: NoRecord for none, else the one given.
+template <class... Recording>
+using RecordOf = typename RecordOfPack<Recording...>::Type;
 
-// `&record->*member` when recording, else a null NoRecord*: what a formula passes to the formula it
-// calls, e.g. standardLighting(…, innerRecord(record, &SurfaceTermsRecord::lighting)).
-template <class Outer, class Record, class Inner>
-InnerRecord<Outer, Inner>* innerRecord(Outer* record, Inner Record::*member) {
-    if constexpr (Outer::enabled)
-        return &(record->*member);
-    else
-        return nullptr;
+// The record pointer of a formula's pack: null for none.
+inline NoRecord* recordOf() {
+    return nullptr;
+}
+template <class Record>
+Record* recordOf(Record* record) {
+    return record;
 }
 
 }  // namespace facet

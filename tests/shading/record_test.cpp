@@ -108,7 +108,7 @@ TEST(LightingRecord, LightBehindTheSurfaceIsGrazingWithNoSpecular) {
     EXPECT_NEAR(r.NdotL, -0.8f, 1e-6f);
     EXPECT_TRUE(r.grazing);
     EXPECT_EQ(r.spec, 0.0f);
-    EXPECT_EQ(r.lambert, 0.0f);
+    EXPECT_EQ(r.diffuse, vec3(0.0f));  // max(N·L, 0) = 0
 }
 
 // The spot's axis straight down −z: the point is at cos θ = −L·s = 0.8 from it (θ = 36.87°).
