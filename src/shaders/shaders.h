@@ -304,25 +304,30 @@ struct PerPixelSurface {
             const LaneVec4<F> texel = detail::texels<F>(*u.diffuseMap, in.uv, liveLanes);
             albedo = albedo * rgb(texel);
             alpha = alpha * texel.w;
-            if constexpr (Record::enabled)
-                recordOf(recording...)->diffuseMapped = true, recordOf(recording...)->diffuseTexel = texel;
+            if constexpr (Record::enabled) {
+                recordOf(recording...)->diffuseMapped = true;
+                recordOf(recording...)->diffuseTexel = texel;
+            }
         }
         LightingTerms<V3> t = surfaceTerms<F>(in.position, in.normal, albedo, u, &recording->lighting...);
         if (u.emissionMap) {
             const LaneVec4<F> texel = detail::texels<F>(*u.emissionMap, in.uv, liveLanes);
             t.emission = t.emission * rgb(texel);
-            if constexpr (Record::enabled)
-                recordOf(recording...)->emissionMapped = true, recordOf(recording...)->emissionTexel = texel;
+            if constexpr (Record::enabled) {
+                recordOf(recording...)->emissionMapped = true;
+                recordOf(recording...)->emissionTexel = texel;
+            }
         }
         V3 c = t.sum();
         if constexpr (Record::enabled) recordOf(recording...)->sum = c;
         if (u.clampColor) c = detail::clamp01(c);
         if constexpr (Record::enabled) {
-            recordOf(recording...)->alpha = alpha;
-            recordOf(recording...)->albedo = albedo;
-            recordOf(recording...)->emission = t.emission;
-            recordOf(recording...)->clamped = u.clampColor;
-            recordOf(recording...)->color = c;
+            auto& record = *recordOf(recording...);
+            record.alpha = alpha;
+            record.albedo = albedo;
+            record.emission = t.emission;
+            record.clamped = u.clampColor;
+            record.color = c;
         }
         // The output (FragmentRecord::result) is the caller's to record: returned as an expression, it
         // is built in place.
@@ -376,12 +381,13 @@ struct PerVertexSurface {
             surfaceTerms<F>(in.position, in.normal, V3(u.albedo()), u, &recording->lighting...);
         if (u.emissionMap) t.emission = V3(vec3(0.0f));  // added, textured, per fragment
         if constexpr (Record::enabled) {
-            recordOf(recording...)->position = in.position;
-            recordOf(recording...)->normal = in.normal;
-            recordOf(recording...)->uv = in.uv;
-            recordOf(recording...)->emissionDeferred = u.emissionMap != nullptr;
-            recordOf(recording...)->clamped = u.clampColor;
-            recordOf(recording...)->sum = t.sum();
+            auto& record = *recordOf(recording...);
+            record.position = in.position;
+            record.normal = in.normal;
+            record.uv = in.uv;
+            record.emissionDeferred = u.emissionMap != nullptr;
+            record.clamped = u.clampColor;
+            record.sum = t.sum();
         }
         // What it hands on (VertexLightingRecord::modulated, added) is the caller's to record.
         if (u.clampColor) return {detail::clamp01(t.sum()), V3(vec3(0.0f)), in.position, in.uv};
@@ -411,23 +417,28 @@ struct PerVertexSurface {
             const LaneVec4<F> texel = detail::texels<F>(*u.diffuseMap, in.uv, liveLanes);
             modulated = modulated * rgb(texel);
             alpha = alpha * texel.w;
-            if constexpr (Record::enabled)
-                recordOf(recording...)->diffuseMapped = true, recordOf(recording...)->diffuseTexel = texel;
+            if constexpr (Record::enabled) {
+                recordOf(recording...)->diffuseMapped = true;
+                recordOf(recording...)->diffuseTexel = texel;
+            }
         }
         V3 added = in.added;
         if (u.emissionMap) {
             const LaneVec4<F> texel = detail::texels<F>(*u.emissionMap, in.uv, liveLanes);
             const V3 emission = V3(u.emissionTerm()) * rgb(texel);
             added = added + emission;
-            if constexpr (Record::enabled)
-                recordOf(recording...)->emissionMapped = true, recordOf(recording...)->emissionTexel = texel,
+            if constexpr (Record::enabled) {
+                recordOf(recording...)->emissionMapped = true;
+                recordOf(recording...)->emissionTexel = texel;
                 recordOf(recording...)->emission = emission;
+            }
         }
         if constexpr (Record::enabled) {
-            recordOf(recording...)->alpha = alpha;
-            recordOf(recording...)->modulated = modulated;
-            recordOf(recording...)->added = added;
-            recordOf(recording...)->color = modulated + added;
+            auto& record = *recordOf(recording...);
+            record.alpha = alpha;
+            record.modulated = modulated;
+            record.added = added;
+            record.color = modulated + added;
         }
         // The output (FragmentRecord::result) is the caller's to record.
         return withAlpha(surfaceOutput<F>(modulated + added, alpha, in.position, u, &recording->output...),

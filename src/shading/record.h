@@ -4,11 +4,14 @@
 // record type (LightingRecord, FogRecord, …: plain structs with `enabled` true), and the very values the
 // formula computes are copied into it, for one lane (F = float). So the numbers a lecture screen shows
 // are never a second copy of a formula. In the body,
-//   using Record = RecordOf<Recording...>;                           // NoRecord when not recording
-//   [[maybe_unused]] Record* const record = recordOf(recording...);  // null then
-//   if constexpr (Record::enabled) record->cosAngle = cosAngle;      // compiled out then
-// and a formula it calls gets its part: spotFactor(light, L, &recording->spot...), no argument at all
-// when not recording.
+//   using Record = RecordOf<Recording...>;                                   // NoRecord: none
+//   if constexpr (Record::enabled) recordOf(recording...)->cosAngle = cosAngle;  // compiled out then
+// and a formula it calls gets its part of the record: spotFactor(light, L, &recording->spot...), no
+// argument at all when not recording. The formulas' bodies otherwise stay as they were: GCC's inlining
+// and function splitting follow small details (a helper function, a result returned from a named local),
+// and the eight-lane code is to stay the same instructions (checked by disassembling the renderer). A
+// result returned as an expression is recorded by calling the formula again without a record
+// (applyFog, brdfLobes, spotFactor…) or by the caller (the shaders' outputs).
 #pragma once
 
 namespace facet {
