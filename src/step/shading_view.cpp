@@ -318,28 +318,32 @@ void writeBrdf(Lines& out, const LightingRecord& lighting, const BrdfRecord& b) 
             " (N·L, N·V at least 0.0001)");
     out.add("  α = roughness² = " + num(lighting.pbr.roughness) + "² = " + num(b.alpha) +
             " (at least 0.001)");
-    if (b.model.distribution == NormalDistribution::GGX)
-        out.add("  D = α²/(π((N·H)²(α² − 1) + 1)²) = " + num(b.alpha) + "²/(π(" + num(b.NdotH) + "²(" +
-                num(b.alpha) + "² − 1) + 1)²) = " + num(b.D));
-    else
-        out.add("  D = exp(((N·H)² − 1)/(α²(N·H)²))/(π·α²·(N·H)⁴) with N·H = " + num(b.NdotH) +
-                ", α = " + num(b.alpha) + ": D = " + num(b.D));
+    if (b.model.distribution == NormalDistribution::GGX) {
+        out.add("  D = α²/(π((N·H)²(α² − 1) + 1)²)   (GGX)");
+        out.add("    = " + num(b.alpha) + "²/(π(" + num(b.NdotH) + "²(" + num(b.alpha) +
+                "² − 1) + 1)²) = " + num(b.D));
+    } else {
+        out.add("  D = exp(((N·H)² − 1)/(α²(N·H)²))/(π·α²·(N·H)⁴)   (Beckmann)");
+        out.add("    with N·H = " + num(b.NdotH) + ", α = " + num(b.alpha) + ": D = " + num(b.D));
+    }
     out.add("  F0 = mix(F0_dielectric, c_base, metalness) = " + rgb(b.f0));
     if (b.model.fresnel == FresnelModel::Schlick) {
-        out.add("  F = F0 + (1 − F0)(1 − V·H)^5 = " + rgb(b.f0) + " + (1 − F0)(1 − " + num(b.VdotH) + ")^5");
+        out.add("  F = F0 + (1 − F0)(1 − V·H)^5   (Schlick)");
+        out.add("    = " + rgb(b.f0) + " + (1 − F0)(1 − " + num(b.VdotH) + ")^5");
     } else {
-        out.add("  F: the exact Fresnel reflectance (Cook & Torrance 1982) at cos θ = V·H = " + num(b.VdotH) +
-                ", η = (1 + √F0)/(1 − √F0) = " +
-                vec(vec3(etaFromF0(b.f0.x), etaFromF0(b.f0.y), etaFromF0(b.f0.z))));
+        out.add("  F: the exact Fresnel reflectance (Cook & Torrance 1982) at cos θ = V·H = " + num(b.VdotH));
+        out.add("    and η = (1 + √F0)/(1 − √F0) = " +
+                vec(vec3(etaFromF0(b.f0.x), etaFromF0(b.f0.y), etaFromF0(b.f0.z))) + " per channel");
     }
     out.add("    = " + rgb(b.F));
-    if (b.model.geometry == GeometryTerm::SmithGGX)
-        out.add("  G = G1(N·L)·G1(N·V), G1(x) = 2x/(x + √(α² + (1 − α²)x²)), with N·L = " + num(b.NdotL) +
-                ", N·V = " + num(b.NdotV) + ": G = " + num(b.G));
-    else
-        out.add("  G = min(1, 2(N·H)(N·V)/(V·H), 2(N·H)(N·L)/(V·H)) = min(1, 2·" + num(b.NdotH) + "·" +
-                num(b.NdotV) + "/" + num(b.VdotH) + ", 2·" + num(b.NdotH) + "·" + num(b.NdotL) + "/" +
-                num(b.VdotH) + ") = " + num(b.G));
+    if (b.model.geometry == GeometryTerm::SmithGGX) {
+        out.add("  G = G1(N·L)·G1(N·V), G1(x) = 2x/(x + √(α² + (1 − α²)x²))   (Smith GGX)");
+        out.add("    with N·L = " + num(b.NdotL) + ", N·V = " + num(b.NdotV) + ": G = " + num(b.G));
+    } else {
+        out.add("  G = min(1, 2(N·H)(N·V)/(V·H), 2(N·H)(N·L)/(V·H))   (Cook-Torrance)");
+        out.add("    = min(1, 2·" + num(b.NdotH) + "·" + num(b.NdotV) + "/" + num(b.VdotH) + ", 2·" +
+                num(b.NdotH) + "·" + num(b.NdotL) + "/" + num(b.VdotH) + ") = " + num(b.G));
+    }
     if (b.grazing) {
         out.add("  N·L ≤ " + num(kGrazingCosine) +
                 ": the light grazes the surface or is behind it: both lobes are 0");
@@ -399,7 +403,7 @@ void writeSum(Lines& out, const SurfaceTermsRecord& s, const vec3& emission) {
                 " drawn (a component image): the other terms are 0.");
     }
     out.add("  emission = " + rgb(emission));
-    out.add("  ambient  = " + rgb(t.ambient) + " (a_global ⊗ m_ambient + each light's)");
+    out.add("  ambient  = " + rgb(t.ambient) + " (global + each light's)");
     out.add("  diffuse  = " + rgb(t.diffuse));
     out.add("  specular = " + rgb(t.specular));
 }
@@ -458,7 +462,8 @@ void writeInterpolation(Lines& out, const ShadingTrace& t) {
         out.add("  corners are themselves mixes of the corners above.");
     }
     out.add("  The interpolator gives (what the fragment shader reads):");
-    out.add("  modulated = " + rgb(f.modulatedIn) + ", added = " + rgb(f.addedIn));
+    out.add("  modulated = " + rgb(f.modulatedIn));
+    out.add("  added = " + rgb(f.addedIn));
 }
 
 // The fragment shader's own part: textures, emission, clamp.
@@ -498,12 +503,13 @@ Screen lightingScreen(const ShadingTrace& t) {
             out.add("normal interpolated from the triangle's corners.");
             break;
         case ShadingFrequency::Gouraud:
-            out.add("Gouraud shading: the lighting equation runs at the triangle's three corners (in the");
-            out.add("vertex shader); their colours are interpolated across the triangle.");
+            out.add("Gouraud shading: the lighting equation runs at the triangle's three corners");
+            out.add("(in the vertex shader); their colours are interpolated across the triangle.");
             break;
         case ShadingFrequency::Flat:
-            out.add("Flat shading: the lighting equation runs at the triangle's provoking corner (corner " +
-                    std::to_string(t.provokingCorner) + "); its colour fills the whole triangle.");
+            out.add("Flat shading: the lighting equation runs at the triangle's provoking corner");
+            out.add("(corner " + std::to_string(t.provokingCorner) +
+                    "); its colour fills the whole triangle.");
             break;
     }
     out.blank();
