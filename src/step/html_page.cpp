@@ -63,8 +63,9 @@ constexpr std::string_view kIndexHtml = R"html(<!DOCTYPE html>
            border-radius: 4px; padding: 0.1em 0.6em; cursor: pointer; }
   button:disabled { opacity: 0.4; cursor: default; }
   main { display: flex; flex-wrap: wrap; gap: 1em; padding: 1em; align-items: flex-start; }
-  #stage-panel { flex: 1 1 36em; min-width: 0; }
-  #pixel-panel { flex: 1 1 52em; min-width: 0; }
+  /* Side by side when the window holds the image's 20em and 80 columns of text, else one above the other. */
+  #stage-panel { flex: 1 1 20em; min-width: 0; }
+  #pixel-panel { flex: 0 1 auto; width: min-content; max-width: 100%; }
   #stage-nav { display: flex; align-items: center; gap: 1em; }
   h2 { font-size: 1.3em; margin: 0.4em 0; }
   #stage-description { color: var(--muted); margin: 0 0 0.6em 0; }
@@ -82,8 +83,9 @@ constexpr std::string_view kIndexHtml = R"html(<!DOCTYPE html>
   #verdict { font-weight: bold; }
   #history section { border-top: 2px solid var(--fg); margin-top: 1em; }
   #history h3 { font-size: 1.1em; margin: 0.4em 0; }
-  #history pre { font: 20px/1.35 monospace; margin: 0; padding: 0.5em; background: var(--panel);
-                 overflow-x: auto; }
+  /* 80 columns (a screen's width) as large as the window allows: 14 to 24 px. */
+  #history pre { font: clamp(14px, 1.05vw, 24px)/1.35 monospace; width: 80ch; max-width: 100%;
+                 margin: 0; padding: 0.5em; background: var(--panel); overflow-x: auto; }
   #load-error { margin: 1em; font-weight: bold; }
 </style>
 </head>
@@ -177,7 +179,7 @@ constexpr std::string_view kIndexHtml = R"html(<!DOCTYPE html>
   // The image as large as the panel and most of the window allow, pixels kept square and sharp.
   function layoutImage() {
     const available = byId("stage-panel").clientWidth - 4;
-    const scale = Math.max(0.1, Math.min(available / trace.width, (window.innerHeight * 0.8) / trace.height));
+    const scale = Math.max(0.1, Math.min(available / trace.width, (window.innerHeight * 0.75) / trace.height));
     image.style.width = trace.width * scale + "px";
     image.style.height = trace.height * scale + "px";
     placeMarker();
