@@ -171,6 +171,13 @@ TEST_F(HtmlPageTest, WritesThePageAndItsDataAndNothingElse) {
     }
 }
 
+TEST_F(HtmlPageTest, TextThatIsNotUtf8IsWrittenWithReplacementCharacters) {
+    HtmlPage page = twoWalkPage();
+    page.title = "caf\xe9.obj";  // a Latin-1 file name from the command line
+    writeHtmlPage(folder_, page);
+    EXPECT_EQ(readTraceData(folder_)["title"], "caf\uFFFD.obj");
+}
+
 TEST_F(HtmlPageTest, AFolderInTheWayIsAnInputErrorNamingTheFileAndLeavesNoTemporary) {
     fs::create_directories(folder_ / kHtmlPageFile / "something");
     try {
