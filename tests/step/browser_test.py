@@ -15,6 +15,7 @@ its path. Exit status 0: passed, 1: failed.
 import argparse
 import base64
 import json
+import math
 import pathlib
 import shutil
 import socket
@@ -209,8 +210,14 @@ def main():
         check(scale_x >= 2 and scale_y >= 2, f"the image is drawn at {scale_x:.2f}× only: too small to aim")
 
         def click_pixel(px, py):
-            driver.click_at("#stage-image", round((px + 0.5) * scale_x - box["width"] / 2),
-                            round((py + 0.5) * scale_y - box["height"] / 2))
+            """A click on the last whole CSS pixel inside image pixel (px, py), at its lower right: rounding
+            instead of truncating the position would land on the next pixel. WebDriver clicks at whole CSS
+            pixels, measured from the element's centre rounded down."""
+            centre_x = math.floor(box["x"] + box["width"] / 2)
+            centre_y = math.floor(box["y"] + box["height"] / 2)
+            target_x = math.ceil(box["x"] + (px + 1) * scale_x) - 1
+            target_y = math.ceil(box["y"] + (py + 1) * scale_y) - 1
+            driver.click_at("#stage-image", target_x - centre_x, target_y - centre_y)
 
         click_pixel(x, y)
         wait_for_text(driver, "#pixel", f"{x},{y}", f"after a click on the traced pixel ({x}, {y})")
