@@ -228,6 +228,8 @@ def main():
         centre = (marker["x"] + marker["width"] / 2 - box["x"], marker["y"] + marker["height"] / 2 - box["y"])
         check(abs(centre[0] - (x + 0.5) * scale_x) <= 1 and abs(centre[1] - (y + 0.5) * scale_y) <= 1,
               f"the marker's centre is at {centre}, not on pixel ({x}, {y})")
+        driver.press("0")  # the final image, with the pixel marked and its history beside it
+        wait_for_text(driver, "#stage-title", titles[-1], "after the key 0")
         screenshot = work / "step-page.png"
         screenshot.write_bytes(base64.b64decode(driver.command("GET", "/screenshot")))
         print(f"screenshot: {screenshot}")

@@ -161,7 +161,7 @@ TEST_F(HtmlPageTest, WritesThePageAndItsDataAndNothingElse) {
     EXPECT_EQ(files, (std::set<std::string>{"index.html", "trace-data.js"}));  // no temporary left behind
 
     const std::string html = readFile(folder_ / "page" / kHtmlPageFile);
-    EXPECT_NE(html.find("<script src=\"trace-data.js\"></script>"), std::string::npos);
+    EXPECT_NE(html.find("<script src=\"" + std::string(kHtmlDataFile) + "\"></script>"), std::string::npos);
     // Offline: nothing fetched from a server, no CDN, no web font.
     for (const std::string& file : {html, readFile(folder_ / "page" / kHtmlDataFile)}) {
         EXPECT_EQ(file.find("http:"), std::string::npos);
