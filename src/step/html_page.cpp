@@ -52,7 +52,7 @@ constexpr std::string_view kIndexHtml = R"html(<!DOCTYPE html>
 <style>
   :root { --bg: #ffffff; --fg: #000000; --muted: #303030; --panel: #eeeeee; --accent: #0033aa;
           --marker: #ffdd00; --marker-edge: #000000; }
-  body.dark { --bg: #000000; --fg: #ffffff; --muted: #dddddd; --panel: #1c1c1c; --accent: #99ccff; }
+  html.dark { --bg: #000000; --fg: #ffffff; --muted: #dddddd; --panel: #1c1c1c; --accent: #99ccff; }
   html, body { margin: 0; background: var(--bg); color: var(--fg); }
   body { font: 20px/1.4 sans-serif; }
   header { display: flex; flex-wrap: wrap; align-items: baseline; gap: 0.3em 1em; padding: 0.5em 1em;
@@ -275,7 +275,7 @@ constexpr std::string_view kIndexHtml = R"html(<!DOCTYPE html>
     event.preventDefault();
   });
   byId("theme").addEventListener("click", () => {
-    const dark = document.body.classList.toggle("dark");
+    const dark = document.documentElement.classList.toggle("dark");
     byId("theme").textContent = dark ? "Light" : "Dark";
   });
 
