@@ -83,8 +83,8 @@ constexpr std::string_view kIndexHtml = R"html(<!DOCTYPE html>
   #verdict { font-weight: bold; }
   #history section { border-top: 2px solid var(--fg); margin-top: 1em; }
   #history h3 { font-size: 1.1em; margin: 0.4em 0; }
-  /* 80 columns (a screen's width) as large as the window allows: 14 to 24 px. */
-  #history pre { font: clamp(14px, 1.05vw, 24px)/1.35 monospace; width: 80ch; max-width: 100%;
+  /* 80 columns (a screen's width) as large as the window allows: 16 to 26 px (Ctrl + for more). */
+  #history pre { font: clamp(16px, 1.05vw, 26px)/1.35 monospace; width: 80ch; max-width: 100%;
                  margin: 0; padding: 0.5em; background: var(--panel); overflow-x: auto; }
   #load-error { margin: 1em; font-weight: bold; }
 </style>
