@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "glsl.h"
+#include "names.h"
 #include "state.h"
 
 namespace facet {
@@ -179,6 +180,14 @@ struct CoverageEvent {
 // Stored: appended to the pixel's fragment list (FragmentOutput::AppendToLists), the colour buffer
 // untouched until the lists are resolved; Dropped: not stored, its tile's node pool being full.
 enum class FragmentFate : std::uint8_t { Written, DepthFailed, Discarded, Stored, Dropped };
+inline constexpr EnumName<FragmentFate> kFragmentFateNames[] = {{FragmentFate::Written, "written"},
+                                                                {FragmentFate::DepthFailed, "depth-failed"},
+                                                                {FragmentFate::Discarded, "discarded"},
+                                                                {FragmentFate::Stored, "stored"},
+                                                                {FragmentFate::Dropped, "dropped"}};
+constexpr std::span<const EnumName<FragmentFate>> enumNames(FragmentFate) {
+    return kFragmentFateNames;
+}
 
 struct FragmentEvent {
     int x = 0, y = 0;
@@ -225,6 +234,17 @@ enum class TriangleFate : std::uint8_t {
     MissesSamples,  // its bounding box holds no pixel centre
     Culled,
 };
+inline constexpr EnumName<TriangleFate> kTriangleFateNames[] = {
+    {TriangleFate::Drawn, "drawn"},
+    {TriangleFate::NonFinite, "non-finite"},
+    {TriangleFate::OutsideFrustum, "outside-frustum"},
+    {TriangleFate::ClippedAway, "clipped-away"},
+    {TriangleFate::ZeroArea, "zero-area"},
+    {TriangleFate::MissesSamples, "misses-samples"},
+    {TriangleFate::Culled, "culled"}};
+constexpr std::span<const EnumName<TriangleFate>> enumNames(TriangleFate) {
+    return kTriangleFateNames;
+}
 
 // Counters for one draw; cheap enough to keep always.
 struct DrawStats {

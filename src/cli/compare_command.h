@@ -12,7 +12,7 @@
 namespace facet::cli {
 
 struct CompareArgs {
-    RenderArgs scene;                         // input, size and lighting choices as for render
+    SceneArgs scene;                          // input, size and lighting choices as for render
     std::optional<facet::MesaDriver> driver;  // absent: softpipe, the conformance oracle
     std::optional<std::string> facetImage, mesaImage, diffImage;
 };

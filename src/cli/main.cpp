@@ -9,6 +9,7 @@
 #include "cli/bench_command.h"
 #include "cli/compare_command.h"
 #include "cli/render_command.h"
+#include "cli/step_command.h"
 
 int main(int argc, char** argv) {
     CLI::App app{"Facet: a software rasterizer. Renders OBJ models and scene files to images on the CPU."};
@@ -19,6 +20,8 @@ int main(int argc, char** argv) {
     CLI::App* renderCommand = facet::cli::addRenderCommand(app, renderArgs);
     facet::cli::CompareArgs compareArgs;
     CLI::App* compareCommand = facet::cli::addCompareCommand(app, compareArgs);
+    facet::cli::StepArgs stepArgs;
+    CLI::App* stepCommand = facet::cli::addStepCommand(app, stepArgs);
     facet::BenchOptions benchOptions;
     CLI::App* benchCommand = facet::cli::addBenchCommand(app, benchOptions);
 
@@ -43,6 +46,7 @@ int main(int argc, char** argv) {
     try {
         if (*renderCommand) return facet::cli::render(renderArgs);
         if (*compareCommand) return facet::cli::compare(compareArgs);
+        if (*stepCommand) return facet::cli::step(stepArgs);
         if (*benchCommand) return facet::cli::bench(benchOptions, *benchCommand);
     } catch (const facet::InputError& e) {
         std::cerr << "facet: error: " << e.what() << "\n";

@@ -8,6 +8,7 @@
 
 #include "base/errors.h"
 #include "base/quote.h"
+#include "scene/limits.h"
 
 namespace facet::cli {
 
@@ -77,7 +78,70 @@ std::string sizeFromScene(const std::filesystem::path& input, bool widthGiven, b
     return " (" + keys + " from " + input.string() + ")";
 }
 
-void applyLightingOptions(const RenderArgs& args, facet::Scene& scene) {
+void addSceneOptions(CLI::App& command, SceneArgs& args) {
+    command.add_option("input", args.input, "Model (.obj) or scene (.json)")->required();
+    command.add_option("--width", args.width, "Image width in pixels (default 1280)")->check(kWholeNumber);
+    command.add_option("--height", args.height, "Image height in pixels (default 960)")->check(kWholeNumber);
+    command.add_option("--eye", args.eye, "Camera position x,y,z (default: framed from the front)");
+    command.add_option("--target", args.target,
+                       "Point the camera looks at, x,y,z (default: the model's centre)");
+    command.add_option("--fovy", args.fovy, "Vertical field of view in degrees (default 40)")
+        ->check(kFiniteNumber);
+    command.add_option("--threads", args.threads, "Worker threads (default: one per hardware thread)")
+        ->check(wholeNumber(0, 1024));
+    addChoice(command, "--lighting", args.lighting,
+              "Conventions: linear light and sRGB output, or OpenGL 1.x fixed function (docs/lighting.md)" +
+                  byDefault(LightingPreset::Facet));
+    addChoice(command, "--reflection", args.reflection,
+              "Reflection model for every object" + byDefault(ReflectionModel::BlinnPhong));
+    addChoice(command, "--shading", args.shading,
+              "Shading frequency for every object: per face, per vertex or per pixel" +
+                  byDefault(ShadingFrequency::Phong));
+    command
+        .add_option(
+            "--crease-angle", args.creaseAngle,
+            "Computed normals: faces meeting at a sharper angle (degrees) keep a hard edge (default 60)")
+        ->check(kFiniteNumber);
+    addChoice(command, "--only", args.only, "Render one term of the lighting equation alone");
+    addChoice(command, "--transparency", args.transparency,
+              "Transparent triangles back to front, in file order, or in exact per-pixel lists" +
+                  byDefault(TransparencyMode::Sorted));
+    addChoice(command, "--sort-key", args.sortKey,
+              "Depth that orders transparent triangles: the centroid's or the farthest vertex's" +
+                  byDefault(SortKey::Centroid));
+    addChoice(command, "--encode", args.encode,
+              "8-bit output encoding: the exact sRGB curve, a power 1/gamma, or none" +
+                  byDefault(TransferCurve::Srgb));
+    command.add_option("--gamma", args.gamma, "Encode 8-bit output as c^(1/GAMMA) (e.g. 2.2)")
+        ->check(kFiniteNumber);
+}
+
+facet::Scene sceneFromArgs(const SceneArgs& args) {
+    const std::filesystem::path input = args.input;
+    facet::Scene scene = facet::loadSceneOrModel(input);
+    if (args.width) scene.width = *args.width;
+    if (args.height) scene.height = *args.height;
+    checkSize(scene.width, scene.height,
+              sizeFromScene(input, args.width.has_value(), args.height.has_value()));
+    if (args.eye) scene.camera.eye = parseVec3("--eye", *args.eye);
+    if (args.target) scene.camera.target = parseVec3("--target", *args.target);
+    if (args.fovy) {
+        if (!(*args.fovy >= facet::kMinFovyDegrees && *args.fovy <= facet::kMaxFovyDegrees)) {
+            std::ostringstream message;
+            message << "--fovy must be from " << facet::kMinFovyDegrees << " to " << facet::kMaxFovyDegrees
+                    << " degrees (got " << *args.fovy << ")";
+            throw facet::InputError(message.str());
+        }
+        scene.camera.fovyDegrees = *args.fovy;
+    }
+    if (scene.camera.eye && scene.camera.target &&
+        glm::length(*scene.camera.eye - *scene.camera.target) == 0.0f)
+        throw facet::InputError("the camera's eye and target are the same point");
+    applyLightingOptions(args, scene);
+    return scene;
+}
+
+void applyLightingOptions(const SceneArgs& args, facet::Scene& scene) {
     if (args.lighting) scene.lighting.preset = *args.lighting;
     if (args.reflection) {
         scene.lighting.model = *args.reflection;

@@ -52,30 +52,43 @@ void checkSize(int width, int height, const std::string& fromScene = "");
 // For checkSize: " (\"height\" from scenes/a.json)" when a side of the image comes from the scene file.
 std::string sizeFromScene(const std::filesystem::path& input, bool widthGiven, bool heightGiven);
 
-struct RenderArgs {
+// The choices that decide what a frame shows, which every command that renders a scene takes (render,
+// step; compare some of them): the input, the image size, the camera and the lighting, shading,
+// transparency and encoding options.
+struct SceneArgs {
     std::string input;
-    std::string output;
     std::optional<int> width, height;
     std::optional<std::string> eye, target;
     std::optional<float> fovy;
     int threads = 0;
-    bool quiet = false;
     std::optional<LightingPreset> lighting;
     std::optional<ReflectionModel> reflection;
     std::optional<ShadingFrequency> shading;
     std::optional<LightingTerm> only;
     std::optional<float> creaseAngle;
-    bool components = false;
-    std::optional<std::string> frames;  // "0-59"
-    std::optional<float> turntable;     // degrees over the frames
-    bool stats = false;
     std::optional<TransparencyMode> transparency;
     std::optional<SortKey> sortKey;
     std::optional<TransferCurve> encode;
     std::optional<float> gamma;
 };
 
+// Adds SceneArgs's options (and the input) to `command`, as `facet render` describes them.
+void addSceneOptions(CLI::App& command, SceneArgs& args);
+
+// Loads the input and applies every choice of `args` to it; throws InputError for a bad value or an
+// unusable input. The size is checked (checkSize), the camera's eye and target are not the same point.
+facet::Scene sceneFromArgs(const SceneArgs& args);
+
+struct RenderArgs : SceneArgs {
+    std::string output;
+    bool quiet = false;
+    bool components = false;
+    std::optional<std::string> frames;  // "0-59"
+    std::optional<float> turntable;     // degrees over the frames
+    bool stats = false;
+};
+
 // Applies the command line's lighting choices to every object (they win over the scene file's).
-void applyLightingOptions(const RenderArgs& args, facet::Scene& scene);
+void applyLightingOptions(const SceneArgs& args, facet::Scene& scene);
 
 }  // namespace facet::cli

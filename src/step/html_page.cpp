@@ -1,19 +1,15 @@
 #include "step/html_page.h"
 
-#include <unistd.h>
-
 #include <array>
-#include <cerrno>
-#include <cstring>
-#include <fstream>
+#include <deque>
 #include <map>
 #include <string_view>
-#include <system_error>
 #include <unordered_map>
 
 #include <nlohmann/json.hpp>
 
 #include "base/errors.h"
+#include "io/text_file.h"
 
 namespace facet::step {
 namespace {
@@ -39,7 +35,9 @@ constexpr std::string_view kIndexHtml = R"html(<!DOCTYPE html>
     stages              [{id, title, file, description}], pipeline order, the last is the final image
     strings             every distinct text once: screen ids, titles and texts, verdicts
     screens             every distinct screen once: [id, title, text], numbers into strings
-    walks               one per traced pixel: [x, y, triangle (null: none), verdict, [screen numbers]]
+    walks               one per traced pixel: [x, y, triangle (null: none), heading, [screen numbers]];
+                        the heading is the lines facet step --print writes above the screens (the
+                        pixel, its triangle, the verdict), a number into strings
   Walks share screens (the triangle's views, background pixels), so a screen costs its size once.
   Size: the Stanford bunny at 800x600 (every 8th pixel traced) gives a trace-data.js of about
   FACET_DATA_SIZE_NOTE.
@@ -80,7 +78,7 @@ constexpr std::string_view kIndexHtml = R"html(<!DOCTYPE html>
   #notice { border: 2px solid var(--fg); background: var(--panel); padding: 0.4em 0.6em; }
   #screen-list { margin: 0.3em 0; padding-left: 1.5em; columns: 2 18em; }
   #screen-list a { color: var(--accent); }
-  #verdict { font-weight: bold; }
+  #verdict { font: bold clamp(16px, 1.05vw, 26px)/1.35 monospace; margin: 0.5em 0; white-space: pre-wrap; }
   #history section { border-top: 2px solid var(--fg); margin-top: 1em; }
   #history h3 { font-size: 1.1em; margin: 0.4em 0; }
   /* 80 columns (a screen's width) as large as the window allows: 16 to 26 px (Ctrl + for more). */
@@ -134,7 +132,7 @@ constexpr std::string_view kIndexHtml = R"html(<!DOCTYPE html>
   let stage = 0;
   let shownWalk = Math.min(trace.firstWalk, trace.walks.length - 1);
 
-  // A walk is [x, y, triangle, verdict, screens]; the first one at a pixel is the one shown.
+  // A walk is [x, y, triangle, heading, screens]; the first one at a pixel is the one shown.
   const walkAtPixel = new Map();
   trace.walks.forEach((walk, n) => {
     const key = walk[1] * trace.width + walk[0];
@@ -197,13 +195,13 @@ constexpr std::string_view kIndexHtml = R"html(<!DOCTYPE html>
     marker.style.top = (walk[1] + 0.5) * cell - size / 2 + "px";
   }
 
-  // The walk's text as facet step --print writes it: the verdict, then each screen under its number
+  // The walk's text as facet step --print writes it: the heading, then each screen under its number
   // and title.
   function showWalk(n, notice) {
     const walk = trace.walks[n];
     if (!walk) return;
     shownWalk = n;
-    const [x, y, triangle, verdict, screens] = walk;
+    const [x, y, triangle, heading, screens] = walk;
     byId("pixel").textContent = x + "," + y;
     byId("pixel-triangle").textContent =
         triangle === null ? "(no triangle covers it)" : "(triangle " + triangle + ")";
@@ -213,18 +211,17 @@ constexpr std::string_view kIndexHtml = R"html(<!DOCTYPE html>
     const list = byId("screen-list");
     history.replaceChildren();
     list.replaceChildren();
-    const verdictLine = document.createElement("p");
-    verdictLine.id = "verdict";
-    verdictLine.textContent = "Pixel (" + x + ", " + y + "): " + text(verdict);
-    history.append(verdictLine);
+    const headingLines = document.createElement("pre");
+    headingLines.id = "verdict";
+    headingLines.textContent = text(heading);
+    history.append(headingLines);
     screens.forEach((screenNumber, k) => {
       const [id, title, body] = trace.screens[screenNumber];
-      const heading = (k + 1) + ". " + text(title);
       const section = document.createElement("section");
       section.id = "screen-" + (k + 1);
       section.dataset.screen = text(id);
       const h3 = document.createElement("h3");
-      h3.textContent = heading;
+      h3.textContent = (k + 1) + ". " + text(title);
       const pre = document.createElement("pre");
       pre.textContent = text(body);
       section.append(h3, pre);
@@ -335,6 +332,7 @@ json traceData(const HtmlPage& page) {
                           {"file", stage.file},
                           {"description", stage.description}});
 
+    std::deque<std::string> headings;  // outlives `strings`, which refers to them
     StringTable strings;
     std::map<std::array<std::size_t, 3>, std::size_t> screenNumbers;  // [id, title, text] → its number
     json screens = json::array();
@@ -349,38 +347,16 @@ json traceData(const HtmlPage& page) {
             walkScreens.push_back(at->second);
         }
         const json triangle = walk.triangle ? json(walk.triangle->number) : json(nullptr);
-        walks.push_back({walk.x, walk.y, triangle, strings.number(walk.verdict), std::move(walkScreens)});
+        // The lines printWalk writes above the screens, from printWalk itself: the page shows them as is.
+        const std::string& heading =
+            headings.emplace_back(printWalk({walk.x, walk.y, walk.triangle, walk.verdict, {}}));
+        walks.push_back({walk.x, walk.y, triangle, strings.number(heading), std::move(walkScreens)});
     }
     return {{"width", page.width},           {"height", page.height},
             {"title", page.title},           {"commandLine", page.commandLine},
             {"gridStep", page.gridStep},     {"firstWalk", page.firstWalk},
             {"stages", std::move(stages)},   {"strings", strings.toJson()},
             {"screens", std::move(screens)}, {"walks", std::move(walks)}};
-}
-
-// Writes `contents` to a hidden temporary file beside `path` and renames it into place, so that a page
-// open in a browser, or a second run, never reads half a file.
-void writeAtomically(const fs::path& path, std::string_view contents) {
-    // ("out/page/.index.html.tmp-1234": hidden, and named by process so two programs never share one.)
-    std::string temporaryName = ".";
-    temporaryName += path.filename().string();
-    temporaryName += ".tmp-" + std::to_string(::getpid());
-    const fs::path temporary = path.parent_path() / temporaryName;
-    const auto fail = [&](const std::string& reason) {
-        std::error_code ignored;
-        fs::remove(temporary, ignored);
-        throw InputError(path.string() + ": cannot write: " + reason);
-    };
-    {
-        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-        if (!out) fail(std::strerror(errno));
-        out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
-        out.close();
-        if (!out) fail(std::strerror(errno));
-    }
-    std::error_code error;
-    fs::rename(temporary, path, error);
-    if (error) fail(error.message());
 }
 
 }  // namespace
@@ -396,8 +372,8 @@ void writeHtmlPage(const fs::path& dir, const HtmlPage& page) {
         "index.html).\nwindow.facetStepTrace = " +
         traceData(page).dump(-1, ' ', false, json::error_handler_t::replace) + ";\n";
     // The data first: the page is complete once index.html appears.
-    writeAtomically(dir / kHtmlDataFile, data);
-    writeAtomically(dir / kHtmlPageFile, kIndexHtml);
+    writeTextFile(dir / kHtmlDataFile, data);
+    writeTextFile(dir / kHtmlPageFile, kIndexHtml);
 }
 
 }  // namespace facet::step

@@ -29,11 +29,12 @@ inline constexpr const char* kHtmlDataFile = "trace-data.js";
 
 // Writes DIR/index.html (the page, the same bytes for every trace: markup, CSS and script) and
 // DIR/trace-data.js (the trace: a script assigning the global facetStepTrace, since a page opened from
-// file:// cannot fetch JSON). Nothing is loaded from the network. Each distinct string (screen text,
-// title, id, verdict) is stored once and each distinct screen once; walks refer to them by number, so the
-// screens of a triangle shared by many pixels cost their size once. Each file goes to a temporary name
-// beside it and is renamed into place: an open page never sees half a file. Creates DIR if needed.
-// Throws InputError ("out/page/index.html: cannot write: ...") when the folder refuses the files.
+// file:// cannot fetch JSON). Nothing is loaded from the network. Each distinct string (a screen's id,
+// title or text, the heading --print writes above the screens) is stored once, and each distinct screen
+// once; walks refer to them by number, so the screens of a triangle shared by many pixels cost their size
+// once. Each file goes to a temporary name beside it and is renamed into place (writeTextFile): an open
+// page never sees half a file. Creates DIR if needed. Throws InputError ("out/page/index.html: cannot
+// write: ...") when the folder refuses the files.
 void writeHtmlPage(const std::filesystem::path& dir, const HtmlPage& page);
 
 }  // namespace facet::step

@@ -43,6 +43,10 @@ struct StageImage {
     std::string description;  // a sentence or two: what the image shows and how to read its colours
 };
 
+// `text` as lines of at most `width` columns (words kept whole), each ending in '\n'; the first line
+// keeps `text`'s leading spaces, the others start with `indent` spaces.
+std::string wrapText(const std::string& text, std::size_t width, std::size_t indent);
+
 // The screens one after another, each under a numbered title and a rule: what --print writes.
 std::string printWalk(const Walk& walk);
 

@@ -1,0 +1,32 @@
+// facet step: the step-through teaching mode. One pixel and one triangle of exactly the frame `facet
+// render` would draw with the same options, traced through every stage (src/step/).
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "cli/options.h"
+
+namespace facet::cli {
+
+struct StepArgs : SceneArgs {
+    std::optional<std::string> pixel;  // "X,Y"
+    std::optional<long long> triangle;
+    bool print = false;
+    std::optional<std::string> json;
+    std::optional<std::string> stages;
+    std::optional<std::string> html;
+    std::optional<int> htmlStep;
+    std::optional<std::string> versus;
+};
+
+// Adds the `step` command and its options to `app`, filling `args` when it is parsed.
+CLI::App* addStepCommand(CLI::App& app, StepArgs& args);
+
+// Runs it: the interactive walk on a terminal, else the screens to standard output (--print), and
+// the files asked for. Throws InputError for bad input.
+int step(const StepArgs& args);
+
+}  // namespace facet::cli

@@ -1,0 +1,150 @@
+#include "step/versus.h"
+
+#include <algorithm>
+#include <optional>
+#include <sstream>
+#include <vector>
+
+namespace facet::step {
+
+namespace {
+
+std::vector<std::string> linesOf(const std::string& text) {
+    std::vector<std::string> lines;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);)
+        lines.push_back(line);
+    return lines;
+}
+
+// Columns a line takes on a terminal: UTF-8 continuation bytes take none.
+std::size_t columns(const std::string& s) {
+    std::size_t n = 0;
+    for (unsigned char c : s)
+        n += (c & 0xC0) != 0x80;
+    return n;
+}
+
+std::string padded(const std::string& s, std::size_t width) {
+    return s + std::string(width > columns(s) ? width - columns(s) : 0, ' ');
+}
+
+struct Row {
+    std::optional<std::string> left, right;
+};
+
+// The two line lists aligned: equal lines side by side, the others paired in order where both sides
+// have lines between two equal ones.
+std::vector<Row> align(const std::vector<std::string>& a, const std::vector<std::string>& b) {
+    const std::size_t n = a.size(), m = b.size();
+    std::vector<std::vector<int>> lcs(n + 1, std::vector<int>(m + 1, 0));
+    for (std::size_t i = n; i-- > 0;)
+        for (std::size_t j = m; j-- > 0;)
+            lcs[i][j] = a[i] == b[j] ? lcs[i + 1][j + 1] + 1 : std::max(lcs[i + 1][j], lcs[i][j + 1]);
+    std::vector<Row> rows;
+    std::size_t i = 0, j = 0;
+    std::vector<std::string> onlyA, onlyB;
+    auto flush = [&] {
+        for (std::size_t k = 0; k < std::max(onlyA.size(), onlyB.size()); ++k)
+            rows.push_back({k < onlyA.size() ? std::optional(onlyA[k]) : std::nullopt,
+                            k < onlyB.size() ? std::optional(onlyB[k]) : std::nullopt});
+        onlyA.clear();
+        onlyB.clear();
+    };
+    while (i < n || j < m) {
+        if (i < n && j < m && a[i] == b[j]) {
+            flush();
+            rows.push_back({a[i], b[j]});
+            ++i, ++j;
+        } else if (j >= m || (i < n && lcs[i + 1][j] >= lcs[i][j + 1])) {
+            onlyA.push_back(a[i++]);
+        } else {
+            onlyB.push_back(b[j++]);
+        }
+    }
+    flush();
+    return rows;
+}
+
+}  // namespace
+
+std::string sideBySide(const Walk& a, const std::string& nameA, const Walk& b, const std::string& nameB) {
+    // The screens by id, in A's order, then those only B has.
+    std::vector<std::string> ids;
+    for (const Screen& s : a.screens)
+        ids.push_back(s.id);
+    for (const Screen& s : b.screens)
+        if (std::find(ids.begin(), ids.end(), s.id) == ids.end()) ids.push_back(s.id);
+    auto find = [](const Walk& w, const std::string& id) -> const Screen* {
+        for (const Screen& s : w.screens)
+            if (s.id == id) return &s;
+        return nullptr;
+    };
+
+    struct Block {
+        std::string titleA, titleB;
+        std::vector<Row> rows;
+    };
+    std::vector<Block> blocks;
+    std::size_t width = columns(nameA);
+    std::optional<std::pair<std::size_t, std::size_t>> first;  // block, row
+    {
+        Block verdict{"Verdict", "Verdict", {}};
+        verdict.rows.push_back({a.verdict, b.verdict});
+        blocks.push_back(verdict);
+        if (a.verdict != b.verdict) first = std::pair(0, 0);
+    }
+    for (const std::string& id : ids) {
+        const Screen* sa = find(a, id);
+        const Screen* sb = find(b, id);
+        Block block{sa ? sa->title : "(no such screen)", sb ? sb->title : "(no such screen)",
+                    align(sa ? linesOf(sa->text) : std::vector<std::string>{},
+                          sb ? linesOf(sb->text) : std::vector<std::string>{})};
+        for (std::size_t r = 0; r < block.rows.size(); ++r) {
+            const Row& row = block.rows[r];
+            if (row.left) width = std::max(width, columns(*row.left));
+            if (!first && row.left != row.right) first = std::pair(blocks.size(), r);
+        }
+        width = std::max(width, columns(block.titleA));
+        blocks.push_back(std::move(block));
+    }
+
+    std::ostringstream out;
+    out << "Pixel (" << a.x << ", " << a.y << ")";
+    if (a.triangle) out << ", triangle " << a.triangle->number;
+    out << ", under two settings. Left: " << nameA << ". Right: " << nameB << ".\n";
+    if (!first) {
+        out << "The two traces are the same, line for line.\n";
+    } else {
+        const Block& block = blocks[first->first];
+        const Row& row = block.rows[first->second];
+        out << "They first differ in \"" << block.titleA << "\":\n"
+            << "  left:  " << row.left.value_or("(nothing)") << "\n"
+            << "  right: " << row.right.value_or("(nothing)") << "\n";
+    }
+    out << "Gutter: | changed, < left only, > right only, * the first difference.\n\n";
+    out << padded(nameA, width) << "   " << nameB << "\n";
+    for (std::size_t k = 0; k < blocks.size(); ++k) {
+        const Block& block = blocks[k];
+        out << std::string(width, '=') << "   " << std::string(width, '=') << "\n"
+            << padded(block.titleA, width) << (block.titleA == block.titleB ? "   " : " | ") << block.titleB
+            << "\n";
+        for (std::size_t r = 0; r < block.rows.size(); ++r) {
+            const Row& row = block.rows[r];
+            char mark = ' ';
+            if (first && first->first == k && first->second == r)
+                mark = '*';
+            else if (!row.left)
+                mark = '>';
+            else if (!row.right)
+                mark = '<';
+            else if (*row.left != *row.right)
+                mark = '|';
+            out << padded(row.left.value_or(""), width) << " " << mark << " " << row.right.value_or("")
+                << "\n";
+        }
+    }
+    return out.str();
+}
+
+}  // namespace facet::step

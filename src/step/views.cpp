@@ -1,0 +1,705 @@
+#include "step/views.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <sstream>
+
+#include "pipeline/clip.h"
+#include "pipeline/rasterize.h"
+#include "shading/gamma.h"
+
+namespace facet::step {
+
+std::string number(double value) {
+    if (value == 0.0) value = 0.0;  // no "-0"
+    char text[32];
+    std::snprintf(text, sizeof text, "%.6g", value);
+    return text;
+}
+
+std::string vectorText(const vec2& v) {
+    return "(" + number(v.x) + ", " + number(v.y) + ")";
+}
+std::string vectorText(const vec3& v) {
+    return "(" + number(v.x) + ", " + number(v.y) + ", " + number(v.z) + ")";
+}
+std::string vectorText(const vec4& v) {
+    return "(" + number(v.x) + ", " + number(v.y) + ", " + number(v.z) + ", " + number(v.w) + ")";
+}
+
+namespace {
+
+std::string integer(std::int64_t value) {
+    return std::to_string(value);
+}
+
+// A fixed-point window coordinate: "123456/256 = 482.25".
+std::string fixedText(std::int64_t value) {
+    return integer(value) + "/" + integer(kFixedOne) + " = " + number(double(value) / kFixedOne);
+}
+
+// "+ 5" or "− 5": a term after the first of a sum.
+std::string signedTerm(std::int64_t value) {
+    return (value < 0 ? "− " : "+ ") + std::to_string(value < 0 ? -value : value);
+}
+
+// The vertex names in the setup's order: setup makes the area positive by exchanging v1 and v2.
+std::string setupOrder(std::int64_t signedDoubleArea) {
+    return signedDoubleArea < 0 ? "v0, v2, v1" : "v0, v1, v2";
+}
+
+std::string triangleName(const TriangleRef& ref) {
+    return "triangle " + std::to_string(ref.number);
+}
+
+// "(draw 1, its triangle 7)" when the scene has more than one draw.
+std::string drawPlace(const PreparedScene& prepared, const TriangleRef& ref) {
+    if (prepared.draws.size() == 1) return "";
+    return " (draw " + std::to_string(ref.draw) + ", its triangle " + std::to_string(ref.triangle) + ")";
+}
+
+void matrixLines(std::ostringstream& out, const std::string& name, const mat4& m) {
+    for (int row = 0; row < 4; ++row) {
+        out << (row == 0 ? "  " + name + " = [" : std::string(name.size() + 5, ' ') + " ");
+        for (int column = 0; column < 4; ++column) {
+            char cell[16];
+            std::snprintf(cell, sizeof cell, "%11.5g",
+                          double(m[column][row]) == 0.0 ? 0.0 : double(m[column][row]));
+            out << cell;
+        }
+        out << (row == 3 ? " ]\n" : "\n");
+    }
+}
+
+std::string planeRule(std::uint8_t plane) {
+    switch (plane) {
+        case kClipLeft:
+            return "left   (x ≥ −w, d = w + x)";
+        case kClipRight:
+            return "right  (x ≤ w,  d = w − x)";
+        case kClipBottom:
+            return "bottom (y ≥ −w, d = w + y)";
+        case kClipTop:
+            return "top    (y ≤ w,  d = w − y)";
+        case kClipNear:
+            return "near   (z ≥ −w, d = w + z)";
+        case kClipFar:
+            return "far    (z ≤ w,  d = w − z)";
+        case kClipW:
+            return "w      (w ≥ 1e−9, in front of the eye)";
+        default:
+            return "?";
+    }
+}
+
+std::string compareText(CompareOp op) {
+    switch (op) {
+        case CompareOp::Never:
+            return "never";
+        case CompareOp::Less:
+            return "<";
+        case CompareOp::Equal:
+            return "=";
+        case CompareOp::LessEqual:
+            return "≤";
+        case CompareOp::Greater:
+            return ">";
+        case CompareOp::NotEqual:
+            return "≠";
+        case CompareOp::GreaterEqual:
+            return "≥";
+        case CompareOp::Always:
+            return "always";
+    }
+    return "?";
+}
+
+// The names of the built-in shaders' varyings, in their layout (shaders.h): per pixel lighting carries
+// the eye-space position, normal and texture coordinates; per vertex lighting the lit colours.
+std::vector<std::string> varyingNames(int count) {
+    static const char* const kPerPixel[] = {"P_eye.x", "P_eye.y", "P_eye.z", "N_eye.x",
+                                            "N_eye.y", "N_eye.z", "u",       "v"};
+    static const char* const kPerVertex[] = {"c_mod.r", "c_mod.g", "c_mod.b", "c_add.r", "c_add.g", "c_add.b",
+                                             "P_eye.x", "P_eye.y", "P_eye.z", "u",       "v"};
+    std::vector<std::string> names;
+    if (count == 8)
+        names.assign(std::begin(kPerPixel), std::end(kPerPixel));
+    else if (count == 11)
+        names.assign(std::begin(kPerVertex), std::end(kPerVertex));
+    else
+        for (int k = 0; k < count; ++k)
+            names.push_back("varying " + std::to_string(k));
+    return names;
+}
+
+Screen inputScreen(const PreparedScene& prepared, const TriangleTrace& t) {
+    std::ostringstream out;
+    out << "Triangle " << t.ref.number << " of the scene" << drawPlace(prepared, t.ref)
+        << ": three corners of its draw's\nvertex array, numbers " << t.indices[0] << ", " << t.indices[1]
+        << ", " << t.indices[2] << ", in object space (as the model file gives them):\n\n";
+    for (int k = 0; k < 3; ++k)
+        out << "  v" << k << "  position " << vectorText(t.objectPositions[k]) << "\n      normal   "
+            << vectorText(t.objectNormals[k]) << "\n";
+    out << "\nThe vertex shader runs once per vertex; the triangle is then assembled from\n"
+           "its three outputs (primitive assembly) in this order, v0 v1 v2.\n";
+    return {"input", "Input: triangle " + std::to_string(t.ref.number) + " and its vertices", out.str()};
+}
+
+Screen transformScreen(const TriangleTrace& t) {
+    std::ostringstream out;
+    out << "The vertex shader maps each corner from object space to clip space:\n"
+           "  world = M·object   M: the object's placement in the scene\n"
+           "  eye   = V·world    V: the camera (eye at the origin, looking down −z)\n"
+           "  clip  = P·eye      P: the perspective projection (w = −z_eye)\n\n";
+    matrixLines(out, "M", t.worldFromObject);
+    matrixLines(out, "V", t.viewFromWorld);
+    matrixLines(out, "P", t.clipFromView);
+    out << "\n";
+    for (int k = 0; k < 3; ++k) {
+        const vec4 world = t.worldFromObject * vec4(t.objectPositions[k], 1.0f);
+        const vec4 eye = t.viewFromWorld * world;
+        out << "  v" << k << "  object " << vectorText(t.objectPositions[k]) << "\n"
+            << "      world  " << vectorText(vec3(world)) << "\n"
+            << "      eye    " << vectorText(vec3(eye)) << "\n"
+            << "      clip   " << vectorText(t.clipPositions[k]) << "\n";
+    }
+    out << "\n(clip is the vertex shader's gl_Position as the pipeline computed it.)\n";
+    return {"transform", "Vertex shader: object → world → eye → clip space", out.str()};
+}
+
+Screen clipScreen(const TriangleTrace& t) {
+    std::ostringstream out;
+    out << "A clip-space point is inside the view volume when −w ≤ x, y, z ≤ w.\n"
+           "Outcode: the planes a vertex lies outside of.\n\n";
+    std::uint8_t orCode = 0, andCode = 0xff;
+    for (int k = 0; k < 3; ++k) {
+        const vec4& p = t.clipPositions[k];
+        out << "  v" << k << " " << vectorText(p) << ": "
+            << (t.outcodes[k] == 0 ? "inside" : "outside " + clipPlaneNames(t.outcodes[k])) << "\n";
+        orCode |= t.outcodes[k];
+        andCode &= t.outcodes[k];
+    }
+    out << "\n";
+    if (t.rejected == TriangleFate::NonFinite) {
+        out << "A coordinate is not a finite number: the triangle is dropped.\n";
+        return {"clip", "Clipping: dropped (not a finite number)", out.str()};
+    }
+    if (t.rejected == TriangleFate::OutsideFrustum) {
+        out << "All three vertices lie outside the same plane (" << clipPlaneNames(andCode & kAllClipPlanes)
+            << "): the whole\ntriangle is outside the view and is rejected without clipping.\n";
+        return {"clip", "Clipping: rejected, wholly outside the view", out.str()};
+    }
+    if (orCode == 0) {
+        out << "All three vertices are inside every plane: nothing to clip.\n";
+        return {"clip", "Clipping: inside the view, nothing to clip", out.str()};
+    }
+    out << "The triangle crosses " << clipPlaneNames(orCode)
+        << ": it is clipped plane by plane (Sutherland-Hodgman),\n"
+           "in homogeneous coordinates before any division. A new vertex lies where an\n"
+           "edge crosses the plane: P = P_in + t·(P_out − P_in), t = d_in / (d_in − d_out),\n"
+           "d being the signed distance to the plane (≥ 0 inside).\n";
+    std::vector<vec4> polygon(t.clipPositions.begin(), t.clipPositions.end());
+    for (const ClipStep& step : t.clipSteps) {
+        out << "\nPlane " << planeRule(step.plane) << ":\n";
+        for (std::size_t i = 0; i < polygon.size(); ++i)
+            out << "  p" << i << " d = " << number(planeDistance(polygon[i], step.plane)) << "\n";
+        for (const ClipStep::NewVertex& made : step.made) {
+            const float dIn = planeDistance(polygon[made.from], step.plane);
+            const float dOut = planeDistance(polygon[made.to], step.plane);
+            out << "  new vertex on p" << made.from << "→p" << made.to << ": t = " << number(dIn) << " / ("
+                << number(dIn) << " − " << number(dOut) << ") = " << number(made.t) << "\n"
+                << "    P = " << vectorText(made.position) << "\n";
+        }
+        polygon = step.polygon;
+        out << "  left: " << polygon.size() << " vertices\n";
+    }
+    if (t.rejected == TriangleFate::ClippedAway) {
+        out << "\nNothing is left: the triangle is clipped away.\n";
+        return {"clip", "Clipping: clipped away", out.str()};
+    }
+    out << "\nThe polygon left, p0.." << polygon.size() - 1 << ", is drawn as a fan of " << polygon.size() - 2
+        << " triangle" << (polygon.size() > 3 ? "s" : "") << " around p0.\n";
+    return {
+        "clip",
+        "Clipping: " + clipPlaneNames(orCode) + " cut" + (orCode & (orCode - 1) ? "" : "s") + " the triangle",
+        out.str()};
+}
+
+Screen windowScreen(const TriangleTrace& t) {
+    std::ostringstream out;
+    const Viewport& vp = t.state.viewport;
+    out << "Perspective divide: NDC = (x/w, y/w, z/w). Viewport: x0 = " << vp.x << ", y0 = " << vp.y
+        << ",\nW = " << vp.width << ", H = " << vp.height << ", depth range [" << number(vp.minDepth) << ", "
+        << number(vp.maxDepth) << "]:\n"
+        << "  x_w = x0 + (x_ndc + 1)/2·W   y_w = y0 + (1 − y_ndc)/2·H   (y grows down)\n"
+        << "  z_w = n + (z_ndc + 1)/2·(f − n)\n"
+        << "Window x and y are then snapped to the fixed-point grid of 1/" << kFixedOne << " pixel\n"
+        << "(" << t.state.raster.subpixelBits << " subpixel bits): the integers below are in 1/" << kFixedOne
+        << " pixels.\n";
+    if (t.pieces.empty()) {
+        out << "\nThe triangle never reached this stage (see clipping).\n";
+        return {"window", "Divide and viewport: not reached", out.str()};
+    }
+    if (t.clipSteps.empty()) {
+        out << "\n";
+        for (int k = 0; k < 3; ++k) {
+            const vec4& c = t.clipPositions[k];
+            const WindowVertex& w = t.pieces[0].vertices[k];
+            out << "  v" << k << " NDC " << vectorText(vec3(c) / c.w) << "\n"
+                << "     window " << vectorText(w.window) << "  z_w " << number(w.z) << "  1/w "
+                << number(w.invW) << "\n"
+                << "     snapped x " << fixedText(w.xFixed) << ", y " << fixedText(w.yFixed) << "\n";
+        }
+    } else {
+        for (std::size_t p = 0; p < t.pieces.size(); ++p) {
+            out << "\nFan piece " << p << ":\n";
+            for (int k = 0; k < 3; ++k) {
+                const WindowVertex& w = t.pieces[p].vertices[k];
+                out << "  v" << k << " window " << vectorText(w.window) << "  z_w " << number(w.z) << "  1/w "
+                    << number(w.invW) << "\n"
+                    << "     snapped x " << fixedText(w.xFixed) << ", y " << fixedText(w.yFixed) << "\n";
+            }
+        }
+    }
+    return {"window", "Divide and viewport: window coordinates, snapped", out.str()};
+}
+
+Screen setupScreen(const TriangleTrace& t) {
+    std::ostringstream out;
+    if (t.pieces.empty()) {
+        out << "The triangle never reached setup (see clipping).\n";
+        return {"setup", "Setup: not reached", out.str()};
+    }
+    const bool ccwFront = t.state.raster.frontFace == FrontFace::CounterClockwise;
+    out << "Twice the signed area, from the snapped vertices (window y grows down, so a\n"
+           "triangle counter-clockwise on screen has 2A < 0):\n"
+           "  2A = (x1 − x0)(y2 − y0) − (x2 − x0)(y1 − y0)\n"
+        << "Front faces are " << (ccwFront ? "counter-clockwise" : "clockwise")
+        << "; culling: " << nameOf(t.state.raster.cull) << ".\n";
+    for (std::size_t p = 0; p < t.pieces.size(); ++p) {
+        const WindowPiece& piece = t.pieces[p];
+        if (t.pieces.size() > 1) out << "\nFan piece " << p << ":";
+        out << "\n  2A = " << piece.signedDoubleArea << " (1/" << kFixedOne
+            << " px)² = " << number(double(piece.signedDoubleArea) / double(kFixedOne * kFixedOne))
+            << " px²\n";
+        switch (piece.fate) {
+            case TriangleFate::ZeroArea:
+                out << "  Zero area: its vertices lie on one line once snapped; nothing to draw.\n";
+                continue;
+            case TriangleFate::MissesSamples:
+                out << "  Its bounding box holds no pixel centre: it covers no pixel.\n";
+                continue;
+            case TriangleFate::Culled:
+                out << "  " << (piece.setup.frontFacing ? "Front" : "Back")
+                    << "-facing, and that side is culled: the triangle is dropped.\n"
+                       "  (Below: the setup it would have had.)\n";
+                break;
+            default:
+                out << "  " << (piece.setup.frontFacing ? "Front" : "Back") << "-facing: kept.\n";
+        }
+        const TriangleSetup& s = piece.setup;
+        out << "  Edge functions E_i(x, y) = a·x + b·y + c, ≥ 0 inside (x, y in 1/" << kFixedOne << " px).\n"
+            << (piece.signedDoubleArea < 0
+                    ? "  2A < 0: setup exchanges v1 and v2, so that 2A = " + std::to_string(s.doubleArea) +
+                          " > 0; edge i is opposite\n"
+                          "  the i-th of v0, v2, v1:\n"
+                    : "  Edge i is opposite vertex i:\n");
+        for (int i = 0; i < 3; ++i) {
+            const EdgeFunction& e = s.edges[i];
+            out << "    E" << i << " = " << e.a << "·x " << signedTerm(e.b) << "·y " << signedTerm(e.c)
+                << "\n      "
+                << (e.bias == 0 ? "top or left edge: a centre exactly on it is inside"
+                                : "not top-left: bias −1, a centre exactly on it is outside")
+                << "\n";
+        }
+        out << "  Bounding box: pixels x " << s.minX << ".." << s.maxX << ", y " << s.minY << ".." << s.maxY
+            << " (in the viewport)\n";
+        if (!piece.tiles.empty()) {
+            out << "  Binned to " << piece.tiles.size() << " tile" << (piece.tiles.size() > 1 ? "s" : "")
+                << " of " << t.tileSize << "×" << t.tileSize << " pixels (column, row):";
+            int shown = 0;
+            for (int tile : piece.tiles) {
+                if (shown++ == 12) {
+                    out << " …";
+                    break;
+                }
+                const int columns = std::max(t.gridColumns, 1);
+                out << (shown % 6 == 1 ? "\n   " : "") << " (" << tile % columns << ", " << tile / columns
+                    << ")";
+            }
+            out << "\n";
+        }
+    }
+    const bool culled = t.culled;
+    return {"setup", culled ? "Setup: culled for its facing" : "Setup: area, facing, edge functions, tiles",
+            out.str()};
+}
+
+Screen rasterScreen(const TriangleTrace& t) {
+    std::ostringstream out;
+    const int left = t.focusX - t.rasterWidth / 2, top = t.focusY - t.rasterHeight / 2;
+    out << "Pixels around (" << t.focusX << ", " << t.focusY << "), tested at their centres (x + ½, y + ½):\n"
+        << "  # covered   + covered, on a top-left edge   : on another edge, not covered\n"
+        << "  . inside the bounding box, not covered   (blank: outside the box)\n"
+        << "  the traced pixel is in brackets [ ]" << (t.culled ? "; culled: what it would cover" : "")
+        << "\n\n";
+    out << "        x " << left << ".." << left + t.rasterWidth - 1 << "\n";
+    for (int row = 0; row < t.rasterHeight; ++row) {
+        char label[16];
+        std::snprintf(label, sizeof label, "%6d ", top + row);
+        // Two columns a pixel: the traced one between brackets, which take the spaces beside it.
+        std::string line = label;
+        for (int column = 0; column < t.rasterWidth; ++column) {
+            const char c = t.raster[static_cast<std::size_t>(row) * t.rasterWidth + column];
+            const bool focus = left + column == t.focusX && top + row == t.focusY;
+            const bool afterFocus = left + column - 1 == t.focusX && top + row == t.focusY;
+            line += focus ? '[' : afterFocus ? ']' : ' ';
+            line += c;
+        }
+        if (left + t.rasterWidth - 1 == t.focusX && top + row == t.focusY) line += ']';
+        out << line.substr(0, line.find_last_not_of(' ') + 1);
+        out << "\n";
+    }
+    out << "\n";
+    if (!t.focusCoverage) {
+        out << "The pixel (" << t.focusX << ", " << t.focusY
+            << ") is outside this triangle's bounding box.\n";
+        return {"raster", "Rasterization: the pixel is outside the box", out.str()};
+    }
+    const CoverageEvent& e = *t.focusCoverage;
+    out << "At the centre of (" << e.x << ", " << e.y << "):\n";
+    for (int i = 0; i < 3; ++i) {
+        const std::int64_t v = e.edgeValues[i];
+        const bool topLeft = (e.topLeftEdges >> i) & 1;
+        out << "  E" << i << " = " << v
+            << (v > 0   ? "  > 0: inside"
+                : v < 0 ? "  < 0: outside"
+                        : "  = 0: exactly on the edge, ")
+            << (v == 0 ? (topLeft ? "a top-left edge: inside" : "not top-left: outside") : "") << "\n";
+    }
+    std::string title;
+    if (e.covered)
+        title = t.culled ? "Rasterization: would cover the pixel (culled)"
+                         : "Rasterization: the pixel is covered";
+    else if ((e.excludingEdges & ~e.tiesExcluded()) == 0)
+        title = "Rasterization: a tie lost to the top-left rule";
+    else
+        title = "Rasterization: the pixel is outside an edge";
+    out << (e.covered ? "All three allow it: the pixel is covered.\n"
+                      : "An edge excludes it: not covered.\n");
+    return {"raster", title, out.str()};
+}
+
+std::string fateText(const TriangleAtPixel& e) {
+    std::ostringstream out;
+    switch (e.fate) {
+        case PixelFate::NonFinite:
+            return "dropped: a vertex is not a finite number";
+        case PixelFate::OutsideFrustum:
+            return "rejected: wholly outside the view volume";
+        case PixelFate::ClippedAway:
+            return "clipped away: nothing left inside the view volume";
+        case PixelFate::ZeroArea:
+            return "zero area once snapped: draws nothing";
+        case PixelFate::MissesSamples:
+            return "its box holds no pixel centre: draws nothing";
+        case PixelFate::Culled:
+            out << "culled: " << (e.coverage ? "faces the culled side" : "its facing") << " ("
+                << (e.coverage && e.coverage->covered ? "would cover it" : "would not cover it") << ")";
+            return out.str();
+        case PixelFate::OutsideEdge:
+            if (e.coverage)
+                for (int i = 0; i < 3; ++i)
+                    if (((e.coverage->excludingEdges & ~e.coverage->tiesExcluded()) >> i) & 1) {
+                        out << "outside edge " << i << " (E" << i << " = " << e.coverage->edgeValues[i]
+                            << ")";
+                        return out.str();
+                    }
+            return "outside an edge";
+        case PixelFate::LostTie: {
+            int edge = 0;
+            if (e.coverage)
+                for (int i = 0; i < 3; ++i)
+                    if ((e.coverage->tiesExcluded() >> i) & 1) edge = i;
+            out << "lost a tie: exactly on edge " << edge << " (E" << edge << " = 0), not top-left";
+            if (e.tieOwner) out << "; " << triangleName(*e.tieOwner) << " owns the pixel";
+            return out.str();
+        }
+        case PixelFate::DepthFailed:
+            if (e.fragment)
+                out << "depth test failed: " << number(e.fragment->depth) << " "
+                    << compareText(e.depthCompare) << " " << number(e.fragment->depthBefore) << " is false";
+            else
+                out << "depth test failed";
+            return out.str();
+        case PixelFate::Discarded:
+            return "discarded by the fragment shader";
+        case PixelFate::Dropped:
+            return "dropped: its tile's fragment lists were full";
+        case PixelFate::Written:
+        case PixelFate::Blended:
+        case PixelFate::Stored:
+            if (e.fragment)
+                out << "depth " << number(e.fragment->depth)
+                    << (e.depthCompare == CompareOp::Always
+                            ? " (no depth test)"
+                            : " " + compareText(e.depthCompare) + " " + number(e.fragment->depthBefore) +
+                                  ": passed")
+                    << ", ";
+            out << (e.fate == PixelFate::Written   ? "written"
+                    : e.fate == PixelFate::Blended ? "blended (" + std::string(nameOf(e.blend)) + ")"
+                                                   : "stored in the pixel's fragment list");
+            if (e.overwrittenBy) out << "; then overwritten by " << triangleName(*e.overwrittenBy);
+            return out.str();
+    }
+    return "?";
+}
+
+}  // namespace
+
+std::vector<Screen> triangleScreens(const PreparedScene& prepared, const TriangleTrace& triangle) {
+    return {inputScreen(prepared, triangle), transformScreen(triangle), clipScreen(triangle),
+            windowScreen(triangle),          setupScreen(triangle),     rasterScreen(triangle)};
+}
+
+std::string verdictOf(const PixelTrace& p) {
+    if (p.triangles.empty())
+        return "nothing drew here: no triangle's bounding box holds this pixel (background)";
+    if (p.producer) {
+        const TriangleAtPixel& e = p.triangles[*p.producer];
+        if (p.resolve && p.resolve->fragments.size() > 0)
+            return "a later stage changed it: the exact-transparency resolve composited " +
+                   std::to_string(p.resolve->fragments.size()) + " fragments, the nearest from " +
+                   triangleName(e.ref);
+        if (e.fate == PixelFate::Blended)
+            return "a later stage changed it: blending (" + std::string(nameOf(e.blend)) + ") mixed " +
+                   triangleName(e.ref) + "'s colour with the colour behind it";
+        return "the shader computed this colour: " + triangleName(e.ref) + "'s fragment, written";
+    }
+    std::map<PixelFate, int> counts;
+    for (const TriangleAtPixel& e : p.triangles)
+        ++counts[e.fate];
+    std::string list;
+    for (const auto& [fate, count] : counts)
+        list += (list.empty() ? "" : ", ") + std::to_string(count) + " " + std::string(nameOf(fate));
+    const bool anyCovered = std::any_of(p.triangles.begin(), p.triangles.end(), [](const TriangleAtPixel& e) {
+        return e.fragment || (e.coverage && e.coverage->covered);
+    });
+    if (!anyCovered)
+        return "nothing drew here: " + std::to_string(p.triangles.size()) +
+               " triangles came near, none covers the centre (" + list + ")";
+    return "everything was rejected (" + list + "): the pixel keeps the background";
+}
+
+Screen historyScreen(const PixelTrace& p) {
+    std::ostringstream out;
+    out << wrapText("Verdict: " + verdictOf(p), 80, 2) << "\n";
+    out << "Every triangle whose bounding box holds pixel (" << p.x << ", " << p.y
+        << "), in the order\nthey were drawn, and what ended it here:\n\n";
+    if (p.triangles.empty()) out << "  (none)\n";
+    for (std::size_t i = 0; i < p.triangles.size(); ++i) {
+        const TriangleAtPixel& e = p.triangles[i];
+        std::string line = (p.producer == i ? "* " : "  ") + triangleName(e.ref);
+        if (e.transparent && e.sortPlace)
+            line += " (transparent, drawn " + std::to_string(*e.sortPlace + 1) + ".)";
+        line += ": " + fateText(e);
+        out << wrapText(line, 80, 6);
+    }
+    if (p.producer) out << "\n* gave the pixel its final colour.\n";
+    if (p.resolve) {
+        out << "\nExact transparency: the pixel's fragment list, as stored (drawing order):\n";
+        for (std::size_t k = 0; k < p.resolve->submitted.size(); ++k)
+            out << "  " << k << ": " << triangleName(p.resolve->submitted[k]) << "\n";
+        out << "sorted far to near and composited with the over operator:\n";
+        for (const ResolvedFragment& f : p.resolve->fragments) {
+            const std::string name = f.submission < p.resolve->submitted.size()
+                                         ? triangleName(p.resolve->submitted[f.submission])
+                                         : "fragment " + std::to_string(f.submission);
+            out << "  depth " << number(f.depth) << "  " << name << "  colour after "
+                << vectorText(vec3(f.colorAfter)) << "\n";
+        }
+    }
+    return {"history", "Pixel history of (" + std::to_string(p.x) + ", " + std::to_string(p.y) + ")",
+            out.str()};
+}
+
+std::vector<Screen> fragmentScreens(const PixelTrace& p, const TriangleAtPixel* entry,
+                                    const TriangleTrace* triangle) {
+    std::vector<Screen> screens;
+    const std::string at = "(" + std::to_string(p.x) + ", " + std::to_string(p.y) + ")";
+    if (!entry || !entry->fragment) {
+        std::ostringstream out;
+        out << "The traced triangle made no fragment at pixel " << at << ": "
+            << (entry ? fateText(*entry) : "its bounding box does not hold the pixel") << ".\n"
+            << "Pick a triangle that covers the pixel (t N) or another pixel (p X,Y).\n";
+        screens.push_back({"interpolate", "Interpolation: no fragment of this triangle here", out.str()});
+        return screens;
+    }
+    const FragmentEvent& f = *entry->fragment;
+    // The setup of the piece that covers the pixel, for the vertices' 1/w and depths.
+    const TriangleSetup* setup = nullptr;
+    const WindowPiece* setupPiece = nullptr;
+    if (triangle)
+        for (const WindowPiece& piece : triangle->pieces)
+            if (piece.fate == TriangleFate::Drawn && coverageAt(piece.setup, p.x, p.y).covered) {
+                setup = &piece.setup;
+                setupPiece = &piece;
+            }
+    {
+        std::ostringstream out;
+        const auto& E = entry->coverage->edgeValues;
+        const std::int64_t area = setup ? setup->doubleArea : 0;
+        out << "Barycentric coordinates from the edge functions: λ_i = E_i / 2A\n";
+        if (setupPiece && setupPiece->signedDoubleArea < 0)
+            out << "(i = 0, 1, 2 in the setup's vertex order: " << setupOrder(setupPiece->signedDoubleArea)
+                << " of the window triangle)\n";
+        if (setup)
+            for (int i = 0; i < 3; ++i)
+                out << "  λ" << i << " = " << E[i] << " / " << area << " = " << number(f.barycentrics[i])
+                    << "\n";
+        else
+            out << "  λ = " << vectorText(f.barycentrics) << "\n";
+        out << "\nDepth is affine in screen space: z = λ0·z0 + λ1·z1 + λ2·z2\n";
+        if (setup)
+            out << "  z0, z1, z2 (" << setupOrder(setupPiece->signedDoubleArea) << ") = " << number(setup->z0)
+                << ", " << number(setup->z0 + setup->dz1) << ", " << number(setup->z0 + setup->dz2) << "\n";
+        out << "  z = " << number(f.depth) << "\n";
+        out << "\n1/w is affine in screen space too: 1/w = λ0/w0 + λ1/w1 + λ2/w2\n";
+        if (setup) {
+            const float invW[3] = {setup->invW0, setup->invW0 + setup->dInvW1, setup->invW0 + setup->dInvW2};
+            out << "  1/w0, 1/w1, 1/w2 (" << setupOrder(setupPiece->signedDoubleArea)
+                << ") = " << number(invW[0]) << ", " << number(invW[1]) << ", " << number(invW[2])
+                << "\n  1/w = " << number(f.invW) << "\n";
+            if (setup->perspective) {
+                out << "Perspective-correct weights: λ'_i = (λ_i/w_i) / (1/w)\n  λ' = (";
+                for (int i = 0; i < 3; ++i)
+                    out << number(f.barycentrics[i] * invW[i] / f.invW) << (i < 2 ? ", " : ")\n");
+                out << "Each varying a = λ'0·a0 + λ'1·a1 + λ'2·a2 (perspective-correct).\n";
+            } else {
+                out << "Affine interpolation (no perspective correction): a = λ0·a0 + λ1·a1 + λ2·a2.\n";
+            }
+        } else {
+            out << "  1/w = " << number(f.invW) << "\n";
+        }
+        out << "\nThe fragment shader's inputs, interpolated:\n";
+        const std::vector<std::string> names = varyingNames(f.varyingCount);
+        for (int k = 0; k < f.varyingCount; ++k) {
+            char cell[48];
+            std::snprintf(cell, sizeof cell, "  %-8s %-13s", names[k].c_str(), number(f.varyings[k]).c_str());
+            out << cell << (k % 3 == 2 || k + 1 == f.varyingCount ? "\n" : "");
+        }
+        screens.push_back({"interpolate", "Interpolation: barycentrics, depth, 1/w, varyings", out.str()});
+    }
+    {
+        std::ostringstream out;
+        if (entry->depthCompare == CompareOp::Always) {
+            out << "The depth test is off for this draw: every fragment passes.\n";
+        } else {
+            out << "Depth test: the fragment passes when z_fragment " << compareText(entry->depthCompare)
+                << " z_buffer.\n"
+                << "  z_fragment = " << number(f.depth) << "\n  z_buffer   = " << number(f.depthBefore)
+                << (f.depthBefore == 1.0f ? " (cleared: nothing nearer drawn yet)" : "") << "\n  "
+                << number(f.depth) << " " << compareText(entry->depthCompare) << " " << number(f.depthBefore)
+                << (f.fate == FragmentFate::DepthFailed ? " is false: the fragment is dropped.\n"
+                                                        : " is true: the fragment goes on.\n");
+        }
+        screens.push_back({"depth",
+                           f.fate == FragmentFate::DepthFailed ? "Depth test: failed" : "Depth test: passed",
+                           out.str()});
+    }
+    return screens;
+}
+
+std::vector<Screen> outputScreens(const PreparedScene& prepared, const PixelTrace& p,
+                                  const TriangleAtPixel* entry) {
+    std::vector<Screen> screens;
+    {
+        std::ostringstream out;
+        const FragmentEvent* f = entry && entry->fragment ? &*entry->fragment : nullptr;
+        std::string title = "Blending";
+        if (f && (f->fate == FragmentFate::Written)) {
+            const vec4& s = f->shaded;
+            const vec4& d = f->colorBefore;
+            out << "Source c_s (the shader's output) = " << vectorText(vec3(s)) << ", α_s = " << number(s.a)
+                << "\nDestination c_d (the colour buffer) = " << vectorText(vec3(d)) << "\n";
+            switch (entry->blend) {
+                case BlendMode::Replace:
+                    out << "No blending (opaque): c_o = c_s\n";
+                    title = "Output merge: written, no blending";
+                    break;
+                case BlendMode::Over:
+                    out << "The over operator: c_o = α·c_s + (1 − α)·c_d\n  = " << number(s.a) << "·"
+                        << vectorText(vec3(s)) << "\n    + " << number(1.0f - s.a) << "·"
+                        << vectorText(vec3(d)) << "\n";
+                    title = "Blending: the over operator";
+                    break;
+                case BlendMode::PremultipliedOver:
+                    out << "Over, premultiplied: c_o = c_s + (1 − α)·c_d (c_s already holds α·c)\n";
+                    title = "Blending: premultiplied over";
+                    break;
+                case BlendMode::Additive:
+                    out << "Additive: c_o = c_d + c_s (c_s holds α·c)\n";
+                    title = "Blending: additive";
+                    break;
+                case BlendMode::Multiply:
+                    out << "Multiply (a filter): c_o = c_s ⊗ c_d\n";
+                    title = "Blending: multiply";
+                    break;
+            }
+            out << "  c_o = " << vectorText(vec3(f->colorAfter)) << ", α_o = " << number(f->colorAfter.a)
+                << "\n";
+            if (entry->transparent && entry->sortPlace)
+                out << "\nThis transparent triangle was drawn " << *entry->sortPlace + 1 << ". of "
+                    << "the frame's transparent triangles\n(" << nameOf(prepared.scene.transparency.mode)
+                    << " order).\n";
+            if (entry->overwrittenBy)
+                out << "\nLater " << triangleName(*entry->overwrittenBy) << " wrote this pixel again.\n";
+        } else if (f && f->fate == FragmentFate::Stored) {
+            out << "Exact transparency: the fragment's colour " << vectorText(f->shaded)
+                << " went into the pixel's\nfragment list; after the frame the list is sorted far to near "
+                   "and "
+                   "composited\nwith the over operator, c_o = α·c_s + (1 − α)·c_d (see the history).\n";
+            title = "Blending: stored in the pixel's fragment list";
+        } else {
+            out << "The traced triangle wrote nothing here.\n";
+            title = "Blending: nothing written by this triangle";
+        }
+        screens.push_back({"blend", title, out.str()});
+    }
+    {
+        std::ostringstream out;
+        out << "The colour buffer holds linear light: c = " << vectorText(p.finalColor) << "\n";
+        const ColorEncoding& e = p.encoding;
+        switch (e.curve) {
+            case TransferCurve::Srgb:
+                out << "8-bit files store it sRGB-encoded (the exact sRGB curve):\n"
+                       "  c' = 12.92·c for c ≤ 0.0031308, else 1.055·c^(1/2.4) − 0.055\n";
+                break;
+            case TransferCurve::Power:
+                out << "8-bit files store it gamma-encoded: c' = c^(1/γ), γ = " << number(e.gamma) << "\n";
+                break;
+            case TransferCurve::Linear:
+                out << "8-bit files store it as it is (no encoding): c' = c\n";
+                break;
+        }
+        out << "then clamped to [0, 1] and rounded: byte = round(255·c'), alpha round(255·α).\n";
+        static const char* const kChannel[] = {"R", "G", "B", "A"};
+        for (int c = 0; c < 4; ++c) {
+            const double linear = p.finalColor[c];
+            const double encoded = c < 3 ? linearToSrgb(float(linear)) : linear;
+            out << "  " << kChannel[c] << ": " << number(linear);
+            if (c < 3 && e.curve == TransferCurve::Srgb) out << " → " << number(encoded);
+            out << " → " << int(p.finalBytes[c]) << "\n";
+        }
+        char hex[16];
+        std::snprintf(hex, sizeof hex, "#%02x%02x%02x", p.finalBytes[0], p.finalBytes[1], p.finalBytes[2]);
+        out << "The image file holds " << int(p.finalBytes[0]) << ", " << int(p.finalBytes[1]) << ", "
+            << int(p.finalBytes[2]) << " (" << hex << ") at this pixel.\n";
+        screens.push_back({"encode", "Encoding: the byte in the image file", out.str()});
+    }
+    return screens;
+}
+
+}  // namespace facet::step

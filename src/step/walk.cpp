@@ -1,0 +1,92 @@
+#include "step/walk.h"
+
+#include "base/errors.h"
+#include "step/views.h"
+
+namespace facet::step {
+
+namespace {
+
+const TriangleAtPixel* entryOf(const PixelTrace& pixel, const std::optional<TriangleRef>& ref) {
+    if (!ref) return nullptr;
+    for (const TriangleAtPixel& e : pixel.triangles)
+        if (e.ref == *ref) return &e;
+    return nullptr;
+}
+
+// The triangle a pixel's walk follows when none is asked for: the one that gave the pixel its final
+// colour; else the last one that made a fragment here, else the last one that came near.
+std::optional<TriangleRef> defaultTriangle(const PixelTrace& pixel) {
+    if (pixel.producer) return pixel.triangles[*pixel.producer].ref;
+    for (auto it = pixel.triangles.rbegin(); it != pixel.triangles.rend(); ++it)
+        if (it->fragment) return it->ref;
+    if (!pixel.triangles.empty()) return pixel.triangles.back().ref;
+    return std::nullopt;
+}
+
+}  // namespace
+
+Walk walkOf(const PreparedScene& prepared, const PixelTrace& pixel, const TriangleTrace* triangle) {
+    Walk walk;
+    walk.x = pixel.x;
+    walk.y = pixel.y;
+    if (triangle) walk.triangle = triangle->ref;
+    walk.verdict = verdictOf(pixel);
+    walk.screens.push_back(historyScreen(pixel));
+    if (triangle)
+        for (Screen& screen : triangleScreens(prepared, *triangle))
+            walk.screens.push_back(std::move(screen));
+    const TriangleAtPixel* entry = entryOf(pixel, walk.triangle);
+    if (triangle)
+        for (Screen& screen : fragmentScreens(pixel, entry, triangle))
+            walk.screens.push_back(std::move(screen));
+    for (Screen& screen : outputScreens(prepared, pixel, entry))
+        walk.screens.push_back(std::move(screen));
+    return walk;
+}
+
+StepTrace traceStep(const PreparedScene& prepared, DrawContext& context, const StepRequest& request) {
+    const int width = prepared.scene.width, height = prepared.scene.height;
+    std::pair<int, int> pixel{width / 2, height / 2};
+    if (request.pixel) {
+        pixel = *request.pixel;
+        if (pixel.first < 0 || pixel.second < 0 || pixel.first >= width || pixel.second >= height)
+            throw InputError("pixel " + std::to_string(pixel.first) + "," + std::to_string(pixel.second) +
+                             " is outside the image, which is " + std::to_string(width) + "x" +
+                             std::to_string(height) + " (x from 0 to " + std::to_string(width - 1) +
+                             ", y from 0 to " + std::to_string(height - 1) + ", y down)");
+    } else if (const auto nearest =
+                   pixelNearestCentre(coveredPixels(prepared, context, request.terms), width, height)) {
+        pixel = *nearest;
+    }
+    std::optional<TriangleRef> triangle;
+    if (request.triangle) {
+        triangle = triangleByNumber(prepared, *request.triangle);
+        if (!triangle)
+            throw InputError("there is no triangle " + std::to_string(*request.triangle) +
+                             ": the scene has " + std::to_string(triangleCount(prepared)) +
+                             " (numbered from 0)");
+    }
+    Framebuffer target(width, height);
+    TraceRequest first;
+    first.pixels = {pixel};
+    first.focus = pixel;
+    if (triangle) first.triangles = {*triangle};
+    FrameTrace frame = traceFrame(prepared, target, context, first, request.terms);
+    StepTrace trace;
+    trace.pixel = std::move(frame.pixels.front());
+    if (!triangle) {
+        triangle = defaultTriangle(trace.pixel);
+        if (triangle) {
+            TraceRequest second = first;
+            second.triangles = {*triangle};
+            second.pixels.clear();
+            frame = traceFrame(prepared, target, context, second, request.terms);
+        }
+    }
+    if (triangle && !frame.triangles.empty()) trace.triangle = std::move(frame.triangles.front());
+    trace.walk = walkOf(prepared, trace.pixel, trace.triangle ? &*trace.triangle : nullptr);
+    return trace;
+}
+
+}  // namespace facet::step

@@ -1,0 +1,39 @@
+// A step-through of one pixel and one triangle: the frame traced (trace.h), its screens (views.h) in
+// pipeline order, and the data behind them (for --json).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <utility>
+
+#include <nlohmann/json.hpp>
+
+#include "render/renderer.h"
+#include "step/screens.h"
+#include "step/trace.h"
+
+namespace facet::step {
+
+struct StepRequest {
+    std::optional<std::pair<int, int>> pixel;  // none: the covered pixel nearest the image centre
+    std::optional<std::uint32_t> triangle;     // none: the triangle that gave the pixel its final colour
+    std::uint8_t terms = kAllTerms;            // --only
+};
+
+struct StepTrace {
+    Walk walk;
+    PixelTrace pixel;
+    std::optional<TriangleTrace> triangle;
+};
+
+// Traces the frame of `prepared` for the request. Throws InputError for a pixel outside the image or a
+// triangle number the scene does not have.
+StepTrace traceStep(const PreparedScene& prepared, DrawContext& context, const StepRequest& request);
+
+// The walk's screens in pipeline order for a traced pixel and triangle.
+Walk walkOf(const PreparedScene& prepared, const PixelTrace& pixel, const TriangleTrace* triangle);
+
+// The whole trace as data: the pixel's history, the triangle's stages and the screens.
+nlohmann::json toJson(const StepTrace& trace);
+
+}  // namespace facet::step
