@@ -114,6 +114,11 @@ void addSceneOptions(CLI::App& command, SceneArgs& args) {
                   byDefault(TransferCurve::Srgb));
     command.add_option("--gamma", args.gamma, "Encode 8-bit output as c^(1/GAMMA) (e.g. 2.2)")
         ->check(kFiniteNumber);
+    addChoice(
+        command, "--interpolation", args.interpolation,
+        "Varyings across a triangle: perspective-correct, or affine in screen space (wrong, for teaching)" +
+            byDefault(Interpolation::PerspectiveCorrect));
+    addChoice(command, "--cull", args.cull, "Which faces are not drawn" + byDefault(CullMode::Back));
 }
 
 facet::Scene sceneFromArgs(const SceneArgs& args) {
@@ -154,6 +159,8 @@ void applyLightingOptions(const SceneArgs& args, facet::Scene& scene) {
             object.shading = *args.shading;
     }
     if (args.transparency) scene.transparency.mode = *args.transparency;
+    if (args.interpolation) scene.pipeline.interpolation = *args.interpolation;
+    if (args.cull) scene.pipeline.cull = *args.cull;
     if (args.sortKey) scene.transparency.key = *args.sortKey;
     if ((args.encode || args.gamma) && scene.lighting.preset == facet::LightingPreset::GL)
         throw facet::InputError(

@@ -70,6 +70,8 @@ struct SceneArgs {
     std::optional<SortKey> sortKey;
     std::optional<TransferCurve> encode;
     std::optional<float> gamma;
+    std::optional<Interpolation> interpolation;
+    std::optional<CullMode> cull;
 };
 
 // Adds SceneArgs's options (and the input) to `command`, as `facet render` describes them.

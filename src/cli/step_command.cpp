@@ -8,6 +8,8 @@
 #include "io/text_file.h"
 #include "render/renderer.h"
 #include "scene/limits.h"
+#include "step/stage_images.h"
+#include "step/terminal_walk.h"
 #include "step/versus.h"
 #include "step/walk.h"
 
@@ -33,11 +35,15 @@ SceneArgs versusArgs(const SceneArgs& base, const std::string& options) {
     SceneArgs args = base;
     CLI::App app{"--versus"};
     addSceneOptions(app, args);
+    app.get_option("input")->required(false);  // the same input: only options may differ
     try {
-        app.parse(options + " " + facet::inQuotes(base.input), false);
+        app.parse(options, false);
     } catch (const CLI::ParseError& e) {
         throw facet::InputError("--versus " + facet::inQuotes(options) + ": " + e.what());
     }
+    if (args.input != base.input)
+        throw facet::InputError("--versus " + facet::inQuotes(options) +
+                                ": give only options; the input is the command's own");
     return args;
 }
 
@@ -58,6 +64,9 @@ CLI::App* addStepCommand(CLI::App& app, StepArgs& args) {
     command->add_flag("--print", args.print,
                       "Write every screen to standard output instead of the interactive walk");
     command->add_option("--json", args.json, "Also write the whole trace as data (JSON) to this file");
+    command->add_option(
+        "--stages", args.stages,
+        "Also write images of the whole frame after each stage to this folder (made if missing)");
     command->add_option(
         "--versus", args.versus,
         "Trace the pixel again with these options over the others (like \"--shading gouraud\") "
@@ -91,6 +100,13 @@ int step(const StepArgs& args) {
     const facet::step::StepTrace trace = facet::step::traceStep(prepared, context, request);
 
     if (args.json) facet::writeTextFile(*args.json, facet::step::toJson(trace).dump(1) + "\n");
+    if (args.stages) {
+        facet::step::StageImageOptions options;
+        options.terms = request.terms;
+        options.threads = args.threads;
+        const auto images = facet::step::writeStageImages(prepared, *args.stages, options);
+        std::cerr << "facet: wrote " << images.size() << " stage images to " << *args.stages << "\n";
+    }
 
     if (other) {
         // The same pixel and triangle under the other setting.
@@ -104,6 +120,17 @@ int step(const StepArgs& args) {
             facet::step::traceStep(otherPrepared, context, otherRequest);
         std::cout << facet::step::sideBySide(trace.walk, "as given", otherTrace.walk, "with " + *args.versus);
         return 0;
+    }
+    if (!args.print && facet::step::isInteractive()) {
+        // Another pixel or triangle: the frame traced again (p X,Y keeps no triangle; t N keeps the pixel).
+        const facet::step::Retrace retrace = [&](const facet::step::WalkRequest& next) {
+            facet::step::StepRequest again = request;
+            again.pixel = next.pixel;
+            again.triangle = next.triangle;
+            return facet::step::traceStep(prepared, context, again).walk;
+        };
+        return facet::step::runTerminalWalk(trace.walk, retrace, std::cin, std::cout,
+                                            facet::step::terminalSize());
     }
     std::cout << facet::step::printWalk(trace.walk);
     return 0;

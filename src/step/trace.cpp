@@ -10,17 +10,6 @@
 
 namespace facet::step {
 
-namespace {
-
-// The pixel whose centre a window-space box holds, as the rasterizer decides it (pixel centres at
-// x + 0.5): the box [minX, maxX] of pixel numbers whose centre lies inside [lo, hi].
-bool boxHoldsCentre(double lo, double hi, int pixel) {
-    const double centre = pixel + 0.5;
-    return lo <= centre && centre <= hi;
-}
-
-}  // namespace
-
 TraceRecorder::TraceRecorder(const TraceRequest& request, const FrameShape& frame, int tileSize)
     : frame_(frame), tileSize_(tileSize) {
     pixelSlot_.assign(static_cast<std::size_t>(frame.width) * frame.height, -1);
@@ -35,14 +24,17 @@ TraceRecorder::TraceRecorder(const TraceRequest& request, const FrameShape& fram
             pixelSlot_[static_cast<std::size_t>(y) * frame.width + x] =
                 static_cast<int>(trace_.pixels.size() - 1);
     }
-    for (const TriangleRef& ref : request.triangles) {
+    for (std::size_t k = 0; k < request.triangles.size(); ++k) {
+        const TriangleRef& ref = request.triangles[k];
+        const std::pair<int, int> focus = k < request.focuses.size() ? request.focuses[k] : request.focus;
         TriangleTrace t;
         t.ref = ref;
-        t.focusX = request.focus.first;
-        t.focusY = request.focus.second;
+        t.focusX = focus.first;
+        t.focusY = focus.second;
         t.rasterWidth = request.rasterWidth;
         t.rasterHeight = request.rasterHeight;
         t.raster.assign(static_cast<std::size_t>(t.rasterWidth) * t.rasterHeight, ' ');
+        viewIndex_.emplace(viewKey(ref.draw, ref.triangle), views_.size());
         views_.push_back(std::move(t));
         viewSeen_.push_back(false);
     }
@@ -83,10 +75,10 @@ void TraceRecorder::onVertex(std::uint32_t index, const vec4& clip, const float*
 }
 
 void TraceRecorder::onRejected(std::uint32_t triangle, TriangleFate fate) {
-    if (TriangleTrace* view = viewOf(triangle)) {
-        fillVertices(*view, triangle);
-        view->rejected = fate;
-    }
+    forEachView(triangle, [&](TriangleTrace& view) {
+        fillVertices(view, triangle);
+        view.rejected = fate;
+    });
     // A pixel history lists a rejected triangle when its vertices, projected (all in front of the
     // eye), box the pixel.
     const std::uint32_t local = localOf(triangle);
@@ -103,17 +95,16 @@ void TraceRecorder::onRejected(std::uint32_t triangle, TriangleFate fate) {
     const PixelFate pixelFate = fate == TriangleFate::NonFinite        ? PixelFate::NonFinite
                                 : fate == TriangleFate::OutsideFrustum ? PixelFate::OutsideFrustum
                                                                        : PixelFate::ClippedAway;
-    for (std::size_t i = 0; i < trace_.pixels.size(); ++i) {
-        const PixelTrace& p = trace_.pixels[i];
-        if (boxHoldsCentre(lo[0], hi[0], p.x) && boxHoldsCentre(lo[1], hi[1], p.y))
-            entry(i, triangle).fate = pixelFate;
-    }
+    forEachTracedPixelIn(lo, hi, [&](std::size_t slot) { entry(slot, triangle).fate = pixelFate; });
 }
 
 void TraceRecorder::onAssembled(std::uint32_t triangle, const ClipPolygon& assembled) {
-    TriangleTrace* view = viewOf(triangle);
-    if (!view) return;
-    fillVertices(*view, triangle);
+    forEachView(triangle, [&](TriangleTrace& view) { recordClipping(view, triangle, assembled); });
+}
+
+void TraceRecorder::recordClipping(TriangleTrace& view, std::uint32_t triangle,
+                                   const ClipPolygon& assembled) {
+    fillVertices(view, triangle);
     // The clipper once more on the same polygon, plane by plane in its own order, to show each cut.
     std::uint8_t planes = 0;
     for (int k = 0; k < 3; ++k)
@@ -147,30 +138,31 @@ void TraceRecorder::onAssembled(std::uint32_t triangle, const ClipPolygon& assem
         }
         for (int i = 0; i < polygon.count; ++i)
             step.polygon.push_back(polygon.vertices[i].position);
-        view->clipSteps.push_back(std::move(step));
+        view.clipSteps.push_back(std::move(step));
     }
 }
 
 void TraceRecorder::onSetup(std::uint32_t triangle, const WindowTriangle& window, TriangleFate fate,
                             const TriangleSetup& setup) {
-    if (TriangleTrace* view = viewOf(triangle)) {
-        fillVertices(*view, triangle);
+    forEachView(triangle, [&](TriangleTrace& view) {
+        fillVertices(view, triangle);
         WindowPiece piece;
         piece.vertices = window.vertices;
         piece.signedDoubleArea = signedDoubleArea(window);
         piece.fate = fate;
         piece.setup = setup;
-        if (fate == TriangleFate::Culled) view->culled = true;
+        if (fate == TriangleFate::Culled) view.culled = true;
         if (fate == TriangleFate::Drawn) {
+            // The binning stage once more on this setup, to list its tiles.
             const TileGrid grid = makeTileGrid(call_.state.viewport, tileSize_);
             std::vector<std::vector<std::uint32_t>> bins(static_cast<std::size_t>(grid.count()));
             binTriangle(grid, setup, 0, bins);
             for (int t = 0; t < grid.count(); ++t)
                 if (!bins[t].empty()) piece.tiles.push_back(t);
-            view->gridColumns = grid.columns;
+            view.gridColumns = grid.columns;
         }
-        view->pieces.push_back(std::move(piece));
-    }
+        view.pieces.push_back(std::move(piece));
+    });
     if (fate != TriangleFate::ZeroArea && fate != TriangleFate::MissesSamples) return;
     // These never reach the rasterizer: list them where their snapped box holds the pixel centre.
     double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
@@ -181,29 +173,26 @@ void TraceRecorder::onSetup(std::uint32_t triangle, const WindowTriangle& window
     }
     const PixelFate pixelFate =
         fate == TriangleFate::ZeroArea ? PixelFate::ZeroArea : PixelFate::MissesSamples;
-    for (std::size_t i = 0; i < trace_.pixels.size(); ++i) {
-        const PixelTrace& p = trace_.pixels[i];
-        if (boxHoldsCentre(lo[0], hi[0], p.x) && boxHoldsCentre(lo[1], hi[1], p.y)) {
-            TriangleAtPixel& e = entry(i, triangle);
-            if (!e.coverage) e.fate = pixelFate;  // another piece of a clipped triangle may cover it
-        }
-    }
+    forEachTracedPixelIn(lo, hi, [&](std::size_t slot) {
+        TriangleAtPixel& e = entry(slot, triangle);
+        if (!e.coverage) e.fate = pixelFate;  // another piece of a clipped triangle may cover it
+    });
 }
 
 void TraceRecorder::onCoverage(const CoverageEvent& event) {
-    if (TriangleTrace* view = viewOf(event.triangle)) {
-        const int column = event.x - (view->focusX - view->rasterWidth / 2);
-        const int row = event.y - (view->focusY - view->rasterHeight / 2);
-        if (column >= 0 && row >= 0 && column < view->rasterWidth && row < view->rasterHeight) {
-            char& c = view->raster[static_cast<std::size_t>(row) * view->rasterWidth + column];
+    forEachView(event.triangle, [&](TriangleTrace& view) {
+        const int column = event.x - (view.focusX - view.rasterWidth / 2);
+        const int row = event.y - (view.focusY - view.rasterHeight / 2);
+        if (column >= 0 && row >= 0 && column < view.rasterWidth && row < view.rasterHeight) {
+            char& c = view.raster[static_cast<std::size_t>(row) * view.rasterWidth + column];
             const char mark = event.covered ? (event.tiesIncluded() ? '+' : '#')
                               : (event.excludingEdges & ~event.tiesExcluded()) == 0 ? ':'
                                                                                     : '.';
             if (c == ' ' || c == '.' || (c == ':' && mark != '.')) c = mark;  // pieces of a clipped one
         }
-        if (event.x == view->focusX && event.y == view->focusY && (!view->focusCoverage || event.covered))
-            view->focusCoverage = event;
-    }
+        if (event.x == view.focusX && event.y == view.focusY && (!view.focusCoverage || event.covered))
+            view.focusCoverage = event;
+    });
     const int slot = slotOf(event.x, event.y);
     if (slot < 0) return;
     TriangleAtPixel& e = entry(static_cast<std::size_t>(slot), event.triangle);
@@ -302,15 +291,6 @@ TriangleAtPixel& TraceRecorder::entry(std::size_t slot, std::uint32_t triangle) 
     e.inCall = localOf(triangle);
     p.triangles.push_back(e);
     return p.triangles.back();
-}
-
-TriangleTrace* TraceRecorder::viewOf(std::uint32_t triangle) {
-    for (std::size_t k = 0; k < views_.size(); ++k)
-        if (views_[k].ref.draw == call_.draw && views_[k].ref.triangle == triangle) {
-            viewSeen_[k] = true;
-            return &views_[k];
-        }
-    return nullptr;
 }
 
 void TraceRecorder::fillVertices(TriangleTrace& view, std::uint32_t triangle) {

@@ -4,10 +4,13 @@
 // image: the framebuffer after a traced frame holds the same bytes as after an untraced one.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string_view>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -142,10 +145,11 @@ struct TriangleTrace {
 
 // What to record in one frame.
 struct TraceRequest {
-    std::vector<std::pair<int, int>> pixels;  // their histories
-    std::vector<TriangleRef> triangles;       // their views
-    std::pair<int, int> focus{0, 0};          // the triangle views' raster is centred here
-    int rasterWidth = 35, rasterHeight = 15;  // odd: the focus pixel in the middle
+    std::vector<std::pair<int, int>> pixels;   // their histories
+    std::vector<TriangleRef> triangles;        // their views
+    std::pair<int, int> focus{0, 0};           // the triangle views' raster is centred here,
+    std::vector<std::pair<int, int>> focuses;  // or, when given, triangle k's around focuses[k]
+    int rasterWidth = 35, rasterHeight = 15;   // odd: the focus pixel in the middle
 };
 
 struct FrameTrace {
@@ -208,7 +212,40 @@ class TraceRecorder : public NullObserver {
         return {frame_.firstNumberOfDraw[draw] + triangle, draw, triangle};
     }
     TriangleAtPixel& entry(std::size_t slot, std::uint32_t triangle);
-    TriangleTrace* viewOf(std::uint32_t triangle);
+    static std::uint64_t viewKey(std::uint32_t draw, std::uint32_t triangle) {
+        return (std::uint64_t{draw} << 32) | triangle;
+    }
+    // Calls f(view) for every view of this call's `triangle` (one per focus asked for).
+    template <class F>
+    void forEachView(std::uint32_t triangle, F&& f) {
+        if (viewIndex_.empty()) return;
+        const auto [first, last] = viewIndex_.equal_range(viewKey(call_.draw, triangle));
+        for (auto it = first; it != last; ++it) {
+            viewSeen_[it->second] = true;
+            f(views_[it->second]);
+        }
+    }
+    // Calls f(slot) for every traced pixel whose centre (x + ½, y + ½) lies in the window-space box
+    // [lo, hi]: a triangle the rasterizer never saw is listed where its box holds the pixel.
+    template <class F>
+    void forEachTracedPixelIn(const double lo[2], const double hi[2], F&& f) {
+        const double x0 = std::max(std::ceil(lo[0] - 0.5), 0.0),
+                     x1 = std::min(std::floor(hi[0] - 0.5), frame_.width - 1.0);
+        const double y0 = std::max(std::ceil(lo[1] - 0.5), 0.0),
+                     y1 = std::min(std::floor(hi[1] - 0.5), frame_.height - 1.0);
+        if (!(x0 <= x1 && y0 <= y1)) return;
+        if ((x1 - x0 + 1) * (y1 - y0 + 1) > double(trace_.pixels.size())) {
+            for (std::size_t slot = 0; slot < trace_.pixels.size(); ++slot) {
+                const PixelTrace& p = trace_.pixels[slot];
+                if (p.x >= x0 && p.x <= x1 && p.y >= y0 && p.y <= y1) f(slot);
+            }
+            return;
+        }
+        for (int y = int(y0); y <= int(y1); ++y)
+            for (int x = int(x0); x <= int(x1); ++x)
+                if (const int slot = slotOf(x, y); slot >= 0) f(static_cast<std::size_t>(slot));
+    }
+    void recordClipping(TriangleTrace& view, std::uint32_t triangle, const ClipPolygon& assembled);
     void fillVertices(TriangleTrace& view, std::uint32_t triangle);
     void completeHistory(PixelTrace& p, const Framebuffer& target);
 
@@ -217,6 +254,7 @@ class TraceRecorder : public NullObserver {
     FrameTrace trace_;
     std::vector<TriangleTrace> views_;
     std::vector<bool> viewSeen_;
+    std::unordered_multimap<std::uint64_t, std::size_t> viewIndex_;  // viewKey(draw, triangle) → views_
     std::vector<int> pixelSlot_;  // per pixel of the frame: its index in trace_.pixels, or −1
     std::uint32_t callCount_ = 0;
     Call call_;

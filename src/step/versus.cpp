@@ -89,10 +89,11 @@ std::string sideBySide(const Walk& a, const std::string& nameA, const Walk& b, c
     std::size_t width = columns(nameA);
     std::optional<std::pair<std::size_t, std::size_t>> first;  // block, row
     {
-        Block verdict{"Verdict", "Verdict", {}};
-        verdict.rows.push_back({a.verdict, b.verdict});
+        Block verdict{"Verdict", "Verdict",
+                      align(linesOf(wrapText(a.verdict, 80, 2)), linesOf(wrapText(b.verdict, 80, 2)))};
         blocks.push_back(verdict);
-        if (a.verdict != b.verdict) first = std::pair(0, 0);
+        for (std::size_t r = 0; r < verdict.rows.size() && !first; ++r)
+            if (verdict.rows[r].left != verdict.rows[r].right) first = std::pair(std::size_t{0}, r);
     }
     for (const std::string& id : ids) {
         const Screen* sa = find(a, id);
@@ -118,9 +119,13 @@ std::string sideBySide(const Walk& a, const std::string& nameA, const Walk& b, c
     } else {
         const Block& block = blocks[first->first];
         const Row& row = block.rows[first->second];
-        out << "They first differ in \"" << block.titleA << "\":\n"
-            << "  left:  " << row.left.value_or("(nothing)") << "\n"
-            << "  right: " << row.right.value_or("(nothing)") << "\n";
+        out << "They first differ in \"" << block.titleA << "\":\n";
+        if (row.left && row.right)
+            out << "  left:  " << *row.left << "\n  right: " << *row.right << "\n";
+        else if (row.left)
+            out << "  a line only the left has: " << *row.left << "\n";
+        else
+            out << "  a line only the right has: " << *row.right << "\n";
     }
     out << "Gutter: | changed, < left only, > right only, * the first difference.\n\n";
     out << padded(nameA, width) << "   " << nameB << "\n";

@@ -31,6 +31,15 @@ std::string vectorText(const vec4& v) {
 
 namespace {
 
+// "−1.5" as "(−1.5)", to be subtracted.
+std::string bracketedIfNegative(double value) {
+    if (value >= 0) return number(value);
+    std::string text = "(";
+    text += number(value);
+    text += ")";
+    return text;
+}
+
 std::string integer(std::int64_t value) {
     return std::to_string(value);
 }
@@ -138,7 +147,7 @@ Screen inputScreen(const PreparedScene& prepared, const TriangleTrace& t) {
     std::ostringstream out;
     out << "Triangle " << t.ref.number << " of the scene" << drawPlace(prepared, t.ref)
         << ": three corners of its draw's\nvertex array, numbers " << t.indices[0] << ", " << t.indices[1]
-        << ", " << t.indices[2] << ", in object space (as the model file gives them):\n\n";
+        << ", " << t.indices[2] << ", in object space (as the model file\ngives them):\n\n";
     for (int k = 0; k < 3; ++k)
         out << "  v" << k << "  position " << vectorText(t.objectPositions[k]) << "\n      normal   "
             << vectorText(t.objectNormals[k]) << "\n";
@@ -209,11 +218,13 @@ Screen clipScreen(const TriangleTrace& t) {
             const float dIn = planeDistance(polygon[made.from], step.plane);
             const float dOut = planeDistance(polygon[made.to], step.plane);
             out << "  new vertex on p" << made.from << "→p" << made.to << ": t = " << number(dIn) << " / ("
-                << number(dIn) << " − " << number(dOut) << ") = " << number(made.t) << "\n"
+                << number(dIn) << " − " << bracketedIfNegative(dOut) << ") = " << number(made.t) << "\n"
                 << "    P = " << vectorText(made.position) << "\n";
         }
         polygon = step.polygon;
         out << "  left: " << polygon.size() << " vertices\n";
+        for (std::size_t i = 0; i < polygon.size(); ++i)
+            out << "    p" << i << " " << vectorText(polygon[i]) << "\n";
     }
     if (t.rejected == TriangleFate::ClippedAway) {
         out << "\nNothing is left: the triangle is clipped away.\n";
@@ -585,10 +596,15 @@ std::vector<Screen> fragmentScreens(const PixelTrace& p, const TriangleAtPixel* 
         }
         out << "\nThe fragment shader's inputs, interpolated:\n";
         const std::vector<std::string> names = varyingNames(f.varyingCount);
+        std::string line;
         for (int k = 0; k < f.varyingCount; ++k) {
             char cell[48];
             std::snprintf(cell, sizeof cell, "  %-8s %-13s", names[k].c_str(), number(f.varyings[k]).c_str());
-            out << cell << (k % 3 == 2 || k + 1 == f.varyingCount ? "\n" : "");
+            line += cell;
+            if (k % 3 == 2 || k + 1 == f.varyingCount) {
+                out << line.substr(0, line.find_last_not_of(' ') + 1) << "\n";
+                line.clear();
+            }
         }
         screens.push_back({"interpolate", "Interpolation: barycentrics, depth, 1/w, varyings", out.str()});
     }

@@ -89,4 +89,35 @@ StepTrace traceStep(const PreparedScene& prepared, DrawContext& context, const S
     return trace;
 }
 
+std::vector<Walk> traceWalks(const PreparedScene& prepared, DrawContext& context,
+                             const std::vector<std::pair<int, int>>& pixels, std::uint8_t terms) {
+    Framebuffer target(prepared.scene.width, prepared.scene.height);
+    TraceRequest histories;
+    histories.pixels = pixels;
+    FrameTrace first = traceFrame(prepared, target, context, histories, terms);
+    // Each pixel's triangle, its view centred on the pixel.
+    TraceRequest views;
+    std::vector<std::optional<std::size_t>> viewOfPixel(pixels.size());
+    for (std::size_t k = 0; k < first.pixels.size(); ++k)
+        if (const std::optional<TriangleRef> triangle = defaultTriangle(first.pixels[k])) {
+            viewOfPixel[k] = views.triangles.size();
+            views.triangles.push_back(*triangle);
+            views.focuses.push_back(pixels[k]);
+        }
+    const FrameTrace second = traceFrame(prepared, target, context, views, terms);
+    // finish() keeps the views in request order, dropping any never seen: find each by its focus.
+    std::vector<Walk> walks;
+    std::size_t next = 0;
+    for (std::size_t k = 0; k < first.pixels.size(); ++k) {
+        const TriangleTrace* view = nullptr;
+        if (viewOfPixel[k] && next < second.triangles.size() &&
+            second.triangles[next].ref == views.triangles[*viewOfPixel[k]] &&
+            second.triangles[next].focusX == pixels[k].first &&
+            second.triangles[next].focusY == pixels[k].second)
+            view = &second.triangles[next++];
+        walks.push_back(walkOf(prepared, first.pixels[k], view));
+    }
+    return walks;
+}
+
 }  // namespace facet::step

@@ -30,6 +30,11 @@ struct StepTrace {
 // triangle number the scene does not have.
 StepTrace traceStep(const PreparedScene& prepared, DrawContext& context, const StepRequest& request);
 
+// The walks of many pixels at once (the web page's): two traced frames for all of them, each pixel
+// following the triangle that gave it its colour. In the order of `pixels`.
+std::vector<Walk> traceWalks(const PreparedScene& prepared, DrawContext& context,
+                             const std::vector<std::pair<int, int>>& pixels, std::uint8_t terms = kAllTerms);
+
 // The walk's screens in pipeline order for a traced pixel and triangle.
 Walk walkOf(const PreparedScene& prepared, const PixelTrace& pixel, const TriangleTrace* triangle);
 

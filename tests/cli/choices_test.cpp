@@ -1,5 +1,6 @@
 // The command line's choices: each option's every name (from its enum's table) reaches the scene the
 // command renders, and a wrong name is refused with the table's names.
+#include <set>
 #include <string>
 #include <vector>
 
@@ -7,6 +8,7 @@
 
 #include "cli/compare_command.h"
 #include "cli/render_command.h"
+#include "cli/step_command.h"
 #include "pipeline/names.h"
 
 namespace facet::cli {
@@ -51,6 +53,29 @@ TEST(CommandLineChoices, EveryNameReachesTheScene) {
                                              [](const Scene& s) { return s.transparency.mode; });
     expectEveryNameReaches<SortKey>("--sort-key", [](const Scene& s) { return s.transparency.key; });
     expectEveryNameReaches<TransferCurve>("--encode", [](const Scene& s) { return s.gamma.encode; });
+    expectEveryNameReaches<Interpolation>("--interpolation",
+                                          [](const Scene& s) { return s.pipeline.interpolation; });
+    expectEveryNameReaches<CullMode>("--cull", [](const Scene& s) { return s.pipeline.cull; });
+}
+
+// facet step traces exactly the render `facet render` would make with the same options: it takes every
+// option of render's that decides the frame (all but the output's).
+TEST(CommandLineChoices, StepTakesEveryOptionOfRenderThatDecidesTheFrame) {
+    CLI::App app;
+    RenderArgs renderArgs;
+    StepArgs stepArgs;
+    CLI::App* render = addRenderCommand(app, renderArgs);
+    CLI::App* step = addStepCommand(app, stepArgs);
+    const std::set<std::string> outputOnly = {"--output", "--quiet",      "--frames", "--turntable",
+                                              "--stats",  "--components", "--help"};
+    std::size_t checked = 0;
+    for (const CLI::Option* option : render->get_options()) {
+        const std::string name = option->get_name();
+        if (outputOnly.count(name)) continue;
+        EXPECT_NE(step->get_option_no_throw(name), nullptr) << name;
+        ++checked;
+    }
+    EXPECT_GE(checked, 18u);  // input, size, camera, threads and the choices
 }
 
 TEST(CommandLineChoices, OnlyTakesEachTermByItsName) {

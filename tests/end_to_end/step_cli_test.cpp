@@ -1,0 +1,120 @@
+// facet step as a user runs it: the screens printed without a terminal, the JSON trace, --versus, bad
+// requests refused with one line. Each test names the one-line break it catches.
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "test_files.h"
+
+namespace facet {
+namespace {
+
+using testing::readText;
+using testing::TempDir;
+
+struct RunResult {
+    int status = -1;
+    std::string out;
+    std::string err;
+};
+
+RunResult runFacet(const std::string& args, const TempDir& dir) {
+    const auto outFile = dir.path() / "stdout.txt", errFile = dir.path() / "stderr.txt";
+    std::ostringstream command;
+    command << "'" << FACET_BINARY << "' " << args << " >'" << outFile.string() << "' 2>'" << errFile.string()
+            << "' </dev/null";
+    const int raw = std::system(command.str().c_str());
+    RunResult run;
+    run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    run.out = readText(outFile);
+    run.err = readText(errFile);
+    return run;
+}
+
+const std::string kSpot =
+    std::string("'") + FACET_SOURCE_DIR + "/models/spot/spot_triangulated.obj' --width 96 --height 72";
+
+// Columns a line takes: UTF-8 continuation bytes take none.
+std::size_t columns(const std::string& line) {
+    std::size_t n = 0;
+    for (unsigned char c : line)
+        n += (c & 0xC0) != 0x80;
+    return n;
+}
+
+// Without a terminal, every screen is printed, each line within 80 columns. Catches: the command not
+// falling back to --print without a terminal (it would wait for keys), a screen left out of the walk,
+// a line of a screen over 80 columns.
+TEST(StepCli, WithoutATerminalPrintsEveryScreenWithin80Columns) {
+    TempDir dir;
+    for (const char* shading : {"flat", "gouraud", "phong"}) {
+        SCOPED_TRACE(shading);
+        const RunResult run = runFacet("step " + kSpot + " --shading " + shading, dir);
+        ASSERT_EQ(run.status, 0) << run.err;
+        for (const char* title : {"Pixel history of", "Input: triangle", "Vertex shader: object",
+                                  "Clipping:", "Divide and viewport", "Setup:", "Rasterization:",
+                                  "Interpolation:", "Depth test:", "Encoding: the byte"})
+            EXPECT_NE(run.out.find(title), std::string::npos) << title;
+        std::istringstream lines(run.out);
+        for (std::string line; std::getline(lines, line);)
+            EXPECT_LE(columns(line), 80u) << line;
+    }
+}
+
+// --json writes the trace as data, and its final bytes are the rendered image's. Catches: --json
+// ignored, or a trace of another pixel than --pixel asks for.
+TEST(StepCli, JsonHasThePixelAskedForAndItsHistory) {
+    TempDir dir;
+    const auto json = dir.path() / "trace.json";
+    const RunResult run =
+        runFacet("step " + kSpot + " --pixel 40,30 --print --json '" + json.string() + "'", dir);
+    ASSERT_EQ(run.status, 0) << run.err;
+    const nlohmann::json trace = nlohmann::json::parse(readText(json));
+    EXPECT_EQ(trace["pixel"]["x"], 40);
+    EXPECT_EQ(trace["pixel"]["y"], 30);
+    EXPECT_FALSE(trace["pixel"]["triangles"].empty());
+    EXPECT_EQ(trace["screens"].size(), 11u);
+    EXPECT_EQ(trace["screens"][0]["id"], "history");
+    EXPECT_NE(run.out.find("Pixel (40, 30)"), std::string::npos);
+}
+
+// --versus traces the same pixel and triangle again under other options and marks the first line where
+// they part: affine interpolation first changes the interpolation screen. Catches: --versus's options
+// not applied to the second trace (no difference), or applied to both.
+TEST(StepCli, VersusMarksWhereAffineInterpolationFirstDiffers) {
+    TempDir dir;
+    const RunResult run = runFacet("step " + kSpot + " --pixel 48,30 --versus '--interpolation affine'", dir);
+    ASSERT_EQ(run.status, 0) << run.err;
+    EXPECT_NE(run.out.find("They first differ in \"Interpolation:"), std::string::npos)
+        << run.out.substr(0, 400);
+    EXPECT_NE(run.out.find("right: Affine interpolation"), std::string::npos) << run.out.substr(0, 400);
+    const RunResult same =
+        runFacet("step " + kSpot + " --pixel 48,30 --versus '--interpolation perspective'", dir);
+    ASSERT_EQ(same.status, 0) << same.err;
+    EXPECT_NE(same.out.find("The two traces are the same"), std::string::npos) << same.out.substr(0, 400);
+}
+
+// Catches: a pixel outside the image, a triangle the scene lacks, a malformed --pixel or --versus
+// option accepted (or a crash) instead of one line and exit status 1.
+TEST(StepCli, BadRequestsAreRefusedWithOneLine) {
+    TempDir dir;
+    for (const std::string& bad :
+         {std::string(" --pixel 96,0"), std::string(" --pixel 3"), std::string(" --pixel -1,2"),
+          std::string(" --triangle 99999"), std::string(" --versus '--shading wobbly'")}) {
+        SCOPED_TRACE(bad);
+        const RunResult run = runFacet("step " + kSpot + bad, dir);
+        EXPECT_EQ(run.status, 1);
+        EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+        EXPECT_EQ(run.err.rfind("facet: error: ", 0), 0u) << run.err;
+        EXPECT_TRUE(run.out.empty()) << run.out.substr(0, 200);
+    }
+}
+
+}  // namespace
+}  // namespace facet
