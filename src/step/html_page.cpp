@@ -39,8 +39,9 @@ constexpr std::string_view kIndexHtml = R"html(<!DOCTYPE html>
                         the heading is the lines facet step --print writes above the screens (the
                         pixel, its triangle, the verdict), a number into strings
   Walks share screens (the triangle's views, background pixels), so a screen costs its size once.
-  Size: the Stanford bunny at 800x600 (every 8th pixel traced) gives a trace-data.js of about
-  FACET_DATA_SIZE_NOTE.
+  Size: the Stanford bunny at 800x600 with every 8th pixel traced (7500 walks, 1459 on the bunny) gives a
+  trace-data.js of 13.8 MB, where the walks' printed text is 22.5 MB (the background pixels share all
+  but their history); every 4th pixel, 55 MB. Chromium opens either in under 2 s.
 -->
 <html lang="en">
 <head>
