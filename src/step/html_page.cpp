@@ -32,7 +32,7 @@ constexpr std::string_view kIndexHtml = R"html(<!DOCTYPE html>
     title, commandLine  the heading, and the facet step command that made the page
     gridStep            pixels traced every gridStep in x and y (1: every pixel)
     firstWalk           index of the walk shown when the page opens
-    stages              [{id, title, file, description}], pipeline order, the last is the final image
+    stages              [{id, title, file, description}], pipeline order; id "final" is the finished frame
     strings             every distinct text once: screen ids, titles and texts, verdicts
     screens             every distinct screen once: [id, title, text], numbers into strings
     walks               one per traced pixel: [x, y, triangle (null: none), heading, [screen numbers]];
@@ -131,6 +131,9 @@ constexpr std::string_view kIndexHtml = R"html(<!DOCTYPE html>
   const image = byId("stage-image");
   const marker = byId("marker");
   let stage = 0;
+  // The finished frame (the build-up frames may follow it); key 0 jumps to it.
+  const finalFound = trace.stages.findIndex((s) => s.id === "final");
+  const finalStage = finalFound >= 0 ? finalFound : trace.stages.length - 1;
   let shownWalk = Math.min(trace.firstWalk, trace.walks.length - 1);
 
   // A walk is [x, y, triangle, heading, screens]; the first one at a pixel is the one shown.
@@ -267,7 +270,7 @@ constexpr std::string_view kIndexHtml = R"html(<!DOCTYPE html>
     const key = event.key;
     if (key === "ArrowRight" || key === "n") showStage(stage + 1);
     else if (key === "ArrowLeft" || key === "b") showStage(stage - 1);
-    else if (key === "0") showStage(trace.stages.length - 1);
+    else if (key === "0") showStage(finalStage);
     else if (key >= "1" && key <= "9") showStage(Number(key) - 1);
     else return;
     event.preventDefault();

@@ -17,7 +17,7 @@ struct HtmlPage {
     int width = 0, height = 0;       // the frame's size in pixels: a click on the image maps to a pixel
     std::string title;               // one line, the page's heading, like "spot_triangulated.obj"
     std::string commandLine;         // the command that made the page, shown so it can be run again
-    std::vector<StageImage> stages;  // files already in the folder, pipeline order, the last is "final"
+    std::vector<StageImage> stages;  // files already in the folder, pipeline order; id "final": the frame
     std::vector<Walk> walks;         // the traced pixels
     int gridStep = 1;                // pixels traced every gridStep in x and y (1: all)
     std::size_t firstWalk = 0;       // index into walks: the one shown when the page opens

@@ -199,8 +199,9 @@ def main():
             wait_for_text(driver, "#stage-title", titles[1], f"after the key {forward!r}")
             driver.press(back)
             wait_for_text(driver, "#stage-title", titles[0], f"after the key {back!r}")
+        final = next((s["title"] for s in stages if s["id"] == "final"), titles[-1])
         driver.press("0")
-        wait_for_text(driver, "#stage-title", titles[-1], "after the key 0 (the final image)")
+        wait_for_text(driver, "#stage-title", final, "after the key 0 (the final image)")
         driver.press("1")
         wait_for_text(driver, "#stage-title", titles[0], "after the key 1")
 
@@ -229,7 +230,7 @@ def main():
         check(abs(centre[0] - (x + 0.5) * scale_x) <= 1 and abs(centre[1] - (y + 0.5) * scale_y) <= 1,
               f"the marker's centre is at {centre}, not on pixel ({x}, {y})")
         driver.press("0")  # the final image, with the pixel marked and its history beside it
-        wait_for_text(driver, "#stage-title", titles[-1], "after the key 0")
+        wait_for_text(driver, "#stage-title", final, "after the key 0")
         screenshot = work / "step-page.png"
         screenshot.write_bytes(base64.b64decode(driver.command("GET", "/screenshot")))
         print(f"screenshot: {screenshot}")

@@ -57,7 +57,7 @@ int main(int argc, char** argv) {
     page.title = "fake";
     page.commandLine = "fake_step step fake.obj --html " + html;
     page.gridStep = kStep;
-    const char* names[] = {"clip", "raster", "final"};
+    const char* names[] = {"clip", "final", "build-001"};
     for (int s = 0; s < 3; ++s) {
         LinearImage image;
         image.width = kWidth;
