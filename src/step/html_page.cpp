@@ -65,6 +65,10 @@ constexpr std::string_view kIndexHtml = R"html(<!DOCTYPE html>
   /* Side by side when the window holds the image's 20em and 80 columns of text, else one above the other. */
   #stage-panel { flex: 1 1 20em; min-width: 0; }
   #pixel-panel { flex: 0 1 auto; width: min-content; max-width: 100%; }
+  /* Side by side, the image stays in view while the screens scroll past it. */
+  @media (min-width: 1200px) {
+    #stage-panel { position: sticky; top: 0; max-height: 100vh; overflow-y: auto; overflow-x: hidden; }
+  }
   #stage-nav { display: flex; align-items: center; gap: 1em; }
   h2 { font-size: 1.3em; margin: 0.4em 0; }
   #stage-description { color: var(--muted); margin: 0 0 0.6em 0; }
@@ -74,12 +78,13 @@ constexpr std::string_view kIndexHtml = R"html(<!DOCTYPE html>
   #marker { position: absolute; box-sizing: border-box; border: 3px solid var(--marker);
             outline: 2px solid var(--marker-edge); pointer-events: none; }
   #stage-list { padding-left: 0; list-style: none; display: flex; flex-wrap: wrap; gap: 0.3em; }
+  #stage-list button { font-size: 0.8em; text-align: left; }
   #stage-list button[aria-current="true"] { background: var(--fg); color: var(--bg); }
   .hint { color: var(--muted); font-size: 0.85em; }
   #notice { border: 2px solid var(--fg); background: var(--panel); padding: 0.4em 0.6em; }
   #screen-list { margin: 0.3em 0; padding-left: 1.5em; columns: 2 18em; }
   #screen-list a { color: var(--accent); }
-  #verdict { font: bold clamp(16px, 1.05vw, 26px)/1.35 monospace; margin: 0.5em 0; white-space: pre-wrap; }
+  #history #verdict { background: none; padding: 0; font: bold clamp(16px, 1.05vw, 26px)/1.35 monospace; margin: 0.5em 0; white-space: pre-wrap; }
   #history section { border-top: 2px solid var(--fg); margin-top: 1em; }
   #history h3 { font-size: 1.1em; margin: 0.4em 0; }
   /* 80 columns (a screen's width) as large as the window allows: 16 to 26 px (Ctrl + for more). */
