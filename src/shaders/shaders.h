@@ -84,29 +84,109 @@ struct SurfaceUniforms {
     vec3 emissionTerm() const { return (terms & kEmissionTerm) ? material.emission : vec3(0.0f); }
 };
 
+// ---- Records of one fragment's shading (shading/record.h), for the step mode ------------------------
+
+// surfaceTerms at one point: the normal and its two-sided flip, the lighting, the terms selected.
+struct SurfaceTermsRecord {
+    static constexpr bool enabled = true;
+    vec3 position{0.0f};   // P, eye space
+    vec3 normal{0.0f};     // N as it came (interpolated, or the vertex's), not unit length
+    bool flipped = false;  // the two-sided flip turned it: N·V < 0, so N = −N
+    ReflectionModel reflection = ReflectionModel::BlinnPhong;
+    LightingRecord lighting{};
+    std::uint8_t selectedTerms = kAllTerms;  // LightingTerm bits; the others were set to 0
+    LightingTerms<vec3> terms{vec3(0.0f), vec3(0.0f), vec3(0.0f), vec3(0.0f)};  // after the selection
+};
+
+// surfaceOutput: fog, then the form the blend expects.
+struct OutputRecord {
+    static constexpr bool enabled = true;
+    vec3 color{0.0f};  // the lit colour c
+    float alpha = 1;   // α
+    FogRecord fog{};
+    BlendMode blend = BlendMode::Replace;
+    vec3 output{0.0f};  // c_p, α·c_p or mix(1, c_p, α)
+};
+
+// A surface shader's fragment function (shade<float>) at one fragment.
+struct FragmentRecord {
+    static constexpr bool enabled = true;
+    bool perPixel = true;  // lit here (Phong shading); else the colour came from the vertices
+    vec2 uv{0.0f};
+    float opacity = 1;           // the material's α
+    bool diffuseMapped = false;  // a diffuse map tinted the diffuse colour and α
+    vec4 diffuseTexel{1.0f};
+    bool emissionMapped = false;  // an emission map tinted the emission
+    vec4 emissionTexel{1.0f};
+    float alpha = 1;  // opacity · the diffuse texel's α
+    // Lit per pixel: the albedo (m_diffuse or c_base) before and after the texel, the lighting, the
+    // emission after its texel, the sum of the terms and whether it was clamped to [0, 1].
+    vec3 materialAlbedo{0.0f};
+    vec3 albedo{0.0f};
+    SurfaceTermsRecord lighting{};
+    vec3 emission{0.0f};
+    vec3 sum{0.0f};
+    bool clamped = false;
+    // Lit per vertex: the interpolated (or flat) parts, then with the texels: modulated ⊗ texel and
+    // added + m_emission ⊗ emission texel.
+    vec3 modulatedIn{0.0f};
+    vec3 addedIn{0.0f};
+    vec3 modulated{0.0f};
+    vec3 added{0.0f};
+    vec3 color{0.0f};  // the colour handed to surfaceOutput
+    OutputRecord output{};
+    vec4 result{0.0f};  // the fragment shader's output, recorded by the caller (shade returns it)
+};
+
+// The vertex lighting (lightVertex<float>) at one vertex.
+struct VertexLightingRecord {
+    static constexpr bool enabled = true;
+    vec3 position{0.0f};  // eye space
+    vec3 normal{0.0f};
+    vec2 uv{0.0f};
+    SurfaceTermsRecord lighting{};
+    bool emissionDeferred = false;  // an emission map: the emission is added per fragment instead
+    bool clamped = false;           // clampColor: the sum clamped to [0, 1], all of it modulated
+    vec3 sum{0.0f};                 // the terms' sum
+    vec3 modulated{0.0f};           // the varyings it hands on, recorded by the caller
+    vec3 added{0.0f};
+};
+
 // The lighting equation's terms at one point (or eight), as the uniforms choose: the model, the
 // two-sided flip, and only the selected terms (the others are zero). P and N are in eye space; N need
 // not be unit length. `albedo` is m_diffuse or c_base, per lane. kPrecision is u.precision
-// (surfaceTerms below chooses it).
-template <class F, class V3, MathPrecision kPrecision>
+// (surfaceTerms below chooses it). A SurfaceTermsRecord, when given, receives every number.
+template <class F, class V3, MathPrecision kPrecision, class... Recording>
 [[gnu::always_inline]] inline LightingTerms<V3> surfaceTermsWith(const V3& P, const V3& normal,
-                                                                 const V3& albedo, const SurfaceUniforms& u) {
+                                                                 const V3& albedo, const SurfaceUniforms& u,
+                                                                 Recording*... recording) {
+    using Record = RecordOf<Recording...>;
+    if constexpr (Record::enabled)
+        *recordOf(recording...) = {
+            .position = P, .normal = normal, .reflection = u.reflection, .selectedTerms = u.terms};
     V3 N = normal;
-    if (u.twoSidedFlip) N = select(dot(N, -P) < 0.0f, -N, N);
+    if (u.twoSidedFlip) {
+        const auto facingAway = dot(N, -P) < 0.0f;
+        N = select(facingAway, -N, N);
+        if constexpr (Record::enabled) recordOf(recording...)->flipped = facingAway;
+    }
     const vec3 eye(0.0f);
     LightingTerms<V3> t;
     switch (u.reflection) {
         case ReflectionModel::Phong:
             t = standardLighting<F, V3, kPrecision>(P, N, eye, u.material, albedo, u.globalAmbient,
-                                                    u.activeLights(), SpecularModel::Phong);
+                                                    u.activeLights(), SpecularModel::Phong,
+                                                    &recording->lighting...);
             break;
         case ReflectionModel::BlinnPhong:
             t = standardLighting<F, V3, kPrecision>(P, N, eye, u.material, albedo, u.globalAmbient,
-                                                    u.activeLights(), SpecularModel::BlinnPhong);
+                                                    u.activeLights(), SpecularModel::BlinnPhong,
+                                                    &recording->lighting...);
             break;
         case ReflectionModel::CookTorrance:
             t = physicallyBasedTerms<F, V3, kPrecision>(P, N, eye, u.pbr, albedo, u.material.emission,
-                                                        u.globalAmbient, u.activeLights(), u.brdf);
+                                                        u.globalAmbient, u.activeLights(), u.brdf,
+                                                        &recording->lighting...);
             break;
     }
     if (u.terms != kAllTerms) {
@@ -116,16 +196,18 @@ template <class F, class V3, MathPrecision kPrecision>
         if (!(u.terms & kDiffuseTerm)) t.diffuse = zero;
         if (!(u.terms & kSpecularTerm)) t.specular = zero;
     }
+    if constexpr (Record::enabled) recordOf(recording...)->terms = t;
     return t;
 }
 
 // The same with the uniforms' precision (u.precision) for pow and exp.
-template <class F, class V3 = LaneVec3<F>>
+template <class F, class V3 = LaneVec3<F>, class... Recording>
 [[gnu::always_inline]] inline LightingTerms<V3> surfaceTerms(const V3& P, const V3& normal, const V3& albedo,
-                                                             const SurfaceUniforms& u) {
+                                                             const SurfaceUniforms& u,
+                                                             Recording*... recording) {
     return u.precision == MathPrecision::Exact
-               ? surfaceTermsWith<F, V3, MathPrecision::Exact>(P, normal, albedo, u)
-               : surfaceTermsWith<F, V3, MathPrecision::Fast>(P, normal, albedo, u);
+               ? surfaceTermsWith<F, V3, MathPrecision::Exact>(P, normal, albedo, u, recording...)
+               : surfaceTermsWith<F, V3, MathPrecision::Fast>(P, normal, albedo, u, recording...);
 }
 
 // What a surface shader writes, from the lit colour c and its alpha α at eye-space point P: fog first,
@@ -133,10 +215,19 @@ template <class F, class V3 = LaneVec3<F>>
 //   Replace, Over:               (c, α)            straight alpha
 //   PremultipliedOver, Additive: (α·c, α)          premultiplied (Additive: c_d + α·c)
 //   Multiply:                    (mix(1, c, α), α)  a filter that is clear (1) where α = 0
-template <class F, class V3 = LaneVec3<F>>
-[[gnu::always_inline]] inline V3 surfaceOutput(V3 c, F alpha, const V3& P, const SurfaceUniforms& u) {
-    c = u.precision == MathPrecision::Exact ? applyFog<F, V3, MathPrecision::Exact>(u.fog, c, P)
-                                            : applyFog<F, V3, MathPrecision::Fast>(u.fog, c, P);
+template <class F, class V3 = LaneVec3<F>, class... Recording>
+[[gnu::always_inline]] inline V3 surfaceOutput(V3 c, F alpha, const V3& P, const SurfaceUniforms& u,
+                                               Recording*... recording) {
+    using Record = RecordOf<Recording...>;
+    if constexpr (Record::enabled) *recordOf(recording...) = {.color = c, .alpha = alpha, .blend = u.blend};
+    c = u.precision == MathPrecision::Exact
+            ? applyFog<F, V3, MathPrecision::Exact>(u.fog, c, P, &recording->fog...)
+            : applyFog<F, V3, MathPrecision::Fast>(u.fog, c, P, &recording->fog...);
+    if constexpr (Record::enabled) {
+        OutputRecord& record = *recordOf(recording...);
+        record.output = surfaceOutput<F, V3>(record.color, alpha, P, u);
+        return record.output;
+    }
     switch (u.blend) {
         case BlendMode::Replace:
         case BlendMode::Over:
@@ -198,21 +289,49 @@ struct PerPixelSurface {
                 {vec3(u.viewFromObject * vec4(in.position, 1.0f)), u.normalFromObject * in.normal, in.uv}};
     }
 
-    template <class F>
-    static LaneVec4<F> shade(const VaryingsT<F>& in, const Uniforms& u, unsigned liveLanes) {
+    // A FragmentRecord, when given (F = float), receives every number of the shading.
+    template <class F, class... Recording>
+    static LaneVec4<F> shade(const VaryingsT<F>& in, const Uniforms& u, unsigned liveLanes,
+                             Recording*... recording) {
+        using Record = RecordOf<Recording...>;
         using V3 = LaneVec3<F>;
         V3 albedo(u.albedo());
         F alpha = lanes<F>(u.opacity);
+        if constexpr (Record::enabled)
+            *recordOf(recording...) = {
+                .perPixel = true, .uv = in.uv, .opacity = u.opacity, .materialAlbedo = albedo};
         if (u.diffuseMap) {
             const LaneVec4<F> texel = detail::texels<F>(*u.diffuseMap, in.uv, liveLanes);
             albedo = albedo * rgb(texel);
             alpha = alpha * texel.w;
+            if constexpr (Record::enabled) {
+                recordOf(recording...)->diffuseMapped = true;
+                recordOf(recording...)->diffuseTexel = texel;
+            }
         }
-        LightingTerms<V3> t = surfaceTerms<F>(in.position, in.normal, albedo, u);
-        if (u.emissionMap) t.emission = t.emission * rgb(detail::texels<F>(*u.emissionMap, in.uv, liveLanes));
+        LightingTerms<V3> t = surfaceTerms<F>(in.position, in.normal, albedo, u, &recording->lighting...);
+        if (u.emissionMap) {
+            const LaneVec4<F> texel = detail::texels<F>(*u.emissionMap, in.uv, liveLanes);
+            t.emission = t.emission * rgb(texel);
+            if constexpr (Record::enabled) {
+                recordOf(recording...)->emissionMapped = true;
+                recordOf(recording...)->emissionTexel = texel;
+            }
+        }
         V3 c = t.sum();
+        if constexpr (Record::enabled) recordOf(recording...)->sum = c;
         if (u.clampColor) c = detail::clamp01(c);
-        return withAlpha(surfaceOutput<F>(c, alpha, in.position, u), alpha);
+        if constexpr (Record::enabled) {
+            auto& record = *recordOf(recording...);
+            record.alpha = alpha;
+            record.albedo = albedo;
+            record.emission = t.emission;
+            record.clamped = u.clampColor;
+            record.color = c;
+        }
+        // The output (FragmentRecord::result) is the caller's to record: returned as an expression, it
+        // is built in place.
+        return withAlpha(surfaceOutput<F>(c, alpha, in.position, u, &recording->output...), alpha);
     }
 };
 
@@ -252,12 +371,25 @@ struct PerVertexSurface {
                 {vec3(u.viewFromObject * vec4(in.position, 1.0f)), u.normalFromObject * in.normal, in.uv}};
     }
 
-    // The lighting of one vertex or eight.
-    template <class F>
-    static VaryingsT<F> lightVertex(const VertexInputsT<F>& in, const Uniforms& u) {
+    // The lighting of one vertex or eight. A VertexLightingRecord, when given (F = float), receives
+    // every number of it.
+    template <class F, class... Recording>
+    static VaryingsT<F> lightVertex(const VertexInputsT<F>& in, const Uniforms& u, Recording*... recording) {
+        using Record = RecordOf<Recording...>;
         using V3 = LaneVec3<F>;
-        LightingTerms<V3> t = surfaceTerms<F>(in.position, in.normal, V3(u.albedo()), u);
+        LightingTerms<V3> t =
+            surfaceTerms<F>(in.position, in.normal, V3(u.albedo()), u, &recording->lighting...);
         if (u.emissionMap) t.emission = V3(vec3(0.0f));  // added, textured, per fragment
+        if constexpr (Record::enabled) {
+            auto& record = *recordOf(recording...);
+            record.position = in.position;
+            record.normal = in.normal;
+            record.uv = in.uv;
+            record.emissionDeferred = u.emissionMap != nullptr;
+            record.clamped = u.clampColor;
+            record.sum = t.sum();
+        }
+        // What it hands on (VertexLightingRecord::modulated, added) is the caller's to record.
         if (u.clampColor) return {detail::clamp01(t.sum()), V3(vec3(0.0f)), in.position, in.uv};
         return {t.diffuse, t.emission + t.ambient + t.specular, in.position, in.uv};
     }
@@ -267,20 +399,50 @@ struct PerVertexSurface {
         return {prepared.position, lightVertex<float>(prepared.varyings, u)};
     }
 
-    template <class F>
-    static LaneVec4<F> shade(const VaryingsT<F>& in, const Uniforms& u, unsigned liveLanes) {
+    // A FragmentRecord, when given (F = float), receives every number of the fragment's part.
+    template <class F, class... Recording>
+    static LaneVec4<F> shade(const VaryingsT<F>& in, const Uniforms& u, unsigned liveLanes,
+                             Recording*... recording) {
+        using Record = RecordOf<Recording...>;
         using V3 = LaneVec3<F>;
         V3 modulated = in.modulated;
         F alpha = lanes<F>(u.opacity);
+        if constexpr (Record::enabled)
+            *recordOf(recording...) = {.perPixel = false,
+                                       .uv = in.uv,
+                                       .opacity = u.opacity,
+                                       .modulatedIn = in.modulated,
+                                       .addedIn = in.added};
         if (u.diffuseMap) {
             const LaneVec4<F> texel = detail::texels<F>(*u.diffuseMap, in.uv, liveLanes);
             modulated = modulated * rgb(texel);
             alpha = alpha * texel.w;
+            if constexpr (Record::enabled) {
+                recordOf(recording...)->diffuseMapped = true;
+                recordOf(recording...)->diffuseTexel = texel;
+            }
         }
         V3 added = in.added;
-        if (u.emissionMap)
-            added = added + V3(u.emissionTerm()) * rgb(detail::texels<F>(*u.emissionMap, in.uv, liveLanes));
-        return withAlpha(surfaceOutput<F>(modulated + added, alpha, in.position, u), alpha);
+        if (u.emissionMap) {
+            const LaneVec4<F> texel = detail::texels<F>(*u.emissionMap, in.uv, liveLanes);
+            const V3 emission = V3(u.emissionTerm()) * rgb(texel);
+            added = added + emission;
+            if constexpr (Record::enabled) {
+                recordOf(recording...)->emissionMapped = true;
+                recordOf(recording...)->emissionTexel = texel;
+                recordOf(recording...)->emission = emission;
+            }
+        }
+        if constexpr (Record::enabled) {
+            auto& record = *recordOf(recording...);
+            record.alpha = alpha;
+            record.modulated = modulated;
+            record.added = added;
+            record.color = modulated + added;
+        }
+        // The output (FragmentRecord::result) is the caller's to record.
+        return withAlpha(surfaceOutput<F>(modulated + added, alpha, in.position, u, &recording->output...),
+                         alpha);
     }
 };
 

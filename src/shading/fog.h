@@ -12,6 +12,7 @@
 #include "pipeline/glsl.h"
 #include "pipeline/names.h"
 #include "pipeline/wide.h"
+#include "shading/record.h"
 
 namespace facet {
 
@@ -68,11 +69,34 @@ F fogFactor(const FogParams& fog, F z) {
     return lanes<F>(1.0f);
 }
 
-// c = f·c_s + (1 − f)·c_fog.
-template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact>
-V3 applyFog(const FogParams& fog, const V3& color, const V3& eyePosition) {
+// The record of the fog at one point (record.h).
+struct FogRecord {
+    static constexpr bool enabled = true;
+    FogParams fog{};         // mode, distance kind, start, end, density, c_fog
+    vec3 eyePosition{0.0f};  // P_eye
+    float z = 0;             // the distance fog uses: |z_eye| or |P_eye|
+    float f = 1;             // the fog factor, clamped to [0, 1]; 1 when fog is off
+    vec3 color{0.0f};        // c_s, the colour before fog
+    vec3 fogged{0.0f};       // c_p = f·c_s + (1 − f)·c_fog
+};
+
+// c = f·c_s + (1 − f)·c_fog. With a record, the fogged colour is recorded from this function called
+// again without one: the one-lane code without a record stays the very code it is without records.
+template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact, class... Recording>
+V3 applyFog(const FogParams& fog, const V3& color, const V3& eyePosition, Recording*... recording) {
+    using Record = RecordOf<Recording...>;
+    static_assert(!Record::enabled || std::is_same_v<F, float>, "records hold one lane");
+    if constexpr (Record::enabled)
+        *recordOf(recording...) = {.fog = fog, .eyePosition = eyePosition, .color = color, .fogged = color};
     if (fog.mode == FogMode::None) return color;
     const F f = fogFactor<F, P>(fog, fogDistance<F, V3>(fog, eyePosition));
+    if constexpr (Record::enabled) {
+        Record& record = *recordOf(recording...);
+        record.z = fogDistance<F, V3>(fog, eyePosition);
+        record.f = f;
+        record.fogged = applyFog<F, V3, P>(fog, color, eyePosition);
+        return record.fogged;
+    }
     return color * f + V3(fog.color) * (1.0f - f);
 }
 

@@ -18,6 +18,7 @@
 #include "pipeline/glsl.h"
 #include "pipeline/names.h"
 #include "pipeline/wide.h"
+#include "shading/record.h"
 
 namespace facet {
 
@@ -126,33 +127,58 @@ F attenuation(const LightParams& light, F distance) {
     return 1.0f / (light.c0 + distance * (light.c1 + distance * light.c2));
 }
 
+// The record of a spot factor (record.h): its inputs and result at one point.
+struct SpotRecord {
+    static constexpr bool enabled = true;
+    bool cone = false;    // the light is a spot with a cone; else the factor is 1
+    float cosAngle = 0;   // −L·s, the cosine of the angle between the spot's axis and the point
+    float cosCutoff = 0;  // OpenGL profile: cos(cutoff)
+    float cosInner = 0;   // smooth profile: cos(inner), cos(outer)
+    float cosOuter = 0;
+    float factor = 1;
+};
+
 // OpenGL's spot factor (glLight, OpenGL 2.1 §2.14.1), with L the unit vector from the surface to the
 // light and s the spot direction: 0 where the angle between −L and s exceeds the cutoff,
 // max(−L·s, 0)^exponent inside, and 1 when the cutoff is 180° (no cone). 1 for non-spot lights.
-template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact>
-F spotFactorOpenGL(const LightParams& light, const V3& L) {
+template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact, class... Recording>
+F spotFactorOpenGL(const LightParams& light, const V3& L, Recording*... recording) {
+    using Record = RecordOf<Recording...>;
     if (light.kind != LightKind::Spot || light.spotCutoffDegrees >= 180.0f) return lanes<F>(1.0f);
     const F cosAngle = dot(-L, normalize(light.spotDirection));
     const float cosCutoff = std::cos(glm::radians(light.spotCutoffDegrees));
+    if constexpr (Record::enabled)
+        *recordOf(recording...) = {.cone = true,
+                                   .cosAngle = cosAngle,
+                                   .cosCutoff = cosCutoff,
+                                   .factor = spotFactorOpenGL<F, V3, P>(light, L)};
     return select(cosAngle >= cosCutoff, Maths<P>::pow(max(cosAngle, 0.0f), light.spotExponent),
                   lanes<F>(0.0f));
 }
 
 // The smooth variant: smoothstep(cos θ_outer, cos θ_inner, −L·s), 1 inside the inner cone, 0 outside
 // the outer one and a C¹ ramp between them. 1 for non-spot lights.
-template <class F, class V3 = LaneVec3<F>>
-F spotFactorSmooth(const LightParams& light, const V3& L) {
+template <class F, class V3 = LaneVec3<F>, class... Recording>
+F spotFactorSmooth(const LightParams& light, const V3& L, Recording*... recording) {
+    using Record = RecordOf<Recording...>;
     if (light.kind != LightKind::Spot) return lanes<F>(1.0f);
     const F cosAngle = dot(-L, normalize(light.spotDirection));
-    return smoothstep(std::cos(glm::radians(light.spotOuterDegrees)),
-                      std::cos(glm::radians(light.spotInnerDegrees)), cosAngle);
+    const float cosInner = std::cos(glm::radians(light.spotInnerDegrees));
+    const float cosOuter = std::cos(glm::radians(light.spotOuterDegrees));
+    if constexpr (Record::enabled)
+        *recordOf(recording...) = {.cone = true,
+                                   .cosAngle = cosAngle,
+                                   .cosInner = cosInner,
+                                   .cosOuter = cosOuter,
+                                   .factor = spotFactorSmooth<F, V3>(light, L)};
+    return smoothstep(cosOuter, cosInner, cosAngle);
 }
 
 // The light's spot factor under its own profile.
-template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact>
-F spotFactor(const LightParams& light, const V3& L) {
-    return light.spotProfile == SpotProfile::Smooth ? spotFactorSmooth<F, V3>(light, L)
-                                                    : spotFactorOpenGL<F, V3, P>(light, L);
+template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact, class... Recording>
+F spotFactor(const LightParams& light, const V3& L, Recording*... recording) {
+    return light.spotProfile == SpotProfile::Smooth ? spotFactorSmooth<F, V3>(light, L, recording...)
+                                                    : spotFactorOpenGL<F, V3, P>(light, L, recording...);
 }
 
 // Material of the standard lighting equation; linear RGB.
@@ -185,48 +211,94 @@ struct LightingTerms {
 // spec = max(R·V, 0)^n (Phong) or max(N·H, 0)^n (Blinn-Phong), and 0 where N·L ≤ 0 (the light is
 // behind the surface; in practice N·L ≤ kGrazingCosine, see there). N is used as given (normalised, not
 // flipped towards the viewer). `diffuseColor` is m_diffuse per lane (a texture may vary it); the overload
-// below uses the material's.
-template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact>
+// below uses the material's. A LightingRecord (below), when given, receives every number of it.
+template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact, class... Recording>
 [[gnu::always_inline]] inline LightingTerms<V3> standardLighting(
     const V3& position, const V3& normal, const vec3& eye, const PhongMaterial& m, const V3& diffuseColor,
     const vec3& globalAmbient, std::span<const LightParams> lights,
-    SpecularModel specularModel = SpecularModel::BlinnPhong) {
+    SpecularModel specularModel = SpecularModel::BlinnPhong, Recording*... recording) {
+    using Record = RecordOf<Recording...>;
+    static_assert(!Record::enabled || std::is_same_v<F, float>, "records hold one lane");
     const V3 N = safeNormalize<F, V3>(normal);
     const V3 V = safeNormalize<F, V3>(eye - position);
     LightingTerms<V3> terms{V3(m.emission), V3(globalAmbient * m.ambient), V3(vec3(0.0f)), V3(vec3(0.0f))};
+    if constexpr (Record::enabled)
+        *recordOf(recording...) = {.physicallyBased = false,
+                                   .specularModel = specularModel,
+                                   .position = position,
+                                   .normal = normal,
+                                   .N = N,
+                                   .V = V,
+                                   .materialAmbient = m.ambient,
+                                   .materialDiffuse = diffuseColor,
+                                   .materialSpecular = m.specular,
+                                   .shininess = m.shininess,
+                                   .globalAmbient = globalAmbient,
+                                   .globalAmbientTerm = terms.ambient,
+                                   .lightCount = static_cast<int>(lights.size())};
     for (const LightParams& light : lights) {
         // Where the light is and how much of it arrives.
         const LightVector<F, V3> toLight = lightVector<F, V3>(light, position);
         const V3& L = toLight.L;
-        const F reach = attenuation(light, toLight.distance) * spotFactor<F, V3, P>(light, L);
+        const F reach = attenuation(light, toLight.distance) *
+                        spotFactor<F, V3, P>(light, L, &recording->lights[&light - lights.data()].spot...);
 
         // Ambient and Lambert diffuse.
         const F NdotL = dot(N, L);
-        if (light.ambient != vec3(0.0f)) terms.ambient += (light.ambient * m.ambient) * reach;
-        terms.diffuse += diffuseColor * light.diffuse * (reach * max(NdotL, 0.0f));
+        if (light.ambient != vec3(0.0f)) {
+            const V3 ambient = (light.ambient * m.ambient) * reach;
+            terms.ambient += ambient;
+            if constexpr (Record::enabled)
+                recordOf(recording...)->lights[&light - lights.data()].ambient = ambient;
+        }
+        const V3 diffuse = diffuseColor * light.diffuse * (reach * max(NdotL, 0.0f));
+        terms.diffuse += diffuse;
 
         // Specular, only where the light is in front of the surface.
         F cosine;
         if (specularModel == SpecularModel::Phong) {
             const V3 R = N * (2.0f * NdotL) - L;
             cosine = dot(R, V);
+            if constexpr (Record::enabled)
+                recordOf(recording...)->lights[&light - lights.data()].reflected = R;
         } else {
-            cosine = dot(N, safeNormalize<F, V3>(L + V));
+            const V3 H = safeNormalize<F, V3>(L + V);
+            cosine = dot(N, H);
+            if constexpr (Record::enabled)
+                recordOf(recording...)->lights[&light - lights.data()].reflected = H;
         }
         const F spec =
             select(NdotL > kGrazingCosine, Maths<P>::pow(max(cosine, 0.0f), m.shininess), lanes<F>(0.0f));
-        terms.specular += (light.specular * m.specular) * (reach * spec);
+        const V3 specular = (light.specular * m.specular) * (reach * spec);
+        terms.specular += specular;
+
+        if constexpr (Record::enabled) {
+            auto& r = recordOf(recording...)->lights[&light - lights.data()];
+            r.light = light;
+            r.L = L;
+            r.distance = toLight.distance;
+            r.attenuation = attenuation(light, toLight.distance);
+            r.reach = reach;
+            r.NdotL = NdotL;
+            r.cosine = cosine;
+            r.grazing = !(NdotL > kGrazingCosine);
+            r.spec = spec;
+            r.diffuse = diffuse;
+            r.specular = specular;
+        }
     }
+    if constexpr (Record::enabled) recordOf(recording...)->terms = terms;
     return terms;
 }
 
-template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact>
+template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact, class... Recording>
 LightingTerms<V3> standardLighting(const V3& position, const V3& normal, const vec3& eye,
                                    const PhongMaterial& m, const vec3& globalAmbient,
                                    std::span<const LightParams> lights,
-                                   SpecularModel specularModel = SpecularModel::BlinnPhong) {
+                                   SpecularModel specularModel = SpecularModel::BlinnPhong,
+                                   Recording*... recording) {
     return standardLighting<F, V3, P>(position, normal, eye, m, V3(m.diffuse), globalAmbient, lights,
-                                      specularModel);
+                                      specularModel, recording...);
 }
 
 // =====================================================================================================
@@ -360,11 +432,31 @@ struct BrdfLobes {
     V3 specular;
 };
 
+// The record of the BRDF at one point (record.h): the vectors, the cosines, D, F, G and the lobes.
+struct BrdfRecord {
+    static constexpr bool enabled = true;
+    vec3 N{0.0f}, L{0.0f}, V{0.0f}, H{0.0f};  // unit; H = normalize(L + V)
+    float NdotLRaw = 0;                       // N·L as it is
+    float NdotL = 0, NdotV = 0;               // clamped to ≥ 1e−4 for the division
+    float NdotH = 0, VdotH = 0;               // V·H clamped to [0, 1]
+    float alpha = 0;                          // roughness²
+    vec3 f0{0.0f};                            // mix(F0_dielectric, c_base, metalness)
+    BrdfModel model{};
+    float D = 0;
+    vec3 F{0.0f};
+    float G = 0;
+    float specularScale = 0;  // D·G/(4 (N·L)(N·V))
+    float diffuseScale = 0;   // (1 − metalness)/π
+    bool grazing = false;     // N·L ≤ kGrazingCosine: both lobes 0
+    BrdfLobes<vec3> lobes{vec3(0.0f), vec3(0.0f)};
+};
+
 // `albedo` is the base colour the Lambert lobe reflects, per lane (a texture may vary it); F0 always
 // comes from the material.
-template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact>
+template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact, class... Recording>
 BrdfLobes<V3> brdfLobes(const V3& n, const V3& l, const V3& v, const PbrMaterial& m, const V3& albedo,
-                        const BrdfModel& model = {}) {
+                        const BrdfModel& model = {}, Recording*... recording) {
+    using Record = RecordOf<Recording...>;
     // The cosines, clamped away from the divisions' zeros.
     const V3 N = safeNormalize<F, V3>(n);
     const V3 L = safeNormalize<F, V3>(l);
@@ -387,10 +479,31 @@ BrdfLobes<V3> brdfLobes(const V3& n, const V3& l, const V3& v, const PbrMaterial
                                                          : geometryCookTorrance(NdotH, NdotV, NdotL, VdotH);
 
     // Diffuse and specular lobes, nothing where the light is behind the surface.
-    const V3 specular = fresnel * (D * G / (4.0f * NdotL * NdotV));
-    const V3 diffuse =
-        (V3(vec3(1.0f)) - fresnel) * albedo * ((1.0f - m.metalness) / std::numbers::pi_v<float>);
+    const F specularScale = D * G / (4.0f * NdotL * NdotV);
+    const V3 specular = fresnel * specularScale;
+    const float diffuseScale = (1.0f - m.metalness) / std::numbers::pi_v<float>;
+    const V3 diffuse = (V3(vec3(1.0f)) - fresnel) * albedo * diffuseScale;
     const V3 zero(vec3(0.0f));
+    if constexpr (Record::enabled)
+        *recordOf(recording...) = {.N = N,
+                                   .L = L,
+                                   .V = V,
+                                   .H = H,
+                                   .NdotLRaw = NdotLRaw,
+                                   .NdotL = NdotL,
+                                   .NdotV = NdotV,
+                                   .NdotH = NdotH,
+                                   .VdotH = VdotH,
+                                   .alpha = alpha,
+                                   .f0 = f0,
+                                   .model = model,
+                                   .D = D,
+                                   .F = fresnel,
+                                   .G = G,
+                                   .specularScale = specularScale,
+                                   .diffuseScale = diffuseScale,
+                                   .grazing = !(NdotLRaw > kGrazingCosine),
+                                   .lobes = brdfLobes<F, V3, P>(n, l, v, m, albedo, model)};
     return {select(NdotLRaw > kGrazingCosine, diffuse, zero),
             select(NdotLRaw > kGrazingCosine, specular, zero)};
 }
@@ -409,27 +522,112 @@ V3 brdf(const V3& n, const V3& l, const V3& v, const PbrMaterial& m, const BrdfM
 //   emission = m_emission and ambient = a_global ⊗ albedo
 // (a constant stand-in for the light that arrives from everywhere, as the standard equation's
 // a_global ⊗ m_ambient; image-based ambient is out of scope). `albedo` is the base colour per lane.
-template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact>
+// With a LightingRecord, LightRecord::attenuation is the falloff and the irradiance factor
+// falloff·spot·max(N·L, 0), incoming π·c_light and the BRDF's numbers are recorded per light.
+template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact, class... Recording>
 LightingTerms<V3> physicallyBasedTerms(const V3& position, const V3& normal, const vec3& eye,
                                        const PbrMaterial& m, const V3& albedo, const vec3& emission,
                                        const vec3& globalAmbient, std::span<const LightParams> lights,
-                                       const BrdfModel& model = {}) {
+                                       const BrdfModel& model = {}, Recording*... recording) {
+    using Record = RecordOf<Recording...>;
+    static_assert(!Record::enabled || std::is_same_v<F, float>, "records hold one lane");
     const V3 N = safeNormalize<F, V3>(normal);
     const V3 V = safeNormalize<F, V3>(eye - position);
     LightingTerms<V3> terms{V3(emission), albedo * globalAmbient, V3(vec3(0.0f)), V3(vec3(0.0f))};
+    if constexpr (Record::enabled)
+        *recordOf(recording...) = {.physicallyBased = true,
+                                   .position = position,
+                                   .normal = normal,
+                                   .N = N,
+                                   .V = V,
+                                   .materialAmbient = albedo,
+                                   .materialDiffuse = albedo,
+                                   .pbr = m,
+                                   .brdf = model,
+                                   .globalAmbient = globalAmbient,
+                                   .globalAmbientTerm = terms.ambient,
+                                   .lightCount = static_cast<int>(lights.size())};
     for (const LightParams& light : lights) {
         const LightVector<F, V3> toLight = lightVector<F, V3>(light, position);
         const F falloff = light.kind == LightKind::Directional
                               ? lanes<F>(1.0f)
                               : 1.0f / max(toLight.distance * toLight.distance, 1e-8f);
-        const F irradiance = falloff * spotFactor<F, V3, P>(light, toLight.L) * max(dot(N, toLight.L), 0.0f);
-        const BrdfLobes<V3> lobes = brdfLobes<F, V3, P>(N, toLight.L, V, m, albedo, model);
+        const F irradiance =
+            falloff *
+            spotFactor<F, V3, P>(light, toLight.L, &recording->lights[&light - lights.data()].spot...) *
+            max(dot(N, toLight.L), 0.0f);
+        const BrdfLobes<V3> lobes = brdfLobes<F, V3, P>(N, toLight.L, V, m, albedo, model,
+                                                        &recording->lights[&light - lights.data()].brdf...);
         const V3 incoming = V3(light.diffuse * std::numbers::pi_v<float>) * irradiance;
-        terms.diffuse += lobes.diffuse * incoming;
-        terms.specular += lobes.specular * incoming;
+        const V3 diffuse = lobes.diffuse * incoming;
+        terms.diffuse += diffuse;
+        const V3 specular = lobes.specular * incoming;
+        terms.specular += specular;
+        if constexpr (Record::enabled) {
+            auto& r = recordOf(recording...)->lights[&light - lights.data()];
+            r.light = light;
+            r.L = toLight.L;
+            r.distance = toLight.distance;
+            r.attenuation = falloff;
+            r.reach = irradiance;
+            r.NdotL = dot(N, toLight.L);
+            r.grazing = r.brdf.grazing;
+            r.incoming = incoming;
+            r.diffuse = diffuse;
+            r.specular = specular;
+        }
     }
+    if constexpr (Record::enabled) recordOf(recording...)->terms = terms;
     return terms;
 }
+
+// ---- The record of one point's lighting (record.h), for the step mode's screens ---------------------
+
+// One light's part in the lighting at a point.
+struct LightRecord {
+    LightParams light{};  // kind, position or direction, c0 c1 c2, spot settings, l_a l_d l_s
+    vec3 L{0.0f};         // unit, towards the light
+    float distance = 0;
+    // Standard equation: att = 1/(c0 + c1·d + c2·d²). Cook-Torrance: the falloff 1/d² (1: directional).
+    float attenuation = 1;
+    SpotRecord spot{};
+    // Standard equation: att·spot. Cook-Torrance: the irradiance factor falloff·spot·max(N·L, 0).
+    float reach = 1;
+    float NdotL = 0;
+    // Standard equation's specular: R = 2(N·L)N − L (Phong) or H = normalize(L + V) (Blinn-Phong), the
+    // cosine R·V or N·H, and spec = max(cosine, 0)^n, 0 when grazing (N·L ≤ kGrazingCosine).
+    vec3 reflected{0.0f};
+    float cosine = 0;
+    bool grazing = false;
+    float spec = 0;
+    BrdfRecord brdf{};    // Cook-Torrance
+    vec3 incoming{0.0f};  // Cook-Torrance: π·c_light·irradiance factor
+    vec3 ambient{0.0f};   // this light's terms: att·spot·l_a⊗m_a (0 for Cook-Torrance)
+    vec3 diffuse{0.0f};   // att·spot·max(N·L,0)·l_d⊗m_d, or f_diffuse ⊗ incoming
+    vec3 specular{0.0f};  // att·spot·spec·l_s⊗m_s, or f_specular ⊗ incoming
+};
+
+// Everything standardLighting or physicallyBasedTerms computed at one point.
+struct LightingRecord {
+    static constexpr bool enabled = true;
+    bool physicallyBased = false;  // Cook-Torrance; else the standard equation with specularModel
+    SpecularModel specularModel = SpecularModel::BlinnPhong;
+    vec3 position{0.0f};         // P
+    vec3 normal{0.0f};           // N as given
+    vec3 N{0.0f};                // normalised
+    vec3 V{0.0f};                // normalize(eye − P)
+    vec3 materialAmbient{0.0f};  // m_ambient (Cook-Torrance: c_base)
+    vec3 materialDiffuse{0.0f};  // m_diffuse or c_base, textured
+    vec3 materialSpecular{0.0f};
+    float shininess = 0;  // n
+    PbrMaterial pbr{};    // Cook-Torrance
+    BrdfModel brdf{};
+    vec3 globalAmbient{0.0f};
+    vec3 globalAmbientTerm{0.0f};  // a_global ⊗ m_ambient
+    int lightCount = 0;
+    std::array<LightRecord, kMaxLights> lights{};
+    LightingTerms<vec3> terms{vec3(0.0f), vec3(0.0f), vec3(0.0f), vec3(0.0f)};  // the result
+};
 
 // The reflected light alone (no emission, no ambient), the material's own base colour.
 template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact>

@@ -164,7 +164,7 @@ struct FrameShape {
     int width = 0, height = 0;
     vec4 clearColor{0.0f};
     ColorEncoding encoding;
-    std::vector<std::uint32_t> firstNumberOfDraw{0};
+    std::vector<std::uint32_t> firstNumberOfDraw;
 };
 FrameShape frameShape(const PreparedScene& prepared);
 

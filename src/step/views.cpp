@@ -313,9 +313,8 @@ Screen setupScreen(const TriangleTrace& t) {
         const TriangleSetup& s = piece.setup;
         out << "  Edge functions E_i(x, y) = a·x + b·y + c, ≥ 0 inside (x, y in 1/" << kFixedOne << " px).\n"
             << (piece.signedDoubleArea < 0
-                    ? "  2A < 0: setup exchanges v1 and v2, so that 2A = " + std::to_string(s.doubleArea) +
-                          " > 0; edge i is opposite\n"
-                          "  the i-th of v0, v2, v1:\n"
+                    ? "  2A < 0: setup exchanges v1 and v2 to make it positive, 2A = " +
+                          std::to_string(s.doubleArea) + ";\n  edge i is opposite the i-th of v0, v2, v1:\n"
                     : "  Edge i is opposite vertex i:\n");
         for (int i = 0; i < 3; ++i) {
             const EdgeFunction& e = s.edges[i];

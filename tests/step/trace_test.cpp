@@ -300,6 +300,32 @@ TEST_F(StepTraceTest, DefaultsAreTheCoveredPixelNearestTheCentreAndItsProducer) 
     EXPECT_EQ(*trace.walk.triangle, trace.pixel.triangles[*trace.pixel.producer].ref);
 }
 
+// Triangles are numbered over the draws in order: the second object's first triangle is number 1, and
+// its history and walk say so. Catches: a draw's numbers offset by another draw's count (a stray entry
+// in FrameShape::firstNumberOfDraw), or the numbering restarting at 0 in every draw.
+TEST_F(StepTraceTest, TrianglesAreNumberedAcrossTheDrawsInOrder) {
+    Scene scene = sceneOf("v -2 -1 0\nv -0.5 -1 0\nv -1.25 1 0\nf 1 2 3\n");
+    ObjectSpec second;
+    second.model = write("second.obj", "v 0.5 -1 0\nv 2 -1 0\nv 1.25 1 0\nf 1 2 3\n");
+    scene.objects.push_back(second);
+    const PreparedScene prepared = prepareScene(scene);
+    ASSERT_EQ(prepared.draws.size(), 2u);
+    EXPECT_EQ(triangleCount(prepared), 2u);
+    const std::optional<TriangleRef> ref = triangleByNumber(prepared, 1);
+    ASSERT_TRUE(ref);
+    EXPECT_EQ(ref->draw, 1u);
+    EXPECT_EQ(ref->triangle, 0u);
+    DrawContext context(1);
+    const vec4 clip = prepared.camera.clipFromView * prepared.camera.viewFromWorld * vec4(1.25f, -0.3f, 0, 1);
+    StepRequest request;
+    request.pixel = std::pair(int((clip.x / clip.w + 1) * 32), int((1 - clip.y / clip.w) * 24));
+    const StepTrace trace = traceStep(prepared, context, request);
+    ASSERT_TRUE(trace.walk.triangle);
+    EXPECT_EQ(trace.walk.triangle->number, 1u);
+    EXPECT_EQ(trace.walk.triangle->draw, 1u);
+    EXPECT_TRUE(contains(trace.walk.verdict, "triangle 1's fragment")) << trace.walk.verdict;
+}
+
 // Catches: a pixel outside the image or a triangle beyond the scene's accepted (and read out of range).
 TEST_F(StepTraceTest, PixelOutsideTheImageAndTriangleBeyondTheSceneAreRefused) {
     const PreparedScene prepared = prepareScene(sceneOf("v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n"));

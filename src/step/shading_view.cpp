@@ -1,0 +1,798 @@
+#include "step/shading_view.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <string_view>
+
+namespace facet::step {
+
+// ---- Recomputing the shading with the records on ---------------------------------------------------
+
+namespace {
+
+using PerVertex = PerVertexSurface<ShadingFrequency::Gouraud>;  // flat shading runs the same functions
+
+// The vertex lighting at one corner, as the vertex shader ran it.
+CornerShading shadeCorner(const SurfaceUniforms& u, const std::array<MeshVertex, 3>& corners, int corner) {
+    CornerShading shading;
+    shading.corner = corner;
+    shading.vertex = corners[static_cast<std::size_t>(corner)];
+    const VertexOut<PerVertex::VertexInputsT<float>> inputs = PerVertex::vertexInputs(shading.vertex, u);
+    shading.invW = 1.0f / inputs.position.w;
+    const PerVertex::VaryingsT<float> out =
+        PerVertex::lightVertex<float>(inputs.varyings, u, &shading.lighting);
+    shading.lighting.modulated = out.modulated;
+    shading.lighting.added = out.added;
+    return shading;
+}
+
+// The fragment's varyings in the layout of the shader's VaryingsT<float>.
+template <class Varyings>
+Varyings varyingsOf(const FragmentEvent& f) {
+    Varyings in;
+    std::memcpy(&in, f.varyings.data(), sizeof in);
+    return in;
+}
+
+}  // namespace
+
+ShadingTrace traceShading(const SurfaceUniforms& u, ShadingFrequency frequency, const FragmentEvent& f,
+                          const std::array<MeshVertex, 3>& corners, int provokingCorner) {
+    ShadingTrace trace;
+    trace.frequency = frequency;
+    trace.x = f.x;
+    trace.y = f.y;
+    trace.triangle = f.triangle;
+    trace.fate = f.fate;
+    trace.barycentrics = f.barycentrics;
+    trace.invW = f.invW;
+    trace.provokingCorner = provokingCorner;
+    trace.pipelineOutput = f.shaded;
+    trace.shaderRan = f.fate != FragmentFate::DepthFailed && f.fate != FragmentFate::Discarded;
+
+    if (frequency == ShadingFrequency::Phong) {
+        using Shader = PerPixelSurface;
+        trace.fragment.result =
+            Shader::shade<float>(varyingsOf<Shader::VaryingsT<float>>(f), u, 1u, &trace.fragment);
+    } else {
+        if (frequency == ShadingFrequency::Gouraud) {
+            for (int corner = 0; corner < 3; ++corner)
+                trace.corners.push_back(shadeCorner(u, corners, corner));
+            // Perspective-correct interpolation (OpenGL 2.1 §3.5.1): each corner's value weighted by
+            // λi·(1/wi), divided by their sum, the pixel's 1/w.
+            float sum = 0.0f;
+            for (int i = 0; i < 3; ++i)
+                sum += f.barycentrics[i] * trace.corners[static_cast<std::size_t>(i)].invW;
+            trace.weightsMatchCorners = std::abs(sum - f.invW) <= 1e-3f * std::abs(f.invW);
+            for (int i = 0; i < 3; ++i) {
+                const CornerShading& c = trace.corners[static_cast<std::size_t>(i)];
+                const float mu = f.barycentrics[i] * c.invW / f.invW;
+                trace.perspectiveWeights[i] = mu;
+                trace.mixedModulated += mu * c.lighting.modulated;
+                trace.mixedAdded += mu * c.lighting.added;
+            }
+        } else {
+            trace.corners.push_back(shadeCorner(u, corners, provokingCorner));
+        }
+        // Flat and Gouraud run the same fragment function; only which varyings are flat differs.
+        using Shader = PerVertexSurface<ShadingFrequency::Gouraud>;
+        trace.fragment.result =
+            Shader::shade<float>(varyingsOf<Shader::VaryingsT<float>>(f), u, 1u, &trace.fragment);
+    }
+    trace.matchesPipeline = std::memcmp(&trace.fragment.result, &f.shaded, sizeof f.shaded) == 0;
+    trace.uniforms = u;
+    trace.uniforms.diffuseMap = nullptr;
+    trace.uniforms.emissionMap = nullptr;
+    return trace;
+}
+
+// ---- Text --------------------------------------------------------------------------------------------
+
+namespace {
+
+constexpr std::size_t kColumns = 80;
+
+// Floats to 4 significant digits, enough to check each step by hand.
+std::string num(float v) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.4g", static_cast<double>(v));
+    return buffer;
+}
+std::string vec(const vec3& v) {
+    return "(" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + ")";
+}
+std::string rgb(const vec3& c) {
+    return "RGB" + vec(c);
+}
+std::string rgba(const vec4& c) {
+    return "RGBA(" + num(c.r) + ", " + num(c.g) + ", " + num(c.b) + ", " + num(c.a) + ")";
+}
+std::string uvText(const vec2& uv) {
+    return "(" + num(uv.x) + ", " + num(uv.y) + ")";
+}
+
+// Columns a UTF-8 line takes: one per code point.
+std::size_t columns(std::string_view s) {
+    std::size_t n = 0;
+    for (const char c : s)
+        n += (static_cast<unsigned char>(c) & 0xc0) != 0x80;
+    return n;
+}
+
+// A screen's lines, each wrapped to 80 columns at a space (outside parentheses when it can), the
+// continuation indented four more than the line.
+class Lines {
+  public:
+    void add(std::string line) {
+        const std::size_t indent = std::min<std::size_t>(line.find_first_not_of(' '), 40);
+        const std::string continuation(indent + 4, ' ');
+        while (columns(line) > kColumns) {
+            std::size_t at = breakBefore(line, continuation.size(), true);
+            if (at == std::string::npos) at = breakBefore(line, continuation.size(), false);
+            if (at == std::string::npos) break;
+            text_ += line.substr(0, at) + "\n";
+            line = continuation + line.substr(at + 1);
+        }
+        text_ += line + "\n";
+    }
+    void blank() { text_ += "\n"; }
+    const std::string& text() const { return text_; }
+
+  private:
+    // The last space within the first 80 columns, past the indentation (and outside parentheses).
+    static std::size_t breakBefore(const std::string& line, std::size_t from, bool outsideParentheses) {
+        std::size_t at = std::string::npos, column = 0;
+        int depth = 0;
+        for (std::size_t i = 0; i < line.size(); ++i) {
+            const char c = line[i];
+            column += (static_cast<unsigned char>(c) & 0xc0) != 0x80;
+            if (column > kColumns) break;
+            if (c == '(') ++depth;
+            if (c == ')') --depth;
+            if (c == ' ' && i > from && (depth == 0 || !outsideParentheses)) at = i;
+        }
+        return at;
+    }
+    std::string text_;
+};
+
+std::string_view modelName(const LightingRecord& r) {
+    if (r.physicallyBased) return "Cook-Torrance";
+    return r.specularModel == SpecularModel::Phong ? "Phong" : "Blinn-Phong";
+}
+
+std::string_view distributionName(NormalDistribution d) {
+    return d == NormalDistribution::GGX ? "GGX (Trowbridge-Reitz)" : "Beckmann";
+}
+
+// The equation in symbols, once per screen.
+void writeEquation(Lines& out, const LightingRecord& r) {
+    if (r.physicallyBased) {
+        out.add("Physically based lighting: Lambert diffuse + Cook-Torrance specular");
+        out.add("(Cook & Torrance 1982; Karis 2013):");
+        out.add("  c = m_emission + a_global ⊗ c_base");
+        out.add("      + Σ f ⊗ π·c_light·falloff·spot·max(N·L,0)");
+        out.add("  f = (1 − F)(1 − metalness)·c_base/π + D·F·G/(4(N·L)(N·V))");
+        out.add("  falloff = 1/d² (point and spot lights), 1 (directional)");
+        out.add("  H = normalize(L + V); D: " + std::string(distributionName(r.brdf.distribution)) +
+                " distribution; F: " +
+                (r.brdf.fresnel == FresnelModel::Schlick ? "Schlick's Fresnel" : "exact Fresnel") + "; G: " +
+                (r.brdf.geometry == GeometryTerm::SmithGGX ? "Smith GGX" : "Cook-Torrance") + " shadowing.");
+    } else {
+        const bool phong = r.specularModel == SpecularModel::Phong;
+        out.add(std::string("The standard lighting equation (OpenGL 2.1 §2.14.1), ") +
+                (phong ? "Phong" : "Blinn-Phong") + " specular:");
+        out.add("  c = m_emission + a_global ⊗ m_ambient");
+        out.add(std::string("      + Σ att·spot·(l_a⊗m_a + max(N·L,0)·l_d⊗m_d + ") +
+                (phong ? "max(R·V,0)^n" : "max(N·H,0)^n") + "·l_s⊗m_s)");
+        out.add(std::string("  ") + (phong ? "R = 2(N·L)N − L" : "H = normalize(L + V)") +
+                "; att = 1/(c0 + c1·d + c2·d²)");
+        out.add("  The specular term is 0 where N·L ≤ " + num(kGrazingCosine) +
+                ": the light grazes the surface or is behind it.");
+    }
+    out.add("  ⊗ multiplies colours channel by channel; colours are linear RGB.");
+}
+
+// The point: P, N (and its flip), V.
+void writePoint(Lines& out, const SurfaceTermsRecord& s) {
+    const LightingRecord& r = s.lighting;
+    out.add("  P = " + vec(s.position) + " (eye space: the eye at the origin)");
+    out.add("  N = " + vec(s.normal) + " as it comes, length " + num(glm::length(s.normal)));
+    if (s.flipped)
+        out.add("  N·V < 0: the surface is seen from behind, so the two-sided flip turns N round: N = −N");
+    out.add("  N = normalize(N) = " + vec(r.N));
+    out.add("  V = normalize(eye − P) = " + vec(r.V));
+}
+
+void writeMaterial(Lines& out, const LightingRecord& r) {
+    if (r.physicallyBased) {
+        out.add("  c_base = " + rgb(r.materialDiffuse) + ", metalness = " + num(r.pbr.metalness) +
+                ", roughness = " + num(r.pbr.roughness));
+        out.add("  F0_dielectric = " + rgb(r.pbr.f0));
+    } else {
+        out.add("  m_ambient = " + rgb(r.materialAmbient));
+        out.add("  m_diffuse = " + rgb(r.materialDiffuse));
+        out.add("  m_specular = " + rgb(r.materialSpecular) + ", n = " + num(r.shininess));
+    }
+    const std::string symbols = std::string("a_global ⊗ ") + (r.physicallyBased ? "c_base" : "m_ambient");
+    out.add("  " + symbols + " = " + rgb(r.globalAmbient) + " ⊗ " + rgb(r.materialAmbient));
+    out.add("  " + std::string(columns(symbols), ' ') + " = " + rgb(r.globalAmbientTerm));
+}
+
+std::string lightTitle(int index, const LightParams& light) {
+    const std::string number = "Light " + std::to_string(index + 1) + ": ";
+    switch (light.kind) {
+        case LightKind::Directional:
+            return number + "directional, shining along " + vec(light.direction);
+        case LightKind::Point:
+            return number + "point light at " + vec(light.position);
+        case LightKind::Spot:
+            return number + "spot light at " + vec(light.position) + ", axis " + vec(light.spotDirection);
+    }
+    return number;
+}
+
+void writeSpot(Lines& out, const LightRecord& r) {
+    const LightParams& light = r.light;
+    if (!r.spot.cone) {
+        out.add(light.kind == LightKind::Spot ? "  spot = 1 (a cutoff of 180°: no cone)"
+                                              : "  spot = 1 (not a spot light)");
+        return;
+    }
+    out.add("  cos angle = −L·s = " + num(r.spot.cosAngle) + " (s: the spot's axis)");
+    if (light.spotProfile == SpotProfile::Smooth) {
+        out.add("  smooth cone, inner " + num(light.spotInnerDegrees) + "°, outer " +
+                num(light.spotOuterDegrees) + "°:");
+        out.add("  spot = smoothstep(cos outer, cos inner, −L·s) = smoothstep(" + num(r.spot.cosOuter) +
+                ", " + num(r.spot.cosInner) + ", " + num(r.spot.cosAngle) + ") = " + num(r.spot.factor));
+        return;
+    }
+    out.add("  cutoff " + num(light.spotCutoffDegrees) + "°: cos cutoff = " + num(r.spot.cosCutoff));
+    if (r.spot.cosAngle >= r.spot.cosCutoff)
+        out.add("  inside the cone: spot = max(−L·s, 0)^e = max(" + num(r.spot.cosAngle) + ", 0)^" +
+                num(light.spotExponent) + " = " + num(r.spot.factor));
+    else
+        out.add("  outside the cone (cos angle < cos cutoff): spot = 0");
+}
+
+void writeLightPosition(Lines& out, const LightRecord& r) {
+    if (r.light.kind == LightKind::Directional) {
+        out.add("  L = normalize(−direction) = " + vec(r.L) + "; no distance");
+        return;
+    }
+    out.add("  L = normalize(p_light − P) = " + vec(r.L));
+    out.add("  d = |p_light − P| = " + num(r.distance));
+}
+
+// Three lines: a term in symbols, with the numbers, and its value.
+void writeTerm(Lines& out, const std::string& name, const std::string& symbols, const std::string& numbers,
+               const vec3& value) {
+    const std::string pad(columns(name), ' ');
+    out.add("  " + name + " = " + symbols);
+    out.add("  " + pad + " = " + numbers);
+    out.add("  " + pad + " = " + rgb(value));
+}
+
+void writeStandardLight(Lines& out, const LightingRecord& lighting, const LightRecord& r) {
+    const LightParams& light = r.light;
+    writeLightPosition(out, r);
+    if (light.kind == LightKind::Directional)
+        out.add("  att = 1 (a directional light is not attenuated)");
+    else
+        out.add("  att = 1/(c0 + c1·d + c2·d²) = 1/(" + num(light.c0) + " + " + num(light.c1) + "·" +
+                num(r.distance) + " + " + num(light.c2) + "·" + num(r.distance) +
+                "²) = " + num(r.attenuation));
+    writeSpot(out, r);
+    out.add("  N·L = " + num(r.NdotL));
+    const bool phong = lighting.specularModel == SpecularModel::Phong;
+    if (phong) {
+        out.add("  R = 2(N·L)N − L = " + vec(r.reflected));
+        out.add("  R·V = " + num(r.cosine));
+    } else {
+        out.add("  H = normalize(L + V) = " + vec(r.reflected));
+        out.add("  N·H = " + num(r.cosine));
+    }
+    if (r.grazing)
+        out.add("  N·L ≤ " + num(kGrazingCosine) +
+                ": the light grazes the surface or is behind it: spec = 0");
+    else
+        out.add(std::string("  spec = max(") + (phong ? "R·V" : "N·H") + ", 0)^n = max(" + num(r.cosine) +
+                ", 0)^" + num(lighting.shininess) + " = " + num(r.spec));
+    const std::string reach = num(r.attenuation) + "·" + num(r.spot.factor);
+    writeTerm(out, "ambient", "att·spot·l_a⊗m_a",
+              reach + "·" + rgb(light.ambient) + "⊗" + rgb(lighting.materialAmbient), r.ambient);
+    writeTerm(
+        out, "diffuse", "att·spot·max(N·L,0)·l_d⊗m_d",
+        reach + "·max(" + num(r.NdotL) + ", 0)·" + rgb(light.diffuse) + "⊗" + rgb(lighting.materialDiffuse),
+        r.diffuse);
+    writeTerm(out, "specular", "att·spot·spec·l_s⊗m_s",
+              reach + "·" + num(r.spec) + "·" + rgb(light.specular) + "⊗" + rgb(lighting.materialSpecular),
+              r.specular);
+}
+
+void writeBrdf(Lines& out, const LightingRecord& lighting, const BrdfRecord& b) {
+    out.add("  H = normalize(L + V) = " + vec(b.H));
+    out.add("  N·H = " + num(b.NdotH) + ", N·V = " + num(b.NdotV) + ", V·H = " + num(b.VdotH) +
+            " (N·L, N·V at least 0.0001)");
+    out.add("  α = roughness² = " + num(lighting.pbr.roughness) + "² = " + num(b.alpha) +
+            " (at least 0.001)");
+    if (b.model.distribution == NormalDistribution::GGX) {
+        out.add("  D = α²/(π((N·H)²(α² − 1) + 1)²)   (GGX)");
+        out.add("    = " + num(b.alpha) + "²/(π(" + num(b.NdotH) + "²(" + num(b.alpha) +
+                "² − 1) + 1)²) = " + num(b.D));
+    } else {
+        out.add("  D = exp(((N·H)² − 1)/(α²(N·H)²))/(π·α²·(N·H)⁴)   (Beckmann)");
+        out.add("    with N·H = " + num(b.NdotH) + ", α = " + num(b.alpha) + ": D = " + num(b.D));
+    }
+    out.add("  F0 = mix(F0_dielectric, c_base, metalness) = " + rgb(b.f0));
+    if (b.model.fresnel == FresnelModel::Schlick) {
+        out.add("  F = F0 + (1 − F0)(1 − V·H)^5   (Schlick)");
+        out.add("    = " + rgb(b.f0) + " + (1 − F0)(1 − " + num(b.VdotH) + ")^5");
+    } else {
+        out.add("  F: the exact Fresnel reflectance (Cook & Torrance 1982) at cos θ = V·H = " + num(b.VdotH));
+        out.add("    and η = (1 + √F0)/(1 − √F0) = " +
+                vec(vec3(etaFromF0(b.f0.x), etaFromF0(b.f0.y), etaFromF0(b.f0.z))) + " per channel");
+    }
+    out.add("    = " + rgb(b.F));
+    if (b.model.geometry == GeometryTerm::SmithGGX) {
+        out.add("  G = G1(N·L)·G1(N·V), G1(x) = 2x/(x + √(α² + (1 − α²)x²))   (Smith GGX)");
+        out.add("    with N·L = " + num(b.NdotL) + ", N·V = " + num(b.NdotV) + ": G = " + num(b.G));
+    } else {
+        out.add("  G = min(1, 2(N·H)(N·V)/(V·H), 2(N·H)(N·L)/(V·H))   (Cook-Torrance)");
+        out.add("    = min(1, 2·" + num(b.NdotH) + "·" + num(b.NdotV) + "/" + num(b.VdotH) + ", 2·" +
+                num(b.NdotH) + "·" + num(b.NdotL) + "/" + num(b.VdotH) + ") = " + num(b.G));
+    }
+    if (b.grazing) {
+        out.add("  N·L ≤ " + num(kGrazingCosine) +
+                ": the light grazes the surface or is behind it: both lobes are 0");
+        return;
+    }
+    out.add("  D·G/(4(N·L)(N·V)) = " + num(b.D) + "·" + num(b.G) + "/(4·" + num(b.NdotL) + "·" +
+            num(b.NdotV) + ") = " + num(b.specularScale));
+    writeTerm(out, "specular lobe", "D·F·G/(4(N·L)(N·V))", num(b.specularScale) + "·" + rgb(b.F),
+              b.lobes.specular);
+    writeTerm(out, "diffuse lobe", "(1 − F)(1 − metalness)·c_base/π",
+              "(1 − " + rgb(b.F) + ")·" + rgb(lighting.materialDiffuse) + "·" + num(b.diffuseScale),
+              b.lobes.diffuse);
+}
+
+void writePhysicallyBasedLight(Lines& out, const LightingRecord& lighting, const LightRecord& r) {
+    const LightParams& light = r.light;
+    writeLightPosition(out, r);
+    if (light.kind == LightKind::Directional)
+        out.add("  falloff = 1 (a directional light)");
+    else
+        out.add("  falloff = 1/d² = 1/" + num(r.distance) + "² = " + num(r.attenuation));
+    writeSpot(out, r);
+    out.add("  N·L = " + num(r.NdotL));
+    out.add("  irradiance factor = falloff·spot·max(N·L,0) = " + num(r.attenuation) + "·" +
+            num(r.spot.factor) + "·max(" + num(r.NdotL) + ", 0) = " + num(r.reach));
+    writeBrdf(out, lighting, r.brdf);
+    writeTerm(out, "incoming", "π·c_light·irradiance factor", "π·" + rgb(light.diffuse) + "·" + num(r.reach),
+              r.incoming);
+    writeTerm(out, "diffuse", "diffuse lobe ⊗ incoming", rgb(r.brdf.lobes.diffuse) + "⊗" + rgb(r.incoming),
+              r.diffuse);
+    writeTerm(out, "specular", "specular lobe ⊗ incoming", rgb(r.brdf.lobes.specular) + "⊗" + rgb(r.incoming),
+              r.specular);
+}
+
+void writeLights(Lines& out, const LightingRecord& lighting) {
+    if (lighting.lightCount == 0) out.add("  No lights: only emission and ambient light.");
+    for (int k = 0; k < lighting.lightCount; ++k) {
+        const LightRecord& r = lighting.lights[static_cast<std::size_t>(k)];
+        out.blank();
+        out.add(lightTitle(k, r.light) + " (eye space)");
+        if (lighting.physicallyBased)
+            writePhysicallyBasedLight(out, lighting, r);
+        else
+            writeStandardLight(out, lighting, r);
+    }
+}
+
+// The terms summed over the lights, and the selection of terms drawn.
+void writeSum(Lines& out, const SurfaceTermsRecord& s, const vec3& emission) {
+    const LightingTerms<vec3>& t = s.terms;
+    out.add("The sum:");
+    if (s.selectedTerms != kAllTerms) {
+        std::string drawn;
+        for (const EnumName<LightingTerm>& term : kLightingTermNames)
+            if (s.selectedTerms & term.value) drawn += (drawn.empty() ? "" : ", ") + std::string(term.name);
+        out.add("  Only " + (drawn.empty() ? std::string("no term") : drawn) +
+                " drawn (a component image): the other terms are 0.");
+    }
+    out.add("  emission = " + rgb(emission));
+    out.add("  ambient  = " + rgb(t.ambient) + " (global + each light's)");
+    out.add("  diffuse  = " + rgb(t.diffuse));
+    out.add("  specular = " + rgb(t.specular));
+}
+
+void writeLighting(Lines& out, const SurfaceTermsRecord& s) {
+    writePoint(out, s);
+    writeMaterial(out, s.lighting);
+    writeLights(out, s.lighting);
+    out.blank();
+}
+
+std::string frequencyTitle(const ShadingTrace& t) {
+    switch (t.frequency) {
+        case ShadingFrequency::Phong:
+            return "per pixel (Phong shading)";
+        case ShadingFrequency::Gouraud:
+            return "per vertex (Gouraud shading)";
+        case ShadingFrequency::Flat:
+            return "once per triangle (flat shading)";
+    }
+    return "";
+}
+
+void writeCorner(Lines& out, const CornerShading& c) {
+    const VertexLightingRecord& v = c.lighting;
+    out.add("---- Corner " + std::to_string(c.corner) + ": vertex at " + vec(c.vertex.position) +
+            " (object space) ----");
+    writeLighting(out, v.lighting);
+    writeSum(out, v.lighting, v.lighting.terms.emission);
+    if (v.emissionDeferred)
+        out.add("  The emission is left out here: the pixel adds it with its emission texture.");
+    if (v.clamped) {
+        out.add("  c = emission + ambient + diffuse + specular = " + rgb(v.sum));
+        out.add("  clamped to [0, 1] (OpenGL 1.x), all of it tinted by a diffuse map:");
+        out.add("  modulated = clamp(c, 0, 1) = " + rgb(v.modulated) + ", added = " + rgb(v.added));
+    } else {
+        out.add("  The vertex hands on two colours, so that a diffuse map tints the diffuse light only:");
+        out.add("  modulated = diffuse = " + rgb(v.modulated));
+        out.add("  added = emission + ambient + specular = " + rgb(v.added));
+    }
+    out.blank();
+}
+
+void writeInterpolation(Lines& out, const ShadingTrace& t) {
+    const FragmentRecord& f = t.fragment;
+    out.add("Interpolation to the pixel (perspective-correct, OpenGL 2.1 §3.5.1):");
+    out.add("  λ = (λ0, λ1, λ2) = " + vec(t.barycentrics) + " from the edge functions");
+    out.add("  1/w at the pixel = λ0/w0 + λ1/w1 + λ2/w2 = " + num(t.invW));
+    if (t.weightsMatchCorners) {
+        out.add("  1/w0, 1/w1, 1/w2 = " + vec(vec3(t.corners[0].invW, t.corners[1].invW, t.corners[2].invW)));
+        out.add("  μi = (λi/wi)/(1/w): μ = " + vec(t.perspectiveWeights));
+        out.add("  modulated = μ0·c0 + μ1·c1 + μ2·c2 = " + rgb(t.mixedModulated));
+        out.add("  added = μ0·c0 + μ1·c1 + μ2·c2 = " + rgb(t.mixedAdded));
+    } else {
+        out.add("  Clipping cut this triangle: the λ are those of the piece the pixel lies in, whose");
+        out.add("  corners are themselves mixes of the corners above.");
+    }
+    out.add("  The interpolator gives (what the fragment shader reads):");
+    out.add("  modulated = " + rgb(f.modulatedIn));
+    out.add("  added = " + rgb(f.addedIn));
+}
+
+// The fragment shader's own part: textures, emission, clamp.
+void writeFragmentPart(Lines& out, const ShadingTrace& t) {
+    const FragmentRecord& f = t.fragment;
+    out.add("The fragment shader at pixel (" + std::to_string(t.x) + ", " + std::to_string(t.y) + "):");
+    if (f.perPixel) {
+        out.add("  c = emission + ambient + diffuse + specular = " + rgb(f.sum));
+        if (f.clamped) out.add("  clamped to [0, 1] (OpenGL 1.x): c = " + rgb(f.color));
+    } else {
+        if (f.diffuseMapped)
+            out.add("  modulated = " + rgb(f.modulatedIn) + " ⊗ " + rgb(vec3(f.diffuseTexel)) + " = " +
+                    rgb(f.modulated) + " (the diffuse map's texel at uv " + uvText(f.uv) + ")");
+        if (f.emissionMapped)
+            out.add("  added = " + rgb(f.addedIn) + " + m_emission ⊗ texel = " + rgb(f.addedIn) + " + " +
+                    rgb(f.emission) + " = " + rgb(f.added) + " (the emission map at uv " + uvText(f.uv) +
+                    ")");
+        out.add("  c = modulated + added = " + rgb(f.modulated) + " + " + rgb(f.added) + " = " +
+                rgb(f.color));
+    }
+    if (f.diffuseMapped)
+        out.add("  α = opacity·texel α = " + num(f.opacity) + "·" + num(f.diffuseTexel.a) + " = " +
+                num(f.alpha));
+    else
+        out.add("  α = opacity = " + num(f.alpha));
+}
+
+Screen lightingScreen(const ShadingTrace& t) {
+    Lines out;
+    const FragmentRecord& f = t.fragment;
+    const LightingRecord& model =
+        t.corners.empty() ? f.lighting.lighting : t.corners[0].lighting.lighting.lighting;
+    std::string title = "Lighting " + frequencyTitle(t) + ": " + std::string(modelName(model));
+    switch (t.frequency) {
+        case ShadingFrequency::Phong:
+            out.add("Phong shading: the lighting equation runs at this pixel, on the position and the");
+            out.add("normal interpolated from the triangle's corners.");
+            break;
+        case ShadingFrequency::Gouraud:
+            out.add("Gouraud shading: the lighting equation runs at the triangle's three corners");
+            out.add("(in the vertex shader); their colours are interpolated across the triangle.");
+            break;
+        case ShadingFrequency::Flat:
+            out.add("Flat shading: the lighting equation runs at the triangle's provoking corner");
+            out.add("(corner " + std::to_string(t.provokingCorner) +
+                    "); its colour fills the whole triangle.");
+            break;
+    }
+    out.blank();
+    writeEquation(out, model);
+    out.blank();
+    if (t.frequency == ShadingFrequency::Phong) {
+        out.add("The point:");
+        if (f.diffuseMapped)
+            out.add("  " + std::string(model.physicallyBased ? "c_base" : "m_diffuse") + " = " +
+                    rgb(f.materialAlbedo) + " ⊗ " + rgb(vec3(f.diffuseTexel)) + " = " + rgb(f.albedo) +
+                    " (the diffuse map's texel at uv " + uvText(f.uv) + ")");
+        writeLighting(out, f.lighting);
+        writeSum(out, f.lighting, f.emission);
+        if (f.emissionMapped)
+            out.add("  (emission = m_emission ⊗ the emission map's texel " + rgb(vec3(f.emissionTexel)) +
+                    " at uv " + uvText(f.uv) + ")");
+        out.blank();
+    } else {
+        for (const CornerShading& c : t.corners)
+            writeCorner(out, c);
+        if (t.frequency == ShadingFrequency::Gouraud) {
+            writeInterpolation(out, t);
+        } else {
+            out.add("Every pixel of the triangle takes the provoking corner's colours:");
+            out.add("  modulated = " + rgb(f.modulatedIn) + ", added = " + rgb(f.addedIn));
+        }
+        out.blank();
+    }
+    writeFragmentPart(out, t);
+    return {"lighting", title, out.text()};
+}
+
+Screen fogScreen(const ShadingTrace& t) {
+    Lines out;
+    const FogRecord& r = t.fragment.output.fog;
+    const FogParams& fog = r.fog;
+    if (fog.mode == FogMode::None) {
+        out.add("Fog is off: the lit colour passes unchanged, c_p = c_s = " + rgb(r.color) + ".");
+        return {"fog", "Fog: off", out.text()};
+    }
+    out.add("Fog (OpenGL 2.1 §3.10) blends the colour towards the fog colour with distance:");
+    out.add("  c_p = f·c_s + (1 − f)·c_fog, f clamped to [0, 1] (1: no fog, 0: only fog)");
+    out.blank();
+    if (fog.distance == FogDistance::Radial)
+        out.add("  z = |P_eye| (radial distance) = |" + vec(r.eyePosition) + "| = " + num(r.z));
+    else
+        out.add("  z = |z_eye| (the eye-space depth) = |" + num(r.eyePosition.z) + "| = " + num(r.z));
+    switch (fog.mode) {
+        case FogMode::None:
+            break;
+        case FogMode::Linear:
+            out.add("  linear fog from start " + num(fog.start) + " to end " + num(fog.end) + ":");
+            out.add("  f = (end − z)/(end − start) = (" + num(fog.end) + " − " + num(r.z) + ")/(" +
+                    num(fog.end) + " − " + num(fog.start) + ") = " + num(r.f));
+            break;
+        case FogMode::Exponential:
+            out.add("  exponential fog, density " + num(fog.density) + ":");
+            out.add("  f = e^(−density·z) = e^(−" + num(fog.density) + "·" + num(r.z) + ") = " + num(r.f));
+            break;
+        case FogMode::ExponentialSquared:
+            out.add("  exponential-squared fog, density " + num(fog.density) + ":");
+            out.add("  f = e^(−(density·z)²) = e^(−(" + num(fog.density) + "·" + num(r.z) +
+                    ")²) = " + num(r.f));
+            break;
+    }
+    out.add("  c_s = " + rgb(r.color) + " (the lit colour)");
+    out.add("  c_fog = " + rgb(fog.color));
+    out.add("  c_p = f·c_s + (1 − f)·c_fog = " + num(r.f) + "·" + rgb(r.color) + " + " + num(1.0f - r.f) +
+            "·" + rgb(fog.color));
+    out.add("      = " + rgb(r.fogged));
+    return {"fog", std::string("Fog: ") + std::string(nameOf(fog.mode)) + ", f = " + num(r.f), out.text()};
+}
+
+Screen outputScreen(const ShadingTrace& t) {
+    Lines out;
+    const OutputRecord& o = t.fragment.output;
+    const std::string c = rgb(o.fog.fogged);
+    out.add("The colour c = " + c + " and α = " + num(o.alpha) + " go to the blend (" +
+            std::string(nameOf(o.blend)) + ") in the form it expects:");
+    switch (o.blend) {
+        case BlendMode::Replace:
+        case BlendMode::Over:
+            out.add("  straight alpha: the shader writes (c, α)");
+            break;
+        case BlendMode::PremultipliedOver:
+        case BlendMode::Additive:
+            out.add("  premultiplied alpha: the shader writes (α·c, α)");
+            out.add("  α·c = " + num(o.alpha) + "·" + c + " = " + rgb(o.output));
+            break;
+        case BlendMode::Multiply:
+            out.add("  a filter, clear (1) where α = 0: the shader writes (mix(1, c, α), α)");
+            out.add("  mix(1, c, α) = 1 + (c − 1)·α = 1 + (" + c + " − 1)·" + num(o.alpha) + " = " +
+                    rgb(o.output));
+            break;
+    }
+    switch (o.blend) {
+        case BlendMode::Replace:
+            out.add("  The blend replaces the pixel's colour: c_o = c_s.");
+            break;
+        case BlendMode::Over:
+            out.add("  The blend then computes c_o = α·c_s + (1 − α)·c_d.");
+            break;
+        case BlendMode::PremultipliedOver:
+            out.add("  The blend then computes c_o = c_s + (1 − α)·c_d (c_s already holds α·c).");
+            break;
+        case BlendMode::Additive:
+            out.add("  The blend then computes c_o = c_d + c_s (c_s already holds α·c).");
+            break;
+        case BlendMode::Multiply:
+            out.add("  The blend then computes c_o = c_s ⊗ c_d.");
+            break;
+    }
+    out.blank();
+    out.add("The fragment shader's output: " + rgba(t.fragment.result));
+    if (!t.shaderRan)
+        out.add("The pipeline did not run the shader here: the depth test failed first.");
+    else if (t.matchesPipeline)
+        out.add("The pipeline's output is the same, bit for bit.");
+    else
+        out.add("The pipeline's output differs: " + rgba(t.pipelineOutput) + ".");
+    return {"output",
+            "Output: " + rgba(t.fragment.result) + " for the " + std::string(nameOf(o.blend)) + " blend",
+            out.text()};
+}
+
+}  // namespace
+
+std::vector<Screen> shadingScreens(const ShadingTrace& trace) {
+    return {lightingScreen(trace), fogScreen(trace), outputScreen(trace)};
+}
+
+// ---- JSON --------------------------------------------------------------------------------------------
+
+namespace {
+
+nlohmann::json json3(const vec3& v) {
+    return {v.x, v.y, v.z};
+}
+nlohmann::json json4(const vec4& v) {
+    return {v.x, v.y, v.z, v.w};
+}
+
+nlohmann::json toJson(const LightingTerms<vec3>& t) {
+    return {{"emission", json3(t.emission)},
+            {"ambient", json3(t.ambient)},
+            {"diffuse", json3(t.diffuse)},
+            {"specular", json3(t.specular)}};
+}
+
+nlohmann::json toJson(const LightRecord& r, bool physicallyBased) {
+    nlohmann::json j = {{"kind", nameOf(r.light.kind)},
+                        {"L", json3(r.L)},
+                        {"distance", r.distance},
+                        {"c0", r.light.c0},
+                        {"c1", r.light.c1},
+                        {"c2", r.light.c2},
+                        {physicallyBased ? "falloff" : "attenuation", r.attenuation},
+                        {"spot",
+                         {{"cone", r.spot.cone},
+                          {"profile", nameOf(r.light.spotProfile)},
+                          {"cosAngle", r.spot.cosAngle},
+                          {"cosCutoff", r.spot.cosCutoff},
+                          {"exponent", r.light.spotExponent},
+                          {"cosInner", r.spot.cosInner},
+                          {"cosOuter", r.spot.cosOuter},
+                          {"factor", r.spot.factor}}},
+                        {"NdotL", r.NdotL},
+                        {"ambient", json3(r.ambient)},
+                        {"diffuse", json3(r.diffuse)},
+                        {"specular", json3(r.specular)}};
+    if (physicallyBased) {
+        const BrdfRecord& b = r.brdf;
+        j["irradianceFactor"] = r.reach;
+        j["incoming"] = json3(r.incoming);
+        j["brdf"] = {{"H", json3(b.H)},
+                     {"NdotH", b.NdotH},
+                     {"NdotV", b.NdotV},
+                     {"NdotL", b.NdotL},
+                     {"VdotH", b.VdotH},
+                     {"alpha", b.alpha},
+                     {"distribution", nameOf(b.model.distribution)},
+                     {"D", b.D},
+                     {"fresnel", nameOf(b.model.fresnel)},
+                     {"F0", json3(b.f0)},
+                     {"F", json3(b.F)},
+                     {"geometry", nameOf(b.model.geometry)},
+                     {"G", b.G},
+                     {"grazing", b.grazing},
+                     {"diffuseLobe", json3(b.lobes.diffuse)},
+                     {"specularLobe", json3(b.lobes.specular)}};
+    } else {
+        j["attTimesSpot"] = r.reach;
+        j["reflected"] = json3(r.reflected);
+        j["cosine"] = r.cosine;
+        j["grazing"] = r.grazing;
+        j["spec"] = r.spec;
+    }
+    return j;
+}
+
+nlohmann::json toJson(const SurfaceTermsRecord& s) {
+    const LightingRecord& r = s.lighting;
+    nlohmann::json lights = nlohmann::json::array();
+    for (int k = 0; k < r.lightCount; ++k)
+        lights.push_back(toJson(r.lights[static_cast<std::size_t>(k)], r.physicallyBased));
+    nlohmann::json j = {{"model", modelName(r)},
+                        {"P", json3(s.position)},
+                        {"normalGiven", json3(s.normal)},
+                        {"flipped", s.flipped},
+                        {"N", json3(r.N)},
+                        {"V", json3(r.V)},
+                        {"globalAmbient", json3(r.globalAmbient)},
+                        {"globalAmbientTerm", json3(r.globalAmbientTerm)},
+                        {"lights", lights},
+                        {"selectedTerms", s.selectedTerms},
+                        {"terms", toJson(s.terms)}};
+    if (r.physicallyBased)
+        j["material"] = {{"baseColor", json3(r.materialDiffuse)},
+                         {"metalness", r.pbr.metalness},
+                         {"roughness", r.pbr.roughness},
+                         {"f0", json3(r.pbr.f0)}};
+    else
+        j["material"] = {{"ambient", json3(r.materialAmbient)},
+                         {"diffuse", json3(r.materialDiffuse)},
+                         {"specular", json3(r.materialSpecular)},
+                         {"shininess", r.shininess}};
+    return j;
+}
+
+}  // namespace
+
+nlohmann::json toJson(const ShadingTrace& t) {
+    const FragmentRecord& f = t.fragment;
+    const FogRecord& fog = f.output.fog;
+    nlohmann::json j = {
+        {"frequency", nameOf(t.frequency)},      {"x", t.x},      {"y", t.y}, {"triangle", t.triangle},
+        {"barycentrics", json3(t.barycentrics)}, {"invW", t.invW}};
+    if (f.perPixel) {
+        j["lighting"] = toJson(f.lighting);
+    } else {
+        nlohmann::json corners = nlohmann::json::array();
+        for (const CornerShading& c : t.corners)
+            corners.push_back({{"corner", c.corner},
+                               {"invW", c.invW},
+                               {"lighting", toJson(c.lighting.lighting)},
+                               {"clamped", c.lighting.clamped},
+                               {"modulated", json3(c.lighting.modulated)},
+                               {"added", json3(c.lighting.added)}});
+        j["corners"] = corners;
+        j["provokingCorner"] = t.provokingCorner;
+        if (t.frequency == ShadingFrequency::Gouraud) {
+            j["weightsMatchCorners"] = t.weightsMatchCorners;
+            j["perspectiveWeights"] = json3(t.perspectiveWeights);
+        }
+    }
+    j["fragment"] = {{"uv", {f.uv.x, f.uv.y}},
+                     {"diffuseTexel", f.diffuseMapped ? json4(f.diffuseTexel) : nlohmann::json()},
+                     {"emissionTexel", f.emissionMapped ? json4(f.emissionTexel) : nlohmann::json()},
+                     {"opacity", f.opacity},
+                     {"alpha", f.alpha},
+                     {"clamped", f.clamped},
+                     {"color", json3(f.color)}};
+    if (!f.perPixel) {
+        j["fragment"]["modulatedIn"] = json3(f.modulatedIn);
+        j["fragment"]["addedIn"] = json3(f.addedIn);
+        j["fragment"]["modulated"] = json3(f.modulated);
+        j["fragment"]["added"] = json3(f.added);
+    }
+    j["fog"] = {{"mode", nameOf(fog.fog.mode)},
+                {"distance", nameOf(fog.fog.distance)},
+                {"z", fog.z},
+                {"start", fog.fog.start},
+                {"end", fog.fog.end},
+                {"density", fog.fog.density},
+                {"f", fog.f},
+                {"color", json3(fog.color)},
+                {"fogColor", json3(fog.fog.color)},
+                {"fogged", json3(fog.fogged)}};
+    j["output"] = {{"blend", nameOf(f.output.blend)},     {"alpha", f.output.alpha},
+                   {"color", json3(f.output.output)},     {"result", json4(f.result)},
+                   {"pipeline", json4(t.pipelineOutput)}, {"shaderRan", t.shaderRan},
+                   {"matchesPipeline", t.matchesPipeline}};
+    return j;
+}
+
+}  // namespace facet::step

@@ -1,0 +1,70 @@
+// The shading of one fragment as the lecture writes it: the lighting equation with every number
+// substituted, fog, and the form the blend expects. The numbers come from the shaders' own formulas run
+// again on the fragment with their record on (shading/record.h), so they are the very values the frame
+// computed; traceShading checks that the recomputed output is the pipeline's, bit for bit.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "pipeline/types.h"
+#include "scene/mesh.h"
+#include "shaders/shaders.h"
+#include "step/screens.h"
+
+namespace facet::step {
+
+// Per-vertex shading (Gouraud, flat): the vertex lighting at one corner of the triangle.
+struct CornerShading {
+    int corner = 0;  // 0, 1 or 2, in the order traceShading was given the corners
+    MeshVertex vertex{};
+    float invW = 0;  // 1/w_clip of the corner: its weight in perspective-correct interpolation
+    VertexLightingRecord lighting;
+};
+
+// Everything the shading screens show about one fragment.
+struct ShadingTrace {
+    ShadingFrequency frequency = ShadingFrequency::Phong;
+    SurfaceUniforms uniforms;  // the draw's, the texture pointers cleared (the records say what they gave)
+    int x = 0, y = 0;
+    std::uint32_t triangle = 0;
+    FragmentFate fate = FragmentFate::Written;
+    vec3 barycentrics{0.0f};  // λ0, λ1, λ2 for the corners as given
+    float invW = 0;           // 1/w at the pixel
+    // Gouraud: the three corners; flat: the provoking corner alone; Phong shading: none.
+    std::vector<CornerShading> corners;
+    int provokingCorner = 0;
+    // Gouraud: the perspective-correct weights μi = λi·(1/wi)/(1/w) of the corners and the corners'
+    // colour parts mixed with them. Valid when Σ λi·(1/wi) is the pixel's 1/w, which fails when the
+    // corners are not the window triangle's (clipping cut the triangle: the λ are its piece's).
+    bool weightsMatchCorners = false;
+    vec3 perspectiveWeights{0.0f};
+    vec3 mixedModulated{0.0f};
+    vec3 mixedAdded{0.0f};
+    FragmentRecord fragment;       // the fragment shader's numbers, from the interpolated varyings
+    vec4 pipelineOutput{0.0f};     // FragmentEvent::shaded
+    bool shaderRan = true;         // the pipeline ran the shader (not when the depth test failed first)
+    bool matchesPipeline = false;  // fragment.result == pipelineOutput, bit for bit (when shaderRan)
+};
+
+// Recomputes the shading of fragment `f` of a triangle drawn with uniforms `u` at `frequency`, the
+// records on: Phong shading: shade<float> on the fragment's interpolated varyings; Gouraud: the vertex
+// lighting at the three corners and the fragment part on the interpolated colour; flat: the provoking
+// corner's vertex lighting and the fragment part. `corners` are the triangle's vertices in the order of
+// the setup that rasterized it, which FragmentEvent::barycentrics refer to: the window triangle's order,
+// with v1 and v2 exchanged when its signed area was negative (triangle_setup). `provokingCorner` is the
+// index among `corners` of the provoking vertex (RasterState::provokingVertex: by default the last of
+// the triangle as submitted).
+ShadingTrace traceShading(const SurfaceUniforms& u, ShadingFrequency frequency, const FragmentEvent& f,
+                          const std::array<MeshVertex, 3>& corners, int provokingCorner);
+
+// The screens "lighting" (the equation, then each light: symbols, numbers, result per term), "fog" and
+// "output" (the form the blend expects and the shader's output).
+std::vector<Screen> shadingScreens(const ShadingTrace& trace);
+
+nlohmann::json toJson(const ShadingTrace& trace);
+
+}  // namespace facet::step
