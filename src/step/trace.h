@@ -72,6 +72,9 @@ struct TriangleAtPixel {
         sortPlace;  // transparent: its place in the back-to-front order (0: first drawn)
     std::optional<TriangleRef> tieOwner;       // LostTie: the triangle that covers the pixel instead
     std::optional<TriangleRef> overwrittenBy;  // Written or Blended: the next triangle that wrote the pixel
+    // 1/w at the corners of the setup that covers the pixel, in its vertex order (the perspective
+    // weights λ'ᵢ = λᵢ·(1/wᵢ) / (1/w) of the fragment's varyings).
+    std::optional<vec3> cornerInvW;
 };
 
 // Exact transparency: the pixel's fragment list as stored (submission order) and as composited.

@@ -518,6 +518,40 @@ Screen historyScreen(const PixelTrace& p) {
         out << wrapText(line, 80, 6);
     }
     if (p.producer) out << "\n* gave the pixel its final colour.\n";
+    // Every fragment that got past the depth test, with what interpolation gave it.
+    bool heading = false;
+    for (const TriangleAtPixel& e : p.triangles) {
+        if (!e.fragment ||
+            (e.fate != PixelFate::Written && e.fate != PixelFate::Blended && e.fate != PixelFate::Stored))
+            continue;
+        const FragmentEvent& f = *e.fragment;
+        if (!heading)
+            out << "\nThe fragments that passed the depth test: λ in screen space (λ_i = E_i / 2A),\n"
+                   "λ' perspective-correct (λ'_i = λ_i·(1/w_i) / (1/w)), the varyings interpolated:\n";
+        heading = true;
+        out << "\n"
+            << triangleName(e.ref) << ": z = " << number(f.depth) << ", 1/w = " << number(f.invW) << "\n";
+        out << "  λ  = " << vectorText(f.barycentrics) << "\n";
+        if (e.cornerInvW) out << "  λ' = " << vectorText(f.barycentrics * *e.cornerInvW / f.invW) << "\n";
+        const std::vector<std::string> names = varyingNames(f.varyingCount);
+        std::string line(1, ' ');
+        for (int k = 0; k < f.varyingCount; ++k) {
+            std::string item = " ";  // appended piece by piece: GCC 12 warns falsely on a sum (-Wrestrict)
+            item += names[k];
+            item += " = ";
+            item += number(f.varyings[k]);
+            if (line.size() + item.size() > 78) {
+                out << line << "\n";
+                line.assign(1, ' ');  // not = " ": GCC 12 warns falsely (-Wrestrict)
+            }
+            line += item;
+        }
+        if (f.varyingCount > 0) out << line << "\n";
+        out << "  shader output " << vectorText(f.shaded);
+        if (e.fate != PixelFate::Stored)
+            out << "\n  colour " << vectorText(f.colorBefore) << " → " << vectorText(f.colorAfter);
+        out << "\n";
+    }
     if (p.resolve) {
         out << "\nExact transparency: the pixel's fragment list, as stored (drawing order):\n";
         for (std::size_t k = 0; k < p.resolve->submitted.size(); ++k)

@@ -28,7 +28,7 @@ shows "Back-facing, and that side is culled" "${black[@]}"
 
 # 2. Where did the highlight go under Gouraud?
 gouraud=(models/spot/spot_triangulated.obj --pixel 462,391 --versus "--shading gouraud")
-shows 'They first differ in "Interpolation: barycentrics, depth, 1/w, varyings"' "${gouraud[@]}"
+shows 'They first differ in "Pixel history of (462, 391)"' "${gouraud[@]}"
 shows "c_add.r  0.0196066" "${gouraud[@]}"
 shows "The image file holds 206, 192, 186" "${gouraud[@]}"
 shows "The image file holds 80, 75, 73" "${gouraud[@]}"

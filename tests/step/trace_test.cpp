@@ -263,6 +263,11 @@ TEST_F(StepTraceTest, TriangleCutByTheNearPlaneMatchesHandComputationStageByStag
                         1e-6);
     }
     EXPECT_TRUE(found);
+    // The history's perspective weights use the covering piece's corners: they sum to 1 only with the
+    // 1/w of the corners that 1/w at the pixel was interpolated from (catches another piece's taken).
+    ASSERT_TRUE(entry->cornerInvW);
+    const vec3 weights = entry->fragment->barycentrics * *entry->cornerInvW / entry->fragment->invW;
+    EXPECT_NEAR(weights.x + weights.y + weights.z, 1.0, 1e-5);
 
     // The screens say so, in numbers.
     const Screen* clipScreen = screenOf(trace.walk, "clip");
