@@ -46,7 +46,11 @@ int main(int argc, char** argv) {
     try {
         if (*renderCommand) return facet::cli::render(renderArgs);
         if (*compareCommand) return facet::cli::compare(compareArgs);
-        if (*stepCommand) return facet::cli::step(stepArgs);
+        if (*stepCommand) {
+            for (int k = 0; k < argc; ++k)
+                stepArgs.commandLine += (k ? " " : "") + std::string(k ? argv[k] : "facet");
+            return facet::cli::step(stepArgs);
+        }
         if (*benchCommand) return facet::cli::bench(benchOptions, *benchCommand);
     } catch (const facet::InputError& e) {
         std::cerr << "facet: error: " << e.what() << "\n";

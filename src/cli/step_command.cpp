@@ -1,5 +1,8 @@
 #include "cli/step_command.h"
 
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 
@@ -8,6 +11,7 @@
 #include "io/text_file.h"
 #include "render/renderer.h"
 #include "scene/limits.h"
+#include "step/html_page.h"
 #include "step/stage_images.h"
 #include "step/terminal_walk.h"
 #include "step/versus.h"
@@ -47,6 +51,42 @@ SceneArgs versusArgs(const SceneArgs& base, const std::string& options) {
     return args;
 }
 
+// The web page: the stage images, and the walks of a grid of pixels (and of the traced one, shown first).
+void writeHtml(const StepArgs& args, const facet::PreparedScene& prepared, facet::DrawContext& context,
+               const facet::step::StepRequest& request, const facet::step::StepTrace& trace) {
+    const std::filesystem::path dir = *args.html;
+    facet::step::StageImageOptions options;
+    options.terms = request.terms;
+    options.threads = args.threads;
+    facet::step::HtmlPage page;
+    page.stages = facet::step::writeStageImages(prepared, dir, options);
+    page.width = prepared.scene.width;
+    page.height = prepared.scene.height;
+    page.title = std::filesystem::path(args.input).filename().string();
+    page.commandLine = args.commandLine;
+    // About 2000 traced pixels: the data file stays a few megabytes for any image size.
+    const double pixels = double(page.width) * page.height;
+    page.gridStep = args.htmlStep.value_or(std::max(4, int(std::ceil(std::sqrt(pixels / 2000.0)))));
+    std::vector<std::pair<int, int>> grid;
+    for (int y = page.gridStep / 2; y < page.height; y += page.gridStep)
+        for (int x = page.gridStep / 2; x < page.width; x += page.gridStep)
+            grid.emplace_back(x, y);
+    page.walks = facet::step::traceWalks(prepared, context, grid, request.terms);
+    const auto same = std::find_if(page.walks.begin(), page.walks.end(), [&](const facet::step::Walk& w) {
+        return w.x == trace.walk.x && w.y == trace.walk.y;
+    });
+    if (same != page.walks.end() && !request.triangle) {
+        page.firstWalk = static_cast<std::size_t>(same - page.walks.begin());
+    } else {
+        page.firstWalk = page.walks.size();
+        page.walks.push_back(trace.walk);
+    }
+    facet::step::writeHtmlPage(dir, page);
+    std::cerr << "facet: wrote " << (dir / facet::step::kHtmlPageFile).string() << " (" << page.walks.size()
+              << " pixels traced, every " << page.gridStep << "th of every " << page.gridStep
+              << "th row, and " << page.stages.size() << " stage images)\n";
+}
+
 }  // namespace
 
 CLI::App* addStepCommand(CLI::App& app, StepArgs& args) {
@@ -67,6 +107,14 @@ CLI::App* addStepCommand(CLI::App& app, StepArgs& args) {
     command->add_option(
         "--stages", args.stages,
         "Also write images of the whole frame after each stage to this folder (made if missing)");
+    command->add_option("--html", args.html,
+                        "Also write a web page to this folder: the stage images, and the history of any "
+                        "pixel clicked (offline: open DIR/index.html)");
+    command
+        ->add_option("--html-step", args.htmlStep,
+                     "The page traces every N-th pixel of every N-th row; a click shows the nearest traced "
+                     "one (default: N for about 2000 pixels, at least 4)")
+        ->check(wholeNumber(1, 1024));
     command->add_option(
         "--versus", args.versus,
         "Trace the pixel again with these options over the others (like \"--shading gouraud\") "
@@ -107,6 +155,8 @@ int step(const StepArgs& args) {
         const auto images = facet::step::writeStageImages(prepared, *args.stages, options);
         std::cerr << "facet: wrote " << images.size() << " stage images to " << *args.stages << "\n";
     }
+
+    if (args.html) writeHtml(args, prepared, context, request, trace);
 
     if (other) {
         // The same pixel and triangle under the other setting.

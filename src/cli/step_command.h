@@ -20,6 +20,7 @@ struct StepArgs : SceneArgs {
     std::optional<std::string> html;
     std::optional<int> htmlStep;
     std::optional<std::string> versus;
+    std::string commandLine;  // as typed, for the web page to show
 };
 
 // Adds the `step` command and its options to `app`, filling `args` when it is parsed.

@@ -155,6 +155,7 @@ nlohmann::json toJson(const StepTrace& trace) {
         screens.push_back({{"id", s.id}, {"title", s.title}, {"text", s.text}});
     json out = {{"pixel", pixelJson(trace.pixel)}, {"verdict", trace.walk.verdict}, {"screens", screens}};
     if (trace.triangle) out["triangle"] = triangleJson(*trace.triangle);
+    if (trace.shading) out["shading"] = toJson(*trace.shading);
     return out;
 }
 

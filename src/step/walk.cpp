@@ -1,6 +1,7 @@
 #include "step/walk.h"
 
 #include "base/errors.h"
+#include "pipeline/rasterize.h"
 #include "step/views.h"
 
 namespace facet::step {
@@ -26,7 +27,32 @@ std::optional<TriangleRef> defaultTriangle(const PixelTrace& pixel) {
 
 }  // namespace
 
-Walk walkOf(const PreparedScene& prepared, const PixelTrace& pixel, const TriangleTrace* triangle) {
+std::optional<ShadingTrace> shadingOf(const PreparedScene& prepared, const PixelTrace& pixel,
+                                      const TriangleTrace& triangle, std::uint8_t terms) {
+    const TriangleAtPixel* entry = entryOf(pixel, triangle.ref);
+    if (!entry || !entry->fragment || entry->fragment->fate == FragmentFate::DepthFailed) return std::nullopt;
+    const PreparedDraw& draw = prepared.draws[triangle.ref.draw];
+    // The corners in the order of the setup that rasterized the pixel: the triangle's, v1 and v2
+    // exchanged when setup made its area positive; the provoking vertex among them.
+    bool exchanged = false;
+    for (const WindowPiece& piece : triangle.pieces)
+        if (piece.fate == TriangleFate::Drawn && coverageAt(piece.setup, pixel.x, pixel.y).covered)
+            exchanged = piece.signedDoubleArea < 0;
+    std::array<MeshVertex, 3> corners;
+    for (int k = 0; k < 3; ++k)
+        corners[k] = draw.vertices[triangle.indices[k]];
+    int provoking = triangle.state.raster.provokingVertex == ProvokingVertex::Last ? 2 : 0;
+    if (exchanged) {
+        std::swap(corners[1], corners[2]);
+        if (provoking != 0) provoking = 1;
+    }
+    SurfaceUniforms uniforms = draw.uniforms;
+    uniforms.terms = terms;  // as renderFrame draws it
+    return traceShading(uniforms, draw.frequency, *entry->fragment, corners, provoking);
+}
+
+Walk walkOf(const PreparedScene& prepared, const PixelTrace& pixel, const TriangleTrace* triangle,
+            const ShadingTrace* shading) {
     Walk walk;
     walk.x = pixel.x;
     walk.y = pixel.y;
@@ -39,6 +65,9 @@ Walk walkOf(const PreparedScene& prepared, const PixelTrace& pixel, const Triang
     const TriangleAtPixel* entry = entryOf(pixel, walk.triangle);
     if (triangle)
         for (Screen& screen : fragmentScreens(pixel, entry, triangle))
+            walk.screens.push_back(std::move(screen));
+    if (shading)
+        for (Screen& screen : shadingScreens(*shading))
             walk.screens.push_back(std::move(screen));
     for (Screen& screen : outputScreens(prepared, pixel, entry))
         walk.screens.push_back(std::move(screen));
@@ -85,7 +114,9 @@ StepTrace traceStep(const PreparedScene& prepared, DrawContext& context, const S
         }
     }
     if (triangle && !frame.triangles.empty()) trace.triangle = std::move(frame.triangles.front());
-    trace.walk = walkOf(prepared, trace.pixel, trace.triangle ? &*trace.triangle : nullptr);
+    if (trace.triangle) trace.shading = shadingOf(prepared, trace.pixel, *trace.triangle, request.terms);
+    trace.walk = walkOf(prepared, trace.pixel, trace.triangle ? &*trace.triangle : nullptr,
+                        trace.shading ? &*trace.shading : nullptr);
     return trace;
 }
 
@@ -115,7 +146,9 @@ std::vector<Walk> traceWalks(const PreparedScene& prepared, DrawContext& context
             second.triangles[next].focusX == pixels[k].first &&
             second.triangles[next].focusY == pixels[k].second)
             view = &second.triangles[next++];
-        walks.push_back(walkOf(prepared, first.pixels[k], view));
+        const std::optional<ShadingTrace> shading =
+            view ? shadingOf(prepared, first.pixels[k], *view, terms) : std::nullopt;
+        walks.push_back(walkOf(prepared, first.pixels[k], view, shading ? &*shading : nullptr));
     }
     return walks;
 }

@@ -10,6 +10,7 @@
 
 #include "render/renderer.h"
 #include "step/screens.h"
+#include "step/shading_view.h"
 #include "step/trace.h"
 
 namespace facet::step {
@@ -24,6 +25,7 @@ struct StepTrace {
     Walk walk;
     PixelTrace pixel;
     std::optional<TriangleTrace> triangle;
+    std::optional<ShadingTrace> shading;  // when the triangle's shader ran at the pixel
 };
 
 // Traces the frame of `prepared` for the request. Throws InputError for a pixel outside the image or a
@@ -35,8 +37,14 @@ StepTrace traceStep(const PreparedScene& prepared, DrawContext& context, const S
 std::vector<Walk> traceWalks(const PreparedScene& prepared, DrawContext& context,
                              const std::vector<std::pair<int, int>>& pixels, std::uint8_t terms = kAllTerms);
 
+// The shading of the traced triangle's fragment at the pixel, recomputed by the shaders' own formulas
+// with their records on; none when the shader did not run there.
+std::optional<ShadingTrace> shadingOf(const PreparedScene& prepared, const PixelTrace& pixel,
+                                      const TriangleTrace& triangle, std::uint8_t terms);
+
 // The walk's screens in pipeline order for a traced pixel and triangle.
-Walk walkOf(const PreparedScene& prepared, const PixelTrace& pixel, const TriangleTrace* triangle);
+Walk walkOf(const PreparedScene& prepared, const PixelTrace& pixel, const TriangleTrace* triangle,
+            const ShadingTrace* shading);
 
 // The whole trace as data: the pixel's history, the triangle's stages and the screens.
 nlohmann::json toJson(const StepTrace& trace);

@@ -79,7 +79,8 @@ TEST(StepCli, JsonHasThePixelAskedForAndItsHistory) {
     EXPECT_EQ(trace["pixel"]["x"], 40);
     EXPECT_EQ(trace["pixel"]["y"], 30);
     EXPECT_FALSE(trace["pixel"]["triangles"].empty());
-    EXPECT_EQ(trace["screens"].size(), 11u);
+    EXPECT_EQ(trace["screens"].size(), 14u);
+    EXPECT_TRUE(trace.contains("shading"));
     EXPECT_EQ(trace["screens"][0]["id"], "history");
     EXPECT_NE(run.out.find("Pixel (40, 30)"), std::string::npos);
 }
