@@ -146,12 +146,13 @@ void TraceRecorder::recordClipping(TriangleTrace& view, std::uint32_t triangle,
 void TraceRecorder::onSetup(std::uint32_t triangle, const WindowTriangle& window, TriangleFate fate,
                             const TriangleSetup& setup) {
     if (fate == TriangleFate::Drawn) {
-        // The corners' 1/w, for the pixels this setup covers (a clipped triangle has several setups).
+        // The corners' 1/w, for the pixels this setup covers (a clipped triangle has several setups),
+        // when its varyings are interpolated perspective-correct.
         const double lo[2] = {setup.minX + 0.5, setup.minY + 0.5},
                      hi[2] = {setup.maxX + 0.5, setup.maxY + 0.5};
         forEachTracedPixelIn(lo, hi, [&](std::size_t slot) {
             const PixelTrace& p = trace_.pixels[slot];
-            if (coverageAt(setup, p.x, p.y).covered)
+            if (setup.perspective && coverageAt(setup, p.x, p.y).covered)
                 entry(slot, triangle).cornerInvW =
                     vec3(setup.invW0, setup.invW0 + setup.dInvW1, setup.invW0 + setup.dInvW2);
         });

@@ -532,7 +532,10 @@ Screen historyScreen(const PixelTrace& p) {
         out << "\n"
             << triangleName(e.ref) << ": z = " << number(f.depth) << ", 1/w = " << number(f.invW) << "\n";
         out << "  λ  = " << vectorText(f.barycentrics) << "\n";
-        if (e.cornerInvW) out << "  λ' = " << vectorText(f.barycentrics * *e.cornerInvW / f.invW) << "\n";
+        if (e.cornerInvW)
+            out << "  λ' = " << vectorText(f.barycentrics * *e.cornerInvW / f.invW) << "\n";
+        else
+            out << "  λ' = λ: affine interpolation, no perspective correction\n";
         const std::vector<std::string> names = varyingNames(f.varyingCount);
         std::string line(1, ' ');
         for (int k = 0; k < f.varyingCount; ++k) {
@@ -549,7 +552,8 @@ Screen historyScreen(const PixelTrace& p) {
         if (f.varyingCount > 0) out << line << "\n";
         out << "  shader output " << vectorText(f.shaded);
         if (e.fate != PixelFate::Stored)
-            out << "\n  colour " << vectorText(f.colorBefore) << " → " << vectorText(f.colorAfter);
+            out << "\n  colour before " << vectorText(f.colorBefore) << "\n  colour after  "
+                << vectorText(f.colorAfter);
         out << "\n";
     }
     if (p.resolve) {

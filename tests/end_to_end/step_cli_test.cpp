@@ -86,15 +86,19 @@ TEST(StepCli, JsonHasThePixelAskedForAndItsHistory) {
 }
 
 // --versus traces the same pixel and triangle again under other options and marks the first line where
-// they part: affine interpolation first changes the interpolation screen. Catches: --versus's options
-// not applied to the second trace (no difference), or applied to both.
+// they part: affine interpolation first changes the fragment's weights in the pixel history. Catches:
+// --versus's options not applied to the second trace (no difference), or applied to both.
 TEST(StepCli, VersusMarksWhereAffineInterpolationFirstDiffers) {
     TempDir dir;
     const RunResult run = runFacet("step " + kSpot + " --pixel 48,30 --versus '--interpolation affine'", dir);
     ASSERT_EQ(run.status, 0) << run.err;
-    EXPECT_NE(run.out.find("They first differ in \"Interpolation:"), std::string::npos)
+    // The pixel history lists what interpolation gave each fragment: the weights part there first.
+    EXPECT_NE(run.out.find("They first differ in \"Pixel history of (48, 30)\""), std::string::npos)
         << run.out.substr(0, 400);
-    EXPECT_NE(run.out.find("right: Affine interpolation"), std::string::npos) << run.out.substr(0, 400);
+    EXPECT_NE(run.out.find("right:   λ' = λ: affine interpolation"), std::string::npos)
+        << run.out.substr(0, 400);
+    // And the interpolation screen says the same.
+    EXPECT_NE(run.out.find("| Affine interpolation (no perspective correction)"), std::string::npos);
     const RunResult same =
         runFacet("step " + kSpot + " --pixel 48,30 --versus '--interpolation perspective'", dir);
     ASSERT_EQ(same.status, 0) << same.err;
