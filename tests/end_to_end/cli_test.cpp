@@ -17,30 +17,9 @@ namespace facet {
 namespace {
 
 using testing::readText;
+using testing::runFacet;
+using testing::RunResult;
 using testing::TempDir;
-
-struct RunResult {
-    int status = -1;
-    std::string out;
-    std::string err;
-};
-
-// Runs facet with `args`, its output captured in `dir`; in `workingFolder` when one is given.
-RunResult runFacet(const std::string& args, const TempDir& dir,
-                   const std::filesystem::path& workingFolder = {}) {
-    const auto outFile = dir.path() / "stdout.txt", errFile = dir.path() / "stderr.txt";
-    // Built with a stream: GCC 12 reports a false -Wrestrict on chains of std::string operator+.
-    std::ostringstream command;
-    if (!workingFolder.empty()) command << "cd '" << workingFolder.string() << "' && ";
-    command << "'" << FACET_BINARY << "' " << args << " >'" << outFile.string() << "' 2>'" << errFile.string()
-            << "' </dev/null";
-    const int raw = std::system(command.str().c_str());
-    RunResult run;
-    run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    run.out = readText(outFile);
-    run.err = readText(errFile);
-    return run;
-}
 
 int lineCount(const std::string& text) {
     int n = 0;

@@ -16,26 +16,9 @@ namespace facet {
 namespace {
 
 using testing::readText;
+using testing::runFacet;
+using testing::RunResult;
 using testing::TempDir;
-
-struct RunResult {
-    int status = -1;
-    std::string out;
-    std::string err;
-};
-
-RunResult runFacet(const std::string& args, const TempDir& dir) {
-    const auto outFile = dir.path() / "stdout.txt", errFile = dir.path() / "stderr.txt";
-    std::ostringstream command;
-    command << "'" << FACET_BINARY << "' " << args << " >'" << outFile.string() << "' 2>'" << errFile.string()
-            << "' </dev/null";
-    const int raw = std::system(command.str().c_str());
-    RunResult run;
-    run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    run.out = readText(outFile);
-    run.err = readText(errFile);
-    return run;
-}
 
 const std::string kSpot =
     std::string("'") + FACET_SOURCE_DIR + "/models/spot/spot_triangulated.obj' --width 96 --height 72";
