@@ -51,6 +51,23 @@ SceneArgs versusArgs(const SceneArgs& base, const std::string& options) {
     return args;
 }
 
+// The web page's grid: every gridStep-th pixel of every gridStep-th row is traced. By default about 2000
+// pixels, so that the data file stays a few megabytes for any image size; each traced pixel adds a few
+// kilobytes, and a bound keeps the page loadable. Throws InputError for a step beyond the bound.
+int htmlGridStep(const StepArgs& args, int width, int height) {
+    const double pixels = double(width) * height;
+    const int step = args.htmlStep.value_or(std::max(4, int(std::ceil(std::sqrt(pixels / 2000.0)))));
+    constexpr double kMostTracedPixels = 20000;
+    const double traced = std::ceil(double(width) / step) * std::ceil(double(height) / step);
+    if (traced > kMostTracedPixels)
+        throw facet::InputError(
+            "--html-step " + std::to_string(step) + " would trace " +
+            std::to_string(static_cast<long long>(traced)) + " pixels of this " + std::to_string(width) +
+            "x" + std::to_string(height) + " image; the page takes at most 20000 (--html-step " +
+            std::to_string(int(std::ceil(std::sqrt(pixels / kMostTracedPixels)))) + " or more)");
+    return step;
+}
+
 // The web page: the stage images, and the walks of a grid of pixels (and of the traced one, shown first).
 void writeHtml(const StepArgs& args, const facet::PreparedScene& prepared, facet::DrawContext& context,
                const facet::step::StepRequest& request, const facet::step::StepTrace& trace) {
@@ -64,9 +81,7 @@ void writeHtml(const StepArgs& args, const facet::PreparedScene& prepared, facet
     page.height = prepared.scene.height;
     page.title = std::filesystem::path(args.input).filename().string();
     page.commandLine = args.commandLine;
-    // About 2000 traced pixels: the data file stays a few megabytes for any image size.
-    const double pixels = double(page.width) * page.height;
-    page.gridStep = args.htmlStep.value_or(std::max(4, int(std::ceil(std::sqrt(pixels / 2000.0)))));
+    page.gridStep = htmlGridStep(args, page.width, page.height);
     std::vector<std::pair<int, int>> grid;
     for (int y = page.gridStep / 2; y < page.height; y += page.gridStep)
         for (int x = page.gridStep / 2; x < page.width; x += page.gridStep)
@@ -135,6 +150,7 @@ int step(const StepArgs& args) {
         args.versus ? std::optional(versusArgs(args, *args.versus)) : std::nullopt;
     const facet::Scene scene = sceneFromArgs(args);
     if (args.json) facet::checkTextDestination(*args.json);
+    if (args.html) htmlGridStep(args, scene.width, scene.height);  // a step too fine refused before any work
 
     const facet::PreparedScene prepared = facet::prepareScene(scene);
     for (const std::string& warning : prepared.warnings)

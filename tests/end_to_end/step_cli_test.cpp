@@ -104,5 +104,20 @@ TEST(StepCli, BadRequestsAreRefusedWithOneLine) {
     }
 }
 
+// A web page of too many traced pixels is refused before anything is written. Catches: the bound
+// checked only after the stage images are written (the folder appears), or not at all.
+TEST(StepCli, HtmlStepTooFineIsRefusedBeforeAnythingIsWritten) {
+    TempDir dir;
+    const auto page = dir.path() / "page";
+    const RunResult run =
+        runFacet(std::string("step '") + FACET_SOURCE_DIR +
+                     "/models/spot/spot_triangulated.obj' --width 800 --height 600 --html-step 1 --html '" +
+                     page.string() + "'",
+                 dir);
+    EXPECT_EQ(run.status, 1);
+    EXPECT_NE(run.err.find("--html-step 1 would trace 480000 pixels"), std::string::npos) << run.err;
+    EXPECT_FALSE(std::filesystem::exists(page));
+}
+
 }  // namespace
 }  // namespace facet
