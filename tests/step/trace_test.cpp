@@ -3,6 +3,7 @@
 #include "step/trace.h"
 
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <string>
 #include <vector>
@@ -207,7 +208,13 @@ class StepTraceTest : public testing_support::TempFolderTest {
 // a plane missing from the record, the window coordinates of the pieces not the viewport transform of
 // the clipped polygon, the pixel's barycentrics not E_i / 2A.
 TEST_F(StepTraceTest, TriangleCutByTheNearPlaneMatchesHandComputationStageByStage) {
-    const Scene scene = sceneOf("v -1 -0.5 0\nv 1 -0.5 0\nv 0 -0.1 4.6\nf 2 1 3\n");
+    Scene scene = sceneOf("v -1 -0.5 0\nv 1 -0.5 0\nv 0 -0.1 4.6\nf 2 1 3\n");
+    // One point light with attenuation 1/(1 + 0.5·d + 0.25·d²), above the triangle.
+    LightSpec light;
+    light.type = LightKind::Point;
+    light.position = vec3(0.0f, 1.0f, 3.0f);
+    light.attenuation = vec3(1.0f, 0.5f, 0.25f);
+    scene.lights = {light};
     const PreparedScene prepared = prepareScene(scene);
     DrawContext context(1);
     // The pixel of the triangle's point (0, −0.239, 3), inside what is left after clipping.
@@ -268,6 +275,29 @@ TEST_F(StepTraceTest, TriangleCutByTheNearPlaneMatchesHandComputationStageByStag
     ASSERT_TRUE(entry->cornerInvW);
     const vec3 weights = entry->fragment->barycentrics * *entry->cornerInvW / entry->fragment->invW;
     EXPECT_NEAR(weights.x + weights.y + weights.z, 1.0, 1e-5);
+
+    // The light, by hand: d from the fragment's eye-space position (its interpolated varyings) to the
+    // light's, then att = 1/(c0 + c1·d + c2·d²) and N·L with the interpolated normal, normalised.
+    ASSERT_TRUE(trace.shading);
+    const LightRecord& lit = trace.shading->fragment.lighting.lighting.lights[0];
+    const glm::dvec3 P(entry->fragment->varyings[0], entry->fragment->varyings[1],
+                       entry->fragment->varyings[2]);
+    const glm::dvec3 N = glm::normalize(
+        glm::dvec3(entry->fragment->varyings[3], entry->fragment->varyings[4], entry->fragment->varyings[5]));
+    const glm::dvec3 lightEye =
+        glm::dvec3(prepared.camera.viewFromWorldExact * glm::dvec4(0.0, 1.0, 3.0, 1.0));
+    const double d = glm::length(lightEye - P);
+    const double att = 1.0 / (1.0 + 0.5 * d + 0.25 * d * d);
+    EXPECT_NEAR(lit.distance, d, 1e-5);
+    EXPECT_NEAR(lit.attenuation, att, 1e-6);
+    EXPECT_NEAR(lit.NdotL, glm::dot(N, glm::normalize(lightEye - P)), 1e-5);
+    EXPECT_TRUE(trace.shading->matchesPipeline);
+    const Screen* lighting = screenOf(trace.walk, "lighting");
+    ASSERT_NE(lighting, nullptr);
+    char attLine[128];
+    std::snprintf(attLine, sizeof attLine,
+                  "att = 1/(c0 + c1·d + c2·d²) = 1/(1 + 0.5·%.4g + 0.25·%.4g²) = %.4g", d, d, att);
+    EXPECT_TRUE(contains(lighting->text, attLine)) << attLine << "\n" << lighting->text;
 
     // The screens say so, in numbers.
     const Screen* clipScreen = screenOf(trace.walk, "clip");
