@@ -16,6 +16,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string_view>
 
 #include "pipeline/names.h"
 #include "pipeline/shader.h"
@@ -283,6 +284,9 @@ struct PerPixelSurface {
         LaneVec3<F> normal;    // eye space, renormalised per pixel by the lighting
         LaneVec2<F> uv;
     };
+    // The varyings' floats by name, in VaryingsT's order (the step mode's screens show them).
+    static constexpr std::array<std::string_view, 8> kVaryingNames = {
+        "P_eye.x", "P_eye.y", "P_eye.z", "N_eye.x", "N_eye.y", "N_eye.z", "u", "v"};
 
     static VertexOut<VaryingsT<float>> vertex(const Attributes& in, const Uniforms& u) {
         return {u.clipFromObject * vec4(in.position, 1.0f),
@@ -355,6 +359,10 @@ struct PerVertexSurface {
         LaneVec3<F> position;   // eye space, for fog
         LaneVec2<F> uv;
     };
+    // The varyings' floats by name, in VaryingsT's order: c_mod multiplies the diffuse map, c_add is added.
+    static constexpr std::array<std::string_view, 11> kVaryingNames = {
+        "c_mod.r", "c_mod.g", "c_mod.b", "c_add.r", "c_add.g", "c_add.b",
+        "P_eye.x", "P_eye.y", "P_eye.z", "u",       "v"};
     static constexpr int kFlatVaryingFloats = kFrequency == ShadingFrequency::Flat ? 6 : 0;
 
     // What the vertex lighting reads: the vertex in eye space.
@@ -450,5 +458,24 @@ template <>
 struct SurfaceShader<ShadingFrequency::Gouraud> : LaneShader<PerVertexSurface<ShadingFrequency::Gouraud>> {};
 template <>
 struct SurfaceShader<ShadingFrequency::Flat> : LaneShader<PerVertexSurface<ShadingFrequency::Flat>> {};
+
+// A name for every float of the varyings: a varying added without its name fails to compile.
+static_assert(PerPixelSurface::kVaryingNames.size() * sizeof(float) ==
+              sizeof(PerPixelSurface::VaryingsT<float>));
+static_assert(PerVertexSurface<ShadingFrequency::Gouraud>::kVaryingNames.size() * sizeof(float) ==
+              sizeof(PerVertexSurface<ShadingFrequency::Gouraud>::VaryingsT<float>));
+
+// The varyings' names of the surface shader of a shading frequency, in their order.
+inline std::span<const std::string_view> varyingNamesOf(ShadingFrequency frequency) {
+    switch (frequency) {
+        case ShadingFrequency::Flat:
+            return PerVertexSurface<ShadingFrequency::Flat>::kVaryingNames;
+        case ShadingFrequency::Gouraud:
+            return PerVertexSurface<ShadingFrequency::Gouraud>::kVaryingNames;
+        case ShadingFrequency::Phong:
+            break;
+    }
+    return PerPixelSurface::kVaryingNames;
+}
 
 }  // namespace facet

@@ -125,21 +125,16 @@ std::string compareText(CompareOp op) {
     return "?";
 }
 
-// The names of the built-in shaders' varyings, in their layout (shaders.h): per pixel lighting carries
-// the eye-space position, normal and texture coordinates; per vertex lighting the lit colours.
-std::vector<std::string> varyingNames(int count) {
-    static const char* const kPerPixel[] = {"P_eye.x", "P_eye.y", "P_eye.z", "N_eye.x",
-                                            "N_eye.y", "N_eye.z", "u",       "v"};
-    static const char* const kPerVertex[] = {"c_mod.r", "c_mod.g", "c_mod.b", "c_add.r", "c_add.g", "c_add.b",
-                                             "P_eye.x", "P_eye.y", "P_eye.z", "u",       "v"};
+// The names of a draw's varyings: its surface shader's (shaders.h), when the draw is one of the scene's
+// and the count is the shader's; else numbered.
+std::vector<std::string> varyingNames(const PreparedScene* prepared, std::uint32_t draw, int count) {
     std::vector<std::string> names;
-    if (count == 8)
-        names.assign(std::begin(kPerPixel), std::end(kPerPixel));
-    else if (count == 11)
-        names.assign(std::begin(kPerVertex), std::end(kPerVertex));
-    else
-        for (int k = 0; k < count; ++k)
-            names.push_back("varying " + std::to_string(k));
+    if (prepared && draw < prepared->draws.size()) {
+        const std::span<const std::string_view> known = varyingNamesOf(prepared->draws[draw].frequency);
+        if (static_cast<int>(known.size()) == count) return {known.begin(), known.end()};
+    }
+    for (int k = 0; k < count; ++k)
+        names.push_back("varying " + std::to_string(k));
     return names;
 }
 
@@ -503,7 +498,7 @@ std::string verdictOf(const PixelTrace& p) {
     return "everything was rejected (" + list + "): the pixel keeps the background";
 }
 
-Screen historyScreen(const PixelTrace& p) {
+Screen historyScreen(const PixelTrace& p, const PreparedScene* prepared) {
     std::ostringstream out;
     out << wrapText("Verdict: " + verdictOf(p), 80, 2) << "\n";
     out << "Every triangle whose bounding box holds pixel (" << p.x << ", " << p.y
@@ -536,7 +531,7 @@ Screen historyScreen(const PixelTrace& p) {
             out << "  λ' = " << vectorText(f.barycentrics * *e.cornerInvW / f.invW) << "\n";
         else
             out << "  λ' = λ: affine interpolation, no perspective correction\n";
-        const std::vector<std::string> names = varyingNames(f.varyingCount);
+        const std::vector<std::string> names = varyingNames(prepared, e.ref.draw, f.varyingCount);
         std::string line(1, ' ');
         for (int k = 0; k < f.varyingCount; ++k) {
             std::string item = " ";  // appended piece by piece: GCC 12 warns falsely on a sum (-Wrestrict)
@@ -573,8 +568,8 @@ Screen historyScreen(const PixelTrace& p) {
             out.str()};
 }
 
-std::vector<Screen> fragmentScreens(const PixelTrace& p, const TriangleAtPixel* entry,
-                                    const TriangleTrace* triangle) {
+std::vector<Screen> fragmentScreens(const PreparedScene* prepared, const PixelTrace& p,
+                                    const TriangleAtPixel* entry, const TriangleTrace* triangle) {
     std::vector<Screen> screens;
     const std::string at = "(" + std::to_string(p.x) + ", " + std::to_string(p.y) + ")";
     if (!entry || !entry->fragment) {
@@ -632,7 +627,7 @@ std::vector<Screen> fragmentScreens(const PixelTrace& p, const TriangleAtPixel* 
             out << "  1/w = " << number(f.invW) << "\n";
         }
         out << "\nThe fragment shader's inputs, interpolated:\n";
-        const std::vector<std::string> names = varyingNames(f.varyingCount);
+        const std::vector<std::string> names = varyingNames(prepared, entry->ref.draw, f.varyingCount);
         std::string line;
         for (int k = 0; k < f.varyingCount; ++k) {
             char cell[48];

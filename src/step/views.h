@@ -24,13 +24,14 @@ std::vector<Screen> triangleScreens(const PreparedScene& prepared, const Triangl
 std::string verdictOf(const PixelTrace& pixel);
 
 // Every triangle whose box holds the pixel, in submission order, and what ended it there: "history".
-Screen historyScreen(const PixelTrace& pixel);
+// `prepared` (when the trace is of a scene's frame) names the draws' varyings.
+Screen historyScreen(const PixelTrace& pixel, const PreparedScene* prepared = nullptr);
 
 // The traced triangle's fragment at the pixel: "interpolate" and "depth" (when it was covered), then
 // "blend" and "encode" for the pixel. `entry` is the triangle's line of the history, or null when the
 // triangle's box does not hold the pixel; `triangle` its view (for the vertices' 1/w).
-std::vector<Screen> fragmentScreens(const PixelTrace& pixel, const TriangleAtPixel* entry,
-                                    const TriangleTrace* triangle);
+std::vector<Screen> fragmentScreens(const PreparedScene* prepared, const PixelTrace& pixel,
+                                    const TriangleAtPixel* entry, const TriangleTrace* triangle);
 std::vector<Screen> outputScreens(const PreparedScene& prepared, const PixelTrace& pixel,
                                   const TriangleAtPixel* entry);
 

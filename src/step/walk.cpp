@@ -58,13 +58,13 @@ Walk walkOf(const PreparedScene& prepared, const PixelTrace& pixel, const Triang
     walk.y = pixel.y;
     if (triangle) walk.triangle = triangle->ref;
     walk.verdict = verdictOf(pixel);
-    walk.screens.push_back(historyScreen(pixel));
+    walk.screens.push_back(historyScreen(pixel, &prepared));
     if (triangle)
         for (Screen& screen : triangleScreens(prepared, *triangle))
             walk.screens.push_back(std::move(screen));
     const TriangleAtPixel* entry = entryOf(pixel, walk.triangle);
     if (triangle)
-        for (Screen& screen : fragmentScreens(pixel, entry, triangle))
+        for (Screen& screen : fragmentScreens(&prepared, pixel, entry, triangle))
             walk.screens.push_back(std::move(screen));
     if (shading)
         for (Screen& screen : shadingScreens(*shading))
