@@ -51,6 +51,12 @@ TEST(NameTables, PipelineStateEnums) {
                                   BlendMode::PremultipliedOver, BlendMode::Multiply});
     expectOneNameEach<ProvokingVertex>({ProvokingVertex::Last, ProvokingVertex::First});
     expectOneNameEach<FragmentOutput>({FragmentOutput::Blend, FragmentOutput::AppendToLists});
+    expectOneNameEach<FragmentFate>({FragmentFate::Written, FragmentFate::DepthFailed,
+                                     FragmentFate::Discarded, FragmentFate::Stored, FragmentFate::Dropped});
+    expectOneNameEach<TriangleFate>({TriangleFate::Drawn, TriangleFate::NonFinite,
+                                     TriangleFate::OutsideFrustum, TriangleFate::ClippedAway,
+                                     TriangleFate::ZeroArea, TriangleFate::MissesSamples,
+                                     TriangleFate::Culled});
 }
 
 TEST(NameTables, LightingEnums) {

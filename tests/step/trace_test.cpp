@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,18 @@ const TriangleAtPixel* entryOf(const PixelTrace& p, std::uint32_t number) {
     for (const TriangleAtPixel& e : p.triangles)
         if (e.ref.number == number) return &e;
     return nullptr;
+}
+
+// The JSON names each fate by its table: every fate has one name, and no two share one. Catches: a fate
+// added to the enum without a name (nameOf would give "?"), or a name copied onto a second fate.
+TEST(PixelHistory, EveryFateHasItsOwnName) {
+    std::set<std::string_view> names;
+    for (int k = 0; k <= static_cast<int>(PixelFate::Stored); ++k) {
+        const std::string_view name = nameOf(static_cast<PixelFate>(k));
+        EXPECT_NE(name, "?") << k;
+        EXPECT_TRUE(names.insert(name).second) << name;
+    }
+    EXPECT_EQ(std::size(kPixelFateNames), names.size());
 }
 
 // ---- the recorder on draw() with shaders of the test's own, positions given in clip space ----
