@@ -1,8 +1,6 @@
 // facet step as a user runs it: the screens printed without a terminal, the JSON trace, --versus, bad
 // requests refused with one line. Each test names the one-line break it catches.
-#include <sys/wait.h>
-
-#include <cstdlib>
+#include <algorithm>
 #include <filesystem>
 #include <sstream>
 #include <string>
