@@ -237,6 +237,60 @@ inline Float8 abs(Float8 x) {
     return max(x, -x);
 }
 
+// ---- Double: one lane in double precision, the exact reference renderer's -------------------------
+// The formulas' templates run on F = double, V3 = glm::dvec3 as they do on float. Every function a
+// formula calls on its lanes has a double overload here, declared before the formulas so that their
+// unqualified calls find it (a double would otherwise be rounded to float on the way into the float
+// overload); the mixed double/float vector operators are in namespace glm, found by argument lookup.
+// The float code's overloads are untouched: every double overload takes a double first.
+
+template <>
+struct LaneTraits<double> {
+    using Int = std::int64_t;
+    using Vec2 = glm::dvec2;
+    using Vec3 = glm::dvec3;
+    using Vec4 = glm::dvec4;
+    static constexpr int kCount = 1;
+    static double splat(float v) { return v; }
+};
+
+inline double select(bool cond, double a, double b) {
+    return cond ? a : b;
+}
+inline double select(bool cond, double a, float b) {
+    return cond ? a : b;
+}
+inline double select(bool cond, float a, double b) {
+    return cond ? a : b;
+}
+inline glm::dvec3 select(bool cond, const glm::dvec3& a, const glm::dvec3& b) {
+    return cond ? a : b;
+}
+inline double max(double a, double b) {
+    return a > b ? a : b;
+}
+inline double max(double a, float b) {
+    return max(a, double(b));
+}
+inline double min(double a, double b) {
+    return a < b ? a : b;
+}
+inline double min(double a, float b) {
+    return min(a, double(b));
+}
+inline double sqrt(double x) {
+    return std::sqrt(x);
+}
+inline double abs(double x) {
+    return std::fabs(x);
+}
+inline glm::dvec3 rgb(const glm::dvec4& c) {
+    return glm::dvec3(c);
+}
+inline glm::dvec4 withAlpha(const glm::dvec3& c, double alpha) {
+    return glm::dvec4(c, alpha);
+}
+
 // clamp(x, 0, 1) (HLSL's saturate): min(x, 1), then max(·, 0), as the eight-lane min and max compare.
 template <class F>
 F saturate(F x) {
@@ -297,6 +351,17 @@ F fastExp2(F y) {
     return p * std::bit_cast<F>((n + 127) << 23);
 }
 
+// Double lanes have no approximation of their own: there, Fast is the exact function too (the
+// reference renderer asks for Exact anyway; this only lets the formulas' Fast branches compile).
+template <>
+inline double fastLog2<double>(double x) {
+    return std::log2(x);
+}
+template <>
+inline double fastExp2<double>(double y) {
+    return std::exp2(y);
+}
+
 template <MathPrecision P>
 struct Maths;
 
@@ -315,6 +380,8 @@ struct Maths<MathPrecision::Exact> {
             x[i] = std::exp(x[i]);
         return x;
     }
+    static double pow(double x, float n) { return std::pow(x, double(n)); }
+    static double exp(double x) { return std::exp(x); }
 };
 
 template <>
@@ -359,3 +426,44 @@ F smoothstep(float edge0, float edge1, F x) {
 }
 
 }  // namespace facet
+
+// Double lanes meet the scene's float parameters (a light's position, a material's colour): the float
+// operand is widened exactly, never the double narrowed.
+namespace glm {
+inline dvec3 operator+(const dvec3& a, const vec3& b) {
+    return a + dvec3(b);
+}
+inline dvec3 operator+(const vec3& a, const dvec3& b) {
+    return dvec3(a) + b;
+}
+inline dvec3 operator-(const dvec3& a, const vec3& b) {
+    return a - dvec3(b);
+}
+inline dvec3 operator-(const vec3& a, const dvec3& b) {
+    return dvec3(a) - b;
+}
+inline dvec3 operator*(const dvec3& a, const vec3& b) {
+    return a * dvec3(b);
+}
+inline dvec3 operator*(const vec3& a, const dvec3& b) {
+    return dvec3(a) * b;
+}
+inline dvec3 operator*(const dvec3& a, float s) {
+    return a * double(s);
+}
+inline dvec3 operator*(float s, const dvec3& a) {
+    return double(s) * a;
+}
+inline dvec3 operator*(const vec3& a, double s) {
+    return dvec3(a) * s;
+}
+inline dvec3 operator*(double s, const vec3& a) {
+    return s * dvec3(a);
+}
+inline double dot(const dvec3& a, const vec3& b) {
+    return dot(a, dvec3(b));
+}
+inline double dot(const vec3& a, const dvec3& b) {
+    return dot(dvec3(a), b);
+}
+}  // namespace glm

@@ -249,7 +249,7 @@ namespace detail {
 template <class F>
 LaneVec4<F> texels(const Texture& map, const LaneVec2<F>& uv, unsigned liveLanes) {
     if constexpr (LaneTraits<F>::kCount == 1) {
-        return sampleBilinear(map, uv);
+        return sampleBilinear(map, vec2(uv));  // double lanes too: the texture is sampled at float uv
     } else {
         LaneVec4<F> texel{splat(1.0f), splat(1.0f), splat(1.0f), splat(1.0f)};
         for (int lane = 0; lane < LaneTraits<F>::kCount; ++lane) {
