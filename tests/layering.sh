@@ -7,14 +7,15 @@ root=${1:-$(cd "$(dirname "$0")/.." && pwd)}
 declare -A allowed=(
     [base]="base"
     [shading]="base shading"
-    [scene]="base shading scene"
-    [shaders]="base shading scene shaders"
-    [io]="base shading scene io"
-    [render]="base shading scene shaders io render"
-    [step]="base shading scene shaders io render step"
-    [oracle]="base shading scene shaders io render oracle"
-    [bench]="base shading scene shaders io render oracle bench"
-    [cli]="base shading scene shaders io render step oracle bench cli"
+    [raycast]="base raycast"
+    [scene]="base shading raycast scene"
+    [shaders]="base shading raycast scene shaders"
+    [io]="base shading raycast scene io"
+    [render]="base shading raycast scene shaders io render"
+    [step]="base shading raycast scene shaders io render step"
+    [oracle]="base shading raycast scene shaders io render oracle"
+    [bench]="base shading raycast scene shaders io render oracle bench"
+    [cli]="base shading raycast scene shaders io render step oracle bench cli"
 )
 status=0
 for folder in "$root"/src/*/; do

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
+#include <tuple>
 
 #include "base/errors.h"
 #include "base/quote.h"
@@ -119,6 +120,26 @@ void addSceneOptions(CLI::App& command, SceneArgs& args) {
         "Varyings across a triangle: perspective-correct, or affine in screen space (wrong, for teaching)" +
             byDefault(Interpolation::PerspectiveCorrect));
     addChoice(command, "--cull", args.cull, "Which faces are not drawn" + byDefault(CullMode::Back));
+    addChoice(command, "--shadows", args.shadows,
+              "Shadows of every light: none, a ray to the light (exact), or a shadow map (default: each "
+              "light's \"shadows\" in the scene file, else none)");
+    command
+        .add_option("--shadow-map-size", args.shadowMapSize,
+                    "Shadow maps: texels per side (default 2048; a point light draws six)")
+        ->check(kWholeNumber);
+    command
+        .add_option("--shadow-bias", args.shadowBias,
+                    "Shadow maps: constant depth offset, in units of the map's depth resolution (default 1)")
+        ->check(kFiniteNumber);
+    command
+        .add_option(
+            "--shadow-slope-bias", args.shadowSlopeBias,
+            "Shadow maps: depth offset per unit of the surface's depth slope across a texel (default 1.5)")
+        ->check(kFiniteNumber);
+    command
+        .add_option("--shadow-filter", args.shadowFilter,
+                    "Shadow maps: depth comparisons averaged per point, 1, 4 or 16 (default 4)")
+        ->check(kWholeNumber);
 }
 
 facet::Scene sceneFromArgs(const SceneArgs& args) {
@@ -176,6 +197,29 @@ void applyLightingOptions(const SceneArgs& args, facet::Scene& scene) {
                                     std::string(nameOf(TransferCurve::Power)));
         scene.gamma.encode = facet::TransferCurve::Power;
         scene.gamma.exponent = *args.gamma;
+    }
+    if (args.shadows) scene.shadows = *args.shadows;
+    if (args.shadowMapSize) {
+        if (*args.shadowMapSize < 16 || *args.shadowMapSize > facet::kMaxShadowMapSize)
+            throw facet::InputError("--shadow-map-size must be from 16 to " +
+                                    std::to_string(facet::kMaxShadowMapSize) + " texels (got " +
+                                    std::to_string(*args.shadowMapSize) + ")");
+        scene.shadowMap.size = *args.shadowMapSize;
+    }
+    for (auto [name, value, field] :
+         {std::tuple{"--shadow-bias", args.shadowBias, &scene.shadowMap.constantBias},
+          std::tuple{"--shadow-slope-bias", args.shadowSlopeBias, &scene.shadowMap.slopeBias}}) {
+        if (!value) continue;
+        if (!(*value >= 0.0f && *value <= 1e6f))
+            throw facet::InputError(std::string(name) + " must be from 0 to 1e6 (got " +
+                                    std::to_string(*value) + ")");
+        *field = *value;
+    }
+    if (args.shadowFilter) {
+        if (*args.shadowFilter != 1 && *args.shadowFilter != 4 && *args.shadowFilter != 16)
+            throw facet::InputError("--shadow-filter must be 1, 4 or 16 depth comparisons per point (got " +
+                                    std::to_string(*args.shadowFilter) + ")");
+        scene.shadowMap.filterTaps = *args.shadowFilter;
     }
     if (args.creaseAngle) {
         if (!(*args.creaseAngle >= 0.0f && *args.creaseAngle <= 180.0f))

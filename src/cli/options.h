@@ -72,6 +72,10 @@ struct SceneArgs {
     std::optional<float> gamma;
     std::optional<Interpolation> interpolation;
     std::optional<CullMode> cull;
+    std::optional<ShadowMethod> shadows;
+    std::optional<int> shadowMapSize;
+    std::optional<float> shadowBias, shadowSlopeBias;
+    std::optional<int> shadowFilter;
 };
 
 // Adds SceneArgs's options (and the input) to `command`, as `facet render` describes them.

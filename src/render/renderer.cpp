@@ -15,6 +15,7 @@
 #include "base/quote.h"
 #include "io/obj_import.h"
 #include "pipeline/color.h"
+#include "render/shadow_maps.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -329,6 +330,7 @@ PreparedScene prepareScene(const Scene& scene, const TextureLimits& limits) {
             draw.uniforms = uniforms;
             draw.frequency = frequency;
             draw.worldFromObject = object.worldFromObject;
+            draw.viewFromObjectExact = camera.viewFromWorldExact * glm::dmat4(object.worldFromObject);
             Material material = mesh.materials.at(part.material);
             if (!material.emissionTexture.empty())
                 draw.uniforms.emissionMap = loadTexture(material.emissionTexture, material.name);
@@ -367,7 +369,64 @@ PreparedScene prepareScene(const Scene& scene, const TextureLimits& limits) {
     state.raster.provokingVertex = ProvokingVertex::Last;  // OpenGL's convention
     prepared.clearColor = vec4(decode(vec3(scene.background)), scene.background.a);
     prepared.encoding = glPreset ? kLinearEncoding : ColorEncoding{scene.gamma.encode, scene.gamma.exponent};
+
+    // Shadows: each light's method (the command line's for all of them, when given).
+    for (std::size_t i = 0; i < lights.size(); ++i)
+        prepared.shadowMethods[i] = scene.shadows.value_or(lights[i].shadows);
+    prepared.shadowMapOptions = scene.shadowMap;
+    {
+        const glm::dvec3 centre = 0.5 * (glm::dvec3(sceneBounds.min) + glm::dvec3(sceneBounds.max));
+        const double radius = 0.5 * glm::length(glm::dvec3(sceneBounds.max) - glm::dvec3(sceneBounds.min));
+        prepared.sceneExtent =
+            float((glm::length(glm::dvec3(camera.eye) - centre) + radius) * camera.viewScale);
+    }
+    prepareShadows(prepared);
     return prepared;
+}
+
+std::vector<RayMesh> rayMeshes(const PreparedScene& prepared, std::vector<std::vector<vec3>>& positions) {
+    positions.assign(prepared.draws.size(), {});
+    std::vector<RayMesh> meshes;
+    meshes.reserve(prepared.draws.size());
+    for (std::size_t k = 0; k < prepared.draws.size(); ++k) {
+        const PreparedDraw& d = prepared.draws[k];
+        positions[k].reserve(d.vertices.size());
+        for (const MeshVertex& v : d.vertices)
+            positions[k].push_back(vec3(d.viewFromObjectExact * glm::dvec4(glm::dvec3(v.position), 1.0)));
+        meshes.push_back({positions[k], d.indices, !d.transparent});
+    }
+    return meshes;
+}
+
+void prepareShadows(PreparedScene& prepared) {
+    prepared.rays.reset();
+    prepared.shadowMaps.clear();
+    prepared.shadows.reset();
+    for (PreparedDraw& d : prepared.draws)
+        d.uniforms.shadows = nullptr;
+    const auto casts = [&](ShadowMethod method) {
+        return std::find(prepared.shadowMethods.begin(), prepared.shadowMethods.end(), method) !=
+               prepared.shadowMethods.end();
+    };
+    if (!casts(ShadowMethod::Ray) && !casts(ShadowMethod::Map)) return;  // no BVH, no map, no cost
+    auto shadows = std::make_unique<SceneShadows>();
+    shadows->rayOffset = kShadowRayOffset * prepared.sceneExtent;
+    if (casts(ShadowMethod::Ray)) {
+        std::vector<std::vector<vec3>> positions;
+        const std::vector<RayMesh> meshes = rayMeshes(prepared, positions);
+        prepared.rays = std::make_unique<RayScene>(meshes);
+        shadows->rays = prepared.rays.get();
+    }
+    for (std::size_t i = 0; i < kMaxLights; ++i) {
+        shadows->lights[i].method = prepared.shadowMethods[i];
+        if (prepared.shadowMethods[i] == ShadowMethod::Map) {
+            prepared.shadowMaps.push_back(drawShadowMap(prepared, static_cast<int>(i)));
+            shadows->lights[i].map = prepared.shadowMaps.back().get();
+        }
+    }
+    prepared.shadows = std::move(shadows);
+    for (PreparedDraw& d : prepared.draws)
+        d.uniforms.shadows = prepared.shadows.get();
 }
 
 void setTurntable(PreparedScene& prepared, float degrees) {
@@ -376,8 +435,11 @@ void setTurntable(PreparedScene& prepared, float degrees) {
     const glm::dmat4 turn = glm::translate(glm::dmat4(1.0), c) *
                             glm::rotate(glm::dmat4(1.0), glm::radians(double(degrees)), glm::dvec3(0, 1, 0)) *
                             glm::translate(glm::dmat4(1.0), -c);
-    for (PreparedDraw& d : prepared.draws)
+    for (PreparedDraw& d : prepared.draws) {
         placeDraw(d.uniforms, prepared.camera, turn * glm::dmat4(d.worldFromObject));
+        d.viewFromObjectExact = prepared.camera.viewFromWorldExact * turn * glm::dmat4(d.worldFromObject);
+    }
+    prepareShadows(prepared);  // the shadows move with the objects
 }
 
 namespace {

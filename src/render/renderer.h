@@ -13,6 +13,7 @@
 #include "io/image_io.h"
 #include "pipeline/fragment_lists_resolve.h"
 #include "pipeline/pipeline.h"
+#include "raycast/ray_scene.h"
 #include "render/transparency_sort.h"
 #include "scene/camera.h"
 #include "scene/mesh.h"
@@ -28,6 +29,9 @@ struct PreparedDraw {
     SurfaceUniforms uniforms;  // uniforms.blend: Replace for opaque draws
     ShadingFrequency frequency = ShadingFrequency::Phong;
     mat4 worldFromObject{1.0f};  // the object's placement (the turntable turns it)
+    // Eye space from object space as placed now (turntable included), composed in double: the
+    // uniforms' matrices are this rounded to float; ray queries and the reference start from it.
+    glm::dmat4 viewFromObjectExact{1.0};
     // Drawn in the transparent pass: opacity or texture alpha below 1, or a blend other than over.
     bool transparent = false;
 };
@@ -51,7 +55,28 @@ struct PreparedScene {
     std::vector<std::string> warnings;  // from the importer, one line each
     std::size_t triangleCount = 0;
     std::size_t degenerateSkipped = 0;
+    // The eye-space distance to the far side of the scene's bounding sphere: the scale of the scene's
+    // coordinates, for the shadow rays' offset (shading/shadow.h).
+    float sceneExtent = 1.0f;
+    // Shadows, when a light casts them (else all null and empty, and nothing is built): per light its
+    // method (in the uniforms' light order), the BVH of the scene's triangles for ray-cast shadows,
+    // the shadow maps, and what the draws' uniforms.shadows point to.
+    std::array<ShadowMethod, kMaxLights> shadowMethods{};
+    ShadowMapOptions shadowMapOptions;
+    std::unique_ptr<RayScene> rays;
+    std::vector<std::unique_ptr<ShadowMap>> shadowMaps;
+    std::unique_ptr<SceneShadows> shadows;
 };
+
+// The scene's triangles as they are placed now, in eye space, for ray queries: one RayMesh per draw
+// (the draw's index is the mesh's), transparent draws as see-through. The positions are kept in
+// `positions` (per draw), which must outlive the meshes.
+std::vector<RayMesh> rayMeshes(const PreparedScene& prepared, std::vector<std::vector<vec3>>& positions);
+
+// Builds what the scene's shadows need (the BVH for ray-cast shadows, the shadow maps) for the objects as
+// placed now, and points the draws' uniforms at it; nothing when no light casts shadows. prepareScene
+// and setTurntable call it.
+void prepareShadows(PreparedScene& prepared);
 
 // Loads every model and texture the scene names and computes camera, lights and materials.
 // Facet preset: every colour a user writes (MTL Ka/Kd/Ks/Ke, scene materials, lights, background,

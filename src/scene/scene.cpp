@@ -43,6 +43,7 @@ Scene loadScene(const fs::path& path) {
     if (const Json* v = reader.find(document, "transparency"))
         scene.transparency = readTransparency(reader, *v);
     if (const Json* v = reader.find(document, "fog")) scene.fog = readFog(reader, *v);
+    if (const Json* v = reader.find(document, "shadow_map")) scene.shadowMap = readShadowMap(reader, *v);
     if (const Json* v = reader.find(document, "gamma")) {
         // The gl preset neither decodes nor encodes; a "gamma" beside it would silently do nothing.
         if (scene.lighting.preset == LightingPreset::GL) {

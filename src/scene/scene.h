@@ -16,6 +16,7 @@
 #include "shading/fog.h"
 #include "shading/gamma.h"
 #include "shading/lighting.h"
+#include "shading/shadow.h"
 
 namespace facet {
 
@@ -45,7 +46,8 @@ struct LightSpec {
     // Spot, smooth profile (used when both are given): full intensity inside `inner`, none outside
     // `outer`, smoothstep between. 0 ≤ inner < outer ≤ 90.
     std::optional<float> spotInnerDegrees, spotOuterDegrees;
-    bool cameraRelative = false;  // direction/position given in the camera's view space
+    bool cameraRelative = false;                // direction/position given in the camera's view space
+    ShadowMethod shadows = ShadowMethod::None;  // "shadows": none, ray or map (true means ray)
 };
 
 // Optional per-object material override; each field overrides the MTL value when present.
@@ -170,6 +172,9 @@ struct Scene {
     TransparencyOptions transparency;
     FogSpec fog;
     GammaOptions gamma;
+    ShadowMapOptions shadowMap;  // "shadow_map": how every light with map shadows draws and reads its map
+    // The command line's --shadows: every light's method, the default light's too (absent: each light's).
+    std::optional<ShadowMethod> shadows;
 };
 
 // Reads a JSON scene file. Throws InputError with a one-line message naming the file and the

@@ -20,7 +20,7 @@ namespace {
 constexpr std::string_view kCameraKeys[] = {"eye", "target", "up", "fovy", "near", "far"};
 constexpr std::string_view kLightKeys[] = {"type",     "direction", "position", "color",       "intensity",
                                            "ambient",  "diffuse",   "specular", "attenuation", "cutoff",
-                                           "exponent", "inner",     "outer",    "space"};
+                                           "exponent", "inner",     "outer",    "space",       "shadows"};
 constexpr std::string_view kSpotOnlyKeys[] = {"cutoff", "exponent", "inner", "outer"};
 constexpr std::string_view kObjectKeys[] = {"model",    "translate", "rotate", "scale",
                                             "material", "lighting",  "blend"};
@@ -35,6 +35,7 @@ constexpr std::string_view kLightSpaces[] = {"world", "camera"};
 constexpr std::string_view kTransparencyKeys[] = {"mode", "sort_key"};
 constexpr std::string_view kFogKeys[] = {"mode", "color", "start", "end", "density", "distance"};
 constexpr std::string_view kGammaKeys[] = {"encode", "exponent", "decode_inputs"};
+constexpr std::string_view kShadowMapKeys[] = {"size", "bias", "slope_bias", "filter"};
 
 }  // namespace
 
@@ -194,6 +195,13 @@ LightSpec readLight(const SceneReader& reader, const Json& light, const std::str
     }
     if (const Json* v = reader.find(light, "space")) {
         spec.cameraRelative = reader.choice(*v, childPath(path, "space"), kLightSpaces) == 1;
+    }
+    // "shadows": a method's name, or true (a ray, the exact test) and false (none).
+    if (const Json* v = reader.find(light, "shadows")) {
+        if (v->is_boolean())
+            spec.shadows = v->get<bool>() ? ShadowMethod::Ray : ShadowMethod::None;
+        else
+            spec.shadows = reader.enumChoice<ShadowMethod>(*v, childPath(path, "shadows"));
     }
     return spec;
 }
@@ -480,6 +488,27 @@ GammaOptions readGamma(const SceneReader& reader, const Json& gamma) {
     }
     if (const Json* v = reader.find(gamma, "decode_inputs"))
         options.decodeInputs = reader.boolean(*v, "gamma.decode_inputs");
+    return options;
+}
+
+ShadowMapOptions readShadowMap(const SceneReader& reader, const Json& shadowMap) {
+    const std::string path = "shadow_map";
+    reader.requireObject(shadowMap, path,
+                         "an object like {\"size\": 2048, \"bias\": 1, \"slope_bias\": 1.5, \"filter\": 4}");
+    reader.checkKeys(shadowMap, path, kShadowMapKeys);
+    ShadowMapOptions options;
+    if (const Json* v = reader.find(shadowMap, "size"))
+        options.size = reader.wholeNumber(*v, "shadow_map.size", 16, kMaxShadowMapSize);
+    if (const Json* v = reader.find(shadowMap, "bias"))
+        options.constantBias = reader.nonNegative(*v, "shadow_map.bias");
+    if (const Json* v = reader.find(shadowMap, "slope_bias"))
+        options.slopeBias = reader.nonNegative(*v, "shadow_map.slope_bias");
+    if (const Json* v = reader.find(shadowMap, "filter")) {
+        options.filterTaps = reader.wholeNumber(*v, "shadow_map.filter", 1, 16);
+        if (options.filterTaps != 1 && options.filterTaps != 4 && options.filterTaps != 16)
+            reader.fail("\"shadow_map.filter\" must be 1, 4 or 16 depth comparisons per point (got " +
+                        describe(*v) + ")");
+    }
     return options;
 }
 

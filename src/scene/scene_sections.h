@@ -13,7 +13,7 @@ namespace facet::scene_file {
 
 inline constexpr std::string_view kTopLevelKeys[] = {
     "width", "height",   "background", "ambient",      "camera", "lights", "objects",
-    "model", "pipeline", "lighting",   "transparency", "fog",    "gamma"};
+    "model", "pipeline", "lighting",   "transparency", "fog",    "gamma",  "shadow_map"};
 
 glm::vec4 readBackground(const SceneReader& reader, const Json& value);
 CameraSpec readCamera(const SceneReader& reader, const Json& camera);
@@ -29,5 +29,6 @@ LightingOptions readLighting(const SceneReader& reader, const Json& lighting);
 TransparencyOptions readTransparency(const SceneReader& reader, const Json& transparency);
 FogSpec readFog(const SceneReader& reader, const Json& fog);
 GammaOptions readGamma(const SceneReader& reader, const Json& gamma);
+ShadowMapOptions readShadowMap(const SceneReader& reader, const Json& shadowMap);
 
 }  // namespace facet::scene_file

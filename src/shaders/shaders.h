@@ -24,6 +24,7 @@
 #include "pipeline/texture.h"
 #include "pipeline/wide.h"
 #include "scene/mesh.h"
+#include "shaders/shadowing.h"
 #include "shading/fog.h"
 #include "shading/lighting.h"
 
@@ -74,6 +75,8 @@ struct SurfaceUniforms {
     // pow and exp in the lighting and fog: Fast (wide.h's polynomials) is what every image has been
     // drawn with; one lane and eight give the same bits under either choice.
     MathPrecision precision = MathPrecision::Fast;
+    // Which lights cast shadows and how (shadowing.h); null: none does, and the lighting skips the test.
+    const SceneShadows* shadows = nullptr;
 
     std::span<const LightParams> activeLights() const {
         return {lights.data(), static_cast<std::size_t>(lightCount)};
@@ -172,21 +175,28 @@ template <class F, class V3, MathPrecision kPrecision, class... Recording>
         if constexpr (Record::enabled) recordOf(recording...)->flipped = facingAway;
     }
     const vec3 eye(0.0f);
+    // Shadows: each light's share that reaches P (null: all of every light).
+    F visibilities[kMaxLights];
+    const F* visibility = nullptr;
+    if (u.shadows) {
+        lightVisibilities<F, V3>(*u.shadows, u.activeLights(), P, N, visibilities);
+        visibility = visibilities;
+    }
     LightingTerms<V3> t;
     switch (u.reflection) {
         case ReflectionModel::Phong:
             t = standardLighting<F, V3, kPrecision>(P, N, eye, u.material, albedo, u.globalAmbient,
-                                                    u.activeLights(), SpecularModel::Phong,
+                                                    u.activeLights(), SpecularModel::Phong, visibility,
                                                     &recording->lighting...);
             break;
         case ReflectionModel::BlinnPhong:
             t = standardLighting<F, V3, kPrecision>(P, N, eye, u.material, albedo, u.globalAmbient,
-                                                    u.activeLights(), SpecularModel::BlinnPhong,
+                                                    u.activeLights(), SpecularModel::BlinnPhong, visibility,
                                                     &recording->lighting...);
             break;
         case ReflectionModel::CookTorrance:
             t = physicallyBasedTerms<F, V3, kPrecision>(P, N, eye, u.pbr, albedo, u.material.emission,
-                                                        u.globalAmbient, u.activeLights(), u.brdf,
+                                                        u.globalAmbient, u.activeLights(), u.brdf, visibility,
                                                         &recording->lighting...);
             break;
     }

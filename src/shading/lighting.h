@@ -211,12 +211,19 @@ struct LightingTerms {
 // spec = max(R·V, 0)^n (Phong) or max(N·H, 0)^n (Blinn-Phong), and 0 where N·L ≤ 0 (the light is
 // behind the surface; in practice N·L ≤ kGrazingCosine, see there). N is used as given (normalised, not
 // flipped towards the viewer). `diffuseColor` is m_diffuse per lane (a texture may vary it); the overload
-// below uses the material's. A LightingRecord (below), when given, receives every number of it.
+// below uses the material's. `visibility`, when given, holds per light the share of it that reaches the
+// point (1 lit, 0 in shadow; a shadow map's filter gives shares between): the lecture's shadow test, "if
+// the light is blocked by another renderable, don't add diffuse or specular illumination", so
+//   c = … + Σ_lights att · spot · (l_a ⊗ m_ambient + v · (max(N·L, 0) · l_d ⊗ m_diffuse + spec · l_s ⊗
+//   m_specular)).
+// Null: every light reaches every point (no shadows, no cost). A LightingRecord (below), when given,
+// receives every number of it.
 template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact, class... Recording>
 [[gnu::always_inline]] inline LightingTerms<V3> standardLighting(
     const V3& position, const V3& normal, const vec3& eye, const PhongMaterial& m, const V3& diffuseColor,
     const vec3& globalAmbient, std::span<const LightParams> lights,
-    SpecularModel specularModel = SpecularModel::BlinnPhong, Recording*... recording) {
+    SpecularModel specularModel = SpecularModel::BlinnPhong, const F* visibility = nullptr,
+    Recording*... recording) {
     using Record = RecordOf<Recording...>;
     static_assert(!Record::enabled || std::is_same_v<F, float>, "records hold one lane");
     const V3 N = safeNormalize<F, V3>(normal);
@@ -251,7 +258,8 @@ template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exac
             if constexpr (Record::enabled)
                 recordOf(recording...)->lights[&light - lights.data()].ambient = ambient;
         }
-        const V3 diffuse = diffuseColor * light.diffuse * (reach * max(NdotL, 0.0f));
+        const F lit = visibility ? reach * visibility[&light - lights.data()] : reach;
+        const V3 diffuse = diffuseColor * light.diffuse * (lit * max(NdotL, 0.0f));
         terms.diffuse += diffuse;
 
         // Specular, only where the light is in front of the surface.
@@ -269,7 +277,7 @@ template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exac
         }
         const F spec =
             select(NdotL > kGrazingCosine, Maths<P>::pow(max(cosine, 0.0f), m.shininess), lanes<F>(0.0f));
-        const V3 specular = (light.specular * m.specular) * (reach * spec);
+        const V3 specular = (light.specular * m.specular) * (lit * spec);
         terms.specular += specular;
 
         if constexpr (Record::enabled) {
@@ -279,6 +287,7 @@ template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exac
             r.distance = toLight.distance;
             r.attenuation = attenuation(light, toLight.distance);
             r.reach = reach;
+            r.visibility = visibility ? visibility[&light - lights.data()] : 1.0f;
             r.NdotL = NdotL;
             r.cosine = cosine;
             r.grazing = !(NdotL > kGrazingCosine);
@@ -296,9 +305,9 @@ LightingTerms<V3> standardLighting(const V3& position, const V3& normal, const v
                                    const PhongMaterial& m, const vec3& globalAmbient,
                                    std::span<const LightParams> lights,
                                    SpecularModel specularModel = SpecularModel::BlinnPhong,
-                                   Recording*... recording) {
+                                   const F* visibility = nullptr, Recording*... recording) {
     return standardLighting<F, V3, P>(position, normal, eye, m, V3(m.diffuse), globalAmbient, lights,
-                                      specularModel, recording...);
+                                      specularModel, visibility, recording...);
 }
 
 // =====================================================================================================
@@ -522,13 +531,16 @@ V3 brdf(const V3& n, const V3& l, const V3& v, const PbrMaterial& m, const BrdfM
 //   emission = m_emission and ambient = a_global ⊗ albedo
 // (a constant stand-in for the light that arrives from everywhere, as the standard equation's
 // a_global ⊗ m_ambient; image-based ambient is out of scope). `albedo` is the base colour per lane.
-// With a LightingRecord, LightRecord::attenuation is the falloff and the irradiance factor
-// falloff·spot·max(N·L, 0), incoming π·c_light and the BRDF's numbers are recorded per light.
+// `visibility` as in standardLighting: the share of each light that reaches the point scales its
+// irradiance (null: all of it). With a LightingRecord, LightRecord::attenuation is the falloff and the
+// irradiance factor falloff·spot·max(N·L, 0), incoming π·c_light and the BRDF's numbers are recorded per
+// light.
 template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact, class... Recording>
 LightingTerms<V3> physicallyBasedTerms(const V3& position, const V3& normal, const vec3& eye,
                                        const PbrMaterial& m, const V3& albedo, const vec3& emission,
                                        const vec3& globalAmbient, std::span<const LightParams> lights,
-                                       const BrdfModel& model = {}, Recording*... recording) {
+                                       const BrdfModel& model = {}, const F* visibility = nullptr,
+                                       Recording*... recording) {
     using Record = RecordOf<Recording...>;
     static_assert(!Record::enabled || std::is_same_v<F, float>, "records hold one lane");
     const V3 N = safeNormalize<F, V3>(normal);
@@ -552,10 +564,11 @@ LightingTerms<V3> physicallyBasedTerms(const V3& position, const V3& normal, con
         const F falloff = light.kind == LightKind::Directional
                               ? lanes<F>(1.0f)
                               : 1.0f / max(toLight.distance * toLight.distance, 1e-8f);
-        const F irradiance =
+        F irradiance =
             falloff *
             spotFactor<F, V3, P>(light, toLight.L, &recording->lights[&light - lights.data()].spot...) *
             max(dot(N, toLight.L), 0.0f);
+        if (visibility) irradiance = irradiance * visibility[&light - lights.data()];
         const BrdfLobes<V3> lobes = brdfLobes<F, V3, P>(N, toLight.L, V, m, albedo, model,
                                                         &recording->lights[&light - lights.data()].brdf...);
         const V3 incoming = V3(light.diffuse * std::numbers::pi_v<float>) * irradiance;
@@ -570,6 +583,7 @@ LightingTerms<V3> physicallyBasedTerms(const V3& position, const V3& normal, con
             r.distance = toLight.distance;
             r.attenuation = falloff;
             r.reach = irradiance;
+            r.visibility = visibility ? visibility[&light - lights.data()] : 1.0f;
             r.NdotL = dot(N, toLight.L);
             r.grazing = r.brdf.grazing;
             r.incoming = incoming;
@@ -591,8 +605,9 @@ struct LightRecord {
     // Standard equation: att = 1/(c0 + c1·d + c2·d²). Cook-Torrance: the falloff 1/d² (1: directional).
     float attenuation = 1;
     SpotRecord spot{};
-    // Standard equation: att·spot. Cook-Torrance: the irradiance factor falloff·spot·max(N·L, 0).
+    // Standard equation: att·spot. Cook-Torrance: the irradiance factor falloff·spot·max(N·L, 0)·v.
     float reach = 1;
+    float visibility = 1;  // v: the share of the light that reaches the point (shadows); 1 without
     float NdotL = 0;
     // Standard equation's specular: R = 2(N·L)N − L (Phong) or H = normalize(L + V) (Blinn-Phong), the
     // cosine R·V or N·H, and spec = max(cosine, 0)^n, 0 when grazing (N·L ≤ kGrazingCosine).

@@ -58,8 +58,8 @@ LightingRecord lightOnce(const LightParams& light, SpecularModel model,
                          LightingTerms<vec3>* terms = nullptr) {
     LightingRecord record;
     const LightParams lights[] = {light};
-    const LightingTerms<vec3> t =
-        standardLighting<float>(kPosition, kNormal, kEye, material(), kGlobalAmbient, lights, model, &record);
+    const LightingTerms<vec3> t = standardLighting<float>(kPosition, kNormal, kEye, material(),
+                                                          kGlobalAmbient, lights, model, nullptr, &record);
     if (terms) *terms = t;
     return record;
 }
@@ -156,7 +156,7 @@ TEST(LightingRecord, CookTorranceDFGEqualTheHandComputedOnes) {
     const LightParams lights[] = {light};
     LightingRecord record;
     physicallyBasedTerms<float>(kPosition, kNormal, kEye, m, m.baseColor, vec3(0.0f), kGlobalAmbient, lights,
-                                BrdfModel{}, &record);
+                                BrdfModel{}, nullptr, &record);
     ASSERT_TRUE(record.physicallyBased);
     const LightRecord& r = record.lights[0];
     const BrdfRecord& b = r.brdf;
@@ -247,7 +247,7 @@ TEST(LightingRecord, RecordingChangesNoBitOfTheResult) {
         const LightingTerms<vec3> plain = standardLighting<float, vec3, MathPrecision::Fast>(
             position, normal, kEye, material(), kGlobalAmbient, lights, model);
         const LightingTerms<vec3> recorded = standardLighting<float, vec3, MathPrecision::Fast>(
-            position, normal, kEye, material(), kGlobalAmbient, lights, model, &record);
+            position, normal, kEye, material(), kGlobalAmbient, lights, model, nullptr, &record);
         EXPECT_TRUE(sameBits(plain.sum(), recorded.sum()));
         EXPECT_TRUE(sameBits(plain.specular, recorded.specular));
         EXPECT_TRUE(sameBits(recorded.specular, record.terms.specular));
@@ -258,7 +258,8 @@ TEST(LightingRecord, RecordingChangesNoBitOfTheResult) {
         const LightingTerms<vec3> plain = physicallyBasedTerms<float, vec3, MathPrecision::Exact>(
             position, normal, kEye, pbr, pbr.baseColor, vec3(0.0f), kGlobalAmbient, lights, model);
         const LightingTerms<vec3> recorded = physicallyBasedTerms<float, vec3, MathPrecision::Exact>(
-            position, normal, kEye, pbr, pbr.baseColor, vec3(0.0f), kGlobalAmbient, lights, model, &record);
+            position, normal, kEye, pbr, pbr.baseColor, vec3(0.0f), kGlobalAmbient, lights, model, nullptr,
+            &record);
         EXPECT_TRUE(sameBits(plain.sum(), recorded.sum()));
         EXPECT_TRUE(
             sameBits(record.lights[0].specular + record.lights[1].specular + record.lights[2].specular,

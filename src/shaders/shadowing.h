@@ -1,0 +1,95 @@
+// The shaders' shadow test: per light, the share of it that reaches a point (1 lit, 0 shadowed), by a
+// shadow ray through the scene's BVH or by a shadow map; the lighting formulas scale each light's
+// diffuse and specular terms by it (lighting.h). A draw without shadowing lights has no SceneShadows
+// and pays nothing.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <span>
+
+#include "pipeline/wide.h"
+#include "raycast/ray_scene.h"
+#include "shaders/shadow_map.h"
+#include "shading/lighting.h"
+#include "shading/shadow.h"
+
+namespace facet {
+
+struct LightShadow {
+    ShadowMethod method = ShadowMethod::None;
+    const ShadowMap* map = nullptr;  // ShadowMethod::Map
+};
+
+// What the shaders read to shadow a frame: per light (in the uniforms' order) its method, the BVH of the
+// scene's opaque triangles in eye space (ray-cast shadows), and the shadow rays' origin offset ε.
+struct SceneShadows {
+    std::array<LightShadow, kMaxLights> lights{};
+    const RayScene* rays = nullptr;
+    float rayOffset = 0;  // ε, eye space (shading/shadow.h's kShadowRayOffset of the scene's extent)
+    bool any() const {
+        for (const LightShadow& l : lights)
+            if (l.method != ShadowMethod::None) return true;
+        return false;
+    }
+};
+
+namespace detail {
+
+template <class F>
+unsigned laneBits(F condition) {
+    if constexpr (LaneTraits<F>::kCount == 1)
+        return condition ? 1u : 0u;
+    else
+        return signMask(condition);
+}
+
+}  // namespace detail
+
+// Whether the ray from P towards the light is blocked by an opaque triangle: 1 where the light is seen,
+// 0 where not. The ray starts at P + ε·N and ends ε short of a point or spot light (a directional light
+// is infinitely far). Lanes where N·L ≤ 0 get no light from it anyway and are not traced; nor are lanes
+// with a non-finite P (eight-lane batches carry such dead lanes).
+template <class F, class V3 = LaneVec3<F>>
+F rayVisibility(const SceneShadows& shadows, const LightParams& light, const V3& P, const V3& N) {
+    const LightVector<F, V3> toLight = lightVector<F, V3>(light, P);
+    const F facing = dot(N, toLight.L);
+    const V3 origin = P + N * lanes<F>(shadows.rayOffset);
+    const F reach = light.kind == LightKind::Directional
+                        ? lanes<F>(std::numeric_limits<float>::infinity())
+                        : toLight.distance - lanes<F>(2.0f * shadows.rayOffset);
+    if constexpr (LaneTraits<F>::kCount == 8) {
+        const unsigned traced = signMask(facing > 0.0f) & signMask(reach > 0.0f);
+        const unsigned blocked = shadows.rays->occluded8(origin, toLight.L, splat(0.0f), reach, traced);
+        Float8 v = splat(1.0f);
+        for (int i = 0; i < 8; ++i)
+            if ((blocked >> i) & 1) v[i] = 0.0f;
+        return v;
+    } else {
+        if (!(facing > 0.0f) || !(reach > 0.0f)) return lanes<F>(1.0f);
+        return shadows.rays->occluded(vec3(origin), vec3(toLight.L), 0.0f, float(reach)) ? lanes<F>(0.0f)
+                                                                                         : lanes<F>(1.0f);
+    }
+}
+
+// Each light's visibility at P (N the normal the lighting uses, turned towards the viewer).
+template <class F, class V3 = LaneVec3<F>>
+void lightVisibilities(const SceneShadows& shadows, std::span<const LightParams> lights, const V3& P,
+                       const V3& N, F* visibility) {
+    for (std::size_t i = 0; i < lights.size(); ++i) {
+        switch (shadows.lights[i].method) {
+            case ShadowMethod::None:
+                visibility[i] = lanes<F>(1.0f);
+                break;
+            case ShadowMethod::Ray:
+                visibility[i] = rayVisibility<F, V3>(shadows, lights[i], P, N);
+                break;
+            case ShadowMethod::Map:
+                visibility[i] = shadowMapVisibility<F, V3>(*shadows.lights[i].map, lights[i], P, N);
+                break;
+        }
+    }
+}
+
+}  // namespace facet
