@@ -7,7 +7,13 @@
 
 namespace facet {
 
-inline vec4 blend(BlendMode mode, const vec4& source, const vec4& destination) {
+// Written once for float (the framebuffer's vec4) and double (the reference renderer's dvec4).
+template <class T, glm::qualifier Q>
+glm::vec<4, T, Q> blend(BlendMode mode, const glm::vec<4, T, Q>& source,
+                        const glm::vec<4, T, Q>& destination) {
+    using Vec3 = glm::vec<3, T, Q>;
+    using Vec4 = glm::vec<4, T, Q>;
+    const T one(1);
     switch (mode) {
         case BlendMode::Replace:
             return source;
@@ -15,16 +21,16 @@ inline vec4 blend(BlendMode mode, const vec4& source, const vec4& destination) {
             return source + destination;
         case BlendMode::Over: {
             // Porter–Duff over with straight alpha: c = α_s·c_s + (1 − α_s)·c_d.
-            const float a = source.a;
-            return vec4(a * vec3(source) + (1.0f - a) * vec3(destination), a + (1.0f - a) * destination.a);
+            const T a = source.a;
+            return Vec4(a * Vec3(source) + (one - a) * Vec3(destination), a + (one - a) * destination.a);
         }
         case BlendMode::PremultipliedOver: {
             // The same operator on premultiplied colour: c = c_s + (1 − α_s)·c_d.
-            const float a = source.a;
-            return vec4(vec3(source) + (1.0f - a) * vec3(destination), a + (1.0f - a) * destination.a);
+            const T a = source.a;
+            return Vec4(Vec3(source) + (one - a) * Vec3(destination), a + (one - a) * destination.a);
         }
         case BlendMode::Multiply:
-            return vec4(vec3(source) * vec3(destination), destination.a);
+            return Vec4(Vec3(source) * Vec3(destination), destination.a);
     }
     return source;
 }

@@ -12,10 +12,11 @@ declare -A allowed=(
     [shaders]="base shading raycast scene shaders"
     [io]="base shading raycast scene io"
     [render]="base shading raycast scene shaders io render"
+    [reference]="base shading raycast scene shaders io render reference"
     [step]="base shading raycast scene shaders io render step"
-    [oracle]="base shading raycast scene shaders io render oracle"
-    [bench]="base shading raycast scene shaders io render oracle bench"
-    [cli]="base shading raycast scene shaders io render step oracle bench cli"
+    [oracle]="base shading raycast scene shaders io render reference oracle"
+    [bench]="base shading raycast scene shaders io render reference oracle bench"
+    [cli]="base shading raycast scene shaders io render reference step oracle bench cli"
 )
 status=0
 for folder in "$root"/src/*/; do

@@ -10,6 +10,7 @@
 #include <glm/glm.hpp>
 
 #include "pipeline/names.h"
+#include "reference/reference.h"
 #include "scene/scene.h"
 #include "shaders/shaders.h"
 
@@ -92,6 +93,8 @@ struct RenderArgs : SceneArgs {
     std::optional<std::string> frames;  // "0-59"
     std::optional<float> turntable;     // degrees over the frames
     bool stats = false;
+    std::optional<RendererKind> renderer;
+    std::optional<int> samples;  // --renderer reference: N×N rays per pixel
 };
 
 // Applies the command line's lighting choices to every object (they win over the scene file's).

@@ -11,6 +11,7 @@
 #include "base/errors.h"
 #include "base/quote.h"
 #include "io/image_io.h"
+#include "reference/reference.h"
 #include "render/renderer.h"
 
 namespace facet::cli {
@@ -99,6 +100,19 @@ void printFrameStats(int frame, const facet::PreparedScene& prepared, const face
     std::cout << "\n";
 }
 
+void printReferenceStats(int frame, const facet::ReferenceStats& stats) {
+    char text[256];
+    std::snprintf(
+        text, sizeof text,
+        "frame %d: reference: BVH built in %.1f ms (%zu non-finite triangles left out); %llu camera rays "
+        "traced and shaded in %.1f ms (%.2f M rays/s), %llu see-through hits\n",
+        frame, stats.buildMilliseconds, stats.nonFiniteSkipped,
+        static_cast<unsigned long long>(stats.cameraRays), stats.renderMilliseconds,
+        stats.renderMilliseconds > 0 ? double(stats.cameraRays) / stats.renderMilliseconds / 1000.0 : 0.0,
+        static_cast<unsigned long long>(stats.transparentHits));
+    std::cout << text;
+}
+
 // The output name alone, before anything is loaded: "-o ''" (checkImageDestination checks the rest).
 void checkOutputName(const std::string& output) {
     if (output.empty())
@@ -124,6 +138,16 @@ CLI::App* addRenderCommand(CLI::App& app, RenderArgs& args) {
     command->add_flag("--stats", args.stats,
                       "Print per frame the fragments and the sorting of transparent triangles (comparisons, "
                       "moves, time)");
+    addChoice(*command, "--renderer", args.renderer,
+              "The rasterizer, or the exact reference: rays through Embree, shading in double "
+              "(docs/reference.md)" +
+                  byDefault(facet::RendererKind::Rasterizer));
+    command
+        ->add_option(
+            "--samples", args.samples,
+            "--renderer reference: N×N rays per pixel on a stratified grid, box-filtered (default 4; "
+            "1 is the pixel centre)")
+        ->check(kWholeNumber);
     command->add_flag("--components", args.components,
                       "Also write each term alone next to the output: NAME-emission, NAME-ambient, "
                       "NAME-diffuse, NAME-specular (the output is their sum)");
@@ -147,6 +171,16 @@ int render(const RenderArgs& args) {
                                 " images; one run writes at most " + std::to_string(kMaxImagesPerRun) +
                                 (args.components ? " (--components writes five per frame)" : ""));
     const float turntable = args.turntable.value_or(args.frames ? 360.0f : 0.0f);  // finite: kFiniteNumber
+    const bool reference = args.renderer == facet::RendererKind::Reference;
+    facet::ReferenceOptions referenceOptions;
+    if (args.samples) {
+        if (!reference) throw facet::InputError("--samples is for --renderer reference");
+        if (*args.samples < 1 || *args.samples > facet::kMaxReferenceSamples)
+            throw facet::InputError("--samples must be from 1 to " +
+                                    std::to_string(facet::kMaxReferenceSamples) +
+                                    " (N×N rays per pixel; got " + std::to_string(*args.samples) + ")");
+        referenceOptions.samples = *args.samples;
+    }
 
     facet::Scene scene = sceneFromArgs(args);
     const std::uint8_t terms = args.only.value_or(facet::kAllTerms);
@@ -170,6 +204,27 @@ int render(const RenderArgs& args) {
         if (args.frames) facet::setTurntable(prepared, turntable * float(k) / float(frameCount));
         const std::filesystem::path output =
             args.frames ? framePath(args.output, frame) : std::filesystem::path(args.output);
+        if (reference) {
+            // The exact image: ray cast and shaded in double (and, with --components, each term alone).
+            facet::ReferenceStats stats;
+            referenceOptions.terms = terms;
+            facet::writeImage(output,
+                              facet::renderReference(prepared, referenceOptions, context.pool, &stats),
+                              prepared.encoding);
+            written.push_back(output);
+            if (stats.surfaceHits == 0 && emptyFrames++ == 0) firstEmpty = output;
+            if (args.stats) printReferenceStats(frame, stats);
+            if (args.components) {
+                for (const facet::EnumName<facet::LightingTerm>& term : facet::kLightingTermNames) {
+                    referenceOptions.terms = term.value;
+                    written.push_back(componentPath(output, term.name));
+                    facet::writeImage(written.back(),
+                                      facet::renderReference(prepared, referenceOptions, context.pool),
+                                      prepared.encoding);
+                }
+            }
+            continue;
+        }
         const facet::FrameStats stats = facet::renderFrame(prepared, framebuffer, context, memory, terms);
         total += stats.draw;
         if (stats.draw.fragmentsWritten + stats.draw.fragmentsStored == 0 && emptyFrames++ == 0) {
@@ -190,7 +245,11 @@ int render(const RenderArgs& args) {
         }
     }
     const auto rendered = std::chrono::steady_clock::now();
-    if (emptyFrames > 0)
+    if (emptyFrames > 0 && reference)
+        std::cerr << "facet: warning: " << firstEmpty.string()
+                  << ": no ray met a surface, only the background is seen; the camera may look away from the "
+                     "model\n";
+    else if (emptyFrames > 0)
         std::cerr << "facet: warning: "
                   << emptyFrameWarning(emptyFrames == 1
                                            ? firstEmpty.string() + ":"
@@ -210,8 +269,13 @@ int render(const RenderArgs& args) {
                   << " triangles";
         if (prepared.degenerateSkipped)
             std::cout << ", " << prepared.degenerateSkipped << " degenerate skipped";
-        std::cout << ", " << total.fragmentsShaded << " fragments shaded, " << static_cast<long>(ms + 0.5)
-                  << " ms including loading)\n";
+        if (reference)
+            std::cout << ", reference renderer, " << referenceOptions.samples << "x"
+                      << referenceOptions.samples << " rays per pixel, " << static_cast<long>(ms + 0.5)
+                      << " ms including loading)\n";
+        else
+            std::cout << ", " << total.fragmentsShaded << " fragments shaded, " << static_cast<long>(ms + 0.5)
+                      << " ms including loading)\n";
         if (!args.frames)
             for (std::size_t k = 1; k < written.size(); ++k)
                 std::cout << "facet: wrote " << written[k].string() << " ("

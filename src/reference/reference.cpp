@@ -1,0 +1,251 @@
+#include "reference/reference.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "pipeline/blend.h"
+#include "raycast/ray_scene.h"
+#include "shaders/shaders.h"
+
+namespace facet {
+
+namespace {
+
+using glm::dmat3;
+using glm::dmat4;
+using glm::dvec2;
+using glm::dvec3;
+using glm::dvec4;
+
+// A draw as the reference shades it: its corners in eye space in double, and uniforms asking for the
+// exact formulas.
+struct ReferenceDraw {
+    std::vector<dvec3> positions;  // eye space
+    std::vector<dvec3> normals;    // eye space, not unit length (the shader normalises)
+    std::vector<dvec2> uvs;
+    SurfaceUniforms uniforms;
+};
+
+ReferenceDraw referenceDraw(const PreparedDraw& draw, const SceneShadows* shadows, std::uint8_t terms) {
+    ReferenceDraw out;
+    const dmat4& viewFromObject = draw.viewFromObjectExact;
+    // Normals transform by the inverse transpose; its scale does not matter (they are normalised).
+    const dmat3 normalFromObject = glm::transpose(glm::inverse(dmat3(viewFromObject)));
+    out.positions.reserve(draw.vertices.size());
+    out.normals.reserve(draw.vertices.size());
+    out.uvs.reserve(draw.vertices.size());
+    for (const MeshVertex& v : draw.vertices) {
+        out.positions.push_back(dvec3(viewFromObject * dvec4(dvec3(v.position), 1.0)));
+        out.normals.push_back(normalFromObject * dvec3(v.normal));
+        out.uvs.push_back(dvec2(v.uv));
+    }
+    out.uniforms = draw.uniforms;
+    out.uniforms.precision = MathPrecision::Exact;    // std::pow and std::exp, in double
+    out.uniforms.brdf.fresnel = FresnelModel::Exact;  // the exact dielectric Fresnel, not Schlick's
+    out.uniforms.shadows = shadows;                   // ray-cast, whatever the scene's method
+    out.uniforms.terms = terms;
+    return out;
+}
+
+// The ray o + t·d meets triangle (a, b, c) where t and the barycentrics (1 − u − v, u, v) solve
+// o + t·d = a + u·(b − a) + v·(c − a) (Möller & Trumbore 1997), here in double. Embree decided that the
+// ray hits this triangle; a hit it found on an edge may come out a hair outside in double, so the
+// barycentrics are clamped onto the triangle.
+struct Barycentric {
+    double t;
+    dvec3 weights;  // of a, b, c
+};
+Barycentric intersect(const dvec3& o, const dvec3& d, const dvec3& a, const dvec3& b, const dvec3& c,
+                      double embreeT) {
+    const dvec3 e1 = b - a, e2 = c - a;
+    const dvec3 p = glm::cross(d, e2);
+    const double det = glm::dot(e1, p);
+    if (!(std::abs(det) > 0.0) || !std::isfinite(det)) {
+        // Degenerate in double (Embree found it in float): the point Embree reported, weights equal.
+        return {embreeT, dvec3(1.0 / 3.0)};
+    }
+    const double inverse = 1.0 / det;
+    const dvec3 s = o - a;
+    double u = glm::dot(s, p) * inverse;
+    const dvec3 q = glm::cross(s, e1);
+    double v = glm::dot(d, q) * inverse;
+    const double t = glm::dot(e2, q) * inverse;
+    u = std::max(u, 0.0);
+    v = std::max(v, 0.0);
+    if (u + v > 1.0) {
+        const double sum = u + v;
+        u /= sum;
+        v /= sum;
+    }
+    return {t, dvec3(1.0 - u - v, u, v)};
+}
+
+// Sample (i, j) of pixel (x, y) on an N×N grid: one point per cell, at a position within its cell from a
+// hash of the five numbers (so the image is the same whatever thread traces it); the cell centre for N = 1.
+dvec2 samplePosition(int x, int y, int i, int j, int n) {
+    if (n == 1) return {x + 0.5, y + 0.5};
+    std::uint64_t h = (std::uint64_t(std::uint32_t(x)) << 32) ^ std::uint32_t(y);
+    h ^= (std::uint64_t(i) << 48) ^ (std::uint64_t(j) << 40) ^ 0x9e3779b97f4a7c15ull;
+    // splitmix64's finaliser: well mixed bits from nearby inputs.
+    const auto mix = [](std::uint64_t z) {
+        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+        return z ^ (z >> 31);
+    };
+    const std::uint64_t a = mix(h), b = mix(h + 0x632be59bd9b4e019ull);
+    const double jitterX = double(a >> 11) * 0x1.0p-53, jitterY = double(b >> 11) * 0x1.0p-53;
+    return {x + (i + jitterX) / n, y + (j + jitterY) / n};
+}
+
+struct Ray {
+    dvec3 origin;
+    dvec3 direction;  // its z is −1: t is the eye-space depth
+    double tnear, tfar;
+};
+
+}  // namespace
+
+LinearImage renderReference(const PreparedScene& prepared, const ReferenceOptions& options, ThreadPool& pool,
+                            ReferenceStats* stats) {
+    const int n = std::clamp(options.samples, 1, kMaxReferenceSamples);
+    const int width = prepared.scene.width, height = prepared.scene.height;
+
+    // The BVHs, of the scene as placed now.
+    std::vector<std::vector<vec3>> positions;
+    const std::vector<RayMesh> meshes = rayMeshes(prepared, positions);
+    const RayScene rays(meshes);
+
+    // Shadows: every light that casts them, by a ray.
+    SceneShadows shadows;
+    shadows.rays = &rays;
+    shadows.rayOffset = kShadowRayOffset * prepared.sceneExtent;
+    bool anyShadows = false;
+    for (std::size_t i = 0; i < kMaxLights; ++i) {
+        if (prepared.shadowMethods[i] == ShadowMethod::None) continue;
+        shadows.lights[i].method = ShadowMethod::Ray;
+        anyShadows = true;
+    }
+    std::vector<ReferenceDraw> draws;
+    draws.reserve(prepared.draws.size());
+    for (const PreparedDraw& d : prepared.draws)
+        draws.push_back(referenceDraw(d, anyShadows ? &shadows : nullptr, options.terms));
+
+    // Camera rays: from the eye through the near plane's point of each sample, t from near to far.
+    const Camera& camera = prepared.camera;
+    const dmat4 viewFromClip = glm::inverse(camera.clipFromViewExact);
+    const auto eyePoint = [&](double ndcX, double ndcY, double ndcZ) {
+        const dvec4 p = viewFromClip * dvec4(ndcX, ndcY, ndcZ, 1.0);
+        return dvec3(p) / p.w;
+    };
+    const double nearDepth = -eyePoint(0.0, 0.0, -1.0).z, farDepth = -eyePoint(0.0, 0.0, 1.0).z;
+    const auto cameraRay = [&](dvec2 window) {
+        const double ndcX = 2.0 * window.x / width - 1.0, ndcY = 1.0 - 2.0 * window.y / height;
+        const dvec3 onNear = eyePoint(ndcX, ndcY, -1.0);
+        return Ray{dvec3(0.0), onNear / -onNear.z, nearDepth, farDepth};
+    };
+    const RayScene::Culling culling{prepared.state.raster.cull == CullMode::Back,
+                                    prepared.state.raster.cull == CullMode::Front};
+    // The rasterizer's front faces are counter-clockwise in window space (y down): seen from the eye
+    // that is counter-clockwise too, as RayScene counts it.
+    const dvec4 background(prepared.clearColor);
+
+    // The colour seen along one ray, and the shading of one hit.
+    const auto shadeHit = [&](const Ray& ray, const RayHit& hit) {
+        const ReferenceDraw& draw = draws[hit.mesh];
+        const std::uint32_t* corner = &prepared.draws[hit.mesh].indices[3 * hit.triangle];
+        const Barycentric b = intersect(ray.origin, ray.direction, draw.positions[corner[0]],
+                                        draw.positions[corner[1]], draw.positions[corner[2]], hit.t);
+        PerPixelSurface::VaryingsT<double> in;
+        in.position = b.weights.x * draw.positions[corner[0]] + b.weights.y * draw.positions[corner[1]] +
+                      b.weights.z * draw.positions[corner[2]];
+        in.normal = b.weights.x * draw.normals[corner[0]] + b.weights.y * draw.normals[corner[1]] +
+                    b.weights.z * draw.normals[corner[2]];
+        in.uv = b.weights.x * draw.uvs[corner[0]] + b.weights.y * draw.uvs[corner[1]] +
+                b.weights.z * draw.uvs[corner[2]];
+        return PerPixelSurface::shade<double>(in, draw.uniforms, 1u);
+    };
+
+    const auto start = std::chrono::steady_clock::now();
+    LinearImage image;
+    image.width = width;
+    image.height = height;
+    image.pixels.assign(static_cast<std::size_t>(width) * height, vec4(0.0f));
+    std::atomic<std::uint64_t> transparentHits{0}, surfaceHits{0};
+    const bool anyTransparent = rays.hasTransparent();
+    const std::size_t samplesPerPixel = static_cast<std::size_t>(n) * n;
+
+    if (options.nearestSurfaces && n == 1)
+        options.nearestSurfaces->assign(static_cast<std::size_t>(width) * height, RayHit{});
+    pool.parallelFor(static_cast<std::size_t>(height), [&](std::size_t row, int) {
+        const int y = static_cast<int>(row);
+        std::vector<Ray> rowRays(static_cast<std::size_t>(width) * samplesPerPixel);
+        std::vector<RayHit> opaque(rowRays.size());
+        std::vector<RayHit> see;
+        std::uint64_t rowTransparentHits = 0, rowSurfaceHits = 0;
+        for (int x = 0; x < width; ++x)
+            for (int j = 0; j < n; ++j)
+                for (int i = 0; i < n; ++i)
+                    rowRays[(static_cast<std::size_t>(x) * n + j) * n + i] =
+                        cameraRay(samplePosition(x, y, i, j, n));
+        // The nearest opaque surface of eight rays at a time.
+        for (std::size_t first = 0; first < rowRays.size(); first += 8) {
+            const std::size_t count = std::min<std::size_t>(8, rowRays.size() - first);
+            dvec3 origins[8], directions[8];
+            double tnear[8], tfar[8];
+            for (std::size_t k = 0; k < count; ++k) {
+                origins[k] = rowRays[first + k].origin;
+                directions[k] = rowRays[first + k].direction;
+                tnear[k] = rowRays[first + k].tnear;
+                tfar[k] = rowRays[first + k].tfar;
+            }
+            rays.nearestOpaque8(origins, directions, tnear, tfar, (1u << count) - 1u, culling,
+                                &opaque[first]);
+        }
+        // Each sample's colour: the opaque surface (or the background), then every see-through surface
+        // in front of it, farthest first; the pixel is their mean.
+        for (int x = 0; x < width; ++x) {
+            dvec4 sum(0.0);
+            for (std::size_t s = 0; s < samplesPerPixel; ++s) {
+                const std::size_t k = static_cast<std::size_t>(x) * samplesPerPixel + s;
+                const Ray& ray = rowRays[k];
+                dvec4 color = background;
+                if (opaque[k].hit()) {
+                    color = shadeHit(ray, opaque[k]);
+                    ++rowSurfaceHits;
+                }
+                if (anyTransparent) {
+                    const double until = opaque[k].hit() ? double(opaque[k].t) : ray.tfar;
+                    rays.allTransparent(ray.origin, ray.direction, ray.tnear, until, culling, see);
+                    rowTransparentHits += see.size();
+                    if (!opaque[k].hit() && !see.empty()) ++rowSurfaceHits;
+                    for (auto hit = see.rbegin(); hit != see.rend(); ++hit)
+                        color = blend(prepared.draws[hit->mesh].uniforms.blend, shadeHit(ray, *hit), color);
+                }
+                sum += color;
+            }
+            image.at(x, y) = vec4(sum / double(samplesPerPixel));
+        }
+        if (options.nearestSurfaces && n == 1)
+            std::copy(opaque.begin(), opaque.end(),
+                      options.nearestSurfaces->begin() + static_cast<std::ptrdiff_t>(row) * width);
+        transparentHits += rowTransparentHits;
+        surfaceHits += rowSurfaceHits;
+    });
+
+    if (stats) {
+        stats->buildMilliseconds = rays.stats().buildMilliseconds;
+        stats->renderMilliseconds =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        stats->cameraRays = static_cast<std::uint64_t>(width) * height * samplesPerPixel;
+        stats->transparentHits = transparentHits;
+        stats->surfaceHits = surfaceHits;
+        stats->nonFiniteSkipped = rays.stats().nonFiniteSkipped;
+    }
+    return image;
+}
+
+}  // namespace facet

@@ -1,0 +1,62 @@
+// The exact reference renderer: the same prepared scene as the rasterizer (objects, materials, lights,
+// textures, fog, gamma), but visibility decided by casting rays through Embree and every number of the
+// shading computed in double. It is the image that the rasterizer's approximations are scored against
+// (docs/reference.md):
+//   - N×N samples per pixel on a stratified grid (one jittered sample per cell; the cell centre when N = 1,
+//     the pixel centre, where the rasterizer samples), averaged with a box filter in linear light;
+//   - camera rays in packets of eight, from the eye through the sample, limited to [near, far] as the
+//     rasterizer's clipping is; faces culled as the scene's pipeline culls them;
+//   - the hit point, barycentrics, normal and texture coordinates recomputed in double from the triangle
+//     Embree reports; shaded with the rasterizer's own per-pixel surface shader instantiated for double,
+//     pow and exp exact, Fresnel exact, at every hit (per-pixel lighting whatever the draw's frequency);
+//   - transparency exact: every see-through surface on the ray, composited in depth order over the
+//     nearest opaque one, each with its own blend;
+//   - shadows from every light that casts them, always by a ray to the light (never a map).
+#pragma once
+
+#include <cstdint>
+
+#include "io/image_io.h"
+#include "pipeline/names.h"
+#include "pipeline/thread_pool.h"
+#include "render/renderer.h"
+
+namespace facet {
+
+// Which renderer makes the image (facet render --renderer).
+enum class RendererKind {
+    Rasterizer,  // Facet's pipeline: fast, the approximations the scene asks for
+    Reference,   // this: ray casting, double precision, no approximation
+};
+inline constexpr EnumName<RendererKind> kRendererKindNames[] = {{RendererKind::Rasterizer, "rasterizer"},
+                                                                {RendererKind::Reference, "reference"}};
+constexpr std::span<const EnumName<RendererKind>> enumNames(RendererKind) {
+    return kRendererKindNames;
+}
+
+struct ReferenceOptions {
+    int samples = 4;                 // N: N×N rays per pixel
+    std::uint8_t terms = kAllTerms;  // LightingTerm bits: the terms drawn (a component image: one)
+    // When set (and samples = 1): per pixel, row by row, the nearest opaque surface its centre's ray met
+    // (RayHit::mesh is the draw's index in PreparedScene::draws; no hit: RayHit{}), for comparing which
+    // surface each pixel shows with the rasterizer's.
+    std::vector<RayHit>* nearestSurfaces = nullptr;
+};
+inline constexpr int kMaxReferenceSamples = 16;  // 256 rays per pixel
+
+struct ReferenceStats {
+    double buildMilliseconds = 0;   // the BVHs
+    double renderMilliseconds = 0;  // tracing and shading, BVH excluded
+    std::uint64_t cameraRays = 0;
+    std::uint64_t shadowRays = 0;
+    std::uint64_t surfaceHits = 0;  // samples whose ray met any surface (0: only the background)
+    std::uint64_t transparentHits = 0;
+    std::size_t nonFiniteSkipped = 0;  // triangles with a non-finite corner in eye space, left out
+};
+
+// The scene as prepared (and turned) now, traced. `pool` spreads rows over threads; the image is the
+// same for any thread count.
+LinearImage renderReference(const PreparedScene& prepared, const ReferenceOptions& options, ThreadPool& pool,
+                            ReferenceStats* stats = nullptr);
+
+}  // namespace facet
