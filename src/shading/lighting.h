@@ -288,6 +288,7 @@ template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exac
             r.attenuation = attenuation(light, toLight.distance);
             r.reach = reach;
             r.visibility = visibility ? visibility[&light - lights.data()] : 1.0f;
+            r.shadowTested = visibility != nullptr;
             r.NdotL = NdotL;
             r.cosine = cosine;
             r.grazing = !(NdotL > kGrazingCosine);
@@ -584,6 +585,7 @@ LightingTerms<V3> physicallyBasedTerms(const V3& position, const V3& normal, con
             r.attenuation = falloff;
             r.reach = irradiance;
             r.visibility = visibility ? visibility[&light - lights.data()] : 1.0f;
+            r.shadowTested = visibility != nullptr;
             r.NdotL = dot(N, toLight.L);
             r.grazing = r.brdf.grazing;
             r.incoming = incoming;
@@ -607,7 +609,8 @@ struct LightRecord {
     SpotRecord spot{};
     // Standard equation: att·spot. Cook-Torrance: the irradiance factor falloff·spot·max(N·L, 0)·v.
     float reach = 1;
-    float visibility = 1;  // v: the share of the light that reaches the point (shadows); 1 without
+    float visibility = 1;       // v: the share of the light that reaches the point (shadows); 1 without
+    bool shadowTested = false;  // some light of the scene casts shadows: v was computed
     float NdotL = 0;
     // Standard equation's specular: R = 2(N·L)N − L (Phong) or H = normalize(L + V) (Blinn-Phong), the
     // cosine R·V or N·H, and spec = max(cosine, 0)^n, 0 when grazing (N·L ≤ kGrazingCosine).

@@ -275,6 +275,18 @@ void writeTerm(Lines& out, const std::string& name, const std::string& symbols, 
     out.add("  " + pad + " = " + rgb(value));
 }
 
+// The shadow test's verdict for one light (shaders/shadowing.h): a ray from the point towards the light,
+// or a shadow map's share of lit taps.
+void writeShadow(Lines& out, const LightRecord& r) {
+    if (r.visibility == 1.0f)
+        out.add("  shadow: nothing blocks the light from P (or it casts none): v = 1");
+    else if (r.visibility == 0.0f)
+        out.add("  shadow: another surface blocks the light from P: v = 0, no diffuse or specular from it");
+    else
+        out.add("  shadow: the shadow map's filter finds " + num(r.visibility) +
+                " of its taps lit: v = " + num(r.visibility));
+}
+
 void writeStandardLight(Lines& out, const LightingRecord& lighting, const LightRecord& r) {
     const LightParams& light = r.light;
     writeLightPosition(out, r);
@@ -303,12 +315,16 @@ void writeStandardLight(Lines& out, const LightingRecord& lighting, const LightR
     const std::string reach = num(r.attenuation) + "·" + num(r.spot.factor);
     writeTerm(out, "ambient", "att·spot·l_a⊗m_a",
               reach + "·" + rgb(light.ambient) + "⊗" + rgb(lighting.materialAmbient), r.ambient);
+    // With shadows, v (the share of the light that reaches P) scales the diffuse and specular terms.
+    const std::string v = r.shadowTested ? "·v" : "";
+    const std::string lit = r.shadowTested ? reach + "·" + num(r.visibility) : reach;
+    if (r.shadowTested) writeShadow(out, r);
     writeTerm(
-        out, "diffuse", "att·spot·max(N·L,0)·l_d⊗m_d",
-        reach + "·max(" + num(r.NdotL) + ", 0)·" + rgb(light.diffuse) + "⊗" + rgb(lighting.materialDiffuse),
+        out, "diffuse", "att·spot" + v + "·max(N·L,0)·l_d⊗m_d",
+        lit + "·max(" + num(r.NdotL) + ", 0)·" + rgb(light.diffuse) + "⊗" + rgb(lighting.materialDiffuse),
         r.diffuse);
-    writeTerm(out, "specular", "att·spot·spec·l_s⊗m_s",
-              reach + "·" + num(r.spec) + "·" + rgb(light.specular) + "⊗" + rgb(lighting.materialSpecular),
+    writeTerm(out, "specular", "att·spot" + v + "·spec·l_s⊗m_s",
+              lit + "·" + num(r.spec) + "·" + rgb(light.specular) + "⊗" + rgb(lighting.materialSpecular),
               r.specular);
 }
 
@@ -367,8 +383,15 @@ void writePhysicallyBasedLight(Lines& out, const LightingRecord& lighting, const
         out.add("  falloff = 1/d² = 1/" + num(r.distance) + "² = " + num(r.attenuation));
     writeSpot(out, r);
     out.add("  N·L = " + num(r.NdotL));
-    out.add("  irradiance factor = falloff·spot·max(N·L,0) = " + num(r.attenuation) + "·" +
-            num(r.spot.factor) + "·max(" + num(r.NdotL) + ", 0) = " + num(r.reach));
+    if (r.shadowTested) {
+        writeShadow(out, r);
+        out.add("  irradiance factor = falloff·spot·max(N·L,0)·v = " + num(r.attenuation) + "·" +
+                num(r.spot.factor) + "·max(" + num(r.NdotL) + ", 0)·" + num(r.visibility) + " = " +
+                num(r.reach));
+    } else {
+        out.add("  irradiance factor = falloff·spot·max(N·L,0) = " + num(r.attenuation) + "·" +
+                num(r.spot.factor) + "·max(" + num(r.NdotL) + ", 0) = " + num(r.reach));
+    }
     writeBrdf(out, lighting, r.brdf);
     writeTerm(out, "incoming", "π·c_light·irradiance factor", "π·" + rgb(light.diffuse) + "·" + num(r.reach),
               r.incoming);
@@ -677,6 +700,8 @@ nlohmann::json toJson(const LightRecord& r, bool physicallyBased) {
                           {"cosOuter", r.spot.cosOuter},
                           {"factor", r.spot.factor}}},
                         {"NdotL", r.NdotL},
+                        {"shadowTested", r.shadowTested},
+                        {"visibility", r.visibility},
                         {"ambient", json3(r.ambient)},
                         {"diffuse", json3(r.diffuse)},
                         {"specular", json3(r.specular)}};
