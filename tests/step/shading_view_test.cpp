@@ -126,9 +126,10 @@ void traceEveryFragment(Scene scene, ShadingChecker& checker) {
 TEST(ShadingView, RecomputedShadingIsThePipelinesOutputBitForBit) {
     std::uint64_t total = 0;
     // The bundled scenes, then two of the conformance scenes on the shared models (blends, the GL preset).
-    std::vector<std::string> scenes{"models/example-scene.json", "models/lighting-scene.json",
-                                    "models/fog-and-glass.json", "models/intersecting-quads.json",
-                                    "tests/conformance/scenes/facet-emission-map-cubes.json"};
+    std::vector<std::string> scenes{
+        "models/example-scene.json", "models/lighting-scene.json",
+        "models/fog-and-glass.json", "models/intersecting-quads.json",
+        "models/shadows.json",       "tests/conformance/scenes/facet-emission-map-cubes.json"};
     if (std::filesystem::exists(FACET_SHARED_MODELS)) {
         scenes.push_back("tests/conformance/scenes/facet-blend-modes-spheres.json");
         scenes.push_back("tests/conformance/scenes/gl-fog-exp-transparent-teapots.json");
@@ -262,6 +263,43 @@ TEST(ShadingView, ScreensShowTheNumbersSubstituted) {
     EXPECT_FLOAT_EQ(json["lighting"]["lights"][0]["attenuation"].get<float>(), 1.0f / 3.0f);
     EXPECT_FLOAT_EQ(json["fog"]["f"].get<float>(), 0.75f);
     EXPECT_EQ(json["output"]["matchesPipeline"], true);
+}
+
+// A triangle between the point and the light: the lighting screen says the ray to the light is blocked,
+// v = 0 in the diffuse and specular terms, and the terms are 0 (the ambient term stays).
+TEST(ShadingView, ShadowRayOnTheScreen) {
+    SurfaceUniforms u = handBuiltUniforms();
+    u.fog.mode = FogMode::None;
+    // The light is at P + 2·L = (1.2, 0, −0.4); the plane z = −1.2 lies across the way.
+    const vec3 corners[] = {vec3(-5.0f, -5.0f, -1.2f), vec3(5.0f, -5.0f, -1.2f), vec3(0.0f, 5.0f, -1.2f)};
+    const std::uint32_t indices[] = {0, 1, 2};
+    const RayMesh mesh{corners, indices, true};
+    const RayScene rays(std::span<const RayMesh>(&mesh, 1));
+    SceneShadows shadows;
+    shadows.rays = &rays;
+    shadows.rayOffset = 1e-4f;
+    shadows.lights[0].method = ShadowMethod::Ray;
+    u.shadows = &shadows;
+    const ShadingTrace trace = traceShading(u, ShadingFrequency::Phong, handBuiltFragment(u), {}, 2);
+    EXPECT_TRUE(trace.matchesPipeline);
+    const std::string lighting = screenText(shadingScreens(trace), "lighting");
+    EXPECT_NE(lighting.find("shadow: another surface blocks the light from P: v = 0"), std::string::npos)
+        << lighting;
+    EXPECT_NE(lighting.find("diffuse = att·spot·v·max(N·L,0)·l_d⊗m_d\n"
+                            "          = 0.3333·1·0·max(0.8, 0)"),
+              std::string::npos)
+        << lighting;
+    EXPECT_EQ(toJson(trace)["lighting"]["lights"][0]["visibility"].get<float>(), 0.0f);
+    // The plane moved behind the light: nothing blocks it.
+    const vec3 beyond[] = {vec3(-5.0f, -5.0f, 0.5f), vec3(5.0f, -5.0f, 0.5f), vec3(0.0f, 5.0f, 0.5f)};
+    const RayMesh behind{beyond, indices, true};
+    const RayScene clear(std::span<const RayMesh>(&behind, 1));
+    shadows.rays = &clear;
+    const std::string lit = screenText(
+        shadingScreens(traceShading(u, ShadingFrequency::Phong, handBuiltFragment(u), {}, 2)), "lighting");
+    EXPECT_NE(lit.find("shadow: nothing blocks the light from P (or it casts none): v = 1"),
+              std::string::npos)
+        << lit;
 }
 
 TEST(ShadingView, PhongReflectionAndSpotConeOnTheScreen) {
