@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The five exercises of docs/teaching.md still show their answers: each command the page gives is run
+# The six exercises of docs/teaching.md still show their answers: each command the page gives is run
 # and every number or phrase the page quotes from its screens must be in the output. When a change
 # moves an answer (a renumbered triangle, a retitled screen), this fails and the page must follow.
 # Run by ctest as Docs.TeachingExercisesShowTheirAnswers: teaching_exercises.sh FACET SOURCE_DIR.
@@ -62,6 +62,12 @@ shows "triangle 5 (transparent, drawn 2.): depth 0.977708" "${unsorted[@]}" --pr
 shows "Blending: the over operator" "${unsorted[@]}" --print
 shows "c_o = α·c_s + (1 − α)·c_d" "${unsorted[@]}" --print
 shows "mixed triangle 5's colour" "${unsorted[@]}" --versus "--transparency sorted"
+
+# 6. Why is this part of the ground dark?
+shadow=(models/shadows.json --pixel 600,400)
+shows "shadow: another surface blocks the light from P: v = 0" "${shadow[@]}" --print
+shows "shadow: nothing blocks the light from P (or it casts none): v = 1" "${shadow[@]}" --print
+shows "att·spot·v·max(N·L,0)·l_d⊗m_d" "${shadow[@]}" --print
 
 if [ $failures -ne 0 ]; then
     echo "$failures quotes of docs/teaching.md are not in facet step's output"
