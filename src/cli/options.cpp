@@ -210,9 +210,12 @@ void applyLightingOptions(const SceneArgs& args, facet::Scene& scene) {
          {std::tuple{"--shadow-bias", args.shadowBias, &scene.shadowMap.constantBias},
           std::tuple{"--shadow-slope-bias", args.shadowSlopeBias, &scene.shadowMap.slopeBias}}) {
         if (!value) continue;
-        if (!(*value >= 0.0f && *value <= 1e6f))
-            throw facet::InputError(std::string(name) + " must be from 0 to 1e6 (got " +
-                                    std::to_string(*value) + ")");
+        if (!(*value >= 0.0f && *value <= 1e6f)) {
+            // The value as typed (-1, not std::to_string's -1.000000).
+            std::ostringstream message;
+            message << name << " must be from 0 to 1e6 (got " << *value << ")";
+            throw facet::InputError(message.str());
+        }
         *field = *value;
     }
     if (args.shadowFilter) {

@@ -62,6 +62,7 @@ struct RayScene::Impl {
         std::vector<std::uint32_t> meshOfGeometry;
         std::vector<std::vector<std::uint32_t>> triangleOfPrimitive;
         std::vector<std::vector<vec3>> corners;
+        std::vector<std::uint32_t> geometryOfMesh;  // per mesh given: its geometry here, or kNone
     };
     Side sides[2];  // 0 opaque, 1 transparent
 
@@ -171,6 +172,8 @@ RayScene::RayScene(std::span<const RayMesh> meshes) : impl_(std::make_unique<Imp
             side.corners.resize(id + 1);
         }
         side.meshOfGeometry[id] = static_cast<std::uint32_t>(m);
+        side.geometryOfMesh.resize(meshes.size(), RayHit::kNone);
+        side.geometryOfMesh[m] = id;
         side.triangleOfPrimitive[id] = std::move(kept);
         side.corners[id] = std::move(corners);
         if (!mesh.opaque) impl_->anyTransparent = true;
@@ -308,11 +311,41 @@ void RayScene::allTransparent(const glm::dvec3& origin, const glm::dvec3& direct
         if (a.mesh != b.mesh) return a.mesh < b.mesh;
         return a.triangle < b.triangle;
     });
-    hits.erase(std::unique(hits.begin(), hits.end(),
-                           [](const RayHit& a, const RayHit& b) {
-                               return a.mesh == b.mesh && a.triangle == b.triangle;
-                           }),
-               hits.end());
+    // One crossing of a surface is listed once: a triangle met twice (a high-quality BVH may hold it in
+    // two leaves), and the triangles of one mesh met at the same t through a corner they share (a ray
+    // through a shared edge or vertex: robust mode reports every triangle around it), which would
+    // otherwise blend one pane twice along its edges. Same t: within a few float ulps, as each triangle's
+    // t comes from its own plane.
+    const auto cornersOf = [&](const RayHit& hit) {
+        const std::uint32_t geometry = side.geometryOfMesh[hit.mesh];
+        const std::vector<std::uint32_t>& triangles = side.triangleOfPrimitive[geometry];
+        const auto primitive = static_cast<std::size_t>(
+            std::lower_bound(triangles.begin(), triangles.end(), hit.triangle) - triangles.begin());
+        return &side.corners[geometry][3 * primitive];
+    };
+    const auto sameCrossing = [&](const RayHit& a, const RayHit& b) {
+        if (a.mesh != b.mesh) return false;
+        if (a.triangle == b.triangle) return true;
+        const vec3* p = cornersOf(a);
+        const vec3* q = cornersOf(b);
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                if (p[i] == q[j]) return true;
+        return false;
+    };
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < hits.size(); ++i) {
+        bool duplicate = false;
+        // Sorted by t: the hits at about the same t are the last ones kept.
+        const float sameT = 4.0f * std::numeric_limits<float>::epsilon() * std::abs(hits[i].t);
+        for (std::size_t k = kept; k-- > 0 && hits[i].t - hits[k].t <= sameT;)
+            if (sameCrossing(hits[k], hits[i])) {
+                duplicate = true;
+                break;
+            }
+        if (!duplicate) hits[kept++] = hits[i];
+    }
+    hits.resize(kept);
 }
 
 }  // namespace facet

@@ -70,7 +70,8 @@ class RayScene {
     void nearestOpaque8(const glm::dvec3* origins, const glm::dvec3* directions, const double* tnear,
                         const double* tfar, unsigned lanes, Culling culling, RayHit* hits) const;
     // Every see-through triangle on the ray with t in (tnear, tfar), nearest first (ties in mesh, then
-    // triangle order); a triangle met twice (a ray through a shared edge) is listed once.
+    // triangle order); each crossing of a surface once: a triangle met twice, or the triangles of one
+    // mesh around an edge or vertex they share, met there at the same t, are listed once (the first).
     void allTransparent(const glm::dvec3& origin, const glm::dvec3& direction, double tnear, double tfar,
                         Culling culling, std::vector<RayHit>& hits) const;
 

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <iterator>
+#include <optional>
 #include <set>
 #include <tuple>
 
@@ -196,12 +197,32 @@ LightSpec readLight(const SceneReader& reader, const Json& light, const std::str
     if (const Json* v = reader.find(light, "space")) {
         spec.cameraRelative = reader.choice(*v, childPath(path, "space"), kLightSpaces) == 1;
     }
-    // "shadows": a method's name, or true (a ray, the exact test) and false (none).
+    // "shadows": a method's name, or true (a ray, the exact test) and false (none). The message of a
+    // wrong value lists the booleans too, which a plain choice of names would not.
     if (const Json* v = reader.find(light, "shadows")) {
+        std::optional<ShadowMethod> method;
         if (v->is_boolean())
-            spec.shadows = v->get<bool>() ? ShadowMethod::Ray : ShadowMethod::None;
-        else
-            spec.shadows = reader.enumChoice<ShadowMethod>(*v, childPath(path, "shadows"));
+            method = v->get<bool>() ? ShadowMethod::Ray : ShadowMethod::None;
+        else if (v->is_string())
+            method = parseName<ShadowMethod>(v->get<std::string>());
+        if (!method) {
+            const std::vector<std::string> names = namesOf<ShadowMethod>();
+            std::string message = inQuotes(childPath(path, "shadows"));
+            message += " must be";
+            for (const std::string& name : names) {
+                message += ' ';
+                message += inQuotes(name);
+                message += ',';
+            }
+            message += " true (a ray) or false (none) (got ";
+            message += describe(*v);
+            message += ')';
+            if (v->is_string())
+                message += suggestion(v->get<std::string>(),
+                                      std::vector<std::string_view>(names.begin(), names.end()));
+            reader.fail(message);
+        }
+        spec.shadows = *method;
     }
     return spec;
 }
