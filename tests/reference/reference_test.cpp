@@ -9,6 +9,7 @@
 
 #include "reference/reference.h"
 #include "render/renderer.h"
+#include "support/analytic_shadow.h"
 #include "support/temp_folder.h"
 
 namespace facet {
@@ -223,6 +224,34 @@ TEST_F(ReferenceTest, NonFiniteTrianglesAreLeftOut) {
     EXPECT_GT(stats.surfaceHits, 500u);
     for (const glm::vec4& p : image.pixels)
         ASSERT_TRUE(std::isfinite(p.r) && std::isfinite(p.g) && std::isfinite(p.b) && std::isfinite(p.a));
+}
+
+}  // namespace
+}  // namespace facet
+
+namespace facet {
+namespace {
+
+class ReferenceShadowTest : public analytic_shadow::ShadowTest {};
+
+// The reference's shadow where geometry puts it: every ground pixel more than 1.5 px from the outline of
+// the square projected from the light is dark inside and lit outside, as in the rasterizer's test
+// (tests/render/shadow_test.cpp) — at one sample per pixel, and at 4×4 (whose box filter only blurs the
+// outline, within the margin). Breaks if the reference ignores the scene's shadowing lights.
+TEST_F(ReferenceShadowTest, RayShadowIsTheSquareProjectedFromTheLight) {
+    using namespace analytic_shadow;
+    const AnalyticShadowScene scene = floatingSquare();
+    const PreparedScene prepared = prepareScene(loadScene(writeScene(scene, "\"ray\"")));
+    const std::vector<GroundPixel> pixels = checkedPixels(scene, prepared);
+    const double threshold = darkLitThreshold(prepared, pixels);
+    ThreadPool pool(2);
+    for (int samples : {1, 4}) {
+        const LinearImage image = renderReference(prepared, {.samples = samples}, pool);
+        EXPECT_EQ(shadowDisagreements(image, pixels, threshold), 0u) << samples << "x" << samples;
+    }
+    // The same scene asking for a shadow map: the reference still casts rays.
+    const PreparedScene mapped = prepareScene(loadScene(writeScene(scene, "\"map\"")));
+    EXPECT_EQ(shadowDisagreements(renderReference(mapped, {.samples = 1}, pool), pixels, threshold), 0u);
 }
 
 }  // namespace
