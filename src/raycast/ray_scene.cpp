@@ -247,7 +247,9 @@ void RayScene::nearestOpaque8(const glm::dvec3* origins, const glm::dvec3* direc
     alignas(32) int valid[8];
     alignas(32) RTCRayHit8 rays{};
     for (int i = 0; i < 8; ++i) {
-        const bool traced = (lanes >> i) & 1;
+        // A ray with a non-finite origin, direction or range is never handed to Embree: it meets nothing.
+        const bool traced = ((lanes >> i) & 1) && finite(vec3(origins[i])) && finite(vec3(directions[i])) &&
+                            std::isfinite(float(tnear[i])) && !std::isnan(tfar[i]) && tnear[i] <= tfar[i];
         valid[i] = traced ? -1 : 0;
         rays.ray.org_x[i] = traced ? float(origins[i].x) : 0.0f;
         rays.ray.org_y[i] = traced ? float(origins[i].y) : 0.0f;
@@ -270,7 +272,11 @@ void RayScene::nearestOpaque8(const glm::dvec3* origins, const glm::dvec3* direc
     }
     rtcIntersect8(valid, impl_->opaque, &context.embree, &rays);
     for (int i = 0; i < 8; ++i) {
-        if (!valid[i]) continue;
+        if (!((lanes >> i) & 1)) continue;
+        if (!valid[i]) {
+            hits[i] = RayHit{};
+            continue;
+        }
         const unsigned geometry = rays.hit.geomID[i];
         if (geometry == RTC_INVALID_GEOMETRY_ID) {
             hits[i] = RayHit{};
