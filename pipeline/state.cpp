@@ -39,8 +39,10 @@ std::ostream& operator<<(std::ostream& os, const DrawState& s) {
               << " faces, front faces " << s.raster.frontFace << ", provoking vertex "
               << s.raster.provokingVertex << "; " << s.raster.subpixelBits << " sub-pixel bits; depth test "
               << (s.depth.testEnabled ? "on" : "off") << " (" << s.depth.compare << ", writes "
-              << (s.depth.writeEnabled ? "on" : "off") << "); " << s.interpolation << " interpolation; blend "
-              << s.blend << "; output " << s.output;
+              << (s.depth.writeEnabled ? "on" : "off") << ")";
+    if (s.depth.offset.any())
+        os << "; depth offset " << s.depth.offset.factor << "·slope + " << s.depth.offset.units << " units";
+    return os << "; " << s.interpolation << " interpolation; blend " << s.blend << "; output " << s.output;
 }
 
 }  // namespace facet
