@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <glm/gtx/string_cast.hpp>
 
 #include "pipeline/pipeline.h"
 #include "render/renderer.h"
@@ -133,6 +135,240 @@ TEST_F(ShadowMapTest, ZeroBiasGivesAcneAndTheSlopeScaledBiasCuresIt) {
         scene.shadowMap.filterTaps = taps;
         EXPECT_LT(wronglyShadowed(scene), 0.005);
     }
+}
+
+// ---- The map against the ray-cast shadows ------------------------------------------------------------
+
+// models/shadows.json (a spot and a directional light, Spot and a cube on a ground) at 400×300.
+Scene shadowsScene() {
+    Scene scene = loadScene(FACET_MODELS "shadows.json");
+    scene.width = 400;
+    scene.height = 300;
+    return scene;
+}
+
+struct MapAgainstRay {
+    double differing = 0;      // share of the image's pixels where the map's image differs from the ray's
+    double awayFromEdges = 0;  // share of the image's pixels that differ beyond kEdgeReach pixels of
+                               // an edge of the ray-cast shadows
+};
+constexpr int kEdgeReach = 3;
+
+MapAgainstRay compareWithRays(Scene scene, const LinearImage& rays, const LinearImage& unshadowed) {
+    scene.shadows = ShadowMethod::Map;
+    const LinearImage mapped = render(scene);
+    const int w = rays.width, h = rays.height;
+    // Where the ray-cast shadows darken the image.
+    std::vector<char> shadowed(rays.pixels.size());
+    for (std::size_t i = 0; i < rays.pixels.size(); ++i)
+        shadowed[i] = darker(rays.pixels[i], unshadowed.pixels[i], 0.004f);
+    const auto nearEdge = [&](int x, int y) {
+        const char here = shadowed[std::size_t(y) * w + x];
+        for (int dy = -kEdgeReach; dy <= kEdgeReach; ++dy)
+            for (int dx = -kEdgeReach; dx <= kEdgeReach; ++dx) {
+                const int u = std::clamp(x + dx, 0, w - 1), v = std::clamp(y + dy, 0, h - 1);
+                if (shadowed[std::size_t(v) * w + u] != here) return true;
+            }
+        return false;
+    };
+    std::size_t differing = 0, awayFromEdges = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const vec4 a = mapped.at(x, y), b = rays.at(x, y);
+            if (!darker(a, b, 0.004f) && !darker(b, a, 0.004f)) continue;
+            ++differing;
+            awayFromEdges += !nearEdge(x, y);
+        }
+    return {double(differing) / double(w * h), double(awayFromEdges) / double(w * h)};
+}
+
+// At 2048 texels the map's shadows are the ray-cast ones but for their edges (a few pixels of
+// filtering and texel steps) and a few pixels at the terminator of Spot's smooth normals (where the
+// shading normal still faces the light, the triangle no longer does, and the map sees it from behind);
+// at 256 texels the edges are coarse enough to shift visibly.
+// Breaks caught: a map's rows upside down, a wrong projection (the spot's cone or the directional
+// light's fit), receivers compared in another face's space, the size option not reaching the draw.
+TEST(ShadowMapAgainstRays, DifferOnlyNearTheShadowEdgesAndLessWithLargerMaps) {
+    Scene scene = shadowsScene();
+    scene.shadows = ShadowMethod::None;
+    const LinearImage unshadowed = render(scene);
+    scene.shadows = ShadowMethod::Ray;
+    const LinearImage rays = render(scene);
+    scene.shadowMap.size = 2048;
+    const MapAgainstRay fine = compareWithRays(scene, rays, unshadowed);
+    scene.shadowMap.size = 256;
+    const MapAgainstRay coarse = compareWithRays(scene, rays, unshadowed);
+    EXPECT_LT(fine.differing, 0.02);
+    EXPECT_LT(fine.awayFromEdges, 0.001);
+    EXPECT_GT(coarse.differing, 2 * fine.differing);
+}
+
+// ---- Percentage-closer filtering ------------------------------------------------------------------
+
+// A unit cube standing on a 4 × 4 ground, lit from above and a little from the side.
+constexpr const char* kCubeOnGround = R"({
+  "width": 64, "height": 48,
+  "camera": {"eye": [1, 5, 4], "target": [0.5, 0, 0], "fovy": 50},
+  "lights": [{"type": "directional", "direction": [0.3, -1, 0.1], "shadows": "map"}],
+  "shadow_map": {"size": 256},
+  "objects": [{"model": ")" FACET_MODELS R"(fog-and-glass/ground.obj", "scale": 0.1},
+              {"model": ")" FACET_MODELS R"(cube/cube.obj", "translate": [0, 0.5, 0]}]
+})";
+
+// The map's lit share at `count` points of the ground along x ∈ [−1, 2] (across the cube's shadow and
+// its edge), z = 0.1, in eye space.
+std::vector<float> litSharesAcrossTheEdge(const PreparedScene& prepared, int count) {
+    const ShadowMap& map = *prepared.shadowMaps.at(0);
+    std::vector<float> shares;
+    for (int k = 0; k < count; ++k) {
+        const double x = -1.0 + 3.0 * k / (count - 1);
+        const vec3 P(prepared.camera.viewFromWorldExact * glm::dvec4(x, 0.0, 0.1, 1.0));
+        shares.push_back(shadowMapLitShare(map, P));
+    }
+    return shares;
+}
+
+// 1 tap: lit or not; 2×2: quarters; 4×4: sixteenths, some of them not quarters, at the edge.
+// Breaks caught: the filter option not reaching the map, a side of 4 taps for 16 (or 1 for 4), the
+// sum not divided by the number of taps.
+TEST_F(ShadowMapTest, OneTapIsAllOrNothingAndMoreTapsRampAtTheEdge) {
+    Scene scene = loadScene(write("cube.json", kCubeOnGround));
+    for (int taps : {1, 4, 16}) {
+        SCOPED_TRACE(taps);
+        scene.shadowMap.filterTaps = taps;
+        const PreparedScene prepared = prepareScene(scene);
+        ASSERT_EQ(prepared.shadowMaps.size(), 1u);
+        EXPECT_EQ(prepared.shadowMaps[0]->filterTaps, taps);
+        int lit = 0, shadowed = 0, between = 0, notQuarters = 0;
+        for (float share : litSharesAcrossTheEdge(prepared, 3001)) {
+            EXPECT_EQ(share * float(taps), std::round(share * float(taps))) << share;
+            lit += share == 1.0f;
+            shadowed += share == 0.0f;
+            between += share > 0.0f && share < 1.0f;
+            notQuarters += share * 4.0f != std::round(share * 4.0f);
+        }
+        EXPECT_GT(lit, 100);
+        EXPECT_GT(shadowed, 100);
+        if (taps == 1) {
+            EXPECT_EQ(between, 0);
+        } else {
+            EXPECT_GT(between, 10);
+        }
+        if (taps == 16) {
+            EXPECT_GT(notQuarters, 5);
+        }
+    }
+}
+
+// The eight-lane lookup gives each lane what the one-lane one gives, lanes where N·L ≤ 0 and dead
+// lanes (non-finite P) are lit, and double lanes look up as float.
+// Breaks caught: lanes mixed up (P.y read for x), the N·L gate dropped or inverted.
+TEST_F(ShadowMapTest, EightLanesAndDoubleLookUpAsOneLane) {
+    Scene scene = loadScene(write("cube.json", kCubeOnGround));
+    scene.shadowMap.filterTaps = 16;
+    const PreparedScene prepared = prepareScene(scene);
+    const ShadowMap& map = *prepared.shadowMaps.at(0);
+    const LightParams& light = prepared.draws.at(0).uniforms.lights[0];
+    const vec3 up(prepared.camera.viewFromWorldExact * glm::dvec4(0, 1, 0, 0));
+    Vec3x8 P{}, N{};
+    std::vector<vec3> points;
+    for (int lane = 0; lane < 8; ++lane) {
+        const vec3 p(prepared.camera.viewFromWorldExact *
+                     glm::dvec4(-0.6 + 0.23 * lane, 0.0, 0.13 * lane, 1.0));
+        points.push_back(p);
+        const vec3 n = lane == 3 ? -up : up;  // lane 3 faces away from the light
+        P.x[lane] = p.x, P.y[lane] = p.y, P.z[lane] = p.z;
+        N.x[lane] = n.x, N.y[lane] = n.y, N.z[lane] = n.z;
+    }
+    P.x[5] = std::numeric_limits<float>::quiet_NaN();  // a dead lane
+    const Float8 wide = shadowMapVisibility<Float8>(map, light, P, N);
+    int shadowed = 0, between = 0;
+    for (int lane = 0; lane < 8; ++lane) {
+        SCOPED_TRACE(lane);
+        const vec3 n = lane == 3 ? -up : up;
+        const float one = shadowMapVisibility<float>(map, light, points[lane], n);
+        if (lane == 3 || lane == 5) {
+            EXPECT_EQ(wide[lane], 1.0f);
+        } else {
+            EXPECT_EQ(wide[lane], one);
+            EXPECT_EQ(shadowMapVisibility<double>(map, light, glm::dvec3(points[lane]), glm::dvec3(n)),
+                      double(one));
+        }
+        if (lane == 3) {
+            EXPECT_EQ(one, 1.0f);
+        }
+        shadowed += one == 0.0f;
+        between += one > 0.0f && one < 1.0f;
+    }
+    EXPECT_GT(shadowed + between, 2);  // the points cross the cube's shadow
+}
+
+// ---- A point light's six faces ---------------------------------------------------------------------
+
+// A point light at the origin with a half-unit cube 2 units away along each of ±x, ±y, ±z: behind
+// each cube (3.5 units out) the light is blocked, beside it (3.5 units out, 1.5 to the side) it is
+// not. The camera looks from an oblique corner, so the cube map's eye-space faces cut across the
+// world's axes and several points lie near their seams.
+// Breaks caught: a face chosen by the wrong sign or axis, faces in another order than cubeFaceOf's, a
+// face's frustum narrower than 90°.
+TEST_F(ShadowMapTest, PointLightsShadowAllAroundThemselves) {
+    std::string objects;
+    const int axes[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    for (const auto& a : axes) {
+        if (!objects.empty()) objects += ", ";
+        objects += R"({"model": ")" FACET_MODELS R"(cube/cube.obj", "scale": 0.5, "translate": [)";
+        objects += std::to_string(2 * a[0]) + ", " + std::to_string(2 * a[1]) + ", " +
+                   std::to_string(2 * a[2]) + "]}";
+    }
+    std::string text = R"({"width": 32, "height": 32, "camera": {"eye": [7, 5, 6], "target": [0, 0, 0]},
+        "lights": [{"type": "point", "position": [0, 0, 0], "shadows": "map"}], "objects": [)";
+    text += objects;
+    text += "]}";
+    Scene scene = loadScene(write("point.json", text));
+    scene.shadowMap.filterTaps = 1;
+    scene.shadowMap.size = 512;
+    const PreparedScene prepared = prepareScene(scene);
+    const ShadowMap& map = *prepared.shadowMaps.at(0);
+    ASSERT_EQ(map.faces.size(), 6u);
+    const auto share = [&](glm::dvec3 world) {
+        return shadowMapLitShare(map, vec3(prepared.camera.viewFromWorldExact * glm::dvec4(world, 1.0)));
+    };
+    for (const auto& a : axes) {
+        const glm::dvec3 axis(a[0], a[1], a[2]);
+        const glm::dvec3 side = glm::dvec3(a[1] + a[2], a[2] + a[0], a[0] + a[1]) * 1.5;  // across the axis
+        SCOPED_TRACE(glm::to_string(axis));
+        EXPECT_EQ(share(axis * 3.5), 0.0f);
+        EXPECT_EQ(share(axis * 3.5 + side), 1.0f);
+        EXPECT_EQ(share(axis * 3.5 - side), 1.0f);
+        EXPECT_EQ(share(axis * 1.2), 1.0f);  // between the light and the cube
+    }
+}
+
+// ---- The options reach the image --------------------------------------------------------------------
+
+// Each of the map's options, changed alone, changes the image of models/shadows.json.
+// Breaks caught: any one of size, constant bias, slope bias and filter taps not reaching the map's
+// draw or lookup (drawShadowMap or shadowMapDrawState reading ShadowMapOptions{} for it).
+TEST(ShadowMapOptionsTest, EachOptionChangesTheImage) {
+    Scene scene = shadowsScene();
+    scene.width = 200;
+    scene.height = 150;
+    scene.shadows = ShadowMethod::Map;
+    const LinearImage standard = render(scene);
+    const auto changes = [&](const char* what, auto change) {
+        SCOPED_TRACE(what);
+        Scene changed = scene;
+        change(changed.shadowMap);
+        const LinearImage image = render(changed);
+        std::size_t differing = 0;
+        for (std::size_t i = 0; i < image.pixels.size(); ++i)
+            differing += image.pixels[i] != standard.pixels[i];
+        EXPECT_GT(differing, 20u);
+    };
+    changes("size", [](ShadowMapOptions& o) { o.size = 512; });
+    changes("bias", [](ShadowMapOptions& o) { o.constantBias = 300000; });  // 0.018 of the depth range
+    changes("slope bias", [](ShadowMapOptions& o) { o.slopeBias = 0; });
+    changes("filter", [](ShadowMapOptions& o) { o.filterTaps = 16; });
 }
 
 }  // namespace
