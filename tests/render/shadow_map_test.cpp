@@ -344,11 +344,50 @@ TEST_F(ShadowMapTest, PointLightsShadowAllAroundThemselves) {
     }
 }
 
+// ---- A spot light's cone -----------------------------------------------------------------------------
+
+// A spot 4 units above a ground, pointing straight down, and a half-unit cube on the ground whose
+// shadow falls 35° off the spot's axis (inside a 40° cone), or 70° off it (inside an 80° cone, drawn
+// as a cube map): the map covers the whole cone, its rim included.
+// Breaks caught: the field of view the cone's half-angle instead of twice it; the smooth profile's
+// outer angle not used; a wide spot given one perspective map (which cannot reach 80°).
+TEST_F(ShadowMapTest, SpotMapsCoverTheirWholeCone) {
+    const struct {
+        const char* cone;
+        double degrees;
+        std::size_t faces;
+    } cases[] = {
+        {R"("cutoff": 40)", 35, 1}, {R"("inner": 20, "outer": 40)", 35, 1}, {R"("cutoff": 80)", 70, 6}};
+    for (const auto& c : cases) {
+        SCOPED_TRACE(c.cone);
+        // The cube halfway between the spot and the shadowed point of the ground, 35° or 70° off the axis.
+        const double out = 4.0 * std::tan(glm::radians(c.degrees));
+        std::string text = R"({"width": 32, "height": 32, "camera": {"eye": [0, 9, 9], "target": [0, 0, 0]},
+            "lights": [{"type": "spot", "position": [0, 4, 0], "direction": [0, -1, 0], "shadows": "map", )";
+        text += c.cone;
+        text += R"(}], "objects": [{"model": ")" FACET_MODELS R"(fog-and-glass/ground.obj", "scale": 1},
+            {"model": ")" FACET_MODELS R"(cube/cube.obj", "scale": 0.5, "translate": [)";
+        text += std::to_string(out / 2) + ", 2, 0]}]}";
+        Scene scene = loadScene(write("spot.json", text));
+        scene.shadowMap.filterTaps = 1;
+        const PreparedScene prepared = prepareScene(scene);
+        const ShadowMap& map = *prepared.shadowMaps.at(0);
+        EXPECT_EQ(map.faces.size(), c.faces);
+        const auto share = [&](double x) {
+            return shadowMapLitShare(map, vec3(prepared.camera.viewFromWorldExact * glm::dvec4(x, 0, 0, 1)));
+        };
+        EXPECT_EQ(share(out), 0.0f);        // in the cube's shadow
+        EXPECT_EQ(share(-out), 1.0f);       // as far out on the other side: lit
+        EXPECT_EQ(share(out * 0.7), 1.0f);  // nearer the axis than the shadow
+    }
+}
+
 // ---- The options reach the image --------------------------------------------------------------------
 
 // Each of the map's options, changed alone, changes the image of models/shadows.json.
 // Breaks caught: any one of size, constant bias, slope bias and filter taps not reaching the map's
-// draw or lookup (drawShadowMap or shadowMapDrawState reading ShadowMapOptions{} for it).
+// draw or lookup (drawShadowMap or shadowMapDrawState reading ShadowMapOptions{} for it, the map
+// keeping 4 taps whatever the filter).
 TEST(ShadowMapOptionsTest, EachOptionChangesTheImage) {
     Scene scene = shadowsScene();
     scene.width = 200;
@@ -368,7 +407,12 @@ TEST(ShadowMapOptionsTest, EachOptionChangesTheImage) {
     changes("size", [](ShadowMapOptions& o) { o.size = 512; });
     changes("bias", [](ShadowMapOptions& o) { o.constantBias = 300000; });  // 0.018 of the depth range
     changes("slope bias", [](ShadowMapOptions& o) { o.slopeBias = 0; });
-    changes("filter", [](ShadowMapOptions& o) { o.filterTaps = 16; });
+    // 16 taps with half the slope bias: the map's draw is the same (its offset factor is the slope
+    // bias times the filter's width), so only the lookup can change the image.
+    changes("filter", [](ShadowMapOptions& o) {
+        o.filterTaps = 16;
+        o.slopeBias /= 2;
+    });
 }
 
 }  // namespace
