@@ -24,6 +24,11 @@ struct DepthFormat {
     static constexpr bool kLessIsNearer = true;
     // What clearing writes by default: the far plane, which every fragment in range passes under Less.
     static constexpr Stored kClear = 1.0f;
+    // r of a depth offset (DepthOffset::units): the smallest depth difference the buffer resolves
+    // everywhere in [0, 1], the float spacing just below 1. (OpenGL takes 2^(e − 23) for a float
+    // buffer, e the exponent of the triangle's largest depth; one r for all keeps a unit the same
+    // distance across an orthographic shadow map, whose depth is linear.)
+    static constexpr float kResolution = 0x1p-24f;
 
     // The viewport's depth mapping (glDepthRange): z_w = n + (z_ndc + 1)/2 · (f − n), with
     // (z_ndc + 1)/2 clamped to [0, 1] first, as OpenGL clamps window depth.

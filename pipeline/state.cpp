@@ -34,13 +34,14 @@ std::ostream& operator<<(std::ostream& os, FragmentOutput output) {
 
 std::ostream& operator<<(std::ostream& os, const DrawState& s) {
     const Viewport& vp = s.viewport;
-    return os << "viewport " << vp.width << "x" << vp.height << " at (" << vp.x << ", " << vp.y
-              << "), depth range [" << vp.minDepth << ", " << vp.maxDepth << "]; cull " << s.raster.cull
-              << " faces, front faces " << s.raster.frontFace << ", provoking vertex "
-              << s.raster.provokingVertex << "; " << s.raster.subpixelBits << " sub-pixel bits; depth test "
-              << (s.depth.testEnabled ? "on" : "off") << " (" << s.depth.compare << ", writes "
-              << (s.depth.writeEnabled ? "on" : "off") << "); " << s.interpolation << " interpolation; blend "
-              << s.blend << "; output " << s.output;
+    os << "viewport " << vp.width << "x" << vp.height << " at (" << vp.x << ", " << vp.y << "), depth range ["
+       << vp.minDepth << ", " << vp.maxDepth << "]; cull " << s.raster.cull << " faces, front faces "
+       << s.raster.frontFace << ", provoking vertex " << s.raster.provokingVertex << "; "
+       << s.raster.subpixelBits << " sub-pixel bits; depth test " << (s.depth.testEnabled ? "on" : "off")
+       << " (" << s.depth.compare << ", writes " << (s.depth.writeEnabled ? "on" : "off") << ")";
+    if (s.depth.offset.any())
+        os << "; depth offset " << s.depth.offset.factor << "·slope + " << s.depth.offset.units << " units";
+    return os << "; " << s.interpolation << " interpolation; blend " << s.blend << "; output " << s.output;
 }
 
 }  // namespace facet

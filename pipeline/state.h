@@ -60,10 +60,21 @@ constexpr std::span<const EnumName<CompareOp>> enumNames(CompareOp) {
     return kCompareOpNames;
 }
 
+// glPolygonOffset (OpenGL 4.6 §14.6.5): every fragment of a triangle has its window depth moved by
+// o = factor·m + units·r, m = max(|∂z/∂x|, |∂z/∂y|) the triangle's depth slope in window space (per
+// pixel) and r DepthFormat::kResolution. Shadow maps are drawn with it, so that a lit surface does not
+// shadow itself (shadow acne). 0, 0 (every other draw): nothing is computed, depths are untouched.
+struct DepthOffset {
+    float factor = 0;
+    float units = 0;
+    bool any() const { return factor != 0.0f || units != 0.0f; }
+};
+
 struct DepthState {
     bool testEnabled = true;
     bool writeEnabled = true;
     CompareOp compare = CompareOp::Less;
+    DepthOffset offset;
 };
 
 // How varyings are interpolated across a triangle in screen space.

@@ -27,6 +27,10 @@ bool isTopLeft(std::int64_t dx, std::int64_t dy);
 // the viewport, and the attribute planes for depth, 1/w and each varying (written to `varyingPlanes`,
 // room for 3 · varyingCount floats; setup.varyingPlaneOffset is set to 0, an offset into that buffer).
 // Returns the fate: Drawn when `setup` was filled in.
+// The depth offset of a triangle set up in `setup` (its edges, doubleArea and depth plane), window
+// depth units: offset.factor · max(|∂z/∂x|, |∂z/∂y|) + offset.units · DepthFormat::kResolution.
+float depthOffset(const TriangleSetup& setup, const DepthOffset& offset);
+
 TriangleFate setupTriangle(const WindowTriangle& triangle, const DrawState& state, TriangleSetup& setup,
                            float* varyingPlanes);
 

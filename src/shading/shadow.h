@@ -24,11 +24,19 @@ constexpr std::span<const EnumName<ShadowMethod>> enumNames(ShadowMethod) {
 inline constexpr int kMaxShadowMapSize = 8192;
 
 // How shadow maps are drawn and read (every light whose shadows are a map).
+// The map is drawn with a glPolygonOffset-style depth offset (pipeline/state.h, DepthOffset; see
+// render/shadow_maps.h's shadowMapDrawState): units = constantBias, factor = slopeBias × the filter's
+// width in texels (1, 2 or 4), since the filter's taps lie up to that many texels from the point.
 struct ShadowMapOptions {
-    int size = 2048;         // texels per side (of each of a point light's six faces)
-    float constantBias = 1;  // depth offset in units of the map's depth resolution (glPolygonOffset's units)
-    float slopeBias = 1.5f;  // times the surface's depth slope across a texel (glPolygonOffset's factor)
-    int filterTaps = 4;      // percentage-closer filtering: 1, 4 (2×2) or 16 (4×4) depth comparisons
+    int size = 2048;  // texels per side (of each of a point light's six faces)
+    // Depth offset in units of the depth buffer's resolution r = 2^-24 (DepthFormat::kResolution):
+    // for surfaces facing the light, whose slope is 0.
+    float constantBias = 1;
+    // Depth offset per texel of the caster's depth slope m = max(|∂z/∂x|, |∂z/∂y|), per texel of the
+    // filter's width: what cures acne on surfaces tilted from the light; 1 is the least that does for
+    // a plane, the default leaves room for the rounding of curved surfaces.
+    float slopeBias = 1.5f;
+    int filterTaps = 4;  // percentage-closer filtering: 1, 4 (2×2) or 16 (4×4) depth comparisons
 };
 
 // A shadow ray leaves the surface at P + ε·N (N the shading normal, turned towards the viewer), so that
