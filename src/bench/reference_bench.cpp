@@ -52,8 +52,13 @@ struct Row {
     double buildMs = NAN;   // reference: its BVH build; shadows: prepareShadows (BVH or maps)
     double drawMs = NAN;    // shadows: renderFrame alone
     double megaRaysPerSecond = NAN;
+    // CPU time of the whole process (every thread) per frame or pass, and rays per second of it: the rate
+    // per busy core, which other processes sharing the machine change far less than the wall-clock one.
+    double cpuMs = NAN;
+    double megaRaysPerCpuSecond = NAN;
     double drawMsPerShadowingLight = NAN;  // shadows: of the draw alone (the BVH is shared by the lights)
     double msPerShadowingLight = NAN;      // shadows: of the whole frame, prepareShadows included
+    double cpuMsPerShadowingLight = NAN;   // shadows: the same in CPU time
 };
 
 std::string csvNumber(double value) {
@@ -65,8 +70,8 @@ std::string csvNumber(double value) {
 
 void writeCsv(const std::filesystem::path& path, const std::vector<Row>& rows) {
     std::string text =
-        "part,configuration,threads,lights,frames,median_ms,build_ms,draw_ms,mrays_per_s,draw_ms_per_"
-        "shadowing_light,ms_per_shadowing_light\n";
+        "part,configuration,threads,lights,frames,median_ms,build_ms,draw_ms,mrays_per_s,cpu_ms,mrays_"
+        "per_cpu_s,draw_ms_per_shadowing_light,ms_per_shadowing_light,cpu_ms_per_shadowing_light\n";
     for (const Row& row : rows) {
         text += row.part;
         text += ',';
@@ -74,8 +79,9 @@ void writeCsv(const std::filesystem::path& path, const std::vector<Row>& rows) {
         text += ',' + std::to_string(row.threads);
         text += ',' + std::to_string(row.lights);
         text += ',' + std::to_string(row.frames);
-        for (double value : {row.medianMs, row.buildMs, row.drawMs, row.megaRaysPerSecond,
-                             row.drawMsPerShadowingLight, row.msPerShadowingLight}) {
+        for (double value : {row.medianMs, row.buildMs, row.drawMs, row.megaRaysPerSecond, row.cpuMs,
+                             row.megaRaysPerCpuSecond, row.drawMsPerShadowingLight, row.msPerShadowingLight,
+                             row.cpuMsPerShadowingLight}) {
             text += ',';
             text += csvNumber(value);
         }
@@ -98,7 +104,7 @@ std::vector<Row> benchReference(const PreparedScene& prepared, std::array<Thread
         int samples;  // N: N×N per pixel
         ThreadPool* pool;
         int frames;
-        std::vector<double> ms, buildMs, renderMs;
+        std::vector<double> ms, buildMs, renderMs, cpuMs;
         std::uint64_t cameraRays = 0;
     };
     std::vector<Config> configs;
@@ -110,6 +116,7 @@ std::vector<Row> benchReference(const PreparedScene& prepared, std::array<Thread
                                {},
                                {},
                                {},
+                               {},
                                0});
 
     for (ThreadPool* pool : pools)  // warm-up: Embree's device, the pools' threads, the caches
@@ -118,9 +125,11 @@ std::vector<Row> benchReference(const PreparedScene& prepared, std::array<Thread
         for (Config& config : configs) {
             if (round >= config.frames) continue;
             ReferenceStats stats;
+            const double cpuStart = processCpuMs();
             const auto start = Clock::now();
             renderReference(prepared, ReferenceOptions{.samples = config.samples}, *config.pool, &stats);
             config.ms.push_back(msSince(start));
+            config.cpuMs.push_back(processCpuMs() - cpuStart);
             config.buildMs.push_back(stats.buildMilliseconds);
             config.renderMs.push_back(stats.renderMilliseconds);
             config.cameraRays = stats.cameraRays;
@@ -128,8 +137,9 @@ std::vector<Row> benchReference(const PreparedScene& prepared, std::array<Thread
 
     std::vector<Row> rows;
     out << "Reference renderer (facet render --renderer reference): a whole frame, its BVH build included;\n"
-           "camera rays per second of tracing and shading (BVH excluded)\n"
-        << "  samples/pixel  threads  frames   ms/frame   BVH ms   M camera rays/s\n";
+           "camera rays per second of tracing and shading (BVH excluded), and per CPU second of the whole\n"
+           "frame (all threads' CPU time, BVH included)\n"
+        << "  samples/pixel  threads  frames   ms/frame   BVH ms   M camera rays/s   CPU ms   M rays/CPU s\n";
     for (const Config& config : configs) {
         Row row;
         row.part = "reference";
@@ -140,9 +150,12 @@ std::vector<Row> benchReference(const PreparedScene& prepared, std::array<Thread
         row.medianMs = median(config.ms);
         row.buildMs = median(config.buildMs);
         row.megaRaysPerSecond = static_cast<double>(config.cameraRays) / median(config.renderMs) / 1e3;
+        row.cpuMs = median(config.cpuMs);
+        row.megaRaysPerCpuSecond = static_cast<double>(config.cameraRays) / row.cpuMs / 1e3;
         out << "  " << std::setw(13) << samples << std::setw(9) << row.threads << std::setw(8) << row.frames
             << std::setw(11) << row.medianMs << std::setw(9) << row.buildMs << std::setw(18)
-            << row.megaRaysPerSecond << "\n";
+            << row.megaRaysPerSecond << std::setw(9) << std::setprecision(0) << row.cpuMs << std::setw(15)
+            << std::setprecision(2) << row.megaRaysPerCpuSecond << "\n";
         rows.push_back(row);
     }
     out << std::endl;  // flushed: a long run shows its progress
@@ -221,7 +234,7 @@ std::vector<Row> benchRayCasting(const PreparedScene& prepared, std::array<Threa
         bool packets;
         RayScene::Culling culling;
         ThreadPool* pool;
-        std::vector<double> ms;
+        std::vector<double> ms, cpuMs;
     };
     std::vector<Config> configs;
     for (bool packets : {true, false})
@@ -229,7 +242,7 @@ std::vector<Row> benchRayCasting(const PreparedScene& prepared, std::array<Threa
             for (ThreadPool* pool : pools) {
                 std::string name = packets ? "packets of 8" : "single rays";
                 name += culled ? std::string(" culling ") + sceneCullingName : " culling none";
-                configs.push_back({name, packets, culled ? sceneCulling : RayScene::Culling{}, pool, {}});
+                configs.push_back({name, packets, culled ? sceneCulling : RayScene::Culling{}, pool, {}, {}});
             }
     std::vector<RayHit> hits;
     for (Config& config : configs)  // warm-up
@@ -239,9 +252,11 @@ std::vector<Row> benchRayCasting(const PreparedScene& prepared, std::array<Threa
         std::count_if(hits.begin(), hits.end(), [](const RayHit& hit) { return hit.hit(); });
     for (int round = 0; round < frames; ++round)
         for (Config& config : configs) {
+            const double cpuStart = processCpuMs();
             const auto start = Clock::now();
             castAll(scene, rays, config.packets, config.culling, *config.pool, hits);
             config.ms.push_back(msSince(start));
+            config.cpuMs.push_back(processCpuMs() - cpuStart);
         }
 
     std::vector<Row> rows;
@@ -251,7 +266,7 @@ std::vector<Row> benchRayCasting(const PreparedScene& prepared, std::array<Threa
         << std::setprecision(2)
         << "% hit the model),\nmade beforehand; Embree in robust mode, culling by a "
            "filter function (\"culling none\": no filter)\n"
-        << "  rays                          threads   ms/pass   M rays/s   M rays/s per thread\n";
+        << "  rays                          threads   ms/pass   M rays/s   CPU ms   M rays/CPU s\n";
     for (const Config& config : configs) {
         Row row;
         row.part = "rays";
@@ -260,9 +275,11 @@ std::vector<Row> benchRayCasting(const PreparedScene& prepared, std::array<Threa
         row.frames = frames;
         row.medianMs = median(config.ms);
         row.megaRaysPerSecond = rayCount / row.medianMs / 1e3;
+        row.cpuMs = median(config.cpuMs);
+        row.megaRaysPerCpuSecond = rayCount / row.cpuMs / 1e3;
         out << "  " << std::left << std::setw(30) << row.configuration << std::right << std::setw(7)
             << row.threads << std::setw(10) << row.medianMs << std::setw(11) << row.megaRaysPerSecond
-            << std::setw(22) << row.megaRaysPerSecond / row.threads << "\n";
+            << std::setw(9) << row.cpuMs << std::setw(15) << row.megaRaysPerCpuSecond << "\n";
         rows.push_back(row);
     }
 
@@ -332,7 +349,7 @@ std::vector<Row> benchShadows(const Scene& scene, const PreparedScene& prepared,
         const ShadowConfig* shadows;
         int lights;
         PreparedScene* prepared;
-        std::vector<double> prepareMs, drawMs, totalMs;
+        std::vector<double> prepareMs, drawMs, totalMs, cpuMs;
     };
     std::vector<PreparedScene> scenes;
     scenes.reserve(std::size(kShadowLightCounts));
@@ -341,7 +358,7 @@ std::vector<Row> benchShadows(const Scene& scene, const PreparedScene& prepared,
     std::vector<Config> configs;
     for (std::size_t k = 0; k < std::size(kShadowLightCounts); ++k)
         for (const ShadowConfig& shadows : kShadowConfigs)
-            configs.push_back({&shadows, kShadowLightCounts[k], &scenes[k], {}, {}, {}});
+            configs.push_back({&shadows, kShadowLightCounts[k], &scenes[k], {}, {}, {}, {}});
 
     Framebuffer framebuffer(scene.width, scene.height);
     DrawContext context(options.threads);
@@ -351,6 +368,7 @@ std::vector<Row> benchShadows(const Scene& scene, const PreparedScene& prepared,
         for (std::size_t i = 0; i < kMaxLights; ++i)
             p.shadowMethods[i] = int(i) < config.lights ? config.shadows->method : ShadowMethod::None;
         if (config.shadows->mapSize > 0) p.shadowMapOptions.size = config.shadows->mapSize;
+        const double cpuStart = processCpuMs();
         const auto start = Clock::now();
         prepareShadows(p);
         const auto drawStart = Clock::now();
@@ -359,6 +377,7 @@ std::vector<Row> benchShadows(const Scene& scene, const PreparedScene& prepared,
         config.prepareMs.push_back(std::chrono::duration<double, std::milli>(drawStart - start).count());
         config.drawMs.push_back(msSince(drawStart));
         config.totalMs.push_back(msSince(start));
+        config.cpuMs.push_back(processCpuMs() - cpuStart);
     };
     for (Config& config : configs)
         frame(config, false);  // warm-up
@@ -372,9 +391,10 @@ std::vector<Row> benchShadows(const Scene& scene, const PreparedScene& prepared,
         << " frames each;\n"
         << "a frame = prepareShadows (the BVH or the maps, rebuilt as for a moving scene) + renderFrame;\n"
         << "per shadowing light = (ms - ms of as many lights without shadows) / lights, of the draw alone\n"
-        << "(the BVH is shared by all the lights) and of the whole frame\n"
-        << "  shadows    lights   prepare ms   draw ms   frame ms   per light: draw ms   frame ms\n";
-    double withoutShadows = NAN, drawWithoutShadows = NAN;
+        << "(the BVH is shared by all the lights), of the whole frame, and of its CPU time (all threads)\n"
+        << "  shadows    lights   prepare ms   draw ms   frame ms   CPU ms   per light: draw ms   frame ms   "
+           "CPU ms\n";
+    double withoutShadows = NAN, drawWithoutShadows = NAN, cpuWithoutShadows = NAN;
     for (const Config& config : configs) {
         Row row;
         row.part = "shadows";
@@ -385,18 +405,22 @@ std::vector<Row> benchShadows(const Scene& scene, const PreparedScene& prepared,
         row.medianMs = median(config.totalMs);
         row.buildMs = median(config.prepareMs);
         row.drawMs = median(config.drawMs);
+        row.cpuMs = median(config.cpuMs);
         if (config.shadows->method == ShadowMethod::None) {  // first of each light count
             withoutShadows = row.medianMs;
             drawWithoutShadows = row.drawMs;
+            cpuWithoutShadows = row.cpuMs;
         } else {
             row.drawMsPerShadowingLight = (row.drawMs - drawWithoutShadows) / config.lights;
             row.msPerShadowingLight = (row.medianMs - withoutShadows) / config.lights;
+            row.cpuMsPerShadowingLight = (row.cpuMs - cpuWithoutShadows) / config.lights;
         }
         out << "  " << std::left << std::setw(9) << row.configuration << std::right << std::setw(8)
             << row.lights << std::setw(13) << row.buildMs << std::setw(10) << row.drawMs << std::setw(11)
-            << row.medianMs;
+            << row.medianMs << std::setw(9) << std::setprecision(0) << row.cpuMs << std::setprecision(2);
         if (!std::isnan(row.msPerShadowingLight))
-            out << std::setw(21) << row.drawMsPerShadowingLight << std::setw(11) << row.msPerShadowingLight;
+            out << std::setw(21) << row.drawMsPerShadowingLight << std::setw(11) << row.msPerShadowingLight
+                << std::setw(9) << row.cpuMsPerShadowingLight;
         out << "\n";
         rows.push_back(row);
     }

@@ -34,7 +34,7 @@ TEST_F(BenchTest, FifoIsRefusedWithoutOpeningIt) {
 }
 
 // The first five fields of each line of a CSV after its header: part, configuration, threads, lights,
-// frames (the row's name); " +per-light" when its last two, the costs per shadowing light, are given.
+// frames (the row's name); " +per-light" when its last three, the costs per shadowing light, are given.
 std::vector<std::string> csvRowNames(const std::filesystem::path& path) {
     std::ifstream file(path);
     std::string line;
@@ -53,8 +53,9 @@ std::vector<std::string> csvRowNames(const std::filesystem::path& path) {
             if (k) name += ',';
             name += fields[k];
         }
-        if (fields.size() == 11 && !fields[9].empty() && !fields[10].empty()) name += " +per-light";
-        if (fields.size() != 11) name += " (not 11 fields)";
+        if (fields.size() == 14 && !fields[11].empty() && !fields[12].empty() && !fields[13].empty())
+            name += " +per-light";
+        if (fields.size() != 14) name += " (not 14 fields)";
         names.push_back(name);
     }
     return names;
