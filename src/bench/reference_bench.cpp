@@ -1,6 +1,6 @@
 // facet bench --reference: the reference renderer's speed, Embree's ray casting alone, the BVH build, and
-// what shadows cost the rasterizer per light. Medians of wall-clock time, configurations alternating
-// frame by frame, so that a shared machine's slow spells fall on all of them alike.
+// what shadows cost the rasterizer per light. Medians of wall-clock and of CPU time, configurations
+// alternating frame by frame, so that a shared machine's slow spells fall on all of them alike.
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -38,7 +38,7 @@ constexpr int kMinBvhBuilds = 3;                 // a median needs a few
 constexpr int kShadowLightCounts[] = {1, 2, 4};  // directional lights, all casting shadows or none
 constexpr float kGroundSideOverModel = 2.0f;     // the ground quad's side, in model widths
 constexpr float kGroundObjSide = 40.0f;          // models/fog-and-glass/ground.obj: 40 × 40 at y = 0
-constexpr float kLightElevationDegrees = 55.0f;  // above the horizon: every light's shadow falls near
+constexpr float kLightElevationDegrees = 55.0f;  // above the horizon: the shadows fall near, in view
 constexpr float kFirstLightAzimuthDegrees = 30.0f;
 
 // One row of the printed tables, and one line of the CSV (blank where a number does not apply).
