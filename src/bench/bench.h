@@ -2,7 +2,9 @@
 // `facet bench --vs-mesa` times Facet against Mesa's llvmpipe (mesa_peer.h) on the same scenes.
 // `facet bench --sort` times the transparency sorter (transparency_sort.h) on a turntable.
 // `facet bench --transparency` times the transparency modes side by side.
-// One file per mode (frame_bench, transparency_bench, mesa_bench, sort_bench); what they measure with
+// `facet bench --reference` times the reference renderer, Embree's ray casting and shadows.
+// One file per mode (frame_bench, transparency_bench, mesa_bench, sort_bench, reference_bench); what they
+// measure with
 // and draw their charts with is in process_stats.h and chart.h, for any command that times.
 #pragma once
 
@@ -34,6 +36,10 @@ struct BenchOptions {
     // --transparency
     bool transparency = false;
     float degreesPerFrame = 1.0f;  // the turntable's step
+
+    // --reference (writes `csv`, out/bench-reference.csv unless given)
+    bool reference = false;
+    std::filesystem::path ground = "models/fog-and-glass/ground.obj";  // the shadows' ground, a quad at y = 0
 };
 
 // The scene a benchmark draws: options.model (an OBJ file or a scene) at the options' size. Throws
@@ -68,5 +74,22 @@ void runMesaComparison(const BenchOptions& options, std::ostream& out);
 // per step the median ms per frame of each, their ratio, their comparisons and moves, and the keys' cost
 // (options.frames frames per step after 1 warm-up, fewer where a step would take too long). Single thread.
 void runSortBench(const BenchOptions& options, std::ostream& out);
+
+// The reference renderer's speed and what shadows cost the rasterizer, printed as tables and written to
+// options.csv (one line per row of the tables):
+//   - renderReference on options.model at the options' size with 1 and 4×4 = 16 samples per pixel, on 1 and
+//     2 threads: median ms per frame (BVH build included, as facet render --renderer reference pays it),
+//     the BVH's share, camera rays per second of tracing and shading;
+//   - the ray casting alone (RayScene::nearestOpaque8 on the same camera rays, 1 per pixel, generated
+//     beforehand): packets of 8 and single rays, the scene's face culling and none, 1 and 2 threads;
+//   - the BVH build (RayScene of the model), median of a few builds;
+//   - the rasterizer (options.threads) drawing options.model on options.ground with 1, 2 and 4
+//     directional lights that cast ray-cast shadows, or shadow maps of 1024, 2048 and 4096 texels, or
+//     none: median ms of prepareShadows (BVH or maps, rebuilt every frame as for a moving scene) and of
+//     the draw, and the cost per shadowing light: (ms with k such lights − ms with k lights without
+//     shadows) / k, of the draw alone (one BVH serves every light) and of the whole frame.
+// Configurations alternate frame by frame (a shared machine drifts); 1-sample reference frames and
+// rasterizer frames: options.frames each, 16-sample ones: at most 3. Throws InputError on bad input.
+void runReferenceBench(const BenchOptions& options, std::ostream& out);
 
 }  // namespace facet

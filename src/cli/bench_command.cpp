@@ -12,6 +12,7 @@ namespace facet::cli {
 namespace {
 
 constexpr int kMaxBenchFrames = 100'000;  // timed frames per measurement
+constexpr int kReferenceBenchFrames = 7;  // --reference: a 1-sample reference frame takes about a second
 
 // The repository this program was built in, found from the executable (REPO/build/src/facet): the
 // nearest folder above it holding the bundled models/ and, beside it, the shared ../shared/models.
@@ -36,6 +37,7 @@ void chooseDefaultBenchModels(facet::BenchOptions& options, bool modelGiven) {
     if (!repository.empty()) {
         options.sharedModels = (repository / "../shared/models").lexically_normal();
         options.smallModel = repository / "models/spot/spot_triangulated.obj";
+        options.ground = repository / "models/fog-and-glass/ground.obj";
     }
     if (modelGiven) return;
     options.model = options.sharedModels / bunny;
@@ -63,7 +65,8 @@ CLI::App* addBenchCommand(CLI::App& app, facet::BenchOptions& options) {
     command->add_flag("--quick", options.quick,
                       "With --vs-mesa: a shorter sweep and 5 frames (unless --frames), for a smoke run");
     command->add_option("--csv", options.csv,
-                        "With --vs-mesa: where the sweeps' CSV goes (default out/bench-scaling.csv)");
+                        "With --vs-mesa: where the sweeps' CSV goes (default out/bench-scaling.csv); with "
+                        "--reference: where its tables go (default out/bench-reference.csv)");
     command->add_option("--chart", options.chart,
                         "With --vs-mesa: where the sweeps' chart goes (default out/bench-scaling.png)");
     command->add_flag("--sort", options.sort,
@@ -77,11 +80,28 @@ CLI::App* addBenchCommand(CLI::App& app, facet::BenchOptions& options) {
         ->add_option("--degrees-per-frame", options.degreesPerFrame,
                      "With --transparency: the turntable's step (default 1)")
         ->check(kFiniteNumber);
+    command->add_flag("--reference", options.reference,
+                      "Time the reference renderer (1 and 16 samples, 1 and 2 threads), Embree's ray casting "
+                      "alone, the BVH build, and the rasterizer's cost per shadowing light (ray-cast, maps "
+                      "of 1024, 2048, 4096); 7 frames (unless --frames), CSV to out/bench-reference.csv "
+                      "(unless --csv)");
     return command;
 }
 
 int bench(facet::BenchOptions& options, const CLI::App& command) {
     chooseDefaultBenchModels(options, command.count("model") > 0);
+    if (options.reference) {
+        // --threads sets the rasterizer's threads; the reference and the rays run on 1 and on 2.
+        for (const char* option :
+             {"--vs-mesa", "--quick", "--chart", "--sort", "--transparency", "--degrees-per-frame"})
+            if (command.count(option))
+                throw facet::InputError(std::string(option) + " does not go with --reference");
+        if (command.count("--frames") == 0) options.frames = kReferenceBenchFrames;
+        if (command.count("--csv") == 0) options.csv = "out/bench-reference.csv";
+        checkSize(options.width, options.height);
+        facet::runReferenceBench(options, std::cout);
+        return 0;
+    }
     if (options.transparency) {
         for (const char* option : {"--vs-mesa", "--quick", "--csv", "--chart", "--sort"})
             if (command.count(option))
@@ -111,7 +131,7 @@ int bench(facet::BenchOptions& options, const CLI::App& command) {
         return 0;
     }
     if (options.quick || command.count("--csv") || command.count("--chart"))
-        throw facet::InputError("--quick, --csv and --chart go with --vs-mesa");
+        throw facet::InputError("--quick and --chart go with --vs-mesa, --csv with --vs-mesa or --reference");
     checkSize(options.width, options.height);
     facet::runBench(options, std::cout);
     return 0;

@@ -41,6 +41,16 @@ bool finite(const vec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
+// Embree takes a ray only when every coordinate of its origin and direction lies within ±1.844e18
+// (FLT_LARGE; RayK::valid in Embree's kernels/common/ray.h, asserted by Debian's build, which aborts on
+// any other): beyond that, like NaN and infinity, a ray is never handed over. Eight-lane batches of
+// fragments carry dead lanes whose positions are whatever the memory held, sometimes 1e22.
+constexpr float kEmbreeLargest = 1.844e18f;
+bool traceable(const vec3& v) {
+    return std::abs(v.x) <= kEmbreeLargest && std::abs(v.y) <= kEmbreeLargest &&
+           std::abs(v.z) <= kEmbreeLargest;  // false for NaN
+}
+
 // The extended intersection context of a camera ray: what the filter needs to cull and to collect.
 struct FilterContext {
     RTCIntersectContext embree;  // first: Embree hands the filter a pointer to it
@@ -191,7 +201,7 @@ bool RayScene::hasTransparent() const {
 }
 
 bool RayScene::occluded(const vec3& origin, const vec3& direction, float tnear, float tfar) const {
-    if (!finite(origin) || !finite(direction) || !std::isfinite(tnear) || std::isnan(tfar) ||
+    if (!traceable(origin) || !traceable(direction) || !std::isfinite(tnear) || std::isnan(tfar) ||
         !(tnear <= tfar))
         return false;
     RTCIntersectContext context;
@@ -218,7 +228,7 @@ unsigned RayScene::occluded8(const Vec3x8& origin, const Vec3x8& direction, Floa
     for (int i = 0; i < 8; ++i) {
         const vec3 o(origin.x[i], origin.y[i], origin.z[i]);
         const vec3 d(direction.x[i], direction.y[i], direction.z[i]);
-        const bool traced = ((lanes >> i) & 1) && finite(o) && finite(d) && std::isfinite(tnear[i]) &&
+        const bool traced = ((lanes >> i) & 1) && traceable(o) && traceable(d) && std::isfinite(tnear[i]) &&
                             !std::isnan(tfar[i]) && tnear[i] <= tfar[i];
         valid[i] = traced ? -1 : 0;
         any |= traced;

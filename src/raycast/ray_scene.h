@@ -51,7 +51,8 @@ class RayScene {
     bool hasTransparent() const;
 
     // Whether an opaque triangle lies on the segment origin + t·direction, t in (tnear, tfar).
-    // A non-finite origin, direction or range is never traced: it reports "not occluded".
+    // A non-finite origin, direction or range, or a coordinate beyond Embree's ±1.844e18, is never traced:
+    // it reports "not occluded".
     bool occluded(const vec3& origin, const vec3& direction, float tnear, float tfar) const;
     // Eight such rays at once (an 8-wide Embree packet); lanes outside `lanes` (bit i: lane i) are not
     // traced. Returns the occluded lanes as bits.

@@ -101,13 +101,31 @@ dvec2 samplePosition(int x, int y, int i, int j, int n) {
     return {x + (i + jitterX) / n, y + (j + jitterY) / n};
 }
 
-struct Ray {
-    dvec3 origin;
-    dvec3 direction;  // its z is −1: t is the eye-space depth
-    double tnear, tfar;
-};
+using Ray = CameraRay;
 
 }  // namespace
+
+ReferenceCamera::ReferenceCamera(const PreparedScene& prepared)
+    : viewFromClip_(glm::inverse(prepared.camera.clipFromViewExact)),
+      width_(prepared.scene.width),
+      height_(prepared.scene.height),
+      culling_{prepared.state.raster.cull == CullMode::Back, prepared.state.raster.cull == CullMode::Front} {
+    // The rasterizer's front faces are counter-clockwise in window space (y down): seen from the eye
+    // that is counter-clockwise too, as RayScene counts it.
+    nearDepth_ = -eyePoint(0.0, 0.0, -1.0).z;
+    farDepth_ = -eyePoint(0.0, 0.0, 1.0).z;
+}
+
+dvec3 ReferenceCamera::eyePoint(double ndcX, double ndcY, double ndcZ) const {
+    const dvec4 p = viewFromClip_ * dvec4(ndcX, ndcY, ndcZ, 1.0);
+    return dvec3(p) / p.w;
+}
+
+CameraRay ReferenceCamera::ray(dvec2 window) const {
+    const double ndcX = 2.0 * window.x / width_ - 1.0, ndcY = 1.0 - 2.0 * window.y / height_;
+    const dvec3 onNear = eyePoint(ndcX, ndcY, -1.0);
+    return {dvec3(0.0), onNear / -onNear.z, nearDepth_, farDepth_};
+}
 
 LinearImage renderReference(const PreparedScene& prepared, const ReferenceOptions& options, ThreadPool& pool,
                             ReferenceStats* stats) {
@@ -135,22 +153,8 @@ LinearImage renderReference(const PreparedScene& prepared, const ReferenceOption
         draws.push_back(referenceDraw(d, anyShadows ? &shadows : nullptr, options.terms));
 
     // Camera rays: from the eye through the near plane's point of each sample, t from near to far.
-    const Camera& camera = prepared.camera;
-    const dmat4 viewFromClip = glm::inverse(camera.clipFromViewExact);
-    const auto eyePoint = [&](double ndcX, double ndcY, double ndcZ) {
-        const dvec4 p = viewFromClip * dvec4(ndcX, ndcY, ndcZ, 1.0);
-        return dvec3(p) / p.w;
-    };
-    const double nearDepth = -eyePoint(0.0, 0.0, -1.0).z, farDepth = -eyePoint(0.0, 0.0, 1.0).z;
-    const auto cameraRay = [&](dvec2 window) {
-        const double ndcX = 2.0 * window.x / width - 1.0, ndcY = 1.0 - 2.0 * window.y / height;
-        const dvec3 onNear = eyePoint(ndcX, ndcY, -1.0);
-        return Ray{dvec3(0.0), onNear / -onNear.z, nearDepth, farDepth};
-    };
-    const RayScene::Culling culling{prepared.state.raster.cull == CullMode::Back,
-                                    prepared.state.raster.cull == CullMode::Front};
-    // The rasterizer's front faces are counter-clockwise in window space (y down): seen from the eye
-    // that is counter-clockwise too, as RayScene counts it.
+    const ReferenceCamera camera(prepared);
+    const RayScene::Culling culling = camera.culling();
     const dvec4 background(prepared.clearColor);
 
     // The colour seen along one ray, and the shading of one hit.
@@ -190,7 +194,7 @@ LinearImage renderReference(const PreparedScene& prepared, const ReferenceOption
             for (int j = 0; j < n; ++j)
                 for (int i = 0; i < n; ++i)
                     rowRays[(static_cast<std::size_t>(x) * n + j) * n + i] =
-                        cameraRay(samplePosition(x, y, i, j, n));
+                        camera.ray(samplePosition(x, y, i, j, n));
         // The nearest opaque surface of eight rays at a time.
         for (std::size_t first = 0; first < rowRays.size(); first += 8) {
             const std::size_t count = std::min<std::size_t>(8, rowRays.size() - first);

@@ -44,6 +44,33 @@ struct ReferenceOptions {
 };
 inline constexpr int kMaxReferenceSamples = 16;  // 256 rays per pixel
 
+// A camera ray of the reference: from the eye (eye space's origin) through a point of the near plane,
+// the direction scaled so that its z is −1 (t is then the eye-space depth), t limited to [near, far] as
+// the rasterizer's clipping limits depth.
+struct CameraRay {
+    glm::dvec3 origin;
+    glm::dvec3 direction;
+    double tnear, tfar;
+};
+
+// The camera rays of a prepared scene, as renderReference casts them (and a benchmark times them).
+class ReferenceCamera {
+  public:
+    explicit ReferenceCamera(const PreparedScene& prepared);
+    // The ray through `window` (pixels, y down: pixel (x, y)'s centre is (x + 0.5, y + 0.5)).
+    CameraRay ray(glm::dvec2 window) const;
+    // Faces culled as the scene's pipeline culls them.
+    RayScene::Culling culling() const { return culling_; }
+
+  private:
+    glm::dvec3 eyePoint(double ndcX, double ndcY, double ndcZ) const;
+
+    glm::dmat4 viewFromClip_;
+    double width_, height_;
+    double nearDepth_ = 0, farDepth_ = 0;
+    RayScene::Culling culling_;
+};
+
 struct ReferenceStats {
     double buildMilliseconds = 0;   // the BVHs
     double renderMilliseconds = 0;  // tracing and shading, BVH excluded

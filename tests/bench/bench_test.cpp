@@ -1,7 +1,10 @@
-// facet bench's modes: what they refuse before timing anything.
+// facet bench's modes: what they refuse before timing anything, and what a tiny run reports.
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include <sys/stat.h>
 
@@ -28,6 +31,70 @@ TEST_F(BenchTest, FifoIsRefusedWithoutOpeningIt) {
     std::ostringstream out;
     EXPECT_EQ(errorWithinASecond(fifo, [&] { runBench(options, out); }), expected) << "bench";
     EXPECT_EQ(errorWithinASecond(fifo, [&] { runSortBench(options, out); }), expected) << "bench --sort";
+}
+
+// The first five fields of each line of a CSV after its header: part, configuration, threads, lights,
+// frames (the row's name); " +per-light" when its last three, the costs per shadowing light, are given.
+std::vector<std::string> csvRowNames(const std::filesystem::path& path) {
+    std::ifstream file(path);
+    std::string line;
+    std::getline(file, line);  // the header
+    std::vector<std::string> names;
+    while (std::getline(file, line)) {
+        std::vector<std::string> fields(1);
+        for (char c : line) {
+            if (c == ',')
+                fields.emplace_back();
+            else
+                fields.back().push_back(c);
+        }
+        std::string name;
+        for (std::size_t k = 0; k < 5 && k < fields.size(); ++k) {
+            if (k) name += ',';
+            name += fields[k];
+        }
+        if (fields.size() == 14 && !fields[11].empty() && !fields[12].empty() && !fields[13].empty())
+            name += " +per-light";
+        if (fields.size() != 14) name += " (not 14 fields)";
+        names.push_back(name);
+    }
+    return names;
+}
+
+// facet bench --reference, tiny (32×24, 1 frame each): every row of every table, named in the report and
+// in the CSV, once, in order; the cost per shadowing light given exactly where lights cast shadows.
+TEST_F(BenchTest, ReferenceModeNamesEveryRow) {
+    BenchOptions options;
+    options.model = std::filesystem::path(FACET_SOURCE_DIR) / "models/spot/spot_triangulated.obj";
+    options.ground = std::filesystem::path(FACET_SOURCE_DIR) / "models/fog-and-glass/ground.obj";
+    options.width = 32;
+    options.height = 24;
+    options.frames = 1;
+    options.threads = 1;
+    options.csv = folder_ / "out/bench-reference.csv";  // its folder is made
+    std::ostringstream out;
+    runReferenceBench(options, out);
+
+    std::vector<std::string> expected;
+    for (const char* samples : {"1 sample", "16 samples"})
+        for (const char* threads : {"1", "2"})
+            expected.push_back(std::string("reference,") + samples + "," + threads + ",0,1");
+    for (const char* rays : {"packets of 8", "single rays"})
+        for (const char* culling : {" culling back", " culling none"})
+            for (const char* threads : {"1", "2"})
+                expected.push_back(std::string("rays,") + rays + culling + "," + threads + ",0,1");
+    expected.push_back("bvh,5856 triangles," + std::to_string(std::thread::hardware_concurrency()) + ",0,3");
+    for (const char* lights : {"1", "2", "4"})
+        for (const char* shadows : {"none", "ray", "map 1024", "map 2048", "map 4096"})
+            expected.push_back(std::string("shadows,") + shadows + ",1," + lights + ",1" +
+                               (std::string(shadows) == "none" ? "" : " +per-light"));
+    EXPECT_EQ(csvRowNames(options.csv), expected);
+
+    const std::string report = out.str();
+    for (const char* name :
+         {"Reference renderer", "16", "packets of 8 culling back", "single rays culling none", "BVH build",
+          "5856 triangles", "Shadows in the rasterizer", "map 4096", "per shadowing light", "wrote"})
+        EXPECT_NE(report.find(name), std::string::npos) << name << " missing from:\n" << report;
 }
 
 }  // namespace
