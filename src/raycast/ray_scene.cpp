@@ -37,10 +37,6 @@ RTCDevice sharedDevice() {
     return device;
 }
 
-bool finite(const vec3& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
 // Embree takes a ray only when every coordinate of its origin and direction lies within ±1.844e18
 // (FLT_LARGE; RayK::valid in Embree's kernels/common/ray.h, asserted by Debian's build, which aborts on
 // any other): beyond that, like NaN and infinity, a ray is never handed over. Eight-lane batches of
@@ -145,7 +141,7 @@ RayScene::RayScene(std::span<const RayMesh> meshes) : impl_(std::make_unique<Imp
                     usable = false;
                     break;
                 }
-                if (!finite(mesh.positions[index])) {
+                if (!traceable(mesh.positions[index])) {  // NaN, infinite, or beyond Embree's range
                     ++stats_.nonFiniteSkipped;
                     usable = false;
                     break;
@@ -258,8 +254,9 @@ void RayScene::nearestOpaque8(const glm::dvec3* origins, const glm::dvec3* direc
     alignas(32) RTCRayHit8 rays{};
     for (int i = 0; i < 8; ++i) {
         // A ray with a non-finite origin, direction or range is never handed to Embree: it meets nothing.
-        const bool traced = ((lanes >> i) & 1) && finite(vec3(origins[i])) && finite(vec3(directions[i])) &&
-                            std::isfinite(float(tnear[i])) && !std::isnan(tfar[i]) && tnear[i] <= tfar[i];
+        const bool traced = ((lanes >> i) & 1) && traceable(vec3(origins[i])) &&
+                            traceable(vec3(directions[i])) && std::isfinite(float(tnear[i])) &&
+                            !std::isnan(tfar[i]) && tnear[i] <= tfar[i];
         valid[i] = traced ? -1 : 0;
         rays.ray.org_x[i] = traced ? float(origins[i].x) : 0.0f;
         rays.ray.org_y[i] = traced ? float(origins[i].y) : 0.0f;
@@ -300,7 +297,8 @@ void RayScene::nearestOpaque8(const glm::dvec3* origins, const glm::dvec3* direc
 void RayScene::allTransparent(const glm::dvec3& origin, const glm::dvec3& direction, double tnear,
                               double tfar, Culling culling, std::vector<RayHit>& hits) const {
     hits.clear();
-    if (!impl_->anyTransparent) return;
+    if (!impl_->anyTransparent || !traceable(vec3(origin)) || !traceable(vec3(direction)) || !(tnear <= tfar))
+        return;
     const Impl::Side& side = impl_->sides[1];
     FilterContext context;
     rtcInitIntersectContext(&context.embree);

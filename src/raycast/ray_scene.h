@@ -21,10 +21,11 @@ struct RayMesh {
 };
 
 struct RaySceneStats {
-    std::size_t triangles = 0;         // given
-    std::size_t nonFiniteSkipped = 0;  // a corner with a NaN or infinite coordinate: never handed to Embree
-    std::size_t indexOutOfRange = 0;   // a corner index beyond the mesh's positions: never handed either
-    double buildMilliseconds = 0;      // both BVHs
+    std::size_t triangles = 0;  // given
+    // A corner with a NaN or infinite coordinate, or one beyond Embree's range (±1.8e18): never handed over.
+    std::size_t nonFiniteSkipped = 0;
+    std::size_t indexOutOfRange = 0;  // a corner index beyond the mesh's positions: never handed either
+    double buildMilliseconds = 0;     // both BVHs
 };
 
 // Where a ray meets a triangle: which mesh (its index in the list given to the constructor) and which
