@@ -106,14 +106,18 @@ int compareAgainstReference(const CompareArgs& args, const facet::Scene& scene) 
     }
     for (const auto& path : {args.facetImage, args.referenceImage})
         if (path) facet::checkImageDestination(*path, scene.width, scene.height);
+    std::ofstream csv;  // opened first, so that a bad path is reported before the long comparison
+    if (args.csv) {
+        csv.open(*args.csv);
+        if (!csv) throw facet::InputError(*args.csv + ": cannot write the CSV file there");
+    }
     const facet::ReferenceComparison result = facet::compareWithReference(scene, options);
     std::cout << "facet compare --reference: " << args.scene.input << "\n" << facet::describe(result);
     if (args.facetImage) facet::writeImage(*args.facetImage, result.rasterized, result.encoding);
     if (args.referenceImage) facet::writeImage(*args.referenceImage, result.reference, result.encoding);
     if (args.csv) {
-        std::ofstream file(*args.csv);
-        file << facet::shadowMapCsv(result);
-        if (!file.flush()) throw facet::InputError(*args.csv + ": cannot write the CSV file there");
+        csv << facet::shadowMapCsv(result);
+        if (!csv.flush()) throw facet::InputError(*args.csv + ": cannot write the CSV file there");
     }
     return result.agrees() ? 0 : kImagesDiffer;
 }

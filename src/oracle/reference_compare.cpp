@@ -428,7 +428,7 @@ std::string describe(const ReferenceComparison& c) {
         std::snprintf(text, sizeof text, "%.5f", s.largestEdgeDistance);
         out << "  farthest of those from its edge:     " << text << " px (the tolerance is 0.01563 px)\n";
     }
-    out << "  different, at equal depth:          " << s.atEqualDepth
+    out << "  different, at equal depth:           " << s.atEqualDepth
         << "  two surfaces at the same depth there (coincident or crossing):\n"
            "                                       the depth test may keep either\n";
     out << "  different, elsewhere:                " << s.elsewhere << "  (must be 0: a real disagreement)\n";

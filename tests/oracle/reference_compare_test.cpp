@@ -42,9 +42,13 @@ void expectAgreement(const ReferenceComparison& c, double minWithin1) {
     EXPECT_TRUE(c.agrees());
 }
 
-// Breaks caught: the observer recording transparent or depth-failed fragments as the pixel's surface;
-// the reference's ray through the pixel corner instead of its centre; shading in the rasterizer left at
-// fast maths or Schlick's Fresnel (the colour bar); a shadow ray offset differing between the two.
+// Breaks caught: the observer keeping depth-failed fragments as the pixel's surface (fate not checked);
+// distances measured from the pixel's left side instead of its centre, or with window y not flipped
+// (edge pixels counted elsewhere); the rasterizer's shadow mask taken from the image with every light
+// casting instead of one; the shadow boundary taken as the pixel itself instead of its 3×3
+// neighbourhood (the mask differences lie beside the reference's boundary, not on it); the colour bar:
+// the rasterizer's draws left at Gouraud shading instead of per pixel, or codes counted as within 1/255
+// only when equal.
 TEST(ReferenceCompare, ShadowsSceneAgrees) {
     const ReferenceComparison c = compareWithoutTable(sceneAt(kModels / "shadows.json", 200, 150));
     EXPECT_EQ(c.shadows.lights, 2);
@@ -54,8 +58,9 @@ TEST(ReferenceCompare, ShadowsSceneAgrees) {
     expectAgreement(c, 0.998);
 }
 
-// Transparency (exact in both) and fog. Break caught: the rasterizer's transparency left sorted per
-// triangle (the glass cube's faces then differ where they overlap), fog in float with fast exp.
+// Transparency (exact in both) and fog: the glass cube's triangles are not the pixels' surfaces (the
+// opaque surface behind them is). Breaks caught: as for the shadows scene (depth-failed fragments
+// kept, distances from the pixel's side, y not flipped).
 TEST(ReferenceCompare, FogAndGlassAgrees) {
     const ReferenceComparison c = compareWithoutTable(sceneAt(kModels / "fog-and-glass.json", 200, 150));
     expectAgreement(c, 0.994);  // measured: 99.484%, the rest where the glass's own edges fall
@@ -63,8 +68,8 @@ TEST(ReferenceCompare, FogAndGlassAgrees) {
 
 // The shared edge lies exactly on the pixel centres of column 10: each renderer gives those pixels to one
 // of the two triangles, not necessarily the same one; the disagreement must count as an edge.
-// Breaks caught: distanceToEdge measuring from the pixel corner (x, y) instead of the centre; the
-// y axis of the viewport not flipped; shareEdge comparing one corner only.
+// Breaks caught: distanceToEdge measuring from the pixel's left side (x) instead of its centre (x + ½);
+// shareEdge asking for three common corners instead of two.
 TEST(ReferenceCompare, PixelOnASharedEdgeIsAnEdgePixel) {
     const PreparedScene prepared = prepareForReference(loadSceneOrModel(kModels / "shared-edge.json"));
     ASSERT_EQ(prepared.draws.size(), 2u);  // left, right: one triangle each
@@ -86,8 +91,8 @@ TEST(ReferenceCompare, PixelOnASharedEdgeIsAnEdgePixel) {
 }
 
 // A renderer looking from a slightly different place shows other surfaces far from any edge: the
-// comparison must call that a real disagreement. Break caught: every disagreement counted as an edge
-// one (a tolerance in world units, or distances not in pixels).
+// comparison must call that a real disagreement. Breaks caught: the edge tolerance a pixel instead of
+// 1/64 (every disagreement counted as an edge one); distances from the pixel's side; y not flipped.
 TEST(ReferenceCompare, MovedCameraDisagreesElsewhere) {
     const Scene scene = sceneAt(kModels / "shadows.json", 200, 150);
     Scene moved = scene;
@@ -112,7 +117,8 @@ TEST(ReferenceCompare, MovedCameraDisagreesElsewhere) {
 
 // The shared models at a small size: curved meshes with thousands of small triangles (the bunny, the
 // teapot, whose lid and body meet at many edges) and the Cornell box's large walls meeting at corners.
-// Skipped when ../shared/models is absent.
+// Skipped when ../shared/models is absent. Breaks caught: depth-failed fragments kept; distances from
+// the pixel's side; for the Cornell box, the edge tolerance a pixel (its edge share passes 1%).
 void expectSharedModelAgrees(const std::filesystem::path& model, double minWithin1) {
     if (!std::filesystem::exists(model)) GTEST_SKIP() << model << " is not there";
     expectAgreement(compareWithoutTable(sceneAt(model, 160, 120)), minWithin1);
