@@ -1,7 +1,9 @@
 // `facet compare --reference`: the rasterizer against the exact reference renderer (src/reference), both
 // at one sample per pixel, through the pixel centre. It measures what the rasterizer promises:
 //   - the same surface at every pixel, except where the centre lies within a hair of a triangle's edge
-//     (where float snapping and a float ray test may each pick the other side);
+//     (where float snapping and a float ray test may each pick the other side), or where two surfaces
+//     lie at the same depth (a face written twice, surfaces crossing), where the depth test may keep
+//     either;
 //   - the same colour within 1/255 there, the shading being the same formulas in float and in double;
 //   - ray-cast shadows equal to the reference's except at the shadow boundaries;
 //   - and how far shadow maps (size, bias, filter) are from ray-cast shadows.
