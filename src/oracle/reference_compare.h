@@ -101,15 +101,18 @@ struct ColorAgreement {
 
 // Ray-cast shadows of the rasterizer against the reference's, on the pixels showing the same triangle.
 // A pixel is in a light's shadow in one renderer when it is darker there with only that light casting
-// shadows than with none; it is at a shadow boundary when, within 1 pixel (its 3×3 neighbourhood), the
-// reference has it in shadow of some light at one pixel and lit at another.
+// shadows than with none, by more than 1/255 in the output (a shadow that cannot be seen is no shadow); it is
+// at a shadow boundary when, within 1 pixel (its 3×3 neighbourhood), the reference has it in shadow of some
+// light at one pixel and lit at another.
 struct ShadowAgreement {
-    int lights = 0;                   // lights casting shadows (0: nothing compared)
-    std::size_t inShadow = 0;         // same-surface pixels the reference shadows from some light
-    std::size_t maskDifferences = 0;  // pixel and light where one renderer shadows and the other not
-    std::size_t maskAtBoundary = 0;   // of those, at a shadow boundary
-    std::size_t colorDiffering = 0;   // same-surface pixels more than 1/255 apart
-    std::size_t colorAtBoundary = 0;  // of those, at a shadow boundary
+    int lights = 0;            // lights casting shadows (0: nothing compared)
+    std::size_t inShadow = 0;  // same-surface pixels the reference shadows from some light
+    // Pixel and light where one renderer shadows and the other not, on pixels whose colours differ by
+    // more than 1/255 (elsewhere the two agree in what the image shows).
+    std::size_t maskDifferences = 0;
+    std::size_t maskAtBoundary = 0;               // of those, at a shadow boundary
+    std::size_t colorDiffering = 0;               // same-surface pixels more than 1/255 apart
+    std::size_t colorAtBoundary = 0;              // of those, at a shadow boundary
     std::vector<glm::ivec2> firstColorElsewhere;  // the first few of the others, row by row
     std::size_t maskElsewhere() const { return maskDifferences - maskAtBoundary; }
     std::size_t colorElsewhere() const { return colorDiffering - colorAtBoundary; }

@@ -44,8 +44,7 @@ void expectAgreement(const ReferenceComparison& c, double minWithin1) {
 
 // Breaks caught: the observer keeping depth-failed fragments as the pixel's surface (fate not checked);
 // distances measured from the pixel's left side instead of its centre, or with window y not flipped
-// (edge pixels counted elsewhere); the rasterizer's shadow mask taken from the image with every light
-// casting instead of one; the shadow boundary taken as the pixel itself instead of its 3×3
+// (edge pixels counted elsewhere); the shadow boundary taken as the pixel itself instead of its 3×3
 // neighbourhood (the mask differences lie beside the reference's boundary, not on it); the colour bar:
 // the rasterizer's draws left at Gouraud shading instead of per pixel, or codes counted as within 1/255
 // only when equal.
