@@ -1,0 +1,505 @@
+#include "oracle/reference_compare.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+
+#include "pipeline/observer.h"
+#include "reference/reference.h"
+#include "shading/gamma.h"
+
+namespace facet {
+
+using glm::dvec2;
+using glm::dvec3;
+using glm::dvec4;
+
+namespace {
+
+// Records which opaque triangle wrote each pixel last: with the depth test, the nearest one.
+struct SurfaceRecorder : NullObserver {
+    static constexpr bool enabled = true;
+    std::vector<RayHit>& surfaces;
+    int width;
+    std::uint32_t draw = 0;
+    bool opaque = true;
+
+    void onPlannedDraw(const PlannedDraw& call, const PreparedDraw& d) {
+        draw = call.draw;
+        opaque = !d.transparent;
+    }
+    void onFragment(const FragmentEvent& e) {
+        if (!opaque || e.fate != FragmentFate::Written) return;
+        RayHit& hit = surfaces[static_cast<std::size_t>(e.y) * width + e.x];
+        hit.mesh = draw;
+        hit.triangle = e.triangle;
+        hit.t = e.depth;
+    }
+};
+
+// The eye-space corners of a surface's triangle, in double as the reference has them.
+std::array<dvec3, 3> eyeCorners(const PreparedScene& prepared, const RayHit& surface) {
+    const PreparedDraw& d = prepared.draws[surface.mesh];
+    std::array<dvec3, 3> corners;
+    for (int k = 0; k < 3; ++k) {
+        const vec3& p = d.vertices[d.indices[3 * std::size_t(surface.triangle) + k]].position;
+        corners[k] = dvec3(d.viewFromObjectExact * dvec4(dvec3(p), 1.0));
+    }
+    return corners;
+}
+
+double distanceToSegment(dvec2 p, dvec2 a, dvec2 b) {
+    const dvec2 ab = b - a;
+    const double length2 = glm::dot(ab, ab);
+    const double t = length2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / length2, 0.0, 1.0) : 0.0;
+    return glm::length(p - (a + t * ab));
+}
+
+// Pixels are compared by the 8-bit codes the image file stores: the signed difference of the channel
+// (R, G or B) that differs most, b − a.
+int codeDifference(const vec4& a, const vec4& b, ColorEncoding encoding) {
+    int largest = 0;
+    for (int c = 0; c < 3; ++c) {
+        const int d = int(encodeChannel(b[c], encoding)) - int(encodeChannel(a[c], encoding));
+        if (std::abs(d) > std::abs(largest)) largest = d;
+    }
+    return largest;
+}
+
+// In the light's shadow: darker than with no shadows by more than 1/255 in some channel of the output
+// (where the light adds less than that, at grazing angles, its shadow cannot be seen).
+bool darker(const vec4& shadowed, const vec4& unshadowed, ColorEncoding encoding) {
+    return codeDifference(unshadowed, shadowed, encoding) < -1;
+}
+
+LinearImage rasterize(const PreparedScene& prepared, DrawContext& context) {
+    Framebuffer target(prepared.scene.width, prepared.scene.height);
+    FrameMemory memory;
+    renderFrame(prepared, target, context, memory);
+    return toImage(target);
+}
+
+LinearImage trace(const PreparedScene& prepared, DrawContext& context,
+                  std::vector<RayHit>* surfaces = nullptr) {
+    ReferenceOptions options;
+    options.samples = 1;  // the pixel centre, where the rasterizer samples
+    options.nearestSurfaces = surfaces;
+    return renderReference(prepared, options, context.pool);
+}
+
+void setShadowMethods(PreparedScene& prepared, const std::array<ShadowMethod, kMaxLights>& methods) {
+    prepared.shadowMethods = methods;
+    prepareShadows(prepared);
+}
+
+std::string percent(double fraction, int decimals = 3) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.*f%%", decimals, 100.0 * fraction);
+    return text;
+}
+
+std::string surfaceName(const RayHit& s) {
+    if (!s.hit()) return "background";
+    std::string name = "draw ";
+    name += std::to_string(s.mesh);
+    name += " triangle ";
+    name += std::to_string(s.triangle);
+    return name;
+}
+
+}  // namespace
+
+PreparedScene prepareForReference(Scene scene) {
+    scene.pipeline.interpolation = Interpolation::PerspectiveCorrect;
+    scene.transparency.mode = TransparencyMode::Exact;
+    PreparedScene prepared = prepareScene(scene);
+    for (PreparedDraw& d : prepared.draws) {
+        // The reference shades every hit per pixel with the draw's own vertices (a flat draw's are
+        // unwelded with face normals, so per pixel it stays flat), pow and exp exact, Fresnel exact.
+        d.frequency = ShadingFrequency::Phong;
+        d.uniforms.precision = MathPrecision::Exact;
+        d.uniforms.brdf.fresnel = FresnelModel::Exact;
+    }
+    std::array<ShadowMethod, kMaxLights> methods = prepared.shadowMethods;
+    for (ShadowMethod& m : methods)
+        if (m == ShadowMethod::Map) m = ShadowMethod::Ray;  // the reference casts rays for every light
+    setShadowMethods(prepared, methods);
+    return prepared;
+}
+
+LinearImage rasterizeSurfaces(const PreparedScene& prepared, DrawContext& context,
+                              std::vector<RayHit>& surfaces) {
+    const int width = prepared.scene.width, height = prepared.scene.height;
+    surfaces.assign(static_cast<std::size_t>(width) * height, RayHit{});
+    Framebuffer target(width, height);
+    FrameMemory memory;
+    SurfaceRecorder recorder{{}, surfaces, width};
+    renderFrame(prepared, target, context, memory, recorder);
+    return toImage(target);
+}
+
+double distanceToEdge(const PreparedScene& prepared, const RayHit& surface, dvec2 window) {
+    if (!surface.hit()) return std::numeric_limits<double>::infinity();
+    const glm::dmat4& clipFromView = prepared.camera.clipFromViewExact;
+    // The triangle in clip space, clipped to the near (z ≥ −w) and far (z ≤ w) planes as both renderers
+    // limit it (Sutherland–Hodgman); the cut is an edge of what is drawn.
+    std::vector<dvec4> polygon;
+    for (const dvec3& p : eyeCorners(prepared, surface))
+        polygon.push_back(clipFromView * dvec4(p, 1.0));
+    for (const double side : {1.0, -1.0}) {
+        const auto inside = [side](const dvec4& c) { return c.w + side * c.z; };
+        std::vector<dvec4> clipped;
+        for (std::size_t i = 0; i < polygon.size(); ++i) {
+            const dvec4& a = polygon[i];
+            const dvec4& b = polygon[(i + 1) % polygon.size()];
+            const double da = inside(a), db = inside(b);
+            if (da >= 0) clipped.push_back(a);
+            if ((da >= 0) != (db >= 0)) clipped.push_back(a + (da / (da - db)) * (b - a));
+        }
+        polygon = std::move(clipped);
+    }
+    if (polygon.empty()) return std::numeric_limits<double>::infinity();
+    // The viewport transform (pipeline/viewport.h), window y down, without snapping.
+    const double width = prepared.scene.width, height = prepared.scene.height;
+    std::vector<dvec2> corners;
+    for (const dvec4& c : polygon)
+        corners.push_back({(c.x / c.w + 1.0) * 0.5 * width, (1.0 - c.y / c.w) * 0.5 * height});
+    double nearest = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < corners.size(); ++i)
+        nearest = std::min(nearest, distanceToSegment(window, corners[i], corners[(i + 1) % corners.size()]));
+    return nearest;
+}
+
+double windowDepthAt(const PreparedScene& prepared, const RayHit& surface, dvec2 window) {
+    if (!surface.hit()) return std::numeric_limits<double>::quiet_NaN();
+    const std::array<dvec3, 3> c = eyeCorners(prepared, surface);
+    // The ray from the eye (the origin of eye space) through the window point, as the reference casts it.
+    const glm::dmat4& clipFromView = prepared.camera.clipFromViewExact;
+    const dvec4 onNear =
+        glm::inverse(clipFromView) * dvec4(2.0 * window.x / prepared.scene.width - 1.0,
+                                           1.0 - 2.0 * window.y / prepared.scene.height, -1.0, 1.0);
+    const dvec3 direction = dvec3(onNear) / onNear.w;
+    const dvec3 normal = glm::cross(c[1] - c[0], c[2] - c[0]);
+    const double along = glm::dot(normal, direction);
+    if (!(std::abs(along) > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+    const dvec3 point = (glm::dot(normal, c[0]) / along) * direction;
+    const dvec4 clip = clipFromView * dvec4(point, 1.0);
+    return (clip.z / clip.w + 1.0) * 0.5;
+}
+
+bool shareEdge(const PreparedScene& prepared, const RayHit& a, const RayHit& b) {
+    if (!a.hit() || !b.hit()) return false;
+    const std::array<dvec3, 3> ca = eyeCorners(prepared, a), cb = eyeCorners(prepared, b);
+    int common = 0;
+    for (const dvec3& p : ca)
+        common += std::find(cb.begin(), cb.end(), p) != cb.end();
+    return common >= 2;
+}
+
+SurfaceDisagreement classifyDisagreement(const PreparedScene& prepared, int x, int y,
+                                         const RayHit& rasterized, const RayHit& traced) {
+    SurfaceDisagreement d;
+    d.x = x;
+    d.y = y;
+    d.rasterized = rasterized;
+    d.traced = traced;
+    const dvec2 centre(x + 0.5, y + 0.5);
+    d.edgeDistance =
+        std::min(distanceToEdge(prepared, rasterized, centre), distanceToEdge(prepared, traced, centre));
+    d.sharedEdge = shareEdge(prepared, rasterized, traced);
+    d.depthDifference = std::numeric_limits<double>::infinity();
+    if (rasterized.hit() && traced.hit()) {
+        const auto depth = [&](const RayHit& s, double dx, double dy) {
+            return windowDepthAt(prepared, s, centre + dvec2(dx, dy));
+        };
+        const auto share = [&](const RayHit& s) {
+            const double z = depth(s, 0, 0);
+            const double slopes = std::abs(depth(s, 1, 0) - z) + std::abs(depth(s, 0, 1) - z);
+            return slopes / 512.0 + 0x1.0p-22;
+        };
+        d.depthDifference = std::abs(depth(rasterized, 0, 0) - depth(traced, 0, 0));
+        d.depthTolerance = 2.0 * (share(rasterized) + share(traced));
+        if (!std::isfinite(d.depthDifference)) d.depthDifference = std::numeric_limits<double>::infinity();
+    }
+    return d;
+}
+
+SurfaceAgreement compareSurfaces(const PreparedScene& prepared, const std::vector<RayHit>& rasterized,
+                                 const std::vector<RayHit>& traced) {
+    const int width = prepared.scene.width, height = prepared.scene.height;
+    SurfaceAgreement result;
+    result.pixels = static_cast<std::size_t>(width) * height;
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const std::size_t i = static_cast<std::size_t>(y) * width + x;
+            const RayHit &r = rasterized[i], &t = traced[i];
+            if (!r.hit() && !t.hit()) {
+                ++result.bothBackground;
+                continue;
+            }
+            ++result.covered;
+            if (r.mesh == t.mesh && r.triangle == t.triangle) {
+                ++result.same;
+                continue;
+            }
+            const SurfaceDisagreement d = classifyDisagreement(prepared, x, y, r, t);
+            if (d.atEdge()) {
+                ++result.atEdge;
+                result.onSharedEdge += d.sharedEdge;
+                result.largestEdgeDistance = std::max(result.largestEdgeDistance, d.edgeDistance);
+            } else if (d.atEqualDepth()) {
+                ++result.atEqualDepth;
+            } else {
+                ++result.elsewhere;
+                if (result.firstElsewhere.size() < SurfaceAgreement::kListed)
+                    result.firstElsewhere.push_back(d);
+            }
+        }
+    return result;
+}
+
+ReferenceComparison compareWithReference(const Scene& scene, const ReferenceCompareOptions& options) {
+    PreparedScene prepared = prepareForReference(scene);
+    DrawContext context(options.threads);
+    const int width = prepared.scene.width, height = prepared.scene.height;
+    const std::size_t pixels = static_cast<std::size_t>(width) * height;
+
+    ReferenceComparison result;
+    result.width = width;
+    result.height = height;
+    result.encoding = prepared.encoding;
+    std::vector<RayHit> rasterized, traced;
+    result.rasterized = rasterizeSurfaces(prepared, context, rasterized);
+    result.reference = trace(prepared, context, &traced);
+    result.surfaces = compareSurfaces(prepared, rasterized, traced);
+
+    const auto sameSurface = [&](std::size_t i) {
+        return rasterized[i].hit() && rasterized[i].mesh == traced[i].mesh &&
+               rasterized[i].triangle == traced[i].triangle;
+    };
+    std::vector<bool> colorDiffers(pixels, false);
+    for (std::size_t i = 0; i < pixels; ++i) {
+        if (!sameSurface(i)) continue;
+        const vec4 &a = result.rasterized.pixels[i], &b = result.reference.pixels[i];
+        const int codes = std::abs(codeDifference(a, b, result.encoding));
+        ColorAgreement& c = result.color;
+        ++c.compared;
+        c.within1 += codes <= 1;
+        colorDiffers[i] = codes > 1;
+        c.largestCodeDifference = std::max(c.largestCodeDifference, codes);
+        for (int channel = 0; channel < 3; ++channel)
+            c.largestLinearDifference =
+                std::max(c.largestLinearDifference, double(std::abs(a[channel] - b[channel])));
+    }
+
+    // Shadows: per casting light, where each renderer has the point in its shadow.
+    const std::array<ShadowMethod, kMaxLights> casting = prepared.shadowMethods;
+    std::array<ShadowMethod, kMaxLights> none{};
+    none.fill(ShadowMethod::None);
+    std::vector<int> lights;
+    for (std::size_t l = 0; l < kMaxLights; ++l)
+        if (casting[l] != ShadowMethod::None) lights.push_back(int(l));
+    ShadowAgreement& s = result.shadows;
+    s.lights = int(lights.size());
+    if (!lights.empty()) {
+        setShadowMethods(prepared, none);
+        const LinearImage rasterLit = rasterize(prepared, context), traceLit = trace(prepared, context);
+        // masks[k][i]: light lights[k] shadows pixel i (rasterizer, reference).
+        std::vector<std::vector<bool>> rasterMasks, traceMasks;
+        for (const int light : lights) {
+            std::array<ShadowMethod, kMaxLights> only = none;
+            only[light] = ShadowMethod::Ray;
+            setShadowMethods(prepared, only);
+            const LinearImage r = rasterize(prepared, context), t = trace(prepared, context);
+            std::vector<bool> rm(pixels), tm(pixels);
+            for (std::size_t i = 0; i < pixels; ++i) {
+                rm[i] = darker(r.pixels[i], rasterLit.pixels[i], result.encoding);
+                tm[i] = darker(t.pixels[i], traceLit.pixels[i], result.encoding);
+            }
+            rasterMasks.push_back(std::move(rm));
+            traceMasks.push_back(std::move(tm));
+        }
+        setShadowMethods(prepared, casting);
+        const auto atBoundary = [&](int x, int y) {
+            const std::size_t i = static_cast<std::size_t>(y) * width + x;
+            for (const std::vector<bool>& mask : traceMasks)
+                for (int dy = -1; dy <= 1; ++dy)
+                    for (int dx = -1; dx <= 1; ++dx) {
+                        const int nx = x + dx, ny = y + dy;
+                        if (nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
+                        if (mask[static_cast<std::size_t>(ny) * width + nx] != mask[i]) return true;
+                    }
+            return false;
+        };
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) {
+                const std::size_t i = static_cast<std::size_t>(y) * width + x;
+                if (!sameSurface(i)) continue;
+                bool shadowed = false;
+                std::size_t maskDifferences = 0;
+                for (std::size_t k = 0; k < lights.size(); ++k) {
+                    shadowed = shadowed || traceMasks[k][i];
+                    // Only where it shows: a shadow the colours do not tell apart is a rounding tie.
+                    maskDifferences += colorDiffers[i] && rasterMasks[k][i] != traceMasks[k][i];
+                }
+                s.inShadow += shadowed;
+                if (!maskDifferences && !colorDiffers[i]) continue;
+                const bool boundary = atBoundary(x, y);
+                s.maskDifferences += maskDifferences;
+                if (boundary) s.maskAtBoundary += maskDifferences;
+                if (colorDiffers[i]) {
+                    ++s.colorDiffering;
+                    s.colorAtBoundary += boundary;
+                    if (!boundary && s.firstColorElsewhere.size() < SurfaceAgreement::kListed)
+                        s.firstColorElsewhere.push_back({x, y});
+                }
+            }
+    }
+
+    // Shadow maps against ray-cast shadows, both in the rasterizer.
+    if (options.shadowMapTable && !lights.empty()) {
+        std::array<ShadowMethod, kMaxLights> maps = casting;
+        for (const int light : lights)
+            maps[light] = ShadowMethod::Map;
+        const ShadowMapOptions defaults;
+        struct Bias {
+            const char* name;
+            float constant, slope;
+        };
+        // The default bias, none, constant only, and four times the default (a large one).
+        const Bias biases[] = {{"none", 0.0f, 0.0f},
+                               {"constant", defaults.constantBias, 0.0f},
+                               {"default", defaults.constantBias, defaults.slopeBias},
+                               {"large", 4.0f * defaults.constantBias, 4.0f * defaults.slopeBias}};
+        std::size_t surfacePixels = 0;
+        for (const RayHit& h : rasterized)
+            surfacePixels += h.hit();
+        for (const int size : options.shadowMapSizes)
+            for (const Bias& bias : biases)
+                for (const int taps : {1, 4, 16}) {
+                    prepared.shadowMapOptions = {size, bias.constant, bias.slope, taps};
+                    setShadowMethods(prepared, maps);
+                    const LinearImage image = rasterize(prepared, context);
+                    ShadowMapRow row{size, bias.name, bias.constant, bias.slope, taps, 0.0, 0, 0};
+                    double sum = 0;
+                    for (std::size_t i = 0; i < pixels; ++i) {
+                        const vec4 &ray = result.rasterized.pixels[i], &map = image.pixels[i];
+                        if (rasterized[i].hit())
+                            sum += (std::abs(map.r - ray.r) + std::abs(map.g - ray.g) +
+                                    std::abs(map.b - ray.b)) /
+                                   3.0;
+                        const int codes = codeDifference(ray, map, result.encoding);
+                        row.wronglyLit += codes > 2;
+                        row.wronglyShadowed += codes < -2;
+                    }
+                    row.meanError = surfacePixels ? sum / double(surfacePixels) : 0.0;
+                    result.shadowMaps.push_back(row);
+                }
+        prepared.shadowMapOptions = prepared.scene.shadowMap;
+        setShadowMethods(prepared, casting);
+    }
+    return result;
+}
+
+std::string describe(const ReferenceComparison& c) {
+    std::ostringstream out;
+    const SurfaceAgreement& s = c.surfaces;
+    out << "  " << c.width << "×" << c.height
+        << ", one sample per pixel at its centre in both. The rasterizer draws with the reference's "
+           "formulas\n"
+           "  here: per-pixel (Phong) shading, perspective-correct interpolation, exact pow/exp and "
+           "Fresnel,\n"
+           "  exact transparency (fragment lists), ray-cast shadows for every light that casts shadows.\n";
+    out << "Surfaces (which triangle each pixel shows):\n";
+    out << "  pixels showing a surface in either:  " << s.covered << " of " << s.pixels << "\n";
+    out << "  the same triangle in both:           " << s.same << " ("
+        << percent(s.covered ? double(s.same) / s.covered : 1.0) << " of those)\n";
+    out << "  different, at an edge:               " << s.atEdge << " (" << percent(s.edgeShare())
+        << "; bar < " << percent(ReferenceComparison::kMaxEdgeShare, 0)
+        << ")  the centre within 1/64 px of an edge,\n"
+        << "                                       where either side may cover it; " << s.onSharedEdge
+        << " of them between two triangles sharing that edge\n";
+    if (s.atEdge) {
+        char text[64];
+        std::snprintf(text, sizeof text, "%.5f", s.largestEdgeDistance);
+        out << "  farthest of those from its edge:     " << text << " px (the tolerance is 0.01563 px)\n";
+    }
+    out << "  different, at equal depth:           " << s.atEqualDepth
+        << "  two surfaces at the same depth there (coincident or crossing):\n"
+           "                                       the depth test may keep either\n";
+    out << "  different, elsewhere:                " << s.elsewhere << "  (must be 0: a real disagreement)\n";
+    for (const SurfaceDisagreement& d : s.firstElsewhere) {
+        char text[64];
+        std::snprintf(text, sizeof text, "%.3f px from an edge, depths %.3g apart", d.edgeDistance,
+                      d.depthDifference);
+        out << "    pixel " << d.x << "," << d.y << ": rasterizer " << surfaceName(d.rasterized)
+            << ", reference " << surfaceName(d.traced) << ", " << text << "\n";
+    }
+    const ColorAgreement& col = c.color;
+    out << "Colour (the pixels showing the same triangle, float shading against double):\n";
+    out << "  within 1/255 on every channel:       " << col.within1 << " of " << col.compared << " ("
+        << percent(col.within1Share()) << "; bar ≥ " << percent(ReferenceComparison::kMinColorWithin1, 0)
+        << ")\n";
+    char linear[64];
+    std::snprintf(linear, sizeof linear, "%.3g", col.largestLinearDifference);
+    out << "  largest difference:                  " << col.largestCodeDifference << "/255 in the image, "
+        << linear << " in linear values\n";
+    const ShadowAgreement& sh = c.shadows;
+    if (sh.lights == 0) {
+        out << "Shadows: no light casts shadows (try --shadows ray).\n";
+    } else {
+        out << "Ray-cast shadows (" << sh.lights << (sh.lights == 1 ? " light" : " lights")
+            << ";\n  a pixel is in a light's shadow where it is darker than with no shadows, by more than "
+               "1/255):\n";
+        out << "  same-triangle pixels in a shadow:    " << sh.inShadow << " (in the reference)\n";
+        out << "  shadowed in one, lit in the other:   " << sh.maskDifferences << " (pixel and light), "
+            << sh.maskAtBoundary
+            << " at a shadow boundary (within 1 px of the reference's edge of a shadow), "
+            << sh.maskElsewhere() << " elsewhere (must be 0)\n";
+        out << "  colours more than 1/255 apart:       " << sh.colorDiffering << ", " << sh.colorAtBoundary
+            << " at a shadow boundary, " << sh.colorElsewhere() << " elsewhere\n";
+        for (const glm::ivec2& p : sh.firstColorElsewhere) {
+            const std::size_t i = static_cast<std::size_t>(p.y) * c.width + p.x;
+            char text[160];
+            std::snprintf(text, sizeof text,
+                          "    pixel %d,%d: rasterizer %.4f %.4f %.4f, reference %.4f %.4f %.4f (linear)\n",
+                          p.x, p.y, double(c.rasterized.pixels[i].r), double(c.rasterized.pixels[i].g),
+                          double(c.rasterized.pixels[i].b), double(c.reference.pixels[i].r),
+                          double(c.reference.pixels[i].g), double(c.reference.pixels[i].b));
+            out << text;
+        }
+    }
+    if (!c.shadowMaps.empty()) {
+        out << "Shadow maps against ray-cast shadows (both in the rasterizer; error: mean |Δ| in linear "
+               "values\n"
+               "over the pixels showing a surface; wrongly lit / shadowed: brighter / darker by more than "
+               "2/255):\n";
+        out << "   size  bias      constant  slope  filter  mean error  wrongly lit  wrongly shadowed\n";
+        for (const ShadowMapRow& r : c.shadowMaps) {
+            char line[160];
+            std::snprintf(line, sizeof line, "  %5d  %-8s  %8g  %5g  %6d  %10.6f  %11zu  %16zu\n", r.size,
+                          r.bias.c_str(), double(r.constantBias), double(r.slopeBias), r.filterTaps,
+                          r.meanError, r.wronglyLit, r.wronglyShadowed);
+            out << line;
+        }
+    }
+    out << (c.agrees() ? "Agreement: yes\n" : "Agreement: NO\n");
+    return out.str();
+}
+
+std::string shadowMapCsv(const ReferenceComparison& c) {
+    std::string csv = "size,bias,constant_bias,slope_bias,filter,mean_error,wrongly_lit,wrongly_shadowed\n";
+    for (const ShadowMapRow& r : c.shadowMaps) {
+        char line[160];
+        std::snprintf(line, sizeof line, "%d,%s,%g,%g,%d,%.8f,%zu,%zu\n", r.size, r.bias.c_str(),
+                      double(r.constantBias), double(r.slopeBias), r.filterTaps, r.meanError, r.wronglyLit,
+                      r.wronglyShadowed);
+        csv += line;
+    }
+    return csv;
+}
+
+}  // namespace facet
