@@ -184,8 +184,10 @@ std::string formatLogTick(double value) {
     }
     const int exponent = static_cast<int>(std::lround(std::log10(value)));
     const double mantissa = value / std::pow(10.0, exponent);
-    if (std::abs(mantissa - 1.0) > 1e-9) text << std::lround(mantissa);
-    else text << 1;
+    if (std::abs(mantissa - 1.0) > 1e-9)
+        text << std::lround(mantissa);
+    else
+        text << 1;
     text << "E" << exponent;
     return text.str();
 }
@@ -205,7 +207,7 @@ void drawScatter(Canvas& canvas, int left, int top, int width, int height, const
                  const std::vector<LabelledPoint>& points, const std::vector<std::size_t>& joined) {
     const vec4 ink = srgb8(20, 20, 20), grid = srgb8(225, 225, 225);
     const int plotLeft = left + 90, plotRight = left + width - 30;
-    const int plotTop = top + 50, plotBottom = top + height - 60;
+    const int plotTop = top + 70, plotBottom = top + height - 60;
     canvas.text(left + (width - Canvas::textWidth(title, 2)) / 2, top + 8, title, 2, ink);
     if (points.empty()) return;
 
@@ -269,7 +271,7 @@ void drawScatter(Canvas& canvas, int left, int top, int width, int height, const
     canvas.fillRect(plotLeft, plotBottom, plotRight, plotBottom + 2, ink);
     canvas.text(plotLeft + (plotRight - plotLeft - Canvas::textWidth(xLabel, 2)) / 2, plotBottom + 36, xLabel,
                 2, ink);
-    canvas.text(left + 4, plotTop - 26, yLabel, 2, ink);
+    canvas.text(left + 4, plotTop - 30, yLabel, 2, ink);
 
     // The joined points' line, then the points, then their labels where they cover the least.
     std::vector<vec2> pixels;
@@ -282,7 +284,8 @@ void drawScatter(Canvas& canvas, int left, int top, int width, int height, const
     for (std::size_t i = 0; i < points.size(); ++i) {
         canvas.disc(pixels[i], kRadius, points[i].color);
         taken.push_back({static_cast<int>(pixels[i].x) - kRadius, static_cast<int>(pixels[i].y) - kRadius,
-                         static_cast<int>(pixels[i].x) + kRadius + 1, static_cast<int>(pixels[i].y) + kRadius + 1});
+                         static_cast<int>(pixels[i].x) + kRadius + 1,
+                         static_cast<int>(pixels[i].y) + kRadius + 1});
     }
     const Box plot{plotLeft + 3, plotTop, plotRight, plotBottom};
     for (std::size_t i = 0; i < points.size(); ++i) {

@@ -67,9 +67,10 @@ int trade(const TradeArgs& args) {
     options.threads = args.scene.threads;
     options.referenceSamples = args.referenceSamples;
     options.progress = !args.quiet;
-    options.outputDir = args.outputDir ? std::filesystem::path(*args.outputDir)
-                                       : std::filesystem::path("out") /
-                                             ("trade-" + std::filesystem::path(args.scene.input).stem().string());
+    options.outputDir = args.outputDir
+                            ? std::filesystem::path(*args.outputDir)
+                            : std::filesystem::path("out") /
+                                  ("trade-" + std::filesystem::path(args.scene.input).stem().string());
     if (options.outputDir.empty())
         throw facet::InputError("no output folder given: name one with -o, like -o out/trade");
     const facet::TradeResult result = facet::runTrade(

@@ -32,8 +32,7 @@ OIIO::ImageBuf asImageBuf(std::vector<float>& planes, int width, int height) {
 // Pixels with some channel off by more than `threshold`: OpenImageIO's failure count (a pixel fails
 // when any of its channels is off by more than the threshold).
 double shareAbove(const OIIO::ImageBuf& a, const OIIO::ImageBuf& b, float threshold, std::size_t pixels) {
-    const OIIO::ImageBufAlgo::CompareResults result =
-        OIIO::ImageBufAlgo::compare(a, b, threshold, threshold);
+    const OIIO::ImageBufAlgo::CompareResults result = OIIO::ImageBufAlgo::compare(a, b, threshold, threshold);
     return pixels ? static_cast<double>(result.nfail) / static_cast<double>(pixels) : 0.0;
 }
 
@@ -86,13 +85,17 @@ ImageError measureError(const LinearImage& image, const LinearImage& reference, 
                                   image.width, image.height);
     // The 8-bit shares counted in whole codes (the oracle's comparison), not by float thresholds.
     const PixelDifference codes = comparePixels(image, reference, encoding);
-    error.encoded.over1 = 1.0 - codes.within1;
-    error.encoded.over2 = 1.0 - codes.within2;
+    // within1 and within2 are counts over the pixel count: back to whole counts, so that one pixel of
+    // 384 reads as exactly 1/384.
+    const double pixels = static_cast<double>(codes.pixels);
+    error.encoded.over1 = std::round((1.0 - codes.within1) * pixels) / pixels;
+    error.encoded.over2 = std::round((1.0 - codes.within2) * pixels) / pixels;
     return error;
 }
 
 bool sameEncoded(const LinearImage& a, const LinearImage& b, ColorEncoding encoding) {
-    return a.width == b.width && a.height == b.height && encodedPlanes(a, encoding) == encodedPlanes(b, encoding);
+    return a.width == b.width && a.height == b.height &&
+           encodedPlanes(a, encoding) == encodedPlanes(b, encoding);
 }
 
 namespace {

@@ -7,12 +7,12 @@
 namespace facet {
 
 struct ErrorMetrics {
-    double psnr = 0;       // dB, 10·log10(1 / MSE) over R, G and B, peak 1; at most kMaxPsnr
-    double ssim = 0;       // Wang et al. 2004, 11×11 Gaussian window, mean over R, G and B; 1: identical
-    double meanAbs = 0;    // mean |a − b| over every R, G and B value
-    double maxAbs = 0;     // largest |a − b| of any channel of any pixel
-    double over1 = 0;      // share of pixels with some channel off by more than 1/255
-    double over2 = 0;      // ... by more than 2/255
+    double psnr = 0;     // dB, 10·log10(1 / MSE) over R, G and B, peak 1; at most kMaxPsnr
+    double ssim = 0;     // Wang et al. 2004, 11×11 Gaussian window, mean over R, G and B; 1: identical
+    double meanAbs = 0;  // mean |a − b| over every R, G and B value
+    double maxAbs = 0;   // largest |a − b| of any channel of any pixel
+    double over1 = 0;    // share of pixels with some channel off by more than 1/255
+    double over2 = 0;    // ... by more than 2/255
 };
 
 // PSNR is capped here: identical images (MSE 0, an infinite PSNR) and differences below float rounding

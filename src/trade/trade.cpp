@@ -55,10 +55,11 @@ void writeChart(const TradeResult& result, const std::string& title, const std::
     std::vector<LabelledPoint> points;
     std::vector<glm::dvec2> xy;
     for (const TradeRow& row : result.rows) {
-        const vec4 color = row.pareto                    ? srgb8(30, 100, 200)
+        const vec4 color = row.pareto                     ? srgb8(30, 100, 200)
                            : row.setting.knob == "preset" ? srgb8(230, 120, 20)
                                                           : srgb8(150, 150, 150);
-        points.push_back({chartLabel(row.setting), {row.msMedian, tradeError(row)},
+        points.push_back({chartLabel(row.setting),
+                          {row.msMedian, tradeError(row)},
                           row.setting.knob == "baseline" ? srgb8(20, 20, 20) : color});
         xy.push_back(points.back().point);
     }
@@ -214,8 +215,8 @@ void writeTradeCsv(const TradeResult& result, std::ostream& out) {
     out << ",no_effect,pareto,image,error_image\n";
     for (const TradeRow& row : result.rows) {
         out << csvField(row.setting.knob) << "," << csvField(row.setting.value) << ","
-            << csvField(row.setting.words.empty() ? "" : row.setting.label()) << "," << csvNumber(row.msMedian)
-            << "," << csvNumber(row.msMin) << "," << csvNumber(row.msMax);
+            << csvField(row.setting.words.empty() ? "" : row.setting.label()) << ","
+            << csvNumber(row.msMedian) << "," << csvNumber(row.msMin) << "," << csvNumber(row.msMax);
         for (const ErrorMetrics* m : {&row.error.linear, &row.error.encoded})
             for (const double value : {m->psnr, m->ssim, m->meanAbs, m->maxAbs, m->over1, m->over2})
                 out << "," << csvNumber(value);
@@ -229,11 +230,12 @@ void printTradeTable(const TradeResult& result, std::ostream& out) {
     out << std::string(kLabel, ' ') << "  ms per frame    linear       8-bit output\n";
     out << std::left << std::setw(kLabel) << "setting" << std::right << std::setw(8) << "median"
         << std::setw(7) << "spread" << std::setw(7) << "PSNR" << std::setw(7) << "SSIM" << std::setw(7)
-        << "PSNR" << std::setw(7) << "SSIM" << std::setw(6) << "mean" << std::setw(4) << "max"
-        << std::setw(7) << ">1/255" << std::setw(7) << ">2/255" << "\n";
+        << "PSNR" << std::setw(7) << "SSIM" << std::setw(6) << "mean" << std::setw(4) << "max" << std::setw(7)
+        << ">1/255" << std::setw(7) << ">2/255"
+        << "\n";
     for (const TradeRow& row : result.rows) {
-        const std::string label = row.setting.knob == "preset" ? "preset " + row.setting.value
-                                                               : row.setting.label();
+        const std::string label =
+            row.setting.knob == "preset" ? "preset " + row.setting.value : row.setting.label();
         if (static_cast<int>(label.size()) > kLabel)
             out << label << "\n" << std::string(kLabel, ' ');
         else

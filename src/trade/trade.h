@@ -37,12 +37,12 @@ struct TradeRow {
     double msMedian = 0, msMin = 0, msMax = 0;  // per frame: the draws, clearing and sorting
     ImageError error;                           // against the reference
     bool noEffect = false;  // the 8-bit image is the baseline's, byte for byte: the knob changed nothing
-    bool pareto = false;    // no other row is both faster and more accurate (by 1 − SSIM of the 8-bit image)
+    bool pareto = false;  // no other row is both faster and more accurate (by 1 − SSIM of the 8-bit image)
     std::string image, errorImage;  // file names in the output folder
 };
 
 struct TradeResult {
-    std::vector<TradeRow> rows;  // the baseline first
+    std::vector<TradeRow> rows;        // the baseline first
     std::vector<std::string> skipped;  // settings the baseline already has, by label
     double referenceMs = 0;
     int width = 0, height = 0;
@@ -58,7 +58,9 @@ void writeTradeCsv(const TradeResult& result, std::ostream& out);
 void printTradeTable(const TradeResult& result, std::ostream& out);
 
 // The y of the chart and of the Pareto front: 1 − SSIM of the 8-bit image.
-inline double tradeError(const TradeRow& row) { return 1.0 - row.error.encoded.ssim; }
+inline double tradeError(const TradeRow& row) {
+    return 1.0 - row.error.encoded.ssim;
+}
 
 // File name for a setting: "03-shading-flat" (its number, then its words without dashes).
 std::string settingFileStem(int number, const TradeSetting& setting);
