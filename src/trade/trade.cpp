@@ -32,13 +32,26 @@ std::vector<TradeSetting> tradeSettings(const Scene& baseline, const std::vector
     std::vector<TradeSetting> settings = {TradeSetting{"baseline", "", {}}};
     auto add = [&](TradeSetting setting) {
         if (sceneHasSetting(baseline, setting))
-            skipped.push_back(setting.knob == "preset" ? "preset " + setting.value : setting.label());
+            skipped.push_back((setting.knob == "preset" ? "preset " + setting.value : setting.label()) +
+                              " (the baseline's own)");
         else
             settings.push_back(std::move(setting));
     };
+    auto selected = [&](const std::string& name) {
+        return std::any_of(knobs.begin(), knobs.end(), [&](const Knob* knob) { return knob->name == name; });
+    };
     for (const Knob* knob : knobs)
-        for (const std::string& value : knob->values)
-            add(knobSetting(*knob, value));
+        for (const std::string& value : knob->values) {
+            TradeSetting setting = knobSetting(*knob, value);
+            // "--shadows map --shadow-map-size 2048" is "--shadows map", which the shadows knob runs.
+            if (!knob->needsKnob.empty() && value == knob->defaultValue && selected(knob->needsKnob) &&
+                !sceneHasSetting(baseline, knobSetting(knobNamed(knob->needsKnob), knob->needsValue))) {
+                skipped.push_back(setting.label() + " (the same as " +
+                                  knobSetting(knobNamed(knob->needsKnob), knob->needsValue).label() + ")");
+                continue;
+            }
+            add(std::move(setting));
+        }
     for (const std::string& preset : kPresetNames)
         add(presetSetting(preset));
     return settings;
@@ -256,7 +269,7 @@ void printTradeTable(const TradeResult& result, std::ostream& out) {
            "front\n(none faster and more accurate, by 1 - SSIM of the 8-bit image); NO EFFECT: the same "
            "8-bit image as the baseline\n";
     for (const std::string& skipped : result.skipped)
-        out << "skipped, the baseline has it already: " << skipped << "\n";
+        out << "skipped: " << skipped << "\n";
 }
 
 }  // namespace facet
