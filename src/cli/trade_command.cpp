@@ -60,6 +60,11 @@ facet::Scene sceneWithWords(const SceneArgs& args, const std::vector<std::string
 }
 
 int trade(const TradeArgs& args) {
+    // The trade scores whole images against the reference's whole image.
+    if (args.scene.only)
+        throw facet::InputError(
+            "--only does not go with facet trade (it scores the whole image; use facet render "
+            "--only for one term)");
     facet::TradeOptions options;
     options.knobs = args.knobs;
     facet::selectKnobs(options.knobs);  // a typo fails before the model is loaded
