@@ -39,8 +39,8 @@ std::vector<std::string> splitCsvLine(const std::string& line) {  // the trade's
     return fields;
 }
 
-// `facet trade spot.obj --knobs shading --frames 1 ...` on a tiny image, parsed by the command's own
-// parser and run once for the suite; its CSV read back, one map per row.
+// `facet trade spot.obj --knobs shading,transparency --frames 1 ...` on a tiny image, parsed by the command's
+// own parser and run once for the suite; its CSV read back, one map per row.
 class TradeRun : public ::testing::Test {
   protected:
     static void SetUpTestSuite() {
@@ -49,10 +49,12 @@ class TradeRun : public ::testing::Test {
         CLI::App app;
         cli::TradeArgs args;
         cli::addTradeCommand(app, args);
-        std::vector<std::string> words = {
-            "trade", kModel,    "--knobs",    "shading",  "--frames", "1",         "--reference-samples",
-            "1",     "--width", "48",         "--height", "36",       "--threads", "1",
-            "-q",    "-o",      dir_.string()};
+        // clang-format off
+        const std::vector<std::string> words = {"trade", kModel, "--knobs", "shading,transparency",
+                                                "--frames", "1", "--reference-samples", "1",
+                                                "--width", "48", "--height", "36", "--threads", "1",
+                                                "-q", "-o", dir_.string()};
+        // clang-format on
         app.parse(std::vector<std::string>(words.rbegin(), words.rend()));
         ASSERT_EQ(cli::trade(args), 0);
         std::ifstream csv(dir_ / "trade.csv");
@@ -82,9 +84,10 @@ class TradeRun : public ::testing::Test {
 };
 
 TEST_F(TradeRun, CsvHoldsARowPerSettingWithFiniteNumbers) {
-    // The baseline (Phong shading), flat, Gouraud, the fast and best presets; the default preset and
-    // --shading phong are the baseline's own settings, skipped.
-    ASSERT_EQ(rows_.size(), 5u);
+    // The baseline (Phong shading, sorted transparency), flat, Gouraud, unsorted, exact, the fast and best
+    // presets; the default preset, --shading phong and --transparency sorted are the baseline's own
+    // settings, skipped.
+    ASSERT_EQ(rows_.size(), 7u);
     EXPECT_EQ(rows_[0].at("knob"), "baseline");
     EXPECT_NE(row("--shading flat"), nullptr);
     EXPECT_NE(row("--shading gouraud"), nullptr);
@@ -116,6 +119,18 @@ TEST_F(TradeRun, FlatShadingIsFartherFromTheReferenceAndHasAnEffect) {
     EXPECT_LT(number(*flat, "output8_ssim"), number(rows_[0], "output8_ssim"));
     EXPECT_GT(number(*flat, "linear_mean_abs"), number(rows_[0], "linear_mean_abs"));
     EXPECT_LT(number(*flat, "linear_psnr_db"), number(rows_[0], "linear_psnr_db"));
+}
+
+// The cow is opaque: no transparency mode changes a pixel, and the trade says so.
+TEST_F(TradeRun, ASettingThatChangesNothingIsFlagged) {
+    for (const char* flags : {"--transparency unsorted", "--transparency exact"}) {
+        SCOPED_TRACE(flags);
+        const auto* r = row(flags);
+        ASSERT_NE(r, nullptr);
+        EXPECT_EQ(r->at("no_effect"), "1");
+        EXPECT_EQ(r->at("output8_ssim"), rows_[0].at("output8_ssim"));
+    }
+    EXPECT_EQ(rows_[0].at("no_effect"), "0");  // the baseline is not compared with itself
 }
 
 // Every knob's every value is a command line `facet render` accepts (a renamed flag or value fails
