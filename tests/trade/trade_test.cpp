@@ -103,7 +103,7 @@ TEST_F(TradeRun, CsvHoldsARowPerSettingWithFiniteNumbers) {
             EXPECT_TRUE(std::isfinite(value)) << r.at(column);
             ++numbers;
         }
-    EXPECT_EQ(numbers, rows_.size() * 15);  // 3 times, 6 metrics in linear light and in 8 bits
+    EXPECT_EQ(numbers, rows_.size() * 16);  // 4 times, 6 metrics in linear light and in 8 bits
     for (const auto& r : rows_) {
         EXPECT_TRUE(std::filesystem::exists(dir_ / r.at("image")));
         EXPECT_TRUE(std::filesystem::exists(dir_ / r.at("error_image")));
