@@ -1,6 +1,7 @@
 #include "trade/trade.h"
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -112,16 +113,9 @@ std::string settingFileStem(int number, const TradeSetting& setting) {
     char prefix[8];
     std::snprintf(prefix, sizeof prefix, "%02d", number);
     std::string stem = prefix;
-    if (setting.knob == "baseline" || setting.knob == "preset") {
-        stem += "-";
-        stem += setting.knob;
-    }
-    if (!setting.value.empty() && setting.knob == "preset") {
-        stem += "-";
-        stem += setting.value;
-    }
-    for (const std::string& word : setting.words) {
-        if (setting.knob == "preset") break;
+    if (setting.knob == "baseline") return stem + "-baseline";
+    if (setting.knob == "preset") return stem + "-preset-" + setting.value;
+    for (const std::string& word : setting.words) {  // "--shading flat" → "-shading-flat"
         stem += "-";
         for (const char c : word.substr(word.rfind("--", 0) == 0 ? 2 : 0))
             stem += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '.' ? c : '_';
