@@ -221,9 +221,18 @@ void drawScatter(Canvas& canvas, int left, int top, int width, int height, const
         if (p.point.y > 0) minPositiveY = std::min(minPositiveY, p.point.y);
     }
     if (maxX <= minX) maxX = minX + std::max(1e-3, 0.1 * std::abs(minX));
-    const double xStep = niceStep(maxX - minX, 5);
-    const double xLow = std::floor((minX - 0.05 * (maxX - minX)) / xStep) * xStep;
-    const double xHigh = std::ceil((maxX + 0.05 * (maxX - minX)) / xStep) * xStep;
+    // Times spanning more than a decade (a shadow map of 4096² beside a plain frame) on a log axis.
+    const bool logX = minX > 0.0 && maxX / minX > 10.0;
+    double xLow = 0.0, xHigh = 0.0, xStep = 0.0;
+    if (logX) {
+        const double span = std::log10(maxX) - std::log10(minX);
+        xLow = std::log10(minX) - 0.05 * span;
+        xHigh = std::log10(maxX) + 0.05 * span;
+    } else {
+        xStep = niceStep(maxX - minX, 5);
+        xLow = std::max(0.0, std::floor((minX - 0.05 * (maxX - minX)) / xStep) * xStep);
+        xHigh = std::ceil((maxX + 0.05 * (maxX - minX)) / xStep) * xStep;
+    }
     double yLow = 0.0, yHigh = 0.0, yStep = 0.0;
     if (logY) {
         if (maxY <= 0.0) maxY = minPositiveY = 1.0;
@@ -237,7 +246,8 @@ void drawScatter(Canvas& canvas, int left, int top, int width, int height, const
     }
     auto toPixel = [&](dvec2 p) {
         const double y = logY ? (p.y > 0 ? std::max(std::log10(p.y), yLow) : yLow) : p.y;
-        return vec2(static_cast<float>(plotLeft + (p.x - xLow) / (xHigh - xLow) * (plotRight - plotLeft)),
+        const double x = logX ? std::log10(p.x) : p.x;
+        return vec2(static_cast<float>(plotLeft + (x - xLow) / (xHigh - xLow) * (plotRight - plotLeft)),
                     static_cast<float>(plotBottom - (y - yLow) / (yHigh - yLow) * (plotBottom - plotTop)));
     };
 
@@ -256,20 +266,32 @@ void drawScatter(Canvas& canvas, int left, int top, int width, int height, const
             yTicks.emplace_back(y, formatTick(y, yStep));
     }
     for (const auto& [y, label] : yTicks) {
-        const int py = static_cast<int>(std::lround(toPixel({xLow, y}).y));
+        const int py = static_cast<int>(std::lround(toPixel({minX, y}).y));
         canvas.fillRect(plotLeft, py, plotRight, py + 1, grid);
         canvas.text(plotLeft - 10 - Canvas::textWidth(label, 2), py - 7, label, 2, ink);
     }
-    for (double x = xLow; x <= xHigh + 0.5 * xStep; x += xStep) {
+    std::vector<std::pair<double, std::string>> xTicks;
+    if (logX) {
+        for (int decade = static_cast<int>(std::floor(xLow)); decade <= xHigh; ++decade)
+            for (const double m : {1.0, 2.0, 5.0}) {
+                const double value = m * std::pow(10.0, decade);
+                if (std::log10(value) >= xLow && std::log10(value) <= xHigh)
+                    xTicks.emplace_back(value, formatLogTick(value));
+            }
+    } else {
+        for (double x = xLow; x <= xHigh + 0.5 * xStep; x += xStep)
+            xTicks.emplace_back(x, formatTick(x, xStep));
+    }
+    for (const auto& [x, label] : xTicks) {
         const int px = static_cast<int>(std::lround(toPixel({x, 0.0}).x));
         canvas.fillRect(px, plotTop, px + 1, plotBottom, grid);
         canvas.fillRect(px, plotBottom, px + 1, plotBottom + 6, ink);
-        const std::string label = formatTick(x, xStep);
         canvas.text(px - Canvas::textWidth(label, 2) / 2, plotBottom + 12, label, 2, ink);
     }
     canvas.fillRect(plotLeft, plotTop, plotLeft + 2, plotBottom + 1, ink);
     canvas.fillRect(plotLeft, plotBottom, plotRight, plotBottom + 2, ink);
-    canvas.text(plotLeft + (plotRight - plotLeft - Canvas::textWidth(xLabel, 2)) / 2, plotBottom + 36, xLabel,
+    const std::string xTitle = logX ? xLabel + " (LOG)" : xLabel;
+    canvas.text(plotLeft + (plotRight - plotLeft - Canvas::textWidth(xTitle, 2)) / 2, plotBottom + 36, xTitle,
                 2, ink);
     canvas.text(left + 4, plotTop - 30, yLabel, 2, ink);
 

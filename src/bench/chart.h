@@ -66,7 +66,8 @@ struct LabelledPoint {
     vec4 color;
 };
 
-// One scatter panel (facet trade): x linear from a round value below the smallest, y linear from 0 or
+// One scatter panel (facet trade): x linear from a round value below the smallest (logarithmic when
+// the values span more than a decade), y linear from 0 or
 // logarithmic (then values at or below 0 sit on the axis's floor, a decade below the smallest positive);
 // each point a disc and its label, placed beside, above or below it where it covers no other label or
 // point as far as possible; the points `joined` (indices, in order) linked by a line, drawn first.
