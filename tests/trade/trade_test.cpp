@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include "base/errors.h"
@@ -44,7 +46,8 @@ std::vector<std::string> splitCsvLine(const std::string& line) {  // the trade's
 class TradeRun : public ::testing::Test {
   protected:
     static void SetUpTestSuite() {
-        dir_ = std::filesystem::temp_directory_path() / "facet-trade-test";
+        // ctest runs each test in its own process, two at a time: a folder per process.
+        dir_ = std::filesystem::temp_directory_path() / ("facet-trade-test-" + std::to_string(getpid()));
         std::filesystem::remove_all(dir_);
         CLI::App app;
         cli::TradeArgs args;
@@ -70,6 +73,7 @@ class TradeRun : public ::testing::Test {
             rows_.push_back(row);
         }
     }
+    static void TearDownTestSuite() { std::filesystem::remove_all(dir_); }
     static const std::map<std::string, std::string>* row(const std::string& flags) {
         for (const auto& r : rows_)
             if (r.at("flags") == flags) return &r;
