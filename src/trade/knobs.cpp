@@ -44,78 +44,59 @@ std::string shadowsIn(const Scene& scene) {
     return commonName<ShadowMethod>(scene.lights, [](const LightSpec& light) { return light.shadows; });
 }
 
+template <class E>
+std::string nameText(E value) {
+    return std::string(nameOf(value));
+}
+
+std::string shadingIn(const Scene& scene) {
+    return commonName<ShadingFrequency>(scene.objects, [&](const ObjectSpec& object) {
+        return object.shading.value_or(scene.lighting.shadingOrDefault());
+    });
+}
+
+std::string reflectionIn(const Scene& scene) {
+    return commonName<ReflectionModel>(scene.objects, [&](const ObjectSpec& object) {
+        return object.reflection.value_or(scene.lighting.model);
+    });
+}
+
+// The table. Notes on rows:
+//   cull: front-face culling draws the wrong side, not a trade; culling back faces is the fast choice (the
+//     same image for closed models); no best value, the reference culls as the scene does.
+//   reflection: a choice of look more than of accuracy: no fast or best value, the reference keeps the
+//     scene's.
+//   the shadow map's bias and slope bias: tuning, neither faster nor slower: no fast or best value.
 std::vector<Knob> makeKnobTable() {
-    // name, flag, values, default, fast, best, needs (knob, value), the scene's value
+    using S = const Scene&;
+    // One row per knob, its value in a scene on the line below.
+    // clang-format off
     return {
-        {"shading", "--shading", allNames<ShadingFrequency>(), "phong", "flat", "phong", "", "",
-         [](const Scene& scene) {
-             return commonName<ShadingFrequency>(scene.objects, [&](const ObjectSpec& object) {
-                 return object.shading.value_or(scene.lighting.shadingOrDefault());
-             });
-         }},
-        {"interpolation", "--interpolation", allNames<Interpolation>(), "perspective", "affine",
-         "perspective", "", "",
-         [](const Scene& scene) { return std::string(nameOf(scene.pipeline.interpolation)); }},
-        {"shadows", "--shadows", allNames<ShadowMethod>(), "", "none", "ray", "", "", shadowsIn},
-        {"shadow-map-size",
-         "--shadow-map-size",
-         {"256", "512", "1024", "2048", "4096"},
-         "2048",
-         "512",
-         "4096",
-         "shadows",
-         "map",
-         [](const Scene& scene) { return numberText(scene.shadowMap.size); }},
-        {"shadow-filter",
-         "--shadow-filter",
-         {"1", "4", "16"},
-         "4",
-         "1",
-         "16",
-         "shadows",
-         "map",
-         [](const Scene& scene) { return numberText(scene.shadowMap.filterTaps); }},
-        {"shadow-bias",
-         "--shadow-bias",
-         {"0.5", "1", "2", "4"},
-         "1",
-         "",
-         "",
-         "shadows",
-         "map",
-         [](const Scene& scene) { return numberText(scene.shadowMap.constantBias); }},
-        {"shadow-slope-bias",
-         "--shadow-slope-bias",
-         {"0", "1.5", "4"},
-         "1.5",
-         "",
-         "",
-         "shadows",
-         "map",
-         [](const Scene& scene) { return numberText(scene.shadowMap.slopeBias); }},
-        {"transparency", "--transparency", allNames<TransparencyMode>(), "sorted", "unsorted", "exact", "",
-         "", [](const Scene& scene) { return std::string(nameOf(scene.transparency.mode)); }},
-        {"sort-key", "--sort-key", allNames<SortKey>(), "centroid", "", "", "transparency", "sorted",
-         [](const Scene& scene) { return std::string(nameOf(scene.transparency.key)); }},
-        // Front-face culling draws the wrong side: not a trade. Culling back faces is the fast choice
-        // (the same image for closed models); there is no best, the reference culls as the scene does.
-        {"cull",
-         "--cull",
-         {"back", "none"},
-         "back",
-         "back",
-         "",
-         "",
-         "",
-         [](const Scene& scene) { return std::string(nameOf(scene.pipeline.cull)); }},
-        // A choice of look more than of accuracy: no fast or best value, the reference keeps the scene's.
-        {"reflection", "--reflection", allNames<ReflectionModel>(), "blinn-phong", "", "", "", "",
-         [](const Scene& scene) {
-             return commonName<ReflectionModel>(scene.objects, [&](const ObjectSpec& object) {
-                 return object.reflection.value_or(scene.lighting.model);
-             });
-         }},
+        // name               flag                   values                                  default        fast        best           needs
+        {"shading",           "--shading",           allNames<ShadingFrequency>(),           "phong",       "flat",     "phong",       "", "",
+         shadingIn},
+        {"interpolation",     "--interpolation",     allNames<Interpolation>(),              "perspective", "affine",   "perspective", "", "",
+         [](S s) { return nameText(s.pipeline.interpolation); }},
+        {"shadows",           "--shadows",           allNames<ShadowMethod>(),               "",            "none",     "ray",         "", "",
+         shadowsIn},
+        {"shadow-map-size",   "--shadow-map-size",   {"256", "512", "1024", "2048", "4096"}, "2048",        "512",      "4096",        "shadows", "map",
+         [](S s) { return numberText(s.shadowMap.size); }},
+        {"shadow-filter",     "--shadow-filter",     {"1", "4", "16"},                       "4",           "1",        "16",          "shadows", "map",
+         [](S s) { return numberText(s.shadowMap.filterTaps); }},
+        {"shadow-bias",       "--shadow-bias",       {"0.5", "1", "2", "4"},                 "1",           "",         "",            "shadows", "map",
+         [](S s) { return numberText(s.shadowMap.constantBias); }},
+        {"shadow-slope-bias", "--shadow-slope-bias", {"0", "1.5", "4"},                      "1.5",         "",         "",            "shadows", "map",
+         [](S s) { return numberText(s.shadowMap.slopeBias); }},
+        {"transparency",      "--transparency",      allNames<TransparencyMode>(),           "sorted",      "unsorted", "exact",       "", "",
+         [](S s) { return nameText(s.transparency.mode); }},
+        {"sort-key",          "--sort-key",          allNames<SortKey>(),                    "centroid",    "",         "",            "transparency", "sorted",
+         [](S s) { return nameText(s.transparency.key); }},
+        {"cull",              "--cull",              {"back", "none"},                       "back",        "back",     "",            "", "",
+         [](S s) { return nameText(s.pipeline.cull); }},
+        {"reflection",        "--reflection",        allNames<ReflectionModel>(),            "blinn-phong", "",         "",            "", "",
+         reflectionIn},
     };
+    // clang-format on
 }
 
 std::string validNames() {
