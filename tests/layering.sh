@@ -16,7 +16,8 @@ declare -A allowed=(
     [step]="base shading raycast scene shaders io render step"
     [oracle]="base shading raycast scene shaders io render reference oracle"
     [bench]="base shading raycast scene shaders io render reference oracle bench"
-    [cli]="base shading raycast scene shaders io render reference step oracle bench cli"
+    [trade]="base shading raycast scene shaders io render reference oracle bench trade"
+    [cli]="base shading raycast scene shaders io render reference step oracle bench trade cli"
 )
 status=0
 for folder in "$root"/src/*/; do

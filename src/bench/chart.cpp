@@ -49,7 +49,8 @@ constexpr Glyph kFont[] = {
     {')', {0x08, 0x04, 0x02, 0x02, 0x02, 0x04, 0x08}}, {'/', {0x00, 0x01, 0x02, 0x04, 0x08, 0x10, 0x00}},
     {':', {0x00, 0x0C, 0x0C, 0x00, 0x0C, 0x0C, 0x00}}, {'%', {0x18, 0x19, 0x02, 0x04, 0x08, 0x13, 0x03}},
     {'=', {0x00, 0x00, 0x1F, 0x00, 0x1F, 0x00, 0x00}}, {'<', {0x02, 0x04, 0x08, 0x10, 0x08, 0x04, 0x02}},
-    {'>', {0x08, 0x04, 0x02, 0x01, 0x02, 0x04, 0x08}},
+    {'>', {0x08, 0x04, 0x02, 0x01, 0x02, 0x04, 0x08}}, {'+', {0x00, 0x04, 0x04, 0x1F, 0x04, 0x04, 0x00}},
+    {'_', {0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x1F}}, {'|', {0x04, 0x04, 0x04, 0x04, 0x04, 0x04, 0x04}},
 };
 
 // 1, 2 or 5 times a power of ten, about range / ticks.
@@ -169,6 +170,175 @@ void drawPanel(Canvas& canvas, int left, int top, int width, int height, const s
         canvas.disc(vec2(plotLeft + 36, legendY + 7), 6.0f, s.color);
         canvas.text(plotLeft + 68, legendY, s.name, 2, ink);
         legendY += 26;
+    }
+}
+
+namespace {
+
+// "0.5", "0.001", "1E-5": a log axis's tick, short.
+std::string formatLogTick(double value) {
+    std::ostringstream text;
+    if (value >= 1e-3 && value < 1e5) {
+        text << value;
+        return text.str();
+    }
+    const int exponent = static_cast<int>(std::lround(std::log10(value)));
+    const double mantissa = value / std::pow(10.0, exponent);
+    if (std::abs(mantissa - 1.0) > 1e-9)
+        text << std::lround(mantissa);
+    else
+        text << 1;
+    text << "E" << exponent;
+    return text.str();
+}
+
+struct Box {
+    int x0, y0, x1, y1;
+    int overlap(const Box& o) const {
+        const int w = std::min(x1, o.x1) - std::max(x0, o.x0), h = std::min(y1, o.y1) - std::max(y0, o.y0);
+        return w > 0 && h > 0 ? w * h : 0;
+    }
+};
+
+}  // namespace
+
+void drawScatter(Canvas& canvas, int left, int top, int width, int height, const std::string& title,
+                 const std::string& xLabel, const std::string& yLabel, bool logY,
+                 const std::vector<LabelledPoint>& points, const std::vector<std::size_t>& joined) {
+    const vec4 ink = srgb8(20, 20, 20), grid = srgb8(225, 225, 225);
+    const int plotLeft = left + 90, plotRight = left + width - 30;
+    const int plotTop = top + 70, plotBottom = top + height - 60;
+    canvas.text(left + (width - Canvas::textWidth(title, 2)) / 2, top + 8, title, 2, ink);
+    if (points.empty()) return;
+
+    // Ranges. x: linear, from a round value below the fastest. y: from 0, or log over the positive values.
+    double minX = std::numeric_limits<double>::max(), maxX = 0.0, maxY = 0.0;
+    double minPositiveY = std::numeric_limits<double>::max();
+    for (const LabelledPoint& p : points) {
+        minX = std::min(minX, p.point.x);
+        maxX = std::max(maxX, p.point.x);
+        maxY = std::max(maxY, p.point.y);
+        if (p.point.y > 0) minPositiveY = std::min(minPositiveY, p.point.y);
+    }
+    if (maxX <= minX) maxX = minX + std::max(1e-3, 0.1 * std::abs(minX));
+    // Times spanning more than a decade (a shadow map of 4096² beside a plain frame) on a log axis.
+    const bool logX = minX > 0.0 && maxX / minX > 10.0;
+    double xLow = 0.0, xHigh = 0.0, xStep = 0.0;
+    if (logX) {
+        const double span = std::log10(maxX) - std::log10(minX);
+        xLow = std::log10(minX) - 0.05 * span;
+        xHigh = std::log10(maxX) + 0.05 * span;
+    } else {
+        xStep = niceStep(maxX - minX, 5);
+        xLow = std::max(0.0, std::floor((minX - 0.05 * (maxX - minX)) / xStep) * xStep);
+        xHigh = std::ceil((maxX + 0.05 * (maxX - minX)) / xStep) * xStep;
+    }
+    double yLow = 0.0, yHigh = 0.0, yStep = 0.0;
+    if (logY) {
+        if (maxY <= 0.0) maxY = minPositiveY = 1.0;
+        yLow = std::floor(std::log10(minPositiveY)) - (minPositiveY == maxY ? 1.0 : 0.0);
+        yHigh = std::ceil(std::log10(maxY) + 1e-9);
+        if (yHigh <= yLow) yHigh = yLow + 1.0;
+    } else {
+        if (maxY <= 0.0) maxY = 1.0;
+        yStep = niceStep(1.05 * maxY, 5);
+        yHigh = std::ceil(1.05 * maxY / yStep) * yStep;
+    }
+    auto toPixel = [&](dvec2 p) {
+        const double y = logY ? (p.y > 0 ? std::max(std::log10(p.y), yLow) : yLow) : p.y;
+        const double x = logX ? std::log10(p.x) : p.x;
+        return vec2(static_cast<float>(plotLeft + (x - xLow) / (xHigh - xLow) * (plotRight - plotLeft)),
+                    static_cast<float>(plotBottom - (y - yLow) / (yHigh - yLow) * (plotBottom - plotTop)));
+    };
+
+    // Grid, axes and tick labels.
+    std::vector<std::pair<double, std::string>> yTicks;
+    if (logY) {
+        const bool fine = yHigh - yLow <= 2.0;  // few decades: 1, 2 and 5 of each
+        for (int decade = static_cast<int>(yLow); decade <= yHigh; ++decade)
+            for (const double m : {1.0, 2.0, 5.0}) {
+                if (m > 1.0 && !fine) continue;
+                const double value = m * std::pow(10.0, decade);
+                if (std::log10(value) <= yHigh + 1e-9) yTicks.emplace_back(value, formatLogTick(value));
+            }
+    } else {
+        for (double y = 0.0; y <= yHigh + 0.5 * yStep; y += yStep)
+            yTicks.emplace_back(y, formatTick(y, yStep));
+    }
+    for (const auto& [y, label] : yTicks) {
+        const int py = static_cast<int>(std::lround(toPixel({minX, y}).y));
+        canvas.fillRect(plotLeft, py, plotRight, py + 1, grid);
+        canvas.text(plotLeft - 10 - Canvas::textWidth(label, 2), py - 7, label, 2, ink);
+    }
+    std::vector<std::pair<double, std::string>> xTicks;
+    if (logX) {
+        for (int decade = static_cast<int>(std::floor(xLow)); decade <= xHigh; ++decade)
+            for (const double m : {1.0, 2.0, 5.0}) {
+                const double value = m * std::pow(10.0, decade);
+                if (std::log10(value) >= xLow && std::log10(value) <= xHigh)
+                    xTicks.emplace_back(value, formatLogTick(value));
+            }
+    } else {
+        for (double x = xLow; x <= xHigh + 0.5 * xStep; x += xStep)
+            xTicks.emplace_back(x, formatTick(x, xStep));
+    }
+    for (const auto& [x, label] : xTicks) {
+        const int px = static_cast<int>(std::lround(toPixel({x, 0.0}).x));
+        canvas.fillRect(px, plotTop, px + 1, plotBottom, grid);
+        canvas.fillRect(px, plotBottom, px + 1, plotBottom + 6, ink);
+        canvas.text(px - Canvas::textWidth(label, 2) / 2, plotBottom + 12, label, 2, ink);
+    }
+    canvas.fillRect(plotLeft, plotTop, plotLeft + 2, plotBottom + 1, ink);
+    canvas.fillRect(plotLeft, plotBottom, plotRight, plotBottom + 2, ink);
+    const std::string xTitle = logX ? xLabel + " (LOG)" : xLabel;
+    canvas.text(plotLeft + (plotRight - plotLeft - Canvas::textWidth(xTitle, 2)) / 2, plotBottom + 36, xTitle,
+                2, ink);
+    canvas.text(left + 4, plotTop - 30, yLabel, 2, ink);
+
+    // The joined points' line, then the points, then their labels where they cover the least.
+    std::vector<vec2> pixels;
+    for (const LabelledPoint& p : points)
+        pixels.push_back(toPixel(p.point));
+    for (std::size_t i = 1; i < joined.size(); ++i)
+        canvas.line(pixels[joined[i - 1]], pixels[joined[i]], 2.0f, srgb8(120, 170, 230));
+    std::vector<Box> taken;
+    constexpr int kRadius = 5;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        canvas.disc(pixels[i], kRadius, points[i].color);
+        taken.push_back({static_cast<int>(pixels[i].x) - kRadius, static_cast<int>(pixels[i].y) - kRadius,
+                         static_cast<int>(pixels[i].x) + kRadius + 1,
+                         static_cast<int>(pixels[i].y) + kRadius + 1});
+    }
+    const Box plot{plotLeft + 3, plotTop, plotRight, plotBottom};
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        const int w = Canvas::textWidth(points[i].label, 1);
+        const int px = static_cast<int>(pixels[i].x), py = static_cast<int>(pixels[i].y);
+        std::vector<Box> candidates;
+        for (const int dy : {0, -10, 10, -20, 20, -30, 30}) {
+            candidates.push_back({px + 9, py - 3 + dy, px + 9 + w, py + 4 + dy});  // right
+            candidates.push_back({px - 9 - w, py - 3 + dy, px - 9, py + 4 + dy});  // left
+            if (dy == 0) {
+                candidates.push_back({px - w / 2, py - 16, px - w / 2 + w, py - 9});  // above
+                candidates.push_back({px - w / 2, py + 9, px - w / 2 + w, py + 16});  // below
+            }
+        }
+        const Box* best = nullptr;
+        long bestCost = std::numeric_limits<long>::max();
+        for (const Box& c : candidates) {
+            long cost = 0;
+            for (const Box& t : taken)
+                cost += c.overlap(t);
+            // Outside the plot costs more than any overlap: a label must be seen whole.
+            const int inside = c.overlap(plot);
+            if (inside < (c.x1 - c.x0) * (c.y1 - c.y0)) cost += 1'000'000;
+            if (cost < bestCost) {
+                bestCost = cost;
+                best = &c;
+            }
+            if (cost == 0) break;
+        }
+        canvas.text(best->x0, best->y0, points[i].label, 1, ink);
+        taken.push_back({best->x0 - 1, best->y0 - 1, best->x1 + 1, best->y1 + 1});
     }
 }
 

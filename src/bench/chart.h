@@ -60,4 +60,19 @@ struct Series {
 void drawPanel(Canvas& canvas, int left, int top, int width, int height, const std::string& title,
                const std::string& xLabel, bool logX, const std::vector<Series>& series);
 
+struct LabelledPoint {
+    std::string label;
+    glm::dvec2 point;  // data units
+    vec4 color;
+};
+
+// One scatter panel (facet trade): x linear from a round value below the smallest (logarithmic when
+// the values span more than a decade), y linear from 0 or
+// logarithmic (then values at or below 0 sit on the axis's floor, a decade below the smallest positive);
+// each point a disc and its label, placed beside, above or below it where it covers no other label or
+// point as far as possible; the points `joined` (indices, in order) linked by a line, drawn first.
+void drawScatter(Canvas& canvas, int left, int top, int width, int height, const std::string& title,
+                 const std::string& xLabel, const std::string& yLabel, bool logY,
+                 const std::vector<LabelledPoint>& points, const std::vector<std::size_t>& joined);
+
 }  // namespace facet

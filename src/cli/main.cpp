@@ -10,6 +10,7 @@
 #include "cli/compare_command.h"
 #include "cli/render_command.h"
 #include "cli/step_command.h"
+#include "cli/trade_command.h"
 
 int main(int argc, char** argv) {
     CLI::App app{"Facet: a software rasterizer. Renders OBJ models and scene files to images on the CPU."};
@@ -24,6 +25,8 @@ int main(int argc, char** argv) {
     CLI::App* stepCommand = facet::cli::addStepCommand(app, stepArgs);
     facet::BenchOptions benchOptions;
     CLI::App* benchCommand = facet::cli::addBenchCommand(app, benchOptions);
+    facet::cli::TradeArgs tradeArgs;
+    CLI::App* tradeCommand = facet::cli::addTradeCommand(app, tradeArgs);
 
     if (argc == 1) {  // no command at all: show what there is to do
         std::cerr << app.help();
@@ -52,6 +55,7 @@ int main(int argc, char** argv) {
             return facet::cli::step(stepArgs);
         }
         if (*benchCommand) return facet::cli::bench(benchOptions, *benchCommand);
+        if (*tradeCommand) return facet::cli::trade(tradeArgs);
     } catch (const facet::InputError& e) {
         std::cerr << "facet: error: " << e.what() << "\n";
         return 1;

@@ -1,0 +1,139 @@
+#include "trade/metrics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <opencv2/core.hpp>
+#include <opencv2/quality/qualityssim.hpp>
+
+#include "bench/chart.h"
+#include "oracle/image_compare.h"
+
+namespace facet {
+
+namespace {
+
+std::vector<float> linearPlanes(const LinearImage& image) {
+    std::vector<float> planes;
+    planes.reserve(image.pixels.size() * 3);
+    for (const glm::vec4& p : image.pixels)
+        planes.insert(planes.end(), {p.r, p.g, p.b});
+    return planes;
+}
+
+OIIO::ImageBuf asImageBuf(std::vector<float>& planes, int width, int height) {
+    return OIIO::ImageBuf(OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::FLOAT), planes.data());
+}
+
+// Pixels with some channel off by more than `threshold`: OpenImageIO's failure count (a pixel fails
+// when any of its channels is off by more than the threshold).
+double shareAbove(const OIIO::ImageBuf& a, const OIIO::ImageBuf& b, float threshold, std::size_t pixels) {
+    const OIIO::ImageBufAlgo::CompareResults result = OIIO::ImageBufAlgo::compare(a, b, threshold, threshold);
+    return pixels ? static_cast<double>(result.nfail) / static_cast<double>(pixels) : 0.0;
+}
+
+}  // namespace
+
+ErrorMetrics measurePlanes(const std::vector<float>& a, const std::vector<float>& b, int width, int height) {
+    if (a.size() != b.size() || a.size() != static_cast<std::size_t>(width) * height * 3)
+        throw std::invalid_argument("measurePlanes: the images differ in size");
+    std::vector<float> copyA = a, copyB = b;  // ImageBuf and cv::Mat wrap them without copying
+    const OIIO::ImageBuf bufA = asImageBuf(copyA, width, height), bufB = asImageBuf(copyB, width, height);
+    const std::size_t pixels = static_cast<std::size_t>(width) * height;
+
+    ErrorMetrics metrics;
+    const OIIO::ImageBufAlgo::CompareResults result = OIIO::ImageBufAlgo::compare(bufA, bufB, 1.0f, 1.0f);
+    metrics.meanAbs = result.meanerror;
+    metrics.maxAbs = result.maxerror;
+    // PSNR = 10·log10(peak² / MSE) with peak 1; rms_error is √MSE over every channel value.
+    metrics.psnr = result.rms_error > 0 ? std::min(kMaxPsnr, -20.0 * std::log10(result.rms_error)) : kMaxPsnr;
+    // A hair above the thresholds: a difference of exactly one code, (k+1)/255 − k/255, may round above
+    // 1/255 in float.
+    metrics.over1 = shareAbove(bufA, bufB, 1.0f / 255.0f * 1.0001f, pixels);
+    metrics.over2 = shareAbove(bufA, bufB, 2.0f / 255.0f * 1.0001f, pixels);
+
+    // SSIM with OpenCV's constants C1 = (0.01·255)², C2 = (0.03·255)²: values scaled to 0..255.
+    cv::Mat matA(height, width, CV_32FC3, copyA.data()), matB(height, width, CV_32FC3, copyB.data());
+    cv::Mat scaledA, scaledB;
+    matA.convertTo(scaledA, CV_32FC3, 255.0);
+    matB.convertTo(scaledB, CV_32FC3, 255.0);
+    cv::Mat qualityMap;
+    const cv::Scalar ssim = cv::quality::QualitySSIM::compute(scaledA, scaledB, qualityMap);
+    metrics.ssim = (ssim[0] + ssim[1] + ssim[2]) / 3.0;
+    return metrics;
+}
+
+std::vector<float> encodedPlanes(const LinearImage& image, ColorEncoding encoding) {
+    std::vector<float> planes;
+    planes.reserve(image.pixels.size() * 3);
+    for (const glm::vec4& p : image.pixels)
+        for (int channel = 0; channel < 3; ++channel)
+            planes.push_back(static_cast<float>(encodeChannel(p[channel], encoding)) / 255.0f);
+    return planes;
+}
+
+ImageError measureError(const LinearImage& image, const LinearImage& reference, ColorEncoding encoding) {
+    if (image.width != reference.width || image.height != reference.height)
+        throw std::invalid_argument("measureError: the images differ in size");
+    ImageError error;
+    error.linear = measurePlanes(linearPlanes(image), linearPlanes(reference), image.width, image.height);
+    error.encoded = measurePlanes(encodedPlanes(image, encoding), encodedPlanes(reference, encoding),
+                                  image.width, image.height);
+    // The 8-bit shares counted in whole codes (the oracle's comparison), not by float thresholds.
+    const PixelDifference codes = comparePixels(image, reference, encoding);
+    // within1 and within2 are counts over the pixel count: back to whole counts, so that one pixel of
+    // 384 reads as exactly 1/384.
+    const double pixels = static_cast<double>(codes.pixels);
+    error.encoded.over1 = std::round((1.0 - codes.within1) * pixels) / pixels;
+    error.encoded.over2 = std::round((1.0 - codes.within2) * pixels) / pixels;
+    return error;
+}
+
+bool sameEncoded(const LinearImage& a, const LinearImage& b, ColorEncoding encoding) {
+    return a.width == b.width && a.height == b.height &&
+           encodedPlanes(a, encoding) == encodedPlanes(b, encoding);
+}
+
+namespace {
+
+// 0 → black, ⅓ → red, ⅔ → yellow, 1 → white, in 8-bit sRGB steps.
+vec4 heat(float t) {
+    t = std::clamp(t, 0.0f, 1.0f);
+    const float r = std::min(1.0f, 3.0f * t), g = std::clamp(3.0f * t - 1.0f, 0.0f, 1.0f),
+                b = std::clamp(3.0f * t - 2.0f, 0.0f, 1.0f);
+    return srgb8(static_cast<int>(std::lround(255 * r)), static_cast<int>(std::lround(255 * g)),
+                 static_cast<int>(std::lround(255 * b)));
+}
+
+}  // namespace
+
+LinearImage errorImage(const LinearImage& image, const LinearImage& reference, ColorEncoding encoding) {
+    const std::vector<float> a = encodedPlanes(image, encoding), b = encodedPlanes(reference, encoding);
+    constexpr int kLegendHeight = 24, kLegendMinWidth = 200;
+    const bool legend = image.width >= kLegendMinWidth;
+    Canvas canvas(image.width, image.height + (legend ? kLegendHeight : 0), vec4(0, 0, 0, 1));
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            const std::size_t i = (static_cast<std::size_t>(y) * image.width + x) * 3;
+            float codes = 0;
+            for (int channel = 0; channel < 3; ++channel)
+                codes = std::max(codes, std::abs(a[i + channel] - b[i + channel]) * 255.0f);
+            canvas.fillRect(x, y, x + 1, y + 1, heat(std::round(codes) / kErrorImageFullScale));
+        }
+    if (legend) {  // a ramp 0..16 codes, then its label
+        const int top = image.height + 4, rampWidth = 96;
+        for (int x = 0; x < rampWidth; ++x)
+            canvas.fillRect(4 + x, top, 5 + x, top + 16, heat(static_cast<float>(x) / (rampWidth - 1)));
+        std::string label = "0 TO ";
+        label += std::to_string(kErrorImageFullScale);
+        label += "+ 8-BIT STEPS OFF";
+        canvas.text(4 + rampWidth + 8, top + 4, label, 1, vec4(1));
+    }
+    return canvas.image();
+}
+
+}  // namespace facet

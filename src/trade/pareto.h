@@ -1,0 +1,16 @@
+// The Pareto front of a speed–accuracy trade: the settings no other setting beats on both counts.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace facet {
+
+// Indices of the points (x = time, y = error; less is better in both) that no other point dominates,
+// i.e. no other point is at least as fast and at least as accurate and better in one of the two; in
+// order of x (then y). Points with a NaN coordinate are never on the front. Equal points are all on it.
+std::vector<std::size_t> paretoFront(const std::vector<glm::dvec2>& points);
+
+}  // namespace facet

@@ -1,0 +1,70 @@
+// facet trade: the speed–accuracy trade of a scene. The scene as given (the baseline), then each knob
+// setting alone on top of it, then the presets, each timed over frames and scored against one image of
+// the exact reference renderer; a table, a CSV, images and a chart of time against error.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+#include "trade/knobs.h"
+#include "trade/metrics.h"
+
+namespace facet {
+
+struct TradeOptions {
+    std::string knobs;  // --knobs: comma-separated names; empty: every knob
+    int frames = 5;     // timed frames per setting, after one warm-up
+    int threads = 0;
+    // N×N rays per pixel of the reference. 4×4 (the reference renderer's default): the silhouettes'
+    // coverage to 1/16 of a pixel, so that the reference shows the edges as they truly are and the
+    // rasterizer's one sample per pixel is charged for its aliasing alike in every setting.
+    int referenceSamples = 4;
+    std::filesystem::path outputDir;
+    bool progress = true;  // "[3/17] --shading gouraud: 12.3 ms" lines on `log`
+};
+inline constexpr int kMaxTradeFrames = 1000;
+
+// The scene with the command-line words of a setting applied over the user's own, through the render
+// command's parser (the cli layer provides it). Throws InputError for words it refuses.
+using SceneWithWords = std::function<Scene(const std::vector<std::string>& words)>;
+
+struct TradeRow {
+    TradeSetting setting;
+    // Per frame of the scene in motion: its shadows' maps and BVH rebuilt, then clearing, sorting and
+    // drawing. msShadows: the rebuild's median alone (what a static scene would not pay every frame).
+    double msMedian = 0, msMin = 0, msMax = 0, msShadows = 0;
+    ImageError error;       // against the reference
+    bool noEffect = false;  // the 8-bit image is the baseline's, byte for byte: the knob changed nothing
+    bool pareto = false;  // no other row is both faster and more accurate (by 1 − SSIM of the 8-bit image)
+    std::string image, errorImage;  // file names in the output folder
+};
+
+struct TradeResult {
+    std::vector<TradeRow> rows;        // the baseline first
+    std::vector<std::string> skipped;  // settings the baseline already has, by label
+    double referenceMs = 0;
+    int width = 0, height = 0;
+};
+
+// Runs the trade of `baseline` (the scene as the user gave it): renders, writes the images, trade.csv
+// and chart.png into options.outputDir, reports progress on `log`. Throws InputError for a bad option or
+// unusable scene.
+TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& options, std::ostream& log);
+
+// The rows as CSV (a header, then one line per row) and as an aligned table for the terminal.
+void writeTradeCsv(const TradeResult& result, std::ostream& out);
+void printTradeTable(const TradeResult& result, std::ostream& out);
+
+// The y of the chart and of the Pareto front: 1 − SSIM of the 8-bit image.
+inline double tradeError(const TradeRow& row) {
+    return 1.0 - row.error.encoded.ssim;
+}
+
+// File name for a setting: "03-shading-flat" (its number, then its words without dashes).
+std::string settingFileStem(int number, const TradeSetting& setting);
+
+}  // namespace facet

@@ -1,0 +1,222 @@
+// facet trade: its knob table speaks the render command's language, its CSV is whole and finite, a knob
+// that changes the image is scored as such, and the Pareto front and the metrics mean what they say.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include "base/errors.h"
+#include "cli/render_command.h"
+#include "cli/trade_command.h"
+#include "trade/knobs.h"
+#include "trade/metrics.h"
+#include "trade/pareto.h"
+
+namespace facet {
+namespace {
+
+const std::string kModel = FACET_SOURCE_DIR "/models/spot/spot_triangulated.obj";
+
+std::vector<std::string> splitCsvLine(const std::string& line) {  // the trade's CSV quotes no number
+    std::vector<std::string> fields;
+    std::string field;
+    bool quoted = false;
+    for (const char c : line) {
+        if (c == '"')
+            quoted = !quoted;
+        else if (c == ',' && !quoted) {
+            fields.push_back(field);
+            field.clear();
+        } else
+            field += c;
+    }
+    fields.push_back(field);
+    return fields;
+}
+
+// `facet trade spot.obj --knobs shading,transparency --frames 1 ...` on a tiny image, parsed by the command's
+// own parser and run once for the suite; its CSV read back, one map per row.
+class TradeRun : public ::testing::Test {
+  protected:
+    static void SetUpTestSuite() {
+        // ctest runs each test in its own process, two at a time: a folder per process.
+        dir_ = std::filesystem::temp_directory_path() / ("facet-trade-test-" + std::to_string(getpid()));
+        std::filesystem::remove_all(dir_);
+        CLI::App app;
+        cli::TradeArgs args;
+        cli::addTradeCommand(app, args);
+        // clang-format off
+        const std::vector<std::string> words = {"trade", kModel, "--knobs", "shading,transparency",
+                                                "--frames", "1", "--reference-samples", "1",
+                                                "--width", "48", "--height", "36", "--threads", "1",
+                                                "-q", "-o", dir_.string()};
+        // clang-format on
+        app.parse(std::vector<std::string>(words.rbegin(), words.rend()));
+        ASSERT_EQ(cli::trade(args), 0);
+        std::ifstream csv(dir_ / "trade.csv");
+        std::string line;
+        std::getline(csv, line);
+        header_ = splitCsvLine(line);
+        while (std::getline(csv, line)) {
+            const std::vector<std::string> fields = splitCsvLine(line);
+            ASSERT_EQ(fields.size(), header_.size()) << line;
+            std::map<std::string, std::string> row;
+            for (std::size_t k = 0; k < fields.size(); ++k)
+                row[header_[k]] = fields[k];
+            rows_.push_back(row);
+        }
+    }
+    static void TearDownTestSuite() { std::filesystem::remove_all(dir_); }
+    static const std::map<std::string, std::string>* row(const std::string& flags) {
+        for (const auto& r : rows_)
+            if (r.at("flags") == flags) return &r;
+        return nullptr;
+    }
+    static double number(const std::map<std::string, std::string>& row, const std::string& column) {
+        return std::stod(row.at(column));
+    }
+    static inline std::filesystem::path dir_;
+    static inline std::vector<std::string> header_;
+    static inline std::vector<std::map<std::string, std::string>> rows_;
+};
+
+TEST_F(TradeRun, CsvHoldsARowPerSettingWithFiniteNumbers) {
+    // The baseline (Phong shading, sorted transparency), flat, Gouraud, unsorted, exact, the fast and best
+    // presets; the default preset, --shading phong and --transparency sorted are the baseline's own
+    // settings, skipped.
+    ASSERT_EQ(rows_.size(), 7u);
+    EXPECT_EQ(rows_[0].at("knob"), "baseline");
+    EXPECT_NE(row("--shading flat"), nullptr);
+    EXPECT_NE(row("--shading gouraud"), nullptr);
+    EXPECT_EQ(row("--shading phong"), nullptr);
+    std::size_t numbers = 0;
+    for (const auto& r : rows_)
+        for (const std::string& column : header_) {
+            if (column.rfind("ms_", 0) != 0 && column.rfind("linear_", 0) != 0 &&
+                column.rfind("output8_", 0) != 0)
+                continue;
+            SCOPED_TRACE(r.at("flags") + " " + column);
+            const double value = number(r, column);
+            EXPECT_TRUE(std::isfinite(value)) << r.at(column);
+            ++numbers;
+        }
+    EXPECT_EQ(numbers, rows_.size() * 16);  // 4 times, 6 metrics in linear light and in 8 bits
+    for (const auto& r : rows_) {
+        EXPECT_TRUE(std::filesystem::exists(dir_ / r.at("image")));
+        EXPECT_TRUE(std::filesystem::exists(dir_ / r.at("error_image")));
+    }
+    EXPECT_TRUE(std::filesystem::exists(dir_ / "reference.png"));
+    EXPECT_TRUE(std::filesystem::exists(dir_ / "chart.png"));
+}
+
+TEST_F(TradeRun, FlatShadingIsFartherFromTheReferenceAndHasAnEffect) {
+    const auto* flat = row("--shading flat");
+    ASSERT_NE(flat, nullptr);
+    EXPECT_EQ(flat->at("no_effect"), "0");
+    EXPECT_LT(number(*flat, "output8_ssim"), number(rows_[0], "output8_ssim"));
+    EXPECT_GT(number(*flat, "linear_mean_abs"), number(rows_[0], "linear_mean_abs"));
+    EXPECT_LT(number(*flat, "linear_psnr_db"), number(rows_[0], "linear_psnr_db"));
+}
+
+// The cow is opaque: no transparency mode changes a pixel, and the trade says so.
+TEST_F(TradeRun, ASettingThatChangesNothingIsFlagged) {
+    for (const char* flags : {"--transparency unsorted", "--transparency exact"}) {
+        SCOPED_TRACE(flags);
+        const auto* r = row(flags);
+        ASSERT_NE(r, nullptr);
+        EXPECT_EQ(r->at("no_effect"), "1");
+        EXPECT_EQ(r->at("output8_ssim"), rows_[0].at("output8_ssim"));
+    }
+    EXPECT_EQ(rows_[0].at("no_effect"), "0");  // the baseline is not compared with itself
+}
+
+// Every knob's every value is a command line `facet render` accepts (a renamed flag or value fails
+// here), and reaches the scene so that the knob reads it back (what the trade's skipping relies on).
+TEST(TradeKnobs, EverySettingIsAcceptedByTheRenderParserAndReachesTheScene) {
+    for (const Knob& knob : knobTable())
+        for (const std::string& value : knob.values) {
+            const TradeSetting setting = knobSetting(knob, value);
+            SCOPED_TRACE(setting.label());
+            CLI::App app;
+            cli::RenderArgs args;
+            cli::addRenderCommand(app, args);
+            std::vector<std::string> words = {"render", kModel, "-o", "out.png"};
+            words.insert(words.end(), setting.words.begin(), setting.words.end());
+            EXPECT_NO_THROW(app.parse(std::vector<std::string>(words.rbegin(), words.rend())));
+            Scene scene = sceneForModel(kModel);
+            cli::applyLightingOptions(args, scene);
+            EXPECT_TRUE(sceneHasSetting(scene, setting));
+        }
+    for (const std::string& preset : kPresetNames) {
+        SCOPED_TRACE(preset);
+        cli::SceneArgs args;
+        args.input = kModel;
+        EXPECT_TRUE(
+            sceneHasSetting(cli::sceneWithWords(args, presetSetting(preset).words), presetSetting(preset)));
+    }
+}
+
+TEST(TradeKnobs, AnUnknownNameIsOneLineListingTheValidOnes) {
+    try {
+        selectKnobs("shading,shadwos");
+        FAIL() << "no error";
+    } catch (const InputError& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("--knobs: unknown knob \"shadwos\""), std::string::npos) << message;
+        EXPECT_NE(message.find("shading, interpolation, shadows"), std::string::npos) << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
+    EXPECT_THROW(selectKnobs("shading,"), InputError);
+    EXPECT_EQ(selectKnobs("shadows,shading").size(), 2u);
+}
+
+TEST(TradePareto, TheFrontIsThePointsNoneBeatsOnBothCounts) {
+    // x: ms, y: error.
+    const std::vector<glm::dvec2> points = {
+        {10, 0.5},   // 0: on the front (fastest)
+        {20, 0.1},   // 1: on the front
+        {15, 0.6},   // 2: slower and worse than 0
+        {30, 0.01},  // 3: on the front (most accurate)
+        {30, 0.1},   // 4: as accurate as 1, slower
+        {20, 0.1},   // 5: equal to 1: not beaten, on the front
+        {40, 0.02},  // 6: slower and worse than 3
+    };
+    EXPECT_EQ(paretoFront(points), (std::vector<std::size_t>{0, 1, 5, 3}));
+    EXPECT_EQ(paretoFront({{1, std::nan("")}, {2, 1}}), (std::vector<std::size_t>{1}));
+}
+
+TEST(TradeMetrics, IdenticalImagesHaveTheCappedPsnrAndAnSsimOfOne) {
+    LinearImage image;
+    image.width = 24;
+    image.height = 16;
+    for (int k = 0; k < image.width * image.height; ++k)
+        image.pixels.push_back(glm::vec4(0.01f * (k % 97), 0.3f, 0.002f * (k % 13), 1.0f));
+    const ImageError same = measureError(image, image, kSrgbEncoding);
+    for (const ErrorMetrics* m : {&same.linear, &same.encoded}) {
+        EXPECT_EQ(m->psnr, kMaxPsnr);
+        EXPECT_DOUBLE_EQ(m->ssim, 1.0);
+        EXPECT_EQ(m->meanAbs, 0.0);
+        EXPECT_EQ(m->over1, 0.0);
+    }
+    // One pixel's red two codes off in the 8-bit image: above 1/255, not above 2/255.
+    LinearImage other = image;
+    other.pixels[5] = glm::vec4(0.5f, 0.3f, 0.0f, 1.0f);
+    image.pixels[5] =
+        glm::vec4(srgbToLinear((encodeChannel(0.5f, kSrgbEncoding) + 2) / 255.0f), 0.3f, 0.0f, 1.0f);
+    const ImageError two = measureError(image, other, kSrgbEncoding);
+    EXPECT_DOUBLE_EQ(two.encoded.over1, 1.0 / (24 * 16));
+    EXPECT_EQ(two.encoded.over2, 0.0);
+    EXPECT_NEAR(two.encoded.maxAbs, 2.0 / 255.0, 1e-6);
+    EXPECT_LT(two.encoded.psnr, kMaxPsnr);
+    EXPECT_LT(two.encoded.ssim, 1.0);
+}
+
+}  // namespace
+}  // namespace facet
