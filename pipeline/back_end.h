@@ -62,9 +62,10 @@ inline void describeInterpolation(FragmentEvent& event, float b1, float b2, floa
 }
 
 // The fragment shader, then the depth write and blending (or appending to the fragment lists) for the
-// queued fragments. Compiled once for each FragmentOutput, chosen per draw (drawBatchTiles), so the
-// blending loop is exactly what it would be without fragment lists.
-template <Shader S, FragmentOutput kOutput, class Observer>
+// queued fragments. Compiled once for each FragmentOutput, depth format (Depth, a DepthFormatOf) and
+// colour buffer format, chosen per draw (drawBatchTiles), so the blending loop is exactly what it would
+// be without fragment lists or other formats.
+template <Shader S, FragmentOutput kOutput, class Depth, ColorBufferFormat kColor, class Observer>
 void shadeQueue(FragmentQueue& queue, const DrawPlan& plan, const typename S::Uniforms& uniforms,
                 Framebuffer& target, DrawStats& stats, Observer& observer) {
     constexpr bool kObserving = Observer::enabled;
@@ -111,14 +112,14 @@ void shadeQueue(FragmentQueue& queue, const DrawPlan& plan, const typename S::Un
             }
             continue;
         }
-        if (plan.depthWrite) target.depth(x, y) = DepthFormat::store(queue.z[lane]);
+        if (plan.depthWrite) target.depth(x, y) = Depth::store(queue.z[lane]);
         if constexpr (kOutput == FragmentOutput::AppendToLists) {
             const bool stored = queue.lists.append(x, y, shaded[lane], queue.z[lane], plan.blend);
             stats.fragmentsStored += stored;
             if constexpr (kObserving) event.fate = stored ? FragmentFate::Stored : FragmentFate::Dropped;
         } else {
             vec4& destination = target.color(x, y);
-            destination = blend(plan.blend, shaded[lane], destination);
+            destination = roundToColorBuffer<kColor>(blend(plan.blend, shaded[lane], destination));
             ++stats.fragmentsWritten;
             if constexpr (kObserving) {
                 event.fate = FragmentFate::Written;
@@ -135,7 +136,7 @@ void shadeQueue(FragmentQueue& queue, const DrawPlan& plan, const typename S::Un
 // The covered pixels of one block: barycentrics, depth, and the depth test (before shading: the shader
 // cannot change depth, so testing early gives the same image and skips hidden fragments). Fragments
 // that pass go to the queue, which is shaded whenever it holds eight.
-template <Shader S, FragmentOutput kOutput, class Observer>
+template <Shader S, FragmentOutput kOutput, class Depth, ColorBufferFormat kColor, class Observer>
 void depthTestBlock(const TriangleSetup& setup, const float* planes, const CoverageBlock& block,
                     FragmentQueue& queue, const DrawPlan& plan, const typename S::Uniforms& uniforms,
                     Framebuffer& target, DrawStats& stats, Observer& observer) {
@@ -154,19 +155,19 @@ void depthTestBlock(const TriangleSetup& setup, const float* planes, const Cover
 
         // A queued fragment at one of these pixels must reach the framebuffer before they are tested.
         if (queue.count && queue.holdsAny(y, block.x, rowMask))
-            shadeQueue<S, kOutput>(queue, plan, uniforms, target, stats, observer);
+            shadeQueue<S, kOutput, Depth, kColor>(queue, plan, uniforms, target, stats, observer);
 
-        DepthFormat::Stored* depthRow = &target.depth(block.x, y);
+        typename Depth::Stored* depthRow = &target.depth(block.x, y);
         unsigned passed = rowMask;
         if (plan.depthTest) {
             if (block.x + kBlockSize <= target.width()) {
                 // Eight stored depths at once (the row lies inside the framebuffer).
-                const Int8 pass = DepthFormat::passes(plan.depthCompare, z, DepthFormat::load8(depthRow));
+                const Int8 pass = Depth::passes(plan.depthCompare, z, Depth::load8(depthRow));
                 passed &= signMask(pass);
             } else {
                 for (int lane = 0; lane < kBlockSize; ++lane)
                     if ((rowMask >> lane) & 1u)
-                        if (!DepthFormat::passes(plan.depthCompare, z[lane], depthRow[lane]))
+                        if (!Depth::passes(plan.depthCompare, z[lane], depthRow[lane]))
                             passed &= ~(1u << lane);
             }
         }
@@ -210,14 +211,14 @@ void depthTestBlock(const TriangleSetup& setup, const float* planes, const Cover
                     queue.batch.varyings[k][slot] = varyings[k];
             }
             if (queue.count == kBlockSize)
-                shadeQueue<S, kOutput>(queue, plan, uniforms, target, stats, observer);
+                shadeQueue<S, kOutput, Depth, kColor>(queue, plan, uniforms, target, stats, observer);
         }
     }
 }
 
 // One tile: its triangles from every chunk, in submission order. An observer also sees the coverage
 // decision at every sample of a triangle's bounding box inside the tile, before its fragments.
-template <Shader S, FragmentOutput kOutput, class Observer>
+template <Shader S, FragmentOutput kOutput, class Depth, ColorBufferFormat kColor, class Observer>
 void drawTile(const PixelRect& rect, std::size_t tile, std::span<const SetupChunk> chunks,
               const DrawPlan& plan, const typename S::Uniforms& uniforms, Framebuffer& target,
               DrawStats& stats, Observer& observer) {
@@ -243,23 +244,24 @@ void drawTile(const PixelRect& rect, std::size_t tile, std::span<const SetupChun
                         observer.onCoverage(coverageAt(setup, x, y));
             }
             rasterizeBlocks(setup, rect, [&](const CoverageBlock& block) {
-                depthTestBlock<S, kOutput>(setup, planes, block, queue, plan, uniforms, target, stats,
-                                           observer);
+                depthTestBlock<S, kOutput, Depth, kColor>(setup, planes, block, queue, plan, uniforms, target,
+                                                          stats, observer);
             });
         }
     }
-    shadeQueue<S, kOutput>(queue, plan, uniforms, target, stats, observer);
+    shadeQueue<S, kOutput, Depth, kColor>(queue, plan, uniforms, target, stats, observer);
 }
 
-template <Shader S, FragmentOutput kOutput, class Observer>
+template <Shader S, FragmentOutput kOutput, class Depth, ColorBufferFormat kColor, class Observer>
 void drawTiles(std::span<const std::uint32_t> activeTiles, const TileGrid& grid,
                std::span<const SetupChunk> chunks, const DrawPlan& plan, const typename S::Uniforms& uniforms,
                Framebuffer& target, ThreadPool& pool, bool inOrder, std::span<DrawStats> threadStats,
                Observer& observer) {
     forEachItem(pool, inOrder, activeTiles.size(), [&](std::size_t active, int thread) {
         const std::size_t tile = activeTiles[active];
-        drawTile<S, kOutput>(grid.tileRect(static_cast<int>(tile)), tile, chunks, plan, uniforms, target,
-                             threadStats[static_cast<std::size_t>(thread)], observer);
+        drawTile<S, kOutput, Depth, kColor>(grid.tileRect(static_cast<int>(tile)), tile, chunks, plan,
+                                            uniforms, target, threadStats[static_cast<std::size_t>(thread)],
+                                            observer);
     });
 }
 
@@ -268,7 +270,8 @@ void drawTiles(std::span<const std::uint32_t> activeTiles, const TileGrid& grid,
 // The back end for one batch of set-up chunks: only the tiles some triangle touches (a draw of a few
 // triangles, such as a short run of the transparent pass, then costs little more than its triangles,
 // and a single tile is drawn on the calling thread without waking the pool), in parallel unless
-// `inOrder`. The FragmentOutput is chosen here, once per draw. Returns the number of tiles drawn.
+// `inOrder`. The FragmentOutput and the depth and colour buffer formats are chosen here, once per draw.
+// Returns the number of tiles drawn.
 template <Shader S, class Observer>
 std::size_t drawBatchTiles(const TileGrid& grid, std::span<const SetupChunk> chunks, const DrawPlan& plan,
                            const typename S::Uniforms& uniforms, Framebuffer& target, ThreadPool& pool,
@@ -281,12 +284,29 @@ std::size_t drawBatchTiles(const TileGrid& grid, std::span<const SetupChunk> chu
                 activeTiles.push_back(static_cast<std::uint32_t>(tile));
                 break;
             }
-    if (plan.output == FragmentOutput::AppendToLists)
-        detail::drawTiles<S, FragmentOutput::AppendToLists>(activeTiles, grid, chunks, plan, uniforms, target,
-                                                            pool, inOrder, threadStats, observer);
-    else
-        detail::drawTiles<S, FragmentOutput::Blend>(activeTiles, grid, chunks, plan, uniforms, target, pool,
-                                                    inOrder, threadStats, observer);
+    withDepthFormat(plan.depthFormat, [&](auto depthFormat) {
+        using Depth = decltype(depthFormat);
+        if (plan.output == FragmentOutput::AppendToLists) {
+            // Appended fragments reach the colour buffer in the resolve, which rounds them.
+            detail::drawTiles<S, FragmentOutput::AppendToLists, Depth, ColorBufferFormat::Float>(
+                activeTiles, grid, chunks, plan, uniforms, target, pool, inOrder, threadStats, observer);
+            return;
+        }
+        switch (plan.colorBuffer) {
+            case ColorBufferFormat::Half:
+                detail::drawTiles<S, FragmentOutput::Blend, Depth, ColorBufferFormat::Half>(
+                    activeTiles, grid, chunks, plan, uniforms, target, pool, inOrder, threadStats, observer);
+                return;
+            case ColorBufferFormat::Unorm8:
+                detail::drawTiles<S, FragmentOutput::Blend, Depth, ColorBufferFormat::Unorm8>(
+                    activeTiles, grid, chunks, plan, uniforms, target, pool, inOrder, threadStats, observer);
+                return;
+            case ColorBufferFormat::Float:
+                break;
+        }
+        detail::drawTiles<S, FragmentOutput::Blend, Depth, ColorBufferFormat::Float>(
+            activeTiles, grid, chunks, plan, uniforms, target, pool, inOrder, threadStats, observer);
+    });
     return activeTiles.size();
 }
 

@@ -2,6 +2,9 @@
 // In: source and destination RGBA, linear. Out: the new framebuffer RGBA.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
 #include "glsl.h"
 #include "state.h"
 
@@ -33,6 +36,49 @@ glm::vec<4, T, Q> blend(BlendMode mode, const glm::vec<4, T, Q>& source,
             return Vec4(Vec3(source) * Vec3(destination), destination.a);
     }
     return source;
+}
+
+// x as IEEE binary16 stores it: rounded to 11 significant bits, to nearest even (the step is
+// 2^(e − 10) for 2^e ≤ |x| < 2^(e+1), and 2^-24 among the subnormals below 2^-14); beyond the largest
+// half, 65504, clamped to ±65504 instead of overflowing to infinity, so no Inf reaches an image.
+inline float roundToHalf(float x) {
+    int exponent = 0;
+    std::frexp(x, &exponent);  // |x| = m·2^exponent, m in [0.5, 1): the leading bit is 2^(exponent − 1)
+    const int step = std::max(exponent - 1 - 10, -24);
+    const float rounded = std::ldexp(std::nearbyint(std::ldexp(x, -step)), step);
+    constexpr float kLargestHalf = 65504.0f;
+    return std::clamp(rounded, -kLargestHalf, kLargestHalf);
+}
+
+// c as an 8-bit unsigned normalised channel stores it: round(clamp(c, 0, 1)·255)/255 (OpenGL's float →
+// unorm conversion, 4.6 §2.3.5.2). The value is linear light: 8-bit linear storage is what bands.
+inline float roundToUnorm8(float c) {
+    return std::round(std::clamp(c, 0.0f, 1.0f) * 255.0f) / 255.0f;
+}
+
+// A colour as the colour buffer of format kFormat keeps it, applied after every write (clear, blend,
+// resolve): the buffer stays float, its values are those of the chosen format. Float: c itself.
+template <ColorBufferFormat kFormat>
+vec4 roundToColorBuffer(vec4 c) {
+    if constexpr (kFormat == ColorBufferFormat::Half)
+        return vec4(roundToHalf(c.r), roundToHalf(c.g), roundToHalf(c.b), roundToHalf(c.a));
+    else if constexpr (kFormat == ColorBufferFormat::Unorm8)
+        return vec4(roundToUnorm8(c.r), roundToUnorm8(c.g), roundToUnorm8(c.b), roundToUnorm8(c.a));
+    else
+        return c;
+}
+
+// The same with the format chosen at run time (a clear colour).
+inline vec4 roundToColorBuffer(ColorBufferFormat format, vec4 c) {
+    switch (format) {
+        case ColorBufferFormat::Half:
+            return roundToColorBuffer<ColorBufferFormat::Half>(c);
+        case ColorBufferFormat::Unorm8:
+            return roundToColorBuffer<ColorBufferFormat::Unorm8>(c);
+        case ColorBufferFormat::Float:
+            break;
+    }
+    return c;
 }
 
 }  // namespace facet

@@ -4,7 +4,7 @@
 
 namespace facet {
 
-std::uint8_t computeOutcode(const vec4& p) {
+std::uint8_t computeOutcode(const vec4& p, ClipDepthRange depth) {
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) || !std::isfinite(p.w))
         return kNonFinite;
     std::uint8_t code = 0;
@@ -12,13 +12,19 @@ std::uint8_t computeOutcode(const vec4& p) {
     if (p.x > p.w) code |= kClipRight;
     if (p.y < -p.w) code |= kClipBottom;
     if (p.y > p.w) code |= kClipTop;
-    if (p.z < -p.w) code |= kClipNear;
-    if (p.z > p.w) code |= kClipFar;
+    if (depth == ClipDepthRange::MinusWToW) {
+        if (p.z < -p.w) code |= kClipNear;
+        if (p.z > p.w) code |= kClipFar;
+    } else {
+        if (p.z > p.w) code |= kClipNear;
+        if (p.z < 0.0f) code |= kClipFar;
+    }
     if (p.w < kMinClipW) code |= kClipW;
     return code;
 }
 
-float planeDistance(const vec4& p, std::uint8_t plane) {
+float planeDistance(const vec4& p, std::uint8_t plane, ClipDepthRange depth) {
+    const bool reversed = depth == ClipDepthRange::ReversedZeroToW;
     switch (plane) {
         case kClipLeft:
             return p.w + p.x;
@@ -29,9 +35,9 @@ float planeDistance(const vec4& p, std::uint8_t plane) {
         case kClipTop:
             return p.w - p.y;
         case kClipNear:
-            return p.w + p.z;
+            return reversed ? p.w - p.z : p.w + p.z;
         case kClipFar:
-            return p.w - p.z;
+            return reversed ? p.z : p.w - p.z;
         case kClipW:
             return p.w - kMinClipW;
         default:
@@ -55,13 +61,14 @@ ClipVertex intersect(const ClipVertex& inside, float dInside, const ClipVertex& 
 
 // One Sutherland–Hodgman pass: keeps the inside part of `in` with respect to one plane.
 // Returns the number of vertices written to `out`.
-int clipAgainstPlane(const ClipVertex* in, int count, std::uint8_t plane, int varyingCount, ClipVertex* out) {
+int clipAgainstPlane(const ClipVertex* in, int count, std::uint8_t plane, ClipDepthRange depth,
+                     int varyingCount, ClipVertex* out) {
     int written = 0;
     for (int i = 0; i < count; ++i) {
         const ClipVertex& current = in[i];
         const ClipVertex& next = in[(i + 1) % count];
-        const float dCurrent = planeDistance(current.position, plane);
-        const float dNext = planeDistance(next.position, plane);
+        const float dCurrent = planeDistance(current.position, plane, depth);
+        const float dNext = planeDistance(next.position, plane, depth);
         const bool currentInside = dCurrent >= 0.0f;
         const bool nextInside = dNext >= 0.0f;
         if (currentInside) out[written++] = current;
@@ -75,7 +82,7 @@ int clipAgainstPlane(const ClipVertex* in, int count, std::uint8_t plane, int va
 
 }  // namespace
 
-void clipPolygon(ClipPolygon& polygon, std::uint8_t planes) {
+void clipPolygon(ClipPolygon& polygon, std::uint8_t planes, ClipDepthRange depth) {
     static constexpr std::uint8_t kOrder[] = {kClipLeft, kClipRight, kClipBottom, kClipTop,
                                               kClipNear, kClipFar,   kClipW};
     // Ping-pong between the polygon's own storage and a scratch polygon. Both have room for 3 + 7
@@ -89,15 +96,15 @@ void clipPolygon(ClipPolygon& polygon, std::uint8_t planes) {
         // Skip a plane that no vertex is outside of: the polygon may touch it but is not cut.
         bool anyOutside = false;
         for (int i = 0; i < count; ++i)
-            anyOutside |= planeDistance(source[i].position, plane) < 0.0f;
+            anyOutside |= planeDistance(source[i].position, plane, depth) < 0.0f;
         if (!anyOutside) continue;
         polygon.planesCut |= plane;
-        count = clipAgainstPlane(source, count, plane, polygon.varyingCount, target);
+        count = clipAgainstPlane(source, count, plane, depth, polygon.varyingCount, target);
         std::swap(source, target);
     }
     if (count < 3) count = 0;
     for (int i = 0; i < count; ++i)
-        if (computeOutcode(source[i].position) & kNonFinite) count = 0;
+        if (computeOutcode(source[i].position, depth) & kNonFinite) count = 0;
     if (source != polygon.vertices.data())
         for (int i = 0; i < count; ++i)
             polygon.vertices[i] = source[i];

@@ -1,5 +1,6 @@
 // Clipping. Cuts a clip-space polygon by the frustum planes −w ≤ x, y, z ≤ w and by w ≥ kMinClipW
 // (Sutherland–Hodgman in homogeneous coordinates, before any divide, so w ≤ 0 needs no special case).
+// Under reversed Z the depth planes are 0 ≤ z ≤ w instead, the near plane at z = w (ClipDepthRange).
 // In: ClipPolygon (a triangle). Out: the same ClipPolygon, convex, winding kept, 0 or ≥ 3 vertices.
 #pragma once
 
@@ -9,17 +10,23 @@
 
 namespace facet {
 
+// The clip-space depths inside the frustum: OpenGL's −w ≤ z ≤ w (near at z = −w), or reversed Z's
+// 0 ≤ z ≤ w with the near plane at z = w and the far one at z = 0 (glClipControl GL_ZERO_TO_ONE;
+// DepthBufferFormat::ReversedFloat). kClipNear and kClipFar keep naming the near and far planes.
+enum class ClipDepthRange : std::uint8_t { MinusWToW, ReversedZeroToW };
+
 // Which planes `position` lies outside of (ClipPlaneBit mask); kNonFinite if any coordinate is NaN/Inf.
-std::uint8_t computeOutcode(const vec4& position);
+std::uint8_t computeOutcode(const vec4& position, ClipDepthRange depth = ClipDepthRange::MinusWToW);
 
 // Signed distance-like value of `position` to one plane: ≥ 0 inside. `plane` is a single ClipPlaneBit.
-float planeDistance(const vec4& position, std::uint8_t plane);
+float planeDistance(const vec4& position, std::uint8_t plane,
+                    ClipDepthRange depth = ClipDepthRange::MinusWToW);
 
 // Clips `polygon` in place against every plane in `planes` (a ClipPlaneBit mask), in the fixed order
 // left, right, bottom, top, near, far, w. Varyings are interpolated in clip space with the position,
 // which keeps them perspective-correct. Each new vertex is computed from the edge's inside vertex toward
 // its outside one, so two triangles that share an edge get bit-identical new vertices on it.
 // A result with a non-finite coordinate (from inputs near the float range) is emptied.
-void clipPolygon(ClipPolygon& polygon, std::uint8_t planes);
+void clipPolygon(ClipPolygon& polygon, std::uint8_t planes, ClipDepthRange depth = ClipDepthRange::MinusWToW);
 
 }  // namespace facet

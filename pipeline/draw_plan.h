@@ -17,6 +17,8 @@ struct DrawPlan {
     bool depthWrite = true;
     BlendMode blend = BlendMode::Replace;
     FragmentOutput output = FragmentOutput::Blend;
+    DepthBufferFormat depthFormat = DepthBufferFormat::Float;
+    ColorBufferFormat colorBuffer = ColorBufferFormat::Float;
 };
 
 inline DrawPlan planDraw(const DrawState& state) {
@@ -26,6 +28,8 @@ inline DrawPlan planDraw(const DrawState& state) {
     plan.depthWrite = state.depth.testEnabled && state.depth.writeEnabled;
     plan.blend = state.blend;
     plan.output = state.output;
+    plan.depthFormat = state.depth.format;
+    plan.colorBuffer = state.colorBuffer;
     return plan;
 }
 

@@ -117,6 +117,14 @@ class FragmentLists {
     // tile size differs from theirs: clear the lists first.
     void prepare(int width, int height, int tileSize);
 
+    // The depth and colour buffer formats of the draws that append (draw() sets them with prepare()):
+    // the resolve sorts farthest first in the depth format's direction and rounds each composited
+    // colour as the colour buffer stores it.
+    void useFormats(DepthBufferFormat depth, ColorBufferFormat color) {
+        depthFormat_ = depth;
+        colorBuffer_ = color;
+    }
+
     // The writer for the tile holding pixel (x, y): the back end passes its tile's top-left pixel.
     TileWriter writer(int x, int y);
 
@@ -153,8 +161,10 @@ class FragmentLists {
 
     std::size_t pixelIndex(int x, int y) const { return static_cast<std::size_t>(y) * width_ + x; }
     PixelRect tileRect(int tile) const;
-    template <class Observer>
+    template <bool kLessIsNearer, ColorBufferFormat kColor, class Observer>
     void resolveTile(int tile, Framebuffer& target, ResolveScratch& scratch, Observer& observer) const;
+    template <bool kLessIsNearer, ColorBufferFormat kColor, class Observer>
+    void resolveTiles(Framebuffer& target, ThreadPool& pool, Observer& observer);
 
     int width_ = 0, height_ = 0;
     int tileSize_ = 0;
@@ -162,6 +172,8 @@ class FragmentLists {
     std::vector<std::uint32_t> heads_;     // per pixel, row-major: newest node in its tile's pool, or kEnd
     std::vector<TilePool> pools_;          // per tile, row-major
     std::vector<ResolveScratch> scratch_;  // per resolving thread
+    DepthBufferFormat depthFormat_ = DepthBufferFormat::Float;
+    ColorBufferFormat colorBuffer_ = ColorBufferFormat::Float;
 };
 
 // Composites every pixel's list over target's colour, tiles in parallel on the pool's threads: the list

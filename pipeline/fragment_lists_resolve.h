@@ -32,16 +32,17 @@ inline constexpr std::size_t kScratchEntries = 256;
 // unsigned integer that orders like the float (negatives flipped), inverted when smaller depths are
 // nearer (DepthFormat) so that farther depths come first, above the fragment's position in submission
 // order.
-inline std::uint64_t resolveSortKey(float depth, std::uint32_t submission) {
+template <bool kLessIsNearer = true>
+std::uint64_t resolveSortKey(float depth, std::uint32_t submission) {
     const auto bits = std::bit_cast<std::uint32_t>(depth + 0.0f);  // −0 → +0: equal depths tie
     const std::uint32_t ordered = (bits & 0x80000000u) ? ~bits : (bits | 0x80000000u);
-    const std::uint32_t fartherFirst = DepthFormat::kLessIsNearer ? ~ordered : ordered;
+    const std::uint32_t fartherFirst = kLessIsNearer ? ~ordered : ordered;
     return (std::uint64_t{fartherFirst} << 32) | submission;
 }
 
 }  // namespace detail
 
-template <class Observer>
+template <bool kLessIsNearer, ColorBufferFormat kColor, class Observer>
 void FragmentLists::resolveTile(int tile, Framebuffer& target, ResolveScratch& scratch,
                                 Observer& observer) const {
     constexpr bool kObserving = Observer::enabled;
@@ -65,10 +66,11 @@ void FragmentLists::resolveTile(int tile, Framebuffer& target, ResolveScratch& s
                     const vec4 before = color;
                     observed.assign(
                         1, ResolvedFragment{0, newest.depth, newest.blend(), newest.color, vec4(0.0f)});
-                    observed[0].colorAfter = blend(newest.blend(), newest.color, before);
+                    observed[0].colorAfter =
+                        roundToColorBuffer<kColor>(blend(newest.blend(), newest.color, before));
                     observer.onResolve(ResolveEvent{x, y, before, observed});
                 }
-                color = blend(newest.blend(), newest.color, color);
+                color = roundToColorBuffer<kColor>(blend(newest.blend(), newest.color, color));
                 ++scratch.stats.fragments;
                 ++scratch.stats.pixels;
                 scratch.stats.longestList = std::max(scratch.stats.longestList, 1u);
@@ -81,8 +83,8 @@ void FragmentLists::resolveTile(int tile, Framebuffer& target, ResolveScratch& s
             std::reverse(entries.begin(), entries.end());
             const std::size_t n = entries.size();
             for (std::size_t i = 0; i < n; ++i)
-                entries[i].key =
-                    detail::resolveSortKey(nodes[entries[i].node].depth, static_cast<std::uint32_t>(i));
+                entries[i].key = detail::resolveSortKey<kLessIsNearer>(nodes[entries[i].node].depth,
+                                                                       static_cast<std::uint32_t>(i));
 
             // Farthest first, equal depths in submission order.
             if (n <= detail::kInsertionSortLimit) {
@@ -102,7 +104,7 @@ void FragmentLists::resolveTile(int tile, Framebuffer& target, ResolveScratch& s
             if constexpr (kObserving) observed.clear();
             for (const Entry& e : entries) {
                 const Node& node = nodes[e.node];
-                c = blend(node.blend(), node.color, c);
+                c = roundToColorBuffer<kColor>(blend(node.blend(), node.color, c));
                 if constexpr (kObserving)
                     observed.push_back(ResolvedFragment{static_cast<std::uint32_t>(e.key & 0xffffffffu),
                                                         node.depth, node.blend(), node.color, c});
@@ -125,10 +127,20 @@ FragmentListStats FragmentLists::resolve(Framebuffer& target, ThreadPool& pool, 
     }
     for (ResolveScratch& s : scratch_)
         s.stats = FragmentListStats{};
-    const FragmentLists& reading = *this;
-    forEachItem(pool, Observer::enabled, pools_.size(), [&](std::size_t tile, int thread) {
-        reading.resolveTile(static_cast<int>(tile), target, scratch_[static_cast<std::size_t>(thread)],
-                            observer);
+    // The formats chosen once for the whole resolve, as drawBatchTiles chooses them for a draw.
+    withDepthFormat(depthFormat_, [&](auto depthFormat) {
+        constexpr bool kLessIsNearer = decltype(depthFormat)::kLessIsNearer;
+        switch (colorBuffer_) {
+            case ColorBufferFormat::Half:
+                resolveTiles<kLessIsNearer, ColorBufferFormat::Half>(target, pool, observer);
+                return;
+            case ColorBufferFormat::Unorm8:
+                resolveTiles<kLessIsNearer, ColorBufferFormat::Unorm8>(target, pool, observer);
+                return;
+            case ColorBufferFormat::Float:
+                break;
+        }
+        resolveTiles<kLessIsNearer, ColorBufferFormat::Float>(target, pool, observer);
     });
     FragmentListStats total;
     for (const ResolveScratch& s : scratch_) {
@@ -139,6 +151,15 @@ FragmentListStats FragmentLists::resolve(Framebuffer& target, ThreadPool& pool, 
     }
     total.bytesHeld = bytesHeld();
     return total;
+}
+
+template <bool kLessIsNearer, ColorBufferFormat kColor, class Observer>
+void FragmentLists::resolveTiles(Framebuffer& target, ThreadPool& pool, Observer& observer) {
+    const FragmentLists& reading = *this;
+    forEachItem(pool, Observer::enabled, pools_.size(), [&](std::size_t tile, int thread) {
+        reading.resolveTile<kLessIsNearer, kColor>(static_cast<int>(tile), target,
+                                                   scratch_[static_cast<std::size_t>(thread)], observer);
+    });
 }
 
 // resolveFragmentLists (fragment_lists.h), on the calling thread, each pixel's resolve shown to the

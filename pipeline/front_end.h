@@ -12,6 +12,7 @@
 
 #include "bin.h"
 #include "clip.h"
+#include "depth_format.h"
 #include "observer.h"
 #include "primitive_assembly.h"
 #include "rasterize.h"
@@ -36,10 +37,11 @@ void runVertexStage(std::span<const typename S::Attributes> vertices, const type
     const std::size_t chunks = (vertices.size() + vertexChunk - 1) / vertexChunk;
     forEachItem(pool, inOrder, chunks, [&](std::size_t chunk, int) {
         const std::size_t begin = chunk * vertexChunk, end = std::min(begin + vertexChunk, vertices.size());
-        shadeVertices<S>(vertices, uniforms, begin, end, shaded);
+        shadeVertices<S>(vertices, uniforms, begin, end, shaded, clipDepthRange(state.depth.format));
         for (std::size_t i = begin; i < end; ++i)
             if (shaded.outcodes[i] == 0)
-                window[i] = toWindow(shaded.positions[i], state.viewport, state.raster.subpixelBits);
+                window[i] = toWindow(shaded.positions[i], state.viewport, state.raster.subpixelBits,
+                                     state.depth.format);
     });
     if constexpr (Observer::enabled)
         for (std::size_t i = 0; i < shaded.size(); ++i)
@@ -146,7 +148,7 @@ void setupTriangles(std::span<const std::uint32_t> indices, std::size_t first, s
 
         // Clipping: the triangle crosses at least one plane.
         ++stats.trianglesClipped;
-        clipPolygon(polygon, outcodeOr);
+        clipPolygon(polygon, outcodeOr, clipDepthRange(state.depth.format));
         if constexpr (kObserving) observer.onClipped(triangleIndex, polygon);
         if (polygon.count == 0) {
             ++stats.trianglesRejected;
@@ -156,10 +158,13 @@ void setupTriangles(std::span<const std::uint32_t> indices, std::size_t first, s
 
         // The clipped polygon is convex: a fan around its first vertex.
         const int bits = state.raster.subpixelBits;
-        const WindowVertex firstVertex = toWindow(polygon.vertices[0].position, state.viewport, bits);
-        WindowVertex previous = toWindow(polygon.vertices[1].position, state.viewport, bits);
+        const DepthBufferFormat depthFormat = state.depth.format;
+        const WindowVertex firstVertex =
+            toWindow(polygon.vertices[0].position, state.viewport, bits, depthFormat);
+        WindowVertex previous = toWindow(polygon.vertices[1].position, state.viewport, bits, depthFormat);
         for (int k = 2; k < polygon.count; ++k) {
-            const WindowVertex current = toWindow(polygon.vertices[k].position, state.viewport, bits);
+            const WindowVertex current =
+                toWindow(polygon.vertices[k].position, state.viewport, bits, depthFormat);
             window.vertices = {firstVertex, previous, current};
             window.varyings = {polygon.vertices[0].varyings.data(), polygon.vertices[k - 1].varyings.data(),
                                polygon.vertices[k].varyings.data()};

@@ -77,8 +77,10 @@ DrawStats draw(const DrawState& state, const typename S::Uniforms& uniforms,
     const DrawPlan plan = planDraw(state);
     const std::uint64_t drawId = context.drawsStarted++;
     if constexpr (Watcher::enabled) observer.onDrawBegin(drawId, state);
-    if (plan.output == FragmentOutput::AppendToLists)
+    if (plan.output == FragmentOutput::AppendToLists) {
         target.fragmentLists().prepare(target.width(), target.height(), context.tileSize);
+        target.fragmentLists().useFormats(plan.depthFormat, plan.colorBuffer);
+    }
 
     runVertexStage<S>(vertices, uniforms, state, context.pool, inOrder, kVertexChunk, context.shaded,
                       context.window, observer);

@@ -70,12 +70,48 @@ struct DepthOffset {
     bool any() const { return factor != 0.0f || units != 0.0f; }
 };
 
+// What the depth buffer stores (depth_format.h): the trade of depth precision against memory that
+// hardware offers (docs/trade.md, "Depth buffer"). Every format keeps Facet's 32-bit float buffer; the
+// unorm ones store integer codes in it.
+enum class DepthBufferFormat : std::uint8_t {
+    Float,          // 32-bit float window depth, near 0, far 1 (OpenGL's default)
+    Unorm16,        // 16-bit unsigned normalised: round(z_w·(2^16 − 1))
+    Unorm24,        // 24-bit unsigned normalised: round(z_w·(2^24 − 1))
+    ReversedFloat,  // 32-bit float, reversed Z: near 1, far 0, clip depth 0 ≤ z ≤ w (GL_ZERO_TO_ONE)
+};
+inline constexpr EnumName<DepthBufferFormat> kDepthBufferFormatNames[] = {
+    {DepthBufferFormat::Float, "float"},
+    {DepthBufferFormat::Unorm16, "unorm16"},
+    {DepthBufferFormat::Unorm24, "unorm24"},
+    {DepthBufferFormat::ReversedFloat, "reversed-float"}};
+constexpr std::span<const EnumName<DepthBufferFormat>> enumNames(DepthBufferFormat) {
+    return kDepthBufferFormatNames;
+}
+
 struct DepthState {
     bool testEnabled = true;
     bool writeEnabled = true;
+    // ReversedFloat stores nearer surfaces as larger depths: it goes with Greater (nearerPasses()).
     CompareOp compare = CompareOp::Less;
     DepthOffset offset;
+    DepthBufferFormat format = DepthBufferFormat::Float;
 };
+
+// How precisely the colour buffer keeps what is written to it (clears, blending, the resolve of
+// fragment lists). The buffer's storage stays linear float; after every write the value is rounded as
+// the chosen format would store it (blend.h, roundToColorBuffer), so blending runs at that precision.
+enum class ColorBufferFormat : std::uint8_t {
+    Float,   // 32-bit float per channel: no rounding (today's buffer)
+    Half,    // IEEE binary16 per channel, round to nearest even, beyond 65504 clamped to 65504
+    Unorm8,  // 8 bits per channel, linear: round(clamp(c, 0, 1)·255)/255
+};
+inline constexpr EnumName<ColorBufferFormat> kColorBufferFormatNames[] = {
+    {ColorBufferFormat::Float, "float"},
+    {ColorBufferFormat::Half, "half"},
+    {ColorBufferFormat::Unorm8, "unorm8"}};
+constexpr std::span<const EnumName<ColorBufferFormat>> enumNames(ColorBufferFormat) {
+    return kColorBufferFormatNames;
+}
 
 // How varyings are interpolated across a triangle in screen space.
 enum class Interpolation : std::uint8_t {
@@ -152,6 +188,7 @@ struct DrawState {
     Interpolation interpolation = Interpolation::PerspectiveCorrect;
     BlendMode blend = BlendMode::Replace;
     FragmentOutput output = FragmentOutput::Blend;
+    ColorBufferFormat colorBuffer = ColorBufferFormat::Float;
 };
 
 std::ostream& operator<<(std::ostream& os, CullMode mode);
@@ -161,6 +198,8 @@ std::ostream& operator<<(std::ostream& os, CompareOp op);
 std::ostream& operator<<(std::ostream& os, Interpolation mode);
 std::ostream& operator<<(std::ostream& os, BlendMode mode);
 std::ostream& operator<<(std::ostream& os, FragmentOutput output);
+std::ostream& operator<<(std::ostream& os, DepthBufferFormat format);
+std::ostream& operator<<(std::ostream& os, ColorBufferFormat format);
 std::ostream& operator<<(std::ostream& os, const DrawState& state);
 
 }  // namespace facet

@@ -46,7 +46,7 @@ bool isTopLeft(std::int64_t dx, std::int64_t dy) {
     return dy < 0 || (dy == 0 && dx > 0);
 }
 
-float depthOffset(const TriangleSetup& setup, const DepthOffset& offset) {
+float depthOffset(const TriangleSetup& setup, const DepthOffset& offset, DepthBufferFormat format) {
     // z = z0 + λ1·dz1 + λ2·dz2 with λi = Ei(x, y) / doubleArea, Ei = a·x + b·y + c in fixed units:
     // ∂z/∂x = (dz1·a1 + dz2·a2) · kFixedOne / doubleArea per pixel, and likewise with b for y.
     const double perPixel = double(kFixedOne) / double(setup.doubleArea);
@@ -55,7 +55,8 @@ float depthOffset(const TriangleSetup& setup, const DepthOffset& offset) {
     const double dzdy =
         (setup.dz1 * double(setup.edges[1].b) + setup.dz2 * double(setup.edges[2].b)) * perPixel;
     const double slope = std::max(std::abs(dzdx), std::abs(dzdy));
-    return float(offset.factor * slope + offset.units * double(DepthFormat::kResolution));
+    const float resolution = withDepthFormat(format, [](auto f) { return decltype(f)::kResolution; });
+    return float(offset.factor * slope + offset.units * double(resolution));
 }
 
 TriangleFate setupTriangle(const WindowTriangle& triangle, const DrawState& state, TriangleSetup& setup,
@@ -102,7 +103,7 @@ TriangleFate setupTriangle(const WindowTriangle& triangle, const DrawState& stat
     setup.z0 = v0.z;
     setup.dz1 = v1.z - v0.z;
     setup.dz2 = v2.z - v0.z;
-    if (state.depth.offset.any()) setup.z0 += depthOffset(setup, state.depth.offset);
+    if (state.depth.offset.any()) setup.z0 += depthOffset(setup, state.depth.offset, state.depth.format);
     setup.invW0 = v0.invW;
     setup.dInvW1 = v1.invW - v0.invW;
     setup.dInvW2 = v2.invW - v0.invW;

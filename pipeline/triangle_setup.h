@@ -29,7 +29,9 @@ bool isTopLeft(std::int64_t dx, std::int64_t dy);
 // Returns the fate: Drawn when `setup` was filled in.
 // The depth offset of a triangle set up in `setup` (its edges, doubleArea and depth plane), window
 // depth units: offset.factor · max(|∂z/∂x|, |∂z/∂y|) + offset.units · DepthFormat::kResolution.
-float depthOffset(const TriangleSetup& setup, const DepthOffset& offset);
+// r is that of the draw's depth buffer format (DepthFormatOf::kResolution).
+float depthOffset(const TriangleSetup& setup, const DepthOffset& offset,
+                  DepthBufferFormat format = DepthBufferFormat::Float);
 
 TriangleFate setupTriangle(const WindowTriangle& triangle, const DrawState& state, TriangleSetup& setup,
                            float* varyingPlanes);

@@ -23,16 +23,17 @@ void prepareShadedVertices(std::size_t count, ShadedVertices& out) {
 }
 
 // Shades vertices [begin, end) into `out` (already sized by prepareShadedVertices). Disjoint ranges
-// may run on different threads.
+// may run on different threads. Outcodes are those of the depth buffer's clip-depth range.
 template <Shader S>
 void shadeVertices(std::span<const typename S::Attributes> attributes, const typename S::Uniforms& uniforms,
-                   std::size_t begin, std::size_t end, ShadedVertices& out) {
+                   std::size_t begin, std::size_t end, ShadedVertices& out,
+                   ClipDepthRange clipDepth = ClipDepthRange::MinusWToW) {
     constexpr int kFloats = kVaryingFloatCount<typename S::Varyings>;
     const auto store = [&](std::size_t i, const VertexOut<typename S::Varyings>& shaded) {
         out.positions[i] = shaded.position;
         if constexpr (kFloats > 0)
             std::memcpy(out.varyings.data() + i * kFloats, &shaded.varyings, kFloats * sizeof(float));
-        out.outcodes[i] = computeOutcode(shaded.position);
+        out.outcodes[i] = computeOutcode(shaded.position, clipDepth);
     };
     if constexpr (BatchVertexShader<S>) {
         // Eight at a time; a vertex's result does not depend on which group or lane it lands in.

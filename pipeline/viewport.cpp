@@ -18,7 +18,8 @@ std::int64_t snap(float windowCoordinate, int subpixelBits) {
 
 }  // namespace
 
-WindowVertex toWindow(const vec4& clip, const Viewport& viewport, int subpixelBits) {
+WindowVertex toWindow(const vec4& clip, const Viewport& viewport, int subpixelBits,
+                      DepthBufferFormat depthFormat) {
     // Perspective divide: clip space → normalised device coordinates in [−1, 1]³.
     const float invW = 1.0f / clip.w;
     const vec3 ndc = vec3(clip) * invW;
@@ -27,7 +28,12 @@ WindowVertex toWindow(const vec4& clip, const Viewport& viewport, int subpixelBi
     WindowVertex v;
     v.window.x = static_cast<float>(viewport.x) + (ndc.x + 1.0f) * 0.5f * static_cast<float>(viewport.width);
     v.window.y = static_cast<float>(viewport.y) + (1.0f - ndc.y) * 0.5f * static_cast<float>(viewport.height);
-    v.z = DepthFormat::windowDepth(ndc.z, viewport.minDepth, viewport.maxDepth);
+    // Reversed Z maps 0..1 clip depth, the other formats OpenGL's −1..1 (the unorm ones round later,
+    // when the back end stores the depth).
+    v.z = depthFormat == DepthBufferFormat::ReversedFloat
+              ? DepthFormatOf<DepthBufferFormat::ReversedFloat>::windowDepth(ndc.z, viewport.minDepth,
+                                                                             viewport.maxDepth)
+              : DepthFormat::windowDepth(ndc.z, viewport.minDepth, viewport.maxDepth);
     v.invW = invW;
 
     // Snap to fixed point. Clipping keeps |x_ndc|, |y_ndc| ≤ 1 up to rounding, so the values stay far

@@ -12,6 +12,7 @@ namespace facet {
 // z_w = minDepth + (z_ndc + 1)/2 · (maxDepth − minDepth), clamped to the depth range as OpenGL does
 // (DepthFormat::windowDepth).
 // x and y are rounded to the nearest 1/2^subpixelBits of a pixel. Requires w ≥ kMinClipW (clipped).
-WindowVertex toWindow(const vec4& clipPosition, const Viewport& viewport, int subpixelBits);
+WindowVertex toWindow(const vec4& clipPosition, const Viewport& viewport, int subpixelBits,
+                      DepthBufferFormat depthFormat = DepthBufferFormat::Float);
 
 }  // namespace facet

@@ -140,6 +140,21 @@ void addSceneOptions(CLI::App& command, SceneArgs& args) {
         .add_option("--shadow-filter", args.shadowFilter,
                     "Shadow maps: depth comparisons averaged per point, 1, 4 or 16 (default 4)")
         ->check(kWholeNumber);
+    addBufferFormatOptions(command, args);
+}
+
+void addBufferFormatOptions(CLI::App& command, SceneArgs& args) {
+    addChoice(
+        command, "--depth", args.depth,
+        "Depth buffer format: 16- or 24-bit unorm, 32-bit float, or float with reversed Z (docs/trade.md)" +
+            byDefault(DepthBufferFormat::Float));
+    addChoice(
+        command, "--color-buffer", args.colorBuffer,
+        "Colour buffer precision, rounded after every write: 8-bit linear, half or float (docs/trade.md)" +
+            byDefault(ColorBufferFormat::Float));
+    command.add_flag("--infinite-far", args.infiniteFar,
+                     "Camera: no far plane (the projection's limit as far goes to infinity; best with "
+                     "--depth reversed-float)");
 }
 
 facet::Scene sceneFromArgs(const SceneArgs& args) {
@@ -182,6 +197,12 @@ void applyLightingOptions(const SceneArgs& args, facet::Scene& scene) {
     if (args.transparency) scene.transparency.mode = *args.transparency;
     if (args.interpolation) scene.pipeline.interpolation = *args.interpolation;
     if (args.cull) scene.pipeline.cull = *args.cull;
+    if (args.depth) scene.pipeline.depth = *args.depth;
+    if (args.colorBuffer) scene.pipeline.colorBuffer = *args.colorBuffer;
+    if (args.infiniteFar) {
+        scene.camera.infiniteFar = true;
+        scene.camera.far.reset();
+    }
     if (args.sortKey) scene.transparency.key = *args.sortKey;
     if ((args.encode || args.gamma) && scene.lighting.preset == facet::LightingPreset::GL)
         throw facet::InputError(

@@ -73,6 +73,9 @@ struct SceneArgs {
     std::optional<float> gamma;
     std::optional<Interpolation> interpolation;
     std::optional<CullMode> cull;
+    std::optional<DepthBufferFormat> depth;
+    std::optional<ColorBufferFormat> colorBuffer;
+    bool infiniteFar = false;
     std::optional<ShadowMethod> shadows;
     std::optional<int> shadowMapSize;
     std::optional<float> shadowBias, shadowSlopeBias;
@@ -81,6 +84,10 @@ struct SceneArgs {
 
 // Adds SceneArgs's options (and the input) to `command`, as `facet render` describes them.
 void addSceneOptions(CLI::App& command, SceneArgs& args);
+
+// The depth and colour buffer formats and the infinite far plane (--depth, --color-buffer,
+// --infinite-far), which compare takes too.
+void addBufferFormatOptions(CLI::App& command, SceneArgs& args);
 
 // Loads the input and applies every choice of `args` to it; throws InputError for a bad value or an
 // unusable input. The size is checked (checkSize), the camera's eye and target are not the same point.

@@ -135,7 +135,7 @@ std::optional<std::string> coordinatePrecisionWarning(const Mesh& mesh, const st
 void placeDraw(SurfaceUniforms& u, const Camera& camera, const glm::dmat4& worldFromObject) {
     const glm::dmat4 viewFromObject = camera.viewFromWorldExact * worldFromObject;
     u.viewFromObject = mat4(viewFromObject);
-    u.clipFromObject = mat4(camera.clipFromViewExact * viewFromObject);
+    u.clipFromObject = mat4(drawnClipFromView(camera) * viewFromObject);
     glm::dmat3 normalFromObject = glm::transpose(glm::inverse(glm::dmat3(viewFromObject)));
     const double determinant = glm::determinant(normalFromObject);
     if (determinant != 0.0 && std::isfinite(determinant))
@@ -256,7 +256,7 @@ PreparedScene prepareScene(const Scene& scene, const TextureLimits& limits) {
     // Camera.
     const float aspect = static_cast<float>(scene.width) / static_cast<float>(scene.height);
     try {
-        prepared.camera = frameCamera(scene.camera, sceneBounds, aspect);
+        prepared.camera = frameCamera(scene.camera, sceneBounds, aspect, scene.pipeline.depth);
     } catch (const InputError& e) {
         throw InputError(scene.source.string() + ": " + e.what());
     }
@@ -366,6 +366,9 @@ PreparedScene prepareScene(const Scene& scene, const TextureLimits& limits) {
     state.raster.cull = scene.pipeline.cull;
     state.raster.subpixelBits = scene.pipeline.subpixelBits;
     state.interpolation = scene.pipeline.interpolation;
+    state.depth.format = scene.pipeline.depth;
+    state.depth.compare = nearerPasses(state.depth.format, CompareOp::Less);
+    state.colorBuffer = scene.pipeline.colorBuffer;
     state.raster.provokingVertex = ProvokingVertex::Last;  // OpenGL's convention
     prepared.clearColor = vec4(decode(vec3(scene.background)), scene.background.a);
     prepared.encoding = glPreset ? kLinearEncoding : ColorEncoding{scene.gamma.encode, scene.gamma.exponent};

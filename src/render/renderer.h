@@ -225,7 +225,9 @@ FrameStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawC
     FrameStats stats;
     const TransparencyMode mode = prepared.scene.transparency.mode;
     const std::vector<PlannedDraw> plan = planFrame(prepared, mode, memory, stats);
-    target.clear(prepared.clearColor, 1.0f, context.pool);
+    // The background and the far plane, as the buffers' formats store them.
+    target.clear(roundToColorBuffer(prepared.state.colorBuffer, prepared.clearColor),
+                 depthClearValue(prepared.state.depth.format), context.pool);
     for (const PlannedDraw& call : plan) {
         const PreparedDraw& d = prepared.draws[call.draw];
         if constexpr (requires { observer.onPlannedDraw(call, d); }) observer.onPlannedDraw(call, d);

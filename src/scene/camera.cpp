@@ -56,8 +56,18 @@ double viewScaleFor(double radius) {
 
 }  // namespace
 
-Camera frameCamera(const CameraSpec& spec, const Bounds& bounds, float aspect) {
+glm::dmat4 drawnClipFromView(const Camera& camera) {
+    if (camera.depthFormat != DepthBufferFormat::ReversedFloat) return camera.clipFromViewExact;
+    glm::dmat4 reversedFromClip(1.0);  // column-major: [column][row]
+    reversedFromClip[2][2] = -0.5;     // z' = −z/2 + w/2
+    reversedFromClip[3][2] = 0.5;
+    return reversedFromClip * camera.clipFromViewExact;
+}
+
+Camera frameCamera(const CameraSpec& spec, const Bounds& bounds, float aspect,
+                   DepthBufferFormat depthFormat) {
     Camera camera;
+    camera.depthFormat = depthFormat;
     camera.fovyDegrees = spec.fovyDegrees;
     // Double throughout: squared lengths of a 1e30 model overflow float, those of a 1e-30 one underflow.
     const dvec3 boxMin(bounds.min), boxMax(bounds.max);
@@ -101,7 +111,9 @@ Camera frameCamera(const CameraSpec& spec, const Bounds& bounds, float aspect) {
     // plane at a thousandth of the scene's size.
     const double toCentre = glm::length(centre - eye);
     const double near = spec.near ? double(*spec.near) : std::max(0.95 * (toCentre - radius), 1e-3 * radius);
-    const double far = spec.far ? double(*spec.far) : std::max(1.05 * (toCentre + radius), near * 2.0);
+    const double far = spec.infiniteFar ? std::numeric_limits<double>::infinity()
+                       : spec.far       ? double(*spec.far)
+                                        : std::max(1.05 * (toCentre + radius), near * 2.0);
 
     // What the depth buffer can tell apart. The scene's bounding sphere spans depths zFront..zBack
     // along the view; a point at depth z lands at window depth f(z − n)/(z(f − n)) in [0, 1], stored
@@ -114,24 +126,35 @@ Camera frameCamera(const CameraSpec& spec, const Bounds& bounds, float aspect) {
     if (zFront > far)
         throw InputError(text("the whole scene is beyond the camera's far plane (", far,
                               "; the scene starts ", zFront, " from the eye): nothing would be drawn"));
-    if (!(near > 0.0 && far > near && std::isfinite(far)))
+    if (!(near > 0.0 && far > near && (std::isfinite(far) || spec.infiniteFar)))
         throw InputError(
             text("the camera's near and far planes (", near, ", ", far, ") must satisfy 0 < near < far"));
-    if (zBack > 0.0) {
-        const auto windowDepth = [&](double z) { return float(far * (z - near) / (z * (far - near))); };
+    // Unorm buffers: the same with codes, 2^N − 1 of them. Reversed Z: nothing to check, the float's
+    // relative precision holds at every distance.
+    const int unormBits = depthFormat == DepthBufferFormat::Unorm16   ? 16
+                          : depthFormat == DepthBufferFormat::Unorm24 ? 24
+                                                                      : 0;
+    if (zBack > 0.0 && depthFormat != DepthBufferFormat::ReversedFloat) {
+        // f(z − n)/(z(f − n)), and its limit 1 − n/z for an infinite far plane.
+        const auto windowDepth = [&](double z) {
+            return std::isfinite(far) ? float(far * (z - near) / (z * (far - near))) : float(1.0 - near / z);
+        };
         const double z0 = std::max(zFront, near), z1 = std::min(zBack, far);
         const float d0 = windowDepth(z0), d1 = windowDepth(z1);
-        if (d0 >= 1.0f)
+        const double codes = unormBits ? std::ldexp(1.0, unormBits) - 1.0 : 0x1p24;
+        const std::string buffer = unormBits ? text(unormBits, "-bit unorm") : std::string("32-bit");
+        const bool allFar = unormBits ? std::nearbyint(double(d0) * codes) >= codes : d0 >= 1.0f;
+        if (allFar)
             throw InputError(text("the camera's near plane (", near, ") is too small for a scene ", z0,
-                                  " away: every depth rounds to the far plane in the 32-bit depth "
-                                  "buffer and nothing would be drawn (a near plane of ",
-                                  z0 * 1e-3, " or more works)"));
-        const double steps = double(d1 - d0) * 0x1p24;
+                                  " away: every depth rounds to the far plane in the ", buffer,
+                                  " depth buffer and nothing would be drawn (a near plane of ",
+                                  z0 * (unormBits ? 1024.0 / codes : 1e-3), " or more works)"));
+        const double steps = double(d1 - d0) * codes;
         if (steps < 1024.0)
-            camera.warnings.push_back(text(
-                "the camera's near and far planes (", near, ", ", far, ") leave about ", std::floor(steps),
-                " steps of the 32-bit depth buffer across the scene: surfaces close together may show "
-                "through each other (move the near plane towards the scene)"));
+            camera.warnings.push_back(text("the camera's near and far planes (", near, ", ", far,
+                                           ") leave about ", std::floor(steps), " steps of the ", buffer,
+                                           " depth buffer across the scene: surfaces close together may show "
+                                           "through each other (move the near plane towards the scene)"));
     }
 
     camera.eye = vec3(eye);
@@ -140,15 +163,24 @@ Camera frameCamera(const CameraSpec& spec, const Bounds& bounds, float aspect) {
     camera.near = float(near);
     camera.far = float(far);
     if (!std::isfinite(camera.eye.x) || !std::isfinite(camera.eye.y) || !std::isfinite(camera.eye.z) ||
-        !std::isfinite(camera.far))
+        (!std::isfinite(camera.far) && !spec.infiniteFar))
         throw InputError(text("the camera is too far out for 32-bit floats (eye at ", describe(eye),
                               ", far plane ", far, ")"));
 
     camera.viewScale = viewScaleFor(radius);
     const double s = camera.viewScale;
     camera.viewFromWorldExact = glm::scale(glm::dmat4(1.0), dvec3(s)) * glm::lookAt(eye, target, up);
-    camera.clipFromViewExact =
-        glm::perspective(glm::radians(double(camera.fovyDegrees)), double(aspect), near * s, far * s);
+    if (spec.infiniteFar) {
+        // The limit of glm::perspective as far → ∞ (x and y as for any far plane): z_c = −z_e − 2n,
+        // w_c = −z_e, so NDC z = 1 − 2n/d at distance d, −1 at the near plane and 1 at infinity.
+        camera.clipFromViewExact = glm::perspective(glm::radians(double(camera.fovyDegrees)), double(aspect),
+                                                    near * s, 2.0 * near * s);
+        camera.clipFromViewExact[2][2] = -1.0;
+        camera.clipFromViewExact[3][2] = -2.0 * near * s;
+    } else {
+        camera.clipFromViewExact =
+            glm::perspective(glm::radians(double(camera.fovyDegrees)), double(aspect), near * s, far * s);
+    }
     camera.viewFromWorld = mat4(camera.viewFromWorldExact);
     camera.clipFromView = mat4(camera.clipFromViewExact);
     return camera;

@@ -27,6 +27,9 @@ struct CameraSpec {
     float fovyDegrees = 40.0f;  // vertical field of view
     std::optional<float> near;  // absent: derived from the bounding box
     std::optional<float> far;
+    // "far": "infinite": the projection's limit as far → ∞ (nothing is beyond the far plane); `far` is
+    // then absent.
+    bool infiniteFar = false;
 };
 
 struct LightSpec {
@@ -110,7 +113,9 @@ struct LightingOptions {
 struct PipelineOptions {
     CullMode cull = CullMode::Back;
     Interpolation interpolation = Interpolation::PerspectiveCorrect;
-    int subpixelBits = 8;  // 0..8
+    int subpixelBits = 8;                                      // 0..8
+    DepthBufferFormat depth = DepthBufferFormat::Float;        // "depth" (docs/trade.md)
+    ColorBufferFormat colorBuffer = ColorBufferFormat::Float;  // "color_buffer" (docs/trade.md)
 };
 
 // How transparent triangles are ordered ("transparency").

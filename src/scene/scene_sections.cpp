@@ -28,7 +28,8 @@ constexpr std::string_view kObjectKeys[] = {"model",    "translate", "rotate", "
 constexpr std::string_view kMaterialKeys[] = {"ambient",   "diffuse",   "specular", "emission",
                                               "shininess", "opacity",   "preset",   "base_color",
                                               "metalness", "roughness", "f0"};
-constexpr std::string_view kPipelineKeys[] = {"cull", "interpolation", "subpixel_bits"};
+constexpr std::string_view kPipelineKeys[] = {"cull", "interpolation", "subpixel_bits", "depth",
+                                              "color_buffer"};
 constexpr std::string_view kLightingKeys[] = {"preset",       "model",   "shading", "crease_angle",
                                               "distribution", "fresnel", "geometry"};
 constexpr std::string_view kObjectLightingKeys[] = {"model", "shading"};
@@ -82,7 +83,12 @@ CameraSpec readCamera(const SceneReader& reader, const Json& camera) {
             reader.fail("\"camera.near\" must be greater than 0 (got " + formatNumber(*spec.near) + ")");
         }
     }
-    if (const Json* v = reader.find(camera, "far")) {
+    if (const Json* v = reader.find(camera, "far"); v && v->is_string()) {
+        if (v->get<std::string>() != "infinite")
+            reader.fail("\"camera.far\" must be a number or \"infinite\" (got \"" + v->get<std::string>() +
+                        "\")");
+        spec.infiniteFar = true;
+    } else if (v) {
         spec.far = reader.number(*v, "camera.far");
         const float lowest = spec.near.value_or(0.0f);
         if (!(*spec.far > lowest)) {
@@ -393,6 +399,12 @@ PipelineOptions readPipeline(const SceneReader& reader, const Json& pipeline) {
     }
     if (const Json* v = reader.find(pipeline, "interpolation")) {
         options.interpolation = reader.enumChoice<Interpolation>(*v, "pipeline.interpolation");
+    }
+    if (const Json* v = reader.find(pipeline, "depth")) {
+        options.depth = reader.enumChoice<DepthBufferFormat>(*v, "pipeline.depth");
+    }
+    if (const Json* v = reader.find(pipeline, "color_buffer")) {
+        options.colorBuffer = reader.enumChoice<ColorBufferFormat>(*v, "pipeline.color_buffer");
     }
     if (const Json* v = reader.find(pipeline, "subpixel_bits")) {
         options.subpixelBits = reader.wholeNumber(*v, "pipeline.subpixel_bits", 0, 8);

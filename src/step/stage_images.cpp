@@ -435,8 +435,13 @@ Stage depthStage(const PreparedScene& prepared, const Framebuffer& framebuffer) 
     double nearest = std::numeric_limits<double>::infinity(), farthest = -nearest;
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
-            const float depth = framebuffer.depth(x, y);
-            if (depth == DepthFormat::kClear) continue;
+            const DepthBufferFormat format = prepared.state.depth.format;
+            const float stored = framebuffer.depth(x, y);
+            if (stored == depthClearValue(format)) continue;
+            // The window depth under OpenGL's convention, which clipFromViewExact's inverse undoes:
+            // unorm codes back to [0, 1]; reversed Z's z_r = (1 − z_ndc)/2, i.e. 1 − z_r.
+            const float window = windowDepthOf(format, stored);
+            const double depth = format == DepthBufferFormat::ReversedFloat ? 1.0 - window : window;
             // Window → normalised device coordinates at the pixel's centre, then → eye space.
             const glm::dvec4 ndc(2.0 * (x + 0.5 - v.x) / v.width - 1.0,
                                  1.0 - 2.0 * (y + 0.5 - v.y) / v.height,

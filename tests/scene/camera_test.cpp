@@ -149,5 +149,42 @@ TEST(Camera, BoxOfNoSizeAsksForAnEye) {
     EXPECT_EQ(frameCamera(spec, cube(0.0f, vec3(1.0f, 2.0f, 3.0f)), kAspect).target, vec3(1.0f, 2.0f, 3.0f));
 }
 
+// NDC depth of an eye-space point at distance `distance` straight ahead, with the projection the
+// rasterizer draws with (drawnClipFromView).
+double drawnNdcDepth(const Camera& camera, double distance) {
+    const glm::dvec4 clip = drawnClipFromView(camera) * glm::dvec4(0.0, 0.0, -distance, 1.0);
+    return clip.z / clip.w;
+}
+
+// Reversed Z draws near at NDC z 1 and far at 0 (OpenGL's projection keeps −1 and 1), and the infinite
+// far plane is the projection's limit: NDC z at z_e = −near is 1 (reversed) or −1 (OpenGL), and tends to
+// 0 (reversed: exactly near/d) or 1 as the distance grows. Breaks if the reversed remap is left out, or
+// the infinite projection keeps a finite far plane (NDC z past 1 beyond it).
+TEST(Camera, ReversedZAndTheInfiniteFarPlane) {
+    CameraSpec spec;
+    spec.eye = vec3(0, 0, 5);
+    spec.target = vec3(0.0f);
+    spec.near = 0.5f;
+    spec.far = 50.0f;
+    const Camera reversed = frameCamera(spec, cube(1.0f), kAspect, DepthBufferFormat::ReversedFloat);
+    EXPECT_NEAR(drawnNdcDepth(reversed, 0.5), 1.0, 1e-12);
+    EXPECT_NEAR(drawnNdcDepth(reversed, 50.0), 0.0, 1e-12);
+    const Camera standard = frameCamera(spec, cube(1.0f), kAspect);
+    EXPECT_NEAR(drawnNdcDepth(standard, 0.5), -1.0, 1e-12);
+    EXPECT_EQ(drawnClipFromView(standard), standard.clipFromViewExact);
+
+    spec.far.reset();
+    spec.infiniteFar = true;
+    const Camera infinite = frameCamera(spec, cube(1.0f), kAspect, DepthBufferFormat::ReversedFloat);
+    EXPECT_TRUE(std::isinf(infinite.far));
+    EXPECT_NEAR(drawnNdcDepth(infinite, 0.5), 1.0, 1e-12);
+    for (double d : {1.0, 1e3, 1e9, 1e30})
+        EXPECT_NEAR(drawnNdcDepth(infinite, d), 0.5 / d, 1e-15 / d) << d;  // z_c = near, w_c = d
+    const Camera infiniteStandard = frameCamera(spec, cube(1.0f), kAspect);
+    EXPECT_NEAR(drawnNdcDepth(infiniteStandard, 0.5), -1.0, 1e-12);
+    EXPECT_NEAR(drawnNdcDepth(infiniteStandard, 1e9), 1.0, 1e-8);
+    EXPECT_LT(drawnNdcDepth(infiniteStandard, 1e9), 1.0);
+}
+
 }  // namespace
 }  // namespace facet
