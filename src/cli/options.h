@@ -73,6 +73,7 @@ struct SceneArgs {
     std::optional<float> gamma;
     std::optional<Interpolation> interpolation;
     std::optional<CullMode> cull;
+    std::optional<Antialiasing> antialiasing;
     std::optional<ShadowMethod> shadows;
     std::optional<int> shadowMapSize;
     std::optional<float> shadowBias, shadowSlopeBias;
