@@ -254,7 +254,7 @@ void drawFramePass(const PreparedScene& prepared, std::span<const PlannedDraw> p
         SurfaceUniforms selected;
         if (terms != kAllTerms || clipFromView) {
             selected = d.uniforms;
-            selected.terms = terms;
+            if (terms != kAllTerms) selected.terms = terms;
             if (clipFromView) selected.clipFromObject = mat4(*clipFromView * d.viewFromObjectExact);
             uniforms = &selected;
         }
