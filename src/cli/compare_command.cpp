@@ -48,6 +48,10 @@ CLI::App* addCompareCommand(CLI::App& app, CompareArgs& args) {
     for (CLI::Option* mesaOnly :
          {command->get_option("--driver"), command->get_option("--mesa"), command->get_option("--diff")})
         reference->excludes(mesaOnly);
+    // Not with --reference: its per-pixel surface check follows the pixel centre of one drawing.
+    addChoice(*command, "--aa", args.scene.antialiasing,
+              "Facet's anti-aliasing, as for render (OpenGL's image is not anti-aliased)")
+        ->excludes(reference);
     addChoice(*command, "--shadows", args.scene.shadows,
               "With --reference: every light's shadows (none, ray, map; map is compared as ray)")
         ->needs(reference);
@@ -133,6 +137,14 @@ int compare(const CompareArgs& args) {
     checkSize(scene.width, scene.height,
               sizeFromScene(input, args.scene.width.has_value(), args.scene.height.has_value()));
     applyLightingOptions(args.scene, scene);
+    if (args.reference && scene.pipeline.antialiasing != facet::Antialiasing::None) {
+        std::string message =
+            "facet compare --reference checks every pixel's centre against the reference, "
+            "but the scene's \"pipeline\": {\"antialiasing\": \"";
+        message += nameOf(scene.pipeline.antialiasing);
+        message += "\"} averages several samples: compare without it, or render both images";
+        throw facet::InputError(message);
+    }
     if (args.reference) return compareAgainstReference(args, scene);
     for (const auto& path : {args.facetImage, args.mesaImage, args.diffImage})
         if (path) facet::checkImageDestination(*path, scene.width, scene.height);

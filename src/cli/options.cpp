@@ -120,6 +120,10 @@ void addSceneOptions(CLI::App& command, SceneArgs& args) {
         "Varyings across a triangle: perspective-correct, or affine in screen space (wrong, for teaching)" +
             byDefault(Interpolation::PerspectiveCorrect));
     addChoice(command, "--cull", args.cull, "Which faces are not drawn" + byDefault(CullMode::Back));
+    addChoice(command, "--aa", args.antialiasing,
+              "Anti-aliasing: supersampling draws the frame once per sample (2, 4, 8 or 16, at the standard "
+              "sample positions) and averages them" +
+                  byDefault(Antialiasing::None));
     addChoice(command, "--shadows", args.shadows,
               "Shadows of every light: none, a ray to the light (exact), or a shadow map (default: each "
               "light's \"shadows\" in the scene file, else none)");
@@ -203,6 +207,7 @@ void applyLightingOptions(const SceneArgs& args, facet::Scene& scene) {
         scene.camera.infiniteFar = true;
         scene.camera.far.reset();
     }
+    if (args.antialiasing) scene.pipeline.antialiasing = *args.antialiasing;
     if (args.sortKey) scene.transparency.key = *args.sortKey;
     if ((args.encode || args.gamma) && scene.lighting.preset == facet::LightingPreset::GL)
         throw facet::InputError(

@@ -76,6 +76,7 @@ struct SceneArgs {
     std::optional<DepthBufferFormat> depth;
     std::optional<ColorBufferFormat> colorBuffer;
     bool infiniteFar = false;
+    std::optional<Antialiasing> antialiasing;
     std::optional<ShadowMethod> shadows;
     std::optional<int> shadowMapSize;
     std::optional<float> shadowBias, shadowSlopeBias;

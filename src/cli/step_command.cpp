@@ -102,6 +102,19 @@ void writeHtml(const StepArgs& args, const facet::PreparedScene& prepared, facet
               << "th row, and " << page.stages.size() << " stage images)\n";
 }
 
+// The step mode follows one pixel through one drawing of the frame; supersampling draws the frame once per
+// sample, shifted, and averages the passes, so no single pass is the image (the trace would not match).
+void refuseSupersampling(const facet::Scene& scene) {
+    const facet::Antialiasing aa = scene.pipeline.antialiasing;
+    if (aa == facet::Antialiasing::None) return;
+    std::string message = "facet step follows a pixel through one drawing of the frame, but --aa ";
+    message += nameOf(aa);
+    message += " (or the scene's \"pipeline\": {\"antialiasing\"}) draws it ";
+    message += std::to_string(facet::samplesPerPixel(aa));
+    message += " times and averages them: step with --aa none";
+    throw facet::InputError(message);
+}
+
 }  // namespace
 
 CLI::App* addStepCommand(CLI::App& app, StepArgs& args) {
@@ -149,6 +162,7 @@ int step(const StepArgs& args) {
     const std::optional<SceneArgs> other =
         args.versus ? std::optional(versusArgs(args, *args.versus)) : std::nullopt;
     const facet::Scene scene = sceneFromArgs(args);
+    refuseSupersampling(scene);
     if (args.json) facet::checkTextDestination(*args.json);
     if (args.html) htmlGridStep(args, scene.width, scene.height);  // a step too fine refused before any work
 
@@ -177,6 +191,7 @@ int step(const StepArgs& args) {
     if (other) {
         // The same pixel and triangle under the other setting.
         const facet::Scene otherScene = sceneFromArgs(*other);
+        refuseSupersampling(otherScene);
         const facet::PreparedScene otherPrepared = facet::prepareScene(otherScene);
         facet::step::StepRequest otherRequest = request;
         otherRequest.pixel = std::pair(trace.walk.x, trace.walk.y);

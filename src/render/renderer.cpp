@@ -579,6 +579,37 @@ DrawStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawCo
     return renderFrame(prepared, target, context, memory, terms).draw;
 }
 
+glm::dmat4 clipFromViewAtSample(const Camera& camera, SampleOffset offset, int width, int height) {
+    const double unit = kSampleOffsetUnitsPerPixel;
+    const glm::dvec3 shift(-2.0 * offset.x / (unit * width), 2.0 * offset.y / (unit * height), 0.0);
+    // After the projection the frame draws with (reversed Z remaps its depth), so a pass differs
+    // from the frame only by where its pixels sample.
+    return glm::translate(glm::dmat4(1.0), shift) * drawnClipFromView(camera);
+}
+
+namespace detail {
+
+void accumulateSamplePass(Framebuffer& target, std::vector<vec4>& sum, std::size_t pass, std::size_t passes,
+                          ColorBufferFormat format, ThreadPool& pool) {
+    const int width = target.width();
+    const std::size_t pixels = static_cast<std::size_t>(width) * target.height();
+    if (sum.size() != pixels) sum.resize(pixels);  // allocated by the first frame, reused after
+    const float weight = 1.0f / static_cast<float>(passes);
+    const bool first = pass == 0, last = pass + 1 == passes;
+    pool.parallelFor(static_cast<std::size_t>(target.height()), [&](std::size_t row, int) {
+        const int y = static_cast<int>(row);
+        vec4* rowSum = sum.data() + row * width;
+        for (int x = 0; x < width; ++x) {
+            vec4& c = target.color(x, y);
+            rowSum[x] = first ? c : rowSum[x] + c;
+            // The resolve writes into the colour buffer, rounded as its format stores a value.
+            if (last) c = roundToColorBuffer(format, rowSum[x] * weight);
+        }
+    });
+}
+
+}  // namespace detail
+
 LinearImage toImage(const Framebuffer& framebuffer) {
     LinearImage image;
     image.width = framebuffer.width();

@@ -13,6 +13,7 @@
 #include "io/image_io.h"
 #include "pipeline/fragment_lists_resolve.h"
 #include "pipeline/pipeline.h"
+#include "pipeline/sample_position.h"
 #include "raycast/ray_scene.h"
 #include "render/transparency_sort.h"
 #include "scene/camera.h"
@@ -109,6 +110,8 @@ struct FrameMemory {
     std::vector<std::uint32_t> runVertexOf;
     std::vector<std::uint32_t> runVertexSources;
     static constexpr std::uint32_t kNotInRun = 0xffffffffu;
+    // Supersampling: the sum of the sample passes' linear colours per pixel (empty without it).
+    std::vector<vec4> sampleSum;
 };
 
 struct FrameStats {
@@ -144,6 +147,8 @@ std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, TransparencyMo
                                    FrameStats& stats);
 
 // Clears `target` to the scene's background and draws every object. `target` must be scene-sized.
+// With supersampling (scene.pipeline.antialiasing) the frame is drawn once per sample and `target`
+// ends with the average colour and the last pass's depth.
 // `terms` (LightingTerm bits) selects the lighting terms drawn: all of them, or one for a component image.
 // `memory` carries the transparent triangles' order from frame to frame.
 FrameStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawContext& context,
@@ -169,7 +174,21 @@ LinearImage toImage(const Framebuffer& framebuffer);
 
 // ---- the frame, watched or not ------------------------------------------------------------------
 
+// The projection that draws the image shifted so that each pixel centre lands on the sample at
+// `offset` from it: the scene moves by −offset in the window, which is a translation in normalised
+// device coordinates by (−2·dx/width, +2·dy/height) (window y grows downwards, NDC y upwards:
+// viewport.cpp's y_w = (1 − y_ndc)/2·height), applied after clipFromView, so in clip space
+// x += t_x·w, y += t_y·w.
+glm::dmat4 clipFromViewAtSample(const Camera& camera, SampleOffset offset, int width, int height);
+
 namespace detail {
+
+// Supersampling: adds the colour of sample pass `pass` of `passes` into `sum` (pass 0 starts it),
+// rows spread over the pool; after the last pass writes the average (the box filter's resolve, in
+// linear light) to the target. Each pixel sums its passes in pass order: the same bytes for any
+// number of threads.
+void accumulateSamplePass(Framebuffer& target, std::vector<vec4>& sum, std::size_t pass, std::size_t passes,
+                          ColorBufferFormat format, ThreadPool& pool);
 
 // Forwards the pipeline's hooks for one draw call, the call's triangle numbers turned into its draw's.
 template <class Observer>
@@ -219,12 +238,14 @@ DrawStats drawSurface(const PlannedDraw& call, const SurfaceUniforms& uniforms, 
 
 }  // namespace detail
 
-template <PipelineObserver Observer>
-FrameStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawContext& context,
-                       FrameMemory& memory, Observer& observer, std::uint8_t terms) {
-    FrameStats stats;
-    const TransparencyMode mode = prepared.scene.transparency.mode;
-    const std::vector<PlannedDraw> plan = planFrame(prepared, mode, memory, stats);
+namespace detail {
+
+// One pass of the frame: clears `target` and draws the plan; `clipFromView` (null: the camera's own)
+// is the projection of a supersampling pass.
+template <class Observer>
+void drawFramePass(const PreparedScene& prepared, std::span<const PlannedDraw> plan, Framebuffer& target,
+                   DrawContext& context, Observer& observer, std::uint8_t terms,
+                   const glm::dmat4* clipFromView, FrameStats& stats) {
     // The background and the far plane, as the buffers' formats store them.
     target.clear(roundToColorBuffer(prepared.state.colorBuffer, prepared.clearColor),
                  depthClearValue(prepared.state.depth.format), context.pool);
@@ -233,35 +254,61 @@ FrameStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawC
         if constexpr (requires { observer.onPlannedDraw(call, d); }) observer.onPlannedDraw(call, d);
         const SurfaceUniforms* uniforms = &d.uniforms;
         SurfaceUniforms selected;
-        if (terms != kAllTerms) {
+        if (terms != kAllTerms || clipFromView) {
             selected = d.uniforms;
-            selected.terms = terms;
+            if (terms != kAllTerms) selected.terms = terms;
+            if (clipFromView) selected.clipFromObject = mat4(*clipFromView * d.viewFromObjectExact);
             uniforms = &selected;
         }
         switch (d.frequency) {
             case ShadingFrequency::Flat:
-                stats.draw +=
-                    detail::drawSurface<ShadingFrequency::Flat>(call, *uniforms, target, context, observer);
+                stats.draw += drawSurface<ShadingFrequency::Flat>(call, *uniforms, target, context, observer);
                 break;
             case ShadingFrequency::Gouraud:
-                stats.draw += detail::drawSurface<ShadingFrequency::Gouraud>(call, *uniforms, target, context,
-                                                                             observer);
+                stats.draw +=
+                    drawSurface<ShadingFrequency::Gouraud>(call, *uniforms, target, context, observer);
                 break;
             case ShadingFrequency::Phong:
                 stats.draw +=
-                    detail::drawSurface<ShadingFrequency::Phong>(call, *uniforms, target, context, observer);
+                    drawSurface<ShadingFrequency::Phong>(call, *uniforms, target, context, observer);
                 break;
         }
     }
     // Exact transparency: every pixel's fragments sorted by depth and composited, farthest first.
-    if (mode == TransparencyMode::Exact && !prepared.transparentTriangles.empty()) {
+    if (prepared.scene.transparency.mode == TransparencyMode::Exact &&
+        !prepared.transparentTriangles.empty()) {
         const auto start = std::chrono::steady_clock::now();
         if constexpr (Observer::enabled)
             stats.fragmentLists = resolveFragmentLists(target, context.pool, observer);
         else
             stats.fragmentLists = resolveFragmentLists(target, context.pool);
-        stats.resolveMilliseconds =
+        stats.resolveMilliseconds +=
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    }
+}
+
+}  // namespace detail
+
+template <PipelineObserver Observer>
+FrameStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawContext& context,
+                       FrameMemory& memory, Observer& observer, std::uint8_t terms) {
+    FrameStats stats;
+    // The plan (the transparent triangles' order included) is the same for every sample pass: it
+    // depends on eye-space depths, not on where the pixels sample.
+    const std::vector<PlannedDraw> plan =
+        planFrame(prepared, prepared.scene.transparency.mode, memory, stats);
+    const std::span<const SampleOffset> samples =
+        standardSamplePositions(samplesPerPixel(prepared.scene.pipeline.antialiasing));
+    if (samples.size() <= 1) {
+        detail::drawFramePass(prepared, plan, target, context, observer, terms, nullptr, stats);
+        return stats;
+    }
+    for (std::size_t pass = 0; pass < samples.size(); ++pass) {
+        const glm::dmat4 clipFromView =
+            clipFromViewAtSample(prepared.camera, samples[pass], target.width(), target.height());
+        detail::drawFramePass(prepared, plan, target, context, observer, terms, &clipFromView, stats);
+        detail::accumulateSamplePass(target, memory.sampleSum, pass, samples.size(),
+                                     prepared.state.colorBuffer, context.pool);
     }
     return stats;
 }

@@ -110,12 +110,43 @@ struct LightingOptions {
     }
 };
 
+// Anti-aliasing of the frame ("pipeline": {"antialiasing": ...}, --aa). Supersampling (SSAA) draws the
+// whole frame once per sample of the standard pattern (pipeline/sample_position.h), the image shifted so
+// that the pixel centres land on that sample, and averages the passes in linear light (a box filter):
+// N samples cost N frames and shade every sample. None draws the frame once, sampling pixel centres.
+enum class Antialiasing : std::uint8_t { None, Ssaa2, Ssaa4, Ssaa8, Ssaa16 };
+inline constexpr EnumName<Antialiasing> kAntialiasingNames[] = {{Antialiasing::None, "none"},
+                                                                {Antialiasing::Ssaa2, "ssaa2"},
+                                                                {Antialiasing::Ssaa4, "ssaa4"},
+                                                                {Antialiasing::Ssaa8, "ssaa8"},
+                                                                {Antialiasing::Ssaa16, "ssaa16"}};
+constexpr std::span<const EnumName<Antialiasing>> enumNames(Antialiasing) {
+    return kAntialiasingNames;
+}
+// Samples per pixel: 1 for None.
+constexpr int samplesPerPixel(Antialiasing aa) {
+    switch (aa) {
+        case Antialiasing::Ssaa2:
+            return 2;
+        case Antialiasing::Ssaa4:
+            return 4;
+        case Antialiasing::Ssaa8:
+            return 8;
+        case Antialiasing::Ssaa16:
+            return 16;
+        case Antialiasing::None:
+            break;
+    }
+    return 1;
+}
+
 struct PipelineOptions {
     CullMode cull = CullMode::Back;
     Interpolation interpolation = Interpolation::PerspectiveCorrect;
     int subpixelBits = 8;                                      // 0..8
     DepthBufferFormat depth = DepthBufferFormat::Float;        // "depth" (docs/trade.md)
     ColorBufferFormat colorBuffer = ColorBufferFormat::Float;  // "color_buffer" (docs/trade.md)
+    Antialiasing antialiasing = Antialiasing::None;            // per frame: how many passes renderFrame draws
 };
 
 // How transparent triangles are ordered ("transparency").

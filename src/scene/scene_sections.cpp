@@ -28,8 +28,8 @@ constexpr std::string_view kObjectKeys[] = {"model",    "translate", "rotate", "
 constexpr std::string_view kMaterialKeys[] = {"ambient",   "diffuse",   "specular", "emission",
                                               "shininess", "opacity",   "preset",   "base_color",
                                               "metalness", "roughness", "f0"};
-constexpr std::string_view kPipelineKeys[] = {"cull", "interpolation", "subpixel_bits", "depth",
-                                              "color_buffer"};
+constexpr std::string_view kPipelineKeys[] = {"cull",  "interpolation", "subpixel_bits",
+                                              "depth", "color_buffer",  "antialiasing"};
 constexpr std::string_view kLightingKeys[] = {"preset",       "model",   "shading", "crease_angle",
                                               "distribution", "fresnel", "geometry"};
 constexpr std::string_view kObjectLightingKeys[] = {"model", "shading"};
@@ -408,6 +408,9 @@ PipelineOptions readPipeline(const SceneReader& reader, const Json& pipeline) {
     }
     if (const Json* v = reader.find(pipeline, "subpixel_bits")) {
         options.subpixelBits = reader.wholeNumber(*v, "pipeline.subpixel_bits", 0, 8);
+    }
+    if (const Json* v = reader.find(pipeline, "antialiasing")) {
+        options.antialiasing = reader.enumChoice<Antialiasing>(*v, "pipeline.antialiasing");
     }
     return options;
 }

@@ -56,6 +56,7 @@ TEST(CommandLineChoices, EveryNameReachesTheScene) {
     expectEveryNameReaches<Interpolation>("--interpolation",
                                           [](const Scene& s) { return s.pipeline.interpolation; });
     expectEveryNameReaches<CullMode>("--cull", [](const Scene& s) { return s.pipeline.cull; });
+    expectEveryNameReaches<Antialiasing>("--aa", [](const Scene& s) { return s.pipeline.antialiasing; });
 }
 
 // facet step traces exactly the render `facet render` would make with the same options: it takes every

@@ -1,0 +1,224 @@
+// Anti-aliasing by supersampling: the standard sample positions (pipeline/sample_position.h), and
+// renderFrame's passes (render/renderer.h): each pass moves the image so that the pixel centres land
+// on one sample, and the passes are averaged in linear light.
+#include <algorithm>
+#include <set>
+#include <utility>
+
+#include <gtest/gtest.h>
+
+#include "pipeline/sample_position.h"
+#include "render/renderer.h"
+#include "support/temp_folder.h"
+
+namespace facet {
+namespace {
+
+using testing_support::TempFolderTest;
+
+// ---- The table -------------------------------------------------------------------------------------
+
+constexpr int kCounts[] = {1, 2, 4, 8, 16};
+
+// Every pattern has its count of samples, all inside the pixel's half-open square [−8, 8)/16 (the
+// 16-sample pattern touches its left and top edges at −8), no two alike. Breaks if an entry is copied
+// twice or mistyped outside the pixel (e.g. the 16-sample pattern's (−7, −8) as (−7, 8)).
+TEST(StandardSamplePositions, InsideThePixelAndDistinct) {
+    for (const int count : kCounts) {
+        SCOPED_TRACE(count);
+        const auto samples = standardSamplePositions(count);
+        ASSERT_EQ(samples.size(), std::size_t(count));
+        std::set<std::pair<int, int>> seen;
+        for (const SampleOffset s : samples) {
+            EXPECT_GE(s.x, -8);
+            EXPECT_LT(s.x, 8);
+            EXPECT_GE(s.y, -8);
+            EXPECT_LT(s.y, 8);
+            seen.insert({s.x, s.y});
+        }
+        EXPECT_EQ(seen.size(), samples.size());
+    }
+    EXPECT_TRUE(standardSamplePositions(3).empty());
+}
+
+// The samples' mean is the pixel's centre: exactly for 1, 2, 4 and 8 samples; for 16 within the table's
+// rounding to 1/16 px, half a unit: the sums are (−8, −8), a mean of (−½, −½)/16. Breaks if an entry
+// is mistyped by a unit or more (the 1–8 patterns) or by more than 8 units in sum (16).
+TEST(StandardSamplePositions, MeanIsThePixelCentre) {
+    for (const int count : kCounts) {
+        SCOPED_TRACE(count);
+        int sumX = 0, sumY = 0;
+        for (const SampleOffset s : standardSamplePositions(count)) {
+            sumX += s.x;
+            sumY += s.y;
+        }
+        if (count < 16) {
+            EXPECT_EQ(sumX, 0);
+            EXPECT_EQ(sumY, 0);
+        } else {
+            EXPECT_EQ(sumX, -8);
+            EXPECT_EQ(sumY, -8);
+        }
+    }
+}
+
+// The 4-sample pattern is the rotated grid: a quarter turn about the centre maps the pattern onto
+// itself, and no two samples share a column or a row (so a vertical or horizontal edge sweeping the
+// pixel covers 0, 1, 2, 3, 4 samples: five levels). Breaks with the ordered grid (±4, ±4).
+TEST(StandardSamplePositions, FourSamplesAreTheRotatedGrid) {
+    const auto samples = standardSamplePositions(4);
+    std::set<std::pair<int, int>> pattern, turned;
+    std::set<int> columns, rows;
+    for (const SampleOffset s : samples) {
+        pattern.insert({s.x, s.y});
+        turned.insert({-s.y, s.x});
+        columns.insert(s.x);
+        rows.insert(s.y);
+    }
+    EXPECT_EQ(pattern, turned);
+    EXPECT_EQ(columns.size(), 4u);
+    EXPECT_EQ(rows.size(), 4u);
+    EXPECT_NE(pattern.count({-2, -6}), 0u);  // Vulkan's sample 0 at (0.375, 0.125)
+}
+
+// ---- Supersampled frames ---------------------------------------------------------------------------
+
+// A 4×4 frame whose one draw is the rectangle [x0, x1] × [y0, y1] in normalised device coordinates,
+// drawn white (emission only) on black: the camera's and the draw's matrices are the identity, so
+// window x = (x_ndc + 1)·2 and window y = (1 − y_ndc)·2, and pixel (1, 1) has its centre at (1.5, 1.5).
+class SupersampledRectangle : public TempFolderTest {
+  protected:
+    static constexpr int kSide = 4;
+
+    PreparedScene rectangle(double x0, double x1, double y0, double y1, Antialiasing aa) {
+        write("quad.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n");
+        Scene scene;
+        scene.source = folder_ / "scene.json";
+        scene.width = kSide;
+        scene.height = kSide;
+        scene.camera.eye = glm::vec3(0.0f, 0.0f, 4.0f);
+        scene.camera.target = glm::vec3(0.0f);
+        scene.background = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+        scene.gamma.decodeInputs = false;
+        scene.pipeline.antialiasing = aa;
+        ObjectSpec object;
+        object.model = folder_ / "quad.obj";
+        scene.objects.push_back(object);
+        PreparedScene prepared = prepareScene(scene);
+        prepared.camera.clipFromViewExact = glm::dmat4(1.0);
+        EXPECT_EQ(prepared.draws.size(), 1u);
+        PreparedDraw& d = prepared.draws[0];
+        d.viewFromObjectExact = glm::dmat4(1.0);
+        d.uniforms.clipFromObject = mat4(1.0f);
+        d.uniforms.viewFromObject = mat4(1.0f);
+        d.uniforms.material.emission = vec3(1.0f);
+        d.uniforms.terms = kEmissionTerm;
+        const float a = float(x0), b = float(x1), c = float(y0), e = float(y1);
+        d.vertices = {{{a, c, 0.0f}, {0, 0, 1}, {}},
+                      {{b, c, 0.0f}, {0, 0, 1}, {}},
+                      {{b, e, 0.0f}, {0, 0, 1}, {}},
+                      {{a, e, 0.0f}, {0, 0, 1}, {}}};
+        d.indices = {0, 1, 2, 0, 2, 3};  // counter-clockwise: front faces
+        return prepared;
+    }
+
+    // Pixel (1, 1)'s resolved red, white being 1.
+    static float centrePixel(const PreparedScene& prepared, int threads = 1) {
+        Framebuffer target(kSide, kSide);
+        DrawContext context(threads);
+        FrameMemory memory;
+        renderFrame(prepared, target, context, memory);
+        return target.color(1, 1).r;
+    }
+
+    // NDC of window x (or of window y, flipped) at pixel 1's centre plus `units` sixteenths of a pixel.
+    static double ndcX(int units) { return (1.5 + units / 16.0) / 2.0 - 1.0; }
+    static double ndcY(int units) { return 1.0 - (1.5 + units / 16.0) / 2.0; }
+};
+
+// A vertical edge through the pixel's centre, white on its left: half the samples are left of it, for
+// the 4-sample pattern (x = −2, −6 of −2, 6, −6, 2) and for the 16 (x < 0: −1, −3, −5, −2, −4, −6, −8,
+// −7; the sample at x = 0 lies on the edge, the rectangle's right edge, which the top-left rule leaves
+// out). The resolve is exactly the half mix, 0.5 in linear light. Breaks if the passes are not
+// averaged, or the image is not moved per sample (every pass alike: 0 or 1).
+TEST_F(SupersampledRectangle, EdgeThroughTheCentreGivesTheHalfMix) {
+    EXPECT_EQ(centrePixel(rectangle(-1.0, ndcX(0), -1.0, 1.0, Antialiasing::None)), 0.0f);  // the centre: out
+    EXPECT_EQ(centrePixel(rectangle(-1.0, ndcX(0), -1.0, 1.0, Antialiasing::Ssaa4)), 0.5f);
+    EXPECT_EQ(centrePixel(rectangle(-1.0, ndcX(0), -1.0, 1.0, Antialiasing::Ssaa16)), 0.5f);
+}
+
+// The sign of the shift: pixel centres land on the samples, (x, y) right and down of the centre. An edge
+// 3/16 px right of the centre, white on its left, covers the 16-sample pattern's samples with x < 3:
+// 1, −1, −3, −5, 2, −2, 0, −4, −6, −8, −7: 11 of 16 (x = 3 lies on the edge, left out). The pattern
+// mirrored (the shift's sign wrong) would give 10 (those with x > −3). Likewise an edge 3/16 px below
+// the centre, white above it: y < 3 holds for 11 samples, y > −3 for 10. Breaks if either axis of
+// clipFromViewAtSample moves the image the wrong way.
+TEST_F(SupersampledRectangle, PixelCentresLandOnTheSamples) {
+    EXPECT_EQ(centrePixel(rectangle(-1.0, ndcX(3), -1.0, 1.0, Antialiasing::Ssaa16)), 11.0f / 16.0f);
+    EXPECT_EQ(centrePixel(rectangle(-1.0, 1.0, ndcY(3), 1.0, Antialiasing::Ssaa16)), 11.0f / 16.0f);
+}
+
+// The passes are summed per pixel in sample order: the same bytes for one thread and two. Breaks if the
+// accumulation races (rows summed twice or not at all).
+TEST_F(SupersampledRectangle, SameBytesForAnyThreadCount) {
+    Scene scene;
+    write("tri.obj", "v -1 -1 0\nv 1 -0.6 0\nv -0.3 1 0\nf 1 2 3\n");
+    scene.source = folder_ / "scene.json";
+    scene.width = 61;
+    scene.height = 47;
+    scene.pipeline.antialiasing = Antialiasing::Ssaa8;
+    ObjectSpec object;
+    object.model = folder_ / "tri.obj";
+    scene.objects.push_back(object);
+    const PreparedScene prepared = prepareScene(scene);
+    std::vector<vec4> images[2];
+    for (int threads : {1, 2}) {
+        Framebuffer target(scene.width, scene.height);
+        DrawContext context(threads);
+        FrameMemory memory;
+        renderFrame(prepared, target, context, memory);
+        images[threads - 1] = target.colorPixels();
+    }
+    EXPECT_EQ(images[0], images[1]);
+}
+
+// The scene file's "pipeline": {"antialiasing": ...} reaches the image: the bundled intersecting quads
+// (opaque and transparent, sorted and exact) read with "ssaa4" differ from the same file with "none" at
+// their edges, and only there (the passes are averaged, not summed; inside a surface each sample is
+// shaded a fraction of a pixel away, which changes the colour far less). Breaks if the key is read but not
+// kept in the scene, or renderFrame ignores it.
+TEST_F(SupersampledRectangle, SceneFileKeyReachesTheImage) {
+    const std::filesystem::path models =
+        std::filesystem::path(FACET_SOURCE_DIR) / "models" / "intersecting-quads";
+    const auto image = [&](const std::string& aa, const std::string& transparency) {
+        std::string json = "{\"width\": 64, \"height\": 48, \"camera\": {\"eye\": [0.4, 1.7, 3.6], ";
+        json += "\"target\": [0.0, 0.75, 0.0]}, \"objects\": [{\"model\": \"";
+        json += (models / "backdrop.obj").string();
+        json += "\"}, {\"model\": \"";
+        json += (models / "quads.obj").string();
+        json += "\", \"blend\": \"over\"}], \"transparency\": {\"mode\": \"" + transparency;
+        json += "\"}, \"pipeline\": {\"antialiasing\": \"" + aa + "\"}}";
+        const Scene scene = loadScene(write("scene.json", json));
+        const PreparedScene prepared = prepareScene(scene);
+        Framebuffer target(scene.width, scene.height);
+        DrawContext context(2);
+        FrameMemory memory;
+        renderFrame(prepared, target, context, memory);
+        return target.colorPixels();
+    };
+    for (const std::string transparency : {"sorted", "exact"}) {
+        SCOPED_TRACE(transparency);
+        const std::vector<vec4> one = image("none", transparency), four = image("ssaa4", transparency);
+        // Differing by more than the shading's change between nearby points: edge pixels.
+        std::size_t differing = 0;
+        for (std::size_t k = 0; k < one.size(); ++k) {
+            const vec3 d = glm::abs(vec3(four[k]) - vec3(one[k]));
+            differing += std::max({d.r, d.g, d.b}) > 0.02f;
+        }
+        EXPECT_GT(differing, 20u);
+        EXPECT_LT(differing, one.size() / 4);
+    }
+}
+
+}  // namespace
+}  // namespace facet
