@@ -35,7 +35,8 @@ void MesaPeer::Impl::setBlendState(const Draw& draw) const {
             gl.glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
             break;
         case BlendMode::OverGL:  // c as over, α = α_s·α_s + (1 − α_s)·α_d
-            gl.glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+            gl.glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_SRC_ALPHA,
+                                   GL_ONE_MINUS_SRC_ALPHA);
             break;
         case BlendMode::PremultipliedOver:  // c = c_s + (1 − α_s)·c_d, α likewise
             gl.glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
