@@ -27,6 +27,12 @@ glm::vec<4, T, Q> blend(BlendMode mode, const glm::vec<4, T, Q>& source,
             const T a = source.a;
             return Vec4(a * Vec3(source) + (one - a) * Vec3(destination), a + (one - a) * destination.a);
         }
+        case BlendMode::OverGL: {
+            // OpenGL's glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA): the same factors on alpha,
+            // α = α_s·α_s + (1 − α_s)·α_d.
+            const T a = source.a;
+            return Vec4(a * Vec3(source) + (one - a) * Vec3(destination), a * a + (one - a) * destination.a);
+        }
         case BlendMode::PremultipliedOver: {
             // The same operator on premultiplied colour: c = c_s + (1 − α_s)·c_d.
             const T a = source.a;

@@ -11,7 +11,7 @@
 namespace facet {
 
 static_assert(sizeof(FragmentLists::Node) == 24, "a stored fragment is 24 bytes");
-static_assert(static_cast<std::uint32_t>(BlendMode::Multiply) < 8, "a BlendMode fits in a node's 3 bits");
+static_assert(static_cast<std::uint32_t>(BlendMode::OverGL) < 8, "a BlendMode fits in a node's 3 bits");
 
 std::ostream& operator<<(std::ostream& os, const FragmentListStats& s) {
     os << s.fragments << " fragments in " << s.pixels << " pixel lists (longest " << s.longestList << "), "

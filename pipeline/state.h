@@ -135,13 +135,16 @@ enum class BlendMode : std::uint8_t {
     PremultipliedOver,  // c = c_s + (1 − α_s)·c_d, α likewise (c_s already multiplied by α_s; GL_ONE,
                         // GL_ONE_MINUS_SRC_ALPHA)
     Multiply,           // c = c_s ⊗ c_d, α = α_d (GL_DST_COLOR, GL_ZERO): a coloured filter, tinted glass
+    // c as Over, α = α_s·α_s + (1 − α_s)·α_d: glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA), whose
+    // factors apply to alpha too. The gl preset's over; not offered to scene files (the preset picks it).
+    OverGL,
 };
-// Replace last: a scene's "blend" offers the others (a scene object is opaque or blended).
-inline constexpr EnumName<BlendMode> kBlendModeNames[] = {{BlendMode::Over, "over"},
-                                                          {BlendMode::Additive, "additive"},
-                                                          {BlendMode::Multiply, "multiply"},
-                                                          {BlendMode::PremultipliedOver, "premultiplied"},
-                                                          {BlendMode::Replace, "replace"}};
+// Replace and OverGL last: a scene's "blend" offers the others (a scene object is opaque or blended,
+// and the gl preset turns over into OverGL).
+inline constexpr EnumName<BlendMode> kBlendModeNames[] = {
+    {BlendMode::Over, "over"},         {BlendMode::Additive, "additive"},
+    {BlendMode::Multiply, "multiply"}, {BlendMode::PremultipliedOver, "premultiplied"},
+    {BlendMode::Replace, "replace"},   {BlendMode::OverGL, "gl-over"}};
 constexpr std::span<const EnumName<BlendMode>> enumNames(BlendMode) {
     return kBlendModeNames;
 }

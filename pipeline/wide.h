@@ -12,12 +12,14 @@
 #include <cstddef>
 #include <cstdint>
 #include <numbers>
+#include <span>
 #include <string_view>
 #if defined(__AVX__)
 #include <immintrin.h>
 #endif
 
 #include "glsl.h"
+#include "names.h"
 #include "types.h"
 
 namespace facet {
@@ -308,9 +310,13 @@ enum class MathPrecision : std::uint8_t {
     Fast,   // polynomials on the float's bits (fastLog2, fastExp2 below): within 2e−5 relative for
             // the exponents lighting uses (pow's error grows with n)
 };
-inline constexpr std::array<std::string_view, 2> kMathPrecisionNames{"exact", "fast"};  // by value
+inline constexpr EnumName<MathPrecision> kMathPrecisionNames[] = {{MathPrecision::Exact, "exact"},
+                                                                  {MathPrecision::Fast, "fast"}};
+constexpr std::span<const EnumName<MathPrecision>> enumNames(MathPrecision) {
+    return kMathPrecisionNames;
+}
 inline constexpr std::string_view mathPrecisionName(MathPrecision p) {
-    return kMathPrecisionNames[static_cast<std::size_t>(p)];
+    return nameOf(p);
 }
 
 // log2(x) for x > 0: x = m·2^e with m in [√½, √2), ln m = 2·atanh(t), t = (m − 1)/(m + 1), |t| ≤ 0.172,
@@ -411,10 +417,52 @@ inline Float8 pow(Float8 x, float n) {
     return Maths<MathPrecision::Fast>::pow(x, n);
 }
 
-// v/|v|, and the zero vector for the zero vector (normalize would give NaN).
-template <class F, class V3 = LaneVec3<F>>
+// ---- Exact or fast normalisation, chosen explicitly -----------------------------------------------
+
+// How the shaders make N, L, V and H unit length: v·(1/√(v·v)) with the square root and the division
+// correctly rounded, or with the reciprocal square root approximated. The choice is the draw's, as
+// MathPrecision's is; one lane and eight give the same bits under either.
+enum class Normalization : std::uint8_t {
+    Exact,  // 1/sqrt(x): two correctly rounded operations, within 1 ulp
+    Fast,   // vrsqrtps (12 bits) and one Newton–Raphson step: within 2^-21 relative (fastInverseSqrt)
+};
+inline constexpr EnumName<Normalization> kNormalizationNames[] = {{Normalization::Exact, "exact"},
+                                                                  {Normalization::Fast, "fast"}};
+constexpr std::span<const EnumName<Normalization>> enumNames(Normalization) {
+    return kNormalizationNames;
+}
+
+// 1/√x for normal floats x > 0: the hardware estimate y₀ (rsqrtps, relative error at most 1.5·2⁻¹²,
+// Intel SDM), then one Newton–Raphson step for f(y) = 1/y² − x, y₁ = y₀·(1.5 − 0.5·x·y₀²), which
+// squares the relative error: |e₁| ≈ 1.5·e₀² + rounding, within 2⁻²¹ (tests/shaders measure it). The
+// single-lane version uses rsqrtss, the same estimate, so one lane and eight agree bit for bit.
+inline float fastInverseSqrt(float x) {
+    const float y = _mm_cvtss_f32(_mm_rsqrt_ss(_mm_set_ss(x)));
+    return y * (1.5f - 0.5f * x * y * y);
+}
+inline Float8 fastInverseSqrt(Float8 x) {
+    const Float8 y = std::bit_cast<Float8>(_mm256_rsqrt_ps(std::bit_cast<__m256>(x)));
+    return y * (1.5f - 0.5f * x * y * y);
+}
+// Double lanes (the reference renderer) have no approximation: the exact 1/√x.
+inline double fastInverseSqrt(double x) {
+    return 1.0 / std::sqrt(x);
+}
+
+// 1/√x under the choice kNormalization.
+template <Normalization kNormalization, class F>
+F inverseSqrt(F x) {
+    if constexpr (kNormalization == Normalization::Fast)
+        return fastInverseSqrt(x);
+    else
+        return 1.0f / sqrt(x);
+}
+
+// v/|v|, and the zero vector for the zero vector (normalize would give NaN): the squared length is
+// clamped to 1e−30, so the zero vector is scaled by 1e15 and stays zero.
+template <class F, class V3 = LaneVec3<F>, Normalization kNormalization = Normalization::Exact>
 V3 safeNormalize(const V3& v) {
-    return v * (1.0f / sqrt(max(dot(v, v), 1e-30f)));
+    return v * inverseSqrt<kNormalization>(max(dot(v, v), 1e-30f));
 }
 
 // GLSL's smoothstep: t = clamp((x − e0)/(e1 − e0), 0, 1), t²(3 − 2t).

@@ -33,6 +33,7 @@ CLI::App* addCompareCommand(CLI::App& app, CompareArgs& args) {
     addChoice(*command, "--shading", args.scene.shading, "As for render");
     command->add_option("--crease-angle", args.scene.creaseAngle, "as for render")->check(kFiniteNumber);
     addBufferFormatOptions(*command, args.scene);
+    addFormulaOptions(*command, args.scene);
     command->add_option("--facet", args.facetImage, "Also write Facet's image here");
     command->add_option("--mesa", args.mesaImage, "Also write OpenGL's image here");
     command->add_option("--diff", args.diffImage,

@@ -79,6 +79,22 @@ std::string sizeFromScene(const std::filesystem::path& input, bool widthGiven, b
     return " (" + keys + " from " + input.string() + ")";
 }
 
+void addFormulaOptions(CLI::App& command, SceneArgs& args) {
+    addChoice(command, "--normals", args.normals,
+              "Computed normals: each face weighted by its triangles' areas, its polygon's area, or its "
+              "angle at the vertex (docs/trade.md)" +
+                  byDefault(VertexNormals::PolygonArea));
+    addChoice(command, "--powers", args.powers,
+              "pow and exp in lighting and fog: the C library's, or polynomials on the float's bits" +
+                  byDefault(MathPrecision::Fast));
+    addChoice(command, "--normalize", args.normalize,
+              "Unit vectors N, L, V, H: 1/sqrt, or the reciprocal square root estimate and one Newton step" +
+                  byDefault(Normalization::Exact));
+    addChoice(command, "--fresnel", args.fresnel,
+              "Cook-Torrance's Fresnel term: Schlick's approximation or the exact dielectric one" +
+                  byDefault(FresnelModel::Schlick));
+}
+
 void addSceneOptions(CLI::App& command, SceneArgs& args) {
     command.add_option("input", args.input, "Model (.obj) or scene (.json)")->required();
     command.add_option("--width", args.width, "Image width in pixels (default 1280)")->check(kWholeNumber);
@@ -103,6 +119,7 @@ void addSceneOptions(CLI::App& command, SceneArgs& args) {
             "--crease-angle", args.creaseAngle,
             "Computed normals: faces meeting at a sharper angle (degrees) keep a hard edge (default 60)")
         ->check(kFiniteNumber);
+    addFormulaOptions(command, args);
     addChoice(command, "--only", args.only, "Render one term of the lighting equation alone");
     addChoice(command, "--transparency", args.transparency,
               "Transparent triangles back to front, in file order, or in exact per-pixel lists" +
@@ -250,6 +267,10 @@ void applyLightingOptions(const SceneArgs& args, facet::Scene& scene) {
                                     std::to_string(*args.shadowFilter) + ")");
         scene.shadowMap.filterTaps = *args.shadowFilter;
     }
+    if (args.normals) scene.lighting.normals = *args.normals;
+    if (args.powers) scene.lighting.powers = *args.powers;
+    if (args.normalize) scene.lighting.normalize = *args.normalize;
+    if (args.fresnel) scene.lighting.brdf.fresnel = *args.fresnel;
     if (args.creaseAngle) {
         if (!(*args.creaseAngle >= 0.0f && *args.creaseAngle <= 180.0f))
             throw facet::InputError("--crease-angle must be from 0 to 180 degrees (got " +

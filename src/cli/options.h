@@ -67,6 +67,10 @@ struct SceneArgs {
     std::optional<ShadingFrequency> shading;
     std::optional<LightingTerm> only;
     std::optional<float> creaseAngle;
+    std::optional<VertexNormals> normals;
+    std::optional<MathPrecision> powers;
+    std::optional<Normalization> normalize;
+    std::optional<FresnelModel> fresnel;
     std::optional<TransparencyMode> transparency;
     std::optional<SortKey> sortKey;
     std::optional<TransferCurve> encode;
@@ -82,6 +86,10 @@ struct SceneArgs {
     std::optional<float> shadowBias, shadowSlopeBias;
     std::optional<int> shadowFilter;
 };
+
+// Adds the accuracy choices of the formulas (--normals, --powers, --normalize, --fresnel) to `command`:
+// part of addSceneOptions, and what `facet compare` takes of them.
+void addFormulaOptions(CLI::App& command, SceneArgs& args);
 
 // Adds SceneArgs's options (and the input) to `command`, as `facet render` describes them.
 void addSceneOptions(CLI::App& command, SceneArgs& args);

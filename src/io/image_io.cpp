@@ -280,7 +280,7 @@ void writeImage(const fs::path& path, const LinearImage& image, ColorEncoding en
         for (const glm::vec4& p : image.pixels) {
             for (int c = 0; c < 3; ++c)
                 bytes.push_back(encodeChannel(p[c], encoding));
-            if (channels == 4) bytes.push_back(toByte(p.a));
+            if (channels == 4) bytes.push_back(toByte(p.a, encoding.rounding));
         }
     }
 

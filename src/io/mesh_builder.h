@@ -48,11 +48,13 @@ struct CornerKeyHash {
 // is split, one vertex per group. Vertices are numbered in the order their first corner was added,
 // so with nothing split (crease angle 180) the output is the plain welded mesh.
 //
-// The crease rule: a corner's normal is the normalised sum of the vector areas (unnormalised cross
-// products) of the faces around its position whose unit normal is within the crease angle of its own
-// face's. A face is the file's polygon: its vector area is the sum of its fan triangles' cross
-// products, its direction that, normalised; every position of the polygon gets the whole area once.
-// Faces count whether or not their corners have file normals; the face itself always counts.
+// The crease rule: a corner's normal is the normalised sum of the weights of the faces around its
+// position whose unit normal is within the crease angle of its own face's. A face is the file's
+// polygon: its vector area is the sum of its fan triangles' cross products, its direction that,
+// normalised. A face's weight at one of its positions is, by VertexNormals: its whole vector area
+// (polygon-area, the default), the cross products of its fan triangles that hold the position
+// (triangle-area), or its unit normal times its interior angle there (angle). Faces count whether or
+// not their corners have file normals; the face itself always counts.
 //
 // Cost. Only the faces at one position are compared, never all faces. With k faces at a position the
 // exact rule compares every pair, O(k²) dot products, giving each face a 64-bit mask of the faces its
@@ -68,8 +70,10 @@ struct CornerKeyHash {
 // "within the crease angle" is not transitive.
 class MeshBuilder {
   public:
-    MeshBuilder(const tinyobj::attrib_t& attrib, std::size_t cornerCount, float creaseAngleDegrees)
+    MeshBuilder(const tinyobj::attrib_t& attrib, std::size_t cornerCount, float creaseAngleDegrees,
+                VertexNormals weighting = VertexNormals::PolygonArea)
         : attrib_(attrib),
+          weighting_(weighting),
           smoothAll_(creaseAngleDegrees >= 180.0f),
           creaseCos_(std::cos(double(creaseAngleDegrees) * (std::numbers::pi / 180.0)) - kCosTolerance),
           cellSize_(2.0 * std::sin(double(creaseAngleDegrees) * (std::numbers::pi / 360.0)) * 1.0001 + 1e-5) {
@@ -106,6 +110,7 @@ class MeshBuilder {
     std::size_t addPolygon(const tinyobj::index_t* corners, std::size_t count,
                            std::vector<std::uint32_t>& out, std::size_t& degenerate) {
         kept_.clear();
+        keptCross_.clear();
         glm::dvec3 area(0.0);  // the polygon's vector area ×2: the sum of its fan triangles' cross products
         const glm::dvec3 p0 = position(std::size_t(corners[0].vertex_index));
         for (std::size_t i = 1; i + 1 < count; ++i) {
@@ -124,6 +129,7 @@ class MeshBuilder {
             }
             area += cross;
             kept_.push_back(i);
+            if (weighting_ == VertexNormals::TriangleArea) keptCross_.push_back(cross);
         }
         if (kept_.empty()) return 0;
 
@@ -144,6 +150,7 @@ class MeshBuilder {
             incidencePosition_.push_back(static_cast<std::uint32_t>(corners[i].vertex_index));
             incidenceFace_.push_back(face);
         }
+        if (weighting_ != VertexNormals::PolygonArea) addCornerWeights(corners, count, area);
         for (const std::size_t second : kept_) {
             for (const std::size_t c : {std::size_t(0), second, second + 1}) {
                 out.push_back(static_cast<std::uint32_t>(cornerVertex_.size()));
@@ -202,6 +209,40 @@ class MeshBuilder {
     static constexpr double kCosTolerance = 1e-12;
     static constexpr std::size_t kExactFaces = 64;  // the faces a 64-bit mask holds
     static constexpr std::uint32_t kNoGroup = std::numeric_limits<std::uint32_t>::max();
+
+    // The weights of the polygon just added at its positions (its incidences, the last added), under
+    // the triangle-area and angle rules (polygon-area needs none: it is the face's area).
+    void addCornerWeights(const tinyobj::index_t* corners, std::size_t count, const glm::dvec3& area) {
+        incidenceWeight_.resize(incidenceFace_.size(), glm::dvec3(0.0));
+        if (weighting_ == VertexNormals::TriangleArea) {
+            // Each kept fan triangle (0, i, i + 1) adds its cross product at its three positions.
+            for (std::size_t t = 0; t < kept_.size(); ++t) {
+                for (const std::size_t c : {std::size_t(0), kept_[t], kept_[t] + 1})
+                    incidenceWeight_[polygonIncidence_[c]] += keptCross_[t];
+            }
+            return;
+        }
+        // Angle: n̂·θ at each corner, θ the angle between its two edges (atan2(|e1×e2|, e1·e2), in
+        // [0, π]), reflex (2π − θ) where e1×e2 points against the polygon's normal. A repeated position
+        // sums its corners' angles.
+        const glm::dvec3 unit = unitNormal(area);
+        for (std::size_t i = 0; i < count; ++i) {
+            const glm::dvec3 p = position(std::size_t(corners[i].vertex_index));
+            const glm::dvec3 toNext = position(std::size_t(corners[(i + 1) % count].vertex_index)) - p;
+            const glm::dvec3 toPrevious =
+                position(std::size_t(corners[(i + count - 1) % count].vertex_index)) - p;
+            const glm::dvec3 cross = glm::cross(toNext, toPrevious);
+            double angle = std::atan2(glm::length(cross), glm::dot(toNext, toPrevious));
+            if (glm::dot(cross, unit) < 0.0) angle = 2.0 * std::numbers::pi - angle;
+            incidenceWeight_[polygonIncidence_[i]] += unit * angle;
+        }
+    }
+
+    // What a face adds to the normals at one of its positions (incidence i): see the class comment.
+    const glm::dvec3& weightOf(std::uint32_t incidence) const {
+        return weighting_ == VertexNormals::PolygonArea ? faceAreas_[incidenceFace_[incidence]]
+                                                        : incidenceWeight_[incidence];
+    }
 
     // A face's unit normal, or zero when its vector area is zero (opposite halves cancelling).
     static glm::dvec3 unitNormal(const glm::dvec3& area) {
@@ -274,7 +315,7 @@ class MeshBuilder {
     void smoothTogether(const std::uint32_t* incidences, std::size_t k, std::vector<std::uint32_t>& groupOf) {
         glm::dvec3 sum(0.0);
         for (std::size_t j = 0; j < k; ++j)
-            sum += faceAreas_[incidenceFace_[incidences[j]]];
+            sum += weightOf(incidences[j]);
         const auto group = static_cast<std::uint32_t>(groupNormals_.size());
         groupNormals_.push_back(normalOfSum(sum));
         for (std::size_t j = 0; j < k; ++j)
@@ -303,7 +344,7 @@ class MeshBuilder {
             }
             glm::dvec3 sum(0.0);  // in file order, the order the faces were added in
             for (std::size_t l = 0; l < k; ++l) {
-                if ((masks_[j] >> l) & 1) sum += faceAreas_[incidenceFace_[incidences[l]]];
+                if ((masks_[j] >> l) & 1) sum += weightOf(incidences[l]);
             }
             groupOf[incidences[j]] = static_cast<std::uint32_t>(groupNormals_.size());
             groupNormals_.push_back(normalOfSum(sum));
@@ -349,7 +390,7 @@ class MeshBuilder {
                 clusters.push_back({n, glm::dvec3(0.0)});
                 if (n != glm::dvec3(0.0)) grid[key(cellOf(n))].push_back(found);
             }
-            clusters[found].sum += faceAreas_[incidenceFace_[incidences[j]]];
+            clusters[found].sum += weightOf(incidences[j]);
             clusterOf[j] = found;
         }
         const auto firstGroup = static_cast<std::uint32_t>(groupNormals_.size());
@@ -399,6 +440,7 @@ class MeshBuilder {
     }
 
     const tinyobj::attrib_t& attrib_;
+    const VertexNormals weighting_;
     const bool smoothAll_;    // crease angle 180: one group per position
     const double creaseCos_;  // within the crease angle: dot of the unit normals >= this
     const double cellSize_;   // of the cluster grid: the chord of the crease angle, with a margin
@@ -411,11 +453,13 @@ class MeshBuilder {
     std::vector<bool> computedNormal_;         // per base vertex: no usable file normal
     std::vector<glm::dvec3> faceAreas_;        // per face (kept polygon): its vector area ×2
     std::vector<std::uint32_t> incidencePosition_, incidenceFace_;  // per (face, distinct position of it)
+    std::vector<glm::dvec3> incidenceWeight_;     // per incidence: its weight; empty under polygon-area
     std::vector<std::uint32_t> cornerVertex_;     // per corner id: its base vertex; its vertex once finished
     std::vector<std::uint32_t> cornerIncidence_;  // per corner id: its (face, position) incidence
     std::vector<glm::vec3> groupNormals_;         // per smoothing group; zero when its faces cancel
     std::vector<MeshVertex> vertices_;            // the final vertices
-    std::vector<std::size_t> kept_;  // scratch: the kept fan triangles (0, i, i + 1) of a polygon
+    std::vector<std::size_t> kept_;      // scratch: the kept fan triangles (0, i, i + 1) of a polygon
+    std::vector<glm::dvec3> keptCross_;  // scratch, triangle-area only: their cross products
     std::vector<std::uint32_t> polygonIncidence_;  // scratch: per polygon corner, its incidence
     std::vector<glm::dvec3> units_;                // scratch: unit normals of the faces at one position
     std::vector<std::uint64_t> masks_;  // scratch: per face at a position, the faces it smooths with

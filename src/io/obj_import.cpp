@@ -117,7 +117,7 @@ Mesh loadObj(const std::filesystem::path& path, const ObjOptions& options) {
     }
 
     // 4. Triangulate, weld and bucket the triangles by material, in first-use order.
-    MeshBuilder builder(attrib, cornerCount, crease);
+    MeshBuilder builder(attrib, cornerCount, crease, options.normals);
     std::vector<int> meshMaterialOf(tinyMaterials.size() + 1, -1);  // [0]: no material; [i + 1]: material i
     std::vector<int> tinyMaterialOf;  // mesh material → tinyobjloader's, or -1
     std::vector<std::vector<std::uint32_t>> buckets;
@@ -198,7 +198,7 @@ Mesh loadObj(const std::filesystem::path& path, const ObjOptions& options) {
         // 6. The part's material, its texture resolved against its own MTL file's folder.
         const int tinyMaterial = tinyMaterialOf[b];
         if (tinyMaterial < 0) {
-            mesh.materials.emplace_back();
+            mesh.materials.emplace_back().fallback = true;
             continue;
         }
         const tinyobj::material_t& source = tinyMaterials[std::size_t(tinyMaterial)];

@@ -17,13 +17,14 @@ namespace facet {
 //   the vector areas (unnormalised cross products: area weighting) of those faces around the corner's
 //   position whose unit normal is within options.creaseAngleDegrees of the corner's own face's normal
 //   (the face itself always counts; a face is the file's polygon, its normal its normalised vector
-//   area). Corners welded on their index triple but ending up with different sets of faces become
-//   separate vertices (counted in stats.creaseSplits); corners with the same set share one. So at 60°
-//   a cube without normals has 24 vertices, at 180° (smooth everything) 8, and a finely tessellated
-//   sphere one per position. At a position with more than 64 faces the faces are clustered greedily
-//   instead (each joins the first cluster whose first face is within the angle). If a sum is zero
-//   (opposite faces cancelling), the normal of the first triangle that used the vertex. File
-//   normals are never changed;
+//   area). options.normals chooses the weights instead of the polygons' vector areas: the fan
+//   triangles' cross products at the corner, or the polygon's unit normal times its corner angle. Corners
+//   welded on their index triple but ending up with different sets of faces become separate vertices (counted
+//   in stats.creaseSplits); corners with the same set share one. So at 60° a cube without normals has 24
+//   vertices, at 180° (smooth everything) 8, and a finely tessellated sphere one per position. At a position
+//   with more than 64 faces the faces are clustered greedily instead (each joins the first cluster whose
+//   first face is within the angle). If a sum is zero (opposite faces cancelling), the normal of the first
+//   triangle that used the vertex. File normals are never changed;
 // - positive indices may refer forward; negative ones count back from the statement that uses them;
 // - a `\` at the end of a line continues the statement on the next line, and `#` after a blank starts
 //   a comment (tinyobjloader knows neither; the text is rewritten for it, keeping line numbers);
@@ -43,6 +44,8 @@ struct ObjOptions {
     // is split). 180 smooths everything, 0 gives every face its own normal (faces of the same
     // direction, to within about 1e-4 degrees, still share one).
     float creaseAngleDegrees = 60.0f;
+    // Computed normals only: how each face around a position is weighted (scene/mesh.h).
+    VertexNormals normals = VertexNormals::PolygonArea;
 };
 Mesh loadObj(const std::filesystem::path& path, const ObjOptions& options = {});
 

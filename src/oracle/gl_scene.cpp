@@ -55,7 +55,8 @@ GlScene toGlScene(const PreparedScene& prepared) {
         const bool fixedFunction = glPreset && d.frequency != ShadingFrequency::Phong && !out.emissionMap &&
                                    d.uniforms.reflection == ReflectionModel::BlinnPhong && !smoothSpot &&
                                    d.uniforms.material.shininess <= 128.0f &&
-                                   (out.blend == BlendMode::Replace || out.blend == BlendMode::Over);
+                                   (out.blend == BlendMode::Replace || out.blend == BlendMode::Over ||
+                                    out.blend == BlendMode::OverGL);
         out.program = fixedFunction                            ? GlProgram::FixedFunction
                       : d.frequency == ShadingFrequency::Phong ? GlProgram::PerPixel
                                                                : GlProgram::PerVertex;

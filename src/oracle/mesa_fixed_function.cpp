@@ -25,7 +25,7 @@ void checkFixedFunction(const GlScene& scene, std::size_t drawIndex, bool radial
         throw std::invalid_argument(where + "fixed-function lighting is Blinn-Phong only");
     if (draw.emissionMap && !draw.emissionMap->empty())
         throw std::invalid_argument(where + "an emission map needs a shader (use GlProgram::PerVertex)");
-    if (draw.blend != BlendMode::Replace && draw.blend != BlendMode::Over)
+    if (draw.blend != BlendMode::Replace && draw.blend != BlendMode::Over && draw.blend != BlendMode::OverGL)
         throw std::invalid_argument(where + "blend " + (std::ostringstream() << draw.blend).str() +
                                     " needs a shader writing (α·c, α) or (mix(1, c, α), α); fixed function " +
                                     "writes (c, α) only (use GlProgram::PerVertex)");

@@ -385,6 +385,7 @@ int blendOutputCode(BlendMode blend) {
     switch (blend) {
         case BlendMode::Replace:
         case BlendMode::Over:
+        case BlendMode::OverGL:
             return 0;
         case BlendMode::PremultipliedOver:
         case BlendMode::Additive:

@@ -34,6 +34,10 @@ void MesaPeer::Impl::setBlendState(const Draw& draw) const {
         case BlendMode::Over:  // c = α_s·c_s + (1 − α_s)·c_d, α = α_s + (1 − α_s)·α_d
             gl.glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
             break;
+        case BlendMode::OverGL:  // c as over, α = α_s·α_s + (1 − α_s)·α_d
+            gl.glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_SRC_ALPHA,
+                                   GL_ONE_MINUS_SRC_ALPHA);
+            break;
         case BlendMode::PremultipliedOver:  // c = c_s + (1 − α_s)·c_d, α likewise
             gl.glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
             break;

@@ -118,9 +118,11 @@ PreparedScene prepareForReference(Scene scene) {
     PreparedScene prepared = prepareScene(scene);
     for (PreparedDraw& d : prepared.draws) {
         // The reference shades every hit per pixel with the draw's own vertices (a flat draw's are
-        // unwelded with face normals, so per pixel it stays flat), pow and exp exact, Fresnel exact.
+        // unwelded with face normals, so per pixel it stays flat), pow, exp and normalisation exact, Fresnel
+        // exact.
         d.frequency = ShadingFrequency::Phong;
         d.uniforms.precision = MathPrecision::Exact;
+        d.uniforms.normalization = Normalization::Exact;
         d.uniforms.brdf.fresnel = FresnelModel::Exact;
     }
     std::array<ShadowMethod, kMaxLights> methods = prepared.shadowMethods;

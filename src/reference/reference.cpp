@@ -44,9 +44,10 @@ ReferenceDraw referenceDraw(const PreparedDraw& draw, const SceneShadows* shadow
         out.uvs.push_back(dvec2(v.uv));
     }
     out.uniforms = draw.uniforms;
-    out.uniforms.precision = MathPrecision::Exact;    // std::pow and std::exp, in double
-    out.uniforms.brdf.fresnel = FresnelModel::Exact;  // the exact dielectric Fresnel, not Schlick's
-    out.uniforms.shadows = shadows;                   // ray-cast, whatever the scene's method
+    out.uniforms.precision = MathPrecision::Exact;      // std::pow and std::exp, in double
+    out.uniforms.normalization = Normalization::Exact;  // 1/sqrt in double
+    out.uniforms.brdf.fresnel = FresnelModel::Exact;    // the exact dielectric Fresnel, not Schlick's
+    out.uniforms.shadows = shadows;                     // ray-cast, whatever the scene's method
     out.uniforms.terms = terms;
     return out;
 }

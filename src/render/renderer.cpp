@@ -40,6 +40,20 @@ Bounds transformedBounds(const Mesh& mesh, const mat4& worldFromObject) {
     return b;
 }
 
+// OpenGL 1.x's initial material (glMaterial, OpenGL 2.1 Table 2.11): ambient 0.2, diffuse 0.8, specular
+// 0, emission 0, shininess 0; what the gl preset lights faces with when the file gives them none.
+Material glDefaultMaterial() {
+    Material m;
+    m.name = "OpenGL default";
+    m.ambient = vec3(0.2f);
+    m.diffuse = vec3(0.8f);
+    m.specular = vec3(0.0f);
+    m.emission = vec3(0.0f);
+    m.shininess = 0.0f;
+    m.fallback = true;
+    return m;
+}
+
 // The standard equation's material: the MTL values with the scene's overrides, decoded.
 template <class Decode>
 PhongMaterial phongMaterial(const Material& file, const MaterialOverride& override, Decode decode) {
@@ -230,8 +244,9 @@ PreparedScene prepareScene(const Scene& scene, const TextureLimits& limits) {
     for (const ObjectSpec& object : scene.objects) {
         auto& mesh = meshes[object.model];
         if (!mesh) {
-            mesh =
-                std::make_unique<Mesh>(loadObj(object.model, ObjOptions{scene.lighting.creaseAngleDegrees}));
+            mesh = std::make_unique<Mesh>(
+                loadObj(object.model, ObjOptions{.creaseAngleDegrees = scene.lighting.creaseAngleDegrees,
+                                                 .normals = scene.lighting.normals}));
             prepared.warnings.insert(prepared.warnings.end(), mesh->warnings.begin(), mesh->warnings.end());
             prepared.degenerateSkipped += mesh->stats.degenerateSkipped;
             if (std::optional<std::string> warning = coordinatePrecisionWarning(*mesh, object.model))
@@ -279,6 +294,8 @@ PreparedScene prepareScene(const Scene& scene, const TextureLimits& limits) {
     common.globalAmbient = decode(scene.ambientLight);
     common.lightCount = static_cast<int>(lights.size());
     common.brdf = scene.lighting.brdf;
+    common.precision = scene.lighting.powers;
+    common.normalization = scene.lighting.normalize;
     common.twoSidedFlip = !glPreset;
     common.clampColor = glPreset;
     common.fog = fogParams(scene, sceneBounds, camera, decode);
@@ -336,7 +353,12 @@ PreparedScene prepareScene(const Scene& scene, const TextureLimits& limits) {
                 draw.uniforms.emissionMap = loadTexture(material.emissionTexture, material.name);
             // map_Ke without Ke (or with Ke 0) means the texture is the emission, as exporters write it.
             if (draw.uniforms.emissionMap && material.emission == vec3(0.0f)) material.emission = vec3(1.0f);
+            // The gl preset: faces without a material get OpenGL 1.x's default glMaterial, and the
+            // shininess is clamped to GL_SHININESS's range [0, 128].
+            if (glPreset && material.fallback) material = glDefaultMaterial();
             draw.uniforms.material = phongMaterial(material, object.material, decode);
+            if (glPreset)
+                draw.uniforms.material.shininess = std::min(draw.uniforms.material.shininess, 128.0f);
             draw.uniforms.pbr = pbrMaterial(draw.uniforms.material, object.material, decode, scene.source);
             draw.uniforms.opacity = object.material.opacity.value_or(material.opacity);
             if (!material.diffuseTexture.empty())
@@ -346,7 +368,11 @@ PreparedScene prepareScene(const Scene& scene, const TextureLimits& limits) {
             const bool textureAlpha =
                 draw.uniforms.diffuseMap && texturesWithAlpha.count(draw.uniforms.diffuseMap);
             draw.transparent = draw.uniforms.opacity < 1.0f || textureAlpha || blend != BlendMode::Over;
-            draw.uniforms.blend = draw.transparent ? blend : BlendMode::Replace;
+            // The gl preset blends over as glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA) does,
+            // alpha included; Facet's keeps Porter–Duff's α.
+            draw.uniforms.blend = !draw.transparent                      ? BlendMode::Replace
+                                  : glPreset && blend == BlendMode::Over ? BlendMode::OverGL
+                                                                         : blend;
             // Flat shading lights each face with its own normal; the GL preset keeps OpenGL's rule
             // instead: the provoking vertex's colour, lit with that vertex's normal.
             if (frequency == ShadingFrequency::Flat && !glPreset) unweldWithFaceNormals(draw);
@@ -371,7 +397,7 @@ PreparedScene prepareScene(const Scene& scene, const TextureLimits& limits) {
     state.colorBuffer = scene.pipeline.colorBuffer;
     state.raster.provokingVertex = ProvokingVertex::Last;  // OpenGL's convention
     prepared.clearColor = vec4(decode(vec3(scene.background)), scene.background.a);
-    prepared.encoding = glPreset ? kLinearEncoding : ColorEncoding{scene.gamma.encode, scene.gamma.exponent};
+    prepared.encoding = glPreset ? kGlEncoding : ColorEncoding{scene.gamma.encode, scene.gamma.exponent};
 
     // Shadows: each light's method (the command line's for all of them, when given).
     for (std::size_t i = 0; i < lights.size(); ++i)

@@ -3,12 +3,33 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "pipeline/names.h"
+
 namespace facet {
+
+// How a vertex without a file normal weighs the faces around it (the crease angle applies to all):
+// each face at the vertex's position adds a vector along its unit normal, and the normal is their sum,
+// normalised.
+enum class VertexNormals : std::uint8_t {
+    TriangleArea,  // Σ over the fan triangles at the vertex of their cross products (twice their vector
+                   // areas): the common convention, but a polygon's triangulation changes the result
+    PolygonArea,   // each polygon's whole vector area (the sum of its fan triangles' cross products)
+    Angle,  // each polygon's unit normal times its interior angle at the vertex (Thürmer & Wüthrich 1998):
+            // independent of how the polygons are triangulated and of how finely a surface is cut
+};
+inline constexpr EnumName<VertexNormals> kVertexNormalsNames[] = {
+    {VertexNormals::PolygonArea, "polygon-area"},
+    {VertexNormals::TriangleArea, "triangle-area"},
+    {VertexNormals::Angle, "angle"}};
+constexpr std::span<const EnumName<VertexNormals>> enumNames(VertexNormals) {
+    return kVertexNormalsNames;
+}
 
 // The largest colour component or light intensity a scene or MTL file may give. Light can be bright,
 // but decoded from sRGB (1e6 becomes 2.5e14), multiplied by a material and summed over eight lights,
@@ -27,6 +48,9 @@ struct Material {
     std::filesystem::path
         diffuseTexture;  // map_Kd, resolved against the MTL's folder; empty if none or missing
     std::filesystem::path emissionTexture;  // map_Ke, the same way
+    // No material of a file: the faces have no usemtl, or name one no MTL file defines. These
+    // defaults are then Facet's; the gl preset lights such faces with OpenGL's (kGlDefaultMaterial).
+    bool fallback = false;
 };
 
 struct MeshVertex {

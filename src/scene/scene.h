@@ -13,6 +13,7 @@
 
 #include "pipeline/state.h"
 #include "scene/limits.h"
+#include "scene/mesh.h"
 #include "shading/fog.h"
 #include "shading/gamma.h"
 #include "shading/lighting.h"
@@ -104,6 +105,9 @@ struct LightingOptions {
     std::optional<ShadingFrequency> shading;  // absent: Phong (Facet preset) or Gouraud (GL preset)
     float creaseAngleDegrees = 60.0f;  // computed normals: faces meeting at a sharper angle keep a hard edge
     BrdfModel brdf;                    // Cook-Torrance's D, F and G
+    VertexNormals normals = VertexNormals::PolygonArea;  // computed normals: how the faces are weighted
+    MathPrecision powers = MathPrecision::Fast;          // pow and exp in lighting and fog (wide.h)
+    Normalization normalize = Normalization::Exact;      // N, L, V, H made unit length (wide.h)
     ShadingFrequency shadingOrDefault() const {
         return shading.value_or(preset == LightingPreset::GL ? ShadingFrequency::Gouraud
                                                              : ShadingFrequency::Phong);

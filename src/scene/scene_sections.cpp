@@ -30,8 +30,9 @@ constexpr std::string_view kMaterialKeys[] = {"ambient",   "diffuse",   "specula
                                               "metalness", "roughness", "f0"};
 constexpr std::string_view kPipelineKeys[] = {"cull",  "interpolation", "subpixel_bits",
                                               "depth", "color_buffer",  "antialiasing"};
-constexpr std::string_view kLightingKeys[] = {"preset",       "model",   "shading", "crease_angle",
-                                              "distribution", "fresnel", "geometry"};
+constexpr std::string_view kLightingKeys[] = {"preset",  "model",   "shading",   "crease_angle",
+                                              "normals", "powers",  "normalize", "distribution",
+                                              "fresnel", "geometry"};
 constexpr std::string_view kObjectLightingKeys[] = {"model", "shading"};
 constexpr std::string_view kLightSpaces[] = {"world", "camera"};
 constexpr std::string_view kTransparencyKeys[] = {"mode", "sort_key"};
@@ -375,7 +376,8 @@ ObjectSpec readObject(const SceneReader& reader, const Json& object, const std::
     if (const Json* v = reader.find(object, "lighting"))
         readObjectLighting(reader, *v, childPath(path, "lighting"), spec);
     if (const Json* v = reader.find(object, "blend")) {
-        spec.blend = reader.enumChoice<BlendMode>(*v, childPath(path, "blend"), {BlendMode::Replace});
+        spec.blend = reader.enumChoice<BlendMode>(*v, childPath(path, "blend"),
+                                                  {BlendMode::Replace, BlendMode::OverGL});
     }
 
     // worldFromObject = T · Rz · Ry · Rx · S: scale first, then rotate about X, Y, Z (fixed axes),
@@ -437,6 +439,12 @@ LightingOptions readLighting(const SceneReader& reader, const Json& lighting) {
     if (const Json* v = reader.find(lighting, "crease_angle"))
         options.creaseAngleDegrees =
             reader.numberFromTo(*v, "lighting.crease_angle", 0.0f, 180.0f, " degrees");
+    if (const Json* v = reader.find(lighting, "normals"))
+        options.normals = reader.enumChoice<VertexNormals>(*v, "lighting.normals");
+    if (const Json* v = reader.find(lighting, "powers"))
+        options.powers = reader.enumChoice<MathPrecision>(*v, "lighting.powers");
+    if (const Json* v = reader.find(lighting, "normalize"))
+        options.normalize = reader.enumChoice<Normalization>(*v, "lighting.normalize");
     if (const Json* v = reader.find(lighting, "distribution"))
         options.brdf.distribution = reader.enumChoice<NormalDistribution>(*v, "lighting.distribution");
     if (const Json* v = reader.find(lighting, "fresnel"))

@@ -75,6 +75,9 @@ struct SurfaceUniforms {
     // pow and exp in the lighting and fog: Fast (wide.h's polynomials) is what every image has been
     // drawn with; one lane and eight give the same bits under either choice.
     MathPrecision precision = MathPrecision::Fast;
+    // How the lighting makes N, L, V and H unit length (wide.h): Exact, 1/sqrt, is what every image has
+    // been drawn with; Fast approximates the reciprocal square root.
+    Normalization normalization = Normalization::Exact;
     // Which lights cast shadows and how (shadowing.h); null: none does, and the lighting skips the test.
     const SceneShadows* shadows = nullptr;
 
@@ -158,9 +161,10 @@ struct VertexLightingRecord {
 
 // The lighting equation's terms at one point (or eight), as the uniforms choose: the model, the
 // two-sided flip, and only the selected terms (the others are zero). P and N are in eye space; N need
-// not be unit length. `albedo` is m_diffuse or c_base, per lane. kPrecision is u.precision
-// (surfaceTerms below chooses it). A SurfaceTermsRecord, when given, receives every number.
-template <class F, class V3, MathPrecision kPrecision, class... Recording>
+// not be unit length. `albedo` is m_diffuse or c_base, per lane. kPrecision is u.precision and
+// kNormalization u.normalization (surfaceTerms below chooses them). A SurfaceTermsRecord, when given,
+// receives every number.
+template <class F, class V3, MathPrecision kPrecision, Normalization kNormalization, class... Recording>
 [[gnu::always_inline]] inline LightingTerms<V3> surfaceTermsWith(const V3& P, const V3& normal,
                                                                  const V3& albedo, const SurfaceUniforms& u,
                                                                  Recording*... recording) {
@@ -185,19 +189,19 @@ template <class F, class V3, MathPrecision kPrecision, class... Recording>
     LightingTerms<V3> t;
     switch (u.reflection) {
         case ReflectionModel::Phong:
-            t = standardLighting<F, V3, kPrecision>(P, N, eye, u.material, albedo, u.globalAmbient,
-                                                    u.activeLights(), SpecularModel::Phong, visibility,
-                                                    &recording->lighting...);
+            t = standardLighting<F, V3, kPrecision, kNormalization>(
+                P, N, eye, u.material, albedo, u.globalAmbient, u.activeLights(), SpecularModel::Phong,
+                visibility, &recording->lighting...);
             break;
         case ReflectionModel::BlinnPhong:
-            t = standardLighting<F, V3, kPrecision>(P, N, eye, u.material, albedo, u.globalAmbient,
-                                                    u.activeLights(), SpecularModel::BlinnPhong, visibility,
-                                                    &recording->lighting...);
+            t = standardLighting<F, V3, kPrecision, kNormalization>(
+                P, N, eye, u.material, albedo, u.globalAmbient, u.activeLights(), SpecularModel::BlinnPhong,
+                visibility, &recording->lighting...);
             break;
         case ReflectionModel::CookTorrance:
-            t = physicallyBasedTerms<F, V3, kPrecision>(P, N, eye, u.pbr, albedo, u.material.emission,
-                                                        u.globalAmbient, u.activeLights(), u.brdf, visibility,
-                                                        &recording->lighting...);
+            t = physicallyBasedTerms<F, V3, kPrecision, kNormalization>(
+                P, N, eye, u.pbr, albedo, u.material.emission, u.globalAmbient, u.activeLights(), u.brdf,
+                visibility, &recording->lighting...);
             break;
     }
     if (u.terms != kAllTerms) {
@@ -211,14 +215,23 @@ template <class F, class V3, MathPrecision kPrecision, class... Recording>
     return t;
 }
 
-// The same with the uniforms' precision (u.precision) for pow and exp.
+// The same with the uniforms' choices: u.precision for pow and exp, u.normalization for the unit
+// vectors. Both are the draw's, so the branch goes the same way for every fragment of it.
 template <class F, class V3 = LaneVec3<F>, class... Recording>
 [[gnu::always_inline]] inline LightingTerms<V3> surfaceTerms(const V3& P, const V3& normal, const V3& albedo,
                                                              const SurfaceUniforms& u,
                                                              Recording*... recording) {
+    if (u.normalization == Normalization::Fast)
+        return u.precision == MathPrecision::Exact
+                   ? surfaceTermsWith<F, V3, MathPrecision::Exact, Normalization::Fast>(P, normal, albedo, u,
+                                                                                        recording...)
+                   : surfaceTermsWith<F, V3, MathPrecision::Fast, Normalization::Fast>(P, normal, albedo, u,
+                                                                                       recording...);
     return u.precision == MathPrecision::Exact
-               ? surfaceTermsWith<F, V3, MathPrecision::Exact>(P, normal, albedo, u, recording...)
-               : surfaceTermsWith<F, V3, MathPrecision::Fast>(P, normal, albedo, u, recording...);
+               ? surfaceTermsWith<F, V3, MathPrecision::Exact, Normalization::Exact>(P, normal, albedo, u,
+                                                                                     recording...)
+               : surfaceTermsWith<F, V3, MathPrecision::Fast, Normalization::Exact>(P, normal, albedo, u,
+                                                                                    recording...);
 }
 
 // What a surface shader writes, from the lit colour c and its alpha α at eye-space point P: fog first,
@@ -242,6 +255,7 @@ template <class F, class V3 = LaneVec3<F>, class... Recording>
     switch (u.blend) {
         case BlendMode::Replace:
         case BlendMode::Over:
+        case BlendMode::OverGL:
             return c;
         case BlendMode::PremultipliedOver:
         case BlendMode::Additive:

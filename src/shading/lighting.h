@@ -101,13 +101,19 @@ struct LightVector {
 // At the light's own position there is no direction to it: L = 0 there (no diffuse, no specular
 // light from it), never 0/0. So too where the squared distance underflows float: L is a unit vector
 // or 0, nothing between.
-template <class F, class V3 = LaneVec3<F>>
+// Under Normalization::Fast, 1/d is fastInverseSqrt(d²) and d = d²·(1/d).
+template <class F, class V3 = LaneVec3<F>, Normalization kNormalization = Normalization::Exact>
 LightVector<F, V3> lightVector(const LightParams& light, const V3& position) {
     if (light.kind == LightKind::Directional) return {V3(-normalize(light.direction)), lanes<F>(0.0f)};
     const V3 toLight = light.position - position;
     const F squared = dot(toLight, toLight);
-    const F distance = sqrt(squared);
     constexpr float kSmallestSquare = 1e-30f;  // normal floats: sqrt and the division stay exact enough
+    if constexpr (kNormalization == Normalization::Fast) {
+        const F inverse = select(squared >= kSmallestSquare,
+                                 inverseSqrt<kNormalization>(max(squared, kSmallestSquare)), lanes<F>(0.0f));
+        return {toLight * inverse, squared * inverse};
+    }
+    const F distance = sqrt(squared);
     const F inverse = select(squared >= kSmallestSquare, 1.0f / max(distance, 1e-15f), 0.0f);
     return {toLight * inverse, distance};
 }
@@ -218,7 +224,8 @@ struct LightingTerms {
 //   m_specular)).
 // Null: every light reaches every point (no shadows, no cost). A LightingRecord (below), when given,
 // receives every number of it.
-template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact, class... Recording>
+template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact,
+          Normalization kNormalization = Normalization::Exact, class... Recording>
 [[gnu::always_inline]] inline LightingTerms<V3> standardLighting(
     const V3& position, const V3& normal, const vec3& eye, const PhongMaterial& m, const V3& diffuseColor,
     const vec3& globalAmbient, std::span<const LightParams> lights,
@@ -226,8 +233,8 @@ template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exac
     Recording*... recording) {
     using Record = RecordOf<Recording...>;
     static_assert(!Record::enabled || std::is_same_v<F, float>, "records hold one lane");
-    const V3 N = safeNormalize<F, V3>(normal);
-    const V3 V = safeNormalize<F, V3>(eye - position);
+    const V3 N = safeNormalize<F, V3, kNormalization>(normal);
+    const V3 V = safeNormalize<F, V3, kNormalization>(eye - position);
     LightingTerms<V3> terms{V3(m.emission), V3(globalAmbient * m.ambient), V3(vec3(0.0f)), V3(vec3(0.0f))};
     if constexpr (Record::enabled)
         *recordOf(recording...) = {.physicallyBased = false,
@@ -245,7 +252,7 @@ template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exac
                                    .lightCount = static_cast<int>(lights.size())};
     for (const LightParams& light : lights) {
         // Where the light is and how much of it arrives.
-        const LightVector<F, V3> toLight = lightVector<F, V3>(light, position);
+        const LightVector<F, V3> toLight = lightVector<F, V3, kNormalization>(light, position);
         const V3& L = toLight.L;
         const F reach = attenuation(light, toLight.distance) *
                         spotFactor<F, V3, P>(light, L, &recording->lights[&light - lights.data()].spot...);
@@ -270,7 +277,7 @@ template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exac
             if constexpr (Record::enabled)
                 recordOf(recording...)->lights[&light - lights.data()].reflected = R;
         } else {
-            const V3 H = safeNormalize<F, V3>(L + V);
+            const V3 H = safeNormalize<F, V3, kNormalization>(L + V);
             cosine = dot(N, H);
             if constexpr (Record::enabled)
                 recordOf(recording...)->lights[&light - lights.data()].reflected = H;
@@ -301,14 +308,15 @@ template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exac
     return terms;
 }
 
-template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact, class... Recording>
+template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact,
+          Normalization kNormalization = Normalization::Exact, class... Recording>
 LightingTerms<V3> standardLighting(const V3& position, const V3& normal, const vec3& eye,
                                    const PhongMaterial& m, const vec3& globalAmbient,
                                    std::span<const LightParams> lights,
                                    SpecularModel specularModel = SpecularModel::BlinnPhong,
                                    const F* visibility = nullptr, Recording*... recording) {
-    return standardLighting<F, V3, P>(position, normal, eye, m, V3(m.diffuse), globalAmbient, lights,
-                                      specularModel, visibility, recording...);
+    return standardLighting<F, V3, P, kNormalization>(position, normal, eye, m, V3(m.diffuse), globalAmbient,
+                                                      lights, specularModel, visibility, recording...);
 }
 
 // =====================================================================================================
@@ -469,15 +477,16 @@ struct BrdfRecord {
 
 // `albedo` is the base colour the Lambert lobe reflects, per lane (a texture may vary it); F0 always
 // comes from the material.
-template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact, class... Recording>
+template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact,
+          Normalization kNormalization = Normalization::Exact, class... Recording>
 BrdfLobes<V3> brdfLobes(const V3& n, const V3& l, const V3& v, const PbrMaterial& m, const V3& albedo,
                         const BrdfModel& model = {}, Recording*... recording) {
     using Record = RecordOf<Recording...>;
     // The cosines, clamped away from the divisions' zeros.
-    const V3 N = safeNormalize<F, V3>(n);
-    const V3 L = safeNormalize<F, V3>(l);
-    const V3 V = safeNormalize<F, V3>(v);
-    const V3 H = safeNormalize<F, V3>(L + V);
+    const V3 N = safeNormalize<F, V3, kNormalization>(n);
+    const V3 L = safeNormalize<F, V3, kNormalization>(l);
+    const V3 V = safeNormalize<F, V3, kNormalization>(v);
+    const V3 H = safeNormalize<F, V3, kNormalization>(L + V);
     const F NdotLRaw = dot(N, L);
     const F NdotL = max(NdotLRaw, 1e-4f);
     const F NdotV = max(dot(N, V), 1e-4f);
@@ -519,14 +528,15 @@ BrdfLobes<V3> brdfLobes(const V3& n, const V3& l, const V3& v, const PbrMaterial
                                    .specularScale = specularScale,
                                    .diffuseScale = diffuseScale,
                                    .grazing = !(NdotLRaw > kGrazingCosine),
-                                   .lobes = brdfLobes<F, V3, P>(n, l, v, m, albedo, model)};
+                                   .lobes = brdfLobes<F, V3, P, kNormalization>(n, l, v, m, albedo, model)};
     return {select(NdotLRaw > kGrazingCosine, diffuse, zero),
             select(NdotLRaw > kGrazingCosine, specular, zero)};
 }
 
-template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact>
+template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact,
+          Normalization kNormalization = Normalization::Exact>
 V3 brdf(const V3& n, const V3& l, const V3& v, const PbrMaterial& m, const BrdfModel& model = {}) {
-    const BrdfLobes<V3> lobes = brdfLobes<F, V3, P>(n, l, v, m, V3(m.baseColor), model);
+    const BrdfLobes<V3> lobes = brdfLobes<F, V3, P, kNormalization>(n, l, v, m, V3(m.baseColor), model);
     return lobes.diffuse + lobes.specular;
 }
 
@@ -542,7 +552,8 @@ V3 brdf(const V3& n, const V3& l, const V3& v, const PbrMaterial& m, const BrdfM
 // irradiance (null: all of it). With a LightingRecord, LightRecord::attenuation is the falloff and the
 // irradiance factor falloff·spot·max(N·L, 0), incoming π·c_light and the BRDF's numbers are recorded per
 // light.
-template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact, class... Recording>
+template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact,
+          Normalization kNormalization = Normalization::Exact, class... Recording>
 LightingTerms<V3> physicallyBasedTerms(const V3& position, const V3& normal, const vec3& eye,
                                        const PbrMaterial& m, const V3& albedo, const vec3& emission,
                                        const vec3& globalAmbient, std::span<const LightParams> lights,
@@ -550,8 +561,8 @@ LightingTerms<V3> physicallyBasedTerms(const V3& position, const V3& normal, con
                                        Recording*... recording) {
     using Record = RecordOf<Recording...>;
     static_assert(!Record::enabled || std::is_same_v<F, float>, "records hold one lane");
-    const V3 N = safeNormalize<F, V3>(normal);
-    const V3 V = safeNormalize<F, V3>(eye - position);
+    const V3 N = safeNormalize<F, V3, kNormalization>(normal);
+    const V3 V = safeNormalize<F, V3, kNormalization>(eye - position);
     LightingTerms<V3> terms{V3(emission), albedo * globalAmbient, V3(vec3(0.0f)), V3(vec3(0.0f))};
     if constexpr (Record::enabled)
         *recordOf(recording...) = {.physicallyBased = true,
@@ -567,7 +578,7 @@ LightingTerms<V3> physicallyBasedTerms(const V3& position, const V3& normal, con
                                    .globalAmbientTerm = terms.ambient,
                                    .lightCount = static_cast<int>(lights.size())};
     for (const LightParams& light : lights) {
-        const LightVector<F, V3> toLight = lightVector<F, V3>(light, position);
+        const LightVector<F, V3> toLight = lightVector<F, V3, kNormalization>(light, position);
         const F falloff = light.kind == LightKind::Directional
                               ? lanes<F>(1.0f)
                               : 1.0f / max(toLight.distance * toLight.distance, 1e-8f);
@@ -576,8 +587,8 @@ LightingTerms<V3> physicallyBasedTerms(const V3& position, const V3& normal, con
             spotFactor<F, V3, P>(light, toLight.L, &recording->lights[&light - lights.data()].spot...) *
             max(dot(N, toLight.L), 0.0f);
         if (visibility) irradiance = irradiance * visibility[&light - lights.data()];
-        const BrdfLobes<V3> lobes = brdfLobes<F, V3, P>(N, toLight.L, V, m, albedo, model,
-                                                        &recording->lights[&light - lights.data()].brdf...);
+        const BrdfLobes<V3> lobes = brdfLobes<F, V3, P, kNormalization>(
+            N, toLight.L, V, m, albedo, model, &recording->lights[&light - lights.data()].brdf...);
         const V3 incoming = V3(light.diffuse * std::numbers::pi_v<float>) * irradiance;
         const V3 diffuse = lobes.diffuse * incoming;
         terms.diffuse += diffuse;

@@ -615,6 +615,7 @@ Screen outputScreen(const ShadingTrace& t) {
     switch (o.blend) {
         case BlendMode::Replace:
         case BlendMode::Over:
+        case BlendMode::OverGL:
             out.add("  straight alpha: the shader writes (c, α)");
             break;
         case BlendMode::PremultipliedOver:
@@ -634,6 +635,10 @@ Screen outputScreen(const ShadingTrace& t) {
             break;
         case BlendMode::Over:
             out.add("  The blend then computes c_o = α·c_s + (1 − α)·c_d.");
+            break;
+        case BlendMode::OverGL:
+            out.add("  The blend then computes c_o = α·c_s + (1 − α)·c_d and, as OpenGL's");
+            out.add("  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA), α_o = α·α + (1 − α)·α_d.");
             break;
         case BlendMode::PremultipliedOver:
             out.add("  The blend then computes c_o = c_s + (1 − α)·c_d (c_s already holds α·c).");

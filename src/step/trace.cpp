@@ -323,7 +323,7 @@ void TraceRecorder::completeHistory(PixelTrace& p, const Framebuffer& target) {
     p.finalColor = target.color(p.x, p.y);
     for (int c = 0; c < 3; ++c)
         p.finalBytes[c] = encodeChannel(p.finalColor[c], p.encoding);
-    p.finalBytes[3] = toByte(p.finalColor.a);
+    p.finalBytes[3] = toByte(p.finalColor.a, p.encoding.rounding);
     // Who wrote last, and who overwrote whom.
     std::optional<std::size_t> lastWriter;
     for (std::size_t i = 0; i < p.triangles.size(); ++i) {

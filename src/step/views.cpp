@@ -683,6 +683,12 @@ std::vector<Screen> outputScreens(const PreparedScene& prepared, const PixelTrac
                         << vectorText(vec3(d)) << "\n";
                     title = "Blending: the over operator";
                     break;
+                case BlendMode::OverGL:
+                    out << "OpenGL's over: c_o = α·c_s + (1 − α)·c_d, α_o = α·α + (1 − α)·α_d\n  = "
+                        << number(s.a) << "·" << vectorText(vec3(s)) << "\n    + " << number(1.0f - s.a)
+                        << "·" << vectorText(vec3(d)) << "\n";
+                    title = "Blending: OpenGL's over";
+                    break;
                 case BlendMode::PremultipliedOver:
                     out << "Over, premultiplied: c_o = c_s + (1 − α)·c_d (c_s already holds α·c)\n";
                     title = "Blending: premultiplied over";

@@ -57,6 +57,10 @@ TEST(CommandLineChoices, EveryNameReachesTheScene) {
                                           [](const Scene& s) { return s.pipeline.interpolation; });
     expectEveryNameReaches<CullMode>("--cull", [](const Scene& s) { return s.pipeline.cull; });
     expectEveryNameReaches<Antialiasing>("--aa", [](const Scene& s) { return s.pipeline.antialiasing; });
+    expectEveryNameReaches<VertexNormals>("--normals", [](const Scene& s) { return s.lighting.normals; });
+    expectEveryNameReaches<MathPrecision>("--powers", [](const Scene& s) { return s.lighting.powers; });
+    expectEveryNameReaches<Normalization>("--normalize", [](const Scene& s) { return s.lighting.normalize; });
+    expectEveryNameReaches<FresnelModel>("--fresnel", [](const Scene& s) { return s.lighting.brdf.fresnel; });
 }
 
 // facet step traces exactly the render `facet render` would make with the same options: it takes every
@@ -110,6 +114,26 @@ TEST(CommandLineChoices, CompareTakesTheSameNames) {
         app.parse(std::vector<std::string>{name, "--shading", "model.obj", "compare"});
         EXPECT_EQ(args.scene.shading, parseName<ShadingFrequency>(name)) << name;
     }
+    // The formulas' choices reach the scene compare renders.
+    const auto compareScene = [](const std::string& option, const std::string& name) {
+        CLI::App app;
+        CompareArgs args;
+        addCompareCommand(app, args);
+        app.parse(std::vector<std::string>{name, option, "model.obj", "compare"});
+        Scene scene = sceneForModel("model.obj");
+        applyLightingOptions(args.scene, scene);
+        return scene;
+    };
+    for (const std::string& name : namesOf<VertexNormals>())
+        EXPECT_EQ(compareScene("--normals", name).lighting.normals, parseName<VertexNormals>(name)) << name;
+    for (const std::string& name : namesOf<MathPrecision>())
+        EXPECT_EQ(compareScene("--powers", name).lighting.powers, parseName<MathPrecision>(name)) << name;
+    for (const std::string& name : namesOf<Normalization>())
+        EXPECT_EQ(compareScene("--normalize", name).lighting.normalize, parseName<Normalization>(name))
+            << name;
+    for (const std::string& name : namesOf<FresnelModel>())
+        EXPECT_EQ(compareScene("--fresnel", name).lighting.brdf.fresnel, parseName<FresnelModel>(name))
+            << name;
     // --driver: each of Mesa's rasterizers by its table's name; absent, the default (softpipe).
     for (const std::string& name : namesOf<MesaDriver>()) {
         CLI::App app;

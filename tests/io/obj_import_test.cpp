@@ -183,6 +183,60 @@ TEST_F(ObjImport, NormalsAreAreaWeighted) {
     expectVec3(normalAt[{0, 0, 1}], glm::vec3(1, 0, 0));
 }
 
+// The three weightings at the origin, where a 2×1 quad in the z = 0 plane (written from (2,0,0), so
+// that the origin is in only its second fan triangle) meets a triangle in the x = 0 plane at 90°:
+//   polygon-area:  the quad's vector area (0,0,4) + the triangle's (1,0,0)        → (1,0,4)/√17
+//   triangle-area: the fan triangle (2,0,0),(0,1,0),O's cross product (0,0,2) + (1,0,0) → (1,0,2)/√5
+//   angle:         (0,0,1)·π/2 + (1,0,0)·π/2                                       → (1,0,1)/√2
+const std::string kQuadAndTriangle = kTwoFaces + "v 2 1 0\n" + "f 2 6 4 1\nf 1 4 5\n";
+
+glm::vec3 normalAtOrigin(const Mesh& mesh) {
+    for (const MeshVertex& v : mesh.vertices)
+        if (v.position == glm::vec3(0.0f)) return v.normal;
+    ADD_FAILURE() << "no vertex at the origin";
+    return glm::vec3(0.0f);
+}
+
+TEST_F(ObjImport, VertexNormalsWeighFacesByPolygonAreaTriangleAreaOrAngle) {
+    const fs::path path = write("quad.obj", kQuadAndTriangle);
+    const auto normalWith = [&](VertexNormals normals) {
+        return normalAtOrigin(loadObj(path, ObjOptions{.creaseAngleDegrees = 180.0f, .normals = normals}));
+    };
+    expectVec3(normalWith(VertexNormals::PolygonArea), glm::vec3(1, 0, 4) / std::sqrt(17.0f));
+    expectVec3(normalWith(VertexNormals::TriangleArea), glm::vec3(1, 0, 2) / std::sqrt(5.0f));
+    expectVec3(normalWith(VertexNormals::Angle), glm::vec3(1, 0, 1) / std::sqrt(2.0f));
+    // The default is today's polygon-area.
+    expectVec3(normalAtOrigin(loadObj(path, kSmoothAll)), glm::vec3(1, 0, 4) / std::sqrt(17.0f));
+}
+
+// The same quad as two triangles, split along either diagonal: the origin is in both triangles of the
+// split along (0,0,0)–(2,1,0), in one of the other. Angle weighting sees the quad's corner angle π/2
+// either way (atan(1/2) + (π/2 − atan(1/2))); triangle-area weighting sees the area of the triangles
+// at the origin, (0,0,4) or (0,0,2).
+TEST_F(ObjImport, AngleWeightedNormalsDoNotDependOnTheTriangulation) {
+    const fs::path throughOrigin = write(
+        "a.obj", kQuadAndTriangle.substr(0, kQuadAndTriangle.find('f')) + "f 1 2 6\nf 1 6 4\nf 1 4 5\n");
+    const fs::path across = write(
+        "b.obj", kQuadAndTriangle.substr(0, kQuadAndTriangle.find('f')) + "f 1 2 4\nf 2 6 4\nf 1 4 5\n");
+    const auto normalWith = [&](const fs::path& path, VertexNormals normals) {
+        return normalAtOrigin(loadObj(path, ObjOptions{.creaseAngleDegrees = 180.0f, .normals = normals}));
+    };
+    expectVec3(normalWith(throughOrigin, VertexNormals::Angle), glm::vec3(1, 0, 1) / std::sqrt(2.0f));
+    expectVec3(normalWith(across, VertexNormals::Angle), glm::vec3(1, 0, 1) / std::sqrt(2.0f));
+    expectVec3(normalWith(throughOrigin, VertexNormals::TriangleArea), glm::vec3(1, 0, 4) / std::sqrt(17.0f));
+    expectVec3(normalWith(across, VertexNormals::TriangleArea), glm::vec3(1, 0, 2) / std::sqrt(5.0f));
+}
+
+// A reflex corner counts its interior angle, 2π − θ: an L-shaped hexagon in z = 0 whose corner at the
+// origin is 270°, beside a triangle in x = 0 with a 90° corner there: (1,0,0)·π/2 + (0,0,1)·3π/2.
+TEST_F(ObjImport, AngleWeightedNormalsCountAReflexCornersInteriorAngle) {
+    const Mesh mesh = loadObj(write("l.obj",
+                                    "v 0 0 0\nv 0 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nv -1 0 0\nv 0 0 1\n"
+                                    "f 2 3 4 5 6 1\nf 1 7 2\n"),
+                              ObjOptions{.creaseAngleDegrees = 180.0f, .normals = VertexNormals::Angle});
+    expectVec3(normalAtOrigin(mesh), glm::vec3(1, 0, 3) / std::sqrt(10.0f));
+}
+
 TEST_F(ObjImport, CornersSharingAPositionShareTheSmoothNormal) {
     // The origin has texcoord 1 in one face and 2 in the other: two vertices, one normal.
     const Mesh mesh = loadObj(

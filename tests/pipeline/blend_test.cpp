@@ -28,6 +28,20 @@ TEST(Blend, OverOnHandComputedValues) {
     EXPECT_EQ(blend(BlendMode::Over, vec4(0.3f, 0.6f, 0.9f, 0), vec4(0.5f)), vec4(0.5f));
 }
 
+// The gl preset's over is glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA) on all four channels: the
+// colour as Porter–Duff's over, α = α_s² + (1 − α_s)·α_d. α_s = 0.5 over α_d = 0.5: 0.25 + 0.25 = 0.5
+// (Porter–Duff: 0.5 + 0.25 = 0.75).
+TEST(Blend, OverGLSquaresTheSourceAlpha) {
+    const vec4 source(1, 0, 0, 0.5f), destination(0, 0, 1, 0.5f);
+    const vec4 gl = blend(BlendMode::OverGL, source, destination);
+    EXPECT_EQ(vec3(gl), vec3(blend(BlendMode::Over, source, destination)));
+    EXPECT_EQ(vec3(gl), vec3(0.5f, 0.0f, 0.5f));
+    EXPECT_EQ(gl.a, 0.5f);
+    EXPECT_EQ(blend(BlendMode::Over, source, destination).a, 0.75f);
+    // An opaque source over anything: α = 1 either way.
+    EXPECT_EQ(blend(BlendMode::OverGL, vec4(0.3f, 0.6f, 0.9f, 1), vec4(0.5f, 0.5f, 0.5f, 0)).a, 1.0f);
+}
+
 // Premultiplied over gives what straight over gives when the source is premultiplied: c_s·α_s.
 TEST(Blend, PremultipliedOverEqualsOverOnPremultipliedColour) {
     const vec4 straight(0.8f, 0.4f, 0.2f, 0.25f), destination(0.1f, 0.5f, 0.9f, 1.0f);

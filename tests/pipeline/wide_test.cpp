@@ -1,6 +1,8 @@
 #include "wide.h"
 
+#include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -48,6 +50,51 @@ TEST(Wide, VectorHelpersAreLaneWise) {
     for (int i = 0; i < 8; ++i) {
         EXPECT_EQ(m[i], std::max(a[i], 0.0f));
         EXPECT_EQ(s[i], a[i] > 0 ? 1.0f : -1.0f);
+    }
+}
+
+// Normalization::Fast's 1/√x against the double 1/√x, over every binade of the normal floats (and 64
+// mantissas in each): within kFastInverseSqrtError relative, and the eight-lane and one-lane versions
+// give the same bits.
+constexpr double kFastInverseSqrtError = 1.0 / (1 << 21);
+
+TEST(Wide, FastInverseSqrtIsWithinItsBoundOfTheDoubleOne) {
+    double worst = 0.0;
+    for (int exponent = -126; exponent <= 127; ++exponent) {
+        for (int step = 0; step < 64; step += 8) {
+            Float8 x;
+            for (int i = 0; i < 8; ++i)
+                x[i] = std::ldexp(1.0f + float(step + i) / 64.0f, exponent);
+            const Float8 y = fastInverseSqrt(x);
+            for (int i = 0; i < 8; ++i) {
+                if (!std::isfinite(x[i])) continue;
+                const double exact = 1.0 / std::sqrt(double(x[i]));
+                const double error = std::abs(double(y[i]) / exact - 1.0);
+                worst = std::max(worst, error);
+                EXPECT_LE(error, kFastInverseSqrtError) << x[i];
+                EXPECT_EQ(fastInverseSqrt(x[i]), y[i]) << x[i];  // one lane, the same bits
+            }
+        }
+    }
+    std::cout << "fastInverseSqrt: worst relative error " << worst << " (2^" << std::log2(worst) << ")\n";
+}
+
+// safeNormalize under either choice: unit length within the choice's bound for tiny and huge vectors,
+// and the zero vector stays zero (no NaN).
+TEST(Wide, SafeNormalizeKeepsTinyHugeAndZeroVectorsFinite) {
+    const vec3 cases[] = {vec3(1e-15f, 2e-15f, -2e-15f), vec3(3e18f, -4e18f, 0.0f), vec3(0.0f),
+                          vec3(1e-20f, 0.0f, 0.0f), vec3(0.3f, -0.2f, 0.9f)};
+    for (const vec3& v : cases) {
+        for (const vec3 n : {safeNormalize<float, vec3, Normalization::Exact>(v),
+                             safeNormalize<float, vec3, Normalization::Fast>(v)}) {
+            EXPECT_TRUE(std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z)) << v.x;
+            if (v == vec3(0.0f)) {
+                EXPECT_EQ(n, vec3(0.0f));
+                continue;
+            }
+            if (glm::dot(glm::dvec3(v), glm::dvec3(v)) < 1e-30) continue;  // clamped: shorter than unit
+            EXPECT_NEAR(glm::length(glm::dvec3(n)), 1.0, kFastInverseSqrtError + 3e-7) << v.x;
+        }
     }
 }
 

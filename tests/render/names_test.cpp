@@ -48,7 +48,7 @@ TEST(NameTables, PipelineStateEnums) {
                                   CompareOp::Always});
     expectOneNameEach<Interpolation>({Interpolation::PerspectiveCorrect, Interpolation::Affine});
     expectOneNameEach<BlendMode>({BlendMode::Replace, BlendMode::Additive, BlendMode::Over,
-                                  BlendMode::PremultipliedOver, BlendMode::Multiply});
+                                  BlendMode::PremultipliedOver, BlendMode::Multiply, BlendMode::OverGL});
     expectOneNameEach<ProvokingVertex>({ProvokingVertex::Last, ProvokingVertex::First});
     expectOneNameEach<FragmentOutput>({FragmentOutput::Blend, FragmentOutput::AppendToLists});
     expectOneNameEach<FragmentFate>({FragmentFate::Written, FragmentFate::DepthFailed,
@@ -69,6 +69,10 @@ TEST(NameTables, LightingEnums) {
     expectOneNameEach<NormalDistribution>({NormalDistribution::Beckmann, NormalDistribution::GGX});
     expectOneNameEach<FresnelModel>({FresnelModel::Schlick, FresnelModel::Exact});
     expectOneNameEach<GeometryTerm>({GeometryTerm::CookTorrance, GeometryTerm::SmithGGX});
+    expectOneNameEach<VertexNormals>(
+        {VertexNormals::TriangleArea, VertexNormals::PolygonArea, VertexNormals::Angle});
+    expectOneNameEach<MathPrecision>({MathPrecision::Exact, MathPrecision::Fast});
+    expectOneNameEach<Normalization>({Normalization::Exact, Normalization::Fast});
 }
 
 TEST(NameTables, FogGammaAndSceneEnums) {

@@ -1,4 +1,5 @@
 // Scenes read from files and drawn: what the scene reader's values do to the image.
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -9,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "base/errors.h"
+#include "pipeline/color.h"
 #include "pipeline/names.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
@@ -117,7 +119,8 @@ TEST_F(SceneRenderTest, ObjectBlendReachesTheUniforms) {
             return R"("objects": [{"model": ")" FACET_CUBE R"(", "material": {"opacity": 0.5}, "blend": ")" +
                    n + R"("}])";
         },
-        [](const PreparedScene& p) { return p.draws[0].uniforms.blend; }, {BlendMode::Replace});
+        [](const PreparedScene& p) { return p.draws[0].uniforms.blend; },
+        {BlendMode::Replace, BlendMode::OverGL});
 }
 
 TEST_F(SceneRenderTest, LightTypeReachesTheUniforms) {
@@ -172,6 +175,86 @@ TEST_F(SceneRenderTest, FogTransparencyAndGammaChoicesReachThePreparedScene) {
         [](const PreparedScene& p) { return p.scene.transparency.key; });
 }
 
+// Computed normals: the scene's "normals" weighting reaches the vertices the draws hold. At the origin
+// a 2×1 quad in z = 0 (the origin in its second fan triangle only) meets a triangle in x = 0
+// (tests/io/obj_import_test.cpp computes the three by hand).
+TEST_F(SceneRenderTest, NormalsChoiceReachesTheVertices) {
+    const fs::path model = folder_ / "quad.obj";
+    std::ofstream(model) << "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 0 1 0\nv 0 0 1\nf 2 3 4 1\nf 1 4 5\n";
+    const auto normalAtOrigin = [](const PreparedScene& p) {
+        for (const PreparedDraw& draw : p.draws)
+            for (const MeshVertex& v : draw.vertices)
+                if (v.position == glm::vec3(0.0f)) return v.normal;
+        return glm::vec3(0.0f);
+    };
+    const std::pair<VertexNormals, glm::vec3> expected[] = {
+        {VertexNormals::PolygonArea, glm::vec3(1, 0, 4) / std::sqrt(17.0f)},
+        {VertexNormals::TriangleArea, glm::vec3(1, 0, 2) / std::sqrt(5.0f)},
+        {VertexNormals::Angle, glm::vec3(1, 0, 1) / std::sqrt(2.0f)}};
+    for (const auto& [normals, want] : expected) {
+        SCOPED_TRACE(nameOf(normals));
+        const glm::vec3 got = normalAtOrigin(
+            prepareCube(folder_ / "scene.json", R"("objects": [{"model": ")" + model.string() +
+                                                    R"("}], "lighting": {"crease_angle": 180, "normals": ")" +
+                                                    std::string(nameOf(normals)) + R"("})"));
+        EXPECT_LT(glm::length(got - want), 1e-6f);
+    }
+}
+
+// The formulas' choices: "powers" and "normalize" reach every draw's uniforms.
+TEST_F(SceneRenderTest, FormulaChoicesReachTheUniforms) {
+    expectEveryNameReaches<MathPrecision>(
+        folder_, [](const std::string& n) { return R"("lighting": {"powers": ")" + n + R"("})"; },
+        [](const PreparedScene& p) { return p.draws[0].uniforms.precision; });
+    expectEveryNameReaches<Normalization>(
+        folder_, [](const std::string& n) { return R"("lighting": {"normalize": ")" + n + R"("})"; },
+        [](const PreparedScene& p) { return p.draws[0].uniforms.normalization; });
+}
+
+// The gl preset lights faces without a material with OpenGL 1.x's default glMaterial (ambient 0.2,
+// diffuse 0.8, specular 0, shininess 0), used as given; the facet preset keeps its own default (Ka and
+// Kd 0.8, Ks 0.2, Ns 32), decoded from sRGB. And the gl preset clamps the shininess to 128, as
+// GL_SHININESS's range is [0, 128].
+TEST_F(SceneRenderTest, GlPresetHasOpenGLsDefaultMaterialAndShininessRange) {
+    const fs::path model = folder_ / "bare.obj";
+    std::ofstream(model) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    const auto materialWith = [&](const std::string& lighting, const std::string& material) {
+        return prepareCube(folder_ / "scene.json", R"("objects": [{"model": ")" + model.string() + "\"" +
+                                                       material + R"(}], "lighting": ")" + lighting + "\"")
+            .draws[0]
+            .uniforms.material;
+    };
+    const PhongMaterial gl = materialWith("gl", "");
+    EXPECT_EQ(gl.ambient, vec3(0.2f));
+    EXPECT_EQ(gl.diffuse, vec3(0.8f));
+    EXPECT_EQ(gl.specular, vec3(0.0f));
+    EXPECT_EQ(gl.emission, vec3(0.0f));
+    EXPECT_EQ(gl.shininess, 0.0f);
+    const PhongMaterial facet = materialWith("facet", "");
+    EXPECT_EQ(facet.diffuse, vec3(srgbToLinear(0.8f)));
+    EXPECT_EQ(facet.specular, vec3(srgbToLinear(0.2f)));
+    EXPECT_EQ(facet.shininess, 32.0f);
+
+    const std::string shiny = R"(, "material": {"shininess": 500})";
+    EXPECT_EQ(materialWith("gl", shiny).shininess, 128.0f);
+    EXPECT_EQ(materialWith("facet", shiny).shininess, 500.0f);
+    EXPECT_EQ(materialWith("gl", R"(, "material": {"shininess": 100})").shininess, 100.0f);
+}
+
+// The gl preset blends a transparent object's over as OpenGL does (alpha squared); facet's keeps
+// Porter–Duff's.
+TEST_F(SceneRenderTest, GlPresetBlendsOverAsOpenGL) {
+    const auto blendWith = [&](const std::string& lighting) {
+        return prepareCube(folder_ / "scene.json", R"("objects": [{"model": ")" FACET_CUBE
+                                                   R"(", "material": {"opacity": 0.5}}], "lighting": ")" +
+                                                       lighting + "\"")
+            .draws[0]
+            .uniforms.blend;
+    };
+    EXPECT_EQ(blendWith("gl"), BlendMode::OverGL);
+    EXPECT_EQ(blendWith("facet"), BlendMode::Over);
+}
+
 // A wrong choice is refused with every name the table offers there.
 TEST_F(SceneRenderTest, WrongChoiceListsTheTablesNames) {
     const auto messageFor = [&](const std::string& json) {
@@ -186,7 +269,7 @@ TEST_F(SceneRenderTest, WrongChoiceListsTheTablesNames) {
     for (const std::string& name : namesOf<CullMode>())
         EXPECT_NE(cull.find('"' + name + '"'), std::string::npos) << cull;
     const std::string blend = messageFor(R"("objects": [{"model": ")" FACET_CUBE R"(", "blend": "screen"}])");
-    for (const std::string& name : namesOf<BlendMode>({BlendMode::Replace}))
+    for (const std::string& name : namesOf<BlendMode>({BlendMode::Replace, BlendMode::OverGL}))
         EXPECT_NE(blend.find('"' + name + '"'), std::string::npos) << blend;
     EXPECT_EQ(blend.find(std::string(nameOf(BlendMode::Replace))), std::string::npos) << blend;
 }

@@ -19,6 +19,27 @@ TEST(Quantize8, RoundsAsTheImageWriterDoes) {
     EXPECT_EQ(encodeChannel(1.0f, kLinearEncoding), 255);
 }
 
+// The gl preset rounds a value exactly halfway between two codes to the even one, as Mesa's float →
+// unorm8 (_mesa_lroundevenf) does; Facet's rounds it up. 0.5 is 127.5 codes: 128 either way (even);
+// 2.5/255 and 4.5/255 (their products with 255 are exactly 2.5 and 4.5 in float): 2 and 4, not 3 and 5;
+// 3.5/255: 4 under both.
+TEST(Quantize8, GlPresetRoundsHalfToEven) {
+    EXPECT_EQ(encodeChannel(0.5f, kGlEncoding), 128);
+    // (k + ½, the even neighbour, the one above)
+    const int cases[][3] = {{5, 2, 3}, {9, 4, 5}, {7, 4, 4}, {253, 126, 127}};
+    for (const auto& [twiceHalf, even, up] : cases) {
+        const float half = float(twiceHalf) / 2.0f;
+        const float value = half / 255.0f;
+        ASSERT_EQ(value * 255.0f, half);  // exactly halfway, after the float product
+        EXPECT_EQ(encodeChannel(value, kGlEncoding), even) << half;
+        EXPECT_EQ(encodeChannel(value, kLinearEncoding), up) << half;
+        EXPECT_EQ(toByte(value, Rounding::HalfToEven), even) << half;  // alpha alike
+    }
+    // Away from halves, both round to nearest.
+    EXPECT_EQ(encodeChannel(2.6f / 255.0f, kGlEncoding), 3);
+    EXPECT_EQ(encodeChannel(2.4f / 255.0f, kGlEncoding), 2);
+}
+
 // The three transfer curves on hand-computed values, and each one's inverse round-trips every code.
 TEST(EncodeChannel, SrgbPowerAndLinearCurves) {
     const ColorEncoding power{TransferCurve::Power, 2.2f};
