@@ -77,6 +77,8 @@ struct SceneArgs {
     std::optional<int> shadowMapSize;
     std::optional<float> shadowBias, shadowSlopeBias;
     std::optional<int> shadowFilter;
+    std::optional<TextureMaps> textures;
+    std::optional<TextureFilter> textureFilter;
 };
 
 // Adds SceneArgs's options (and the input) to `command`, as `facet render` describes them.

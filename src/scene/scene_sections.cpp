@@ -29,6 +29,7 @@ constexpr std::string_view kMaterialKeys[] = {"ambient",   "diffuse",   "specula
                                               "shininess", "opacity",   "preset",   "base_color",
                                               "metalness", "roughness", "f0"};
 constexpr std::string_view kPipelineKeys[] = {"cull", "interpolation", "subpixel_bits"};
+constexpr std::string_view kTexturesKeys[] = {"maps", "filter"};
 constexpr std::string_view kLightingKeys[] = {"preset",       "model",   "shading", "crease_angle",
                                               "distribution", "fresnel", "geometry"};
 constexpr std::string_view kObjectLightingKeys[] = {"model", "shading"};
@@ -397,6 +398,19 @@ PipelineOptions readPipeline(const SceneReader& reader, const Json& pipeline) {
     if (const Json* v = reader.find(pipeline, "subpixel_bits")) {
         options.subpixelBits = reader.wholeNumber(*v, "pipeline.subpixel_bits", 0, 8);
     }
+    return options;
+}
+
+TextureOptions readTextures(const SceneReader& reader, const Json& textures) {
+    const std::string path = "textures";
+    reader.requireObject(textures, path, "an object like {\"filter\": \"trilinear\"}");
+    reader.checkKeys(textures, path, kTexturesKeys);
+
+    TextureOptions options;
+    if (const Json* v = reader.find(textures, "maps"))
+        options.maps = reader.enumChoice<TextureMaps>(*v, "textures.maps");
+    if (const Json* v = reader.find(textures, "filter"))
+        options.filter = reader.enumChoice<TextureFilter>(*v, "textures.filter");
     return options;
 }
 
