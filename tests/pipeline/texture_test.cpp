@@ -109,9 +109,6 @@ TEST(Texture, EmptyIsWhiteAndNonFiniteCoordinatesAreBlack) {
     EXPECT_EQ(sampleBilinear(t, {0.5f, std::numeric_limits<float>::infinity()}), vec4(0.0f));
 }
 
-}  // namespace
-}  // namespace facet
-
 // ---- Nearest, mip chains and trilinear ------------------------------------------------------------
 
 // An 8-bit texture with sRGB-decoding colour tables, its codes from `codes(x, y)`.
@@ -256,3 +253,6 @@ TEST(Texture, TrilinearLevelOfDetail) {
     EXPECT_EQ(sampleTrilinear(t, uv, {0.0f, 0.0f}, {0.0f, 1000.0f}).r, 4.0f);  // beyond the 1×1 level
     EXPECT_EQ(sampleTrilinear(t, uv, {0.0f, 0.0f}, {0.0f, 0.0f}).r, 0.0f);     // a point: level 0
 }
+
+}  // namespace
+}  // namespace facet
