@@ -42,7 +42,7 @@ double farHalfError(const LinearImage& image, const LinearImage& truth) {
     return sum / (3.0 * count);
 }
 
-// Measured: nearest 0.0898, bilinear 0.0795, trilinear 0.0437 (see the margins below).
+// Measured: nearest 0.0235, bilinear 0.0191, trilinear 0.0036; the margins (0.4 and 0.9) leave room.
 // Breaks caught: trilinear sampling level 0 only (its error becomes bilinear's), λ computed from the
 // derivatives of the wrong varyings, or the mip chain averaged in the codes (sRGB) instead of linear
 // light (the far floor too dark: the mean of black and white codes is 0.21, not ½).
@@ -56,8 +56,8 @@ TEST_F(TextureFilterTest, TrilinearIsClosestToTheReferenceOnAGrazingCheckerboard
     const double trilinear = farHalfError(renderWith(scene, TextureFilter::Trilinear), truth);
     std::printf("far-half mean error: nearest %.4f, bilinear %.4f, trilinear %.4f\n", nearest, bilinear,
                 trilinear);
-    EXPECT_LT(trilinear, 0.7 * bilinear);
-    EXPECT_LT(bilinear, nearest);
+    EXPECT_LT(trilinear, 0.4 * bilinear);
+    EXPECT_LT(bilinear, 0.9 * nearest);
 }
 
 }  // namespace
