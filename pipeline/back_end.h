@@ -135,13 +135,19 @@ void shadeQueue(FragmentQueue& queue, const DrawPlan& plan, const typename S::Un
 
 // The covered pixels of one block: barycentrics, depth, and the depth test (before shading: the shader
 // cannot change depth, so testing early gives the same image and skips hidden fragments). Fragments
-// that pass go to the queue, which is shaded whenever it holds eight.
-template <Shader S, FragmentOutput kOutput, class Depth, ColorBufferFormat kColor, class Observer>
+// that pass go to the queue, which is shaded whenever it holds eight. kDerivatives (a draw whose shader
+// reads them: drawUsesDerivatives): each queued fragment also gets its texture coordinates' derivatives,
+// from its own triangle's planes.
+template <Shader S, FragmentOutput kOutput, class Depth, ColorBufferFormat kColor, bool kDerivatives,
+          class Observer>
 void depthTestBlock(const TriangleSetup& setup, const float* planes, const CoverageBlock& block,
                     FragmentQueue& queue, const DrawPlan& plan, const typename S::Uniforms& uniforms,
                     Framebuffer& target, DrawStats& stats, Observer& observer) {
     constexpr bool kObserving = Observer::enabled;
     const BlockBarycentrics barycentrics(setup, block.x, block.y);
+    constexpr int kUv = derivativeVarying<S>();
+    VaryingPairSlopes uvSlopes;
+    if constexpr (kDerivatives) uvSlopes = VaryingPairSlopes(setup, planes, kUv);
 
     for (int row = 0; row < kBlockSize; ++row) {
         const unsigned rowMask = static_cast<unsigned>(block.mask >> (row * kBlockSize)) & 0xffu;
@@ -175,7 +181,12 @@ void depthTestBlock(const TriangleSetup& setup, const float* planes, const Cover
         // sliver of a triangle left one or two (the same bits either way: interpolate.h).
         FragmentBatch rowVaryings;
         const bool wideRow = std::popcount(passed) > 2;
-        if (wideRow) interpolateVaryings(setup, planes, b1, b2, rowVaryings);
+        if (wideRow) {
+            interpolateVaryings(setup, planes, b1, b2, rowVaryings);
+            if constexpr (kDerivatives)
+                interpolateDerivatives<Float8>(setup, uvSlopes, b1, b2, &rowVaryings.varyings[kUv],
+                                               rowVaryings.uvDerivatives);
+        }
         for (int lane = 0; lane < kBlockSize; ++lane) {
             if (!(rowMask & (1u << lane))) continue;
             if (!(passed & (1u << lane))) {
@@ -204,11 +215,21 @@ void depthTestBlock(const TriangleSetup& setup, const float* planes, const Cover
             if (wideRow) {
                 for (int k = 0; k < setup.varyingCount; ++k)
                     queue.batch.varyings[k][slot] = rowVaryings.varyings[k][lane];
+                if constexpr (kDerivatives)
+                    for (int k = 0; k < 4; ++k)
+                        queue.batch.uvDerivatives[k][slot] = rowVaryings.uvDerivatives[k][lane];
             } else {
                 float varyings[kMaxVaryingFloats];
                 interpolateVaryings(setup, planes, b1[lane], b2[lane], varyings);
                 for (int k = 0; k < setup.varyingCount; ++k)
                     queue.batch.varyings[k][slot] = varyings[k];
+                if constexpr (kDerivatives) {
+                    float derivatives[4];
+                    interpolateDerivatives<float>(setup, uvSlopes, b1[lane], b2[lane], &varyings[kUv],
+                                                  derivatives);
+                    for (int k = 0; k < 4; ++k)
+                        queue.batch.uvDerivatives[k][slot] = derivatives[k];
+                }
             }
             if (queue.count == kBlockSize)
                 shadeQueue<S, kOutput, Depth, kColor>(queue, plan, uniforms, target, stats, observer);
@@ -218,7 +239,8 @@ void depthTestBlock(const TriangleSetup& setup, const float* planes, const Cover
 
 // One tile: its triangles from every chunk, in submission order. An observer also sees the coverage
 // decision at every sample of a triangle's bounding box inside the tile, before its fragments.
-template <Shader S, FragmentOutput kOutput, class Depth, ColorBufferFormat kColor, class Observer>
+template <Shader S, FragmentOutput kOutput, class Depth, ColorBufferFormat kColor, bool kDerivatives,
+          class Observer>
 void drawTile(const PixelRect& rect, std::size_t tile, std::span<const SetupChunk> chunks,
               const DrawPlan& plan, const typename S::Uniforms& uniforms, Framebuffer& target,
               DrawStats& stats, Observer& observer) {
@@ -244,24 +266,25 @@ void drawTile(const PixelRect& rect, std::size_t tile, std::span<const SetupChun
                         observer.onCoverage(coverageAt(setup, x, y));
             }
             rasterizeBlocks(setup, rect, [&](const CoverageBlock& block) {
-                depthTestBlock<S, kOutput, Depth, kColor>(setup, planes, block, queue, plan, uniforms, target,
-                                                          stats, observer);
+                depthTestBlock<S, kOutput, Depth, kColor, kDerivatives>(setup, planes, block, queue, plan,
+                                                                        uniforms, target, stats, observer);
             });
         }
     }
     shadeQueue<S, kOutput, Depth, kColor>(queue, plan, uniforms, target, stats, observer);
 }
 
-template <Shader S, FragmentOutput kOutput, class Depth, ColorBufferFormat kColor, class Observer>
+template <Shader S, FragmentOutput kOutput, class Depth, ColorBufferFormat kColor, bool kDerivatives,
+          class Observer>
 void drawTiles(std::span<const std::uint32_t> activeTiles, const TileGrid& grid,
                std::span<const SetupChunk> chunks, const DrawPlan& plan, const typename S::Uniforms& uniforms,
                Framebuffer& target, ThreadPool& pool, bool inOrder, std::span<DrawStats> threadStats,
                Observer& observer) {
     forEachItem(pool, inOrder, activeTiles.size(), [&](std::size_t active, int thread) {
         const std::size_t tile = activeTiles[active];
-        drawTile<S, kOutput, Depth, kColor>(grid.tileRect(static_cast<int>(tile)), tile, chunks, plan,
-                                            uniforms, target, threadStats[static_cast<std::size_t>(thread)],
-                                            observer);
+        drawTile<S, kOutput, Depth, kColor, kDerivatives>(
+            grid.tileRect(static_cast<int>(tile)), tile, chunks, plan, uniforms, target,
+            threadStats[static_cast<std::size_t>(thread)], observer);
     });
 }
 
@@ -270,8 +293,8 @@ void drawTiles(std::span<const std::uint32_t> activeTiles, const TileGrid& grid,
 // The back end for one batch of set-up chunks: only the tiles some triangle touches (a draw of a few
 // triangles, such as a short run of the transparent pass, then costs little more than its triangles,
 // and a single tile is drawn on the calling thread without waking the pool), in parallel unless
-// `inOrder`. The FragmentOutput and the depth and colour buffer formats are chosen here, once per draw.
-// Returns the number of tiles drawn.
+// `inOrder`. The FragmentOutput, the depth and colour buffer formats, and whether fragments get their
+// texture coordinates' derivatives are chosen here, once per draw. Returns the number of tiles drawn.
 template <Shader S, class Observer>
 std::size_t drawBatchTiles(const TileGrid& grid, std::span<const SetupChunk> chunks, const DrawPlan& plan,
                            const typename S::Uniforms& uniforms, Framebuffer& target, ThreadPool& pool,
@@ -284,29 +307,41 @@ std::size_t drawBatchTiles(const TileGrid& grid, std::span<const SetupChunk> chu
                 activeTiles.push_back(static_cast<std::uint32_t>(tile));
                 break;
             }
-    withDepthFormat(plan.depthFormat, [&](auto depthFormat) {
-        using Depth = decltype(depthFormat);
-        if (plan.output == FragmentOutput::AppendToLists) {
-            // Appended fragments reach the colour buffer in the resolve, which rounds them.
-            detail::drawTiles<S, FragmentOutput::AppendToLists, Depth, ColorBufferFormat::Float>(
+    const auto drawWith = [&]<bool kDerivatives>() {
+        withDepthFormat(plan.depthFormat, [&](auto depthFormat) {
+            using Depth = decltype(depthFormat);
+            if (plan.output == FragmentOutput::AppendToLists) {
+                // Appended fragments reach the colour buffer in the resolve, which rounds them.
+                detail::drawTiles<S, FragmentOutput::AppendToLists, Depth, ColorBufferFormat::Float,
+                                  kDerivatives>(activeTiles, grid, chunks, plan, uniforms, target, pool,
+                                                inOrder, threadStats, observer);
+                return;
+            }
+            switch (plan.colorBuffer) {
+                case ColorBufferFormat::Half:
+                    detail::drawTiles<S, FragmentOutput::Blend, Depth, ColorBufferFormat::Half, kDerivatives>(
+                        activeTiles, grid, chunks, plan, uniforms, target, pool, inOrder, threadStats,
+                        observer);
+                    return;
+                case ColorBufferFormat::Unorm8:
+                    detail::drawTiles<S, FragmentOutput::Blend, Depth, ColorBufferFormat::Unorm8,
+                                      kDerivatives>(activeTiles, grid, chunks, plan, uniforms, target, pool,
+                                                    inOrder, threadStats, observer);
+                    return;
+                case ColorBufferFormat::Float:
+                    break;
+            }
+            detail::drawTiles<S, FragmentOutput::Blend, Depth, ColorBufferFormat::Float, kDerivatives>(
                 activeTiles, grid, chunks, plan, uniforms, target, pool, inOrder, threadStats, observer);
-            return;
+        });
+    };
+    if constexpr (derivativeVarying<S>() >= 0) {
+        if (drawUsesDerivatives<S>(uniforms)) {
+            drawWith.template operator()<true>();
+            return activeTiles.size();
         }
-        switch (plan.colorBuffer) {
-            case ColorBufferFormat::Half:
-                detail::drawTiles<S, FragmentOutput::Blend, Depth, ColorBufferFormat::Half>(
-                    activeTiles, grid, chunks, plan, uniforms, target, pool, inOrder, threadStats, observer);
-                return;
-            case ColorBufferFormat::Unorm8:
-                detail::drawTiles<S, FragmentOutput::Blend, Depth, ColorBufferFormat::Unorm8>(
-                    activeTiles, grid, chunks, plan, uniforms, target, pool, inOrder, threadStats, observer);
-                return;
-            case ColorBufferFormat::Float:
-                break;
-        }
-        detail::drawTiles<S, FragmentOutput::Blend, Depth, ColorBufferFormat::Float>(
-            activeTiles, grid, chunks, plan, uniforms, target, pool, inOrder, threadStats, observer);
-    });
+    }
+    drawWith.template operator()<false>();
     return activeTiles.size();
 }
 

@@ -80,6 +80,51 @@ inline void interpolateVaryings(const TriangleSetup& s, const float* planes, F b
     }
 }
 
+// The screen-space derivatives of two neighbouring varyings k, k + 1 (a texture coordinate pair), for
+// a texture's level of detail (OpenGL 4.6 §8.14.1). Per triangle: the slopes in x and y (per pixel, y
+// down the rows) of their planes A (a/w, or a itself when affine) and of W = 1/w, from λ1's and λ2's
+// slopes ∂λᵢ/∂x = a_edge(i)·kFixedOne / (2·area), computed in double and rounded once.
+struct VaryingPairSlopes {
+    float ax[2] = {}, ay[2] = {};  // ∂A/∂x, ∂A/∂y of each of the two
+    float wx = 0, wy = 0;          // ∂W/∂x, ∂W/∂y
+
+    VaryingPairSlopes() = default;
+    VaryingPairSlopes(const TriangleSetup& s, const float* planes, int k) {
+        const double invArea = 1.0 / static_cast<double>(s.doubleArea);
+        const double b1x = static_cast<double>(s.edges[1].a * kFixedOne) * invArea;
+        const double b1y = static_cast<double>(s.edges[1].b * kFixedOne) * invArea;
+        const double b2x = static_cast<double>(s.edges[2].a * kFixedOne) * invArea;
+        const double b2y = static_cast<double>(s.edges[2].b * kFixedOne) * invArea;
+        for (int i = 0; i < 2; ++i) {
+            const float* plane = planes + 3 * (k + i);
+            ax[i] = static_cast<float>(plane[1] * b1x + plane[2] * b2x);
+            ay[i] = static_cast<float>(plane[1] * b1y + plane[2] * b2y);
+        }
+        wx = static_cast<float>(s.dInvW1 * b1x + s.dInvW2 * b2x);
+        wy = static_cast<float>(s.dInvW1 * b1y + s.dInvW2 * b2y);
+    }
+};
+
+// ∂a/∂x, ∂b/∂x, ∂a/∂y, ∂b/∂y of the pair (a, b) = `value` (as interpolateVaryings gave them) into
+// out[0..3]. Perspective-correct, a = A/W: ∂a/∂x = (A_x − a·W_x)/W, the quotient rule with A = a·W;
+// affine, the planes' slopes themselves. The same operations for one lane and eight: the same bits.
+template <class F>
+inline void interpolateDerivatives(const TriangleSetup& s, const VaryingPairSlopes& d, F b1, F b2,
+                                   const F* value, F* out) {
+    if (s.perspective) {
+        const F w = reciprocal(interpolateInvW(s, b1, b2));
+        out[0] = (d.ax[0] - value[0] * d.wx) * w;
+        out[1] = (d.ax[1] - value[1] * d.wx) * w;
+        out[2] = (d.ay[0] - value[0] * d.wy) * w;
+        out[3] = (d.ay[1] - value[1] * d.wy) * w;
+    } else {
+        out[0] = lanes<F>(d.ax[0]);
+        out[1] = lanes<F>(d.ax[1]);
+        out[2] = lanes<F>(d.ay[0]);
+        out[3] = lanes<F>(d.ay[1]);
+    }
+}
+
 // Eight fragments at once, into a FragmentBatch (structure of arrays).
 inline void interpolateVaryings(const TriangleSetup& s, const float* planes, Float8 b1, Float8 b2,
                                 FragmentBatch& out) {

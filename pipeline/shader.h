@@ -64,6 +64,41 @@ constexpr int flatVaryingFloats() {
     }
 }
 
+// A shader may declare `static constexpr int kDerivativeVarying = k;`: floats k and k + 1 of its
+// Varyings are texture coordinates (u, v) whose screen-space derivatives it wants, for a texture's
+// level of detail (GLSL's dFdx/dFdy of them, computed exactly from the triangle's planes:
+// interpolate.h). It may add `static bool usesDerivatives(const Uniforms&)`: whether a draw with
+// these uniforms reads them, asked once per draw, so a draw that does not pays nothing.
+template <class S>
+constexpr int derivativeVarying() {
+    if constexpr (requires { S::kDerivativeVarying; }) {
+        static_assert(S::kDerivativeVarying >= flatVaryingFloats<S>() &&
+                          S::kDerivativeVarying + 2 <= kVaryingFloatCount<typename S::Varyings>,
+                      "kDerivativeVarying must be the first of two interpolated floats of Varyings");
+        return S::kDerivativeVarying;
+    } else {
+        return -1;
+    }
+}
+template <class S>
+bool drawUsesDerivatives(const typename S::Uniforms& uniforms) {
+    if constexpr (derivativeVarying<S>() < 0) {
+        return false;
+    } else if constexpr (requires { S::usesDerivatives(uniforms); }) {
+        return S::usesDerivatives(uniforms);
+    } else {
+        return true;
+    }
+}
+
+// The screen-space derivatives of a texture coordinate pair at one fragment or eight: ∂uv/∂x and ∂uv/∂y
+// (per pixel; y down the rows). Zero (the default): a point, which a texture samples at level 0.
+template <class F>
+struct TexCoordDerivativesT {
+    LaneVec2<F> dx{};
+    LaneVec2<F> dy{};
+};
+
 // A shader may also shade eight vertices at once, to run per-vertex work (Gouraud lighting) in eight
 // lanes as fragmentBatch does for fragments:
 //   static void vertexBatch(const Attributes* in, const Uniforms&, VertexOut<Varyings>* out);
@@ -174,8 +209,17 @@ struct LaneShader : Body {
     static vec4 fragment(const Varyings& in, const Uniforms& u) {
         return Body::template shade<float>(in, u, 1u);
     }
+    // With kDerivativeVarying, the batch's uvDerivatives (filled when the draw uses them) go to shade().
     static Vec4x8 fragmentBatch(const FragmentBatch& in, const Uniforms& u) {
-        return Body::template shade<Float8>(loadLanes<Body::template VaryingsT>(in), u, in.mask);
+        if constexpr (requires { Body::kDerivativeVarying; }) {
+            TexCoordDerivativesT<Float8> derivatives;
+            static_assert(sizeof derivatives == sizeof in.uvDerivatives);
+            std::memcpy(&derivatives, in.uvDerivatives, sizeof derivatives);
+            return Body::template shade<Float8>(loadLanes<Body::template VaryingsT>(in), u, in.mask,
+                                                derivatives);
+        } else {
+            return Body::template shade<Float8>(loadLanes<Body::template VaryingsT>(in), u, in.mask);
+        }
     }
     static void vertexBatch(const Attributes* in, const Uniforms& u,
                             VertexOut<Varyings>* out) requires LanewiseVertexLighting<Body> {

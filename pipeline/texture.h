@@ -1,16 +1,34 @@
-// Textures: an RGBA image sampled with bilinear filtering and repeat wrapping (GL_LINEAR, GL_REPEAT),
-// texel centres at (i + ½)/size as in OpenGL. Read-only during a draw.
+// Textures: an RGBA image with repeat wrapping (GL_REPEAT) and texel centres at (i + ½)/size as in
+// OpenGL, sampled with the draw's filter: nearest (GL_NEAREST), bilinear (GL_LINEAR) or trilinear
+// (GL_LINEAR_MIPMAP_LINEAR over a mip chain). Read-only during a draw.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "glsl.h"
+#include "names.h"
 
 namespace facet {
+
+// How a texture is filtered (per draw: SurfaceUniforms::textureFilter). docs/trade.md weighs them.
+enum class TextureFilter : std::uint8_t {
+    Nearest,    // the texel containing uv (GL_NEAREST): one read, blocky up close, moiré far away
+    Bilinear,   // the four nearest texels weighted (GL_LINEAR): smooth up close, moiré far away
+    Trilinear,  // bilinear in the two mip levels around the footprint's size, blended
+                // (GL_LINEAR_MIPMAP_LINEAR)
+};
+inline constexpr EnumName<TextureFilter> kTextureFilterNames[] = {{TextureFilter::Nearest, "nearest"},
+                                                                  {TextureFilter::Bilinear, "bilinear"},
+                                                                  {TextureFilter::Trilinear, "trilinear"}};
+constexpr std::span<const EnumName<TextureFilter>> enumNames(TextureFilter) {
+    return kTextureFilterNames;
+}
 
 // Texels are kept at their file's precision: an 8-bit file as its codes (4 bytes a texel, a quarter of
 // float RGBA), decoded to linear values when sampled through a 256-entry table per channel kind; float
@@ -25,9 +43,19 @@ struct Texture {
     std::vector<Codes> codes;                // 8-bit RGBA codes, decoded by the tables below
     std::array<float, 256> colorFromCode{};  // an R, G or B code's linear value (sRGB-decoded, or code/255)
     std::array<float, 256> alphaFromCode{};  // an alpha code's value (code/255: alpha is not encoded)
+    // Mip levels 1, 2, … down to 1×1 (level 0 is this texture), each in this texture's form: built by
+    // buildMipChain() only for a texture some draw filters trilinearly; empty otherwise.
+    std::vector<Texture> mipLevels;
 
     bool empty() const { return texels.empty() && codes.empty(); }
-    std::size_t bytes() const { return texels.size() * sizeof(vec4) + codes.size() * sizeof(Codes); }
+    std::size_t bytes() const {
+        std::size_t total = texels.size() * sizeof(vec4) + codes.size() * sizeof(Codes);
+        for (const Texture& level : mipLevels)
+            total += level.bytes();
+        return total;
+    }
+    int levelCount() const { return 1 + static_cast<int>(mipLevels.size()); }
+    const Texture& level(int i) const { return i == 0 ? *this : mipLevels[static_cast<std::size_t>(i - 1)]; }
     vec4 texel(int x, int y) const {
         const std::size_t i = static_cast<std::size_t>(y) * width + x;
         if (codes.empty()) return texels[i];
@@ -36,8 +64,31 @@ struct Texture {
     }
 };
 
-// texture(sampler, uv) in GLSL terms. v = 0 is the bottom row of the image, as OBJ texture coordinates
-// and OpenGL expect.
+// The size of the mip level below a side of n texels: floor(n/2), at least 1 (OpenGL 4.6 §8.14.3).
+constexpr int mipSide(int n) {
+    return std::max(1, n / 2);
+}
+
+// Builds t.mipLevels (once: a texture that has them keeps them). Each level is a box filter of the one
+// above in linear light: 8-bit texels are decoded through their tables, averaged, and re-encoded to the
+// nearest code of the same table, so a level costs a quarter of the one above in the file's form
+// (4/3 of the texture in all) rather than 16 bytes a texel as float RGBA. A side of even length n
+// halves exactly (each texel the mean of 2×2); an odd one (floor halving to m = (n − 1)/2) gives each
+// new texel the area of the old row it covers, [i·n/m, (i + 1)·n/m), so the odd texel's weight is
+// shared by its neighbours and every old texel counts in proportion to its area.
+void buildMipChain(Texture& t);
+
+namespace detail {
+
+inline int wrapTexel(float i, int n) {
+    const int m = static_cast<int>(std::fmod(i, static_cast<float>(n)));
+    return m < 0 ? m + n : m;
+}
+
+}  // namespace detail
+
+// texture(sampler, uv) with GL_LINEAR in GLSL terms. v = 0 is the bottom row of the image, as OBJ
+// texture coordinates and OpenGL expect.
 inline vec4 sampleBilinear(const Texture& t, vec2 uv) {
     if (t.empty()) return vec4(1.0f);
     // Continuous texel coordinates, texel centres at integers; the image's first row is v = 1.
@@ -46,13 +97,43 @@ inline vec4 sampleBilinear(const Texture& t, vec2 uv) {
     if (!std::isfinite(u) || !std::isfinite(v)) return vec4(0.0f);
     const float fu = std::floor(u), fv = std::floor(v);
     const float s = u - fu, r = v - fv;  // bilinear weights
-    auto wrap = [](float i, int n) {
-        const int m = static_cast<int>(std::fmod(i, static_cast<float>(n)));
-        return m < 0 ? m + n : m;
-    };
-    const int x0 = wrap(fu, t.width), x1 = wrap(fu + 1.0f, t.width);
-    const int y0 = wrap(fv, t.height), y1 = wrap(fv + 1.0f, t.height);
+    const int x0 = detail::wrapTexel(fu, t.width), x1 = detail::wrapTexel(fu + 1.0f, t.width);
+    const int y0 = detail::wrapTexel(fv, t.height), y1 = detail::wrapTexel(fv + 1.0f, t.height);
     return mix(mix(t.texel(x0, y0), t.texel(x1, y0), s), mix(t.texel(x0, y1), t.texel(x1, y1), s), r);
+}
+
+// GL_NEAREST: the texel whose square [i, i + 1)/size contains uv.
+inline vec4 sampleNearest(const Texture& t, vec2 uv) {
+    if (t.empty()) return vec4(1.0f);
+    const float u = uv.x * static_cast<float>(t.width);
+    const float v = (1.0f - uv.y) * static_cast<float>(t.height);
+    if (!std::isfinite(u) || !std::isfinite(v)) return vec4(0.0f);
+    return t.texel(detail::wrapTexel(std::floor(u), t.width), detail::wrapTexel(std::floor(v), t.height));
+}
+
+// The level of detail λ = log2 ρ of OpenGL 4.6 §8.14.1, from uv's screen-space derivatives (per pixel):
+//   ρ = max(√((∂u/∂x·w)² + (∂v/∂x·h)²), √((∂u/∂y·w)² + (∂v/∂y·h)²))
+// the longer side of the pixel's footprint in level-0 texels (w × h). Not clamped: −∞ for a point.
+inline float textureLod(const Texture& t, vec2 uvDx, vec2 uvDy) {
+    const vec2 size(static_cast<float>(t.width), static_cast<float>(t.height));
+    const vec2 dx = uvDx * size, dy = uvDy * size;
+    const float rho = std::sqrt(std::max(dot(dx, dx), dot(dy, dy)));
+    return std::log2(rho);
+}
+
+// GL_LINEAR_MIPMAP_LINEAR: λ clamped to [0, levels − 1]; bilinear in level ⌊λ⌋ and the next, mixed
+// by λ's fraction (§8.14.2–3). λ ≤ 0 is magnification: level 0 alone (GL_LINEAR, the magnification
+// filter). A texture without a mip chain is its level 0 only.
+inline vec4 sampleTrilinear(const Texture& t, vec2 uv, vec2 uvDx, vec2 uvDy) {
+    if (t.empty()) return vec4(1.0f);
+    const float lod = textureLod(t, uvDx, uvDy);
+    // NaN derivatives (uv not finite) sample level 0, which answers as bilinear does.
+    if (!(lod > 0.0f)) return sampleBilinear(t, uv);
+    const int last = t.levelCount() - 1;
+    if (lod >= static_cast<float>(last)) return sampleBilinear(t.level(last), uv);
+    const int fine = static_cast<int>(lod);
+    const float blend = lod - static_cast<float>(fine);
+    return mix(sampleBilinear(t.level(fine), uv), sampleBilinear(t.level(fine + 1), uv), blend);
 }
 
 }  // namespace facet

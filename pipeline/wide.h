@@ -149,6 +149,9 @@ inline float max(float a, float b) {
 // shader reads them as its VaryingsT<Float8> (shader.h's loadLanes).
 struct FragmentBatch {
     Float8 varyings[kMaxVaryingFloats];
+    // ∂u/∂x, ∂v/∂x, ∂u/∂y, ∂v/∂y of the shader's texture coordinates (its kDerivativeVarying pair, per
+    // pixel), filled only in a draw whose shader asks for them (shader.h); otherwise not written.
+    Float8 uvDerivatives[4];
     std::uint32_t mask = 0;  // bit i: lane i is a live fragment (others hold meaningless values)
 };
 

@@ -161,6 +161,12 @@ void addSceneOptions(CLI::App& command, SceneArgs& args) {
         .add_option("--shadow-filter", args.shadowFilter,
                     "Shadow maps: depth comparisons averaged per point, 1, 4 or 16 (default 4)")
         ->check(kWholeNumber);
+    addChoice(command, "--textures", args.textures,
+              "The MTL's texture maps: used, or ignored so surfaces take their materials' colours" +
+                  byDefault(TextureMaps::On));
+    addChoice(command, "--texture-filter", args.textureFilter,
+              "Texture filtering: the nearest texel, bilinear, or trilinear over mipmaps (docs/trade.md)" +
+                  byDefault(TextureFilter::Bilinear));
     addBufferFormatOptions(command, args);
 }
 
@@ -242,6 +248,8 @@ void applyLightingOptions(const SceneArgs& args, facet::Scene& scene) {
         scene.gamma.exponent = *args.gamma;
     }
     if (args.shadows) scene.shadows = *args.shadows;
+    if (args.textures) scene.textures.maps = *args.textures;
+    if (args.textureFilter) scene.textures.filter = *args.textureFilter;
     if (args.shadowMapSize) {
         if (*args.shadowMapSize < 16 || *args.shadowMapSize > facet::kMaxShadowMapSize)
             throw facet::InputError("--shadow-map-size must be from 16 to " +

@@ -85,6 +85,8 @@ struct SceneArgs {
     std::optional<int> shadowMapSize;
     std::optional<float> shadowBias, shadowSlopeBias;
     std::optional<int> shadowFilter;
+    std::optional<TextureMaps> textures;
+    std::optional<TextureFilter> textureFilter;
 };
 
 // Adds the accuracy choices of the formulas (--normals, --powers, --normalize, --fresnel) to `command`:

@@ -49,6 +49,9 @@ ReferenceDraw referenceDraw(const PreparedDraw& draw, const SceneShadows* shadow
     out.uniforms.brdf.fresnel = FresnelModel::Exact;    // the exact dielectric Fresnel, not Schlick's
     out.uniforms.shadows = shadows;                     // ray-cast, whatever the scene's method
     out.uniforms.terms = terms;
+    // Bilinear at each ray's point, whatever the draw's filter: with N×N rays a pixel the reference
+    // integrates the pixel's footprint itself, the truth a filter (nearest, trilinear) approximates.
+    out.uniforms.textureFilter = TextureFilter::Bilinear;
     return out;
 }
 

@@ -234,6 +234,9 @@ PreparedScene prepareScene(const Scene& scene, const TextureLimits& limits) {
             return nullptr;
         }
         auto owned = std::make_unique<Texture>(std::move(read.texture));
+        // Every draw filters as the scene says: trilinear needs the mip chain, built once here (a third
+        // more memory), and no other filter builds it.
+        if (scene.textures.filter == TextureFilter::Trilinear) buildMipChain(*owned);
         textureBytes += owned->bytes();
         if (hasTranslucentTexel(*owned)) texturesWithAlpha.insert(owned.get());
         it->second = owned.get();
@@ -299,6 +302,8 @@ PreparedScene prepareScene(const Scene& scene, const TextureLimits& limits) {
     common.twoSidedFlip = !glPreset;
     common.clampColor = glPreset;
     common.fog = fogParams(scene, sceneBounds, camera, decode);
+    common.textureFilter = scene.textures.filter;
+    const bool textured = scene.textures.maps == TextureMaps::On;
     const glm::dmat4& viewFromWorld = camera.viewFromWorldExact;
     const double s = camera.viewScale;
     for (std::size_t i = 0; i < lights.size(); ++i) {
@@ -349,7 +354,7 @@ PreparedScene prepareScene(const Scene& scene, const TextureLimits& limits) {
             draw.worldFromObject = object.worldFromObject;
             draw.viewFromObjectExact = camera.viewFromWorldExact * glm::dmat4(object.worldFromObject);
             Material material = mesh.materials.at(part.material);
-            if (!material.emissionTexture.empty())
+            if (textured && !material.emissionTexture.empty())
                 draw.uniforms.emissionMap = loadTexture(material.emissionTexture, material.name);
             // map_Ke without Ke (or with Ke 0) means the texture is the emission, as exporters write it.
             if (draw.uniforms.emissionMap && material.emission == vec3(0.0f)) material.emission = vec3(1.0f);
@@ -361,7 +366,7 @@ PreparedScene prepareScene(const Scene& scene, const TextureLimits& limits) {
                 draw.uniforms.material.shininess = std::min(draw.uniforms.material.shininess, 128.0f);
             draw.uniforms.pbr = pbrMaterial(draw.uniforms.material, object.material, decode, scene.source);
             draw.uniforms.opacity = object.material.opacity.value_or(material.opacity);
-            if (!material.diffuseTexture.empty())
+            if (textured && !material.diffuseTexture.empty())
                 draw.uniforms.diffuseMap = loadTexture(material.diffuseTexture, material.name);
             extractPart(mesh, part, draw);
             // Transparent: see through it (opacity, a texture's alpha) or blended other than over.

@@ -39,6 +39,7 @@ Scene loadScene(const fs::path& path) {
     if (const Json* v = reader.find(document, "ambient")) scene.ambientLight = reader.color(*v, "ambient");
     if (const Json* v = reader.find(document, "camera")) scene.camera = readCamera(reader, *v);
     if (const Json* v = reader.find(document, "pipeline")) scene.pipeline = readPipeline(reader, *v);
+    if (const Json* v = reader.find(document, "textures")) scene.textures = readTextures(reader, *v);
     if (const Json* v = reader.find(document, "lighting")) scene.lighting = readLighting(reader, *v);
     if (const Json* v = reader.find(document, "transparency"))
         scene.transparency = readTransparency(reader, *v);

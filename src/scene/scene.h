@@ -12,6 +12,7 @@
 #include <glm/glm.hpp>
 
 #include "pipeline/state.h"
+#include "pipeline/texture.h"
 #include "scene/limits.h"
 #include "scene/mesh.h"
 #include "shading/fog.h"
@@ -144,6 +145,21 @@ constexpr int samplesPerPixel(Antialiasing aa) {
     return 1;
 }
 
+// Whether the MTL's texture maps (map_Kd, map_Ke) are used ("textures": {"maps"}, --textures): off
+// draws every surface in its material's colours, as an untextured model.
+enum class TextureMaps : std::uint8_t { On, Off };
+inline constexpr EnumName<TextureMaps> kTextureMapsNames[] = {{TextureMaps::On, "on"},
+                                                              {TextureMaps::Off, "off"}};
+constexpr std::span<const EnumName<TextureMaps>> enumNames(TextureMaps) {
+    return kTextureMapsNames;
+}
+
+// "textures": whether the maps are used and how they are filtered (pipeline/texture.h).
+struct TextureOptions {
+    TextureMaps maps = TextureMaps::On;
+    TextureFilter filter = TextureFilter::Bilinear;
+};
+
 struct PipelineOptions {
     CullMode cull = CullMode::Back;
     Interpolation interpolation = Interpolation::PerspectiveCorrect;
@@ -208,6 +224,7 @@ struct Scene {
     std::vector<LightSpec> lights;    // empty in a file: one default light is used
     std::vector<ObjectSpec> objects;  // at least one
     PipelineOptions pipeline;
+    TextureOptions textures;
     LightingOptions lighting;
     TransparencyOptions transparency;
     FogSpec fog;

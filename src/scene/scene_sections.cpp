@@ -30,6 +30,7 @@ constexpr std::string_view kMaterialKeys[] = {"ambient",   "diffuse",   "specula
                                               "metalness", "roughness", "f0"};
 constexpr std::string_view kPipelineKeys[] = {"cull",  "interpolation", "subpixel_bits",
                                               "depth", "color_buffer",  "antialiasing"};
+constexpr std::string_view kTexturesKeys[] = {"maps", "filter"};
 constexpr std::string_view kLightingKeys[] = {"preset",  "model",   "shading",   "crease_angle",
                                               "normals", "powers",  "normalize", "distribution",
                                               "fresnel", "geometry"};
@@ -414,6 +415,19 @@ PipelineOptions readPipeline(const SceneReader& reader, const Json& pipeline) {
     if (const Json* v = reader.find(pipeline, "antialiasing")) {
         options.antialiasing = reader.enumChoice<Antialiasing>(*v, "pipeline.antialiasing");
     }
+    return options;
+}
+
+TextureOptions readTextures(const SceneReader& reader, const Json& textures) {
+    const std::string path = "textures";
+    reader.requireObject(textures, path, "an object like {\"filter\": \"trilinear\"}");
+    reader.checkKeys(textures, path, kTexturesKeys);
+
+    TextureOptions options;
+    if (const Json* v = reader.find(textures, "maps"))
+        options.maps = reader.enumChoice<TextureMaps>(*v, "textures.maps");
+    if (const Json* v = reader.find(textures, "filter"))
+        options.filter = reader.enumChoice<TextureFilter>(*v, "textures.filter");
     return options;
 }
 

@@ -12,8 +12,8 @@
 namespace facet::scene_file {
 
 inline constexpr std::string_view kTopLevelKeys[] = {
-    "width", "height",   "background", "ambient",      "camera", "lights", "objects",
-    "model", "pipeline", "lighting",   "transparency", "fog",    "gamma",  "shadow_map"};
+    "width",    "height",   "background",   "ambient", "camera", "lights",     "objects", "model",
+    "pipeline", "lighting", "transparency", "fog",     "gamma",  "shadow_map", "textures"};
 
 glm::vec4 readBackground(const SceneReader& reader, const Json& value);
 CameraSpec readCamera(const SceneReader& reader, const Json& camera);
@@ -24,6 +24,7 @@ fs::path readModel(const SceneReader& reader, const Json& value, const std::stri
 ObjectSpec readObject(const SceneReader& reader, const Json& object, const std::string& path,
                       const fs::path& folder);
 PipelineOptions readPipeline(const SceneReader& reader, const Json& pipeline);
+TextureOptions readTextures(const SceneReader& reader, const Json& textures);
 // The scene's "lighting": a preset name alone, or an object.
 LightingOptions readLighting(const SceneReader& reader, const Json& lighting);
 TransparencyOptions readTransparency(const SceneReader& reader, const Json& transparency);

@@ -66,6 +66,9 @@ struct SurfaceUniforms {
     // every shading frequency: per vertex, the emission is left out of the vertex colours and added
     // in the fragment, textured.
     const Texture* emissionMap = nullptr;
+    // How both maps are filtered. Trilinear reads the fragment's uv derivatives (the back end computes
+    // them for such a draw only: usesDerivatives) and the maps' mip chains (built by prepareScene).
+    TextureFilter textureFilter = TextureFilter::Bilinear;
     bool twoSidedFlip = true;  // light the side of a surface that faces the viewer (N·V < 0: N = −N)
     bool clampColor = false;   // clamp lit colours to [0, 1] (per vertex before interpolation), as OpenGL 1.x
     std::uint8_t terms = kAllTerms;        // LightingTerm bits: which terms reach the image
@@ -268,17 +271,20 @@ template <class F, class V3 = LaneVec3<F>, class... Recording>
 
 namespace detail {
 
-// A texture's bilinear texels at uv, in the live lanes (bit i of liveLanes: lane i holds a fragment;
-// the others are opaque white and their uv, which may be anything, is not read).
-template <class F>
-LaneVec4<F> texels(const Texture& map, const LaneVec2<F>& uv, unsigned liveLanes) {
+// sample(uv, ∂uv/∂x, ∂uv/∂y) at each live lane (bit i of liveLanes: lane i holds a fragment; the others
+// are opaque white and their uv, which may be anything, is not read). Double lanes (the reference)
+// sample at float uv.
+template <class F, class Sample>
+[[gnu::always_inline]] inline LaneVec4<F> sampleLanes(const LaneVec2<F>& uv, unsigned liveLanes,
+                                                      const TexCoordDerivativesT<F>& d, Sample sample) {
     if constexpr (LaneTraits<F>::kCount == 1) {
-        return sampleBilinear(map, vec2(uv));  // double lanes too: the texture is sampled at float uv
+        return sample(vec2(uv), vec2(d.dx), vec2(d.dy));
     } else {
         LaneVec4<F> texel{splat(1.0f), splat(1.0f), splat(1.0f), splat(1.0f)};
         for (int lane = 0; lane < LaneTraits<F>::kCount; ++lane) {
             if (!((liveLanes >> lane) & 1)) continue;
-            const vec4 t = texels<float>(map, vec2(uv.x[lane], uv.y[lane]), 1u);
+            const vec4 t = sample(vec2(uv.x[lane], uv.y[lane]), vec2(d.dx.x[lane], d.dx.y[lane]),
+                                  vec2(d.dy.x[lane], d.dy.y[lane]));
             texel.x[lane] = t.r;
             texel.y[lane] = t.g;
             texel.z[lane] = t.b;
@@ -286,6 +292,24 @@ LaneVec4<F> texels(const Texture& map, const LaneVec2<F>& uv, unsigned liveLanes
         }
         return texel;
     }
+}
+
+// A texture's texels at uv with the draw's filter, chosen once for all the lanes.
+template <class F>
+LaneVec4<F> texels(const Texture& map, const LaneVec2<F>& uv, unsigned liveLanes, TextureFilter filter,
+                   const TexCoordDerivativesT<F>& d) {
+    switch (filter) {
+        case TextureFilter::Nearest:
+            return sampleLanes<F>(uv, liveLanes, d,
+                                  [&](vec2 at, vec2, vec2) { return sampleNearest(map, at); });
+        case TextureFilter::Trilinear:
+            return sampleLanes<F>(uv, liveLanes, d, [&](vec2 at, vec2 dx, vec2 dy) {
+                return sampleTrilinear(map, at, dx, dy);
+            });
+        case TextureFilter::Bilinear:
+            break;
+    }
+    return sampleLanes<F>(uv, liveLanes, d, [&](vec2 at, vec2, vec2) { return sampleBilinear(map, at); });
 }
 
 template <class V3>
@@ -311,16 +335,20 @@ struct PerPixelSurface {
     // The varyings' floats by name, in VaryingsT's order (the step mode's screens show them).
     static constexpr std::array<std::string_view, 8> kVaryingNames = {
         "P_eye.x", "P_eye.y", "P_eye.z", "N_eye.x", "N_eye.y", "N_eye.z", "u", "v"};
+    // uv's derivatives, for trilinear filtering (pipeline/shader.h).
+    static constexpr int kDerivativeVarying = 6;
+    static bool usesDerivatives(const Uniforms& u) { return u.textureFilter == TextureFilter::Trilinear; }
 
     static VertexOut<VaryingsT<float>> vertex(const Attributes& in, const Uniforms& u) {
         return {u.clipFromObject * vec4(in.position, 1.0f),
                 {vec3(u.viewFromObject * vec4(in.position, 1.0f)), u.normalFromObject * in.normal, in.uv}};
     }
 
-    // A FragmentRecord, when given (F = float), receives every number of the shading.
+    // A FragmentRecord, when given (F = float), receives every number of the shading. `uvDerivatives`:
+    // for trilinear filtering; zero (a point) samples the maps' level 0.
     template <class F, class... Recording>
     static LaneVec4<F> shade(const VaryingsT<F>& in, const Uniforms& u, unsigned liveLanes,
-                             Recording*... recording) {
+                             const TexCoordDerivativesT<F>& uvDerivatives = {}, Recording*... recording) {
         using Record = RecordOf<Recording...>;
         using V3 = LaneVec3<F>;
         V3 albedo(u.albedo());
@@ -329,7 +357,8 @@ struct PerPixelSurface {
             *recordOf(recording...) = {
                 .perPixel = true, .uv = in.uv, .opacity = u.opacity, .materialAlbedo = albedo};
         if (u.diffuseMap) {
-            const LaneVec4<F> texel = detail::texels<F>(*u.diffuseMap, in.uv, liveLanes);
+            const LaneVec4<F> texel =
+                detail::texels<F>(*u.diffuseMap, in.uv, liveLanes, u.textureFilter, uvDerivatives);
             albedo = albedo * rgb(texel);
             alpha = alpha * texel.w;
             if constexpr (Record::enabled) {
@@ -339,7 +368,8 @@ struct PerPixelSurface {
         }
         LightingTerms<V3> t = surfaceTerms<F>(in.position, in.normal, albedo, u, &recording->lighting...);
         if (u.emissionMap) {
-            const LaneVec4<F> texel = detail::texels<F>(*u.emissionMap, in.uv, liveLanes);
+            const LaneVec4<F> texel =
+                detail::texels<F>(*u.emissionMap, in.uv, liveLanes, u.textureFilter, uvDerivatives);
             t.emission = t.emission * rgb(texel);
             if constexpr (Record::enabled) {
                 recordOf(recording...)->emissionMapped = true;
@@ -388,6 +418,9 @@ struct PerVertexSurface {
         "c_mod.r", "c_mod.g", "c_mod.b", "c_add.r", "c_add.g", "c_add.b",
         "P_eye.x", "P_eye.y", "P_eye.z", "u",       "v"};
     static constexpr int kFlatVaryingFloats = kFrequency == ShadingFrequency::Flat ? 6 : 0;
+    // uv's derivatives, for trilinear filtering (pipeline/shader.h).
+    static constexpr int kDerivativeVarying = 9;
+    static bool usesDerivatives(const Uniforms& u) { return u.textureFilter == TextureFilter::Trilinear; }
 
     // What the vertex lighting reads: the vertex in eye space.
     template <class F>
@@ -432,9 +465,10 @@ struct PerVertexSurface {
     }
 
     // A FragmentRecord, when given (F = float), receives every number of the fragment's part.
+    // `uvDerivatives`: for trilinear filtering; zero (a point) samples the maps' level 0.
     template <class F, class... Recording>
     static LaneVec4<F> shade(const VaryingsT<F>& in, const Uniforms& u, unsigned liveLanes,
-                             Recording*... recording) {
+                             const TexCoordDerivativesT<F>& uvDerivatives = {}, Recording*... recording) {
         using Record = RecordOf<Recording...>;
         using V3 = LaneVec3<F>;
         V3 modulated = in.modulated;
@@ -446,7 +480,8 @@ struct PerVertexSurface {
                                        .modulatedIn = in.modulated,
                                        .addedIn = in.added};
         if (u.diffuseMap) {
-            const LaneVec4<F> texel = detail::texels<F>(*u.diffuseMap, in.uv, liveLanes);
+            const LaneVec4<F> texel =
+                detail::texels<F>(*u.diffuseMap, in.uv, liveLanes, u.textureFilter, uvDerivatives);
             modulated = modulated * rgb(texel);
             alpha = alpha * texel.w;
             if constexpr (Record::enabled) {
@@ -456,7 +491,8 @@ struct PerVertexSurface {
         }
         V3 added = in.added;
         if (u.emissionMap) {
-            const LaneVec4<F> texel = detail::texels<F>(*u.emissionMap, in.uv, liveLanes);
+            const LaneVec4<F> texel =
+                detail::texels<F>(*u.emissionMap, in.uv, liveLanes, u.textureFilter, uvDerivatives);
             const V3 emission = V3(u.emissionTerm()) * rgb(texel);
             added = added + emission;
             if constexpr (Record::enabled) {

@@ -55,7 +55,7 @@ ShadingTrace traceShading(const SurfaceUniforms& u, ShadingFrequency frequency, 
     if (frequency == ShadingFrequency::Phong) {
         using Shader = PerPixelSurface;
         trace.fragment.result =
-            Shader::shade<float>(varyingsOf<Shader::VaryingsT<float>>(f), u, 1u, &trace.fragment);
+            Shader::shade<float>(varyingsOf<Shader::VaryingsT<float>>(f), u, 1u, {}, &trace.fragment);
     } else {
         if (frequency == ShadingFrequency::Gouraud) {
             for (int corner = 0; corner < 3; ++corner)
@@ -79,7 +79,7 @@ ShadingTrace traceShading(const SurfaceUniforms& u, ShadingFrequency frequency, 
         // Flat and Gouraud run the same fragment function; only which varyings are flat differs.
         using Shader = PerVertexSurface<ShadingFrequency::Gouraud>;
         trace.fragment.result =
-            Shader::shade<float>(varyingsOf<Shader::VaryingsT<float>>(f), u, 1u, &trace.fragment);
+            Shader::shade<float>(varyingsOf<Shader::VaryingsT<float>>(f), u, 1u, {}, &trace.fragment);
     }
     trace.matchesPipeline = std::memcmp(&trace.fragment.result, &f.shaded, sizeof f.shaded) == 0;
     trace.uniforms = u;

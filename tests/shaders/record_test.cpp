@@ -78,7 +78,7 @@ TEST(SurfaceRecord, RecordingChangesNoBitOfAnyShaderOutput) {
                     auto pixel = randomVaryings<PerPixelSurface::VaryingsT<float>>(rng);
                     pixel.position.z -= 3.0f;
                     FragmentRecord pixelRecord;
-                    const vec4 recorded = PerPixelSurface::shade<float>(pixel, u, 1u, &pixelRecord);
+                    const vec4 recorded = PerPixelSurface::shade<float>(pixel, u, 1u, {}, &pixelRecord);
                     EXPECT_TRUE(
                         sameBits(recorded, SurfaceShader<ShadingFrequency::Phong>::fragment(pixel, u)));
                     EXPECT_TRUE(sameBits(vec4(pixelRecord.output.output, 0.0f), vec4(vec3(recorded), 0.0f)));
@@ -98,7 +98,7 @@ TEST(SurfaceRecord, RecordingChangesNoBitOfAnyShaderOutput) {
                     const PerVertex::VaryingsT<float> plain = PerVertex::lightVertex<float>(inputs, u);
                     EXPECT_EQ(std::memcmp(&lit, &plain, sizeof lit), 0);
                     FragmentRecord fragmentRecord;
-                    const vec4 shaded = PerVertex::shade<float>(lit, u, 1u, &fragmentRecord);
+                    const vec4 shaded = PerVertex::shade<float>(lit, u, 1u, {}, &fragmentRecord);
                     EXPECT_TRUE(sameBits(shaded, SurfaceShader<ShadingFrequency::Gouraud>::fragment(lit, u)));
                     EXPECT_EQ(fragmentRecord.diffuseMapped, u.diffuseMap != nullptr);
                 }

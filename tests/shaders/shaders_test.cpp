@@ -72,7 +72,7 @@ void expectBatchLanesEqualOneLane(const SurfaceUniforms& uniforms, std::mt19937&
     using S = SurfaceShader<kFrequency>;
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);
     for (int trial = 0; trial < 40; ++trial) {
-        FragmentBatch batch;
+        FragmentBatch batch{};
         batch.mask = 0xff;
         typename S::Varyings scalar[8];
         for (int lane = 0; lane < 8; ++lane) {
@@ -224,7 +224,7 @@ TEST(SurfaceShader, PrecisionIsTheUniformsChoiceAtBothLaneWidths) {
         const vec3 fast = expected.template operator()<MathPrecision::Fast>();
         differing += exact != fast;
         const S::Varyings in{P, N, vec2(0.0f)};
-        FragmentBatch batch;
+        FragmentBatch batch{};
         batch.mask = 0xff;
         const float* f = reinterpret_cast<const float*>(&in);
         for (int k = 0; k < kVaryingFloatCount<S::Varyings>; ++k)
@@ -279,7 +279,7 @@ vec3 shadeOnce(const MeshVertex& v, const SurfaceUniforms& u, bool batch) {
         S::vertexBatch(in, u, outs);
         out = outs[6];
     }
-    FragmentBatch in;
+    FragmentBatch in{};
     in.mask = 0xff;
     const float* f = reinterpret_cast<const float*>(&out.varyings);
     for (int k = 0; k < kVaryingFloatCount<typename S::Varyings>; ++k)
