@@ -137,6 +137,12 @@ void addSceneOptions(CLI::App& command, SceneArgs& args) {
         "Varyings across a triangle: perspective-correct, or affine in screen space (wrong, for teaching)" +
             byDefault(Interpolation::PerspectiveCorrect));
     addChoice(command, "--cull", args.cull, "Which faces are not drawn" + byDefault(CullMode::Back));
+    command
+        .add_option(
+            "--subpixel-bits", args.subpixelBits,
+            "Rasterizer precision: vertices snapped to 1/2^N of a pixel, N from 0 to 8 (default 8, as "
+            "GPUs and Mesa)")
+        ->check(wholeNumber(0, facet::kMaxSubpixelBits));
     addChoice(command, "--aa", args.antialiasing,
               "Anti-aliasing: supersampling draws the frame once per sample (2, 4, 8 or 16, at the standard "
               "sample positions) and averages them" +
@@ -224,6 +230,7 @@ void applyLightingOptions(const SceneArgs& args, facet::Scene& scene) {
     if (args.transparency) scene.transparency.mode = *args.transparency;
     if (args.interpolation) scene.pipeline.interpolation = *args.interpolation;
     if (args.cull) scene.pipeline.cull = *args.cull;
+    if (args.subpixelBits) scene.pipeline.subpixelBits = *args.subpixelBits;
     if (args.depth) scene.pipeline.depth = *args.depth;
     if (args.colorBuffer) scene.pipeline.colorBuffer = *args.colorBuffer;
     if (args.infiniteFar) {

@@ -77,6 +77,7 @@ struct SceneArgs {
     std::optional<float> gamma;
     std::optional<Interpolation> interpolation;
     std::optional<CullMode> cull;
+    std::optional<int> subpixelBits;
     std::optional<DepthBufferFormat> depth;
     std::optional<ColorBufferFormat> colorBuffer;
     bool infiniteFar = false;

@@ -67,6 +67,11 @@ std::string reflectionIn(const Scene& scene) {
 //   reflection: a choice of look more than of accuracy: no fast or best value, the reference keeps the
 //     scene's.
 //   the shadow map's bias and slope bias: tuning, neither faster nor slower: no fast or best value.
+//   colour buffer: the narrower formats are emulated by rounding a float buffer (pipeline/blend.h), so
+//     they cost time rather than save it: no fast value.
+//   textures and normals: what the model looks like (its maps; how its smooth normals are made) rather
+//     than how exactly it is drawn; the reference draws the scene's own: no fast or best value.
+//   subpixel bits: no measurable speed difference (the edge functions are integers at any precision).
 std::vector<Knob> makeKnobTable() {
     using S = const Scene&;
     // One row per knob, its value in a scene on the line below.
@@ -95,6 +100,26 @@ std::vector<Knob> makeKnobTable() {
          [](S s) { return nameText(s.pipeline.cull); }},
         {"reflection",        "--reflection",        allNames<ReflectionModel>(),            "blinn-phong", "",         "",            "", "",
          reflectionIn},
+        {"aa",                "--aa",                allNames<Antialiasing>(),               "none",        "none",     "ssaa16",      "", "",
+         [](S s) { return nameText(s.pipeline.antialiasing); }},
+        {"subpixel-bits",     "--subpixel-bits",     {"0", "2", "4", "8"},                   "8",           "",         "8",           "", "",
+         [](S s) { return numberText(s.pipeline.subpixelBits); }},
+        {"depth",             "--depth",             allNames<DepthBufferFormat>(),          "float",       "float",    "reversed-float", "", "",
+         [](S s) { return nameText(s.pipeline.depth); }},
+        {"color-buffer",      "--color-buffer",      allNames<ColorBufferFormat>(),          "float",       "",         "float",       "", "",
+         [](S s) { return nameText(s.pipeline.colorBuffer); }},
+        {"texture-filter",    "--texture-filter",    allNames<TextureFilter>(),              "bilinear",    "nearest",  "trilinear",   "", "",
+         [](S s) { return nameText(s.textures.filter); }},
+        {"textures",          "--textures",          allNames<TextureMaps>(),                "on",          "",         "",            "", "",
+         [](S s) { return nameText(s.textures.maps); }},
+        {"normals",           "--normals",           allNames<VertexNormals>(),              "polygon-area", "",        "",            "", "",
+         [](S s) { return nameText(s.lighting.normals); }},
+        {"powers",            "--powers",            allNames<MathPrecision>(),              "fast",        "fast",     "exact",       "", "",
+         [](S s) { return nameText(s.lighting.powers); }},
+        {"normalize",         "--normalize",         allNames<Normalization>(),              "exact",       "fast",     "exact",       "", "",
+         [](S s) { return nameText(s.lighting.normalize); }},
+        {"fresnel",           "--fresnel",           allNames<FresnelModel>(),               "schlick",     "schlick",  "exact",       "", "",
+         [](S s) { return nameText(s.lighting.brdf.fresnel); }},
     };
     // clang-format on
 }

@@ -39,6 +39,15 @@ void expectEveryNameReaches(const std::string& option, Reached reached) {
     }
 }
 
+// --subpixel-bits reaches the scene's pipeline options at both ends of its range, and a value beyond
+// them is refused by the parser.
+TEST(CommandLineChoices, SubpixelBitsReachTheScene) {
+    EXPECT_EQ(sceneWith(parseRender("--subpixel-bits", "0")).pipeline.subpixelBits, 0);
+    EXPECT_EQ(sceneWith(parseRender("--subpixel-bits", "3")).pipeline.subpixelBits, 3);
+    EXPECT_EQ(sceneWith(parseRender("--subpixel-bits", "8")).pipeline.subpixelBits, 8);
+    EXPECT_THROW(parseRender("--subpixel-bits", "9"), CLI::ParseError);
+}
+
 TEST(CommandLineChoices, EveryNameReachesTheScene) {
     expectEveryNameReaches<LightingPreset>("--lighting", [](const Scene& s) { return s.lighting.preset; });
     expectEveryNameReaches<ReflectionModel>("--reflection", [](const Scene& s) {

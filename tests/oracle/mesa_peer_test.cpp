@@ -498,7 +498,8 @@ GlScene overlapScene(const Lighting& lighting, BlendMode blend, float opacity) {
 // What a blend gives for the shader's colour c of opacity α (gl_scene.h: the shader writes (c, α),
 // (α·c, α) or (mix(1, c, α), α)) over a destination (d, α_d), by pipeline/state.h's equations:
 //   Replace (c, α); Over and PremultipliedOver (α·c + (1 − α)·d, α + (1 − α)·α_d);
-//   Additive (α·c + d, α + α_d); Multiply (((1 − α) + α·c)·d, α_d).
+//   Additive (α·c + d, α + α_d); Multiply (((1 − α) + α·c)·d, α_d); OverGL (the gl preset's over:
+//   glBlendFunc(SRC_ALPHA, ONE_MINUS_SRC_ALPHA) on alpha too) (α·c + (1 − α)·d, α² + (1 − α)·α_d).
 vec4 blended(BlendMode blend, const vec3& c, float a, const vec4& destination) {
     const vec3 d(destination);
     const float ad = destination.a;
@@ -512,6 +513,8 @@ vec4 blended(BlendMode blend, const vec3& c, float a, const vec4& destination) {
             return vec4(a * c + d, a + ad);
         case BlendMode::Multiply:
             return vec4(((1.0f - a) + a * c) * d, ad);
+        case BlendMode::OverGL:
+            return vec4(a * c + (1.0f - a) * d, a * a + (1.0f - a) * ad);
     }
     return vec4(0.0f);
 }
