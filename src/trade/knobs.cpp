@@ -67,6 +67,9 @@ std::string reflectionIn(const Scene& scene) {
 //   reflection: a choice of look more than of accuracy: no fast or best value, the reference keeps the
 //     scene's.
 //   the shadow map's bias and slope bias: tuning, neither faster nor slower: no fast or best value.
+//   shadows: whether a light casts shadows is the scene's choice; the reference ray-casts the shadows
+//     of the lights that cast them, so the best preset keeps the scene's (adding shadows to a scene
+//     without any would move it away from its reference); the fast preset drops them.
 //   colour buffer: the narrower formats are emulated by rounding a float buffer (pipeline/blend.h), so
 //     they cost time rather than save it: no fast value.
 //   textures and normals: what the model looks like (its maps; how its smooth normals are made) rather
@@ -82,7 +85,7 @@ std::vector<Knob> makeKnobTable() {
          shadingIn},
         {"interpolation",     "--interpolation",     allNames<Interpolation>(),              "perspective", "affine",   "perspective", "", "",
          [](S s) { return nameText(s.pipeline.interpolation); }},
-        {"shadows",           "--shadows",           allNames<ShadowMethod>(),               "",            "none",     "ray",         "", "",
+        {"shadows",           "--shadows",           allNames<ShadowMethod>(),               "",            "none",     "",            "", "",
          shadowsIn},
         {"shadow-map-size",   "--shadow-map-size",   {"256", "512", "1024", "2048", "4096"}, "2048",        "512",      "4096",        "shadows", "map",
          [](S s) { return numberText(s.shadowMap.size); }},

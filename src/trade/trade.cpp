@@ -141,10 +141,13 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
     DrawContext context(options.threads);
     std::filesystem::create_directories(options.outputDir);
 
-    // The reference: the scene as the best preset has it (the reference renderer ignores the
-    // rasterizer's approximations; what the preset changes is which effects, shadows say, exist).
+    // The reference: the scene as the user wrote it, drawn exactly. The reference renderer ignores the
+    // rasterizer's approximations (it has no depth or colour buffer, composites every transparent
+    // surface in depth order, ray-casts the shadows of every light that casts them, map or ray, and
+    // uses exact pow, exp, normalisation and Fresnel), so what remains are the scene's own choices:
+    // which lights cast shadows, its materials, maps and normals.
     const auto referenceStart = Clock::now();
-    const PreparedScene referenceScene = prepareScene(sceneWithWords(presetSetting("best").words));
+    const PreparedScene referenceScene = prepareScene(baseline);
     ReferenceOptions referenceOptions;
     referenceOptions.samples = options.referenceSamples;
     const LinearImage reference = renderReference(referenceScene, referenceOptions, context.pool);
