@@ -62,12 +62,16 @@ inline void describeInterpolation(FragmentEvent& event, float b1, float b2, floa
 }
 
 // The fragment shader, then the depth write and blending (or appending to the fragment lists) for the
-// queued fragments. Compiled once for each FragmentOutput, depth format (Depth, a DepthFormatOf) and
-// colour buffer format, chosen per draw (drawBatchTiles), so the blending loop is exactly what it would
-// be without fragment lists or other formats.
-template <Shader S, FragmentOutput kOutput, class Depth, ColorBufferFormat kColor, class Observer>
-void shadeQueue(FragmentQueue& queue, const DrawPlan& plan, const typename S::Uniforms& uniforms,
-                Framebuffer& target, DrawStats& stats, Observer& observer) {
+// queued fragments. Compiled for each FragmentOutput, depth coding (Depth, a DepthCoding: float or
+// unorm) and whether the colour buffer rounds what it stores (kRoundColor: the half and 8-bit formats,
+// whose rounding is chosen per fragment from the plan, a branch the predictor always gets right),
+// chosen per draw (drawBatchTiles), so the default float path is exactly what it would be without
+// fragment lists or other formats. (A template per format would multiply the back end's copies, one
+// per shader, without making any of them faster.)
+template <Shader S, FragmentOutput kOutput, class Depth, bool kRoundColor, class Observer>
+void shadeQueue(FragmentQueue& queue, const DrawPlan& plan, const Depth& depth,
+                const typename S::Uniforms& uniforms, Framebuffer& target, DrawStats& stats,
+                Observer& observer) {
     constexpr bool kObserving = Observer::enabled;
     const int n = queue.count;
     if (n == 0) return;
@@ -112,14 +116,15 @@ void shadeQueue(FragmentQueue& queue, const DrawPlan& plan, const typename S::Un
             }
             continue;
         }
-        if (plan.depthWrite) target.depth(x, y) = Depth::store(queue.z[lane]);
+        if (plan.depthWrite) target.depth(x, y) = depth.store(queue.z[lane]);
         if constexpr (kOutput == FragmentOutput::AppendToLists) {
             const bool stored = queue.lists.append(x, y, shaded[lane], queue.z[lane], plan.blend);
             stats.fragmentsStored += stored;
             if constexpr (kObserving) event.fate = stored ? FragmentFate::Stored : FragmentFate::Dropped;
         } else {
             vec4& destination = target.color(x, y);
-            destination = roundToColorBuffer<kColor>(blend(plan.blend, shaded[lane], destination));
+            destination = blend(plan.blend, shaded[lane], destination);
+            if constexpr (kRoundColor) destination = roundToColorBuffer(plan.colorBuffer, destination);
             ++stats.fragmentsWritten;
             if constexpr (kObserving) {
                 event.fate = FragmentFate::Written;
@@ -138,11 +143,11 @@ void shadeQueue(FragmentQueue& queue, const DrawPlan& plan, const typename S::Un
 // that pass go to the queue, which is shaded whenever it holds eight. kDerivatives (a draw whose shader
 // reads them: drawUsesDerivatives): each queued fragment also gets its texture coordinates' derivatives,
 // from its own triangle's planes.
-template <Shader S, FragmentOutput kOutput, class Depth, ColorBufferFormat kColor, bool kDerivatives,
-          class Observer>
+template <Shader S, FragmentOutput kOutput, class Depth, bool kRoundColor, bool kDerivatives, class Observer>
 void depthTestBlock(const TriangleSetup& setup, const float* planes, const CoverageBlock& block,
-                    FragmentQueue& queue, const DrawPlan& plan, const typename S::Uniforms& uniforms,
-                    Framebuffer& target, DrawStats& stats, Observer& observer) {
+                    FragmentQueue& queue, const DrawPlan& plan, const Depth& depth,
+                    const typename S::Uniforms& uniforms, Framebuffer& target, DrawStats& stats,
+                    Observer& observer) {
     constexpr bool kObserving = Observer::enabled;
     const BlockBarycentrics barycentrics(setup, block.x, block.y);
     constexpr int kUv = derivativeVarying<S>();
@@ -161,19 +166,19 @@ void depthTestBlock(const TriangleSetup& setup, const float* planes, const Cover
 
         // A queued fragment at one of these pixels must reach the framebuffer before they are tested.
         if (queue.count && queue.holdsAny(y, block.x, rowMask))
-            shadeQueue<S, kOutput, Depth, kColor>(queue, plan, uniforms, target, stats, observer);
+            shadeQueue<S, kOutput, Depth, kRoundColor>(queue, plan, depth, uniforms, target, stats, observer);
 
         typename Depth::Stored* depthRow = &target.depth(block.x, y);
         unsigned passed = rowMask;
         if (plan.depthTest) {
             if (block.x + kBlockSize <= target.width()) {
                 // Eight stored depths at once (the row lies inside the framebuffer).
-                const Int8 pass = Depth::passes(plan.depthCompare, z, Depth::load8(depthRow));
+                const Int8 pass = depth.passes(plan.depthCompare, z, Depth::load8(depthRow));
                 passed &= signMask(pass);
             } else {
                 for (int lane = 0; lane < kBlockSize; ++lane)
                     if ((rowMask >> lane) & 1u)
-                        if (!Depth::passes(plan.depthCompare, z[lane], depthRow[lane]))
+                        if (!depth.passes(plan.depthCompare, z[lane], depthRow[lane]))
                             passed &= ~(1u << lane);
             }
         }
@@ -232,18 +237,18 @@ void depthTestBlock(const TriangleSetup& setup, const float* planes, const Cover
                 }
             }
             if (queue.count == kBlockSize)
-                shadeQueue<S, kOutput, Depth, kColor>(queue, plan, uniforms, target, stats, observer);
+                shadeQueue<S, kOutput, Depth, kRoundColor>(queue, plan, depth, uniforms, target, stats,
+                                                           observer);
         }
     }
 }
 
 // One tile: its triangles from every chunk, in submission order. An observer also sees the coverage
 // decision at every sample of a triangle's bounding box inside the tile, before its fragments.
-template <Shader S, FragmentOutput kOutput, class Depth, ColorBufferFormat kColor, bool kDerivatives,
-          class Observer>
+template <Shader S, FragmentOutput kOutput, class Depth, bool kRoundColor, bool kDerivatives, class Observer>
 void drawTile(const PixelRect& rect, std::size_t tile, std::span<const SetupChunk> chunks,
-              const DrawPlan& plan, const typename S::Uniforms& uniforms, Framebuffer& target,
-              DrawStats& stats, Observer& observer) {
+              const DrawPlan& plan, const Depth& depth, const typename S::Uniforms& uniforms,
+              Framebuffer& target, DrawStats& stats, Observer& observer) {
     FragmentQueue queue;
     if constexpr (kOutput == FragmentOutput::AppendToLists)
         queue.lists = target.fragmentLists().writer(rect.minX, rect.minY);
@@ -266,24 +271,23 @@ void drawTile(const PixelRect& rect, std::size_t tile, std::span<const SetupChun
                         observer.onCoverage(coverageAt(setup, x, y));
             }
             rasterizeBlocks(setup, rect, [&](const CoverageBlock& block) {
-                depthTestBlock<S, kOutput, Depth, kColor, kDerivatives>(setup, planes, block, queue, plan,
-                                                                        uniforms, target, stats, observer);
+                depthTestBlock<S, kOutput, Depth, kRoundColor, kDerivatives>(
+                    setup, planes, block, queue, plan, depth, uniforms, target, stats, observer);
             });
         }
     }
-    shadeQueue<S, kOutput, Depth, kColor>(queue, plan, uniforms, target, stats, observer);
+    shadeQueue<S, kOutput, Depth, kRoundColor>(queue, plan, depth, uniforms, target, stats, observer);
 }
 
-template <Shader S, FragmentOutput kOutput, class Depth, ColorBufferFormat kColor, bool kDerivatives,
-          class Observer>
+template <Shader S, FragmentOutput kOutput, class Depth, bool kRoundColor, bool kDerivatives, class Observer>
 void drawTiles(std::span<const std::uint32_t> activeTiles, const TileGrid& grid,
-               std::span<const SetupChunk> chunks, const DrawPlan& plan, const typename S::Uniforms& uniforms,
-               Framebuffer& target, ThreadPool& pool, bool inOrder, std::span<DrawStats> threadStats,
-               Observer& observer) {
+               std::span<const SetupChunk> chunks, const DrawPlan& plan, const Depth& depth,
+               const typename S::Uniforms& uniforms, Framebuffer& target, ThreadPool& pool, bool inOrder,
+               std::span<DrawStats> threadStats, Observer& observer) {
     forEachItem(pool, inOrder, activeTiles.size(), [&](std::size_t active, int thread) {
         const std::size_t tile = activeTiles[active];
-        drawTile<S, kOutput, Depth, kColor, kDerivatives>(
-            grid.tileRect(static_cast<int>(tile)), tile, chunks, plan, uniforms, target,
+        drawTile<S, kOutput, Depth, kRoundColor, kDerivatives>(
+            grid.tileRect(static_cast<int>(tile)), tile, chunks, plan, depth, uniforms, target,
             threadStats[static_cast<std::size_t>(thread)], observer);
     });
 }
@@ -293,8 +297,9 @@ void drawTiles(std::span<const std::uint32_t> activeTiles, const TileGrid& grid,
 // The back end for one batch of set-up chunks: only the tiles some triangle touches (a draw of a few
 // triangles, such as a short run of the transparent pass, then costs little more than its triangles,
 // and a single tile is drawn on the calling thread without waking the pool), in parallel unless
-// `inOrder`. The FragmentOutput, the depth and colour buffer formats, and whether fragments get their
-// texture coordinates' derivatives are chosen here, once per draw. Returns the number of tiles drawn.
+// `inOrder`. The FragmentOutput, the depth coding, whether colours are rounded to the colour buffer's
+// format, and whether fragments get their texture coordinates' derivatives are chosen here, once per
+// draw. Returns the number of tiles drawn.
 template <Shader S, class Observer>
 std::size_t drawBatchTiles(const TileGrid& grid, std::span<const SetupChunk> chunks, const DrawPlan& plan,
                            const typename S::Uniforms& uniforms, Framebuffer& target, ThreadPool& pool,
@@ -308,31 +313,20 @@ std::size_t drawBatchTiles(const TileGrid& grid, std::span<const SetupChunk> chu
                 break;
             }
     const auto drawWith = [&]<bool kDerivatives>() {
-        withDepthFormat(plan.depthFormat, [&](auto depthFormat) {
-            using Depth = decltype(depthFormat);
-            if (plan.output == FragmentOutput::AppendToLists) {
-                // Appended fragments reach the colour buffer in the resolve, which rounds them.
-                detail::drawTiles<S, FragmentOutput::AppendToLists, Depth, ColorBufferFormat::Float,
-                                  kDerivatives>(activeTiles, grid, chunks, plan, uniforms, target, pool,
-                                                inOrder, threadStats, observer);
-                return;
-            }
-            switch (plan.colorBuffer) {
-                case ColorBufferFormat::Half:
-                    detail::drawTiles<S, FragmentOutput::Blend, Depth, ColorBufferFormat::Half, kDerivatives>(
-                        activeTiles, grid, chunks, plan, uniforms, target, pool, inOrder, threadStats,
-                        observer);
-                    return;
-                case ColorBufferFormat::Unorm8:
-                    detail::drawTiles<S, FragmentOutput::Blend, Depth, ColorBufferFormat::Unorm8,
-                                      kDerivatives>(activeTiles, grid, chunks, plan, uniforms, target, pool,
-                                                    inOrder, threadStats, observer);
-                    return;
-                case ColorBufferFormat::Float:
-                    break;
-            }
-            detail::drawTiles<S, FragmentOutput::Blend, Depth, ColorBufferFormat::Float, kDerivatives>(
-                activeTiles, grid, chunks, plan, uniforms, target, pool, inOrder, threadStats, observer);
+        withDepthCoding(plan.depthFormat, [&](const auto& depth) {
+            using Depth = std::decay_t<decltype(depth)>;
+            const auto drawOutput = [&]<FragmentOutput kOutput, bool kRoundColor>() {
+                detail::drawTiles<S, kOutput, Depth, kRoundColor, kDerivatives>(
+                    activeTiles, grid, chunks, plan, depth, uniforms, target, pool, inOrder, threadStats,
+                    observer);
+            };
+            // Appended fragments reach the colour buffer in the resolve, which rounds them.
+            if (plan.output == FragmentOutput::AppendToLists)
+                drawOutput.template operator()<FragmentOutput::AppendToLists, false>();
+            else if (plan.colorBuffer != ColorBufferFormat::Float)
+                drawOutput.template operator()<FragmentOutput::Blend, true>();
+            else
+                drawOutput.template operator()<FragmentOutput::Blend, false>();
         });
     };
     if constexpr (derivativeVarying<S>() >= 0) {

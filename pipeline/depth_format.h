@@ -23,6 +23,21 @@
 
 namespace facet {
 
+// A window depth as a unorm buffer of largest code `unormMax` = 2^N − 1 stores it:
+// round(clamp(z_w, 0, 1)·(2^N − 1)) (OpenGL's float → unorm conversion, 4.6 §2.3.5.2), the product
+// rounded to float first and then to the nearest integer, ties to even, in both the one-lane and the
+// eight-lane form (so they agree bit for bit).
+inline float unormDepthCode(float windowDepth, float unormMax) {
+    return std::nearbyint(std::clamp(windowDepth, 0.0f, 1.0f) * unormMax);
+}
+inline Float8 unormDepthCode(Float8 windowDepth, float unormMax) {
+    const Float8 scaled = min(max(windowDepth, 0.0f), 1.0f) * unormMax;
+    // Round to nearest even by adding and removing 2^23, exact for 0 ≤ x < 2^23 (the float spacing there
+    // reaches 1); from 2^23 on every float is already an integer.
+    constexpr float kRound = 0x1p23f;
+    return select(scaled < kRound, (scaled + kRound) - kRound, scaled);
+}
+
 template <DepthBufferFormat kFormat>
 struct DepthFormatOf {
     using Stored = float;    // one pixel of the depth buffer
@@ -61,26 +76,18 @@ struct DepthFormatOf {
         return minDepth + depth01 * (maxDepth - minDepth);
     }
 
-    // A fragment's window depth as the buffer stores it: float, itself; unorm, the code
-    // round(clamp(z_w, 0, 1)·(2^N − 1)) (OpenGL's float → unorm conversion, 4.6 §2.3.5.2), the product
-    // rounded to float first and then to the nearest integer, ties to even, in both the one-lane and
-    // the eight-lane form (so they agree bit for bit).
+    // A fragment's window depth as the buffer stores it: float, itself; unorm, its code (unormDepthCode).
     static Stored store(float windowDepth) {
         if constexpr (kUnormBits)
-            return std::nearbyint(std::clamp(windowDepth, 0.0f, 1.0f) * kUnormMax);
+            return unormDepthCode(windowDepth, kUnormMax);
         else
             return windowDepth;
     }
     static Stored8 store(Float8 windowDepth) {
-        if constexpr (kUnormBits) {
-            const Float8 scaled = min(max(windowDepth, 0.0f), 1.0f) * kUnormMax;
-            // Round to nearest even by adding and removing 2^23, exact for 0 ≤ x < 2^23 (the float spacing
-            // there reaches 1); from 2^23 on every float is already an integer.
-            constexpr float kRound = 0x1p23f;
-            return select(scaled < kRound, (scaled + kRound) - kRound, scaled);
-        } else {
+        if constexpr (kUnormBits)
+            return unormDepthCode(windowDepth, kUnormMax);
+        else
             return windowDepth;
-        }
     }
 
     // The window depth a stored value stands for (for printing and the step mode's depth view).
@@ -157,6 +164,50 @@ inline CompareOp nearerPasses(DepthBufferFormat format, CompareOp lessIsNearerCo
         default:
             return lessIsNearerCompare;
     }
+}
+
+// What the back end's depth test needs of the draw's format: how a fragment's window depth is stored
+// and compared. Float and reversed float store it as it is (the direction is the draw's compare); the
+// unorm formats store a code whose largest value 2^N − 1 is held here, read per draw. So the back end
+// is compiled for two depth codings rather than for every format (each costs a copy of the tile loop
+// per shader), and the test is the same arithmetic as DepthFormatOf<format>'s, bit for bit.
+template <bool kUnorm>
+struct DepthCoding {
+    using Stored = float;
+    using Stored8 = Float8;
+    float unormMax = 1.0f;  // 2^N − 1 (kUnorm only)
+
+    explicit DepthCoding(DepthBufferFormat format)
+        : unormMax(withDepthFormat(format, [](auto f) { return decltype(f)::kUnormMax; })) {}
+
+    Stored store(float windowDepth) const {
+        if constexpr (kUnorm)
+            return unormDepthCode(windowDepth, unormMax);
+        else
+            return windowDepth;
+    }
+    Stored8 store(Float8 windowDepth) const {
+        if constexpr (kUnorm)
+            return unormDepthCode(windowDepth, unormMax);
+        else
+            return windowDepth;
+    }
+    static Stored8 load8(const Stored* row) { return DepthFormat::load8(row); }
+    bool passes(CompareOp op, float fragmentDepth, Stored stored) const {
+        return depthTestPasses(op, store(fragmentDepth), stored);
+    }
+    Int8 passes(CompareOp op, Float8 fragmentDepth, Stored8 stored) const {
+        return depthTestPasses(op, store(fragmentDepth), stored);
+    }
+};
+
+// Calls body(DepthCoding<unorm?>) for the draw's format: the one switch from a format to the back
+// end's template parameter.
+template <class Body>
+decltype(auto) withDepthCoding(DepthBufferFormat format, Body&& body) {
+    if (format == DepthBufferFormat::Unorm16 || format == DepthBufferFormat::Unorm24)
+        return body(DepthCoding<true>(format));
+    return body(DepthCoding<false>(format));
 }
 
 }  // namespace facet
