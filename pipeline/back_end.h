@@ -312,6 +312,25 @@ std::size_t drawBatchTiles(const TileGrid& grid, std::span<const SetupChunk> chu
                 activeTiles.push_back(static_cast<std::uint32_t>(tile));
                 break;
             }
+    if constexpr (Observer::enabled) {
+        // Watched draws (the step mode) are for reading, not speed: one copy of the tile loop per shader
+        // and observer, with the depth coding and the colour buffer's rounding chosen per fragment
+        // (rounding to the float format is the identity), and texture-coordinate derivatives computed
+        // whenever the shader has them (a shader reads them only when the draw wants them). Same bytes
+        // as the unwatched copies.
+        constexpr bool kDerivatives = derivativeVarying<S>() >= 0;
+        const DepthCodingChosenPerFragment depth(plan.depthFormat);
+        using Depth = DepthCodingChosenPerFragment;
+        if (plan.output == FragmentOutput::AppendToLists)
+            detail::drawTiles<S, FragmentOutput::AppendToLists, Depth, false, kDerivatives>(
+                activeTiles, grid, chunks, plan, depth, uniforms, target, pool, inOrder, threadStats,
+                observer);
+        else
+            detail::drawTiles<S, FragmentOutput::Blend, Depth, true, kDerivatives>(
+                activeTiles, grid, chunks, plan, depth, uniforms, target, pool, inOrder, threadStats,
+                observer);
+        return activeTiles.size();
+    }
     const auto drawWith = [&]<bool kDerivatives>() {
         withDepthCoding(plan.depthFormat, [&](const auto& depth) {
             using Depth = std::decay_t<decltype(depth)>;

@@ -201,6 +201,30 @@ struct DepthCoding {
     }
 };
 
+// Either coding, chosen per fragment: what the observed back end (the step mode, which watches every
+// fragment and is for reading, not speed) uses, so that it is compiled once per shader and observer
+// rather than once per coding. Same arithmetic as DepthCoding's.
+struct DepthCodingChosenPerFragment {
+    using Stored = float;
+    using Stored8 = Float8;
+    DepthCoding<true> unormCoding;
+    bool unorm = false;
+
+    explicit DepthCodingChosenPerFragment(DepthBufferFormat format)
+        : unormCoding(format),
+          unorm(format == DepthBufferFormat::Unorm16 || format == DepthBufferFormat::Unorm24) {}
+
+    Stored store(float windowDepth) const { return unorm ? unormCoding.store(windowDepth) : windowDepth; }
+    Stored8 store(Float8 windowDepth) const { return unorm ? unormCoding.store(windowDepth) : windowDepth; }
+    static Stored8 load8(const Stored* row) { return DepthFormat::load8(row); }
+    bool passes(CompareOp op, float fragmentDepth, Stored stored) const {
+        return depthTestPasses(op, store(fragmentDepth), stored);
+    }
+    Int8 passes(CompareOp op, Float8 fragmentDepth, Stored8 stored) const {
+        return depthTestPasses(op, store(fragmentDepth), stored);
+    }
+};
+
 // Calls body(DepthCoding<unorm?>) for the draw's format: the one switch from a format to the back
 // end's template parameter.
 template <class Body>

@@ -143,6 +143,45 @@ TEST(Observer, WatchingChangesNoByte) {
     EXPECT_EQ(observer.drawsEnded, observer.drawsBegun);
 }
 
+// The watched back end chooses the depth coding and the colour buffer's rounding per fragment, where the
+// unwatched one has a copy per choice: every depth format and colour buffer format gives the same bytes
+// watched as not.
+// Breaks caught: the watched copy storing depths as floats under a unorm format, or not rounding colours
+// to a half or 8-bit colour buffer.
+TEST(Observer, WatchingChangesNoByteInAnyBufferFormat) {
+    for (DepthBufferFormat depthFormat : {DepthBufferFormat::Float, DepthBufferFormat::Unorm16,
+                                          DepthBufferFormat::Unorm24, DepthBufferFormat::ReversedFloat})
+        for (ColorBufferFormat colorFormat :
+             {ColorBufferFormat::Float, ColorBufferFormat::Half, ColorBufferFormat::Unorm8}) {
+            SCOPED_TRACE(std::to_string(static_cast<int>(depthFormat)) + " " +
+                         std::to_string(static_cast<int>(colorFormat)));
+            std::mt19937 rng(7);
+            Framebuffer plain(37, 29), watched(37, 29);
+            DrawContext plainContext(2, 16), watchedContext(1, 16);
+            RecordingObserver observer;
+            for (Framebuffer* fb : {&plain, &watched})
+                fb->clear(roundToColorBuffer(colorFormat, vec4(0.1f, 0.2f, 0.3f, 1.0f)),
+                          depthClearValue(depthFormat), plainContext.pool);
+            DrawState state = testing::stateFor(plain);
+            state.depth.format = depthFormat;
+            state.depth.compare = nearerPasses(depthFormat, CompareOp::Less);
+            state.colorBuffer = colorFormat;
+            state.blend = BlendMode::Over;
+            drawBoth<BatchColorShader>(state, randomTriangles<BatchColorShader>(rng, 40), plain, plainContext,
+                                       watched, watchedContext, observer);
+            EXPECT_EQ(plain.colorPixels(), watched.colorPixels());
+            EXPECT_EQ(plain.depthPixels(), watched.depthPixels());
+            if (depthFormat == DepthBufferFormat::Unorm16) {  // the codes are integers
+                for (float d : watched.depthPixels())
+                    ASSERT_EQ(d, std::round(d));
+            }
+            if (colorFormat == ColorBufferFormat::Unorm8) {  // the colours are multiples of 1/255
+                for (const vec4& c : watched.colorPixels())
+                    ASSERT_EQ(roundToUnorm8(c.r), c.r);
+            }
+        }
+}
+
 // Direct3D's example of the fill rule: the square (0,0)–(5,5) split along its diagonal, whose five
 // pixel centres lie exactly on the shared edge. The observer sees each of them as a tie on the diagonal
 // for both triangles, included by the one for which it is a left edge (the upper right) and excluded by
