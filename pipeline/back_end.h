@@ -319,8 +319,8 @@ std::size_t drawBatchTiles(const TileGrid& grid, std::span<const SetupChunk> chu
         // whenever the shader has them (a shader reads them only when the draw wants them). Same bytes
         // as the unwatched copies.
         constexpr bool kDerivatives = derivativeVarying<S>() >= 0;
-        const DepthCodingChosenPerFragment depth(plan.depthFormat);
-        using Depth = DepthCodingChosenPerFragment;
+        using Depth = DepthCoding<DepthCodingKind::PerFragment>;
+        const Depth depth(plan.depthFormat);
         if (plan.output == FragmentOutput::AppendToLists)
             detail::drawTiles<S, FragmentOutput::AppendToLists, Depth, false, kDerivatives>(
                 activeTiles, grid, chunks, plan, depth, uniforms, target, pool, inOrder, threadStats,

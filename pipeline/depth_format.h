@@ -171,51 +171,30 @@ inline CompareOp nearerPasses(DepthBufferFormat format, CompareOp lessIsNearerCo
 // unorm formats store a code whose largest value 2^N − 1 is held here, read per draw. So the back end
 // is compiled for two depth codings rather than for every format (each costs a copy of the tile loop
 // per shader), and the test is the same arithmetic as DepthFormatOf<format>'s, bit for bit.
-template <bool kUnorm>
+// PerFragment: either, chosen per fragment — what the watched back end (the step mode, which is for
+// reading, not speed) uses, so that it is compiled once per shader and observer.
+enum class DepthCodingKind { Float, Unorm, PerFragment };
+
+template <DepthCodingKind kKind>
 struct DepthCoding {
     using Stored = float;
     using Stored8 = Float8;
-    float unormMax = 1.0f;  // 2^N − 1 (kUnorm only)
+    float unormMax = 1.0f;  // 2^N − 1 of a unorm format
+    bool unorm = false;     // whether the format is a unorm one (PerFragment reads it)
 
     explicit DepthCoding(DepthBufferFormat format)
-        : unormMax(withDepthFormat(format, [](auto f) { return decltype(f)::kUnormMax; })) {}
-
-    Stored store(float windowDepth) const {
-        if constexpr (kUnorm)
-            return unormDepthCode(windowDepth, unormMax);
-        else
-            return windowDepth;
-    }
-    Stored8 store(Float8 windowDepth) const {
-        if constexpr (kUnorm)
-            return unormDepthCode(windowDepth, unormMax);
-        else
-            return windowDepth;
-    }
-    static Stored8 load8(const Stored* row) { return DepthFormat::load8(row); }
-    bool passes(CompareOp op, float fragmentDepth, Stored stored) const {
-        return depthTestPasses(op, store(fragmentDepth), stored);
-    }
-    Int8 passes(CompareOp op, Float8 fragmentDepth, Stored8 stored) const {
-        return depthTestPasses(op, store(fragmentDepth), stored);
-    }
-};
-
-// Either coding, chosen per fragment: what the observed back end (the step mode, which watches every
-// fragment and is for reading, not speed) uses, so that it is compiled once per shader and observer
-// rather than once per coding. Same arithmetic as DepthCoding's.
-struct DepthCodingChosenPerFragment {
-    using Stored = float;
-    using Stored8 = Float8;
-    DepthCoding<true> unormCoding;
-    bool unorm = false;
-
-    explicit DepthCodingChosenPerFragment(DepthBufferFormat format)
-        : unormCoding(format),
+        : unormMax(withDepthFormat(format, [](auto f) { return decltype(f)::kUnormMax; })),
           unorm(format == DepthBufferFormat::Unorm16 || format == DepthBufferFormat::Unorm24) {}
 
-    Stored store(float windowDepth) const { return unorm ? unormCoding.store(windowDepth) : windowDepth; }
-    Stored8 store(Float8 windowDepth) const { return unorm ? unormCoding.store(windowDepth) : windowDepth; }
+    template <class Depth>  // float or Float8
+    Depth store(Depth windowDepth) const {
+        if constexpr (kKind == DepthCodingKind::Unorm)
+            return unormDepthCode(windowDepth, unormMax);
+        else if constexpr (kKind == DepthCodingKind::PerFragment)
+            return unorm ? unormDepthCode(windowDepth, unormMax) : windowDepth;
+        else
+            return windowDepth;
+    }
     static Stored8 load8(const Stored* row) { return DepthFormat::load8(row); }
     bool passes(CompareOp op, float fragmentDepth, Stored stored) const {
         return depthTestPasses(op, store(fragmentDepth), stored);
@@ -225,13 +204,13 @@ struct DepthCodingChosenPerFragment {
     }
 };
 
-// Calls body(DepthCoding<unorm?>) for the draw's format: the one switch from a format to the back
-// end's template parameter.
+// Calls body(DepthCoding<Float or Unorm>) for the draw's format: the one switch from a format to the
+// back end's template parameter.
 template <class Body>
 decltype(auto) withDepthCoding(DepthBufferFormat format, Body&& body) {
     if (format == DepthBufferFormat::Unorm16 || format == DepthBufferFormat::Unorm24)
-        return body(DepthCoding<true>(format));
-    return body(DepthCoding<false>(format));
+        return body(DepthCoding<DepthCodingKind::Unorm>(format));
+    return body(DepthCoding<DepthCodingKind::Float>(format));
 }
 
 }  // namespace facet
