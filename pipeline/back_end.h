@@ -61,24 +61,12 @@ inline void describeInterpolation(FragmentEvent& event, float b1, float b2, floa
     event.varyingCount = varyingCount;
 }
 
-// The fragment shader, then the depth write and blending (or appending to the fragment lists) for the
-// queued fragments. Compiled for each FragmentOutput, depth coding (Depth, a DepthCoding: float or
-// unorm) and whether the colour buffer rounds what it stores (kRoundColor: the half and 8-bit formats,
-// whose rounding is chosen per fragment from the plan, a branch the predictor always gets right),
-// chosen per draw (drawBatchTiles), so the default float path is exactly what it would be without
-// fragment lists or other formats. (A template per format would multiply the back end's copies, one
-// per shader, without making any of them faster.)
-template <Shader S, FragmentOutput kOutput, class Depth, bool kRoundColor, class Observer>
-void shadeQueue(FragmentQueue& queue, const DrawPlan& plan, const Depth& depth,
-                const typename S::Uniforms& uniforms, Framebuffer& target, DrawStats& stats,
-                Observer& observer) {
-    constexpr bool kObserving = Observer::enabled;
-    const int n = queue.count;
-    if (n == 0) return;
-    queue.count = 0;
-
-    // The fragment shader: eight lanes at once when the shader can.
-    vec4 shaded[kBlockSize];
+// The fragment shader for the n queued fragments, into shaded[0..n): eight lanes at once when the
+// shader can. Returns the mask of the lanes kept (not discarded). Shared by the single-sample and the
+// multisample back ends, so a fragment is shaded by the same code in both.
+template <Shader S>
+unsigned runFragmentShader(FragmentQueue& queue, int n, const typename S::Uniforms& uniforms,
+                           vec4 (&shaded)[kBlockSize], DrawStats& stats) {
     unsigned kept = (1u << n) - 1;
     stats.fragmentsShaded += static_cast<unsigned>(n);
     if constexpr (BatchShader<S>) {
@@ -95,6 +83,27 @@ void shadeQueue(FragmentQueue& queue, const DrawPlan& plan, const Depth& depth,
             if (!shadeFragment<S>(varyings, uniforms, shaded[lane])) kept &= ~(1u << lane);
         }
     }
+    return kept;
+}
+
+// The fragment shader, then the depth write and blending (or appending to the fragment lists) for the
+// queued fragments. Compiled for each FragmentOutput, depth coding (Depth, a DepthCoding: float or
+// unorm) and whether the colour buffer rounds what it stores (kRoundColor: the half and 8-bit formats,
+// whose rounding is chosen per fragment from the plan, a branch the predictor always gets right),
+// chosen per draw (drawBatchTiles), so the default float path is exactly what it would be without
+// fragment lists or other formats. (A template per format would multiply the back end's copies, one
+// per shader, without making any of them faster.)
+template <Shader S, FragmentOutput kOutput, class Depth, bool kRoundColor, class Observer>
+void shadeQueue(FragmentQueue& queue, const DrawPlan& plan, const Depth& depth,
+                const typename S::Uniforms& uniforms, Framebuffer& target, DrawStats& stats,
+                Observer& observer) {
+    constexpr bool kObserving = Observer::enabled;
+    const int n = queue.count;
+    if (n == 0) return;
+    queue.count = 0;
+
+    vec4 shaded[kBlockSize];
+    const unsigned kept = runFragmentShader<S>(queue, n, uniforms, shaded, stats);
 
     // Depth write, then blending into the colour buffer or appending to the pixel's fragment list.
     for (int lane = 0; lane < n; ++lane) {
@@ -136,6 +145,58 @@ void shadeQueue(FragmentQueue& queue, const DrawPlan& plan, const Depth& depth,
             observer.onFragment(event);
         }
     }
+}
+
+// Puts a fragment that passed the depth test at pixel (x, y) into the next queue slot, with its varyings
+// (and texture coordinate derivatives) at barycentrics (b1, b2): lane `lane` of rowVaryings when the row
+// was interpolated eight lanes at once (wideRow), else interpolated alone (the same bits). Returns the
+// slot.
+template <Shader S, bool kDerivatives>
+int queueFragment(FragmentQueue& queue, const TriangleSetup& setup, const float* planes,
+                  const VaryingPairSlopes& uvSlopes, int x, int y, float z, bool wideRow,
+                  const FragmentBatch& rowVaryings, int lane, float b1, float b2) {
+    constexpr int kUv = derivativeVarying<S>();
+    const int slot = queue.count++;
+    queue.x[slot] = x;
+    queue.y[slot] = y;
+    queue.z[slot] = z;
+    queue.triangle[slot] = setup.triangle;
+    if (wideRow) {
+        for (int k = 0; k < setup.varyingCount; ++k)
+            queue.batch.varyings[k][slot] = rowVaryings.varyings[k][lane];
+        if constexpr (kDerivatives)
+            for (int k = 0; k < 4; ++k)
+                queue.batch.uvDerivatives[k][slot] = rowVaryings.uvDerivatives[k][lane];
+    } else {
+        float varyings[kMaxVaryingFloats];
+        interpolateVaryings(setup, planes, b1, b2, varyings);
+        for (int k = 0; k < setup.varyingCount; ++k)
+            queue.batch.varyings[k][slot] = varyings[k];
+        if constexpr (kDerivatives) {
+            float derivatives[4];
+            interpolateDerivatives<float>(setup, uvSlopes, b1, b2, &varyings[kUv], derivatives);
+            for (int k = 0; k < 4; ++k)
+                queue.batch.uvDerivatives[k][slot] = derivatives[k];
+        }
+    }
+    return slot;
+}
+
+// The varyings of a block row's eight lanes at once, when several fragments survived (`passed` has
+// more than two bits); one by one in queueFragment when a sliver of a triangle left one or two (the same
+// bits either way: interpolate.h). Returns whether the row was interpolated wide.
+template <Shader S, bool kDerivatives>
+bool interpolateRow(const TriangleSetup& setup, const float* planes, const VaryingPairSlopes& uvSlopes,
+                    unsigned passed, Float8 b1, Float8 b2, FragmentBatch& rowVaryings) {
+    constexpr int kUv = derivativeVarying<S>();
+    const bool wideRow = std::popcount(passed) > 2;
+    if (wideRow) {
+        interpolateVaryings(setup, planes, b1, b2, rowVaryings);
+        if constexpr (kDerivatives)
+            interpolateDerivatives<Float8>(setup, uvSlopes, b1, b2, &rowVaryings.varyings[kUv],
+                                           rowVaryings.uvDerivatives);
+    }
+    return wideRow;
 }
 
 // The covered pixels of one block: barycentrics, depth, and the depth test (before shading: the shader
@@ -182,16 +243,9 @@ void depthTestBlock(const TriangleSetup& setup, const float* planes, const Cover
                             passed &= ~(1u << lane);
             }
         }
-        // Varyings for the row's eight lanes at once when several fragments survived; one by one when a
-        // sliver of a triangle left one or two (the same bits either way: interpolate.h).
         FragmentBatch rowVaryings;
-        const bool wideRow = std::popcount(passed) > 2;
-        if (wideRow) {
-            interpolateVaryings(setup, planes, b1, b2, rowVaryings);
-            if constexpr (kDerivatives)
-                interpolateDerivatives<Float8>(setup, uvSlopes, b1, b2, &rowVaryings.varyings[kUv],
-                                               rowVaryings.uvDerivatives);
-        }
+        const bool wideRow =
+            interpolateRow<S, kDerivatives>(setup, planes, uvSlopes, passed, b1, b2, rowVaryings);
         for (int lane = 0; lane < kBlockSize; ++lane) {
             if (!(rowMask & (1u << lane))) continue;
             if (!(passed & (1u << lane))) {
@@ -207,34 +261,13 @@ void depthTestBlock(const TriangleSetup& setup, const float* planes, const Cover
                 }
                 continue;
             }
-            const int slot = queue.count++;
-            queue.x[slot] = block.x + lane;
-            queue.y[slot] = y;
-            queue.z[slot] = z[lane];
-            queue.triangle[slot] = setup.triangle;
+            const int slot =
+                queueFragment<S, kDerivatives>(queue, setup, planes, uvSlopes, block.x + lane, y, z[lane],
+                                               wideRow, rowVaryings, lane, b1[lane], b2[lane]);
             if constexpr (kObserving) {
                 queue.b1[slot] = b1[lane];
                 queue.b2[slot] = b2[lane];
                 queue.invW[slot] = interpolateInvW(setup, b1[lane], b2[lane]);
-            }
-            if (wideRow) {
-                for (int k = 0; k < setup.varyingCount; ++k)
-                    queue.batch.varyings[k][slot] = rowVaryings.varyings[k][lane];
-                if constexpr (kDerivatives)
-                    for (int k = 0; k < 4; ++k)
-                        queue.batch.uvDerivatives[k][slot] = rowVaryings.uvDerivatives[k][lane];
-            } else {
-                float varyings[kMaxVaryingFloats];
-                interpolateVaryings(setup, planes, b1[lane], b2[lane], varyings);
-                for (int k = 0; k < setup.varyingCount; ++k)
-                    queue.batch.varyings[k][slot] = varyings[k];
-                if constexpr (kDerivatives) {
-                    float derivatives[4];
-                    interpolateDerivatives<float>(setup, uvSlopes, b1[lane], b2[lane], &varyings[kUv],
-                                                  derivatives);
-                    for (int k = 0; k < 4; ++k)
-                        queue.batch.uvDerivatives[k][slot] = derivatives[k];
-                }
             }
             if (queue.count == kBlockSize)
                 shadeQueue<S, kOutput, Depth, kRoundColor>(queue, plan, depth, uniforms, target, stats,
@@ -292,6 +325,174 @@ void drawTiles(std::span<const std::uint32_t> activeTiles, const TileGrid& grid,
     });
 }
 
+// ---- Multisampling ----------------------------------------------------------------------------------
+// Coverage and depth per sample, shading once per pixel and triangle (plan.samples > 1, the standard
+// positions of sample_position.h). Unobserved Blend draws only (the step mode refuses anti-aliasing,
+// fragment lists are per pixel), so a shader gets two copies more per depth coding and derivatives
+// choice, not one per observer, output and rounding; the colour buffer's rounding is chosen at run time.
+
+inline constexpr int kMaxSamples = 16;
+
+// The queue of multisampled fragments: for each slot, which of its pixel's samples passed the depth
+// test and their depths, written when the fragment is shaded and kept.
+struct MultisampleQueue : FragmentQueue {
+    std::uint32_t samplesPassed[kBlockSize];
+    float sampleZ[kBlockSize][kMaxSamples];
+};
+
+// A draw's sample positions as fixed-point offsets from the pixel centre.
+struct SampleOffsetsFixed {
+    int count = 0;
+    std::int64_t x[kMaxSamples], y[kMaxSamples];
+
+    explicit SampleOffsetsFixed(int samples) {
+        for (const SampleOffset& offset : standardSamplePositions(samples)) {
+            x[count] = sampleOffsetFixed(offset.x);
+            y[count] = sampleOffsetFixed(offset.y);
+            ++count;
+        }
+    }
+};
+
+// Shades the queued fragments (runFragmentShader, as the single-sample back end does) and blends each
+// kept fragment's colour into every sample of its pixel that it covers and that passed the depth test,
+// writing those samples' depths.
+template <Shader S, class Depth>
+void shadeMultisampleQueue(MultisampleQueue& queue, const DrawPlan& plan, const Depth& depth,
+                           const typename S::Uniforms& uniforms, Framebuffer& target, DrawStats& stats) {
+    const int n = queue.count;
+    if (n == 0) return;
+    queue.count = 0;
+    vec4 shaded[kBlockSize];
+    const unsigned kept = runFragmentShader<S>(queue, n, uniforms, shaded, stats);
+    for (int lane = 0; lane < n; ++lane) {
+        if (!(kept & (1u << lane))) {
+            ++stats.fragmentsDiscarded;
+            continue;
+        }
+        vec4* colors = target.sampleColors(queue.x[lane], queue.y[lane]);
+        typename Depth::Stored* depths = target.sampleDepths(queue.x[lane], queue.y[lane]);
+        for (unsigned samples = queue.samplesPassed[lane]; samples; samples &= samples - 1) {
+            const int s = std::countr_zero(samples);
+            if (plan.depthWrite) depths[s] = depth.store(queue.sampleZ[lane][s]);
+            colors[s] = roundToColorBuffer(plan.colorBuffer, blend(plan.blend, shaded[lane], colors[s]));
+        }
+        ++stats.fragmentsWritten;
+    }
+}
+
+// The pixels of one block with a covered sample (coverage[s]: the block's mask at sample s): each
+// covered sample's depth from the depth plane at the sample, tested against that sample's stored
+// depth; a pixel with a sample that passed is queued once, its varyings interpolated at the pixel
+// centre (OpenGL's default without centroid interpolation: the centre may lie outside the triangle,
+// which extrapolates its varyings a little).
+template <Shader S, class Depth, bool kDerivatives>
+void depthTestMultisampleBlock(const TriangleSetup& setup, const float* planes, int blockX, int blockY,
+                               const std::uint64_t* coverage, std::uint64_t covered,
+                               const SampleOffsetsFixed& offsets, MultisampleQueue& queue,
+                               const DrawPlan& plan, const Depth& depth, const typename S::Uniforms& uniforms,
+                               Framebuffer& target, DrawStats& stats) {
+    const BlockBarycentrics barycentrics(setup, blockX, blockY);
+    VaryingPairSlopes uvSlopes;
+    if constexpr (kDerivatives) uvSlopes = VaryingPairSlopes(setup, planes, derivativeVarying<S>());
+    const double invArea = 1.0 / static_cast<double>(setup.doubleArea);
+    const EdgeFunction& e1 = setup.edges[1];
+    const EdgeFunction& e2 = setup.edges[2];
+
+    for (int row = 0; row < kBlockSize; ++row) {
+        const int shift = row * kBlockSize;
+        const unsigned rowMask = static_cast<unsigned>(covered >> shift) & 0xffu;
+        if (!rowMask) continue;
+        const int y = blockY + row;
+        if (queue.count && queue.holdsAny(y, blockX, rowMask))
+            shadeMultisampleQueue<S>(queue, plan, depth, uniforms, target, stats);
+
+        // The depth test at each covered sample: λᵢ = Eᵢ(sample) / (2·area), Eᵢ(sample) = Eᵢ(centre) +
+        // aᵢ·dx + bᵢ·dy exact in integers, then z as interpolateDepth gives it at a pixel centre.
+        unsigned passed = 0;
+        std::uint32_t samplesPassed[kBlockSize];
+        float sampleZ[kBlockSize][kMaxSamples];
+        for (unsigned lanes = rowMask; lanes; lanes &= lanes - 1) {
+            const int lane = std::countr_zero(lanes);
+            const int x = blockX + lane;
+            const SamplePoint centre = samplePosition(x, y);
+            const std::int64_t e1Centre = e1.at(centre.x, centre.y), e2Centre = e2.at(centre.x, centre.y);
+            const typename Depth::Stored* stored = target.sampleDepths(x, y);
+            std::uint32_t pass = 0;
+            for (int s = 0; s < offsets.count; ++s) {
+                if (!((coverage[s] >> (shift + lane)) & 1u)) continue;
+                const std::int64_t e1Sample = e1Centre + e1.a * offsets.x[s] + e1.b * offsets.y[s];
+                const std::int64_t e2Sample = e2Centre + e2.a * offsets.x[s] + e2.b * offsets.y[s];
+                const float b1 = static_cast<float>(static_cast<double>(e1Sample) * invArea);
+                const float b2 = static_cast<float>(static_cast<double>(e2Sample) * invArea);
+                const float z = interpolateDepth(setup, b1, b2);
+                if (plan.depthTest && !depth.passes(plan.depthCompare, z, stored[s])) continue;
+                pass |= 1u << s;
+                sampleZ[lane][s] = z;
+            }
+            samplesPassed[lane] = pass;
+            if (pass) passed |= 1u << lane;
+        }
+        stats.fragmentsDepthFailed += static_cast<unsigned>(std::popcount(rowMask & ~passed));
+        if (!passed) continue;
+
+        // The shading point: the pixel centre.
+        Float8 b1{}, b2{};
+        barycentrics.row(row, b1, b2);
+        const Float8 z = interpolateDepth(setup, b1, b2);
+        FragmentBatch rowVaryings;
+        const bool wideRow =
+            interpolateRow<S, kDerivatives>(setup, planes, uvSlopes, passed, b1, b2, rowVaryings);
+        for (unsigned lanes = passed; lanes; lanes &= lanes - 1) {
+            const int lane = std::countr_zero(lanes);
+            const int slot =
+                queueFragment<S, kDerivatives>(queue, setup, planes, uvSlopes, blockX + lane, y, z[lane],
+                                               wideRow, rowVaryings, lane, b1[lane], b2[lane]);
+            queue.samplesPassed[slot] = samplesPassed[lane];
+            for (unsigned samples = samplesPassed[lane]; samples; samples &= samples - 1) {
+                const int s = std::countr_zero(samples);
+                queue.sampleZ[slot][s] = sampleZ[lane][s];
+            }
+            if (queue.count == kBlockSize)
+                shadeMultisampleQueue<S>(queue, plan, depth, uniforms, target, stats);
+        }
+    }
+}
+
+// One tile of a multisampled draw: its triangles from every chunk, in submission order, block by block
+// with each block's coverage at every sample (blockCoverage at the sample's offset).
+template <Shader S, class Depth, bool kDerivatives>
+void drawMultisampleTile(const PixelRect& tileRect, std::size_t tile, std::span<const SetupChunk> chunks,
+                         const DrawPlan& plan, const Depth& depth, const typename S::Uniforms& uniforms,
+                         Framebuffer& target, DrawStats& stats) {
+    const SampleOffsetsFixed offsets(plan.samples);
+    MultisampleQueue queue;
+    for (const SetupChunk& chunk : chunks) {
+        for (const std::uint32_t index : chunk.bins[tile]) {
+            const TriangleSetup& setup = chunk.setups[index];
+            const PixelRect rect = rasterRect(setup, tileRect);
+            if (rect.empty()) continue;
+            const BlockEdgeSteps steps(setup);
+            for (int by = rect.minY & ~(kBlockSize - 1); by <= rect.maxY; by += kBlockSize) {
+                for (int bx = rect.minX & ~(kBlockSize - 1); bx <= rect.maxX; bx += kBlockSize) {
+                    std::uint64_t coverage[kMaxSamples], covered = 0;
+                    for (int s = 0; s < offsets.count; ++s) {
+                        bool inside = false;
+                        coverage[s] =
+                            blockCoverage(setup, steps, bx, by, rect, offsets.x[s], offsets.y[s], inside);
+                        covered |= coverage[s];
+                    }
+                    if (covered == 0) continue;
+                    depthTestMultisampleBlock<S, Depth, kDerivatives>(setup, chunk.planesOf(setup), bx, by,
+                                                                      coverage, covered, offsets, queue, plan,
+                                                                      depth, uniforms, target, stats);
+                }
+            }
+        }
+    }
+    shadeMultisampleQueue<S>(queue, plan, depth, uniforms, target, stats);
+}
+
 }  // namespace detail
 
 // The back end for one batch of set-up chunks: only the tiles some triangle touches (a draw of a few
@@ -334,6 +535,18 @@ std::size_t drawBatchTiles(const TileGrid& grid, std::span<const SetupChunk> chu
     const auto drawWith = [&]<bool kDerivatives>() {
         withDepthCoding(plan.depthFormat, [&](const auto& depth) {
             using Depth = std::decay_t<decltype(depth)>;
+            // Multisampling, chosen here once per draw; never observed (draw() refuses it).
+            if constexpr (!Observer::enabled) {
+                if (plan.samples > 1) {
+                    forEachItem(pool, inOrder, activeTiles.size(), [&](std::size_t active, int thread) {
+                        const std::size_t tile = activeTiles[active];
+                        detail::drawMultisampleTile<S, Depth, kDerivatives>(
+                            grid.tileRect(static_cast<int>(tile)), tile, chunks, plan, depth, uniforms,
+                            target, threadStats[static_cast<std::size_t>(thread)]);
+                    });
+                    return;
+                }
+            }
             const auto drawOutput = [&]<FragmentOutput kOutput, bool kRoundColor>() {
                 detail::drawTiles<S, kOutput, Depth, kRoundColor, kDerivatives>(
                     activeTiles, grid, chunks, plan, depth, uniforms, target, pool, inOrder, threadStats,

@@ -25,7 +25,7 @@ PixelRect TileGrid::tileRect(int index) const {
 }
 
 void binTriangle(const TileGrid& grid, const TriangleSetup& setup, std::uint32_t setupIndex,
-                 std::vector<std::vector<std::uint32_t>>& bins) {
+                 std::vector<std::vector<std::uint32_t>>& bins, std::int64_t sampleReach) {
     const int c0 = std::max(setup.minX / grid.tileSize, grid.firstColumn) - grid.firstColumn;
     const int c1 = std::min(setup.maxX / grid.tileSize - grid.firstColumn, grid.columns - 1);
     const int r0 = std::max(setup.minY / grid.tileSize, grid.firstRow) - grid.firstRow;
@@ -36,12 +36,15 @@ void binTriangle(const TileGrid& grid, const TriangleSetup& setup, std::uint32_t
             const int tile = r * grid.columns + c;
             if (!single) {
                 // Skip a tile wholly outside one edge: the edge's largest value over the tile's sample
-                // points is at the corner its gradient points to.
+                // points is at the corner its gradient points to (with multisampling, at most
+                // sampleReach beyond the corner pixel's centre: a bound, never a miss).
                 const PixelRect rect = grid.tileRect(tile);
                 bool outside = false;
                 for (const EdgeFunction& e : setup.edges) {
-                    const std::int64_t x = sampleCoordinate(e.a > 0 ? rect.maxX : rect.minX);
-                    const std::int64_t y = sampleCoordinate(e.b > 0 ? rect.maxY : rect.minY);
+                    const std::int64_t x = e.a > 0 ? sampleCoordinate(rect.maxX) + sampleReach
+                                                   : sampleCoordinate(rect.minX) - sampleReach;
+                    const std::int64_t y = e.b > 0 ? sampleCoordinate(rect.maxY) + sampleReach
+                                                   : sampleCoordinate(rect.minY) - sampleReach;
                     outside |= e.at(x, y) + e.bias < 0;
                 }
                 if (outside) continue;

@@ -27,9 +27,10 @@ struct TileGrid {
 TileGrid makeTileGrid(const Viewport& viewport, int tileSize);
 
 // Appends `setupIndex` to bins[t] for every tile t that the triangle's bounding box overlaps and that
-// is not wholly outside one of its edges. `bins` has grid.count() entries.
+// is not wholly outside one of its edges. `bins` has grid.count() entries. `sampleReach`: how far from
+// its pixel's centre a sample may lie (sampleReachFixed of the draw's samples).
 void binTriangle(const TileGrid& grid, const TriangleSetup& setup, std::uint32_t setupIndex,
-                 std::vector<std::vector<std::uint32_t>>& bins);
+                 std::vector<std::vector<std::uint32_t>>& bins, std::int64_t sampleReach = 0);
 
 // What the front end hands the back end for one chunk of consecutive triangles: their setups, the
 // setups' varying planes, and for every tile the setups that may touch it, in submission order.

@@ -19,6 +19,7 @@ struct DrawPlan {
     FragmentOutput output = FragmentOutput::Blend;
     DepthBufferFormat depthFormat = DepthBufferFormat::Float;
     ColorBufferFormat colorBuffer = ColorBufferFormat::Float;
+    int samples = 1;  // per pixel: more than one draws into the framebuffer's sample planes
 };
 
 inline DrawPlan planDraw(const DrawState& state) {
@@ -30,6 +31,7 @@ inline DrawPlan planDraw(const DrawState& state) {
     plan.output = state.output;
     plan.depthFormat = state.depth.format;
     plan.colorBuffer = state.colorBuffer;
+    plan.samples = state.samples;
     return plan;
 }
 

@@ -32,6 +32,19 @@ class Framebuffer {
     DepthFormat::Stored& depth(int x, int y) { return depth_[index(x, y)]; }
     DepthFormat::Stored depth(int x, int y) const { return depth_[index(x, y)]; }
 
+    // Multisampling: per-sample colour and depth planes of `samples` samples per pixel (a pixel's samples
+    // contiguous, in the standard pattern's order), allocated here and cleared by clear() from then on;
+    // 1 releases them, and a framebuffer at one sample allocates and clears nothing more.
+    void useSamples(int samples);
+    int samples() const { return samples_; }
+    vec4* sampleColors(int x, int y) { return sampleColor_.data() + sampleIndex(x, y); }
+    DepthFormat::Stored* sampleDepths(int x, int y) { return sampleDepth_.data() + sampleIndex(x, y); }
+    // The box filter of multisampling: each pixel's colour becomes the average of its samples in linear
+    // light, summed pairwise in sample order (so a pixel whose samples are equal keeps their exact
+    // value), rounded as `format` stores it; its depth becomes its first sample's. Rows spread over the
+    // pool: the same bytes for any thread count.
+    void resolveSamples(ColorBufferFormat format, ThreadPool& pool);
+
     // Row-major, row 0 at the top of the image.
     const std::vector<vec4>& colorPixels() const { return color_; }
     const std::vector<DepthFormat::Stored>& depthPixels() const { return depth_; }
@@ -42,12 +55,16 @@ class Framebuffer {
 
   private:
     std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * width_ + x; }
+    std::size_t sampleIndex(int x, int y) const { return index(x, y) * static_cast<std::size_t>(samples_); }
 
     int width_ = 0;
     int height_ = 0;
     std::vector<vec4> color_;                 // linear RGBA
     std::vector<DepthFormat::Stored> depth_;  // window depth as DepthFormat stores it
     FragmentLists lists_;                     // empty (no memory) until an AppendToLists draw
+    int samples_ = 1;
+    std::vector<vec4> sampleColor_;                 // multisampling only: samples_ per pixel
+    std::vector<DepthFormat::Stored> sampleDepth_;  // likewise
 };
 
 }  // namespace facet

@@ -85,6 +85,7 @@ void setupTriangles(std::span<const std::uint32_t> indices, std::size_t first, s
     const int varyingCount = shaded.varyingCount;
     const int planeFloats = 3 * varyingCount;
     DrawStats& stats = chunk.stats;
+    const std::int64_t sampleReach = sampleReachFixed(state.samples);
 
     // Setup and binning of one window triangle (a whole triangle, or one fan piece of a clipped one).
     auto setupAndBin = [&](std::uint32_t triangleIndex, const WindowTriangle& window) {
@@ -109,7 +110,7 @@ void setupTriangles(std::span<const std::uint32_t> indices, std::size_t first, s
         setup.varyingPlaneOffset = static_cast<std::uint32_t>(chunk.varyingPlanes.size());
         chunk.setups.push_back(setup);
         chunk.varyingPlanes.insert(chunk.varyingPlanes.end(), planes, planes + planeFloats);
-        binTriangle(grid, setup, index, chunk.bins);
+        binTriangle(grid, setup, index, chunk.bins, sampleReach);
     };
 
     for (std::size_t t = first; t < last; ++t) {

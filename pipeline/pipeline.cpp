@@ -21,6 +21,17 @@ void validateDraw(const DrawState& state, const Framebuffer& target, std::size_t
     }
     if (state.raster.subpixelBits < 0 || state.raster.subpixelBits > kMaxSubpixelBits)
         throw std::invalid_argument("subpixel bits must be 0.." + std::to_string(kMaxSubpixelBits));
+    if (standardSamplePositions(state.samples).empty())
+        throw std::invalid_argument("samples per pixel " + std::to_string(state.samples) +
+                                    " is not 1, 2, 4, 8 or 16");
+    if (state.samples > 1 && target.samples() != state.samples) {
+        std::string message = "a draw of " + std::to_string(state.samples);
+        message += " samples per pixel needs a framebuffer of as many (Framebuffer::useSamples), not ";
+        message += std::to_string(target.samples());
+        throw std::invalid_argument(message);
+    }
+    if (state.samples > 1 && state.output == FragmentOutput::AppendToLists)
+        throw std::invalid_argument("multisampling cannot append to fragment lists, which are per pixel");
     for (std::size_t k = 0; k < indices.size(); ++k)
         if (indices[k] >= vertexCount)
             throw std::invalid_argument("index " + std::to_string(indices[k]) + " at position " +

@@ -74,6 +74,9 @@ DrawStats draw(const DrawState& state, const typename S::Uniforms& uniforms,
     using Watcher = std::remove_reference_t<Observer>;
     constexpr bool inOrder = Watcher::enabled;  // observed draws run on the calling thread, in order
     validateDraw(state, target, vertices.size(), indices, context.tileSize);
+    if constexpr (Watcher::enabled)
+        if (state.samples > 1)
+            throw std::invalid_argument("a multisampled draw cannot be observed: draw it with one sample");
     const DrawPlan plan = planDraw(state);
     const std::uint64_t drawId = context.drawsStarted++;
     if constexpr (Watcher::enabled) observer.onDrawBegin(drawId, state);

@@ -120,50 +120,69 @@ inline std::uint64_t partialBlockMask(const std::int64_t origin[3], const std::i
 
 }  // namespace detail
 
+// Per edge of a triangle: the step of its function from one pixel to the next, and the offsets from a
+// block's first sample to the block's smallest and largest value of the edge function (at opposite
+// corners).
+struct BlockEdgeSteps {
+    std::int64_t stepX[3], stepY[3], minOffset[3], maxOffset[3];
+
+    explicit BlockEdgeSteps(const TriangleSetup& setup) {
+        constexpr std::int64_t kSpan = (kBlockSize - 1) * kFixedOne;
+        for (int i = 0; i < 3; ++i) {
+            const EdgeFunction& e = setup.edges[i];
+            stepX[i] = e.a * kFixedOne;
+            stepY[i] = e.b * kFixedOne;
+            minOffset[i] = std::min<std::int64_t>(0, e.a * kSpan) + std::min<std::int64_t>(0, e.b * kSpan);
+            maxOffset[i] = std::max<std::int64_t>(0, e.a * kSpan) + std::max<std::int64_t>(0, e.b * kSpan);
+        }
+    }
+};
+
+// The covered samples of the pixels of block (bx, by) inside `rect`, one bit per pixel, for the samples
+// at (dx, dy) fixed-point units from each pixel's centre (0, 0: the centre itself; multisampling's
+// positions otherwise, where the edge function is E(centre) + a·dx + b·dy, exact). `inside`: whether all
+// three edges cover the whole block.
+inline std::uint64_t blockCoverage(const TriangleSetup& setup, const BlockEdgeSteps& steps, int bx, int by,
+                                   const PixelRect& rect, std::int64_t dx, std::int64_t dy, bool& inside) {
+    // Biased edge values at the block's first sample, that of pixel (bx, by).
+    const SamplePoint first = samplePosition(bx, by);
+    std::int64_t origin[3];
+    bool outside = false;
+    inside = true;
+    for (int i = 0; i < 3; ++i) {
+        origin[i] = setup.edges[i].at(first.x + dx, first.y + dy) + setup.edges[i].bias;
+        outside |= origin[i] + steps.maxOffset[i] < 0;
+        inside &= origin[i] + steps.minOffset[i] >= 0;
+    }
+    if (outside) return 0;  // trivially rejected: wholly outside one edge
+
+    const std::uint64_t inRect = rectMask(bx, by, rect);
+    if (inside) return inRect;
+    const int firstRow = std::max(rect.minY - by, 0), lastRow = std::min(rect.maxY - by, kBlockSize - 1);
+    return detail::partialBlockMask(origin, steps.stepX, steps.stepY, steps.minOffset, steps.maxOffset,
+                                    firstRow, lastRow) &
+           inRect;
+}
+
+// The rectangle of pixels a triangle's blocks are walked over: `area` ∩ the triangle's bounds.
+inline PixelRect rasterRect(const TriangleSetup& setup, const PixelRect& area) {
+    return {std::max(area.minX, setup.minX), std::max(area.minY, setup.minY), std::min(area.maxX, setup.maxX),
+            std::min(area.maxY, setup.maxY)};
+}
+
 // Calls visit(const CoverageBlock&) for every block of `rect` ∩ the triangle's bounds with a covered sample.
 template <class BlockVisitor>
 void rasterizeBlocks(const TriangleSetup& setup, const PixelRect& area, BlockVisitor&& visit) {
-    const PixelRect rect{std::max(area.minX, setup.minX), std::max(area.minY, setup.minY),
-                         std::min(area.maxX, setup.maxX), std::min(area.maxY, setup.maxY)};
+    const PixelRect rect = rasterRect(setup, area);
     if (rect.empty()) return;
-
-    // Per edge: the step from one pixel to the next, and the offsets from a block's first sample to the
-    // block's smallest and largest value of the edge function (at opposite corners).
-    constexpr std::int64_t kSpan = (kBlockSize - 1) * kFixedOne;
-    std::int64_t stepX[3], stepY[3], minOffset[3], maxOffset[3];
-    for (int i = 0; i < 3; ++i) {
-        const EdgeFunction& e = setup.edges[i];
-        stepX[i] = e.a * kFixedOne;
-        stepY[i] = e.b * kFixedOne;
-        minOffset[i] = std::min<std::int64_t>(0, e.a * kSpan) + std::min<std::int64_t>(0, e.b * kSpan);
-        maxOffset[i] = std::max<std::int64_t>(0, e.a * kSpan) + std::max<std::int64_t>(0, e.b * kSpan);
-    }
-
+    const BlockEdgeSteps steps(setup);
     const int firstBlockX = rect.minX & ~(kBlockSize - 1);
     const int firstBlockY = rect.minY & ~(kBlockSize - 1);
     CoverageBlock block;
     for (int by = firstBlockY; by <= rect.maxY; by += kBlockSize) {
         for (int bx = firstBlockX; bx <= rect.maxX; bx += kBlockSize) {
-            // Biased edge values at the block's first sample, that of pixel (bx, by).
-            const SamplePoint first = samplePosition(bx, by);
-            std::int64_t origin[3];
-            bool outside = false, inside = true;
-            for (int i = 0; i < 3; ++i) {
-                origin[i] = setup.edges[i].at(first.x, first.y) + setup.edges[i].bias;
-                outside |= origin[i] + maxOffset[i] < 0;
-                inside &= origin[i] + minOffset[i] >= 0;
-            }
-            if (outside) continue;  // trivially rejected: wholly outside one edge
-
-            const std::uint64_t inRect = rectMask(bx, by, rect);
-            std::uint64_t mask = inRect;
-            if (!inside) {
-                const int firstRow = std::max(rect.minY - by, 0),
-                          lastRow = std::min(rect.maxY - by, kBlockSize - 1);
-                mask =
-                    detail::partialBlockMask(origin, stepX, stepY, minOffset, maxOffset, firstRow, lastRow) &
-                    inRect;
-            }
+            bool inside = false;
+            const std::uint64_t mask = blockCoverage(setup, steps, bx, by, rect, 0, 0, inside);
             if (mask == 0) continue;
             block.x = bx;
             block.y = by;

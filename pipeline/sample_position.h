@@ -88,6 +88,20 @@ constexpr std::span<const SampleOffset> standardSamplePositions(int count) {
     }
 }
 
+// A sample's offset in fixed-point units (kFixedOne / 16 per unit: exact, kFixedFractionBits ≥ 4; the
+// vertices' own sub-pixel precision, RasterState::subpixelBits, snaps only the vertices, so the
+// samples stay at their standard positions at any setting).
+static_assert(kFixedOne % kSampleOffsetUnitsPerPixel == 0, "sample offsets must be exact in fixed point");
+inline constexpr std::int64_t sampleOffsetFixed(int units) {
+    return std::int64_t{units} * (kFixedOne / kSampleOffsetUnitsPerPixel);
+}
+
+// How far from its pixel's centre a draw's sample may lie, in fixed-point units, along x or y: 0 for
+// one sample (the centre), half a pixel for the multisample patterns (within [−8, 7]/16).
+inline constexpr std::int64_t sampleReachFixed(int samples) {
+    return samples > 1 ? kFixedOne / 2 : 0;
+}
+
 // The inverse of sampleCoordinate: the first pixel whose sample lies at or after the fixed-point
 // coordinate c, ⌈(c − ½)/one⌉, and the last pixel whose sample lies at or before it, ⌊(c − ½)/one⌋.
 inline constexpr std::int64_t firstPixelSampledFrom(std::int64_t c) {

@@ -50,6 +50,7 @@ std::ostream& operator<<(std::ostream& os, const DrawState& s) {
     // Formats other than the defaults only: what the step mode prints for a default draw is unchanged.
     if (s.depth.format != DepthBufferFormat::Float) os << "; " << s.depth.format << " depth buffer";
     if (s.colorBuffer != ColorBufferFormat::Float) os << "; " << s.colorBuffer << " colour buffer";
+    if (s.samples > 1) os << "; " << s.samples << " samples per pixel";
     if (s.depth.offset.any())
         os << "; depth offset " << s.depth.offset.factor << "·slope + " << s.depth.offset.units << " units";
     return os << "; " << s.interpolation << " interpolation; blend " << s.blend << "; output " << s.output;

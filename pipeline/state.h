@@ -192,6 +192,10 @@ struct DrawState {
     BlendMode blend = BlendMode::Replace;
     FragmentOutput output = FragmentOutput::Blend;
     ColorBufferFormat colorBuffer = ColorBufferFormat::Float;
+    // Multisampling: coverage and depth are tested at this many samples per pixel (1, 2, 4, 8 or 16, the
+    // standard positions of sample_position.h) in the framebuffer's sample planes, which must hold as
+    // many (Framebuffer::useSamples); the fragment is shaded once per pixel. 1: the pixel centre only.
+    int samples = 1;
 };
 
 std::ostream& operator<<(std::ostream& os, CullMode mode);

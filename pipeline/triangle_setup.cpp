@@ -73,11 +73,16 @@ TriangleFate setupTriangle(const WindowTriangle& triangle, const DrawState& stat
     const std::int64_t maxXf = std::max({t0.xFixed, t1.xFixed, t2.xFixed});
     const std::int64_t minYf = std::min({t0.yFixed, t1.yFixed, t2.yFixed});
     const std::int64_t maxYf = std::max({t0.yFixed, t1.yFixed, t2.yFixed});
+    // Multisampling: the pixels some sample of which may be inside, those whose centre lies within the
+    // samples' reach of the triangle's extent.
     const Viewport& vp = state.viewport;
-    setup.minX = static_cast<int>(std::max<std::int64_t>(firstPixelSampledFrom(minXf), vp.x));
-    setup.minY = static_cast<int>(std::max<std::int64_t>(firstPixelSampledFrom(minYf), vp.y));
-    setup.maxX = static_cast<int>(std::min<std::int64_t>(lastPixelSampledUpTo(maxXf), vp.x + vp.width - 1));
-    setup.maxY = static_cast<int>(std::min<std::int64_t>(lastPixelSampledUpTo(maxYf), vp.y + vp.height - 1));
+    const std::int64_t reach = sampleReachFixed(state.samples);
+    setup.minX = static_cast<int>(std::max<std::int64_t>(firstPixelSampledFrom(minXf - reach), vp.x));
+    setup.minY = static_cast<int>(std::max<std::int64_t>(firstPixelSampledFrom(minYf - reach), vp.y));
+    setup.maxX =
+        static_cast<int>(std::min<std::int64_t>(lastPixelSampledUpTo(maxXf + reach), vp.x + vp.width - 1));
+    setup.maxY =
+        static_cast<int>(std::min<std::int64_t>(lastPixelSampledUpTo(maxYf + reach), vp.y + vp.height - 1));
 
     // A triangle between sample points covers none: common for the sub-pixel triangles of dense meshes.
     if (setup.minX > setup.maxX || setup.minY > setup.maxY) return TriangleFate::MissesSamples;

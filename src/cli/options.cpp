@@ -144,8 +144,9 @@ void addSceneOptions(CLI::App& command, SceneArgs& args) {
             "GPUs and Mesa)")
         ->check(wholeNumber(0, facet::kMaxSubpixelBits));
     addChoice(command, "--aa", args.antialiasing,
-              "Anti-aliasing: supersampling draws the frame once per sample (2, 4, 8 or 16, at the standard "
-              "sample positions) and averages them" +
+              "Anti-aliasing: supersampling (ssaaN) draws the frame once per sample (2, 4, 8 or 16, at the "
+              "standard sample positions) and averages them; multisampling (msaaN) draws it once, testing "
+              "coverage and depth per sample and shading once per pixel" +
                   byDefault(Antialiasing::None));
     addChoice(command, "--shadows", args.shadows,
               "Shadows of every light: none, a ray to the light (exact), or a shadow map (default: each "

@@ -211,6 +211,16 @@ PreparedScene prepareScene(const Scene& scene, const TextureLimits& limits) {
                          std::to_string(scene.height) + " is outside 1.." + std::to_string(kMaxImageSide));
     if (scene.objects.empty())
         throw InputError(scene.source.string() + ": the scene has no objects to render");
+    // Exact transparency keeps one fragment list per pixel, not per sample.
+    if (scene.transparency.mode == TransparencyMode::Exact && isMultisampled(scene.pipeline.antialiasing)) {
+        std::string message = scene.source.string();
+        message += ": exact transparency (--transparency exact) cannot be multisampled (--aa ";
+        message += nameOf(scene.pipeline.antialiasing);
+        message += "): its fragment lists are per pixel; use --aa ssaa";
+        message += std::to_string(samplesPerPixel(scene.pipeline.antialiasing));
+        message += " or --transparency sorted";
+        throw InputError(message);
+    }
 
     const bool glPreset = scene.lighting.preset == LightingPreset::GL;
     // Facet: colours are sRGB-encoded as written (unless "gamma": {"decode_inputs": false}); GL: taken
@@ -400,6 +410,8 @@ PreparedScene prepareScene(const Scene& scene, const TextureLimits& limits) {
     state.depth.format = scene.pipeline.depth;
     state.depth.compare = nearerPasses(state.depth.format, CompareOp::Less);
     state.colorBuffer = scene.pipeline.colorBuffer;
+    if (isMultisampled(scene.pipeline.antialiasing))
+        state.samples = samplesPerPixel(scene.pipeline.antialiasing);
     state.raster.provokingVertex = ProvokingVertex::Last;  // OpenGL's convention
     prepared.clearColor = vec4(decode(vec3(scene.background)), scene.background.a);
     prepared.encoding = glPreset ? kGlEncoding : ColorEncoding{scene.gamma.encode, scene.gamma.exponent};

@@ -297,6 +297,15 @@ FrameStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawC
     // depends on eye-space depths, not on where the pixels sample.
     const std::vector<PlannedDraw> plan =
         planFrame(prepared, prepared.scene.transparency.mode, memory, stats);
+    // Multisampling: one pass into the framebuffer's sample planes (drawFramePass clears them), then
+    // each pixel's samples averaged. Without it the planes are released and nothing more is cleared.
+    const int multisamples = prepared.state.samples;
+    if (target.samples() != multisamples) target.useSamples(multisamples);
+    if (multisamples > 1) {
+        detail::drawFramePass(prepared, plan, target, context, observer, terms, nullptr, stats);
+        target.resolveSamples(prepared.state.colorBuffer, context.pool);
+        return stats;
+    }
     const std::span<const SampleOffset> samples =
         standardSamplePositions(samplesPerPixel(prepared.scene.pipeline.antialiasing));
     if (samples.size() <= 1) {

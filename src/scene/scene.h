@@ -118,31 +118,42 @@ struct LightingOptions {
 // Anti-aliasing of the frame ("pipeline": {"antialiasing": ...}, --aa). Supersampling (SSAA) draws the
 // whole frame once per sample of the standard pattern (pipeline/sample_position.h), the image shifted so
 // that the pixel centres land on that sample, and averages the passes in linear light (a box filter):
-// N samples cost N frames and shade every sample. None draws the frame once, sampling pixel centres.
-enum class Antialiasing : std::uint8_t { None, Ssaa2, Ssaa4, Ssaa8, Ssaa16 };
-inline constexpr EnumName<Antialiasing> kAntialiasingNames[] = {{Antialiasing::None, "none"},
-                                                                {Antialiasing::Ssaa2, "ssaa2"},
-                                                                {Antialiasing::Ssaa4, "ssaa4"},
-                                                                {Antialiasing::Ssaa8, "ssaa8"},
-                                                                {Antialiasing::Ssaa16, "ssaa16"}};
+// N samples cost N frames and shade every sample. Multisampling (MSAA) draws the frame once, testing
+// coverage and depth at each of the pattern's samples but shading once per pixel and triangle, and
+// averages each pixel's samples in linear light after the frame's draws. None draws the frame once,
+// sampling pixel centres.
+enum class Antialiasing : std::uint8_t { None, Ssaa2, Ssaa4, Ssaa8, Ssaa16, Msaa2, Msaa4, Msaa8, Msaa16 };
+inline constexpr EnumName<Antialiasing> kAntialiasingNames[] = {
+    {Antialiasing::None, "none"},   {Antialiasing::Ssaa2, "ssaa2"},   {Antialiasing::Ssaa4, "ssaa4"},
+    {Antialiasing::Ssaa8, "ssaa8"}, {Antialiasing::Ssaa16, "ssaa16"}, {Antialiasing::Msaa2, "msaa2"},
+    {Antialiasing::Msaa4, "msaa4"}, {Antialiasing::Msaa8, "msaa8"},   {Antialiasing::Msaa16, "msaa16"}};
 constexpr std::span<const EnumName<Antialiasing>> enumNames(Antialiasing) {
     return kAntialiasingNames;
 }
-// Samples per pixel: 1 for None.
+// Samples per pixel, whether supersampled or multisampled: 1 for None.
 constexpr int samplesPerPixel(Antialiasing aa) {
     switch (aa) {
         case Antialiasing::Ssaa2:
+        case Antialiasing::Msaa2:
             return 2;
         case Antialiasing::Ssaa4:
+        case Antialiasing::Msaa4:
             return 4;
         case Antialiasing::Ssaa8:
+        case Antialiasing::Msaa8:
             return 8;
         case Antialiasing::Ssaa16:
+        case Antialiasing::Msaa16:
             return 16;
         case Antialiasing::None:
             break;
     }
     return 1;
+}
+// Whether the samples are multisampled (one pass, shaded per pixel) rather than supersampled.
+constexpr bool isMultisampled(Antialiasing aa) {
+    return aa == Antialiasing::Msaa2 || aa == Antialiasing::Msaa4 || aa == Antialiasing::Msaa8 ||
+           aa == Antialiasing::Msaa16;
 }
 
 // Whether the MTL's texture maps (map_Kd, map_Ke) are used ("textures": {"maps"}, --textures): off

@@ -190,8 +190,9 @@ TEST_F(ReferenceTest, SamplesAverageAcrossTheSilhouette) {
 // over the pixels the silhouette crosses (where the reference at 8×8 samples differs from its one
 // sample at the centre), the error against the 8×8 reference drops from one sample to ssaa4 and again
 // to ssaa16. Measured sums of |R|+|G|+|B| over
-// its 102 pixels: none 14.26, ssaa4 5.37, ssaa16 2.94. Breaks if the passes are not shifted (each ssaa
-// image is then the one-sample image) or not averaged.
+// its 102 pixels: none 14.26, ssaa4 5.37, ssaa16 2.94, msaa4 7.77. Breaks if the passes are not
+// shifted (each ssaa image is then the one-sample image) or not averaged, or if multisampling tests
+// coverage at the pixel centre only (msaa4 is then the one-sample image).
 TEST_F(ReferenceTest, SupersamplingApproachesTheReferenceAtTheSilhouette) {
     Scene scene = sphereScene();
     scene.background = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
@@ -204,7 +205,8 @@ TEST_F(ReferenceTest, SupersamplingApproachesTheReferenceAtTheSilhouette) {
             silhouette.push_back(k);
     ASSERT_GT(silhouette.size(), 50u);
     std::vector<double> errors;
-    for (const Antialiasing aa : {Antialiasing::None, Antialiasing::Ssaa4, Antialiasing::Ssaa16}) {
+    for (const Antialiasing aa :
+         {Antialiasing::None, Antialiasing::Ssaa4, Antialiasing::Ssaa16, Antialiasing::Msaa4}) {
         scene.pipeline.antialiasing = aa;
         const PreparedScene prepared = prepareScene(scene);
         Framebuffer target(scene.width, scene.height);
@@ -217,10 +219,15 @@ TEST_F(ReferenceTest, SupersamplingApproachesTheReferenceAtTheSilhouette) {
                 error += std::abs(double(target.colorPixels()[k][c]) - double(exact.pixels[k][c]));
         errors.push_back(error);
     }
-    std::printf("silhouette error over %zu pixels: none %.4f ssaa4 %.4f ssaa16 %.4f\n", silhouette.size(),
-                errors[0], errors[1], errors[2]);
+    std::printf("silhouette error over %zu pixels: none %.4f ssaa4 %.4f ssaa16 %.4f msaa4 %.4f\n",
+                silhouette.size(), errors[0], errors[1], errors[2], errors[3]);
     EXPECT_LT(errors[1], 0.6 * errors[0]);
     EXPECT_LT(errors[2], 0.8 * errors[1]);
+    // Multisampling at the same 4 samples: the same coverage as ssaa4, but each silhouette pixel is
+    // shaded once, at its centre (extrapolated when the centre misses the sphere), where the limb's
+    // shading changes fastest: 1.45 times ssaa4's error, half the one-sample error.
+    EXPECT_LT(errors[3], 0.6 * errors[0]);
+    EXPECT_LT(errors[3], 1.6 * errors[1]);
 }
 
 // Faces are culled as the scene's pipeline culls them: the sphere seen from inside shows only back faces.

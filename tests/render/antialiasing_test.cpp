@@ -1,12 +1,14 @@
-// Anti-aliasing by supersampling: the standard sample positions (pipeline/sample_position.h), and
-// renderFrame's passes (render/renderer.h): each pass moves the image so that the pixel centres land
-// on one sample, and the passes are averaged in linear light.
+// Anti-aliasing by supersampling and multisampling: the standard sample positions
+// (pipeline/sample_position.h), and renderFrame's passes (render/renderer.h): each pass moves the image so
+// that the pixel centres land on one sample, and the passes are averaged in linear light.
 #include <algorithm>
+#include <cstdio>
 #include <set>
 #include <utility>
 
 #include <gtest/gtest.h>
 
+#include "base/errors.h"
 #include "pipeline/sample_position.h"
 #include "render/renderer.h"
 #include "support/temp_folder.h"
@@ -182,11 +184,171 @@ TEST_F(SupersampledRectangle, SameBytesForAnyThreadCount) {
     EXPECT_EQ(images[0], images[1]);
 }
 
+// ---- Multisampled frames ---------------------------------------------------------------------------
+
+// Multisampling tests coverage at the same standard samples: an edge through the pixel's centre covers
+// half of the 4 and of the 16 samples, and the resolve is the half mix. Breaks if coverage ignores the
+// sample offsets (all samples at the centre: 0), or the resolve sums without averaging (2, 8).
+TEST_F(SupersampledRectangle, MultisampledEdgeThroughTheCentreGivesTheHalfMix) {
+    EXPECT_EQ(centrePixel(rectangle(-1.0, ndcX(0), -1.0, 1.0, Antialiasing::Msaa4)), 0.5f);
+    EXPECT_EQ(centrePixel(rectangle(-1.0, ndcX(0), -1.0, 1.0, Antialiasing::Msaa16)), 0.5f);
+}
+
+// The samples' offsets have their signs: as for supersampling, an edge 3/16 px right of (or below) the
+// centre covers 11 of the 16 samples, 10 when the pattern is mirrored. Breaks if blockCoverage applies
+// an offset with the wrong sign or to the wrong axis.
+TEST_F(SupersampledRectangle, MultisampledCoverageAtTheStandardPositions) {
+    EXPECT_EQ(centrePixel(rectangle(-1.0, ndcX(3), -1.0, 1.0, Antialiasing::Msaa16)), 11.0f / 16.0f);
+    EXPECT_EQ(centrePixel(rectangle(-1.0, 1.0, ndcY(3), 1.0, Antialiasing::Msaa16)), 11.0f / 16.0f);
+}
+
+// The resolve rounds to the colour buffer's format: 3 of 4 samples white is 0.75, which 8 bits store as
+// 191/255. Breaks if the resolve writes the average unrounded.
+TEST_F(SupersampledRectangle, MultisampledResolveRoundsToTheColorBuffer) {
+    PreparedScene prepared = rectangle(-1.0, ndcX(3), -1.0, 1.0, Antialiasing::Msaa4);
+    EXPECT_EQ(centrePixel(prepared), 0.75f);  // x < 3 holds for −2, −6, 2 of −2, 6, −6, 2
+    prepared.state.colorBuffer = ColorBufferFormat::Unorm8;
+    EXPECT_EQ(centrePixel(prepared), 191.0f / 255.0f);
+}
+
+// The depth test runs per sample: a quad tilted in depth whose depth crosses that of a flat quad drawn
+// after it exactly at pixel (1, 1)'s centre shows the tilted quad (red) at the pixel's two samples left
+// of the centre and the flat one (green) at the two right of it: the resolve is half red, half green.
+// Breaks if every sample takes the pixel centre's depth (one colour, or a 1:3 mix) or if a sample's
+// depth is not written.
+TEST_F(SupersampledRectangle, MultisampledDepthTestPerSample) {
+    PreparedScene prepared = rectangle(-1.0, 1.0, -1.0, 1.0, Antialiasing::Msaa4);
+    PreparedDraw tilted = prepared.draws[0];
+    PreparedDraw& flat = prepared.draws[0];
+    flat.uniforms.material.emission = vec3(0.0f, 1.0f, 0.0f);
+    tilted.uniforms.material.emission = vec3(1.0f, 0.0f, 0.0f);
+    const float crossing = float(ndcX(0));
+    for (MeshVertex& v : tilted.vertices)
+        v.position.z = 0.5f * (v.position.x - crossing);  // nearer (z < 0) left of the crossing
+    prepared.draws.insert(prepared.draws.begin(), tilted);
+    Framebuffer target(kSide, kSide);
+    DrawContext context(1);
+    FrameMemory memory;
+    renderFrame(prepared, target, context, memory);
+    EXPECT_EQ(target.color(1, 1), vec4(0.5f, 0.5f, 0.0f, 1.0f));
+    EXPECT_EQ(target.color(0, 1), vec4(1.0f, 0.0f, 0.0f, 1.0f));  // wholly left of the crossing
+    EXPECT_EQ(target.color(3, 1), vec4(0.0f, 1.0f, 0.0f, 1.0f));  // wholly right
+}
+
+// A lit triangle on a 61×47 frame, drawn with `aa`; the frame's pixels and its counters.
+class MultisampledTriangle : public TempFolderTest {
+  protected:
+    struct Frame {
+        std::vector<vec4> pixels;
+        FrameStats stats;
+    };
+
+    Frame frame(Antialiasing aa, int threads = 1, int tileSize = kDefaultTileSize) {
+        Scene scene;
+        write("tri.obj", "v -1 -1 0\nv 1 -0.6 0\nv -0.3 1 0\nf 1 2 3\n");
+        scene.source = folder_ / "scene.json";
+        scene.width = kWidth;
+        scene.height = kHeight;
+        scene.background = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+        scene.pipeline.antialiasing = aa;
+        ObjectSpec object;
+        object.model = folder_ / "tri.obj";
+        scene.objects.push_back(object);
+        const PreparedScene prepared = prepareScene(scene);
+        Framebuffer target(scene.width, scene.height);
+        DrawContext context(threads, tileSize);
+        FrameMemory memory;
+        Frame result;
+        result.stats = renderFrame(prepared, target, context, memory);
+        result.pixels = target.colorPixels();
+        return result;
+    }
+
+    static constexpr int kWidth = 61, kHeight = 47;
+};
+
+// The samples are resolved row by row and tiles write disjoint pixels: the same bytes for one thread and
+// two, and for 8- and 64-pixel tiles. Breaks if the resolve or the tile loop races, or a tile's sample
+// planes are indexed by the tile's own coordinates.
+TEST_F(MultisampledTriangle, SameBytesForAnyThreadCountAndTileSize) {
+    const std::vector<vec4> one = frame(Antialiasing::Msaa8, 1).pixels;
+    EXPECT_EQ(one, frame(Antialiasing::Msaa8, 2).pixels);
+    EXPECT_EQ(one, frame(Antialiasing::Msaa8, 2, 8).pixels);
+}
+
+// Inside the triangle, where a pixel's every sample is covered, the pixel is shaded once at its centre
+// and all its samples hold that colour: the same bytes as without anti-aliasing. Interior pixels are
+// those whose eight neighbours' centres are covered too (the pixel's square then lies in the triangle).
+// Breaks if the shading point is not the pixel centre (e.g. the block's barycentrics a pixel off), or
+// if the resolve's sum of equal samples rounds (a sequential sum of 8: 3x, 5x, 7x are inexact).
+TEST_F(MultisampledTriangle, InteriorPixelsAreTheSameBytesAsWithoutAntialiasing) {
+    const std::vector<vec4> none = frame(Antialiasing::None).pixels;
+    const std::vector<vec4> msaa = frame(Antialiasing::Msaa8).pixels;
+    const vec4 background(0.0f, 0.0f, 0.0f, 1.0f);
+    int interior = 0, same = 0;
+    for (int y = 1; y + 1 < kHeight; ++y)
+        for (int x = 1; x + 1 < kWidth; ++x) {
+            bool covered = true;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx)
+                    covered &= none[std::size_t((y + dy) * kWidth + x + dx)] != background;
+            if (!covered) continue;
+            ++interior;
+            same += msaa[std::size_t(y * kWidth + x)] == none[std::size_t(y * kWidth + x)];
+        }
+    EXPECT_GT(interior, 300);
+    EXPECT_EQ(same, interior);
+}
+
+// Multisampling shades once per pixel and triangle: the fragment shader runs about as often as without
+// anti-aliasing (more by at most the silhouette's pixels, whose centre may miss while a sample is
+// covered), far less than supersampling's once per sample. Breaks if each covered sample is shaded (or
+// queued) on its own.
+TEST_F(MultisampledTriangle, ShadesOncePerPixel) {
+    const Frame none = frame(Antialiasing::None), msaa = frame(Antialiasing::Msaa4),
+                ssaa = frame(Antialiasing::Ssaa4);
+    std::uint64_t silhouette = 0;
+    for (std::size_t k = 0; k < none.pixels.size(); ++k)
+        silhouette += msaa.pixels[k] != none.pixels[k];
+    const std::uint64_t shadedNone = none.stats.draw.fragmentsShaded,
+                        shaded = msaa.stats.draw.fragmentsShaded;
+    std::printf("fragments shaded: none %llu, msaa4 %llu, ssaa4 %llu; silhouette pixels %llu\n",
+                (unsigned long long)shadedNone, (unsigned long long)shaded,
+                (unsigned long long)ssaa.stats.draw.fragmentsShaded, (unsigned long long)silhouette);
+    EXPECT_GT(silhouette, 20u);
+    EXPECT_GE(shaded + silhouette, shadedNone);
+    EXPECT_LE(shaded, shadedNone + silhouette);
+    EXPECT_GT(ssaa.stats.draw.fragmentsShaded, 3 * shaded);
+}
+
+// Exact transparency keeps its fragment lists per pixel: with multisampling the scene is refused with
+// a message naming both options and what to use instead. Breaks if the check is dropped (the draw
+// would then throw an internal error or draw the lists unsampled).
+TEST_F(SupersampledRectangle, ExactTransparencyIsRefusedWithMultisampling) {
+    write("quad.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n");
+    Scene scene;
+    scene.source = folder_ / "scene.json";
+    scene.transparency.mode = TransparencyMode::Exact;
+    scene.pipeline.antialiasing = Antialiasing::Msaa4;
+    ObjectSpec object;
+    object.model = folder_ / "quad.obj";
+    scene.objects.push_back(object);
+    try {
+        prepareScene(scene);
+        FAIL() << "exact transparency with msaa4 was accepted";
+    } catch (const InputError& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("--transparency exact"), std::string::npos) << message;
+        EXPECT_NE(message.find("--aa msaa4"), std::string::npos) << message;
+        EXPECT_NE(message.find("ssaa4"), std::string::npos) << message;
+    }
+}
+
 // The scene file's "pipeline": {"antialiasing": ...} reaches the image: the bundled intersecting quads
-// (opaque and transparent, sorted and exact) read with "ssaa4" differ from the same file with "none" at
-// their edges, and only there (the passes are averaged, not summed; inside a surface each sample is
-// shaded a fraction of a pixel away, which changes the colour far less). Breaks if the key is read but not
-// kept in the scene, or renderFrame ignores it.
+// (opaque and transparent, sorted and exact; multisampled, sorted) read with "ssaa4" or "msaa4" differ from
+// the same file with "none" at their edges, and only there (the passes are averaged, not summed; inside a
+// surface each sample is shaded a fraction of a pixel away, which changes the colour far less). Breaks if the
+// key is read but not kept in the scene, or renderFrame ignores it.
 TEST_F(SupersampledRectangle, SceneFileKeyReachesTheImage) {
     const std::filesystem::path models =
         std::filesystem::path(FACET_SOURCE_DIR) / "models" / "intersecting-quads";
@@ -206,9 +368,10 @@ TEST_F(SupersampledRectangle, SceneFileKeyReachesTheImage) {
         renderFrame(prepared, target, context, memory);
         return target.colorPixels();
     };
-    for (const std::string transparency : {"sorted", "exact"}) {
-        SCOPED_TRACE(transparency);
-        const std::vector<vec4> one = image("none", transparency), four = image("ssaa4", transparency);
+    for (const auto& [aa, transparency] :
+         {std::pair<std::string, std::string>{"ssaa4", "sorted"}, {"ssaa4", "exact"}, {"msaa4", "sorted"}}) {
+        SCOPED_TRACE(aa + " " + transparency);
+        const std::vector<vec4> one = image("none", transparency), four = image(aa, transparency);
         // Differing by more than the shading's change between nearby points: edge pixels.
         std::size_t differing = 0;
         for (std::size_t k = 0; k < one.size(); ++k) {
