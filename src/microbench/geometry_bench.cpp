@@ -225,8 +225,8 @@ void BM_Clip(benchmark::State& state) {
     }
     benchmark::DoNotOptimize(pieces);
     state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(crossing.size()));
-    state.SetLabel(knob("--depth", format) + ": " + std::to_string(crossing.size()) +
-                   " clipped triangles/iteration");
+    state.SetLabel(knob("--depth", format) + ", " + std::to_string(crossing.size()) +
+                   " triangles crossing a plane: triangles/s");
 }
 BENCHMARK(BM_Clip)
     ->ArgName("depth")
