@@ -17,6 +17,7 @@ declare -A allowed=(
     [oracle]="base shading raycast scene shaders io render reference oracle"
     [bench]="base shading raycast scene shaders io render reference oracle bench"
     [trade]="base shading raycast scene shaders io render reference oracle bench trade"
+    [microbench]="base shading raycast scene shaders io render microbench"
     [cli]="base shading raycast scene shaders io render reference step oracle bench trade cli"
 )
 status=0
