@@ -116,6 +116,9 @@ void shadeQueue(FragmentQueue& queue, const DrawPlan& plan, const Depth& depth,
             describeInterpolation(event, queue.b1[lane], queue.b2[lane], queue.invW[lane], kVaryings);
             for (int k = 0; k < kVaryings; ++k)
                 event.varyings[static_cast<std::size_t>(k)] = queue.batch.varyings[k][lane];
+            if constexpr (derivativeVarying<S>() >= 0)  // watched draws always compute them
+                for (int k = 0; k < 4; ++k)
+                    event.uvDerivatives[static_cast<std::size_t>(k)] = queue.batch.uvDerivatives[k][lane];
         }
         if (!(kept & (1u << lane))) {
             ++stats.fragmentsDiscarded;

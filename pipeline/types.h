@@ -205,6 +205,9 @@ struct FragmentEvent {
     float invW = 0.0f;  // 1/w_clip, affine in screen space: the perspective weight
     int varyingCount = 0;
     std::array<float, kMaxVaryingFloats> varyings{};  // the interpolated varyings (the shader's input)
+    // ∂u/∂x, ∂v/∂x, ∂u/∂y, ∂v/∂y of the shader's texture coordinates (its derivative varying, which
+    // trilinear filtering reads); zero for a shader without one.
+    std::array<float, 4> uvDerivatives{};
 };
 
 // One fragment of a pixel's list as resolveFragmentLists composites it (fragment_lists.h).

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <initializer_list>
 #include <string>
 #include <string_view>
 
@@ -28,6 +29,12 @@ CornerShading shadeCorner(const SurfaceUniforms& u, const std::array<MeshVertex,
     return shading;
 }
 
+// The fragment's texture-coordinate derivatives as the shader takes them.
+TexCoordDerivativesT<float> uvDerivativesOf(const FragmentEvent& f) {
+    const auto& d = f.uvDerivatives;
+    return {vec2(d[0], d[1]), vec2(d[2], d[3])};
+}
+
 // The fragment's varyings in the layout of the shader's VaryingsT<float>.
 template <class Varyings>
 Varyings varyingsOf(const FragmentEvent& f) {
@@ -51,11 +58,23 @@ ShadingTrace traceShading(const SurfaceUniforms& u, ShadingFrequency frequency, 
     trace.provokingCorner = provokingCorner;
     trace.pipelineOutput = f.shaded;
     trace.shaderRan = f.fate != FragmentFate::DepthFailed && f.fate != FragmentFate::Discarded;
+    if (const Texture* map = u.diffuseMap ? u.diffuseMap : u.emissionMap) {
+        const TexCoordDerivativesT<float> d = uvDerivativesOf(f);
+        trace.texture = {.mapped = true,
+                         .filter = u.textureFilter,
+                         .width = map->width,
+                         .height = map->height,
+                         .levels = map->levelCount(),
+                         .uvDx = d.dx,
+                         .uvDy = d.dy,
+                         .rho = std::exp2(textureLod(*map, d.dx, d.dy)),
+                         .lod = textureLod(*map, d.dx, d.dy)};
+    }
 
     if (frequency == ShadingFrequency::Phong) {
         using Shader = PerPixelSurface;
-        trace.fragment.result =
-            Shader::shade<float>(varyingsOf<Shader::VaryingsT<float>>(f), u, 1u, {}, &trace.fragment);
+        trace.fragment.result = Shader::shade<float>(varyingsOf<Shader::VaryingsT<float>>(f), u, 1u,
+                                                     uvDerivativesOf(f), &trace.fragment);
     } else {
         if (frequency == ShadingFrequency::Gouraud) {
             for (int corner = 0; corner < 3; ++corner)
@@ -78,8 +97,8 @@ ShadingTrace traceShading(const SurfaceUniforms& u, ShadingFrequency frequency, 
         }
         // Flat and Gouraud run the same fragment function; only which varyings are flat differs.
         using Shader = PerVertexSurface<ShadingFrequency::Gouraud>;
-        trace.fragment.result =
-            Shader::shade<float>(varyingsOf<Shader::VaryingsT<float>>(f), u, 1u, {}, &trace.fragment);
+        trace.fragment.result = Shader::shade<float>(varyingsOf<Shader::VaryingsT<float>>(f), u, 1u,
+                                                     uvDerivativesOf(f), &trace.fragment);
     }
     trace.matchesPipeline = std::memcmp(&trace.fragment.result, &f.shaded, sizeof f.shaded) == 0;
     trace.uniforms = u;
@@ -110,7 +129,12 @@ std::string rgba(const vec4& c) {
     return "RGBA(" + num(c.r) + ", " + num(c.g) + ", " + num(c.b) + ", " + num(c.a) + ")";
 }
 std::string uvText(const vec2& uv) {
-    return "(" + num(uv.x) + ", " + num(uv.y) + ")";
+    std::string text = "(";  // appended, not a chain of +: GCC 12 warns falsely (-Wrestrict) on that
+    text += num(uv.x);
+    text += ", ";
+    text += num(uv.y);
+    text += ")";
+    return text;
 }
 
 // Columns a UTF-8 line takes: one per code point.
@@ -489,6 +513,51 @@ void writeInterpolation(Lines& out, const ShadingTrace& t) {
     out.add("  added = " + rgb(f.addedIn));
 }
 
+// How the maps were read at this pixel: the filter, and under trilinear the level of detail from the
+// texture coordinates' screen-space derivatives (OpenGL 4.6 §8.14.1–2).
+void writeTextureFilter(Lines& out, const ShadingTrace& t) {
+    const ShadingTrace::TextureFootprint& m = t.texture;
+    if (!m.mapped) return;
+    // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on long chains of string +.
+    const auto line = [&out](std::initializer_list<std::string_view> pieces) {
+        std::string text;
+        for (const std::string_view piece : pieces)
+            text += piece;
+        out.add(std::move(text));
+    };
+    const std::string size = std::to_string(m.width) + "×" + std::to_string(m.height);
+    switch (m.filter) {
+        case TextureFilter::Nearest:
+            line({"  Filter: nearest, the one texel of the ", size, " map that holds uv."});
+            return;
+        case TextureFilter::Bilinear:
+            line({"  Filter: bilinear, the four texels of the ", size,
+                  " map around uv, weighted by uv's distance to each."});
+            return;
+        case TextureFilter::Trilinear:
+            break;
+    }
+    line({"  Filter: trilinear over the map's ", std::to_string(m.levels), " mip levels (level 0 is ", size,
+          "). The pixel's footprint:"});
+    line({"    ∂uv/∂x = ", uvText(m.uvDx), ", ∂uv/∂y = ", uvText(m.uvDy),
+          " (how uv changes to the next pixel)"});
+    line(
+        {"    ρ = max(|∂uv/∂x ⊗ (w, h)|, |∂uv/∂y ⊗ (w, h)|) = ", num(m.rho), " texels of level 0 per pixel"});
+    const int last = m.levels - 1;
+    const std::string lod = num(m.lod);
+    if (!(m.lod > 0.0f)) {
+        line({"    λ = log2 ρ = ", lod, " ≤ 0: magnified, level 0 read bilinearly"});
+    } else if (m.lod >= static_cast<float>(last)) {
+        line({"    λ = log2 ρ = ", lod, " ≥ ", std::to_string(last), ", the last level: level ",
+              std::to_string(last), " read bilinearly"});
+    } else {
+        const int fine = static_cast<int>(m.lod);
+        const std::string a = std::to_string(fine), b = std::to_string(fine + 1);
+        line({"    λ = log2 ρ = ", lod, ": levels ", a, " and ", b, " read bilinearly, mixed as (1 − f)·c", a,
+              " + f·c", b, ", f = λ − ⌊λ⌋ = ", num(m.lod - static_cast<float>(fine))});
+    }
+}
+
 // The fragment shader's own part: textures, emission, clamp.
 void writeFragmentPart(Lines& out, const ShadingTrace& t) {
     const FragmentRecord& f = t.fragment;
@@ -506,6 +575,7 @@ void writeFragmentPart(Lines& out, const ShadingTrace& t) {
                     ")");
         out.add("  c = modulated + added = " + rgb(f.modulated) + " + " + rgb(f.added) + " = " +
                 rgb(f.color));
+        writeTextureFilter(out, t);
     }
     if (f.diffuseMapped)
         out.add("  α = opacity·texel α = " + num(f.opacity) + "·" + num(f.diffuseTexel.a) + " = " +
@@ -544,6 +614,7 @@ Screen lightingScreen(const ShadingTrace& t) {
             out.add("  " + std::string(model.physicallyBased ? "c_base" : "m_diffuse") + " = " +
                     rgb(f.materialAlbedo) + " ⊗ " + rgb(vec3(f.diffuseTexel)) + " = " + rgb(f.albedo) +
                     " (the diffuse map's texel at uv " + uvText(f.uv) + ")");
+        writeTextureFilter(out, t);
         writeLighting(out, f.lighting);
         writeSum(out, f.lighting, f.emission);
         if (f.emissionMapped)

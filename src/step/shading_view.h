@@ -44,6 +44,16 @@ struct ShadingTrace {
     vec3 perspectiveWeights{0.0f};
     vec3 mixedModulated{0.0f};
     vec3 mixedAdded{0.0f};
+    // How the maps were filtered, and under trilinear the level of detail the fragment's texture
+    // coordinate derivatives give (OpenGL 4.6 §8.14.1), for the first map (diffuse, else emission).
+    struct TextureFootprint {
+        bool mapped = false;
+        TextureFilter filter = TextureFilter::Bilinear;
+        int width = 0, height = 0, levels = 1;  // the map's level 0 and its mip levels
+        vec2 uvDx{0.0f}, uvDy{0.0f};            // ∂(u,v)/∂x and ∂(u,v)/∂y at the pixel
+        float rho = 0.0f;                       // the footprint's longer side in level-0 texels
+        float lod = 0.0f;                       // λ = log2 ρ
+    } texture;
     FragmentRecord fragment;       // the fragment shader's numbers, from the interpolated varyings
     vec4 pipelineOutput{0.0f};     // FragmentEvent::shaded
     bool shaderRan = true;         // the pipeline ran the shader (not when the depth test failed first)

@@ -5,6 +5,7 @@
 
 #include "pipeline/bin.h"
 #include "pipeline/clip.h"
+#include "pipeline/depth_format.h"
 #include "pipeline/rasterize.h"
 #include "pipeline/triangle_setup.h"
 #include "shading/gamma.h"
@@ -106,10 +107,12 @@ void TraceRecorder::onAssembled(std::uint32_t triangle, const ClipPolygon& assem
 void TraceRecorder::recordClipping(TriangleTrace& view, std::uint32_t triangle,
                                    const ClipPolygon& assembled) {
     fillVertices(view, triangle);
-    // The clipper once more on the same polygon, plane by plane in its own order, to show each cut.
+    // The clipper once more on the same polygon, plane by plane in its own order, to show each cut,
+    // against the draw's depth planes (reversed Z: 0 ≤ z ≤ w).
+    const ClipDepthRange range = clipDepthRange(call_.state.depth.format);
     std::uint8_t planes = 0;
     for (int k = 0; k < 3; ++k)
-        planes |= computeOutcode(assembled.vertices[k].position);
+        planes |= computeOutcode(assembled.vertices[k].position, range);
     if (planes == 0) return;
     static constexpr std::uint8_t kOrder[] = {kClipLeft, kClipRight, kClipBottom, kClipTop,
                                               kClipNear, kClipFar,   kClipW};
@@ -117,14 +120,14 @@ void TraceRecorder::recordClipping(TriangleTrace& view, std::uint32_t triangle,
     for (std::uint8_t plane : kOrder) {
         if (!(planes & plane) || polygon.count == 0) continue;
         const ClipPolygon before = polygon;
-        clipPolygon(polygon, plane);
+        clipPolygon(polygon, plane, range);
         if (!(polygon.planesCut & plane)) continue;
         ClipStep step;
         step.plane = plane;
         for (int i = 0; i < before.count; ++i) {
             const int j = (i + 1) % before.count;
-            const float di = planeDistance(before.vertices[i].position, plane);
-            const float dj = planeDistance(before.vertices[j].position, plane);
+            const float di = planeDistance(before.vertices[i].position, plane, range);
+            const float dj = planeDistance(before.vertices[j].position, plane, range);
             if ((di >= 0.0f) == (dj >= 0.0f)) continue;
             // As the clipper computes it: from the inside vertex towards the outside one.
             const int from = di >= 0.0f ? i : j, to = di >= 0.0f ? j : i;

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "pipeline/clip.h"
+#include "pipeline/depth_format.h"
 #include "pipeline/rasterize.h"
 #include "shading/gamma.h"
 
@@ -82,7 +83,8 @@ void matrixLines(std::ostringstream& out, const std::string& name, const mat4& m
     }
 }
 
-std::string planeRule(std::uint8_t plane) {
+std::string planeRule(std::uint8_t plane, ClipDepthRange range) {
+    const bool reversed = range == ClipDepthRange::ReversedZeroToW;
     switch (plane) {
         case kClipLeft:
             return "left   (x ≥ −w, d = w + x)";
@@ -93,9 +95,9 @@ std::string planeRule(std::uint8_t plane) {
         case kClipTop:
             return "top    (y ≤ w,  d = w − y)";
         case kClipNear:
-            return "near   (z ≥ −w, d = w + z)";
+            return reversed ? "near   (z ≤ w,  d = w − z; reversed Z)" : "near   (z ≥ −w, d = w + z)";
         case kClipFar:
-            return "far    (z ≤ w,  d = w − z)";
+            return reversed ? "far    (z ≥ 0,  d = z; reversed Z)" : "far    (z ≤ w,  d = w − z)";
         case kClipW:
             return "w      (w ≥ 1e−9, in front of the eye)";
         default:
@@ -175,8 +177,13 @@ Screen transformScreen(const TriangleTrace& t) {
 
 Screen clipScreen(const TriangleTrace& t) {
     std::ostringstream out;
-    out << "A clip-space point is inside the view volume when −w ≤ x, y, z ≤ w.\n"
-           "Outcode: the planes a vertex lies outside of.\n\n";
+    const ClipDepthRange range = clipDepthRange(t.state.depth.format);
+    if (range == ClipDepthRange::ReversedZeroToW)
+        out << "A clip-space point is inside the view volume when −w ≤ x, y ≤ w and 0 ≤ z ≤ w\n"
+               "(reversed Z: the projection puts the near plane at z = w and the far plane at z = 0).\n";
+    else
+        out << "A clip-space point is inside the view volume when −w ≤ x, y, z ≤ w.\n";
+    out << "Outcode: the planes a vertex lies outside of.\n\n";
     std::uint8_t orCode = 0, andCode = 0xff;
     for (int k = 0; k < 3; ++k) {
         const vec4& p = t.clipPositions[k];
@@ -206,12 +213,12 @@ Screen clipScreen(const TriangleTrace& t) {
            "d being the signed distance to the plane (≥ 0 inside).\n";
     std::vector<vec4> polygon(t.clipPositions.begin(), t.clipPositions.end());
     for (const ClipStep& step : t.clipSteps) {
-        out << "\nPlane " << planeRule(step.plane) << ":\n";
+        out << "\nPlane " << planeRule(step.plane, range) << ":\n";
         for (std::size_t i = 0; i < polygon.size(); ++i)
-            out << "  p" << i << " d = " << number(planeDistance(polygon[i], step.plane)) << "\n";
+            out << "  p" << i << " d = " << number(planeDistance(polygon[i], step.plane, range)) << "\n";
         for (const ClipStep::NewVertex& made : step.made) {
-            const float dIn = planeDistance(polygon[made.from], step.plane);
-            const float dOut = planeDistance(polygon[made.to], step.plane);
+            const float dIn = planeDistance(polygon[made.from], step.plane, range);
+            const float dOut = planeDistance(polygon[made.to], step.plane, range);
             out << "  new vertex on p" << made.from << "→p" << made.to << ": t = " << number(dIn) << " / ("
                 << number(dIn) << " − " << bracketedIfNegative(dOut) << ") = " << number(made.t) << "\n"
                 << "    P = " << vectorText(made.position) << "\n";
@@ -240,7 +247,10 @@ Screen windowScreen(const TriangleTrace& t) {
         << ",\nW = " << vp.width << ", H = " << vp.height << ", depth range [" << number(vp.minDepth) << ", "
         << number(vp.maxDepth) << "]:\n"
         << "  x_w = x0 + (x_ndc + 1)/2·W   y_w = y0 + (1 − y_ndc)/2·H   (y grows down)\n"
-        << "  z_w = n + (z_ndc + 1)/2·(f − n)\n"
+        << (clipDepthRange(t.state.depth.format) == ClipDepthRange::ReversedZeroToW
+                ? "  z_w = n + z_ndc·(f − n)\n  (reversed Z: z_ndc is 1 at the near plane, 0 at the far "
+                  "one)\n"
+                : "  z_w = n + (z_ndc + 1)/2·(f − n)\n")
         << "Window x and y are then snapped to the fixed-point grid of 1/" << kFixedOne << " pixel\n"
         << "(" << t.state.raster.subpixelBits << " subpixel bits): the integers below are in 1/" << kFixedOne
         << " pixels.\n";

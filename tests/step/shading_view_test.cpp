@@ -42,6 +42,8 @@ struct ShadingChecker : NullObserver {
     std::uint64_t flatChecked = 0;   // flat, unclipped: the provoking corner's colour checked
     std::uint64_t flatWrong = 0;     // … and not the flat varying, bit for bit
     std::uint64_t longLines = 0;     // screen lines beyond 80 columns
+    std::uint64_t mipsMixed = 0;     // trilinear, λ between two mip levels
+    std::string trilinearScreen;     // a lighting screen of such a fragment
     std::string firstProblem;
 
     void onPlannedDraw(const PlannedDraw& call, const PreparedDraw& d) {
@@ -68,6 +70,11 @@ struct ShadingChecker : NullObserver {
         const int provoking = order[1] == 2 ? 1 : 2;  // the last vertex as submitted
         const ShadingTrace trace = traceShading(draw->uniforms, draw->frequency, f, corners, provoking);
         ++fragments;
+        const ShadingTrace::TextureFootprint& map = trace.texture;
+        if (map.mapped && map.filter == TextureFilter::Trilinear && map.lod > 0.0f &&
+            map.lod < static_cast<float>(map.levels - 1) && ++mipsMixed == 1)
+            for (const Screen& screen : shadingScreens(trace))
+                if (screen.id == "lighting") trilinearScreen = screen.text;
         if (!trace.matchesPipeline) {
             ++mismatches;
             note(f, "recomputed output differs");
@@ -174,6 +181,23 @@ TEST(ShadingView, RecomputedShadingIsThePipelinesOutputBitForBit) {
         }
     }
     EXPECT_GT(total, 50000u);
+}
+
+// Trilinear filtering reads the fragment's texture-coordinate derivatives: the recomputed shading
+// samples the same mip levels as the pipeline (it sampled level 0 when the trace lacked them), and the
+// screen shows the footprint ρ and the level of detail λ.
+TEST(ShadingView, TrilinearFragmentsSampleThePipelinesMipLevels) {
+    Scene scene =
+        sceneForModel(std::filesystem::path(FACET_SOURCE_DIR) / "models/spot/spot_triangulated.obj");
+    scene.textures.filter = TextureFilter::Trilinear;
+    ShadingChecker checker;
+    traceEveryFragment(scene, checker);
+    EXPECT_GT(checker.fragments, 500u);
+    EXPECT_GT(checker.mipsMixed, 100u) << "a 1024-texel map on a 96-pixel cow is minified";
+    EXPECT_EQ(checker.mismatches, 0u) << checker.firstProblem;
+    for (const char* shown : {"Filter: trilinear", "∂uv/∂x = (", "ρ = max(", "λ = log2 ρ = ", "f = λ − ⌊λ⌋"})
+        EXPECT_NE(checker.trilinearScreen.find(shown), std::string::npos) << shown << " missing from:\n"
+                                                                          << checker.trilinearScreen;
 }
 
 // ---- A hand-built fragment -------------------------------------------------------------------------

@@ -328,6 +328,41 @@ TEST_F(StepTraceTest, TriangleCutByTheNearPlaneMatchesHandComputationStageByStag
         << interpolate->text;
 }
 
+// The same triangle under reversed Z, whose projection puts the near plane at z_clip = w and the far
+// plane at z_clip = 0: the trace replays the clipper against those planes (the same cut, t = 4/4.6,
+// new vertices at z = w) and the screen states them. Catches the replay against −w ≤ z ≤ w, which
+// takes the vertex before the near plane for one beyond the far plane.
+TEST_F(StepTraceTest, ReversedZClipsAtTheReversedNearPlane) {
+    Scene scene = sceneOf("v -1 -0.5 0\nv 1 -0.5 0\nv 0 -0.1 4.6\nf 2 1 3\n");
+    scene.pipeline.depth = DepthBufferFormat::ReversedFloat;
+    const PreparedScene prepared = prepareScene(scene);
+    DrawContext context(1);
+    const vec4 clip = prepared.camera.clipFromView * prepared.camera.viewFromWorld * vec4(0, -0.239f, 3, 1);
+    StepRequest request;
+    request.pixel = std::pair(int((clip.x / clip.w + 1) * 0.5f * 64), int((1 - clip.y / clip.w) * 0.5f * 48));
+    request.triangle = 0;
+    const StepTrace trace = traceStep(prepared, context, request);
+    ASSERT_TRUE(trace.triangle);
+    const TriangleTrace& t = *trace.triangle;
+    EXPECT_EQ(t.outcodes[2], kClipNear);
+    ASSERT_EQ(t.clipSteps.size(), 1u);
+    const ClipStep& step = t.clipSteps[0];
+    EXPECT_EQ(step.plane, kClipNear);
+    ASSERT_EQ(step.made.size(), 2u);
+    for (const ClipStep::NewVertex& made : step.made) {
+        EXPECT_NEAR(made.t, 4.0 / 4.6, 1e-5);
+        EXPECT_NEAR(made.position.z, made.position.w, 1e-5);
+    }
+    const Screen* clipScreen = screenOf(trace.walk, "clip");
+    ASSERT_NE(clipScreen, nullptr);
+    EXPECT_TRUE(contains(clipScreen->text, "0 ≤ z ≤ w")) << clipScreen->text;
+    EXPECT_TRUE(contains(clipScreen->text, "near   (z ≤ w,  d = w − z; reversed Z)")) << clipScreen->text;
+    EXPECT_TRUE(contains(clipScreen->text, "= " + number(step.made[0].t) + "\n")) << clipScreen->text;
+    const Screen* window = screenOf(trace.walk, "window");
+    ASSERT_NE(window, nullptr);
+    EXPECT_TRUE(contains(window->text, "z_w = n + z_ndc·(f − n)")) << window->text;
+}
+
 // With no --pixel, the covered pixel nearest the centre; with no --triangle, the one that gave it its
 // colour. Catches: the default pixel taken as the image centre whatever it shows, or the default
 // triangle as the first in the history rather than the producer.
