@@ -2,6 +2,7 @@
 // stores, checked against hand computations; reversed Z's clipping; z-fighting of two parallel planes
 // for each depth format and near/far ratio, against the resolution a double-precision formula predicts
 // (the table printed here is the one in docs/trade.md); and blending in an 8-bit or half colour buffer.
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -272,6 +273,23 @@ TEST(ColorBufferFormats, HalfRoundsLikeTheHardwareAndNeverOverflows) {
     EXPECT_EQ(roundToHalf(1e30f), 65504.0f);
     EXPECT_EQ(roundToHalf(-1e30f), -65504.0f);
     EXPECT_EQ(roundToHalf(INFINITY), 65504.0f);
+
+    // The colour buffer's four-channel rounding (F16C where the build has it) is roundToHalf on every
+    // channel, over float bit patterns spread across the whole range — subnormals, ties, the overflow
+    // clamp, ±Inf and NaN included. Catches a clamp that turns NaN into a number or lets Inf through.
+    for (std::uint64_t bits = 0; bits <= 0xffffffffull; bits += 0x10001) {
+        const float x = std::bit_cast<float>(static_cast<std::uint32_t>(bits));
+        const vec4 four = roundToColorBuffer<ColorBufferFormat::Half>(vec4(x, -x, x * 0.5f, 1.0f));
+        const vec4 one(roundToHalf(x), roundToHalf(-x), roundToHalf(x * 0.5f), 1.0f);
+        for (int k = 0; k < 4; ++k)
+            if (std::isnan(one[k]) ? !std::isnan(four[k]) : four[k] != one[k]) {
+                ADD_FAILURE() << "channel " << k << " of " << x << ": " << four[k] << " != " << one[k];
+                return;
+            }
+    }
+    EXPECT_TRUE(std::isnan(roundToColorBuffer<ColorBufferFormat::Half>(vec4(NAN)).r));
+    EXPECT_EQ(roundToColorBuffer<ColorBufferFormat::Half>(vec4(INFINITY)).g, 65504.0f);
+    EXPECT_EQ(roundToColorBuffer<ColorBufferFormat::Half>(vec4(-INFINITY)).b, -65504.0f);
 
     // Through the pipeline: a Replace draw into a half buffer stores the rounded values.
     Framebuffer fb(8, 8);
