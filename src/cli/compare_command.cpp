@@ -32,7 +32,9 @@ CLI::App* addCompareCommand(CLI::App& app, CompareArgs& args) {
     addChoice(*command, "--reflection", args.scene.reflection, "As for render");
     addChoice(*command, "--shading", args.scene.shading, "As for render");
     command->add_option("--crease-angle", args.scene.creaseAngle, "as for render")->check(kFiniteNumber);
+    // OpenGL draws in the same depth and colour formats and filters textures the same way (gl_scene.h).
     addBufferFormatOptions(*command, args.scene);
+    addChoice(*command, "--texture-filter", args.scene.textureFilter, "As for render; OpenGL filters alike");
     addFormulaOptions(*command, args.scene);
     command->add_option("--facet", args.facetImage, "Also write Facet's image here");
     command->add_option("--mesa", args.mesaImage, "Also write OpenGL's image here");

@@ -12,6 +12,9 @@ GlScene toGlScene(const PreparedScene& prepared) {
     gl.clearColor = prepared.clearColor;
     gl.clipFromView = prepared.camera.clipFromView;
     gl.cullBackFaces = prepared.state.raster.cull == CullMode::Back;
+    gl.depthFormat = prepared.state.depth.format;
+    gl.colorFormat = prepared.state.colorBuffer;
+    gl.textureFilter = prepared.scene.textures.filter;
     if (prepared.state.raster.cull == CullMode::Front)
         throw std::invalid_argument("OpenGL comparison: front-face culling is not mirrored");
     const bool glPreset = prepared.scene.lighting.preset == LightingPreset::GL;

@@ -78,6 +78,13 @@ struct GlScene {
                                       // Radial, GL_EYE_RADIAL_NV (per vertex there, per pixel in GLSL)
     bool twoSidedFlip = false;        // GLSL programs: light the side of N facing the viewer (N·V < 0: −N)
     std::vector<GlDraw> draws;        // in order: opaque draws, then transparent ones back to front
+    // The buffers and the texture filter, as Facet's draw state has them: a renderbuffer of the same
+    // format (DEPTH_COMPONENT16/24/32F, RGBA8/16F/32F); reversed Z as glClipControl(GL_LOWER_LEFT,
+    // GL_ZERO_TO_ONE) with glDepthFunc(GL_GREATER) and depth cleared to 0; trilinear as
+    // GL_LINEAR_MIPMAP_LINEAR over Facet's own mip levels, uploaded level by level.
+    DepthBufferFormat depthFormat = DepthBufferFormat::Float;
+    ColorBufferFormat colorFormat = ColorBufferFormat::Float;
+    TextureFilter textureFilter = TextureFilter::Bilinear;
 };
 
 // The same scene as OpenGL would be told to draw it (gl_scene.h): fixed function for the GL preset's

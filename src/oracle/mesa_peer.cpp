@@ -14,10 +14,13 @@
 #include <cstdio>
 #include <map>
 #include <stdexcept>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "oracle/mesa_peer_impl.h"
 #include "pipeline/color.h"
+#include "pipeline/names.h"
 
 namespace facet {
 
@@ -50,49 +53,92 @@ void MesaPeer::Impl::setBlendState(const Draw& draw) const {
     }
 }
 
-GLuint MesaPeer::Impl::uploadTexture(const Texture& texture) {
-    std::vector<vec4> rows(static_cast<std::size_t>(texture.width) * texture.height);
-    for (int y = 0; y < texture.height; ++y)
-        for (int x = 0; x < texture.width; ++x)
-            rows[static_cast<std::size_t>(y) * texture.width + x] = texture.texel(x, texture.height - 1 - y);
+GLuint MesaPeer::Impl::uploadTexture(const Texture& texture, TextureFilter filter) {
     GLuint name = 0;
     gl.glGenTextures(1, &name);
     gl.glBindTexture(GL_TEXTURE_2D, name);
     gl.glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    gl.glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, texture.width, texture.height, 0, GL_RGBA, GL_FLOAT,
-                    rows.data());
-    gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    // Trilinear: Facet's own mip levels (prepareScene built them), so that both filter the same texels.
+    const int levels = filter == TextureFilter::Trilinear ? texture.levelCount() : 1;
+    std::vector<vec4> rows;
+    for (int level = 0; level < levels; ++level) {
+        const Texture& t = texture.level(level);
+        rows.resize(static_cast<std::size_t>(t.width) * t.height);
+        for (int y = 0; y < t.height; ++y)  // OpenGL's rows go bottom up
+            for (int x = 0; x < t.width; ++x)
+                rows[static_cast<std::size_t>(y) * t.width + x] = t.texel(x, t.height - 1 - y);
+        gl.glTexImage2D(GL_TEXTURE_2D, level, GL_RGBA32F, t.width, t.height, 0, GL_RGBA, GL_FLOAT,
+                        rows.data());
+    }
+    const GLint minFilter = filter == TextureFilter::Nearest     ? GL_NEAREST
+                            : filter == TextureFilter::Trilinear ? GL_LINEAR_MIPMAP_LINEAR
+                                                                 : GL_LINEAR;
+    gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, minFilter);
+    gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER,
+                       filter == TextureFilter::Nearest ? GL_NEAREST : GL_LINEAR);
     gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
     gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
-    gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+    gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, levels - 1);
     textures.push_back(name);
     return name;
 }
 
-void MesaPeer::Impl::createFramebuffer(int w, int h) {
+namespace {
+
+GLenum depthRenderbufferFormat(DepthBufferFormat format) {
+    switch (format) {
+        case DepthBufferFormat::Unorm16:
+            return GL_DEPTH_COMPONENT16;
+        case DepthBufferFormat::Unorm24:
+            return GL_DEPTH_COMPONENT24;
+        case DepthBufferFormat::Float:
+        case DepthBufferFormat::ReversedFloat:
+            break;
+    }
+    return GL_DEPTH_COMPONENT32F;
+}
+
+GLenum colorRenderbufferFormat(ColorBufferFormat format) {
+    switch (format) {
+        case ColorBufferFormat::Unorm8:
+            return GL_RGBA8;
+        case ColorBufferFormat::Half:
+            return GL_RGBA16F;
+        case ColorBufferFormat::Float:
+            break;
+    }
+    return GL_RGBA32F;
+}
+
+}  // namespace
+
+void MesaPeer::Impl::createFramebuffer(int w, int h, DepthBufferFormat depth, ColorBufferFormat color) {
     width = w;
     height = h;
     gl.glGenFramebuffers(1, &framebuffer);
     gl.glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
     gl.glGenRenderbuffers(1, &colorBuffer);
     gl.glGenRenderbuffers(1, &depthBuffer);
-    for (const bool useFloat : {true, false}) {
+    const bool floatPair = depth == DepthBufferFormat::Float && color == ColorBufferFormat::Float;
+    const std::pair<GLenum, GLenum> asked{colorRenderbufferFormat(color), depthRenderbufferFormat(depth)};
+    const std::pair<GLenum, GLenum> fallback{GL_RGBA8, GL_DEPTH_COMPONENT24};
+    for (const auto& [colorFormat, depthFormat] :
+         floatPair ? std::vector{asked, fallback} : std::vector{asked}) {
         gl.glBindRenderbuffer(GL_RENDERBUFFER, colorBuffer);
-        gl.glRenderbufferStorage(GL_RENDERBUFFER, useFloat ? GL_RGBA32F : GL_RGBA8, w, h);
+        gl.glRenderbufferStorage(GL_RENDERBUFFER, colorFormat, w, h);
         gl.glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colorBuffer);
         gl.glBindRenderbuffer(GL_RENDERBUFFER, depthBuffer);
-        gl.glRenderbufferStorage(GL_RENDERBUFFER, useFloat ? GL_DEPTH_COMPONENT32F : GL_DEPTH_COMPONENT24, w,
-                                 h);
+        gl.glRenderbufferStorage(GL_RENDERBUFFER, depthFormat, w, h);
         gl.glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depthBuffer);
         gl.glGetError();  // an unsupported format shows in the status below
         if (gl.glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE) {
-            floatColor = useFloat;
+            if (floatPair) floatColor = colorFormat == GL_RGBA32F;
             return;
         }
     }
     throw std::runtime_error("the Mesa peer cannot create a " + std::to_string(w) + "x" + std::to_string(h) +
-                             " framebuffer");
+                             " framebuffer of " + std::string(nameOf(color)) + " colour and " +
+                             std::string(nameOf(depth)) + " depth");
 }
 
 MesaPeer::MesaPeer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -191,6 +237,7 @@ std::unique_ptr<MesaPeer> MesaPeer::open(const MesaOptions& options, std::string
     impl->versionLine = glsl >= 330 ? "#version 330" : "#version 130";
     const std::string extensions = " " + text(GL_EXTENSIONS) + " ";  // a compatibility context has it
     impl->radialFog = extensions.find(" GL_NV_fog_distance ") != std::string::npos;
+    impl->clipControl = extensions.find(" GL_ARB_clip_control ") != std::string::npos;
 
     // A first program, so that a shader problem shows here, and a first framebuffer, which finds out
     // whether float colour is renderable (floatColor()).
@@ -247,6 +294,10 @@ void MesaPeer::load(const GlScene& scene) {
     if (scene.lights.size() > static_cast<std::size_t>(kMaxGlLights))
         throw std::invalid_argument("GlScene: " + std::to_string(scene.lights.size()) +
                                     " lights, the Mesa peer draws at most " + std::to_string(kMaxGlLights));
+    if (scene.depthFormat == DepthBufferFormat::ReversedFloat && !p.clipControl)
+        throw std::invalid_argument(
+            "GlScene: reversed Z needs glClipControl (GL_ARB_clip_control), which "
+            "this Mesa context does not offer");
     bool fixedFunction = false;
     for (std::size_t i = 0; i < scene.draws.size(); ++i) {
         const GlDraw& draw = scene.draws[i];
@@ -316,12 +367,12 @@ void MesaPeer::load(const GlScene& scene) {
         }
         if (const Texture* map = source.diffuseMap; map && !map->empty()) {
             GLuint& name = textureNames[map];
-            if (!name) name = p.uploadTexture(*map);
+            if (!name) name = p.uploadTexture(*map, scene.textureFilter);
             draw.texture = name;
         }
         if (const Texture* map = source.emissionMap; map && !map->empty()) {
             GLuint& name = textureNames[map];
-            if (!name) name = p.uploadTexture(*map);
+            if (!name) name = p.uploadTexture(*map, scene.textureFilter);
             draw.emissionTexture = name;
         }
         if (source.program != GlProgram::FixedFunction) {
@@ -352,8 +403,10 @@ void MesaPeer::load(const GlScene& scene) {
     gl.glProvokingVertex(GL_LAST_VERTEX_CONVENTION);  // flat shading takes a triangle's last vertex
     p.setFixedFunctionFog(scene.fog);
 
-    // Framebuffer and raster state: the whole framebuffer, counter-clockwise fronts, GL_LESS, depth 1.
-    p.createFramebuffer(scene.width, scene.height);
+    // Framebuffer and raster state: the whole framebuffer in the scene's formats, counter-clockwise
+    // fronts, GL_LESS and depth cleared to 1 (reversed Z: 0..1 clip depth, GL_GREATER, cleared to 0).
+    const bool reversedZ = scene.depthFormat == DepthBufferFormat::ReversedFloat;
+    p.createFramebuffer(scene.width, scene.height, scene.depthFormat, scene.colorFormat);
     gl.glViewport(0, 0, scene.width, scene.height);
     gl.glDepthRange(0.0, 1.0);
     if (scene.cullBackFaces) {
@@ -364,13 +417,14 @@ void MesaPeer::load(const GlScene& scene) {
     }
     gl.glFrontFace(GL_CCW);
     gl.glEnable(GL_DEPTH_TEST);
-    gl.glDepthFunc(GL_LESS);
+    if (p.clipControl) gl.glClipControl(GL_LOWER_LEFT, reversedZ ? GL_ZERO_TO_ONE : GL_NEGATIVE_ONE_TO_ONE);
+    gl.glDepthFunc(reversedZ ? GL_GREATER : GL_LESS);
     gl.glDepthMask(GL_TRUE);
     gl.glDisable(GL_BLEND);  // each draw sets its own blending and depth writes
     gl.glBlendEquation(GL_FUNC_ADD);
     gl.glDisable(GL_DITHER);
     gl.glClearColor(scene.clearColor.r, scene.clearColor.g, scene.clearColor.b, scene.clearColor.a);
-    gl.glClearDepth(1.0);
+    gl.glClearDepth(reversedZ ? 0.0 : 1.0);
     p.checkGl("uploading the scene");
 }
 

@@ -30,7 +30,8 @@ struct MesaPeer::Impl {
     MesaDriver driver = MesaDriver::Llvmpipe;
     int threads = 0;
     bool floatColor = true;
-    bool radialFog = false;  // GL_NV_fog_distance: fixed-function fog at the radial distance
+    bool radialFog = false;    // GL_NV_fog_distance: fixed-function fog at the radial distance
+    bool clipControl = false;  // GL_ARB_clip_control (or OpenGL 4.5): reversed Z's 0..1 clip depth
 
     // The GLSL programs, by their #define header, and their uniform locations.
     struct Program {
@@ -129,11 +130,15 @@ struct MesaPeer::Impl {
     // A texture as linear float RGBA (8-bit texels decoded as Facet's sampler decodes them), sampled
     // as Facet samples (bilinear, repeat, no mipmaps). Facet's row 0 is the top of the image (v = 1);
     // GL's first row is t = 0, so rows go up in reverse.
-    GLuint uploadTexture(const Texture& texture);
+    // A texture filtered as `filter` says; trilinear uploads each of Facet's own mip levels.
+    GLuint uploadTexture(const Texture& texture, TextureFilter filter);
 
     // Colour and depth renderbuffers of the scene's size: RGBA32F + DEPTH_COMPONENT32F like Facet's
     // Framebuffer, or RGBA8 + 24-bit depth where float colour is not renderable.
-    void createFramebuffer(int w, int h);
+    // A w × h framebuffer of the given formats; the default float pair falls back to RGBA8 and 24-bit
+    // depth where float colour is not renderable (floatColor() then says false).
+    void createFramebuffer(int w, int h, DepthBufferFormat depth = DepthBufferFormat::Float,
+                           ColorBufferFormat color = ColorBufferFormat::Float);
 };
 
 }  // namespace facet

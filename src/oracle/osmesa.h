@@ -33,6 +33,7 @@ namespace facet {
     X(glClear)                   \
     X(glClearColor)              \
     X(glClearDepth)              \
+    X(glClipControl)             \
     X(glCompileShader)           \
     X(glCreateProgram)           \
     X(glCreateShader)            \

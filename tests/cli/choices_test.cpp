@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "bench/bench.h"
+#include "cli/bench_command.h"
 #include "cli/compare_command.h"
 #include "cli/render_command.h"
 #include "cli/step_command.h"
@@ -143,6 +145,16 @@ TEST(CommandLineChoices, CompareTakesTheSameNames) {
     for (const std::string& name : namesOf<FresnelModel>())
         EXPECT_EQ(compareScene("--fresnel", name).lighting.brdf.fresnel, parseName<FresnelModel>(name))
             << name;
+    // The buffer formats and the texture filter, which OpenGL's side takes too (gl_scene.h).
+    for (const std::string& name : namesOf<DepthBufferFormat>())
+        EXPECT_EQ(compareScene("--depth", name).pipeline.depth, parseName<DepthBufferFormat>(name)) << name;
+    for (const std::string& name : namesOf<ColorBufferFormat>())
+        EXPECT_EQ(compareScene("--color-buffer", name).pipeline.colorBuffer,
+                  parseName<ColorBufferFormat>(name))
+            << name;
+    for (const std::string& name : namesOf<TextureFilter>())
+        EXPECT_EQ(compareScene("--texture-filter", name).textures.filter, parseName<TextureFilter>(name))
+            << name;
     // --driver: each of Mesa's rasterizers by its table's name; absent, the default (softpipe).
     for (const std::string& name : namesOf<MesaDriver>()) {
         CLI::App app;
@@ -153,6 +165,20 @@ TEST(CommandLineChoices, CompareTakesTheSameNames) {
         EXPECT_EQ(driverName(*args.driver), name);
     }
     EXPECT_EQ(namesOf<MesaDriver>().size(), 2u);
+}
+
+// `facet bench --aa NAME` reaches the scene the benchmark times, for every name; without --aa the
+// scene file's choice stands.
+TEST(CommandLineChoices, BenchTakesEveryAntialiasingName) {
+    for (const std::string& name : namesOf<Antialiasing>()) {
+        SCOPED_TRACE(name);
+        CLI::App app;
+        BenchOptions options;
+        addBenchCommand(app, options);
+        app.parse(std::vector<std::string>{name, "--aa", "bench"});  // reversed: bench --aa NAME
+        ASSERT_TRUE(options.antialiasing.has_value());
+        EXPECT_EQ(*options.antialiasing, *parseName<Antialiasing>(name));
+    }
 }
 
 }  // namespace

@@ -2,9 +2,12 @@
 // as compareWithMesa builds it, and its verdict and description are checked.
 #include "oracle/compare.h"
 
+#include <filesystem>
 #include <string>
 
 #include <gtest/gtest.h>
+
+#include "oracle/gl_scene.h"
 
 namespace facet {
 namespace {
@@ -49,6 +52,30 @@ TEST(MesaComparison, EqualDrawnFramesAgree) {
     const std::string text = describe(same);
     EXPECT_NE(text.find("verdict    agrees"), std::string::npos) << text;
     EXPECT_NE(text.find("drawn      Facet 48 pixels (100.000%), OpenGL 48"), std::string::npos) << text;
+}
+
+// OpenGL's side of a comparison is told the scene's depth and colour formats and its texture filter
+// (without them `facet compare --depth unorm16` would compare against a float depth buffer). Catches
+// toGlScene leaving any of the three at its default.
+TEST(MesaComparison, OpenGlSceneTakesTheBufferFormatsAndTheFilter) {
+    Scene scene =
+        sceneForModel(std::filesystem::path(FACET_SOURCE_DIR) / "models/spot/spot_triangulated.obj");
+    scene.width = 32;
+    scene.height = 24;
+    scene.pipeline.depth = DepthBufferFormat::Unorm16;
+    scene.pipeline.colorBuffer = ColorBufferFormat::Half;
+    scene.textures.filter = TextureFilter::Trilinear;
+    GlScene gl = toGlScene(prepareScene(scene));
+    EXPECT_EQ(gl.depthFormat, DepthBufferFormat::Unorm16);
+    EXPECT_EQ(gl.colorFormat, ColorBufferFormat::Half);
+    EXPECT_EQ(gl.textureFilter, TextureFilter::Trilinear);
+    scene.pipeline.depth = DepthBufferFormat::ReversedFloat;
+    scene.pipeline.colorBuffer = ColorBufferFormat::Unorm8;
+    scene.textures.filter = TextureFilter::Nearest;
+    gl = toGlScene(prepareScene(scene));
+    EXPECT_EQ(gl.depthFormat, DepthBufferFormat::ReversedFloat);
+    EXPECT_EQ(gl.colorFormat, ColorBufferFormat::Unorm8);
+    EXPECT_EQ(gl.textureFilter, TextureFilter::Nearest);
 }
 
 }  // namespace

@@ -11,6 +11,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "oracle/mesa_peer.h"
+#include "pipeline/blend.h"
+#include "pipeline/texture.h"
 #include "render/renderer.h"
 #include "support/mesa_fixture.h"
 
@@ -731,6 +733,135 @@ TEST_F(MesaOracle, FogBeforeTheBlend) {
         EXPECT_RGBA_NEAR(drawScene(mesa(), scene).at(kCentre, kCentre),
                          blended(blend, s, 0.25f, vec4(d, 1.0f)), 1e-6);
     }
+}
+
+// ---- The scene's buffer formats and texture filter (facet compare --depth, --color-buffer,
+// --texture-filter) --------------------------------------------------------------------------------
+
+// A colour no buffer format holds exactly reads back rounded as Facet's colour buffer rounds it (half:
+// to a neighbouring half, see below): the peer renders into RGBA8, RGBA16F or RGBA32F as
+// GlScene::colorFormat says.
+TEST_F(MesaOracle, ColourBufferFormatRoundsAsFacetStoresIt) {
+    GlScene scene = eyeScene();
+    scene.lights = {headOnLight()};
+    GlDraw draw = fanSquare(GlProgram::PerPixel, ShadingFrequency::Phong);
+    draw.material.diffuse = vec3(0.31f, 0.1f, 0.71f);  // N·L = 1 at the centre; no 8-bit or half ties
+    scene.draws = {draw};
+    for (const ColorBufferFormat format :
+         {ColorBufferFormat::Float, ColorBufferFormat::Half, ColorBufferFormat::Unorm8}) {
+        SCOPED_TRACE(std::string(nameOf(format)));
+        scene.colorFormat = format;
+        const vec4 expected = roundToColorBuffer(format, vec4(0.31f, 0.1f, 0.71f, 1.0f));
+        const vec4 drawn = drawScene(mesa(), scene).at(kCentre, kCentre);
+        if (format == ColorBufferFormat::Half) {
+            // Measured: softpipe converts to RGBA16F toward zero (0.31 → 0.30981), Facet to nearest
+            // (0.31006): within one half step (at most 2^-10 relative) of each other, and not the float
+            // value.
+            for (int k = 0; k < 3; ++k) {
+                EXPECT_NEAR(drawn[k], expected[k], expected[k] * 0x1p-10f) << k;
+                EXPECT_EQ(roundToColorBuffer(format, vec4(drawn[k])).r, drawn[k]) << k << ": not a half";
+            }
+        } else {
+            EXPECT_RGB_NEAR(drawn, vec3(expected), 2e-6);
+        }
+    }
+    EXPECT_NE(roundToColorBuffer(ColorBufferFormat::Unorm8, vec4(0.3f)).r, 0.3f);  // the test can fail
+}
+
+// Two squares 0.0003 apart at 9 units (near 0.5, far 10), the farther (red) drawn first: their window
+// depths are 65151.75 and 65151.63 in 16-bit codes — the same code, so the nearer (green) fails
+// GL_LESS — but 33 codes apart in 24 bits. The peer's depth renderbuffer is GlScene::depthFormat's.
+TEST_F(MesaOracle, DepthFormatResolvesAsItsBits) {
+    GlScene scene = eyeScene();
+    scene.clipFromView = glm::perspective(glm::radians(60.0f), 1.0f, 0.5f, 10.0f);
+    GlDraw far = fanSquare(GlProgram::PerPixel, ShadingFrequency::Phong, -9.0f);
+    GlDraw near = fanSquare(GlProgram::PerPixel, ShadingFrequency::Phong, -8.9997f);
+    far.material.diffuse = vec3(0.0f);
+    far.material.emission = vec3(1.0f, 0.0f, 0.0f);
+    near.material.diffuse = vec3(0.0f);
+    near.material.emission = vec3(0.0f, 1.0f, 0.0f);
+    scene.draws = {far, near};
+    const auto centre = [&](DepthBufferFormat format) {
+        scene.depthFormat = format;
+        return drawScene(mesa(), scene).at(kCentre, kCentre);
+    };
+    {
+        SCOPED_TRACE("16 bits z-fight");
+        EXPECT_RGB_NEAR(centre(DepthBufferFormat::Unorm16), vec3(1.0f, 0.0f, 0.0f), 1e-6);
+    }
+    {
+        SCOPED_TRACE("24 bits resolve");
+        EXPECT_RGB_NEAR(centre(DepthBufferFormat::Unorm24), vec3(0.0f, 1.0f, 0.0f), 1e-6);
+    }
+    {
+        SCOPED_TRACE("float resolves");
+        EXPECT_RGB_NEAR(centre(DepthBufferFormat::Float), vec3(0.0f, 1.0f, 0.0f), 1e-6);
+    }
+}
+
+// Reversed Z: a projection taking the near plane to z = w and the far plane to 0, drawn with 0..1 clip
+// depth, GL_GREATER and depth cleared to 0. The nearer square (green) drawn first stays in front of the
+// farther one (red); the same projection drawn as plain float depth (GL_LESS) lets the farther win.
+TEST_F(MesaOracle, ReversedZKeepsTheNearerSurface) {
+    GlScene scene = eyeScene();
+    const float n = 0.5f, f = 10.0f;
+    mat4 reversed = glm::perspective(glm::radians(60.0f), 1.0f, n, f);
+    reversed[2][2] = n / (f - n);
+    reversed[3][2] = f * n / (f - n);
+    scene.clipFromView = reversed;
+    GlDraw near = fanSquare(GlProgram::PerPixel, ShadingFrequency::Phong, -2.0f);
+    GlDraw far = fanSquare(GlProgram::PerPixel, ShadingFrequency::Phong, -4.0f);
+    near.material.diffuse = far.material.diffuse = vec3(0.0f);
+    near.material.emission = vec3(0.0f, 1.0f, 0.0f);
+    far.material.emission = vec3(1.0f, 0.0f, 0.0f);
+    scene.draws = {near, far};
+    scene.depthFormat = DepthBufferFormat::ReversedFloat;
+    EXPECT_RGB_NEAR(drawScene(mesa(), scene).at(kCentre, kCentre), vec3(0.0f, 1.0f, 0.0f), 1e-6);
+    scene.depthFormat = DepthBufferFormat::Float;
+    EXPECT_RGB_NEAR(drawScene(mesa(), scene).at(kCentre, kCentre), vec3(1.0f, 0.0f, 0.0f), 1e-6);
+}
+
+// The texture filter: right of the middle of a 2×1 map, black | white, nearest reads the white texel
+// and bilinear a mix; a 512-texel map of one-texel stripes, minified about 9 times, is a uniform
+// grey under trilinear (its mip levels average the stripes) and stripes or moiré under bilinear.
+TEST_F(MesaOracle, TextureFilterAsTheSceneSays) {
+    GlScene scene = eyeScene();
+    scene.lights = {headOnLight()};
+    GlDraw draw = fanSquare(GlProgram::PerPixel, ShadingFrequency::Phong);
+    draw.material.diffuse = vec3(1.0f);
+    Texture halves;
+    halves.width = 2;
+    halves.height = 1;
+    halves.texels = {vec4(0.0f, 0.0f, 0.0f, 1.0f), vec4(1.0f)};
+    draw.diffuseMap = &halves;
+    scene.draws = {draw};
+    // Eight pixels right of the centre, u ≈ 0.57: nearest reads the white texel alone, bilinear mixes.
+    scene.textureFilter = TextureFilter::Nearest;
+    EXPECT_NEAR(drawScene(mesa(), scene).at(kCentre + 8, kCentre).r, 1.0f, 1e-5);
+    scene.textureFilter = TextureFilter::Bilinear;
+    const float mixed = drawScene(mesa(), scene).at(kCentre + 8, kCentre).r;
+    EXPECT_GT(mixed, 0.55f);
+    EXPECT_LT(mixed, 0.95f);
+
+    Texture stripes;
+    stripes.width = stripes.height = 512;
+    stripes.texels.resize(512 * 512);
+    for (int y = 0; y < 512; ++y)
+        for (int x = 0; x < 512; ++x)
+            stripes.texels[static_cast<std::size_t>(y) * 512 + x] =
+                x % 2 ? vec4(1.0f) : vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    buildMipChain(stripes);
+    scene.draws[0].diffuseMap = &stripes;
+    const auto largestOffGrey = [&](TextureFilter filter) {
+        scene.textureFilter = filter;
+        const LinearImage image = drawScene(mesa(), scene);
+        float largest = 0.0f;
+        for (int x = kCentre - 20; x <= kCentre + 20; ++x)
+            largest = std::max(largest, std::abs(image.at(x, kCentre).r - 0.5f));
+        return largest;
+    };
+    EXPECT_LT(largestOffGrey(TextureFilter::Trilinear), 1e-3f);
+    EXPECT_GT(largestOffGrey(TextureFilter::Bilinear), 0.1f);
 }
 
 // ---- The benchmark's peer: llvmpipe draws what Facet draws -------------------------------------------
