@@ -10,6 +10,9 @@
 
 #include <filesystem>
 #include <iosfwd>
+#include <optional>
+
+#include "scene/scene.h"
 
 namespace facet {
 
@@ -21,6 +24,8 @@ struct BenchOptions {
     int height = 1080;
     int frames = 30;  // timed frames, after one untimed warm-up frame
     int threads = 0;  // 0: one per hardware thread
+    // --aa: the anti-aliasing of the timed frames (the scene file's, else none, when not given).
+    std::optional<Antialiasing> antialiasing;
 
     // --vs-mesa
     bool vsMesa = false;
@@ -42,7 +47,8 @@ struct BenchOptions {
     std::filesystem::path ground = "models/fog-and-glass/ground.obj";  // the shadows' ground, a quad at y = 0
 };
 
-// The scene a benchmark draws: options.model (an OBJ file or a scene) at the options' size. Throws
+// The scene a benchmark draws: options.model (an OBJ file or a scene) at the options' size and
+// anti-aliasing. Throws
 // InputError for options.frames < 1 or a model that does not load.
 Scene benchScene(const BenchOptions& options);
 

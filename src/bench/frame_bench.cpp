@@ -17,6 +17,7 @@ Scene benchScene(const BenchOptions& options) {
     Scene scene = loadSceneOrModel(options.model);
     scene.width = options.width;
     scene.height = options.height;
+    if (options.antialiasing) scene.pipeline.antialiasing = *options.antialiasing;
     return scene;
 }
 
@@ -45,6 +46,8 @@ void runBench(const BenchOptions& options, std::ostream& out) {
     out << "model      " << options.model.string() << "\n";
     out << "image      " << scene.width << "x" << scene.height << ", " << context.pool.threads()
         << (context.pool.threads() == 1 ? " thread" : " threads") << ", built-in Blinn-Phong shader\n";
+    const Antialiasing aa = scene.pipeline.antialiasing;
+    out << "samples    " << samplesPerPixel(aa) << " per pixel (--aa " << nameOf(aa) << ")\n";
     out << "triangles  " << prepared.triangleCount << " (" << stats.trianglesRasterized
         << " rasterized after culling and clipping)\n";
     out << "fragments  " << stats.fragmentsShaded << " shaded, " << stats.fragmentsWritten << " written, "

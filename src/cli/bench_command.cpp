@@ -59,6 +59,9 @@ CLI::App* addBenchCommand(CLI::App& app, facet::BenchOptions& options) {
         ->check(wholeNumber(1, kMaxBenchFrames));
     command->add_option("--threads", options.threads, "Worker threads (default: one per hardware thread)")
         ->check(wholeNumber(0, 1024));
+    addChoice(*command, "--aa", options.antialiasing,
+              "Anti-aliasing of the timed frames, as facet render's --aa (default: the scene file's, else "
+              "none)");
     command->add_flag("--vs-mesa", options.vsMesa,
                       "Compare with Mesa llvmpipe (OSMesa, if installed) on fixed scenes and sweeps, "
                       "same thread count");
@@ -90,6 +93,11 @@ CLI::App* addBenchCommand(CLI::App& app, facet::BenchOptions& options) {
 
 int bench(facet::BenchOptions& options, const CLI::App& command) {
     chooseDefaultBenchModels(options, command.count("model") > 0);
+    // --aa times plain frames; the other modes draw fixed configurations.
+    if (command.count("--aa"))
+        for (const char* option : {"--vs-mesa", "--sort", "--transparency", "--reference"})
+            if (command.count(option))
+                throw facet::InputError(std::string("--aa does not go with ") + option);
     if (options.reference) {
         // --threads sets the rasterizer's threads; the reference and the rays run on 1 and on 2.
         for (const char* option :

@@ -311,9 +311,32 @@ BENCHMARK(BM_SupersampleResolve)
     ->Args({int(Antialiasing::Ssaa4), int(ColorBufferFormat::Unorm8)});
 
 // ---- MSAA resolve ---------------------------------------------------------------------------------
-// BM_MsaaResolve goes here: the multisample resolve is being written on another branch; when it lands,
-// register it over its sample counts and colour buffer formats like BM_SupersampleResolve above (and
-// add "MsaaResolve" to tests/microbench/check_stages.cmake's list of stages).
+// Framebuffer::resolveSamples on a 1920 × 1080 frame, one thread: each pixel's N per-sample colours
+// summed pairwise, averaged and rounded to the colour buffer's format. The samples' values do not
+// matter to its speed (no branch depends on them); the planes are allocated and cleared outside the
+// timed loop, as the renderer does once per frame.
+
+void BM_MsaaResolve(benchmark::State& state) {
+    const auto aa = static_cast<Antialiasing>(state.range(0));
+    const auto format = static_cast<ColorBufferFormat>(state.range(1));
+    const int samples = samplesPerPixel(aa);
+    Framebuffer target(kFrameWidth, kFrameHeight);
+    target.useSamples(samples);
+    ThreadPool pool(1);
+    target.clear(vec4(0.25f, 0.5f, 0.75f, 1.0f), DepthFormat::kClear, pool);
+    for (auto _ : state) {
+        target.resolveSamples(format, pool);
+        benchmark::DoNotOptimize(target.colorPixels().data());
+        benchmark::ClobberMemory();
+    }
+    state.SetItemsProcessed(state.iterations() * kFramePixels * static_cast<std::int64_t>(samples));
+    state.SetLabel(joined({knob("--aa", aa), knob("--color-buffer", format)}) + ": samples/s");
+}
+BENCHMARK(BM_MsaaResolve)
+    ->ArgNames({"aa", "color-buffer"})
+    ->Args({int(Antialiasing::Msaa4), int(ColorBufferFormat::Float)})
+    ->Args({int(Antialiasing::Msaa16), int(ColorBufferFormat::Float)})
+    ->Args({int(Antialiasing::Msaa4), int(ColorBufferFormat::Unorm8)});
 
 }  // namespace
 }  // namespace facet::microbench

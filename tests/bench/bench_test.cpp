@@ -97,5 +97,33 @@ TEST_F(BenchTest, ReferenceModeNamesEveryRow) {
         EXPECT_NE(report.find(name), std::string::npos) << name << " missing from:\n" << report;
 }
 
+// The number after "fragments  " in a report of runBench.
+long long fragmentsShaded(const std::string& report) {
+    const std::size_t at = report.find("fragments  ");
+    return at == std::string::npos ? -1 : std::stoll(report.substr(at + 11));
+}
+
+// facet bench --aa: the timed frames are drawn with the anti-aliasing asked for (the report names it),
+// and supersampling shades about four times the fragments of one sample per pixel. Fails if benchScene
+// drops options.antialiasing.
+TEST_F(BenchTest, TimesTheAntialiasingAskedFor) {
+    BenchOptions options;
+    options.model = std::filesystem::path(FACET_SOURCE_DIR) / "models/spot/spot_triangulated.obj";
+    options.width = 64;
+    options.height = 48;
+    options.frames = 1;
+    options.threads = 1;
+    std::ostringstream none, ssaa4;
+    runBench(options, none);
+    options.antialiasing = Antialiasing::Ssaa4;
+    runBench(options, ssaa4);
+    EXPECT_NE(none.str().find("samples    1 per pixel (--aa none)"), std::string::npos) << none.str();
+    EXPECT_NE(ssaa4.str().find("samples    4 per pixel (--aa ssaa4)"), std::string::npos) << ssaa4.str();
+    const long long one = fragmentsShaded(none.str()), four = fragmentsShaded(ssaa4.str());
+    ASSERT_GT(one, 100);
+    EXPECT_GT(four, 3 * one);
+    EXPECT_LT(four, 5 * one);
+}
+
 }  // namespace
 }  // namespace facet
