@@ -60,6 +60,7 @@ ShadingTrace traceShading(const SurfaceUniforms& u, ShadingFrequency frequency, 
     trace.shaderRan = f.fate != FragmentFate::DepthFailed && f.fate != FragmentFate::Discarded;
     if (const Texture* map = u.diffuseMap ? u.diffuseMap : u.emissionMap) {
         const TexCoordDerivativesT<float> d = uvDerivativesOf(f);
+        const float lod = textureLod(*map, d.dx, d.dy);  // λ = log2 ρ, so ρ = 2^λ
         trace.texture = {.mapped = true,
                          .filter = u.textureFilter,
                          .width = map->width,
@@ -67,8 +68,8 @@ ShadingTrace traceShading(const SurfaceUniforms& u, ShadingFrequency frequency, 
                          .levels = map->levelCount(),
                          .uvDx = d.dx,
                          .uvDy = d.dy,
-                         .rho = std::exp2(textureLod(*map, d.dx, d.dy)),
-                         .lod = textureLod(*map, d.dx, d.dy)};
+                         .rho = std::exp2(lod),
+                         .lod = lod};
     }
 
     if (frequency == ShadingFrequency::Phong) {
