@@ -135,7 +135,10 @@ void shadeQueue(FragmentQueue& queue, const DrawPlan& plan, const Depth& depth,
             if constexpr (kObserving) event.fate = stored ? FragmentFate::Stored : FragmentFate::Dropped;
         } else {
             vec4& destination = target.color(x, y);
-            destination = blend(plan.blend, shaded[lane], destination);
+            // Replace (every opaque draw) stores the fragment as a whole; the other modes go through
+            // the switch of blend(), whose per-component code is slower for it.
+            destination = plan.blend == BlendMode::Replace ? shaded[lane]
+                                                           : blend(plan.blend, shaded[lane], destination);
             if constexpr (kRoundColor) destination = roundToColorBuffer(plan.colorBuffer, destination);
             ++stats.fragmentsWritten;
             if constexpr (kObserving) {

@@ -14,9 +14,11 @@
 
 namespace facet {
 
-// Written once for float (the framebuffer's vec4) and double (the reference renderer's dvec4).
+// Written once for float (the framebuffer's vec4) and double (the reference renderer's dvec4). Always
+// inlined: it runs once per written fragment with the draw's mode, which the branch predictor learns;
+// called out of line, it cost an opaque draw about 15 instructions per fragment.
 template <class T, glm::qualifier Q>
-glm::vec<4, T, Q> blend(BlendMode mode, const glm::vec<4, T, Q>& source,
+[[gnu::always_inline]] inline glm::vec<4, T, Q> blend(BlendMode mode, const glm::vec<4, T, Q>& source,
                         const glm::vec<4, T, Q>& destination) {
     using Vec3 = glm::vec<3, T, Q>;
     using Vec4 = glm::vec<4, T, Q>;

@@ -9,8 +9,10 @@ namespace facet {
 
 // glDepthFunc semantics: the fragment passes when `fragmentDepth OP storedDepth`. For float operands
 // the verdict is a bool; for Float8 (eight fragments) a lane mask, all bits set where a lane passes.
+// Always inlined into the per-block depth test (out of line, the call and the switch cost more than the
+// compare).
 template <class Depth>
-inline auto depthTestPasses(CompareOp op, Depth fragmentDepth, Depth storedDepth) {
+[[gnu::always_inline]] inline auto depthTestPasses(CompareOp op, Depth fragmentDepth, Depth storedDepth) {
     const auto never = fragmentDepth < fragmentDepth;  // false (or all lanes false), of the right type
     switch (op) {
         case CompareOp::Never:

@@ -395,9 +395,10 @@ struct Maths<MathPrecision::Exact> {
 
 template <>
 struct Maths<MathPrecision::Fast> {
-    // x^n = 2^(n·log2 x), with pow's edges: 0 where x = 0 and n > 0, 1 where n = 0.
+    // x^n = 2^(n·log2 x), with pow's edges: 0 where x = 0 and n > 0, 1 where n = 0. Always inlined
+    // into the shaders (GCC otherwise splits off the body and calls it per batch of fragments).
     template <class F>
-    static F pow(F x, float n) {
+    [[gnu::always_inline]] static F pow(F x, float n) {
         if (n == 0.0f) return lanes<F>(1.0f);
         const F r = fastExp2(fastLog2(x) * n);
         return select(x > 0.0f, r, lanes<F>(0.0f));
