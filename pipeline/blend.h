@@ -19,7 +19,7 @@ namespace facet {
 // called out of line, it cost an opaque draw about 15 instructions per fragment.
 template <class T, glm::qualifier Q>
 [[gnu::always_inline]] inline glm::vec<4, T, Q> blend(BlendMode mode, const glm::vec<4, T, Q>& source,
-                        const glm::vec<4, T, Q>& destination) {
+                                                      const glm::vec<4, T, Q>& destination) {
     using Vec3 = glm::vec<3, T, Q>;
     using Vec4 = glm::vec<4, T, Q>;
     const T one(1);
