@@ -200,9 +200,12 @@ TradeSetting knobSetting(const Knob& knob, const std::string& value) {
     return setting;
 }
 
-TradeSetting presetSetting(const std::string& name) {
+TradeSetting presetSetting(const std::string& name, const std::vector<std::string>& leftAsTheScene) {
     TradeSetting setting{"preset", name, {}};
+    static const std::string kScenesOwn;
     auto valueFor = [&](const Knob& knob) -> const std::string& {
+        if (std::find(leftAsTheScene.begin(), leftAsTheScene.end(), knob.name) != leftAsTheScene.end())
+            return kScenesOwn;
         return name == "fast" ? knob.fastValue : name == "best" ? knob.bestValue : knob.defaultValue;
     };
     for (const Knob& knob : knobTable()) {

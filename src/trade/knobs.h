@@ -53,8 +53,9 @@ struct TradeSetting {
 TradeSetting knobSetting(const Knob& knob, const std::string& value);
 
 // Preset `name` ("fast", "default", "best"): each knob of the table at its value for that preset, a
-// knob whose prerequisite the preset does not set left out.
-TradeSetting presetSetting(const std::string& name);
+// knob whose prerequisite the preset does not set left out, and so are the knobs named in
+// `leftAsTheScene` (with the knobs that need them).
+TradeSetting presetSetting(const std::string& name, const std::vector<std::string>& leftAsTheScene = {});
 inline const std::vector<std::string> kPresetNames = {"fast", "default", "best"};
 
 // Whether `scene` already has every value `setting` sets (by the knobs' valueIn): rendering it would

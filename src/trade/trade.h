@@ -46,6 +46,7 @@ struct TradeRow {
 struct TradeResult {
     std::vector<TradeRow> rows;        // the baseline first
     std::vector<std::string> skipped;  // settings the baseline already has, by label
+    std::vector<std::string> notes;    // what the run decided from its own measurements (fastPresetKeeps)
     double referenceMs = 0;
     int width = 0, height = 0;
 };
@@ -58,6 +59,13 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
 // The rows as CSV (a header, then one line per row) and as an aligned table for the terminal.
 void writeTradeCsv(const TradeResult& result, std::ostream& out);
 void printTradeTable(const TradeResult& result, std::ostream& out);
+
+// The knobs whose fast value measured slower than the scene's own in this run: the row of the knob at its
+// fast value was slower in its fastest frame than the baseline in its median one (flat shading on a
+// dense mesh lights three corners per triangle, more work than lighting its pixels). The fast preset
+// leaves these as the scene has them; `notes` gets a line for each. `measured`: the baseline first.
+std::vector<std::string> fastPresetKeeps(const std::vector<TradeRow>& measured,
+                                         std::vector<std::string>& notes);
 
 // The y of the chart and of the Pareto front: 1 − SSIM of the 8-bit image.
 inline double tradeError(const TradeRow& row) {

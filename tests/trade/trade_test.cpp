@@ -1,5 +1,6 @@
 // facet trade: its knob table speaks the render command's language, its CSV is whole and finite, a knob
 // that changes the image is scored as such, and the Pareto front and the metrics mean what they say.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -18,6 +19,7 @@
 #include "trade/knobs.h"
 #include "trade/metrics.h"
 #include "trade/pareto.h"
+#include "trade/trade.h"
 
 namespace facet {
 namespace {
@@ -161,6 +163,46 @@ TEST(TradeKnobs, EverySettingIsAcceptedByTheRenderParserAndReachesTheScene) {
         EXPECT_TRUE(
             sceneHasSetting(cli::sceneWithWords(args, presetSetting(preset).words), presetSetting(preset)));
     }
+}
+
+// The fast preset keeps the scene's value of a knob whose fast value measured slower than the baseline
+// (its fastest frame slower than the baseline's median) and names it in a note; a knob whose fast value
+// measured faster, or was not measured, keeps its fast value. Catches: the comparison reversed or
+// dropped (flat shading back in the preset, or normalize fast left out), a kept knob's dependants
+// (the map's size under --shadows none) still set, and the note missing.
+TEST(TradePresets, TheFastPresetKeepsTheScenesValueWhereTheFastOneMeasuredSlower) {
+    auto row = [](const std::string& knob, const std::string& value, double msMin, double msMedian) {
+        TradeRow r;
+        r.setting =
+            knob == "baseline" ? TradeSetting{"baseline", "", {}} : knobSetting(knobNamed(knob), value);
+        r.msMin = msMin;
+        r.msMedian = msMedian;
+        return r;
+    };
+    const std::vector<TradeRow> measured = {
+        row("baseline", "", 9.0, 10.0),
+        row("shading", "flat", 15.0, 16.0),  // slower: the preset keeps the scene's shading
+        row("normalize", "fast", 8.5, 9.5),  // faster: --normalize fast stays
+        row("shadows", "none", 10.5, 11.0),  // slower (noise, but the rule is the rule)
+        row("aa", "msaa4", 40.0, 41.0),      // not the knob's fast value: not a reason
+    };
+    std::vector<std::string> notes;
+    const std::vector<std::string> keep = fastPresetKeeps(measured, notes);
+    EXPECT_EQ(keep, (std::vector<std::string>{"shading", "shadows"}));
+    ASSERT_EQ(notes.size(), 2u);
+    EXPECT_NE(notes[0].find("preset fast keeps the scene's --shading: --shading flat measured slower"),
+              std::string::npos)
+        << notes[0];
+    const std::vector<std::string> words = presetSetting("fast", keep).words;
+    auto has = [&](const std::string& flag) {
+        return std::find(words.begin(), words.end(), flag) != words.end();
+    };
+    EXPECT_FALSE(has("--shading"));
+    EXPECT_FALSE(has("--shadows"));
+    EXPECT_FALSE(has("--shadow-map-size"));  // needs --shadows map, which the preset no longer sets
+    EXPECT_TRUE(has("--normalize"));
+    EXPECT_TRUE(has("--interpolation"));  // not measured: its fast value stays
+    EXPECT_TRUE(presetSetting("fast").words.size() > words.size());
 }
 
 TEST(TradeKnobs, AnUnknownNameIsOneLineListingTheValidOnes) {
