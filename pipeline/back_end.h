@@ -389,9 +389,12 @@ void shadeMultisampleQueue(MultisampleQueue& queue, const DrawPlan& plan, const 
 
 // The pixels of one block with a covered sample (coverage[s]: the block's mask at sample s): each
 // covered sample's depth from the depth plane at the sample, tested against that sample's stored
-// depth; a pixel with a sample that passed is queued once, its varyings interpolated at the pixel
-// centre (OpenGL's default without centroid interpolation: the centre may lie outside the triangle,
-// which extrapolates its varyings a little).
+// depth; a pixel with a sample that passed is queued once, its varyings interpolated at the pixel's
+// centroid sample (GLSL's `centroid`, Direct3D's centroid rule): the centre when the triangle covers
+// every sample of the pixel, else its first covered sample in the pattern's order. At the centre, a
+// pixel the triangle only grazes would take varyings extrapolated beyond the triangle: a position
+// behind the neighbouring wall, whose ray to the light is then blocked (dark seams in ray-cast
+// shadows), or a texel outside the triangle's part of the texture.
 template <Shader S, class Depth, bool kDerivatives>
 void depthTestMultisampleBlock(const TriangleSetup& setup, const float* planes, int blockX, int blockY,
                                const std::uint64_t* coverage, std::uint64_t covered,
@@ -415,9 +418,10 @@ void depthTestMultisampleBlock(const TriangleSetup& setup, const float* planes, 
 
         // The depth test at each covered sample: λᵢ = Eᵢ(sample) / (2·area), Eᵢ(sample) = Eᵢ(centre) +
         // aᵢ·dx + bᵢ·dy exact in integers, then z as interpolateDepth gives it at a pixel centre.
-        unsigned passed = 0;
+        unsigned passed = 0, partial = 0;
         std::uint32_t samplesPassed[kBlockSize];
         float sampleZ[kBlockSize][kMaxSamples];
+        float centroidB1[kBlockSize], centroidB2[kBlockSize];
         for (unsigned lanes = rowMask; lanes; lanes &= lanes - 1) {
             const int lane = std::countr_zero(lanes);
             const int x = blockX + lane;
@@ -425,12 +429,21 @@ void depthTestMultisampleBlock(const TriangleSetup& setup, const float* planes, 
             const std::int64_t e1Centre = e1.at(centre.x, centre.y), e2Centre = e2.at(centre.x, centre.y);
             const typename Depth::Stored* stored = target.sampleDepths(x, y);
             std::uint32_t pass = 0;
+            bool first = true;
             for (int s = 0; s < offsets.count; ++s) {
-                if (!((coverage[s] >> (shift + lane)) & 1u)) continue;
+                if (!((coverage[s] >> (shift + lane)) & 1u)) {
+                    partial |= 1u << lane;
+                    continue;
+                }
                 const std::int64_t e1Sample = e1Centre + e1.a * offsets.x[s] + e1.b * offsets.y[s];
                 const std::int64_t e2Sample = e2Centre + e2.a * offsets.x[s] + e2.b * offsets.y[s];
                 const float b1 = static_cast<float>(static_cast<double>(e1Sample) * invArea);
                 const float b2 = static_cast<float>(static_cast<double>(e2Sample) * invArea);
+                if (first) {  // the centroid sample if the pixel is only partly covered
+                    centroidB1[lane] = b1;
+                    centroidB2[lane] = b2;
+                    first = false;
+                }
                 const float z = interpolateDepth(setup, b1, b2);
                 if (plan.depthTest && !depth.passes(plan.depthCompare, z, stored[s])) continue;
                 pass |= 1u << s;
@@ -442,9 +455,14 @@ void depthTestMultisampleBlock(const TriangleSetup& setup, const float* planes, 
         stats.fragmentsDepthFailed += static_cast<unsigned>(std::popcount(rowMask & ~passed));
         if (!passed) continue;
 
-        // The shading point: the pixel centre.
+        // The shading point: the pixel centre, or the centroid sample of a partly covered pixel.
         Float8 b1{}, b2{};
         barycentrics.row(row, b1, b2);
+        for (unsigned lanes = passed & partial; lanes; lanes &= lanes - 1) {
+            const int lane = std::countr_zero(lanes);
+            b1[lane] = centroidB1[lane];
+            b2[lane] = centroidB2[lane];
+        }
         const Float8 z = interpolateDepth(setup, b1, b2);
         FragmentBatch rowVaryings;
         const bool wideRow =

@@ -21,8 +21,14 @@ CLI::App* addTradeCommand(CLI::App& app, TradeArgs& args) {
     command->add_option("--knobs", args.knobs, "Knobs to try, comma-separated (default all: " + names + ")");
     command
         ->add_option("--frames", args.frames,
-                     "Timed frames per setting, after one warm-up; the median is reported (default 5)")
+                     "Timed frames per setting, split over the rounds; the median is reported (default 9)")
         ->check(wholeNumber(1, facet::kMaxTradeFrames));
+    command
+        ->add_option(
+            "--rounds", args.rounds,
+            "Time every setting in turn this many times (at most --frames), each a warm-up frame and "
+            "a share of the frames, so that a busy spell of the machine is shared (default 3)")
+        ->check(wholeNumber(1, facet::kMaxTradeRounds));
     command
         ->add_option("--reference-samples", args.referenceSamples,
                      "N×N rays per pixel of the reference image (default 4)")
@@ -69,6 +75,7 @@ int trade(const TradeArgs& args) {
     options.knobs = args.knobs;
     facet::selectKnobs(options.knobs);  // a typo fails before the model is loaded
     options.frames = args.frames;
+    options.rounds = args.rounds;
     options.threads = args.scene.threads;
     options.referenceSamples = args.referenceSamples;
     options.progress = !args.quiet;

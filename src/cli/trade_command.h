@@ -16,7 +16,8 @@ namespace facet::cli {
 struct TradeArgs {
     SceneArgs scene;  // the baseline: input, size, camera and every knob as for render
     std::string knobs;
-    int frames = 5;
+    int frames = 9;
+    int rounds = 3;
     int referenceSamples = 4;
     std::optional<std::string> outputDir;  // absent: out/trade-<scene name>/
     bool quiet = false;

@@ -127,6 +127,9 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
     if (options.frames < 1 || options.frames > kMaxTradeFrames)
         throw InputError("--frames must be from 1 to " + std::to_string(kMaxTradeFrames) + " (got " +
                          std::to_string(options.frames) + ")");
+    if (options.rounds < 1 || options.rounds > kMaxTradeRounds)
+        throw InputError("--rounds must be from 1 to " + std::to_string(kMaxTradeRounds) + " (got " +
+                         std::to_string(options.rounds) + ")");
     if (options.referenceSamples < 1 || options.referenceSamples > kMaxReferenceSamples)
         throw InputError("--reference-samples must be from 1 to " + std::to_string(kMaxReferenceSamples) +
                          " (N×N rays per pixel; got " + std::to_string(options.referenceSamples) + ")");
@@ -159,50 +162,68 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
             << options.referenceSamples << " rays per pixel): " << number(result.referenceMs, 0) << " ms\n"
             << std::flush;
 
+    // Round r times frames/rounds frames of every setting (the first rounds one more while frames is
+    // not a multiple). The first round also makes each setting's image and scores it: the image does
+    // not depend on the round.
+    const int rounds = std::min(options.rounds, options.frames);
+    std::vector<std::vector<double>> frameMs(settings.size()), shadowMs(settings.size());
+    std::vector<TradeSetting> rendered = settings;
     LinearImage baselineImage;
-    for (std::size_t k = 0; k < settings.size(); ++k) {
-        TradeRow row;
-        row.setting = settings[k];
-        // The fast preset is what measured fast here: a knob whose fast value was slower keeps the scene's.
-        if (row.setting.knob == "preset" && row.setting.value == "fast")
-            row.setting = presetSetting("fast", fastPresetKeeps(result.rows, result.notes));
-        PreparedScene prepared = prepareScene(sceneWithWords(row.setting.words));
-        Framebuffer framebuffer(prepared.scene.width, prepared.scene.height);
-        FrameMemory memory;  // the transparent triangles' order from frame to frame, as an animation's
-        // A frame of the scene in motion: what its shadows need (the maps, the BVH of ray-cast shadows)
-        // rebuilt as setTurntable rebuilds it, then the frame drawn. A scene without shadows pays nothing.
-        prepareShadows(prepared);  // warm-up: caches, buffers, threads
-        renderFrame(prepared, framebuffer, context, memory);
-        std::vector<double> frameMs, shadowMs;
-        for (int frame = 0; frame < options.frames; ++frame) {
-            const auto start = Clock::now();
-            prepareShadows(prepared);
-            shadowMs.push_back(millisecondsSince(start));
+    for (int round = 0; round < rounds; ++round) {
+        const int framesThisRound = options.frames / rounds + (round < options.frames % rounds ? 1 : 0);
+        for (std::size_t k = 0; k < settings.size(); ++k) {
+            // The fast preset is what measured fast here: a knob whose fast value was slower (in the
+            // first round) keeps the scene's.
+            if (round == 0 && settings[k].knob == "preset" && settings[k].value == "fast")
+                rendered[k] = presetSetting("fast", fastPresetKeeps(result.rows, result.notes));
+            PreparedScene prepared = prepareScene(sceneWithWords(rendered[k].words));
+            Framebuffer framebuffer(prepared.scene.width, prepared.scene.height);
+            FrameMemory memory;  // the transparent triangles' order from frame to frame, as an animation's
+            // A frame of the scene in motion: what its shadows need (the maps, the BVH of ray-cast
+            // shadows) rebuilt as setTurntable rebuilds it, then the frame drawn. A scene without shadows
+            // pays nothing.
+            prepareShadows(prepared);  // warm-up: caches, buffers, threads
             renderFrame(prepared, framebuffer, context, memory);
-            frameMs.push_back(millisecondsSince(start));
+            for (int frame = 0; frame < framesThisRound; ++frame) {
+                const auto start = Clock::now();
+                prepareShadows(prepared);
+                shadowMs[k].push_back(millisecondsSince(start));
+                renderFrame(prepared, framebuffer, context, memory);
+                frameMs[k].push_back(millisecondsSince(start));
+            }
+            if (round == 0) {
+                TradeRow row;
+                row.setting = rendered[k];
+                const LinearImage image = toImage(framebuffer);
+                row.error = measureError(image, reference, encoding);
+                if (k == 0)
+                    baselineImage = image;
+                else
+                    row.noEffect = sameEncoded(image, baselineImage, encoding);
+                const std::string stem = settingFileStem(static_cast<int>(k), row.setting);
+                row.image = stem + ".png";
+                row.errorImage = stem + "-error.png";
+                writeImage(options.outputDir / row.image, image, encoding);
+                writeImage(options.outputDir / row.errorImage, errorImage(image, reference, encoding));
+                result.rows.push_back(std::move(row));
+            }
+            TradeRow& row = result.rows[k];
+            row.msMedian = median(frameMs[k]);
+            row.msMin = *std::min_element(frameMs[k].begin(), frameMs[k].end());
+            row.msMax = *std::max_element(frameMs[k].begin(), frameMs[k].end());
+            row.msShadows = median(shadowMs[k]);
+            row.frames = static_cast<int>(frameMs[k].size());
+            if (options.progress) {
+                log << "[";
+                if (rounds > 1) log << "round " << round + 1 << "/" << rounds << ", ";
+                log << k + 1 << "/" << settings.size() << "] " << row.setting.label() << ": "
+                    << number(row.msMedian, 1) << " ms";
+                if (round == 0)
+                    log << ", 1 - SSIM " << std::setprecision(3) << tradeError(row)
+                        << (row.noEffect ? ", no effect" : "");
+                log << "\n" << std::flush;
+            }
         }
-        row.msMedian = median(frameMs);
-        row.msMin = *std::min_element(frameMs.begin(), frameMs.end());
-        row.msShadows = median(shadowMs);
-        row.msMax = *std::max_element(frameMs.begin(), frameMs.end());
-
-        const LinearImage image = toImage(framebuffer);
-        row.error = measureError(image, reference, encoding);
-        if (k == 0)
-            baselineImage = image;
-        else
-            row.noEffect = sameEncoded(image, baselineImage, encoding);
-        const std::string stem = settingFileStem(static_cast<int>(k), row.setting);
-        row.image = stem + ".png";
-        row.errorImage = stem + "-error.png";
-        writeImage(options.outputDir / row.image, image, encoding);
-        writeImage(options.outputDir / row.errorImage, errorImage(image, reference, encoding));
-        if (options.progress)
-            log << "[" << k + 1 << "/" << settings.size() << "] " << row.setting.label() << ": "
-                << number(row.msMedian, 1) << " ms, 1 - SSIM " << std::setprecision(3) << tradeError(row)
-                << (row.noEffect ? ", no effect" : "") << "\n"
-                << std::flush;
-        result.rows.push_back(std::move(row));
     }
 
     std::vector<glm::dvec2> points;
@@ -247,14 +268,14 @@ std::vector<std::string> fastPresetKeeps(const std::vector<TradeRow>& measured,
 }
 
 void writeTradeCsv(const TradeResult& result, std::ostream& out) {
-    out << "knob,value,flags,ms_median,ms_min,ms_max,ms_shadow_setup";
+    out << "knob,value,flags,frames,ms_median,ms_min,ms_max,ms_shadow_setup";
     for (const char* space : {"linear", "output8"})
         for (const char* metric : {"psnr_db", "ssim", "mean_abs", "max_abs", "over_1_255", "over_2_255"})
             out << "," << space << "_" << metric;
     out << ",no_effect,pareto,image,error_image\n";
     for (const TradeRow& row : result.rows) {
         out << csvField(row.setting.knob) << "," << csvField(row.setting.value) << ","
-            << csvField(row.setting.words.empty() ? "" : row.setting.label()) << ","
+            << csvField(row.setting.words.empty() ? "" : row.setting.label()) << "," << row.frames << ","
             << csvNumber(row.msMedian) << "," << csvNumber(row.msMin) << "," << csvNumber(row.msMax) << ","
             << csvNumber(row.msShadows);
         for (const ErrorMetrics* m : {&row.error.linear, &row.error.encoded})

@@ -17,7 +17,11 @@ namespace facet {
 
 struct TradeOptions {
     std::string knobs;  // --knobs: comma-separated names; empty: every knob
-    int frames = 5;     // timed frames per setting, after one warm-up
+    int frames = 9;     // timed frames per setting, split over the rounds
+    // The settings are timed in rounds: each round renders every setting (a warm-up frame, then its
+    // share of the frames) before the next round starts, so that a slow spell of a shared machine falls
+    // on every setting alike instead of on the few timed during it. Capped at `frames`.
+    int rounds = 3;
     int threads = 0;
     // N×N rays per pixel of the reference. 4×4 (the reference renderer's default): the silhouettes'
     // coverage to 1/16 of a pixel, so that the reference shows the edges as they truly are and the
@@ -27,6 +31,7 @@ struct TradeOptions {
     bool progress = true;  // "[3/17] --shading gouraud: 12.3 ms" lines on `log`
 };
 inline constexpr int kMaxTradeFrames = 1000;
+inline constexpr int kMaxTradeRounds = 100;
 
 // The scene with the command-line words of a setting applied over the user's own, through the render
 // command's parser (the cli layer provides it). Throws InputError for words it refuses.
@@ -37,6 +42,7 @@ struct TradeRow {
     // Per frame of the scene in motion: its shadows' maps and BVH rebuilt, then clearing, sorting and
     // drawing. msShadows: the rebuild's median alone (what a static scene would not pay every frame).
     double msMedian = 0, msMin = 0, msMax = 0, msShadows = 0;
+    int frames = 0;         // frames timed, over every round
     ImageError error;       // against the reference
     bool noEffect = false;  // the 8-bit image is the baseline's, byte for byte: the knob changed nothing
     bool pareto = false;  // no other row is both faster and more accurate (by 1 − SSIM of the 8-bit image)

@@ -65,6 +65,45 @@ TEST(PipelineCoverage, FanAlongTheWindowBorderCoversEveryPixelOnce) {
     }
 }
 
+// Multisampling shades a partly covered pixel at a sample inside the triangle (the centroid rule:
+// the first covered sample in the pattern's order), so its varyings are never extrapolated beyond the
+// triangle. Red is λ of the apex (0 along the long edge opposite it, 1 at the apex): a pixel whose
+// centre lies beyond that edge but with a sample inside would be shaded with a negative red. Breaks if
+// the shading point stays the pixel centre for every pixel (Facet before the centroid rule), or if a
+// partly covered pixel takes another pixel's centroid.
+TEST(PipelineMultisampling, PartlyCoveredPixelsInterpolateInsideTheTriangle) {
+    for (const int samples : {2, 4, 8, 16}) {
+        SCOPED_TRACE(samples);
+        Framebuffer fb(64, 48);
+        fb.useSamples(samples);
+        DrawContext context(1);
+        fb.clear(vec4(0.5f), DepthFormat::kClear, context.pool);
+        DrawState state = testing::stateFor(fb);
+        state.samples = samples;
+        const std::vector<ClipSpaceColorShader::Attributes> triangle = {
+            {testing::clipFromWindow({1.3f, 3.1f}, fb), vec4(0.0f, 0.0f, 0.0f, 1.0f)},
+            {testing::clipFromWindow({62.6f, 40.2f}, fb), vec4(0.0f, 0.0f, 0.0f, 1.0f)},
+            {testing::clipFromWindow({6.4f, 46.7f}, fb), vec4(1.0f, 0.0f, 0.0f, 1.0f)}};
+        testing::drawTriangles<ClipSpaceColorShader>(state, triangle, fb);
+        int written = 0, partlyCovered = 0, extrapolated = 0;
+        for (int y = 0; y < fb.height(); ++y)
+            for (int x = 0; x < fb.width(); ++x) {
+                int covered = 0;
+                for (int s = 0; s < samples; ++s) {
+                    const vec4 c = fb.sampleColors(x, y)[s];
+                    if (c == vec4(0.5f)) continue;
+                    ++covered;
+                    extrapolated += c.r < 0.0f || c.r > 1.0f;
+                }
+                written += covered;
+                partlyCovered += covered > 0 && covered < samples;
+            }
+        EXPECT_GT(written, 500 * samples);
+        EXPECT_GT(partlyCovered, 40);
+        EXPECT_EQ(extrapolated, 0);
+    }
+}
+
 // The same around a circle much larger than the window: every triangle is clipped by the x/y planes,
 // and the clipped pieces of neighbouring triangles must still meet without cracks or overlaps.
 TEST(PipelineCoverage, FanLargerThanTheWindowCoversEveryPixelOnceThroughClipping) {

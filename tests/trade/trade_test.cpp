@@ -43,8 +43,9 @@ std::vector<std::string> splitCsvLine(const std::string& line) {  // the trade's
     return fields;
 }
 
-// `facet trade spot.obj --knobs shading,transparency --frames 1 ...` on a tiny image, parsed by the command's
-// own parser and run once for the suite; its CSV read back, one map per row.
+// `facet trade spot.obj --knobs shading,transparency --frames 3 --rounds 2 ...` on a tiny image, parsed by
+// the command's own parser and run once for the suite; its CSV read back, one map per row, and its
+// progress lines kept.
 class TradeRun : public ::testing::Test {
   protected:
     static void SetUpTestSuite() {
@@ -56,12 +57,15 @@ class TradeRun : public ::testing::Test {
         cli::addTradeCommand(app, args);
         // clang-format off
         const std::vector<std::string> words = {"trade", kModel, "--knobs", "shading,transparency",
-                                                "--frames", "1", "--reference-samples", "1",
+                                                "--frames", "3", "--rounds", "2", "--reference-samples", "1",
                                                 "--width", "48", "--height", "36", "--threads", "1",
-                                                "-q", "-o", dir_.string()};
+                                                "-o", dir_.string()};
         // clang-format on
         app.parse(std::vector<std::string>(words.rbegin(), words.rend()));
-        ASSERT_EQ(cli::trade(args), 0);
+        ::testing::internal::CaptureStderr();
+        const int status = cli::trade(args);
+        progress_ = ::testing::internal::GetCapturedStderr();
+        ASSERT_EQ(status, 0);
         std::ifstream csv(dir_ / "trade.csv");
         std::string line;
         std::getline(csv, line);
@@ -87,7 +91,26 @@ class TradeRun : public ::testing::Test {
     static inline std::filesystem::path dir_;
     static inline std::vector<std::string> header_;
     static inline std::vector<std::map<std::string, std::string>> rows_;
+    static inline std::string progress_;
 };
+
+// --frames 3 over --rounds 2: every setting is timed in both rounds, in turn (round 1 of every setting
+// before round 2 of any), and gets all three frames (2 + 1). Breaks if the rounds are ignored (one
+// round), if a later round's frames are not added to the first's (2 frames), or if the remainder of
+// frames / rounds is dropped.
+TEST_F(TradeRun, EverySettingIsTimedInEveryRoundWithAllItsFrames) {
+    for (const auto& r : rows_)
+        EXPECT_EQ(r.at("frames"), "3") << r.at("flags");
+    const std::size_t lastOfRound1 = progress_.rfind("[round 1/2, ");
+    const std::size_t firstOfRound2 = progress_.find("[round 2/2, ");
+    ASSERT_NE(lastOfRound1, std::string::npos) << progress_;
+    ASSERT_NE(firstOfRound2, std::string::npos) << progress_;
+    EXPECT_LT(lastOfRound1, firstOfRound2);
+    std::size_t round2Lines = 0;
+    for (std::size_t at = firstOfRound2; at != std::string::npos; at = progress_.find("[round 2/2, ", at + 1))
+        ++round2Lines;
+    EXPECT_EQ(round2Lines, rows_.size());
+}
 
 TEST_F(TradeRun, CsvHoldsARowPerSettingWithFiniteNumbers) {
     // The baseline (Phong shading, sorted transparency), flat, Gouraud, unsorted, exact, the fast and best
