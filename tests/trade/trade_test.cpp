@@ -188,26 +188,33 @@ TEST(TradeKnobs, EverySettingIsAcceptedByTheRenderParserAndReachesTheScene) {
     }
 }
 
-// The fast preset keeps the scene's value of a knob whose fast value measured slower than the baseline
-// (its fastest frame slower than the baseline's median) and names it in a note; a knob whose fast value
-// measured faster, or was not measured, keeps its fast value. Catches: the comparison reversed or
-// dropped (flat shading back in the preset, or normalize fast left out), a kept knob's dependants
-// (the map's size under --shadows none) still set, and the note missing.
+// The fast preset keeps the scene's value of a knob whose fast value changed the image and measured
+// slower than the baseline (its fastest frame slower than the baseline's median; the shadow map's size
+// against --shadows map alone) and names it in a note; a knob whose fast value measured faster, changed
+// nothing, or was not measured, keeps its fast value. Catches: the comparison reversed or dropped
+// (flat shading back in the preset, or normalize fast left out), a knob without effect kept for noise,
+// the map's size compared with the baseline instead of the map, a kept knob's dependants (the map's
+// size under --shadows none) still set, and the note missing.
 TEST(TradePresets, TheFastPresetKeepsTheScenesValueWhereTheFastOneMeasuredSlower) {
-    auto row = [](const std::string& knob, const std::string& value, double msMin, double msMedian) {
+    auto row = [](const std::string& knob, const std::string& value, double msMin, double msMedian,
+                  bool noEffect = false) {
         TradeRow r;
         r.setting =
             knob == "baseline" ? TradeSetting{"baseline", "", {}} : knobSetting(knobNamed(knob), value);
         r.msMin = msMin;
         r.msMedian = msMedian;
+        r.noEffect = noEffect;
         return r;
     };
     const std::vector<TradeRow> measured = {
         row("baseline", "", 9.0, 10.0),
-        row("shading", "flat", 15.0, 16.0),  // slower: the preset keeps the scene's shading
-        row("normalize", "fast", 8.5, 9.5),  // faster: --normalize fast stays
-        row("shadows", "none", 10.5, 11.0),  // slower (noise, but the rule is the rule)
-        row("aa", "msaa4", 40.0, 41.0),      // not the knob's fast value: not a reason
+        row("shading", "flat", 15.0, 16.0),                 // slower: the preset keeps the scene's shading
+        row("normalize", "fast", 8.5, 9.5),                 // faster: --normalize fast stays
+        row("shadows", "none", 10.5, 11.0),                 // slower (noise, but the rule is the rule)
+        row("aa", "msaa4", 40.0, 41.0),                     // not the knob's fast value: not a reason
+        row("transparency", "unsorted", 12.0, 13.0, true),  // slower but no effect: stays
+        row("shadows", "map", 30.0, 31.0),
+        row("shadow-map-size", "512", 25.0, 26.0),  // slower than the baseline, faster than the map: stays
     };
     std::vector<std::string> notes;
     const std::vector<std::string> keep = fastPresetKeeps(measured, notes);
@@ -224,7 +231,10 @@ TEST(TradePresets, TheFastPresetKeepsTheScenesValueWhereTheFastOneMeasuredSlower
     EXPECT_FALSE(has("--shadows"));
     EXPECT_FALSE(has("--shadow-map-size"));  // needs --shadows map, which the preset no longer sets
     EXPECT_TRUE(has("--normalize"));
-    EXPECT_TRUE(has("--interpolation"));  // not measured: its fast value stays
+    EXPECT_TRUE(has("--transparency"));
+    EXPECT_EQ(fastPresetKeeps({measured[0], measured[6], row("shadow-map-size", "512", 32.0, 33.0)}, notes),
+              (std::vector<std::string>{"shadow-map-size"}));  // slower than the map: kept
+    EXPECT_TRUE(has("--interpolation"));                       // not measured: its fast value stays
     EXPECT_TRUE(presetSetting("fast").words.size() > words.size());
 }
 
