@@ -169,7 +169,7 @@ void BM_TextureFilter(benchmark::State& state) {
         }
     for (auto _ : state)
         for (const Samples& s : samples) {
-            Vec4x8 texel = detail::texels<Float8>(texture, s.uv, 0xffu, filter, s.derivatives);
+            Vec4x8 texel = detail::texels<Float8>(texture, s.uv, 0xffu, filter, 1.0f, s.derivatives);
             benchmark::DoNotOptimize(texel);
         }
     state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(kBatches * kBlockSize));

@@ -313,6 +313,9 @@ PreparedScene prepareScene(const Scene& scene, const TextureLimits& limits) {
     common.clampColor = glPreset;
     common.fog = fogParams(scene, sceneBounds, camera, decode);
     common.textureFilter = scene.textures.filter;
+    if (!isMultisampled(scene.pipeline.antialiasing))  // ssaaN: each pass samples 1/N of the pixel
+        common.textureFootprint =
+            1.0f / std::sqrt(static_cast<float>(samplesPerPixel(scene.pipeline.antialiasing)));
     const bool textured = scene.textures.maps == TextureMaps::On;
     const glm::dmat4& viewFromWorld = camera.viewFromWorldExact;
     const double s = camera.viewScale;

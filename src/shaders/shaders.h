@@ -69,6 +69,11 @@ struct SurfaceUniforms {
     // How both maps are filtered. Trilinear reads the fragment's uv derivatives (the back end computes
     // them for such a draw only: usesDerivatives) and the maps' mip chains (built by prepareScene).
     TextureFilter textureFilter = TextureFilter::Bilinear;
+    // The footprint of one shading sample, in pixels per side: 1, or 1/√N under ssaaN, whose N passes
+    // each sample 1/N of the pixel. Trilinear scales the uv derivatives by it, so that it picks the level
+    // for the samples' spacing (λ lowered by ½·log2 N), as a frame drawn at √N times the size would;
+    // with the level for a whole pixel, the average of the passes would filter the texture twice.
+    float textureFootprint = 1.0f;
     bool twoSidedFlip = true;  // light the side of a surface that faces the viewer (N·V < 0: N = −N)
     bool clampColor = false;   // clamp lit colours to [0, 1] (per vertex before interpolation), as OpenGL 1.x
     std::uint8_t terms = kAllTerms;        // LightingTerm bits: which terms reach the image
@@ -297,14 +302,14 @@ template <class F, class Sample>
 // A texture's texels at uv with the draw's filter, chosen once for all the lanes.
 template <class F>
 LaneVec4<F> texels(const Texture& map, const LaneVec2<F>& uv, unsigned liveLanes, TextureFilter filter,
-                   const TexCoordDerivativesT<F>& d) {
+                   float footprint, const TexCoordDerivativesT<F>& d) {
     switch (filter) {
         case TextureFilter::Nearest:
             return sampleLanes<F>(uv, liveLanes, d,
                                   [&](vec2 at, vec2, vec2) { return sampleNearest(map, at); });
         case TextureFilter::Trilinear:
             return sampleLanes<F>(uv, liveLanes, d, [&](vec2 at, vec2 dx, vec2 dy) {
-                return sampleTrilinear(map, at, dx, dy);
+                return sampleTrilinear(map, at, footprint * dx, footprint * dy);
             });
         case TextureFilter::Bilinear:
             break;
@@ -357,8 +362,8 @@ struct PerPixelSurface {
             *recordOf(recording...) = {
                 .perPixel = true, .uv = in.uv, .opacity = u.opacity, .materialAlbedo = albedo};
         if (u.diffuseMap) {
-            const LaneVec4<F> texel =
-                detail::texels<F>(*u.diffuseMap, in.uv, liveLanes, u.textureFilter, uvDerivatives);
+            const LaneVec4<F> texel = detail::texels<F>(*u.diffuseMap, in.uv, liveLanes, u.textureFilter,
+                                                        u.textureFootprint, uvDerivatives);
             albedo = albedo * rgb(texel);
             alpha = alpha * texel.w;
             if constexpr (Record::enabled) {
@@ -368,8 +373,8 @@ struct PerPixelSurface {
         }
         LightingTerms<V3> t = surfaceTerms<F>(in.position, in.normal, albedo, u, &recording->lighting...);
         if (u.emissionMap) {
-            const LaneVec4<F> texel =
-                detail::texels<F>(*u.emissionMap, in.uv, liveLanes, u.textureFilter, uvDerivatives);
+            const LaneVec4<F> texel = detail::texels<F>(*u.emissionMap, in.uv, liveLanes, u.textureFilter,
+                                                        u.textureFootprint, uvDerivatives);
             t.emission = t.emission * rgb(texel);
             if constexpr (Record::enabled) {
                 recordOf(recording...)->emissionMapped = true;
@@ -480,8 +485,8 @@ struct PerVertexSurface {
                                        .modulatedIn = in.modulated,
                                        .addedIn = in.added};
         if (u.diffuseMap) {
-            const LaneVec4<F> texel =
-                detail::texels<F>(*u.diffuseMap, in.uv, liveLanes, u.textureFilter, uvDerivatives);
+            const LaneVec4<F> texel = detail::texels<F>(*u.diffuseMap, in.uv, liveLanes, u.textureFilter,
+                                                        u.textureFootprint, uvDerivatives);
             modulated = modulated * rgb(texel);
             alpha = alpha * texel.w;
             if constexpr (Record::enabled) {
@@ -491,8 +496,8 @@ struct PerVertexSurface {
         }
         V3 added = in.added;
         if (u.emissionMap) {
-            const LaneVec4<F> texel =
-                detail::texels<F>(*u.emissionMap, in.uv, liveLanes, u.textureFilter, uvDerivatives);
+            const LaneVec4<F> texel = detail::texels<F>(*u.emissionMap, in.uv, liveLanes, u.textureFilter,
+                                                        u.textureFootprint, uvDerivatives);
             const V3 emission = V3(u.emissionTerm()) * rgb(texel);
             added = added + emission;
             if constexpr (Record::enabled) {

@@ -269,6 +269,7 @@ std::vector<std::string> fastPresetKeeps(const std::vector<TradeRow>& measured,
     constexpr double kSlowerBy = 1.05;  // beyond the medians' own wobble on a quiet machine
     std::vector<std::string> keep;
     if (measured.empty() || measured.front().setting.knob != "baseline") return keep;
+    const TradeRow& baseline = measured.front();
     auto rowOf = [&](const TradeSetting& setting) -> const TradeRow* {
         for (const TradeRow& row : measured)
             if (row.setting.words == setting.words) return &row;
@@ -276,22 +277,17 @@ std::vector<std::string> fastPresetKeeps(const std::vector<TradeRow>& measured,
     };
     for (const Knob& knob : knobTable()) {
         if (knob.fastValue.empty()) continue;
+        // A knob under another's value the fast preset does not set (the map's size under --shadows
+        // none) is not in the preset: nothing to decide either.
+        if (!knob.needsKnob.empty() && knobNamed(knob.needsKnob).fastValue != knob.needsValue) continue;
         const TradeRow* fast = rowOf(knobSetting(knob, knob.fastValue));
         // A fast value that changes nothing costs no accuracy: whatever its time, nothing to decide.
         if (!fast || fast->noEffect) continue;
-        // Compared with the scene as it is: for a knob that acts under another's value (the shadow map's
-        // size under --shadows map), with that value alone, when it was measured.
-        const TradeRow* before = &measured.front();
-        if (!knob.needsKnob.empty())
-            if (const TradeRow* prerequisite = rowOf(knobSetting(knobNamed(knob.needsKnob), knob.needsValue)))
-                before = prerequisite;
-        if (fast->msMedian <= kSlowerBy * before->msMedian) continue;
+        if (fast->msMedian <= kSlowerBy * baseline.msMedian) continue;
         keep.push_back(knob.name);
-        notes.push_back(
-            "preset fast keeps the scene's " + knob.flag + ": " + fast->setting.label() +
-            " measured slower (median " + number(fast->msMedian, 2) + " ms, " +
-            (before == &measured.front() ? std::string("the baseline's") : before->setting.label() + "'s") +
-            " median " + number(before->msMedian, 2) + " ms)");
+        notes.push_back("preset fast keeps the scene's " + knob.flag + ": " + fast->setting.label() +
+                        " measured slower (median " + number(fast->msMedian, 2) + " ms, the baseline's " +
+                        number(baseline.msMedian, 2) + " ms)");
     }
     return keep;
 }

@@ -67,9 +67,10 @@ void writeTradeCsv(const TradeResult& result, std::ostream& out);
 void printTradeTable(const TradeResult& result, std::ostream& out);
 
 // The knobs whose fast value measured slower than the scene's own in this run: the row of the knob at its
-// fast value changed the image and its median frame was over 5% slower than the baseline's (for a knob
-// under another's value, such as the shadow map's size, than that value's row): flat shading on a dense
-// mesh lights three corners per triangle, more work than lighting its pixels. The fast preset leaves
+// fast value changed the image and its median frame was over 5% slower than the baseline's (a knob
+// under another's value the fast preset does not set, such as the shadow map's size under --shadows
+// none, is not considered): flat shading on a dense mesh lights three corners per triangle, more work
+// than lighting its pixels. The fast preset leaves
 // these as the scene has them; `notes` gets a line for each. `measured`: the baseline first.
 std::vector<std::string> fastPresetKeeps(const std::vector<TradeRow>& measured,
                                          std::vector<std::string>& notes);

@@ -11,6 +11,7 @@
 #include "base/errors.h"
 #include "pipeline/sample_position.h"
 #include "render/renderer.h"
+#include "shaders/shaders.h"
 #include "support/temp_folder.h"
 
 namespace facet {
@@ -319,6 +320,41 @@ TEST_F(MultisampledTriangle, ShadesOncePerPixel) {
     EXPECT_GE(shaded + silhouette, shadedNone);
     EXPECT_LE(shaded, shadedNone + silhouette);
     EXPECT_GT(ssaa.stats.draw.fragmentsShaded, 3 * shaded);
+}
+
+// Under ssaaN each pass samples 1/N of the pixel, so trilinear filtering takes the mip level for the
+// samples' spacing: the uv derivatives times the footprint 1/√N (λ lowered by ½·log2 N), as a frame
+// drawn √N times larger would. prepareScene sets the footprint from the scene's anti-aliasing: 1/√N
+// for ssaaN, 1 for none and for msaaN (which shades once per pixel). A 64×64 texture whose level l ≥ 1
+// holds l, seen at four texels per pixel (λ = 2): footprint 1 reads level 2, ssaa4's ½ level 1 and
+// ssaa16's ¼ level 0. Breaks if the shaders' texture lookup ignores the footprint (every pass would
+// take the whole pixel's level and the average of the passes filter the texture twice: a blur), or if
+// prepareScene leaves it at 1 under supersampling or sets it under multisampling.
+TEST_F(SupersampledRectangle, TrilinearTakesTheMipLevelOfTheSampleSpacing) {
+    Texture levels;
+    levels.width = levels.height = 64;
+    levels.texels.assign(64 * 64, vec4(0.0f));
+    buildMipChain(levels);
+    for (std::size_t level = 0; level < levels.mipLevels.size(); ++level)
+        for (vec4& texel : levels.mipLevels[level].texels)
+            texel = vec4(static_cast<float>(level + 1));
+    const TexCoordDerivativesT<float> fourTexelsPerPixel{vec2(4.0f / 64.0f, 0.0f), vec2(0.0f, 4.0f / 64.0f)};
+    const auto levelRead = [&](float footprint) {
+        return detail::texels<float>(levels, vec2(0.5f), 1u, TextureFilter::Trilinear, footprint,
+                                     fourTexelsPerPixel)
+            .x;
+    };
+    EXPECT_FLOAT_EQ(levelRead(1.0f), 2.0f);
+    EXPECT_FLOAT_EQ(levelRead(0.5f), 1.0f);
+    EXPECT_FLOAT_EQ(levelRead(0.25f), 0.0f);
+    const std::pair<Antialiasing, float> footprints[] = {{Antialiasing::None, 1.0f},
+                                                         {Antialiasing::Ssaa4, 0.5f},
+                                                         {Antialiasing::Ssaa16, 0.25f},
+                                                         {Antialiasing::Msaa4, 1.0f}};
+    for (const auto& [aa, footprint] : footprints) {
+        SCOPED_TRACE(nameOf(aa));
+        EXPECT_FLOAT_EQ(rectangle(-1, 1, -1, 1, aa).draws[0].uniforms.textureFootprint, footprint);
+    }
 }
 
 // Exact transparency keeps its fragment lists per pixel: with multisampling the scene is refused with
