@@ -311,7 +311,7 @@ void drawScatter(Canvas& canvas, int left, int top, int width, int height, const
     }
     const Box plot{plotLeft + 3, plotTop, plotRight, plotBottom};
     for (std::size_t i = 0; i < points.size(); ++i) {
-        if (points[i].label.empty()) continue;  // a point without a label (the trade's settings without effect)
+        if (points[i].label.empty()) continue;  // unlabelled (the trade's settings without effect)
         const int w = Canvas::textWidth(points[i].label, 1);
         const int px = static_cast<int>(pixels[i].x), py = static_cast<int>(pixels[i].y);
         std::vector<Box> candidates;
