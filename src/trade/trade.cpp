@@ -195,6 +195,8 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
                     renderFrame(prepared, framebuffer, context, memory);
                     frameMs[k].push_back(millisecondsSince(start));
                 }
+                // Rows are made in settings' order: the knobs' in the first phase, the presets' (the
+                // last settings) in the second; a setting already scored (the baseline again) is only timed.
                 const bool scored = k < result.rows.size();
                 if (!scored) {
                     TradeRow row;

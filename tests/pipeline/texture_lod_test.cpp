@@ -17,6 +17,7 @@ namespace {
 
 using testing::clipFromWindow;
 using testing::drawTriangles;
+using testing::levelNumberTexture;
 using testing::stateFor;
 
 // Writes uv's derivatives (∂u/∂x, ∂v/∂x, ∂u/∂y, ∂v/∂y) as the colour, or uv itself (showDerivatives
@@ -50,18 +51,6 @@ std::vector<UvDerivativeShader::Attributes> scaledQuad(const Framebuffer& fb, fl
     };
     const float w = static_cast<float>(fb.width()), h = static_cast<float>(fb.height());
     return {corner(0, 0), corner(w, 0), corner(w, h), corner(0, 0), corner(w, h), corner(0, h)};
-}
-
-// A 64×64 texture, level l holding l everywhere: a sample says which level it came from.
-Texture levelNumberTexture() {
-    Texture t;
-    t.width = t.height = 64;
-    t.texels.assign(64 * 64, vec4(0.0f));
-    buildMipChain(t);
-    for (std::size_t level = 0; level < t.mipLevels.size(); ++level)
-        for (vec4& texel : t.mipLevels[level].texels)
-            texel = vec4(static_cast<float>(level + 1));
-    return t;
 }
 
 // One texel of a 64×64 texture across 4 pixels: ∂u/∂x = 1/256, λ = log2(64/256) = −2, level 0; four

@@ -13,6 +13,7 @@
 #include "render/renderer.h"
 #include "shaders/shaders.h"
 #include "support/temp_folder.h"
+#include "support/test_shaders.h"
 
 namespace facet {
 namespace {
@@ -331,13 +332,7 @@ TEST_F(MultisampledTriangle, ShadesOncePerPixel) {
 // take the whole pixel's level and the average of the passes filter the texture twice: a blur), or if
 // prepareScene leaves it at 1 under supersampling or sets it under multisampling.
 TEST_F(SupersampledRectangle, TrilinearTakesTheMipLevelOfTheSampleSpacing) {
-    Texture levels;
-    levels.width = levels.height = 64;
-    levels.texels.assign(64 * 64, vec4(0.0f));
-    buildMipChain(levels);
-    for (std::size_t level = 0; level < levels.mipLevels.size(); ++level)
-        for (vec4& texel : levels.mipLevels[level].texels)
-            texel = vec4(static_cast<float>(level + 1));
+    const Texture levels = testing::levelNumberTexture();
     const TexCoordDerivativesT<float> fourTexelsPerPixel{vec2(4.0f / 64.0f, 0.0f), vec2(0.0f, 4.0f / 64.0f)};
     const auto levelRead = [&](float footprint) {
         return detail::texels<float>(levels, vec2(0.5f), 1u, TextureFilter::Trilinear, footprint,

@@ -214,6 +214,25 @@ class StepTraceTest : public testing_support::TempFolderTest {
     }
 };
 
+// The clipping of the two tests below, whose triangle ABC has C alone in front of the near plane:
+// outcodes 0, 0, near; one cut, by the near plane, making two vertices, each at t = 4/4.6 from an inside
+// vertex towards C, on the near plane z_clip = nearSign·w (−w under OpenGL's depth range, w under
+// reversed Z).
+void expectOneNearPlaneCut(const TriangleTrace& t, float nearSign) {
+    EXPECT_EQ(t.outcodes[0], 0);
+    EXPECT_EQ(t.outcodes[1], 0);
+    EXPECT_EQ(t.outcodes[2], kClipNear);
+    ASSERT_EQ(t.clipSteps.size(), 1u);
+    const ClipStep& step = t.clipSteps[0];
+    EXPECT_EQ(step.plane, kClipNear);
+    ASSERT_EQ(step.made.size(), 2u);
+    for (const ClipStep::NewVertex& made : step.made) {
+        EXPECT_NEAR(made.t, 4.0 / 4.6, 1e-5);
+        EXPECT_EQ(made.to, 2);  // towards C, the outside vertex
+        EXPECT_NEAR(made.position.z, nearSign * made.position.w, 1e-5);
+    }
+}
+
 // A triangle reaching from z = 0 to z = 4.6, 0.4 in front of the eye: the near plane (eye
 // distance 1, world z = 4) cuts it. By hand: the clipper's t on edge A→C is where z_eye = −1 along
 // z_eye = −5 → −0.4, t = (−5 + 1)/(−5 + 0.4) = 4/4.6, and the new vertex is A + t·(C − A).
@@ -240,21 +259,9 @@ TEST_F(StepTraceTest, TriangleCutByTheNearPlaneMatchesHandComputationStageByStag
     ASSERT_TRUE(trace.triangle);
     const TriangleTrace& t = *trace.triangle;
 
-    // Outcodes: C alone is outside, beyond the near plane.
-    EXPECT_EQ(t.outcodes[0], 0);
-    EXPECT_EQ(t.outcodes[1], 0);
-    EXPECT_EQ(t.outcodes[2], kClipNear);
-    // One plane cut it, making two vertices, each at t = 4/4.6 from the inside vertex.
+    expectOneNearPlaneCut(t, -1.0f);  // the near plane at z_clip = −w
     ASSERT_EQ(t.clipSteps.size(), 1u);
     const ClipStep& step = t.clipSteps[0];
-    EXPECT_EQ(step.plane, kClipNear);
-    ASSERT_EQ(step.made.size(), 2u);
-    for (const ClipStep::NewVertex& made : step.made) {
-        EXPECT_NEAR(made.t, 4.0 / 4.6, 1e-5);
-        EXPECT_EQ(made.to, 2);  // towards C, the outside vertex
-        // The new vertex is on the near plane: z_clip = −w.
-        EXPECT_NEAR(made.position.z, -made.position.w, 1e-5);
-    }
     ASSERT_EQ(step.polygon.size(), 4u);
     // Drawn as a fan of two pieces, whose window vertices are the viewport transform of the polygon.
     ASSERT_EQ(t.pieces.size(), 2u);
@@ -344,15 +351,9 @@ TEST_F(StepTraceTest, ReversedZClipsAtTheReversedNearPlane) {
     const StepTrace trace = traceStep(prepared, context, request);
     ASSERT_TRUE(trace.triangle);
     const TriangleTrace& t = *trace.triangle;
-    EXPECT_EQ(t.outcodes[2], kClipNear);
+    expectOneNearPlaneCut(t, 1.0f);  // the near plane at z_clip = w
     ASSERT_EQ(t.clipSteps.size(), 1u);
     const ClipStep& step = t.clipSteps[0];
-    EXPECT_EQ(step.plane, kClipNear);
-    ASSERT_EQ(step.made.size(), 2u);
-    for (const ClipStep::NewVertex& made : step.made) {
-        EXPECT_NEAR(made.t, 4.0 / 4.6, 1e-5);
-        EXPECT_NEAR(made.position.z, made.position.w, 1e-5);
-    }
     const Screen* clipScreen = screenOf(trace.walk, "clip");
     ASSERT_NE(clipScreen, nullptr);
     EXPECT_TRUE(contains(clipScreen->text, "0 ≤ z ≤ w")) << clipScreen->text;

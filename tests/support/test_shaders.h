@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "pipeline/pipeline.h"
+#include "pipeline/texture.h"
 
 namespace facet::testing {
 
@@ -58,6 +59,19 @@ struct CountingShader {
     static VertexOut<Varyings> vertex(const Attributes& in, const Uniforms&) { return {in.position, {}}; }
     static vec4 fragment(const Varyings&, const Uniforms&) { return vec4(1.0f, 0.0f, 0.0f, 0.0f); }
 };
+
+// A 64×64 texture whose mip level l ≥ 1 holds l everywhere (level 0 holds 0): a sample says which level
+// it came from.
+inline Texture levelNumberTexture() {
+    Texture t;
+    t.width = t.height = 64;
+    t.texels.assign(64 * 64, vec4(0.0f));
+    buildMipChain(t);
+    for (std::size_t level = 0; level < t.mipLevels.size(); ++level)
+        for (vec4& texel : t.mipLevels[level].texels)
+            texel = vec4(static_cast<float>(level + 1));
+    return t;
+}
 
 inline DrawState stateFor(const Framebuffer& fb) {
     DrawState state;
