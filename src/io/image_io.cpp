@@ -1,5 +1,6 @@
-// Image files through OpenImageIO: LinearImage -> PNG/JPEG/PPM/TIFF/BMP/TGA (8-bit, sRGB-encoded) or
-// EXR/HDR (32-bit float, linear), and any readable file back to linear RGBA.
+// Image files: LinearImage -> PNG/JPEG/PPM/TIFF/BMP/TGA (8-bit, sRGB-encoded) or EXR/HDR (32-bit
+// float, linear), and any readable file back to linear RGBA. PNG and PPM go through the built-in
+// library, the rest through OpenImageIO, loaded only then (image_file.h).
 // A write goes to a hidden temporary file beside the destination and is renamed into place once
 // complete, so a failure never leaves a partial image nor destroys the previous one.
 #include "io/image_io.h"
@@ -20,10 +21,9 @@
 #include <fcntl.h>
 #include <unistd.h>
 
-#include <OpenImageIO/imageio.h>
-
 #include "base/errors.h"
 #include "base/quote.h"
+#include "io/image_file.h"
 #include "pipeline/color.h"
 
 namespace facet {
@@ -79,11 +79,33 @@ std::string libraryMessage(std::string text) {
 
 std::string oneLine(std::string text) {
     text = libraryMessage(std::move(text));
-    return text.empty() ? "unknown OpenImageIO error" : text;
+    return text.empty() ? "unknown error" : text;
 }
 
 [[noreturn]] void fail(const fs::path& path, const std::string& what) {
     throw InputError(path.string() + ": " + what);
+}
+
+// The library that reads this file: the built-in one for PNG (by its signature), else OpenImageIO.
+// (A missing OpenImageIO module is an error about this file like any other.)
+std::unique_ptr<ImageFileReader> openImageFile(const fs::path& path, std::string& error) {
+    try {
+        ImageLibrary& library = isPngFile(path.string()) ? builtInImageLibrary() : openImageIO();
+        return library.open(path.string(), error);
+    } catch (const InputError& e) {
+        error = e.what();
+        return nullptr;
+    }
+}
+
+// The library that writes this format: the built-in one for 8-bit PNG and PPM, else OpenImageIO.
+ImageLibrary& writerFor(const fs::path& path, bool isFloat) {
+    if (!isFloat && builtInFormat(path.string())) return builtInImageLibrary();
+    try {
+        return openImageIO();
+    } catch (const InputError& e) {
+        fail(path, "cannot write image: " + std::string(e.what()));
+    }
 }
 
 // Removes the temporary file unless the write completed and the file was renamed into place.
@@ -156,16 +178,15 @@ std::string gibibytes(std::size_t bytes) {
 // slots of one texel of type T (vec4 or Codes) as `type`, then the alpha channel into slot 3 when it
 // lies beyond them. Returns false on a read error.
 template <class T>
-bool readTexels(OIIO::ImageInput& input, OIIO::TypeDesc type, std::vector<T>& texels) {
-    const OIIO::ImageSpec& spec = input.spec();
+bool readTexels(ImageFileReader& input, bool asFloat, std::vector<T>& texels) {
+    const ImageHeader& spec = input.header();
     const std::size_t pixelCount = static_cast<std::size_t>(spec.width) * spec.height;
     texels.assign(pixelCount, T{});
-    const int channels = std::min(spec.nchannels, 4);
-    if (!input.read_image(0, 0, 0, channels, type, texels.data(), sizeof(T))) return false;
-    if (spec.alpha_channel >= 4 && spec.alpha_channel < spec.nchannels) {
+    const int channels = std::min(spec.channels, 4);
+    if (!input.read(0, channels, asFloat, texels.data(), sizeof(T))) return false;
+    if (spec.alphaChannel >= 4 && spec.alphaChannel < spec.channels) {
         auto* alpha = reinterpret_cast<unsigned char*>(texels.data()) + 3 * (sizeof(T) / 4);
-        if (!input.read_image(0, 0, spec.alpha_channel, spec.alpha_channel + 1, type, alpha, sizeof(T)))
-            return false;
+        if (!input.read(spec.alphaChannel, spec.alphaChannel + 1, asFloat, alpha, sizeof(T))) return false;
     }
     return true;
 }
@@ -174,11 +195,10 @@ bool readTexels(OIIO::ImageInput& input, OIIO::TypeDesc type, std::vector<T>& te
 // R, G and B, alpha to slot 3 (opaque when the file has none), each colour value through `color` and
 // alpha through `alpha`, as readImage lays out its pixels.
 template <class T, class Color, class Alpha, class Opaque>
-void arrangeTexels(const OIIO::ImageSpec& spec, std::vector<T>& texels, Color color, Alpha alpha,
-                   Opaque opaque) {
+void arrangeTexels(const ImageHeader& spec, std::vector<T>& texels, Color color, Alpha alpha, Opaque opaque) {
     const int alphaSlot =
-        spec.alpha_channel < 0 || spec.alpha_channel >= spec.nchannels ? -1 : std::min(spec.alpha_channel, 3);
-    const bool gray = spec.nchannels < 3;
+        spec.alphaChannel < 0 || spec.alphaChannel >= spec.channels ? -1 : std::min(spec.alphaChannel, 3);
+    const bool gray = spec.channels < 3;
     for (T& t : texels) {
         const T v = t;
         t[0] = color(v[0]);
@@ -230,7 +250,7 @@ void checkImageDestination(const fs::path& path, int width, int height) {
         fail(path, "cannot write: " + std::string(std::strerror(errno)));
 }
 
-void writeImage(const fs::path& path, const LinearImage& image, ColorEncoding encoding) {
+void writeImage(const fs::path& path, const LinearImage& image, ColorEncoding encoding, int pngCompression) {
     checkImageDestination(path, image.width, image.height);
     const FileFormat* format = findFormat(path);
     const std::size_t pixelCount = static_cast<std::size_t>(std::max(image.width, 0)) *
@@ -276,15 +296,20 @@ void writeImage(const fs::path& path, const LinearImage& image, ColorEncoding en
             }
         }
     } else {
-        bytes.reserve(pixelCount * channels);
+        // Through the encoder's tables: the codes of encodeChannel, without a pow per channel.
+        const ChannelEncoder encode(encoding);
+        bytes.resize(pixelCount * channels);
+        std::uint8_t* out = bytes.data();
         for (const glm::vec4& p : image.pixels) {
-            for (int c = 0; c < 3; ++c)
-                bytes.push_back(encodeChannel(p[c], encoding));
-            if (channels == 4) bytes.push_back(toByte(p.a, encoding.rounding));
+            out[0] = encode(p.r);
+            out[1] = encode(p.g);
+            out[2] = encode(p.b);
+            if (channels == 4) out[3] = toByte(p.a, encoding.rounding);
+            out += channels;
         }
     }
 
-    // The temporary name keeps the real extension last, as OpenImageIO picks the writer from it.
+    // The temporary name keeps the real extension last, as the libraries pick the writer from it.
     // ("out/.spot.tmp-1234.png"; hidden, and named by process so two programs never share one.)
     std::string tempName = ".";
     tempName += path.stem().string();
@@ -293,37 +318,22 @@ void writeImage(const fs::path& path, const LinearImage& image, ColorEncoding en
     const fs::path tempPath = folder / tempName;
     TempFileGuard guard(tempPath);
     // Created here first, so that a folder that refuses files is reported with the user's path and the
-    // system's reason ("Permission denied"), not OpenImageIO's words about the hidden temporary name.
+    // system's reason ("Permission denied"), not a library's words about the hidden temporary name.
     const int created = ::open(tempPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     if (created < 0) fail(path, "cannot write: " + std::string(std::strerror(errno)));
     ::close(created);
-    // OpenImageIO's own errors name the file it was given: the user knows the destination instead.
+    // The libraries' errors name the file they were given: the user knows the destination instead.
     const auto withUserPath = [&](std::string text) {
         for (std::size_t at; (at = text.find(tempPath.string())) != std::string::npos;)
             text.replace(at, tempPath.string().size(), path.string());
         return oneLine(std::move(text));
     };
-    {
-        std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create(tempPath.string());
-        if (!output) fail(path, "cannot write image: " + withUserPath(OIIO::geterror()));
-
-        OIIO::ImageSpec spec(image.width, image.height, channels,
-                             format->isFloat ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
-        spec.attribute("oiio:ColorSpace", format->isFloat ? "Linear" : "sRGB");
-        // Store the values as given: without this, the PNG writer would divide colour by alpha.
-        spec.attribute("oiio:UnassociatedAlpha", 1);
-        spec.attribute("Software", "Facet");
-        // No time of writing (OpenEXR and TIFF would stamp one): the same scene gives the same bytes.
-        spec.attribute("DateTime", "");
-
-        const void* data = format->isFloat ? static_cast<const void*>(floats.data())
-                                           : static_cast<const void*>(bytes.data());
-        if (!output->open(tempPath.string(), spec) ||
-            !output->write_image(format->isFloat ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8, data) ||
-            !output->close()) {
-            fail(path, "cannot write image: " + withUserPath(output->geterror()));
-        }
-    }
+    const ImagePixels pixels{
+        image.width, image.height, channels, format->isFloat,
+        format->isFloat ? static_cast<const void*>(floats.data()) : static_cast<const void*>(bytes.data())};
+    const std::string problem =
+        writerFor(path, format->isFloat).write(tempPath.string(), pixels, pngCompression);
+    if (!problem.empty()) fail(path, "cannot write image: " + withUserPath(problem));
 
     fs::rename(tempPath, path, error);
     if (error) fail(path, "cannot move the finished image into place: " + error.message());
@@ -335,31 +345,27 @@ LinearImage readImage(const fs::path& path) {
     if (!fs::exists(path, error)) fail(path, "image file not found");
     if (fs::is_directory(path, error)) fail(path, "is a folder, not an image file");
 
-    // Ask for the stored (unassociated) alpha: by default OpenImageIO premultiplies PNG colour by it.
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path.string(), &config);
-    if (!input) fail(path, "cannot read image: " + oneLine(OIIO::geterror()));
+    std::string problem;
+    std::unique_ptr<ImageFileReader> input = openImageFile(path, problem);
+    if (!input) fail(path, "cannot read image: " + oneLine(problem));
 
-    const OIIO::ImageSpec& spec = input->spec();
+    const ImageHeader& spec = input->header();
     if (spec.deep) fail(path, "deep images are not supported");
-    if (spec.width <= 0 || spec.height <= 0 || spec.depth > 1 || spec.nchannels <= 0) {
+    if (spec.width <= 0 || spec.height <= 0 || spec.depth > 1 || spec.channels <= 0) {
         fail(path, "cannot read an image of " + std::to_string(spec.width) + "x" +
                        std::to_string(spec.height) + " pixels");
     }
 
-    const int channels = spec.nchannels;
+    const int channels = spec.channels;
     const std::size_t pixelCount = static_cast<std::size_t>(spec.width) * spec.height;
     std::vector<float> values(pixelCount * channels);
-    if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, values.data())) {
-        fail(path, "cannot read image: " + oneLine(input->geterror()));
-    }
+    if (!input->read(0, channels, true, values.data(), channels * sizeof(float)))
+        fail(path, "cannot read image: " + oneLine(input->error()));
 
     // Integer data holds display-encoded (sRGB) colour; float data is linear already.
-    const bool encoded = !spec.format.is_floating_point();
+    const bool encoded = !spec.floating;
     const auto decode = [encoded](float value) { return encoded ? srgbToLinear(value) : value; };
-    const int alphaChannel =
-        spec.alpha_channel >= 0 && spec.alpha_channel < channels ? spec.alpha_channel : -1;
+    const int alphaChannel = spec.alphaChannel >= 0 && spec.alphaChannel < channels ? spec.alphaChannel : -1;
     const bool gray = channels < 3;
 
     LinearImage image;
@@ -402,19 +408,16 @@ TextureRead readTexture(const fs::path& path, bool decodeSrgb, const TextureLimi
         return std::move(result);
     };
 
-    // Ask for the stored (unassociated) alpha: by default OpenImageIO premultiplies PNG colour by it.
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    OIIO::geterror();  // forget any earlier message
-    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path.string(), &config);
-    if (!input) return problem("cannot read it as an image: " + oneLine(OIIO::geterror()));
+    std::string openProblem;
+    std::unique_ptr<ImageFileReader> input = openImageFile(path, openProblem);
+    if (!input) return problem("cannot read it as an image: " + oneLine(openProblem));
 
     // The header alone decides whether the texels may be decoded at all.
-    const OIIO::ImageSpec& spec = input->spec();
+    const ImageHeader& spec = input->header();
     if (spec.deep) return problem("deep images are not supported as textures");
-    if (spec.width <= 0 || spec.height <= 0 || spec.depth > 1 || spec.nchannels <= 0)
+    if (spec.width <= 0 || spec.height <= 0 || spec.depth > 1 || spec.channels <= 0)
         return problem("cannot use an image of " + std::to_string(spec.width) + "x" +
-                       std::to_string(spec.height) + " pixels with " + std::to_string(spec.nchannels) +
+                       std::to_string(spec.height) + " pixels with " + std::to_string(spec.channels) +
                        " channels as a texture");
     const std::string size = std::to_string(spec.width) + "x" + std::to_string(spec.height);
     if (spec.width > limits.maxSide || spec.height > limits.maxSide) {
@@ -422,7 +425,7 @@ TextureRead readTexture(const fs::path& path, bool decodeSrgb, const TextureLimi
         fail(path, "the texture is " + size + " pixels; textures may be at most " +
                        std::to_string(limits.maxSide) + " pixels on a side (scale it down)");
     }
-    const bool eightBit = spec.format == OIIO::TypeDesc::UINT8;
+    const bool eightBit = spec.eightBit;
     const std::size_t bytes = static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height) *
                               (eightBit ? sizeof(Texture::Codes) : sizeof(vec4));
     if (bytes > bytesLeft) {
@@ -436,7 +439,7 @@ TextureRead readTexture(const fs::path& path, bool decodeSrgb, const TextureLimi
     }
 
     // A colour value read as float: integer data is display-encoded (sRGB), float data linear already.
-    const bool encoded = !spec.format.is_floating_point();
+    const bool encoded = !spec.floating;
     const auto finish = [encoded, decodeSrgb](float value) {
         const float linear = encoded ? srgbToLinear(value) : value;
         return decodeSrgb ? linear : linearToSrgb(linear);
@@ -445,30 +448,25 @@ TextureRead readTexture(const fs::path& path, bool decodeSrgb, const TextureLimi
     texture.width = spec.width;
     texture.height = spec.height;
     if (eightBit) {
-        // Each code's value exactly as OpenImageIO converts it to float, so that sampling gives the
-        // values a float read would.
-        std::array<std::uint8_t, 256> codes;
-        for (int c = 0; c < 256; ++c)
-            codes[c] = static_cast<std::uint8_t>(c);
-        std::array<float, 256> values;
-        OIIO::convert_pixel_values(OIIO::TypeDesc::UINT8, codes.data(), OIIO::TypeDesc::FLOAT, values.data(),
-                                   256);
+        // Each code's value as both libraries read it as float (code · (1/255), image_file.h), so that
+        // sampling gives the values a float read would.
         for (int c = 0; c < 256; ++c) {
-            texture.colorFromCode[c] = finish(values[c]);
-            texture.alphaFromCode[c] = values[c];
+            const float value = static_cast<float>(c) * (1.0f / 255.0f);
+            texture.colorFromCode[c] = finish(value);
+            texture.alphaFromCode[c] = value;
         }
-        if (!readTexels(*input, OIIO::TypeDesc::UINT8, texture.codes))
-            return problem("cannot read it: " + oneLine(input->geterror()));
+        if (!readTexels(*input, false, texture.codes))
+            return problem("cannot read it: " + oneLine(input->error()));
         const auto same = [](std::uint8_t code) { return code; };
         arrangeTexels(spec, texture.codes, same, same, std::uint8_t{255});
         texture.alphaFromCode[255] = 1.0f;  // opaque, also where the file has no alpha
     } else {
-        if (!readTexels(*input, OIIO::TypeDesc::FLOAT, texture.texels))
-            return problem("cannot read it: " + oneLine(input->geterror()));
+        if (!readTexels(*input, true, texture.texels))
+            return problem("cannot read it: " + oneLine(input->error()));
         arrangeTexels(
             spec, texture.texels, finish, [](float a) { return a; }, 1.0f);
     }
-    input->close();
+    input.reset();
     const std::string printed = libraryOutput.finish();
     (void)printed;  // a successful read may have printed warnings; a texture that reads is used as it is
     return result;

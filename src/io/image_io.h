@@ -1,4 +1,5 @@
-// Image output and input through OpenImageIO, format by file extension.
+// Image output and input, format by file extension: PNG and PPM built in, the rest through OpenImageIO
+// (loaded only for them; image_file.h).
 #pragma once
 
 #include <cstddef>
@@ -9,6 +10,7 @@
 
 #include <glm/glm.hpp>
 
+#include "io/image_file.h"
 #include "pipeline/texture.h"
 #include "shading/gamma.h"
 
@@ -27,17 +29,18 @@ struct LinearImage {
 // Float formats (EXR) keep the buffer's values unchanged; 8-bit formats get `encoding`, clamped to
 // [0,1] (encodeChannel). PPM and JPEG have no alpha: RGB only. The
 // image is written to a temporary file in the same folder and renamed into place, so a failure never leaves a
-// partial file nor destroys an existing one. Throws InputError ("out/x.bmpx: unknown image format ...",
+// partial file nor destroys an existing one. `pngCompression`: zlib's level for PNG, 0 (store) to 9
+// (smallest); the default favours speed. Throws InputError ("out/x.bmpx: unknown image format ...",
 // "out/: cannot write ...").
 void writeImage(const std::filesystem::path& path, const LinearImage& image,
-                ColorEncoding encoding = kSrgbEncoding);
+                ColorEncoding encoding = kSrgbEncoding, int pngCompression = kFastPngCompression);
 
 // Checks, without writing anything, that `path` names an image format facet writes and that a
 // width × height image fits it; throws InputError otherwise. Lets a command fail before a long render.
 void checkImageDestination(const std::filesystem::path& path, int width, int height);
 
-// Reads any image OpenImageIO knows into linear RGBA (8-bit data is decoded from sRGB; float data as is).
-// Throws InputError if the file is missing or unreadable.
+// Reads any image (PNG built in, any other format OpenImageIO knows) into linear RGBA (8-bit data is decoded
+// from sRGB; float data as is). Throws InputError if the file is missing or unreadable.
 LinearImage readImage(const std::filesystem::path& path);
 
 // What the textures of one render may take, checked from each file's header before it is decoded:

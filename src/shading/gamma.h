@@ -4,6 +4,8 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 
@@ -65,5 +67,50 @@ inline std::uint8_t encodeChannel(float value, ColorEncoding encoding) {
     }
     return 0;
 }
+
+// encodeChannel through tables, for whole images: the same code for every float, without a pow per
+// channel. Built once per encoding from encodeChannel itself: firstValueOf[k] is the smallest float that
+// encodes to k or above (found by bisection over the floats, as the code only rises with the value),
+// and each of the 4064 buckets of floats in (0, 1) sharing their top 14 bits (the exponent and 5
+// mantissa bits: 32 buckets an octave) starts from the code of its lowest float. A value's code is then
+// its bucket's, stepped up past the thresholds inside the bucket — at most 4 steps for sRGB.
+class ChannelEncoder {
+  public:
+    explicit ChannelEncoder(ColorEncoding encoding) {
+        firstValueOf[0] = 0.0f;
+        for (int code = 1; code < 256; ++code) {
+            // Bisection over the bit patterns of positive floats, which order as the floats do.
+            std::uint32_t below = 0, above = kOneBits;  // encode(below) < code <= encode(above)
+            while (above - below > 1) {
+                const std::uint32_t middle = below + (above - below) / 2;
+                (encodeChannel(std::bit_cast<float>(middle), encoding) >= code ? above : below) = middle;
+            }
+            firstValueOf[code] = std::bit_cast<float>(above);
+        }
+        int code = 0;
+        for (std::uint32_t bucket = 0; bucket < kBuckets; ++bucket) {
+            const float lowest = std::bit_cast<float>(bucket << kBucketShift);
+            while (code < 255 && lowest >= firstValueOf[code + 1])
+                ++code;
+            bucketCode[bucket] = static_cast<std::uint8_t>(code);
+        }
+    }
+
+    std::uint8_t operator()(float value) const {
+        if (!(value > 0.0f)) return 0;  // also NaN, as encodeChannel
+        if (value >= 1.0f) return 255;
+        int code = bucketCode[std::bit_cast<std::uint32_t>(value) >> kBucketShift];
+        while (code < 255 && value >= firstValueOf[code + 1])
+            ++code;
+        return static_cast<std::uint8_t>(code);
+    }
+
+  private:
+    static constexpr std::uint32_t kOneBits = 0x3F800000u;  // 1.0f
+    static constexpr int kBucketShift = 18;
+    static constexpr std::uint32_t kBuckets = kOneBits >> kBucketShift;
+    std::array<float, 256> firstValueOf{};
+    std::array<std::uint8_t, kBuckets> bucketCode{};
+};
 
 }  // namespace facet

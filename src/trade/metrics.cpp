@@ -5,12 +5,11 @@
 #include <stdexcept>
 #include <string>
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
 #include <opencv2/core.hpp>
 #include <opencv2/quality/qualityssim.hpp>
 
 #include "bench/chart.h"
+#include "io/image_file.h"
 #include "oracle/image_compare.h"
 
 namespace facet {
@@ -25,15 +24,13 @@ std::vector<float> linearPlanes(const LinearImage& image) {
     return planes;
 }
 
-OIIO::ImageBuf asImageBuf(std::vector<float>& planes, int width, int height) {
-    return OIIO::ImageBuf(OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::FLOAT), planes.data());
-}
-
 // Pixels with some channel off by more than `threshold`: OpenImageIO's failure count (a pixel fails
 // when any of its channels is off by more than the threshold).
-double shareAbove(const OIIO::ImageBuf& a, const OIIO::ImageBuf& b, float threshold, std::size_t pixels) {
-    const OIIO::ImageBufAlgo::CompareResults result = OIIO::ImageBufAlgo::compare(a, b, threshold, threshold);
-    return pixels ? static_cast<double>(result.nfail) / static_cast<double>(pixels) : 0.0;
+double shareAbove(const std::vector<float>& a, const std::vector<float>& b, int width, int height,
+                  float threshold) {
+    const std::size_t pixels = static_cast<std::size_t>(width) * height;
+    const PixelComparison result = openImageIO().compare(a.data(), b.data(), width, height, 3, threshold);
+    return pixels ? static_cast<double>(result.pixelsOver) / static_cast<double>(pixels) : 0.0;
 }
 
 }  // namespace
@@ -41,20 +38,18 @@ double shareAbove(const OIIO::ImageBuf& a, const OIIO::ImageBuf& b, float thresh
 ErrorMetrics measurePlanes(const std::vector<float>& a, const std::vector<float>& b, int width, int height) {
     if (a.size() != b.size() || a.size() != static_cast<std::size_t>(width) * height * 3)
         throw std::invalid_argument("measurePlanes: the images differ in size");
-    std::vector<float> copyA = a, copyB = b;  // ImageBuf and cv::Mat wrap them without copying
-    const OIIO::ImageBuf bufA = asImageBuf(copyA, width, height), bufB = asImageBuf(copyB, width, height);
-    const std::size_t pixels = static_cast<std::size_t>(width) * height;
+    std::vector<float> copyA = a, copyB = b;  // cv::Mat wraps them without copying
 
     ErrorMetrics metrics;
-    const OIIO::ImageBufAlgo::CompareResults result = OIIO::ImageBufAlgo::compare(bufA, bufB, 1.0f, 1.0f);
-    metrics.meanAbs = result.meanerror;
-    metrics.maxAbs = result.maxerror;
-    // PSNR = 10·log10(peak² / MSE) with peak 1; rms_error is √MSE over every channel value.
-    metrics.psnr = result.rms_error > 0 ? std::min(kMaxPsnr, -20.0 * std::log10(result.rms_error)) : kMaxPsnr;
+    const PixelComparison result = openImageIO().compare(a.data(), b.data(), width, height, 3, 1.0f);
+    metrics.meanAbs = result.meanError;
+    metrics.maxAbs = result.maxError;
+    // PSNR = 10·log10(peak² / MSE) with peak 1; rmsError is √MSE over every channel value.
+    metrics.psnr = result.rmsError > 0 ? std::min(kMaxPsnr, -20.0 * std::log10(result.rmsError)) : kMaxPsnr;
     // A hair above the thresholds: a difference of exactly one code, (k+1)/255 − k/255, may round above
     // 1/255 in float.
-    metrics.over1 = shareAbove(bufA, bufB, 1.0f / 255.0f * 1.0001f, pixels);
-    metrics.over2 = shareAbove(bufA, bufB, 2.0f / 255.0f * 1.0001f, pixels);
+    metrics.over1 = shareAbove(a, b, width, height, 1.0f / 255.0f * 1.0001f);
+    metrics.over2 = shareAbove(a, b, width, height, 2.0f / 255.0f * 1.0001f);
 
     // SSIM with OpenCV's constants C1 = (0.01·255)², C2 = (0.03·255)²: values scaled to 0..255.
     cv::Mat matA(height, width, CV_32FC3, copyA.data()), matB(height, width, CV_32FC3, copyB.data());

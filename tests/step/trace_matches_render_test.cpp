@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include "io/image_file.h"
 #include "io/image_io.h"
 #include "step/trace.h"
 #include "support/temp_folder.h"
@@ -35,20 +35,18 @@ void PrintTo(const Setting& s, std::ostream* os) {
 class TraceMatchesRender : public testing_support::TempFolderTest,
                            public ::testing::WithParamInterface<Setting> {};
 
-// The 8-bit RGBA bytes of an image file, as stored.
+// The 8-bit RGBA bytes of a PNG file, as stored.
 std::vector<unsigned char> fileBytes(const fs::path& path, int& width, int& height, int& channels) {
-    // The stored values: without this OpenImageIO multiplies PNG colour by alpha as it reads.
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    auto input = OIIO::ImageInput::open(path.string(), &config);
-    EXPECT_TRUE(input) << path;
+    std::string error;
+    auto input = builtInImageLibrary().open(path.string(), error);
+    EXPECT_TRUE(input) << path << ": " << error;
     if (!input) return {};
-    const OIIO::ImageSpec& spec = input->spec();
+    const ImageHeader& spec = input->header();
     width = spec.width;
     height = spec.height;
-    channels = spec.nchannels;
+    channels = spec.channels;
     std::vector<unsigned char> bytes(static_cast<std::size_t>(width) * height * channels);
-    input->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, bytes.data());
+    EXPECT_TRUE(input->read(0, channels, false, bytes.data(), channels)) << input->error();
     return bytes;
 }
 
