@@ -139,18 +139,27 @@ std::vector<std::string> readInputList(const std::filesystem::path& list) {
             std::filesystem::is_directory(list, error) ? "is a folder" : std::strerror(errno);
         throw facet::InputError(shown(list.string()) + ": cannot read the list of inputs (" + reason + ")");
     }
-    const std::filesystem::path folder = list.parent_path();
+    // Read a character at a time, so that a line is bounded before it is stored: a list may be a pipe
+    // (--list <(find …)), and one from /dev/zero must stop at its first byte, not fill the memory.
+    // A pipe (--list <(find …)) has no folder of its own: its relative paths are the working folder's.
+    const std::filesystem::path folder =
+        std::filesystem::is_regular_file(list, error) ? list.parent_path() : std::filesystem::path();
     std::vector<std::string> inputs;
     std::string line;
-    for (int number = 1; std::getline(in, line); ++number) {
-        const std::string where = shown(list.string()) + ":" + std::to_string(number) + ": ";
-        if (line.find('\0') != std::string::npos)
-            throw facet::InputError(where + "a NUL byte: the list must be a text file, one path a line");
+    for (int number = 1, c = 0; c != std::char_traits<char>::eof(); ++number) {
+        const auto where = [&] { return shown(list.string()) + ":" + std::to_string(number) + ": "; };
+        line.clear();
+        while ((c = in.get()) != std::char_traits<char>::eof() && c != '\n') {
+            if (c == '\0')
+                throw facet::InputError(where() +
+                                        "a NUL byte: the list must be a text file, one path a line");
+            if (line.size() == kMaxPathCharacters)
+                throw facet::InputError(where() + "a line longer than " + std::to_string(kMaxPathCharacters) +
+                                        " characters (a path is at most that)");
+            line += static_cast<char>(c);
+        }
         const std::string_view path = trimmed(line);
         if (path.empty() || path.front() == '#') continue;
-        if (path.size() > kMaxPathCharacters)
-            throw facet::InputError(where + "a path longer than " + std::to_string(kMaxPathCharacters) +
-                                    " characters");
         const std::filesystem::path input(path);
         inputs.push_back(input.is_absolute() ? input.string() : (folder / input).string());
     }

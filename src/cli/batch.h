@@ -27,8 +27,9 @@ Shard parseShard(const std::string& text);
 
 // The inputs a list file names, in order: one path a line, spaces and tabs around it (and the CR of
 // Windows line ends) trimmed; blank lines and lines starting with # are skipped. A relative path is taken
-// from the list's folder, so that a list and its models can move together. Throws InputError when the
-// file cannot be read, holds a NUL byte (not a text file) or names no input.
+// from the list's folder, so that a list and its models can move together (from the working folder
+// when the list is a pipe). Throws InputError when the file cannot be read, holds a NUL byte (not a
+// text file) or a line longer than a path can be, or names no input.
 std::vector<std::string> readInputList(const std::filesystem::path& list);
 
 // Does `output` hold {name} or {index}?

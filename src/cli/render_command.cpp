@@ -302,7 +302,7 @@ int render(const RenderArgs& args) {
     // Everything the command line alone decides is checked before the model is loaded.
     const RenderSettings settings = renderSettings(args);
     RenderArgs one = args;
-    one.input = args.inputs.front();
+    if (!args.inputs.empty()) one.input = args.inputs.front();  // else a caller set `input` itself
     one.output = expandOutput(args.output, one.input, 0);
     facet::DrawContext context(args.threads);
     const RenderedInput result = renderInput(one, settings, context, std::cout, std::cerr);

@@ -6,10 +6,12 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <tuple>
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include "base/errors.h"
 #include "cli/batch.h"
@@ -198,8 +200,9 @@ TEST_F(InputList, SkipsCommentsAndBlankLinesAndReadsPathsFromTheListsFolder) {
                   (folder / "../up/d.obj").string(), (folder / "with#hash.obj").string()}));
 }
 
-// A list that cannot be read, names nothing or is not text is refused, naming it (and the line).
-// Breaks if a missing list is taken as empty, or an empty list renders nothing and succeeds.
+// A list that cannot be read, names nothing or is not text is refused, naming it (and the line), and a
+// line is bounded before it is stored (/dev/zero). Breaks if a missing list is taken as empty, an empty
+// list renders nothing and succeeds, or the NUL and length checks wait for the end of the line.
 TEST_F(InputList, AMissingEmptyOrBinaryListIsRefusedWithItsName) {
     const fs::path missing = folder_ / "missing.txt";
     EXPECT_EQ(refusal([&] { readInputList(missing); }),
@@ -212,6 +215,22 @@ TEST_F(InputList, AMissingEmptyOrBinaryListIsRefusedWithItsName) {
     const fs::path binary = write("binary.txt", std::string("a.obj\nb\0c.obj\n", 13));
     EXPECT_EQ(refusal([&] { readInputList(binary); }),
               binary.string() + ":2: a NUL byte: the list must be a text file, one path a line");
+    EXPECT_EQ(refusal([&] { readInputList("/dev/zero"); }),
+              "/dev/zero:1: a NUL byte: the list must be a text file, one path a line");
+    const fs::path longLine = write("long.txt", "a.obj\n" + std::string(5000, 'x') + "\n");
+    EXPECT_EQ(refusal([&] { readInputList(longLine); }),
+              longLine.string() + ":2: a line longer than 4096 characters (a path is at most that)");
+}
+
+// A list read from a pipe (--list <(find …)) has no folder: its relative paths stay as written, the
+// working folder's. Breaks if the pipe's folder (/dev/fd, here the temporary folder) is put in front.
+TEST_F(InputList, APipesRelativePathsAreTheWorkingFolders) {
+    const fs::path fifo = folder_ / "list.fifo";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    std::thread writer([&] { std::ofstream(fifo) << "models/a.obj\n/abs/b.obj\n"; });
+    const std::vector<std::string> inputs = readInputList(fifo);
+    writer.join();
+    EXPECT_EQ(inputs, (std::vector<std::string>{"models/a.obj", "/abs/b.obj"}));
 }
 
 // The command line's inputs come first, then the list's, and {index} counts over both; --frames is for
