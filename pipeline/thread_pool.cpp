@@ -1,6 +1,7 @@
 #include "thread_pool.h"
 
 #include <algorithm>
+#include <utility>
 
 namespace facet {
 
@@ -21,8 +22,16 @@ ThreadPool::~ThreadPool() {
 }
 
 void ThreadPool::runItems(int thread) {
-    for (std::size_t item = next_.fetch_add(1); item < count_; item = next_.fetch_add(1))
-        (*body_)(item, thread);
+    for (std::size_t item = next_.fetch_add(1); item < count_; item = next_.fetch_add(1)) {
+        try {
+            (*body_)(item, thread);
+        } catch (...) {
+            // Kept for parallelFor to rethrow; no thread begins another item of this job.
+            std::lock_guard lock(mutex_);
+            if (!failure_) failure_ = std::current_exception();
+            next_.store(count_);
+        }
+    }
 }
 
 void ThreadPool::workerLoop(int thread) {
@@ -62,6 +71,7 @@ void ThreadPool::parallelFor(std::size_t count, const std::function<void(std::si
     std::unique_lock lock(mutex_);
     done_.wait(lock, [&] { return busy_ == 0; });
     body_ = nullptr;
+    if (failure_) std::rethrow_exception(std::exchange(failure_, nullptr));
 }
 
 }  // namespace facet

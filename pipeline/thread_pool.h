@@ -6,6 +6,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <cstddef>
+#include <exception>
 #include <functional>
 #include <mutex>
 #include <thread>
@@ -26,6 +27,9 @@ class ThreadPool {
     // Calls body(item, thread) for every item in [0, count), spread over the threads, and returns when
     // all are done. `thread` in [0, threads()) names the calling thread, for per-thread scratch.
     // One std::function call per item, not per pixel: items are tiles or chunks of work.
+    // When `body` throws (on any thread), the items not yet begun are skipped and the first exception
+    // is rethrown here once every thread is done, so the pool can run the next job: a batch of renders
+    // goes on after an input that ran out of memory.
     void parallelFor(std::size_t count, const std::function<void(std::size_t item, int thread)>& body);
 
   private:
@@ -40,6 +44,7 @@ class ThreadPool {
     std::size_t count_ = 0;
     std::atomic<std::size_t> next_{0};
     int busy_ = 0;                  // workers still inside the current job
+    std::exception_ptr failure_;    // the current job's first exception
     std::uint64_t generation_ = 0;  // bumped for every job, so a worker runs each job once
     bool stopping_ = false;
 };

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <glm/glm.hpp>
@@ -106,7 +107,12 @@ void addBufferFormatOptions(CLI::App& command, SceneArgs& args);
 facet::Scene sceneFromArgs(const SceneArgs& args);
 
 struct RenderArgs : SceneArgs {
-    std::string output;
+    // facet render's inputs: those of the command line, then those of --list (cli/batch.h). `input`
+    // is the one being rendered (after parsing, the first of the command line).
+    std::vector<std::string> inputs;
+    std::optional<std::string> list;   // --list FILE: one input per line
+    std::optional<std::string> shard;  // --shard I/N: the inputs whose index % N == I
+    std::string output;                // may hold {name} and {index}
     bool quiet = false;
     bool components = false;
     std::optional<std::string> frames;  // "0-59"

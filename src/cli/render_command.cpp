@@ -6,10 +6,12 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "base/errors.h"
 #include "base/quote.h"
+#include "cli/batch.h"
 #include "io/image_io.h"
 #include "reference/reference.h"
 #include "render/renderer.h"
@@ -23,13 +25,6 @@ namespace {
 // stops at once instead of filling the disk.
 constexpr int kMaxFrameNumber = 9'999'999;
 constexpr int kMaxImagesPerRun = 100'000;
-
-// "out/spot.png" + "diffuse" -> "out/spot-diffuse.png"
-std::filesystem::path componentPath(const std::filesystem::path& output, std::string_view term) {
-    std::filesystem::path path = output;
-    path.replace_filename(output.stem().string() + "-" + std::string(term) + output.extension().string());
-    return path;
-}
 
 // "0-59" or "12": the first and last frame numbers, each from 0 to kMaxFrameNumber.
 std::pair<int, int> parseFrames(const std::string& text) {
@@ -70,22 +65,22 @@ std::string emptyFrameWarning(const std::string& where, const facet::DrawStats& 
     return text.str();
 }
 
-void printFrameStats(int frame, const facet::PreparedScene& prepared, const facet::FrameStats& stats) {
-    std::cout << "frame " << frame << ": " << stats.draw.fragmentsShaded << " fragments shaded";
+void printFrameStats(std::ostream& out, int frame, const facet::PreparedScene& prepared,
+                     const facet::FrameStats& stats) {
+    out << "frame " << frame << ": " << stats.draw.fragmentsShaded << " fragments shaded";
     const std::size_t transparent = prepared.transparentTriangles.size();
     if (transparent > 0) {
-        std::cout << "; " << transparent << " transparent triangles";
+        out << "; " << transparent << " transparent triangles";
         if (stats.sort.elements > 0) {
-            std::cout << " sorted "
-                      << (stats.sort.fromScratch ? "from scratch"
-                                                 : "by insertion from the last frame's order")
-                      << ": " << stats.sort.comparisons << " comparisons, " << stats.sort.moves << " moves, ";
+            out << " sorted "
+                << (stats.sort.fromScratch ? "from scratch" : "by insertion from the last frame's order")
+                << ": " << stats.sort.comparisons << " comparisons, " << stats.sort.moves << " moves, ";
             char ms[32];
             std::snprintf(ms, sizeof ms, "%.2f ms", stats.sortMilliseconds);
-            std::cout << ms;
+            out << ms;
         }
-        std::cout << "; " << stats.transparentRuns << (stats.transparentRuns == 1 ? " draw" : " draws")
-                  << " in the transparent pass";
+        out << "; " << stats.transparentRuns << (stats.transparentRuns == 1 ? " draw" : " draws")
+            << " in the transparent pass";
         if (stats.fragmentLists.fragments > 0) {
             char text[160];
             std::snprintf(
@@ -94,13 +89,13 @@ void printFrameStats(int frame, const facet::PreparedScene& prepared, const face
                 static_cast<unsigned long long>(stats.fragmentLists.fragments),
                 stats.fragmentLists.longestList, double(stats.fragmentLists.bytesHeld) / (1024.0 * 1024.0),
                 stats.resolveMilliseconds);
-            std::cout << text;
+            out << text;
         }
     }
-    std::cout << "\n";
+    out << "\n";
 }
 
-void printReferenceStats(int frame, const facet::ReferenceStats& stats) {
+void printReferenceStats(std::ostream& out, int frame, const facet::ReferenceStats& stats) {
     char text[256];
     std::snprintf(
         text, sizeof text,
@@ -110,7 +105,7 @@ void printReferenceStats(int frame, const facet::ReferenceStats& stats) {
         static_cast<unsigned long long>(stats.cameraRays), stats.renderMilliseconds,
         stats.renderMilliseconds > 0 ? double(stats.cameraRays) / stats.renderMilliseconds / 1000.0 : 0.0,
         static_cast<unsigned long long>(stats.transparentHits));
-    std::cout << text;
+    out << text;
 }
 
 // The output name alone, before anything is loaded: "-o ''" (checkImageDestination checks the rest).
@@ -121,12 +116,29 @@ void checkOutputName(const std::string& output) {
 
 }  // namespace
 
+std::filesystem::path componentPath(const std::filesystem::path& output, std::string_view term) {
+    std::filesystem::path path = output;
+    path.replace_filename(output.stem().string() + "-" + std::string(term) + output.extension().string());
+    return path;
+}
+
 CLI::App* addRenderCommand(CLI::App& app, RenderArgs& args) {
     CLI::App* command = app.add_subcommand("render", "Render an OBJ model or a JSON scene to an image");
     addSceneOptions(*command, args);
+    // Render takes any number of inputs (a batch, cli/batch.h), so the scene options' one input is
+    // replaced by a list; one of them, or --list, is required.
+    command->remove_option(command->get_option("input"));
+    command->add_option("input", args.inputs,
+                        "Models (.obj) or scenes (.json); with several, -o names each image with {name} or "
+                        "{index} (docs/batch.md)");
+    command->parse_complete_callback([&args] {
+        if (args.inputs.empty() && !args.list) throw CLI::RequiredError("input");
+        if (!args.inputs.empty()) args.input = args.inputs.front();  // what a one-input caller reads
+    });
     command
         ->add_option("-o,--output", args.output,
-                     "Image to write; the extension picks the format (.png .exr .ppm .jpg .tif)")
+                     "Image to write; the extension picks the format (.png .exr .ppm .jpg .tif); {name} is "
+                     "replaced by the input's file name without extension, {index} by its place in the list")
         ->required();
     command->add_flag("-q,--quiet", args.quiet, "Print nothing on success");
     command->add_option("--frames", args.frames,
@@ -151,18 +163,30 @@ CLI::App* addRenderCommand(CLI::App& app, RenderArgs& args) {
     command->add_flag("--components", args.components,
                       "Also write each term alone next to the output: NAME-emission, NAME-ambient, "
                       "NAME-diffuse, NAME-specular (the output is their sum)");
+    // Many inputs in one process, and a share of them per process of a cluster job (docs/batch.md).
+    CLI::Option_group* batch = command->add_option_group("Batch", "Many inputs in one process");
+    batch
+        ->add_option("--list", args.list,
+                     "Render every input named in FILE, one path a line (# comments, blank lines skipped; "
+                     "relative paths from FILE's folder), after those of the command line")
+        ->type_name("FILE");
+    batch
+        ->add_option("--shard", args.shard,
+                     "Render only the inputs whose index in the list, counted from 0, is I modulo N (like "
+                     "--shard $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT)")
+        ->type_name("I/N");
     return command;
 }
 
-int render(const RenderArgs& args) {
-    // Everything the command line alone decides is checked before a model is loaded: a typo in
-    // --frames must not wait for a large model, nor start writing images.
+RenderSettings renderSettings(const RenderArgs& args) {
     checkOutputName(args.output);
     if (args.only && args.components) throw facet::InputError("--only and --components do not go together");
     if (args.turntable && !args.frames)
         throw facet::InputError("--turntable needs --frames (like --frames 0-59)");
-    const auto [firstFrame, lastFrame] = args.frames ? parseFrames(*args.frames) : std::pair{0, 0};
-    const int frameCount = lastFrame - firstFrame + 1;
+    RenderSettings settings;
+    std::tie(settings.firstFrame, settings.lastFrame) =
+        args.frames ? parseFrames(*args.frames) : std::pair{0, 0};
+    const int frameCount = settings.lastFrame - settings.firstFrame + 1;
     const int imagesPerFrame =
         args.components ? 1 + static_cast<int>(std::size(facet::kLightingTermNames)) : 1;
     if (static_cast<long long>(frameCount) * imagesPerFrame > kMaxImagesPerRun)
@@ -170,50 +194,55 @@ int render(const RenderArgs& args) {
                                 std::to_string(static_cast<long long>(frameCount) * imagesPerFrame) +
                                 " images; one run writes at most " + std::to_string(kMaxImagesPerRun) +
                                 (args.components ? " (--components writes five per frame)" : ""));
-    const float turntable = args.turntable.value_or(args.frames ? 360.0f : 0.0f);  // finite: kFiniteNumber
-    const bool reference = args.renderer == facet::RendererKind::Reference;
-    facet::ReferenceOptions referenceOptions;
+    settings.turntable = args.turntable.value_or(args.frames ? 360.0f : 0.0f);  // finite: kFiniteNumber
+    settings.reference = args.renderer == facet::RendererKind::Reference;
     if (args.samples) {
-        if (!reference) throw facet::InputError("--samples is for --renderer reference");
+        if (!settings.reference) throw facet::InputError("--samples is for --renderer reference");
         if (*args.samples < 1 || *args.samples > facet::kMaxReferenceSamples)
             throw facet::InputError("--samples must be from 1 to " +
                                     std::to_string(facet::kMaxReferenceSamples) +
                                     " (N×N rays per pixel; got " + std::to_string(*args.samples) + ")");
-        referenceOptions.samples = *args.samples;
+        settings.referenceOptions.samples = *args.samples;
     }
+    settings.terms = args.only.value_or(facet::kAllTerms);
+    return settings;
+}
 
+RenderedInput renderInput(const RenderArgs& args, const RenderSettings& settings, facet::DrawContext& context,
+                          std::ostream& out, std::ostream& warnings) {
     facet::Scene scene = sceneFromArgs(args);
-    const std::uint8_t terms = args.only.value_or(facet::kAllTerms);
     facet::checkImageDestination(args.output, scene.width, scene.height);
 
     const auto start = std::chrono::steady_clock::now();
     facet::PreparedScene prepared = facet::prepareScene(scene);
     for (const std::string& warning : prepared.warnings)
-        std::cerr << "facet: warning: " << warning << "\n";
+        warnings << "facet: warning: " << warning << "\n";
     facet::Framebuffer framebuffer(scene.width, scene.height);
-    facet::DrawContext context(args.threads);
     facet::FrameMemory memory;  // the transparent triangles' order, carried from frame to frame
-    std::vector<std::filesystem::path> written;
+    facet::ReferenceOptions referenceOptions = settings.referenceOptions;
+    const int frameCount = settings.lastFrame - settings.firstFrame + 1;
+    RenderedInput result;
+    std::vector<std::filesystem::path>& written = result.written;
     facet::DrawStats total;
     int emptyFrames = 0;
     facet::DrawStats firstEmptyStats;  // and its name, written.front() of those frames
     std::filesystem::path firstEmpty;
     for (int k = 0; k < frameCount; ++k) {
-        const int frame = firstFrame + k;
+        const int frame = settings.firstFrame + k;
         // A turntable: frame k of n turns the objects by turntable·k/n degrees.
-        if (args.frames) facet::setTurntable(prepared, turntable * float(k) / float(frameCount));
+        if (args.frames) facet::setTurntable(prepared, settings.turntable * float(k) / float(frameCount));
         const std::filesystem::path output =
             args.frames ? framePath(args.output, frame) : std::filesystem::path(args.output);
-        if (reference) {
+        if (settings.reference) {
             // The exact image: ray cast and shaded in double (and, with --components, each term alone).
             facet::ReferenceStats stats;
-            referenceOptions.terms = terms;
+            referenceOptions.terms = settings.terms;
             facet::writeImage(output,
                               facet::renderReference(prepared, referenceOptions, context.pool, &stats),
                               prepared.encoding);
             written.push_back(output);
             if (stats.surfaceHits == 0 && emptyFrames++ == 0) firstEmpty = output;
-            if (args.stats) printReferenceStats(frame, stats);
+            if (args.stats) printReferenceStats(out, frame, stats);
             if (args.components) {
                 for (const facet::EnumName<facet::LightingTerm>& term : facet::kLightingTermNames) {
                     referenceOptions.terms = term.value;
@@ -225,13 +254,14 @@ int render(const RenderArgs& args) {
             }
             continue;
         }
-        const facet::FrameStats stats = facet::renderFrame(prepared, framebuffer, context, memory, terms);
+        const facet::FrameStats stats =
+            facet::renderFrame(prepared, framebuffer, context, memory, settings.terms);
         total += stats.draw;
         if (stats.draw.fragmentsWritten + stats.draw.fragmentsStored == 0 && emptyFrames++ == 0) {
             firstEmptyStats = stats.draw;
             firstEmpty = output;
         }
-        if (args.stats) printFrameStats(frame, prepared, stats);
+        if (args.stats) printFrameStats(out, frame, prepared, stats);
         facet::writeImage(output, facet::toImage(framebuffer), prepared.encoding);
         written.push_back(output);
         // The component images: each term alone, over the same background; the main image is their sum.
@@ -245,36 +275,54 @@ int render(const RenderArgs& args) {
         }
     }
     const auto rendered = std::chrono::steady_clock::now();
-    if (emptyFrames > 0 && reference)
-        std::cerr << "facet: warning: " << firstEmpty.string()
-                  << ": no ray met a surface, only the background is seen; the camera may look away from the "
-                     "model\n";
+    if (emptyFrames > 0 && settings.reference)
+        warnings << "facet: warning: " << firstEmpty.string()
+                 << ": no ray met a surface, only the background is seen; the camera may look away from the "
+                    "model\n";
     else if (emptyFrames > 0)
-        std::cerr << "facet: warning: "
-                  << emptyFrameWarning(emptyFrames == 1
-                                           ? firstEmpty.string() + ":"
-                                           : std::to_string(emptyFrames) + " of " +
-                                                 std::to_string(frameCount) + " frames (the first " +
-                                                 firstEmpty.string() + "):",
-                                       firstEmptyStats)
-                  << "\n";
+        warnings << "facet: warning: "
+                 << emptyFrameWarning(
+                        emptyFrames == 1 ? firstEmpty.string() + ":"
+                                         : std::to_string(emptyFrames) + " of " + std::to_string(frameCount) +
+                                               " frames (the first " + firstEmpty.string() + "):",
+                        firstEmptyStats)
+                 << "\n";
+
+    result.width = scene.width;
+    result.height = scene.height;
+    result.triangles = prepared.triangleCount;
+    result.degenerateSkipped = prepared.degenerateSkipped;
+    result.fragmentsShaded = total.fragmentsShaded;
+    result.milliseconds = std::chrono::duration<double, std::milli>(rendered - start).count();
+    return result;
+}
+
+int render(const RenderArgs& args) {
+    if (isBatch(args)) return renderBatch(args);
+    // Everything the command line alone decides is checked before the model is loaded.
+    const RenderSettings settings = renderSettings(args);
+    RenderArgs one = args;
+    if (!args.inputs.empty()) one.input = args.inputs.front();  // else a caller set `input` itself
+    one.output = expandOutput(args.output, one.input, 0);
+    facet::DrawContext context(args.threads);
+    const RenderedInput result = renderInput(one, settings, context, std::cout, std::cerr);
 
     if (!args.quiet) {
-        const double ms = std::chrono::duration<double, std::milli>(rendered - start).count();
+        const std::vector<std::filesystem::path>& written = result.written;
         std::cout << "facet: wrote "
-                  << (args.frames ? std::to_string(frameCount) + " frames, " + written.front().string() +
-                                        " to " + framePath(args.output, lastFrame).string()
-                                  : args.output)
-                  << " (" << scene.width << "x" << scene.height << ", " << prepared.triangleCount
-                  << " triangles";
-        if (prepared.degenerateSkipped)
-            std::cout << ", " << prepared.degenerateSkipped << " degenerate skipped";
-        if (reference)
-            std::cout << ", reference renderer, " << referenceOptions.samples << "x"
-                      << referenceOptions.samples << " rays per pixel, " << static_cast<long>(ms + 0.5)
+                  << (args.frames ? std::to_string(settings.lastFrame - settings.firstFrame + 1) +
+                                        " frames, " + written.front().string() + " to " +
+                                        framePath(one.output, settings.lastFrame).string()
+                                  : one.output)
+                  << " (" << result.width << "x" << result.height << ", " << result.triangles << " triangles";
+        if (result.degenerateSkipped) std::cout << ", " << result.degenerateSkipped << " degenerate skipped";
+        const long ms = static_cast<long>(result.milliseconds + 0.5);
+        if (settings.reference)
+            std::cout << ", reference renderer, " << settings.referenceOptions.samples << "x"
+                      << settings.referenceOptions.samples << " rays per pixel, " << ms
                       << " ms including loading)\n";
         else
-            std::cout << ", " << total.fragmentsShaded << " fragments shaded, " << static_cast<long>(ms + 0.5)
+            std::cout << ", " << result.fragmentsShaded << " fragments shaded, " << ms
                       << " ms including loading)\n";
         if (!args.frames)
             for (std::size_t k = 1; k < written.size(); ++k)
