@@ -117,6 +117,7 @@ struct RenderArgs : SceneArgs {
     bool components = false;
     std::optional<std::string> frames;  // "0-59"
     std::optional<float> turntable;     // degrees over the frames
+    std::optional<int> pngCompression;  // zlib's level for PNG files, 0-9
     bool stats = false;
     std::optional<RendererKind> renderer;
     std::optional<int> samples;  // --renderer reference: N×N rays per pixel

@@ -147,6 +147,14 @@ CLI::App* addRenderCommand(CLI::App& app, RenderArgs& args) {
         ->add_option("--turntable", args.turntable,
                      "Degrees the objects turn about the vertical axis over the frames (default 360)")
         ->check(kFiniteNumber);
+    command
+        ->add_option(
+            "--png-compression", args.pngCompression,
+            "PNG files: zlib's level, 0 (none: the largest file, written fastest) to 9 (the smallest, "
+            "slowest); default " +
+                std::to_string(facet::kFastPngCompression) +
+                ": four times faster to write than 6, files about 40% larger")
+        ->check(kWholeNumber);
     command->add_flag("--stats", args.stats,
                       "Print per frame the fragments and the sorting of transparent triangles (comparisons, "
                       "moves, time)");
@@ -184,6 +192,12 @@ RenderSettings renderSettings(const RenderArgs& args) {
     if (args.turntable && !args.frames)
         throw facet::InputError("--turntable needs --frames (like --frames 0-59)");
     RenderSettings settings;
+    if (args.pngCompression) {
+        if (*args.pngCompression < 0 || *args.pngCompression > 9)
+            throw facet::InputError("--png-compression must be from 0 (none) to 9 (smallest file); got " +
+                                    std::to_string(*args.pngCompression));
+        settings.pngCompression = *args.pngCompression;
+    }
     std::tie(settings.firstFrame, settings.lastFrame) =
         args.frames ? parseFrames(*args.frames) : std::pair{0, 0};
     const int frameCount = settings.lastFrame - settings.firstFrame + 1;
@@ -239,7 +253,7 @@ RenderedInput renderInput(const RenderArgs& args, const RenderSettings& settings
             referenceOptions.terms = settings.terms;
             facet::writeImage(output,
                               facet::renderReference(prepared, referenceOptions, context.pool, &stats),
-                              prepared.encoding);
+                              prepared.encoding, settings.pngCompression);
             written.push_back(output);
             if (stats.surfaceHits == 0 && emptyFrames++ == 0) firstEmpty = output;
             if (args.stats) printReferenceStats(out, frame, stats);
@@ -249,7 +263,7 @@ RenderedInput renderInput(const RenderArgs& args, const RenderSettings& settings
                     written.push_back(componentPath(output, term.name));
                     facet::writeImage(written.back(),
                                       facet::renderReference(prepared, referenceOptions, context.pool),
-                                      prepared.encoding);
+                                      prepared.encoding, settings.pngCompression);
                 }
             }
             continue;
@@ -262,7 +276,7 @@ RenderedInput renderInput(const RenderArgs& args, const RenderSettings& settings
             firstEmpty = output;
         }
         if (args.stats) printFrameStats(out, frame, prepared, stats);
-        facet::writeImage(output, facet::toImage(framebuffer), prepared.encoding);
+        facet::writeImage(output, facet::toImage(framebuffer), prepared.encoding, settings.pngCompression);
         written.push_back(output);
         // The component images: each term alone, over the same background; the main image is their sum.
         if (args.components) {
@@ -270,7 +284,8 @@ RenderedInput renderInput(const RenderArgs& args, const RenderSettings& settings
                 facet::FrameMemory scratch;  // not the animation's: keeps its insertion sort honest
                 facet::renderFrame(prepared, framebuffer, context, scratch, term.value);
                 written.push_back(componentPath(output, term.name));
-                facet::writeImage(written.back(), facet::toImage(framebuffer), prepared.encoding);
+                facet::writeImage(written.back(), facet::toImage(framebuffer), prepared.encoding,
+                                  settings.pngCompression);
             }
         }
     }

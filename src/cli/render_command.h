@@ -11,6 +11,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/options.h"
+#include "io/image_file.h"
 #include "pipeline/names.h"
 #include "pipeline/pipeline.h"
 #include "reference/reference.h"
@@ -33,7 +34,8 @@ struct RenderSettings {
     float turntable = 0.0f;             // degrees over the frames
     bool reference = false;             // --renderer reference
     facet::ReferenceOptions referenceOptions;
-    std::uint8_t terms = facet::kAllTerms;  // --only
+    std::uint8_t terms = facet::kAllTerms;            // --only
+    int pngCompression = facet::kFastPngCompression;  // --png-compression
 };
 RenderSettings renderSettings(const RenderArgs& args);
 

@@ -83,9 +83,9 @@ TEST(CommandLineChoices, StepTakesEveryOptionOfRenderThatDecidesTheFrame) {
     CLI::App* render = addRenderCommand(app, renderArgs);
     CLI::App* step = addStepCommand(app, stepArgs);
     // And the reference renderer's: step follows the rasterizer's pipeline, which the reference does not use.
-    const std::set<std::string> outputOnly = {"--output",    "--quiet",    "--frames",
-                                              "--turntable", "--stats",    "--components",
-                                              "--help",      "--renderer", "--samples"};
+    const std::set<std::string> outputOnly = {"--output",  "--quiet",          "--frames", "--turntable",
+                                              "--stats",   "--components",     "--help",   "--renderer",
+                                              "--samples", "--png-compression"};
     std::size_t checked = 0;
     for (const CLI::Option* option : render->get_options()) {
         const std::string name = option->get_name();

@@ -53,6 +53,29 @@ TEST(Cli, RendersABundledModelToPng) {
     EXPECT_EQ(files, 1);
 }
 
+// A render of a model with a PNG texture to a PNG file never loads OpenImageIO (its ~260 libraries
+// cost a quarter of a second before anything is drawn); an EXR output does load it. The dynamic
+// loader's own record (LD_DEBUG=files) says which libraries the process opened. Breaks caught: facet
+// linking OpenImageIO again, or PNG textures or outputs sent through it.
+TEST(Cli, OpenImageIOIsLoadedOnlyForFormatsThatNeedIt) {
+    TempDir dir;
+    const std::string model =
+        quoted(std::filesystem::path(FACET_SOURCE_DIR) / "models/spot/spot_triangulated.obj");
+    ::setenv("LD_DEBUG", "files", 1);
+    const RunResult png = runFacet(
+        "render " + model + " -o " + quoted(dir.path() / "spot.png") + " --width 32 --height 24", dir);
+    const RunResult exr = runFacet(
+        "render " + model + " -o " + quoted(dir.path() / "spot.exr") + " --width 32 --height 24", dir);
+    ::unsetenv("LD_DEBUG");
+    ASSERT_EQ(png.status, 0) << png.err.substr(png.err.size() > 2000 ? png.err.size() - 2000 : 0);
+    ASSERT_EQ(exr.status, 0);
+    EXPECT_NE(png.err.find("libpng16"), std::string::npos);  // the record is there
+    EXPECT_EQ(png.err.find("libOpenImageIO"), std::string::npos);
+    EXPECT_EQ(png.err.find("libfacet_openimageio"), std::string::npos);
+    EXPECT_NE(exr.err.find("libfacet_openimageio"), std::string::npos);
+    EXPECT_NE(exr.err.find("libOpenImageIO"), std::string::npos);
+}
+
 // The same render on 1, 2 and 7 threads gives the same image: every float of every pixel. (The EXR
 // files' bytes may differ: OpenEXR's writer does not promise identical files, only identical pixels.)
 TEST(Cli, ThreadCountDoesNotChangeTheImage) {

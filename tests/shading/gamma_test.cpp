@@ -2,7 +2,10 @@
 // and the conformance tests all take.
 #include "shading/gamma.h"
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 
 #include <gtest/gtest.h>
 
@@ -57,6 +60,46 @@ TEST(EncodeChannel, SrgbPowerAndLinearCurves) {
         EXPECT_EQ(encodeChannel(srgbToLinear(unit), kSrgbEncoding), code);
         EXPECT_EQ(encodeChannel(std::pow(unit, 2.2f), power), code);
         EXPECT_EQ(encodeChannel(unit, kLinearEncoding), code);
+    }
+}
+
+// ChannelEncoder (the image writer's tables) gives encodeChannel's code for every float tried: all
+// floats within 4096 steps of each code's first value, 2^16 spread over [0, 1], and the edges (zero,
+// negatives, NaN, infinity, one and above), for each curve and rounding. Breaks caught: a threshold
+// off by one float (the bisection keeping `below`), a bucket starting one code too high, the step-up
+// loop comparing with > instead of >=, or NaN not mapped to 0.
+TEST(ChannelEncoder, GivesEncodeChannelsCodeForEveryFloat) {
+    const ColorEncoding encodings[] = {kSrgbEncoding,
+                                       kLinearEncoding,
+                                       kGlEncoding,
+                                       {TransferCurve::Power, 2.2f},
+                                       {TransferCurve::Power, 1.8f, Rounding::HalfToEven},
+                                       {TransferCurve::Srgb, 2.2f, Rounding::HalfToEven}};
+    for (const ColorEncoding& encoding : encodings) {
+        const ChannelEncoder encode(encoding);
+        std::size_t mismatches = 0;
+        const auto check = [&](float value) {
+            if (encode(value) != encodeChannel(value, encoding) && mismatches++ < 5)
+                ADD_FAILURE() << "curve " << int(encoding.curve) << ", " << value << " (bits "
+                              << std::bit_cast<std::uint32_t>(value) << "): table " << int(encode(value))
+                              << ", encodeChannel " << int(encodeChannel(value, encoding));
+        };
+        for (const float edge : {0.0f, -0.0f, -1.0f, 1.0f, 1.5f, 1e30f, std::nanf(""), INFINITY, -INFINITY,
+                                 std::numeric_limits<float>::denorm_min(), std::nextafter(1.0f, 0.0f)})
+            check(edge);
+        for (int k = 0; k <= 65536; ++k)
+            check(float(k) / 65536.0f);
+        for (int code = 1; code < 256; ++code) {
+            // Around the first float with this code (by bisection on encodeChannel alone).
+            std::uint32_t low = 0, bits = 0x3F800000u;
+            while (bits - low > 1) {
+                const std::uint32_t middle = low + (bits - low) / 2;
+                (encodeChannel(std::bit_cast<float>(middle), encoding) >= code ? bits : low) = middle;
+            }
+            for (std::uint32_t b = bits > 4096 ? bits - 4096 : 0; b < bits + 4096 && b <= 0x3F800000u; ++b)
+                check(std::bit_cast<float>(b));
+        }
+        EXPECT_EQ(mismatches, 0u);
     }
 }
 
