@@ -276,7 +276,8 @@ RenderedInput renderInput(const RenderArgs& args, const RenderSettings& settings
             firstEmpty = output;
         }
         if (args.stats) printFrameStats(out, frame, prepared, stats);
-        facet::writeImage(output, facet::toImage(framebuffer), prepared.encoding, settings.pngCompression);
+        facet::writeImage(output, facet::viewOf(framebuffer), prepared.encoding, settings.pngCompression,
+                          &context.pool);
         written.push_back(output);
         // The component images: each term alone, over the same background; the main image is their sum.
         if (args.components) {
@@ -284,8 +285,8 @@ RenderedInput renderInput(const RenderArgs& args, const RenderSettings& settings
                 facet::FrameMemory scratch;  // not the animation's: keeps its insertion sort honest
                 facet::renderFrame(prepared, framebuffer, context, scratch, term.value);
                 written.push_back(componentPath(output, term.name));
-                facet::writeImage(written.back(), facet::toImage(framebuffer), prepared.encoding,
-                                  settings.pngCompression);
+                facet::writeImage(written.back(), facet::viewOf(framebuffer), prepared.encoding,
+                                  settings.pngCompression, &context.pool);
             }
         }
     }

@@ -251,6 +251,11 @@ void checkImageDestination(const fs::path& path, int width, int height) {
 }
 
 void writeImage(const fs::path& path, const LinearImage& image, ColorEncoding encoding, int pngCompression) {
+    writeImage(path, ImageView{image.width, image.height, image.pixels}, encoding, pngCompression, nullptr);
+}
+
+void writeImage(const fs::path& path, const ImageView& image, ColorEncoding encoding, int pngCompression,
+                ThreadPool* pool) {
     checkImageDestination(path, image.width, image.height);
     const FileFormat* format = findFormat(path);
     const std::size_t pixelCount = static_cast<std::size_t>(std::max(image.width, 0)) *
@@ -296,17 +301,30 @@ void writeImage(const fs::path& path, const LinearImage& image, ColorEncoding en
             }
         }
     } else {
-        // Through the encoder's tables: the codes of encodeChannel, without a pow per channel.
+        // Through the encoder's tables: the codes of encodeChannel, without a pow per channel; bands of
+        // rows on the pool's threads, each writing only its own bytes.
         const ChannelEncoder encode(encoding);
         bytes.resize(pixelCount * channels);
-        std::uint8_t* out = bytes.data();
-        for (const glm::vec4& p : image.pixels) {
-            out[0] = encode(p.r);
-            out[1] = encode(p.g);
-            out[2] = encode(p.b);
-            if (channels == 4) out[3] = toByte(p.a, encoding.rounding);
-            out += channels;
-        }
+        constexpr std::size_t kRowsPerBand = 32;
+        const std::size_t width = static_cast<std::size_t>(image.width);
+        const std::size_t bands = (static_cast<std::size_t>(image.height) + kRowsPerBand - 1) / kRowsPerBand;
+        const auto encodeBand = [&](std::size_t band, int) {
+            const std::size_t first = band * kRowsPerBand * width;
+            const std::size_t end = std::min(pixelCount, first + kRowsPerBand * width);
+            std::uint8_t* out = bytes.data() + first * channels;
+            for (std::size_t i = first; i < end; ++i, out += channels) {
+                const glm::vec4& p = image.pixels[i];
+                out[0] = encode(p.r);
+                out[1] = encode(p.g);
+                out[2] = encode(p.b);
+                if (channels == 4) out[3] = toByte(p.a, encoding.rounding);
+            }
+        };
+        if (pool != nullptr)
+            pool->parallelFor(bands, encodeBand);
+        else
+            for (std::size_t band = 0; band < bands; ++band)
+                encodeBand(band, 0);
     }
 
     // The temporary name keeps the real extension last, as the libraries pick the writer from it.

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,7 @@
 
 #include "io/image_file.h"
 #include "pipeline/texture.h"
+#include "pipeline/thread_pool.h"
 #include "shading/gamma.h"
 
 namespace facet {
@@ -25,6 +27,13 @@ struct LinearImage {
     const glm::vec4& at(int x, int y) const { return pixels[static_cast<std::size_t>(y) * width + x]; }
 };
 
+// Linear RGBA pixels held elsewhere (a LinearImage's, a framebuffer's), rows top to bottom.
+struct ImageView {
+    int width = 0;
+    int height = 0;
+    std::span<const glm::vec4> pixels;  // width * height
+};
+
 // Writes `image` to `path`, its format chosen by the extension (.png .exr .ppm .jpg/.jpeg .tif/.tiff ...).
 // Float formats (EXR) keep the buffer's values unchanged; 8-bit formats get `encoding`, clamped to
 // [0,1] (encodeChannel). PPM and JPEG have no alpha: RGB only. The
@@ -34,6 +43,9 @@ struct LinearImage {
 // "out/: cannot write ...").
 void writeImage(const std::filesystem::path& path, const LinearImage& image,
                 ColorEncoding encoding = kSrgbEncoding, int pngCompression = kFastPngCompression);
+// The same from pixels held elsewhere (no copy), encoded to 8 bits on `pool`'s threads when given.
+void writeImage(const std::filesystem::path& path, const ImageView& image, ColorEncoding encoding,
+                int pngCompression, ThreadPool* pool);
 
 // Checks, without writing anything, that `path` names an image format facet writes and that a
 // width × height image fits it; throws InputError otherwise. Lets a command fail before a long render.

@@ -64,7 +64,7 @@ std::string LibraryReader::checkMtlNumbers(std::string_view text, const std::str
     std::size_t lineNumber = 0;
     std::size_t pos = 0;
     while (pos < text.size()) {
-        const std::size_t end = std::min(text.find_first_of("\r\n", pos), text.size());
+        const std::size_t end = lineEnd(text, pos);
         std::string_view s = text.substr(pos, end - pos);
         pos = end + ((end + 1 < text.size() && text[end] == '\r' && text[end + 1] == '\n') ? 2 : 1);
         ++lineNumber;
@@ -137,7 +137,7 @@ void LibraryReader::scanMtl(const std::string& text, Library& library) {
     std::size_t lineNumber = 0;
     std::size_t pos = 0;
     while (pos < text.size()) {
-        std::size_t end = std::min(text.find_first_of("\r\n", pos), text.size());
+        std::size_t end = lineEnd(text, pos);
         std::string_view s = std::string_view(text).substr(pos, end - pos);
         pos = end + ((end + 1 < text.size() && text[end] == '\r' && text[end + 1] == '\n') ? 2 : 1);
         ++lineNumber;

@@ -110,7 +110,7 @@ std::vector<ScannedStatement> cleanAndSplit(std::string& text, ObjScan& scan) {
         bool isComment = false;  // a comment line is never continued
         std::size_t end = pos;
         for (bool firstPiece = true;; firstPiece = false) {
-            end = std::min(text.find_first_of("\r\n", pos), text.size());
+            end = lineEnd(text, pos);
             std::size_t next = end;
             if (next < text.size())
                 next += (text[next] == '\r' && next + 1 < text.size() && text[next + 1] == '\n') ? 2 : 1;
@@ -188,6 +188,9 @@ void checkNumbers(std::string_view body, std::size_t required, const char* what,
 // One index of a corner against the counts: `before` defined above this line, `total` in the file.
 void checkIndex(long long index, std::size_t before, std::size_t total, const char* what, const char* plural,
                 const std::string& file, std::size_t line) {
+    const bool inRange = index > 0 ? static_cast<unsigned long long>(index) <= total
+                                   : index < 0 && index >= -static_cast<long long>(before);
+    if (inRange) return;  // the message below is only built for a bad index (this runs per corner)
     const std::string name = std::string("face ") + what + "index " + std::to_string(index);
     if (index == 0) fail(file, line, name + " is invalid (OBJ indices start at 1)");
     if (index > 0 && static_cast<unsigned long long>(index) > total) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstring>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -24,6 +25,20 @@ std::string pathInSingleQuotes(const std::filesystem::path& path);
 // Why a file cannot be read, or "" when `path` is a readable regular file; `text` gets its bytes.
 // Every filesystem call takes an error_code: a filesystem_error must never escape as a crash.
 std::string readTextFile(const std::filesystem::path& path, std::string& text);
+
+// Where the line starting at `pos` ends: its first '\r' or '\n', or text.size(). Two memchr scans
+// (vectorised) rather than find_first_of("\r\n"), which tests each byte against the set by a call.
+inline std::size_t lineEnd(std::string_view text, std::size_t pos) {
+    if (pos >= text.size()) return text.size();
+    const char* begin = text.data() + pos;
+    const std::size_t length = text.size() - pos;
+    const void* newline = std::memchr(begin, '\n', length);
+    const std::size_t toNewline =
+        newline ? static_cast<std::size_t>(static_cast<const char*>(newline) - begin) : length;
+    const void* carriage = std::memchr(begin, '\r', toNewline);
+    return pos +
+           (carriage ? static_cast<std::size_t>(static_cast<const char*>(carriage) - begin) : toNewline);
+}
 
 inline bool isBlank(char c) {
     return c == ' ' || c == '\t';

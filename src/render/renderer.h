@@ -171,6 +171,10 @@ FrameStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawC
 
 // The framebuffer's colour as an image (same linear values).
 LinearImage toImage(const Framebuffer& framebuffer);
+// The framebuffer's colour as an image to write, without a copy (valid while the framebuffer is).
+inline ImageView viewOf(const Framebuffer& framebuffer) {
+    return {framebuffer.width(), framebuffer.height(), framebuffer.colorPixels()};
+}
 
 // ---- the frame, watched or not ------------------------------------------------------------------
 
