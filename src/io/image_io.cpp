@@ -350,7 +350,7 @@ void writeImage(const fs::path& path, const ImageView& image, ColorEncoding enco
         image.width, image.height, channels, format->isFloat,
         format->isFloat ? static_cast<const void*>(floats.data()) : static_cast<const void*>(bytes.data())};
     const std::string problem =
-        writerFor(path, format->isFloat).write(tempPath.string(), pixels, pngCompression);
+        writerFor(path, format->isFloat).write(tempPath.string(), pixels, pngCompression, pool);
     if (!problem.empty()) fail(path, "cannot write image: " + withUserPath(problem));
 
     fs::rename(tempPath, path, error);

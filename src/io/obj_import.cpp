@@ -10,10 +10,12 @@
 
 #include <cmath>
 #include <cstdint>
+#include <future>
+#include <istream>
 #include <map>
 #include <set>
-#include <sstream>
 #include <stdexcept>
+#include <streambuf>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -46,6 +48,14 @@ void checkFinite(const std::vector<tinyobj::real_t>& values, std::size_t stride,
     }
 }
 
+// The text as an input stream for tinyobjloader, read in place (an istringstream would copy it).
+class TextStreamBuffer : public std::streambuf {
+  public:
+    explicit TextStreamBuffer(std::string& text) {
+        setg(text.data(), text.data(), text.data() + text.size());
+    }
+};
+
 }  // namespace
 
 Mesh loadObj(const std::filesystem::path& path, const ObjOptions& options) {
@@ -56,19 +66,29 @@ Mesh loadObj(const std::filesystem::path& path, const ObjOptions& options) {
     }
     const std::string file = path.string();
 
-    // 1. Read and pre-scan; `text` is rewritten for tinyobjloader (continuations, comments).
+    // 1. Read and split into statements; `text` is rewritten for tinyobjloader (continuations, comments).
     std::string text = readObjText(path, file);
-    const ObjScan scan = scanObj(text, file);
+    const ObjStatements statements = splitObj(text);
 
-    // 2. Parse with tinyobjloader, untriangulated: facet fans, and faces stay one-to-one with lines.
+    // 2. Check every statement on a thread of its own while tinyobjloader parses the same text (both
+    // only read it): the two passes take about as long. A pre-scan error still wins over whatever
+    // tinyobjloader makes of the file, as the first in the file is the one to report.
+    std::future<ObjScan> checked =
+        std::async(std::launch::async, [&] { return checkObj(text, statements, file); });
+
+    // 3. Parse with tinyobjloader, untriangulated: facet fans, and faces stay one-to-one with lines.
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;
     std::vector<tinyobj::material_t> tinyMaterials;
     std::string tinyWarnings, tinyErrors;  // its warnings repeat what the pre-scan reports better
     LibraryReader libraries(path.parent_path());
-    std::istringstream stream(std::move(text));
-    if (!tinyobj::LoadObj(&attrib, &shapes, &tinyMaterials, &tinyWarnings, &tinyErrors, &stream, &libraries,
-                          /*triangulate=*/false, /*default_vcols_fallback=*/false)) {
+    TextStreamBuffer buffer(text);
+    std::istream stream(&buffer);
+    const bool parsed =
+        tinyobj::LoadObj(&attrib, &shapes, &tinyMaterials, &tinyWarnings, &tinyErrors, &stream, &libraries,
+                         /*triangulate=*/false, /*default_vcols_fallback=*/false);
+    const ObjScan scan = checked.get();  // rethrows the pre-scan's error
+    if (!parsed) {
         std::string what = tinyErrors.substr(0, tinyErrors.find('\n'));
         fail(file, kNoLine, what.empty() ? "tinyobjloader cannot parse it" : what);
     }
@@ -92,7 +112,7 @@ Mesh loadObj(const std::filesystem::path& path, const ObjOptions& options) {
     mesh.stats.degenerateSkipped = scan.shortFaces;
     std::vector<std::string>& warnings = mesh.warnings;
 
-    // 3. MTL problems, each reported once at the mtllib line naming the file.
+    // 4. MTL problems, each reported once at the mtllib line naming the file.
     std::set<std::string> reported;
     for (const LibraryStatement& statement : scan.libraries) {
         if (statement.names.empty())
@@ -116,7 +136,7 @@ Mesh loadObj(const std::filesystem::path& path, const ObjOptions& options) {
                     std::to_string(scan.shortFaces) + " face(s) with fewer than 3 corners skipped"));
     }
 
-    // 4. Triangulate, weld and bucket the triangles by material, in first-use order.
+    // 5. Triangulate, weld and bucket the triangles by material, in first-use order.
     MeshBuilder builder(attrib, cornerCount, crease, options.normals);
     std::vector<int> meshMaterialOf(tinyMaterials.size() + 1, -1);  // [0]: no material; [i + 1]: material i
     std::vector<int> tinyMaterialOf;  // mesh material → tinyobjloader's, or -1
@@ -180,7 +200,7 @@ Mesh loadObj(const std::filesystem::path& path, const ObjOptions& options) {
                                        " faces are degenerate or have fewer than 3 corners)");
     }
 
-    // 5. Normals (splitting vertices at creases), then the index buffer: one part per material.
+    // 6. Normals (splitting vertices at creases), then the index buffer: one part per material.
     builder.finishNormals(mesh.stats.normalsComputed, mesh.stats.creaseSplits);
     mesh.hasTexcoords = builder.hasTexcoords();
     mesh.vertices = builder.takeVertices();

@@ -47,25 +47,6 @@ std::vector<std::string> splitLibraryNames(std::string_view text) {
     return names;
 }
 
-enum class Statement : std::uint8_t {
-    kVertex,
-    kTexcoord,
-    kNormal,
-    kFace,
-    kLine,
-    kPoint,
-    kUseMaterial,
-    kLibrary
-};
-
-// A statement the pre-scan checks: [offset, offset + length) of the cleaned text.
-struct ScannedStatement {
-    std::size_t offset;
-    std::size_t length;
-    std::size_t line;  // 1-based, the first physical line when `\` continues it
-    Statement kind;
-};
-
 // Which statement tinyobjloader would see in `s` (leading blanks removed), in its own order of tests:
 // a keyword then a blank, except "usemtl", which it matches as a bare prefix.
 bool classify(std::string_view s, Statement& kind) {
@@ -242,14 +223,25 @@ std::string readObjText(const fs::path& path, const std::string& file) {
 }
 
 ObjScan scanObj(std::string& text, const std::string& file) {
-    ObjScan scan;
-    const std::vector<ScannedStatement> statements = cleanAndSplit(text, scan);
+    const ObjStatements statements = splitObj(text);
+    return checkObj(text, statements, file);
+}
+
+ObjStatements splitObj(std::string& text) {
+    ObjStatements split;
+    split.statements = cleanAndSplit(text, split.counts);
+    return split;
+}
+
+ObjScan checkObj(std::string_view text, const ObjStatements& split, const std::string& file) {
+    ObjScan scan = split.counts;
+    const std::vector<ScannedStatement>& statements = split.statements;
     scan.faceLines.reserve(scan.positions * 2 + 16);
     scan.faceMaterial.reserve(scan.positions * 2 + 16);
 
     std::size_t positions = 0, texcoords = 0, normals = 0;
     std::int32_t currentMaterial = -1;
-    const std::string_view all(text);
+    const std::string_view all = text;
     for (const ScannedStatement& statement : statements) {
         const std::string_view s = all.substr(statement.offset, statement.length);
         const std::size_t line = statement.line;

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "io/obj_text.h"
@@ -38,7 +39,40 @@ struct ObjScan {
 // The OBJ file's text; InputError when it cannot be read or holds NUL bytes. `file` names it in messages.
 std::string readObjText(const std::filesystem::path& path, const std::string& file);
 
-// Pass 2: checks every statement in file order, so the error reported is the first in the file.
+enum class Statement : std::uint8_t {
+    kVertex,
+    kTexcoord,
+    kNormal,
+    kFace,
+    kLine,
+    kPoint,
+    kUseMaterial,
+    kLibrary
+};
+
+// A statement the pre-scan checks: [offset, offset + length) of the cleaned text.
+struct ScannedStatement {
+    std::size_t offset;
+    std::size_t length;
+    std::size_t line;  // 1-based, the first physical line when `\` continues it
+    Statement kind;
+};
+
+// Pass 1's result: the statements to check, and the v/vt/vn totals (in `counts`).
+struct ObjStatements {
+    std::vector<ScannedStatement> statements;
+    ObjScan counts;
+};
+
+// Pass 1: splits `text` into statements and rewrites it in place for tinyobjloader (continuations
+// joined, comments blanked), without moving a byte.
+ObjStatements splitObj(std::string& text);
+
+// Pass 2: checks every statement in file order, so the error reported is the first in the file; throws
+// InputError. It only reads the text, so it may run while tinyobjloader parses the same text.
+ObjScan checkObj(std::string_view text, const ObjStatements& statements, const std::string& file);
+
+// Both passes, one after the other.
 ObjScan scanObj(std::string& text, const std::string& file);
 
 }  // namespace facet::obj

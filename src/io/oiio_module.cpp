@@ -57,7 +57,8 @@ class OiioLibrary final : public OpenImageIOLibrary {
         return std::make_unique<OiioReader>(std::move(input));
     }
 
-    std::string write(const std::string& path, const ImagePixels& pixels, int pngCompression) override {
+    std::string write(const std::string& path, const ImagePixels& pixels, int pngCompression,
+                      ThreadPool*) override {
         OIIO::geterror();
         std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create(path);
         if (!output) return OIIO::geterror();

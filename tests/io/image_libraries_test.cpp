@@ -5,6 +5,8 @@
 #include <bit>
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -16,6 +18,7 @@
 #include "base/errors.h"
 #include "io/image_file.h"
 #include "io/image_io.h"
+#include "pipeline/thread_pool.h"
 #include "support/temp_folder.h"
 
 namespace facet {
@@ -118,6 +121,11 @@ void writeKind(const fs::path& path, const PngKind& kind) {
 
 class ImageLibraries : public TempFolderTest {};
 
+std::string fileBytes(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
 // Every PNG kind reads to the same header and the same values, as float and (8-bit) as codes, through
 // the built-in reader and OpenImageIO. Breaks caught: a palette not expanded, grey below 8 bits left
 // packed, a tRNS chunk not turned into alpha, 16-bit samples read in file (big-endian) order, the
@@ -200,7 +208,7 @@ std::vector<std::uint8_t> decodedByOpenImageIO(const fs::path& path, int& channe
 // caught: rows written bottom up, RGBA declared as RGB, the PPM header's width and height swapped, the
 // sRGB chunk left out.
 TEST_F(ImageLibraries, FilesWrittenByEitherLibraryDecodeToTheSamePixels) {
-    constexpr int kWidth = 37, kHeight = 11;
+    constexpr int kWidth = 37, kHeight = 150;  // three bands of 64 rows in the built-in PNG writer
     for (const int channels : {3, 4}) {
         std::vector<std::uint8_t> codes(static_cast<std::size_t>(kWidth) * kHeight * channels);
         for (std::size_t i = 0; i < codes.size(); ++i)
@@ -224,6 +232,37 @@ TEST_F(ImageLibraries, FilesWrittenByEitherLibraryDecodeToTheSamePixels) {
                 EXPECT_EQ(input->spec().get_string_attribute("oiio:ColorSpace"), "sRGB");
             }
         }
+    }
+}
+
+// The built-in PNG writer deflates bands of 64 rows apart and joins them: at every level (0 stores,
+// 1–3 the Up filter, 4–9 the filter chosen per row) OpenImageIO decodes the file to the codes written,
+// and the bytes are the same written on one thread or four. Breaks caught: a band not ending on a byte
+// boundary (Z_SYNC_FLUSH left out), the Adler-32 of the whole not combined from the bands', a filter's
+// prediction wrong on a band's first row, or bands split by the thread count.
+TEST_F(ImageLibraries, BandedPngDecodesAtEveryLevelAndIgnoresTheThreadCount) {
+    constexpr int kWidth = 53, kHeight = 200;
+    std::vector<std::uint8_t> codes(static_cast<std::size_t>(kWidth) * kHeight * 4);
+    for (std::size_t i = 0; i < codes.size(); ++i)
+        codes[i] = static_cast<std::uint8_t>((i / 4 % kWidth) * 3 + (i / 4 / kWidth) * 2 + (i % 4) * 40 +
+                                             (i * 2654435761u >> 29));
+    const ImagePixels pixels{kWidth, kHeight, 4, false, codes.data()};
+    ThreadPool four(4);
+    for (int level = 0; level <= 9; ++level) {
+        SCOPED_TRACE("level " + std::to_string(level));
+        const fs::path one = folder_ / ("one" + std::to_string(level) + ".png");
+        const fs::path many = folder_ / ("many" + std::to_string(level) + ".png");
+        ASSERT_EQ(builtInImageLibrary().write(one.string(), pixels, level, nullptr), "");
+        ASSERT_EQ(builtInImageLibrary().write(many.string(), pixels, level, &four), "");
+        int channels = 0;
+        EXPECT_EQ(decodedByOpenImageIO(one, channels), codes);
+        std::string error;
+        auto ours = builtInImageLibrary().open(one.string(), error);
+        ASSERT_TRUE(ours) << error;
+        std::vector<std::uint8_t> back(codes.size());
+        ASSERT_TRUE(ours->read(0, 4, false, back.data(), 4)) << ours->error();
+        EXPECT_EQ(back, codes);
+        EXPECT_EQ(fileBytes(one), fileBytes(many));
     }
 }
 
