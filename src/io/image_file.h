@@ -8,8 +8,10 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace facet {
 
@@ -49,6 +51,19 @@ struct ImagePixels {
     int channels = 0;
     bool floating = false;
     const void* data = nullptr;
+    // Or, for 8-bit pixels without `data`: writes the codes of rows [first, first + count) to `out`,
+    // so that a writer can encode band by band without the whole image in memory (any thread may call
+    // it, for different rows). Both libraries take either.
+    std::function<void(int first, int count, std::uint8_t* out)> rows;
+
+    // The codes of rows [first, first + count), from `data` or through `rows`, into `scratch`.
+    const std::uint8_t* codes(int first, int count, std::vector<std::uint8_t>& scratch) const {
+        const std::size_t rowBytes = static_cast<std::size_t>(width) * channels;
+        if (data != nullptr) return static_cast<const std::uint8_t*>(data) + first * rowBytes;
+        scratch.resize(rowBytes * count);
+        rows(first, count, scratch.data());
+        return scratch.data();
+    }
 };
 
 // How hard a PNG writer compresses: zlib's level, 0 (store) to 9 (smallest). The default favours time:

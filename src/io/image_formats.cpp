@@ -261,14 +261,17 @@ struct PngBand {
 
 void deflateBand(const ImagePixels& pixels, int level, std::size_t band, bool last, PngBand& out) {
     const std::size_t rowBytes = static_cast<std::size_t>(pixels.width) * pixels.channels;
-    const auto* data = static_cast<const std::uint8_t*>(pixels.data);
-    const std::size_t firstRow = band * kPngBandRows;
-    const std::size_t endRow = std::min<std::size_t>(pixels.height, firstRow + kPngBandRows);
-    std::vector<std::uint8_t> filtered((endRow - firstRow) * (rowBytes + 1)), scratch;
-    for (std::size_t y = firstRow; y < endRow; ++y) {
-        const std::uint8_t* row = data + y * rowBytes;
+    const int firstRow = static_cast<int>(band) * kPngBandRows;
+    const int endRow = std::min(pixels.height, firstRow + kPngBandRows);
+    // The band's codes with the row above it (the filters predict from it).
+    const int fromRow = std::max(firstRow - 1, 0);
+    std::vector<std::uint8_t> codeScratch, filterScratch;
+    const std::uint8_t* codes = pixels.codes(fromRow, endRow - fromRow, codeScratch);
+    std::vector<std::uint8_t> filtered(static_cast<std::size_t>(endRow - firstRow) * (rowBytes + 1));
+    for (int y = firstRow; y < endRow; ++y) {
+        const std::uint8_t* row = codes + static_cast<std::size_t>(y - fromRow) * rowBytes;
         const std::uint8_t* above = y > 0 ? row - rowBytes : nullptr;
-        const PngFilter filter = chooseFilter(level, row, above, rowBytes, pixels.channels, scratch);
+        const PngFilter filter = chooseFilter(level, row, above, rowBytes, pixels.channels, filterScratch);
         filterRow(filter, row, above, rowBytes, pixels.channels, &filtered[(y - firstRow) * (rowBytes + 1)]);
     }
     out.filteredBytes = static_cast<uLong>(filtered.size());
@@ -375,9 +378,13 @@ std::string writePpm(const std::string& path, const ImagePixels& pixels) {
     if (pixels.floating || pixels.channels != 3) return "PPM holds 8-bit RGB here";
     std::FILE* file = std::fopen(path.c_str(), "wb");
     if (file == nullptr) return std::string("cannot open: ") + std::strerror(errno);
-    const std::size_t bytes = static_cast<std::size_t>(pixels.width) * pixels.height * 3;
-    bool ok = std::fprintf(file, "P6\n%d %d\n255\n", pixels.width, pixels.height) > 0 &&
-              std::fwrite(pixels.data, 1, bytes, file) == bytes;
+    const std::size_t rowBytes = static_cast<std::size_t>(pixels.width) * 3;
+    bool ok = std::fprintf(file, "P6\n%d %d\n255\n", pixels.width, pixels.height) > 0;
+    std::vector<std::uint8_t> scratch;
+    for (int y = 0; ok && y < pixels.height; y += kPngBandRows) {
+        const int count = std::min(kPngBandRows, pixels.height - y);
+        ok = std::fwrite(pixels.codes(y, count, scratch), 1, rowBytes * count, file) == rowBytes * count;
+    }
     const int savedErrno = errno;
     ok = std::fclose(file) == 0 && ok;
     return ok ? "" : std::strerror(savedErrno ? savedErrno : errno);

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <string>
 #include <string_view>
@@ -279,7 +280,7 @@ void writeImage(const fs::path& path, const ImageView& image, ColorEncoding enco
     // default). Alpha is coverage, not light, so it is stored linearly.
     const int channels = format->channels;
     std::vector<float> floats;
-    std::vector<std::uint8_t> bytes;
+    std::function<void(int, int, std::uint8_t*)> encodeRows;
     if (format->isFloat) {
         // RGBE (.hdr) shares one exponent between positive mantissas: a negative value would come
         // back as garbage (-0.25 read as 3.75), so it is stored as 0. EXR keeps every value.
@@ -301,18 +302,14 @@ void writeImage(const fs::path& path, const ImageView& image, ColorEncoding enco
             }
         }
     } else {
-        // Through the encoder's tables: the codes of encodeChannel, without a pow per channel; bands of
-        // rows on the pool's threads, each writing only its own bytes.
-        const ChannelEncoder encode(encoding);
-        bytes.resize(pixelCount * channels);
-        constexpr std::size_t kRowsPerBand = 32;
-        const std::size_t width = static_cast<std::size_t>(image.width);
-        const std::size_t bands = (static_cast<std::size_t>(image.height) + kRowsPerBand - 1) / kRowsPerBand;
-        const auto encodeBand = [&](std::size_t band, int) {
-            const std::size_t first = band * kRowsPerBand * width;
-            const std::size_t end = std::min(pixelCount, first + kRowsPerBand * width);
-            std::uint8_t* out = bytes.data() + first * channels;
-            for (std::size_t i = first; i < end; ++i, out += channels) {
+        // The rows are encoded when the writer asks for them (the PNG writer band by band, on the
+        // pool's threads), through the encoder's tables: encodeChannel's codes without a pow per channel.
+        encodeRows = [&image, &encoding, channels, encode = ChannelEncoder(encoding)](int first, int count,
+                                                                                      std::uint8_t* out) {
+            const std::size_t width = static_cast<std::size_t>(image.width);
+            const std::size_t begin = static_cast<std::size_t>(first) * width;
+            const std::size_t end = begin + static_cast<std::size_t>(count) * width;
+            for (std::size_t i = begin; i < end; ++i, out += channels) {
                 const glm::vec4& p = image.pixels[i];
                 out[0] = encode(p.r);
                 out[1] = encode(p.g);
@@ -320,11 +317,6 @@ void writeImage(const fs::path& path, const ImageView& image, ColorEncoding enco
                 if (channels == 4) out[3] = toByte(p.a, encoding.rounding);
             }
         };
-        if (pool != nullptr)
-            pool->parallelFor(bands, encodeBand);
-        else
-            for (std::size_t band = 0; band < bands; ++band)
-                encodeBand(band, 0);
     }
 
     // The temporary name keeps the real extension last, as the libraries pick the writer from it.
@@ -346,9 +338,12 @@ void writeImage(const fs::path& path, const ImageView& image, ColorEncoding enco
             text.replace(at, tempPath.string().size(), path.string());
         return oneLine(std::move(text));
     };
-    const ImagePixels pixels{
-        image.width, image.height, channels, format->isFloat,
-        format->isFloat ? static_cast<const void*>(floats.data()) : static_cast<const void*>(bytes.data())};
+    const ImagePixels pixels{image.width,
+                             image.height,
+                             channels,
+                             format->isFloat,
+                             format->isFloat ? static_cast<const void*>(floats.data()) : nullptr,
+                             std::move(encodeRows)};
     const std::string problem =
         writerFor(path, format->isFloat).write(tempPath.string(), pixels, pngCompression, pool);
     if (!problem.empty()) fail(path, "cannot write image: " + withUserPath(problem));

@@ -72,7 +72,11 @@ class OiioLibrary final : public OpenImageIOLibrary {
         // No time of writing (OpenEXR and TIFF would stamp one): the same scene gives the same bytes.
         spec.attribute("DateTime", "");
         spec.attribute("png:compressionLevel", pngCompression);
-        if (!output->open(path, spec) || !output->write_image(type, pixels.data) || !output->close())
+        std::vector<std::uint8_t> codes;
+        const void* data = pixels.data != nullptr
+                               ? pixels.data
+                               : static_cast<const void*>(pixels.codes(0, pixels.height, codes));
+        if (!output->open(path, spec) || !output->write_image(type, data) || !output->close())
             return output->geterror();
         return "";
     }

@@ -213,7 +213,7 @@ TEST_F(ImageLibraries, FilesWrittenByEitherLibraryDecodeToTheSamePixels) {
         std::vector<std::uint8_t> codes(static_cast<std::size_t>(kWidth) * kHeight * channels);
         for (std::size_t i = 0; i < codes.size(); ++i)
             codes[i] = static_cast<std::uint8_t>(i * 37 % 251);
-        const ImagePixels pixels{kWidth, kHeight, channels, false, codes.data()};
+        const ImagePixels pixels{kWidth, kHeight, channels, false, codes.data(), {}};
         for (const char* extension : {".png", ".ppm"}) {
             if (channels == 4 && std::string(extension) == ".ppm") continue;
             SCOPED_TRACE(std::string(extension) + " " + std::to_string(channels));
@@ -246,7 +246,7 @@ TEST_F(ImageLibraries, BandedPngDecodesAtEveryLevelAndIgnoresTheThreadCount) {
     for (std::size_t i = 0; i < codes.size(); ++i)
         codes[i] = static_cast<std::uint8_t>((i / 4 % kWidth) * 3 + (i / 4 / kWidth) * 2 + (i % 4) * 40 +
                                              (i * 2654435761u >> 29));
-    const ImagePixels pixels{kWidth, kHeight, 4, false, codes.data()};
+    const ImagePixels pixels{kWidth, kHeight, 4, false, codes.data(), {}};
     ThreadPool four(4);
     for (int level = 0; level <= 9; ++level) {
         SCOPED_TRACE("level " + std::to_string(level));
