@@ -42,8 +42,8 @@ void Framebuffer::useSamples(int samples) {
     samples_ = samples;
     const std::size_t size = samples > 1 ? color_.size() * static_cast<std::size_t>(samples) : 0;
     if (size == 0) {
-        std::vector<vec4>().swap(sampleColor_);
-        std::vector<DepthFormat::Stored>().swap(sampleDepth_);
+        LargeBuffer<vec4>().swap(sampleColor_);
+        LargeBuffer<DepthFormat::Stored>().swap(sampleDepth_);
         return;
     }
     sampleColor_.resize(size);

@@ -3,11 +3,13 @@
 #pragma once
 
 #include <cstddef>
+#include <span>
 #include <vector>
 
 #include "depth_format.h"
 #include "fragment_lists.h"
 #include "glsl.h"
+#include "large_buffer.h"
 
 namespace facet {
 
@@ -45,9 +47,11 @@ class Framebuffer {
     // pool: the same bytes for any thread count.
     void resolveSamples(ColorBufferFormat format, ThreadPool& pool);
 
-    // Row-major, row 0 at the top of the image.
-    const std::vector<vec4>& colorPixels() const { return color_; }
-    const std::vector<DepthFormat::Stored>& depthPixels() const { return depth_; }
+    // Row-major, row 0 at the top of the image: in place, and as copies (for comparisons).
+    std::span<const vec4> colorSpan() const { return color_; }
+    std::span<const DepthFormat::Stored> depthSpan() const { return depth_; }
+    std::vector<vec4> colorPixels() const { return {color_.begin(), color_.end()}; }
+    std::vector<DepthFormat::Stored> depthPixels() const { return {depth_.begin(), depth_.end()}; }
 
     // Where AppendToLists draws put their fragments, until resolveFragmentLists() composites them.
     FragmentLists& fragmentLists() { return lists_; }
@@ -59,12 +63,12 @@ class Framebuffer {
 
     int width_ = 0;
     int height_ = 0;
-    std::vector<vec4> color_;                 // linear RGBA
-    std::vector<DepthFormat::Stored> depth_;  // window depth as DepthFormat stores it
+    LargeBuffer<vec4> color_;                 // linear RGBA
+    LargeBuffer<DepthFormat::Stored> depth_;  // window depth as DepthFormat stores it
     FragmentLists lists_;                     // empty (no memory) until an AppendToLists draw
     int samples_ = 1;
-    std::vector<vec4> sampleColor_;                 // multisampling only: samples_ per pixel
-    std::vector<DepthFormat::Stored> sampleDepth_;  // likewise
+    LargeBuffer<vec4> sampleColor_;                 // multisampling only: samples_ per pixel
+    LargeBuffer<DepthFormat::Stored> sampleDepth_;  // likewise
 };
 
 }  // namespace facet

@@ -326,7 +326,7 @@ void BM_MsaaResolve(benchmark::State& state) {
     target.clear(vec4(0.25f, 0.5f, 0.75f, 1.0f), DepthFormat::kClear, pool);
     for (auto _ : state) {
         target.resolveSamples(format, pool);
-        benchmark::DoNotOptimize(target.colorPixels().data());
+        benchmark::DoNotOptimize(target.colorSpan().data());
         benchmark::ClobberMemory();
     }
     state.SetItemsProcessed(state.iterations() * kFramePixels * static_cast<std::int64_t>(samples));

@@ -173,7 +173,7 @@ FrameStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawC
 LinearImage toImage(const Framebuffer& framebuffer);
 // The framebuffer's colour as an image to write, without a copy (valid while the framebuffer is).
 inline ImageView viewOf(const Framebuffer& framebuffer) {
-    return {framebuffer.width(), framebuffer.height(), framebuffer.colorPixels()};
+    return {framebuffer.width(), framebuffer.height(), framebuffer.colorSpan()};
 }
 
 // ---- the frame, watched or not ------------------------------------------------------------------
