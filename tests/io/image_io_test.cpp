@@ -20,6 +20,7 @@
 
 #include "base/errors.h"
 #include "io/image_io.h"
+#include "io/stored_bytes.h"
 #include "pipeline/color.h"
 
 namespace facet {
@@ -79,16 +80,7 @@ LinearImage solid(glm::vec4 color, int width = 2, int height = 2) {
 
 // The file's raw 8-bit values, as stored (no alpha association on read).
 std::vector<std::uint8_t> rawBytes(const fs::path& path, int* channels = nullptr) {
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    auto input = OIIO::ImageInput::open(path.string(), &config);
-    EXPECT_TRUE(input) << OIIO::geterror();
-    if (!input) return {};
-    const OIIO::ImageSpec& spec = input->spec();
-    if (channels) *channels = spec.nchannels;
-    std::vector<std::uint8_t> bytes(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
-    EXPECT_TRUE(input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, bytes.data()));
-    return bytes;
+    return testing_support::storedBytes(path, channels);
 }
 
 void writeGrayBytes(const fs::path& path, const std::vector<std::uint8_t>& bytes) {

@@ -18,6 +18,7 @@
 #include "base/errors.h"
 #include "io/image_file.h"
 #include "io/image_io.h"
+#include "io/stored_bytes.h"
 #include "pipeline/thread_pool.h"
 #include "support/temp_folder.h"
 
@@ -189,20 +190,6 @@ TEST_F(ImageLibraries, EveryKindOfPngReadsTheSameThroughBothLibraries) {
     }
 }
 
-// The pixels of `path` as 8-bit values, read by OpenImageIO itself (the stored alpha, unassociated).
-std::vector<std::uint8_t> decodedByOpenImageIO(const fs::path& path, int& channels) {
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    auto input = OIIO::ImageInput::open(path.string(), &config);
-    EXPECT_TRUE(input) << OIIO::geterror();
-    if (!input) return {};
-    const OIIO::ImageSpec& spec = input->spec();
-    channels = spec.nchannels;
-    std::vector<std::uint8_t> bytes(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
-    EXPECT_TRUE(input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, bytes.data()));
-    return bytes;
-}
-
 // A PNG (RGBA) and a PPM (RGB) written by the built-in writer and by OpenImageIO from the same codes
 // decode to the same pixels, and the built-in one marks the file sRGB as OpenImageIO does. Breaks
 // caught: rows written bottom up, RGBA declared as RGB, the PPM header's width and height swapped, the
@@ -222,10 +209,10 @@ TEST_F(ImageLibraries, FilesWrittenByEitherLibraryDecodeToTheSamePixels) {
             ASSERT_EQ(builtInImageLibrary().write(ours.string(), pixels, kFastPngCompression), "");
             ASSERT_EQ(openImageIO().write(theirs.string(), pixels, 6), "");
             int channelsA = 0, channelsB = 0;
-            const std::vector<std::uint8_t> a = decodedByOpenImageIO(ours, channelsA);
+            const std::vector<std::uint8_t> a = testing_support::storedBytes(ours, &channelsA);
             EXPECT_EQ(channelsA, channels);
             EXPECT_EQ(a, codes);
-            EXPECT_EQ(a, decodedByOpenImageIO(theirs, channelsB));
+            EXPECT_EQ(a, testing_support::storedBytes(theirs, &channelsB));
             if (std::string(extension) == ".png") {
                 auto input = OIIO::ImageInput::open(ours.string());
                 ASSERT_TRUE(input);
@@ -255,7 +242,7 @@ TEST_F(ImageLibraries, BandedPngDecodesAtEveryLevelAndIgnoresTheThreadCount) {
         ASSERT_EQ(builtInImageLibrary().write(one.string(), pixels, level, nullptr), "");
         ASSERT_EQ(builtInImageLibrary().write(many.string(), pixels, level, &four), "");
         int channels = 0;
-        EXPECT_EQ(decodedByOpenImageIO(one, channels), codes);
+        EXPECT_EQ(testing_support::storedBytes(one, &channels), codes);
         std::string error;
         auto ours = builtInImageLibrary().open(one.string(), error);
         ASSERT_TRUE(ours) << error;
