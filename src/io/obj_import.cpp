@@ -17,6 +17,7 @@
 #include <stdexcept>
 #include <streambuf>
 #include <string>
+#include <system_error>
 #include <type_traits>
 #include <vector>
 
@@ -73,8 +74,13 @@ Mesh loadObj(const std::filesystem::path& path, const ObjOptions& options) {
     // 2. Check every statement on a thread of its own while tinyobjloader parses the same text (both
     // only read it): the two passes take about as long. A pre-scan error still wins over whatever
     // tinyobjloader makes of the file, as the first in the file is the one to report.
-    std::future<ObjScan> checked =
-        std::async(std::launch::async, [&] { return checkObj(text, statements, file); });
+    const auto check = [&] { return checkObj(text, statements, file); };
+    std::future<ObjScan> checked;
+    try {
+        checked = std::async(std::launch::async, check);
+    } catch (const std::system_error&) {  // no thread to be had: check after the parse instead
+        checked = std::async(std::launch::deferred, check);
+    }
 
     // 3. Parse with tinyobjloader, untriangulated: facet fans, and faces stay one-to-one with lines.
     tinyobj::attrib_t attrib;
