@@ -3,7 +3,36 @@
 #include <algorithm>
 #include <utility>
 
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#endif
+
 namespace facet {
+
+namespace {
+
+// How long a thread polls before it sleeps, waiting for the next job (a worker) or for the others to
+// finish (the caller). A draw is one or two jobs, and a frame of many small draws (Lost Empire's
+// transparent pass: 4,064) would otherwise pay a sleep and a wake-up, tens of microseconds, for each.
+constexpr int kSpinRounds = 4000;  // of a pause instruction each: some tens of microseconds
+
+void cpuRelax() {
+#if defined(__x86_64__) || defined(__i386__)
+    _mm_pause();
+#endif
+}
+
+// True when `ready` became true while polling.
+template <class Ready>
+bool spinUntil(const Ready& ready) {
+    for (int round = 0; round < kSpinRounds; ++round) {
+        if (ready()) return true;
+        cpuRelax();
+    }
+    return false;
+}
+
+}  // namespace
 
 ThreadPool::ThreadPool(int threads) {
     if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -37,6 +66,10 @@ void ThreadPool::runItems(int thread) {
 void ThreadPool::workerLoop(int thread) {
     std::uint64_t seen = 0;
     for (;;) {
+        spinUntil([&] {
+            return stopping_.load(std::memory_order_acquire) ||
+                   generation_.load(std::memory_order_acquire) != seen;
+        });
         {
             std::unique_lock lock(mutex_);
             wake_.wait(lock, [&] { return stopping_ || generation_ != seen; });
@@ -68,7 +101,8 @@ void ThreadPool::parallelFor(std::size_t count, const std::function<void(std::si
     }
     wake_.notify_all();
     runItems(0);
-    std::unique_lock lock(mutex_);
+    spinUntil([&] { return busy_.load(std::memory_order_acquire) == 0; });
+    std::unique_lock lock(mutex_);  // taken even when the spin saw the end: the workers' writes are seen
     done_.wait(lock, [&] { return busy_ == 0; });
     body_ = nullptr;
     if (failure_) std::rethrow_exception(std::exchange(failure_, nullptr));

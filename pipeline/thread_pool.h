@@ -43,10 +43,11 @@ class ThreadPool {
     const std::function<void(std::size_t, int)>* body_ = nullptr;
     std::size_t count_ = 0;
     std::atomic<std::size_t> next_{0};
-    int busy_ = 0;                  // workers still inside the current job
-    std::exception_ptr failure_;    // the current job's first exception
-    std::uint64_t generation_ = 0;  // bumped for every job, so a worker runs each job once
-    bool stopping_ = false;
+    // Changed under mutex_; atomic so that waiting threads may poll them before they sleep.
+    std::atomic<int> busy_{0};                  // workers still inside the current job
+    std::exception_ptr failure_;                // the current job's first exception
+    std::atomic<std::uint64_t> generation_{0};  // bumped for every job, so a worker runs each job once
+    std::atomic<bool> stopping_{false};
 };
 
 // pool.parallelFor(count, body), or the same items in order on the calling thread (thread 0) when
