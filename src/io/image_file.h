@@ -1,6 +1,6 @@
 // The image files underneath image_io.h: one reader interface over the two libraries that decode them.
-// PNG and PPM are read and written here through libpng and plain C (image_formats.cpp), the formats
-// OpenImageIO itself hands to those libraries; every other format goes through OpenImageIO, which lives
+// PNG is read here through libpng and written through zlib, PPM written by hand (image_formats.cpp):
+// the formats a render writes by default; every other format goes through OpenImageIO, which lives
 // in a module of its own (libfacet_openimageio.so, oiio_module.cpp) loaded on first use. Linking
 // OpenImageIO binds ~260 shared libraries before main() (a quarter of a second), which a render that
 // reads and writes PNG never needs.
@@ -110,7 +110,7 @@ OpenImageIOLibrary& openImageIO();
 // Whether openImageIO() has loaded the module in this process (for tests of what a command loads).
 bool openImageIOLoaded();
 
-// PNG through libpng and binary PPM (P6) by hand: the formats a render writes by default.
+// The built-in library: PNG read (libpng) and written (zlib, in bands), binary PPM (P6) written.
 ImageLibrary& builtInImageLibrary();
 
 // Whether builtInImageLibrary() writes the format of `path` (by its extension, any case: .png, .ppm).

@@ -381,8 +381,9 @@ std::string writePpm(const std::string& path, const ImagePixels& pixels) {
     const std::size_t rowBytes = static_cast<std::size_t>(pixels.width) * 3;
     bool ok = std::fprintf(file, "P6\n%d %d\n255\n", pixels.width, pixels.height) > 0;
     std::vector<std::uint8_t> scratch;
-    for (int y = 0; ok && y < pixels.height; y += kPngBandRows) {
-        const int count = std::min(kPngBandRows, pixels.height - y);
+    constexpr int kRowsPerWrite = 64;  // rows encoded (when `pixels.rows` makes them) and written at once
+    for (int y = 0; ok && y < pixels.height; y += kRowsPerWrite) {
+        const int count = std::min(kRowsPerWrite, pixels.height - y);
         ok = std::fwrite(pixels.codes(y, count, scratch), 1, rowBytes * count, file) == rowBytes * count;
     }
     const int savedErrno = errno;
