@@ -5,9 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#if defined(__F16C__)
-#include <immintrin.h>
-#endif
+#include <immintrin.h>  // F16C's half conversion
 
 #include "glsl.h"
 #include "state.h"
@@ -62,6 +60,21 @@ inline float roundToHalf(float x) {
     return std::clamp(rounded, -kLargestHalf, kLargestHalf);
 }
 
+// roundToHalf of each channel through F16C at once (round to nearest even; 16 times faster), clamped to
+// ±65504 first so that none overflows to Inf — the value is the second operand of max and min, which
+// return it when it is NaN, so NaN stays NaN. Compiled for F16C wherever it is included, so that a test
+// can check it against roundToHalf on a CPU with F16C whatever the build's level; roundToColorBuffer
+// calls it only in code compiled for F16C (the AVX2 and AVX-512 copies of the frame's code).
+[[gnu::target("f16c")]] inline vec4 roundToHalfF16c(vec4 c) {
+    const __m128 largest = _mm_set1_ps(65504.0f);
+    __m128 v = _mm_setr_ps(c.r, c.g, c.b, c.a);
+    v = _mm_min_ps(largest, _mm_max_ps(_mm_xor_ps(largest, _mm_set1_ps(-0.0f)), v));
+    v = _mm_cvtph_ps(_mm_cvtps_ph(v, _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC));
+    alignas(16) float out[4];
+    _mm_store_ps(out, v);
+    return vec4(out[0], out[1], out[2], out[3]);
+}
+
 // c as an 8-bit unsigned normalised channel stores it: round(clamp(c, 0, 1)·255)/255 (OpenGL's float →
 // unorm conversion, 4.6 §2.3.5.2). The value is linear light: 8-bit linear storage is what bands.
 inline float roundToUnorm8(float c) {
@@ -74,16 +87,7 @@ template <ColorBufferFormat kFormat>
 vec4 roundToColorBuffer(vec4 c) {
     if constexpr (kFormat == ColorBufferFormat::Half) {
 #if defined(__F16C__)
-        // The four channels through F16C at once (round to nearest even, as roundToHalf; 16 times
-        // faster than it), clamped to ±65504 first so that none overflows to Inf — the value is the
-        // second operand of max and min, which return it when it is NaN, so NaN stays NaN.
-        const __m128 largest = _mm_set1_ps(65504.0f);
-        __m128 v = _mm_setr_ps(c.r, c.g, c.b, c.a);
-        v = _mm_min_ps(largest, _mm_max_ps(_mm_xor_ps(largest, _mm_set1_ps(-0.0f)), v));
-        v = _mm_cvtph_ps(_mm_cvtps_ph(v, _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC));
-        alignas(16) float out[4];
-        _mm_store_ps(out, v);
-        return vec4(out[0], out[1], out[2], out[3]);
+        return roundToHalfF16c(c);
 #else
         return vec4(roundToHalf(c.r), roundToHalf(c.g), roundToHalf(c.b), roundToHalf(c.a));
 #endif

@@ -5,6 +5,7 @@
 // template, for float lanes and for Float8 lanes.
 #pragma once
 
+#include <immintrin.h>  // x86 only: the reciprocal square root estimate, the sign mask
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -14,9 +15,6 @@
 #include <numbers>
 #include <span>
 #include <string_view>
-#if defined(__AVX__)
-#include <immintrin.h>
-#endif
 
 #include "glsl.h"
 #include "names.h"
@@ -445,7 +443,17 @@ inline float fastInverseSqrt(float x) {
     return y * (1.5f - 0.5f * x * y * y);
 }
 inline Float8 fastInverseSqrt(Float8 x) {
+#if defined(__AVX__)
     const Float8 y = std::bit_cast<Float8>(_mm256_rsqrt_ps(std::bit_cast<__m256>(x)));
+#else
+    // Without AVX, two rsqrtps of four lanes: the same estimate per lane as vrsqrtps of eight.
+    using Float4 = float __attribute__((vector_size(16)));
+    const auto halves = std::bit_cast<std::array<Float4, 2>>(x);
+    const std::array<Float4, 2> estimates{
+        std::bit_cast<Float4>(_mm_rsqrt_ps(std::bit_cast<__m128>(halves[0]))),
+        std::bit_cast<Float4>(_mm_rsqrt_ps(std::bit_cast<__m128>(halves[1])))};
+    const Float8 y = std::bit_cast<Float8>(estimates);
+#endif
     return y * (1.5f - 0.5f * x * y * y);
 }
 // Double lanes (the reference renderer) have no approximation: the exact 1/√x.

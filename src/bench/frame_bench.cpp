@@ -8,6 +8,7 @@
 #include "base/errors.h"
 #include "bench/bench.h"
 #include "bench/process_stats.h"
+#include "render/frame_kernels.h"
 #include "render/renderer.h"
 
 namespace facet {
@@ -46,6 +47,7 @@ void runBench(const BenchOptions& options, std::ostream& out) {
     out << "model      " << options.model.string() << "\n";
     out << "image      " << scene.width << "x" << scene.height << ", " << context.pool.threads()
         << (context.pool.threads() == 1 ? " thread" : " threads") << ", built-in Blinn-Phong shader\n";
+    out << "code       compiled for " << describeFrameKernels() << "\n";
     const Antialiasing aa = scene.pipeline.antialiasing;
     out << "samples    " << samplesPerPixel(aa) << " per pixel (--aa " << nameOf(aa) << ")\n";
     out << "triangles  " << prepared.triangleCount << " (" << stats.trianglesRasterized

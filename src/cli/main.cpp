@@ -13,6 +13,7 @@
 #include "cli/render_command.h"
 #include "cli/step_command.h"
 #include "cli/trade_command.h"
+#include "render/frame_kernels.h"
 
 int main(int argc, char** argv) {
     // Large blocks from the heap, kept after they are freed, instead of a fresh mapping each: loading a
@@ -24,7 +25,15 @@ int main(int argc, char** argv) {
     mallopt(M_TOP_PAD, 64 << 20);
     CLI::App app{"Facet: a software rasterizer. Renders OBJ models and scene files to images on the CPU."};
     app.require_subcommand(1);
-    app.set_version_flag("--version", "facet 0.1");
+    app.set_version_flag("--version", [] {
+        std::string text = "facet 0.1\nframe code: ";
+        try {
+            text += facet::describeFrameKernels();
+        } catch (const facet::InputError& e) {
+            text += e.what();
+        }
+        return text;
+    });
 
     facet::cli::RenderArgs renderArgs;
     CLI::App* renderCommand = facet::cli::addRenderCommand(app, renderArgs);
@@ -56,6 +65,9 @@ int main(int argc, char** argv) {
     }
 
     try {
+        // FACET_ISA (src/render/frame_kernels.h) is checked before any work: a bad one is one error,
+        // not one per model of a batch.
+        facet::frameKernels();
         if (*renderCommand) return facet::cli::render(renderArgs);
         if (*compareCommand) return facet::cli::compare(compareArgs);
         if (*stepCommand) {

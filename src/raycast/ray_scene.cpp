@@ -216,8 +216,8 @@ bool RayScene::occluded(const vec3& origin, const vec3& direction, float tnear, 
     return ray.tfar == -std::numeric_limits<float>::infinity();
 }
 
-unsigned RayScene::occluded8(const Vec3x8& origin, const Vec3x8& direction, Float8 tnear, Float8 tfar,
-                             unsigned lanes) const {
+unsigned RayScene::occluded8(const Vec3x8& origin, const Vec3x8& direction, const Float8& tnear,
+                             const Float8& tfar, unsigned lanes) const {
     alignas(32) int valid[8];
     alignas(32) RTCRay8 rays{};
     bool any = false;

@@ -56,8 +56,10 @@ class RayScene {
     // it reports "not occluded".
     bool occluded(const vec3& origin, const vec3& direction, float tnear, float tfar) const;
     // Eight such rays at once (an 8-wide Embree packet); lanes outside `lanes` (bit i: lane i) are not
-    // traced. Returns the occluded lanes as bits.
-    unsigned occluded8(const Vec3x8& origin, const Vec3x8& direction, Float8 tnear, Float8 tfar,
+    // traced. Returns the occluded lanes as bits. The lanes come by reference: this function is compiled
+    // for baseline x86-64 and called from every copy of the frame's code (render/frame_kernels.h), and
+    // a Float8 by value travels in a register with AVX and in memory without.
+    unsigned occluded8(const Vec3x8& origin, const Vec3x8& direction, const Float8& tnear, const Float8& tfar,
                        unsigned lanes) const;
 
     // Camera rays. Facing: the winding of a triangle as the ray sees it decides whether it is culled:

@@ -613,12 +613,6 @@ std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, TransparencyMo
     return plan;
 }
 
-FrameStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawContext& context,
-                       FrameMemory& memory, std::uint8_t terms) {
-    NullObserver unobserved;
-    return renderFrame(prepared, target, context, memory, unobserved, terms);
-}
-
 DrawStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawContext& context,
                       std::uint8_t terms) {
     FrameMemory memory;

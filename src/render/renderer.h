@@ -15,6 +15,7 @@
 #include "pipeline/pipeline.h"
 #include "pipeline/sample_position.h"
 #include "raycast/ray_scene.h"
+#include "render/frame_kernels.h"
 #include "render/transparency_sort.h"
 #include "scene/camera.h"
 #include "scene/mesh.h"
@@ -121,6 +122,9 @@ struct FrameStats {
     std::size_t transparentRuns = 0;  // draw calls of the transparent pass
     FragmentListStats fragmentLists;  // exact transparency: fragments stored, the longest list, bytes held
     double resolveMilliseconds = 0;   // exact transparency: sorting and compositing the lists
+    // The copy of the frame's code that drew it (frame_kernels.h): the dispatched renderFrame's choice;
+    // baseline for an observed frame, which always runs the baseline code.
+    InstructionSet instructionSet = InstructionSet::Baseline;
 };
 
 // One draw call of a frame, in order: an opaque part whole, or a run of consecutive transparent
@@ -146,7 +150,9 @@ struct PlannedDraw {
 std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, TransparencyMode mode, FrameMemory& memory,
                                    FrameStats& stats);
 
-// Clears `target` to the scene's background and draws every object. `target` must be scene-sized.
+// Clears `target` to the scene's background and draws every object. `target` must be scene-sized. The
+// code that runs is the copy compiled for the widest instruction set the CPU has (or FACET_ISA's:
+// render/frame_kernels.h).
 // With supersampling (scene.pipeline.antialiasing) the frame is drawn once per sample and `target`
 // ends with the average colour and the last pass's depth.
 // `terms` (LightingTerm bits) selects the lighting terms drawn: all of them, or one for a component image.

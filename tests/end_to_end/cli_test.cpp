@@ -76,6 +76,29 @@ TEST(Cli, OpenImageIOIsLoadedOnlyForFormatsThatNeedIt) {
     EXPECT_NE(exr.err.find("libOpenImageIO"), std::string::npos);
 }
 
+// FACET_ISA forces the copy of the frame's code (render/frame_kernels.h), and --version names it; a
+// name that is no instruction set is one line of error before anything is drawn, exit 1, no image.
+// Breaks if the variable is ignored, or checked only when a frame is drawn (a batch would repeat the
+// error per model).
+TEST(Cli, FacetIsaForcesTheFrameCodeAndABadOneIsOneError) {
+    TempDir dir;
+    ::setenv("FACET_ISA", "baseline", 1);
+    const RunResult version = runFacet("--version", dir);
+    ::setenv("FACET_ISA", "sse9", 1);
+    const RunResult bad =
+        runFacet("render " + quoted(std::filesystem::path(FACET_SOURCE_DIR) / "models/cube/cube.obj") +
+                     " -o " + quoted(dir.path() / "cube.png") + " --width 32 --height 24",
+                 dir);
+    ::unsetenv("FACET_ISA");
+    ASSERT_EQ(version.status, 0) << version.err;
+    EXPECT_NE(version.out.find("frame code: baseline (widest this CPU runs: "), std::string::npos)
+        << version.out;
+    EXPECT_EQ(bad.status, 1);
+    EXPECT_EQ(bad.err,
+              "facet: error: FACET_ISA=\"sse9\" names no instruction set (one of: baseline, avx2, avx512)\n");
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / "cube.png"));
+}
+
 // The same render on 1, 2 and 7 threads gives the same image: every float of every pixel. (The EXR
 // files' bytes may differ: OpenEXR's writer does not promise identical files, only identical pixels.)
 TEST(Cli, ThreadCountDoesNotChangeTheImage) {
