@@ -4,6 +4,7 @@
 // submission order, chunk after chunk, so the image is the same bytes for any thread count or tile size.
 #pragma once
 
+#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <span>
@@ -530,13 +531,12 @@ std::size_t drawBatchTiles(const TileGrid& grid, std::span<const SetupChunk> chu
                            const typename S::Uniforms& uniforms, Framebuffer& target, ThreadPool& pool,
                            bool inOrder, std::vector<std::uint32_t>& activeTiles,
                            std::span<DrawStats> threadStats, Observer& observer) {
+    // The tiles some chunk binned a triangle to, in tile order: each chunk's list, merged.
     activeTiles.clear();
-    for (int tile = 0; tile < grid.count(); ++tile)
-        for (const SetupChunk& chunk : chunks)
-            if (!chunk.bins[static_cast<std::size_t>(tile)].empty()) {
-                activeTiles.push_back(static_cast<std::uint32_t>(tile));
-                break;
-            }
+    for (const SetupChunk& chunk : chunks)
+        activeTiles.insert(activeTiles.end(), chunk.touchedTiles.begin(), chunk.touchedTiles.end());
+    std::sort(activeTiles.begin(), activeTiles.end());
+    activeTiles.erase(std::unique(activeTiles.begin(), activeTiles.end()), activeTiles.end());
     if constexpr (Observer::enabled) {
         // Watched draws (the step mode) are for reading, not speed: one copy of the tile loop per shader
         // and observer, with the depth coding and the colour buffer's rounding chosen per fragment

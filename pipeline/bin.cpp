@@ -25,7 +25,8 @@ PixelRect TileGrid::tileRect(int index) const {
 }
 
 void binTriangle(const TileGrid& grid, const TriangleSetup& setup, std::uint32_t setupIndex,
-                 std::vector<std::vector<std::uint32_t>>& bins, std::int64_t sampleReach) {
+                 std::vector<std::vector<std::uint32_t>>& bins, std::int64_t sampleReach,
+                 std::vector<std::uint32_t>* touched) {
     const int c0 = std::max(setup.minX / grid.tileSize, grid.firstColumn) - grid.firstColumn;
     const int c1 = std::min(setup.maxX / grid.tileSize - grid.firstColumn, grid.columns - 1);
     const int r0 = std::max(setup.minY / grid.tileSize, grid.firstRow) - grid.firstRow;
@@ -49,6 +50,7 @@ void binTriangle(const TileGrid& grid, const TriangleSetup& setup, std::uint32_t
                 }
                 if (outside) continue;
             }
+            if (touched && bins[tile].empty()) touched->push_back(static_cast<std::uint32_t>(tile));
             bins[tile].push_back(setupIndex);
         }
 }

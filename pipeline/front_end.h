@@ -110,7 +110,7 @@ void setupTriangles(std::span<const std::uint32_t> indices, std::size_t first, s
         setup.varyingPlaneOffset = static_cast<std::uint32_t>(chunk.varyingPlanes.size());
         chunk.setups.push_back(setup);
         chunk.varyingPlanes.insert(chunk.varyingPlanes.end(), planes, planes + planeFloats);
-        binTriangle(grid, setup, index, chunk.bins, sampleReach);
+        binTriangle(grid, setup, index, chunk.bins, sampleReach, &chunk.touchedTiles);
     };
 
     for (std::size_t t = first; t < last; ++t) {
@@ -189,9 +189,14 @@ std::size_t setupBatch(std::span<const std::uint32_t> indices, std::size_t batch
         SetupChunk& chunk = chunks[c];
         chunk.setups.clear();
         chunk.varyingPlanes.clear();
-        chunk.bins.resize(static_cast<std::size_t>(grid.count()));
-        for (auto& bin : chunk.bins)
-            bin.clear();
+        // Only the bins the last batch filled hold anything; a new grid size starts them all afresh.
+        if (chunk.bins.size() != static_cast<std::size_t>(grid.count())) {
+            chunk.bins.assign(static_cast<std::size_t>(grid.count()), {});
+        } else {
+            for (const std::uint32_t tile : chunk.touchedTiles)
+                chunk.bins[tile].clear();
+        }
+        chunk.touchedTiles.clear();
         chunk.stats = DrawStats{};
         const std::size_t first = batchStart + c * triangleChunk;
         setupTriangles(indices, first, std::min(first + triangleChunk, batchEnd), state, grid, shaded,

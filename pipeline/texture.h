@@ -85,6 +85,22 @@ inline int wrapTexel(float i, int n) {
     return m < 0 ? m + n : m;
 }
 
+// wrapTexel(i, n) and wrapTexel(i + 1, n) for an integer-valued i (a floor), as bilinear filtering
+// needs them. Below 2^24 every integer is a float, so fmod, i + 1 and the int remainder are all exact
+// and agree: the remainder costs a fraction of fmodf's call, and the second index follows from the
+// first. Beyond, wrapTexel as it is.
+inline void wrapTexelPair(float i, int n, int& first, int& second) {
+    if (std::abs(i) < 16777216.0f) {
+        int m = static_cast<int>(i) % n;
+        if (m < 0) m += n;
+        first = m;
+        second = m + 1 == n ? 0 : m + 1;
+        return;
+    }
+    first = wrapTexel(i, n);
+    second = wrapTexel(i + 1.0f, n);
+}
+
 }  // namespace detail
 
 // texture(sampler, uv) with GL_LINEAR in GLSL terms. v = 0 is the bottom row of the image, as OBJ
@@ -97,8 +113,9 @@ inline vec4 sampleBilinear(const Texture& t, vec2 uv) {
     if (!std::isfinite(u) || !std::isfinite(v)) return vec4(0.0f);
     const float fu = std::floor(u), fv = std::floor(v);
     const float s = u - fu, r = v - fv;  // bilinear weights
-    const int x0 = detail::wrapTexel(fu, t.width), x1 = detail::wrapTexel(fu + 1.0f, t.width);
-    const int y0 = detail::wrapTexel(fv, t.height), y1 = detail::wrapTexel(fv + 1.0f, t.height);
+    int x0, x1, y0, y1;
+    detail::wrapTexelPair(fu, t.width, x0, x1);
+    detail::wrapTexelPair(fv, t.height, y0, y1);
     return mix(mix(t.texel(x0, y0), t.texel(x1, y0), s), mix(t.texel(x0, y1), t.texel(x1, y1), s), r);
 }
 

@@ -75,6 +75,10 @@ void ThreadPool::workerLoop(int thread) {
             wake_.wait(lock, [&] { return stopping_ || generation_ != seen; });
             if (stopping_) return;
             seen = generation_;
+            // A job the caller has already finished alone is not joined: on a machine busy with other
+            // work a worker may wake long after its job ended, and the caller does not wait for it.
+            if (!open_) continue;
+            ++busy_;
         }
         runItems(thread);
         {
@@ -96,11 +100,17 @@ void ThreadPool::parallelFor(std::size_t count, const std::function<void(std::si
         body_ = &body;
         count_ = count;
         next_.store(0);
-        busy_ = static_cast<int>(workers_.size());
+        open_ = true;
         ++generation_;
     }
     wake_.notify_all();
     runItems(0);
+    {
+        // Every item has begun: from now on no worker joins this job, and only those that did are
+        // waited for.
+        std::lock_guard lock(mutex_);
+        open_ = false;
+    }
     spinUntil([&] { return busy_.load(std::memory_order_acquire) == 0; });
     std::unique_lock lock(mutex_);  // taken even when the spin saw the end: the workers' writes are seen
     done_.wait(lock, [&] { return busy_ == 0; });

@@ -26,7 +26,9 @@ class ThreadPool {
 
     // Calls body(item, thread) for every item in [0, count), spread over the threads, and returns when
     // all are done. `thread` in [0, threads()) names the calling thread, for per-thread scratch.
-    // One std::function call per item, not per pixel: items are tiles or chunks of work.
+    // One std::function call per item, not per pixel: items are tiles or chunks of work. Once every
+    // item has begun, the caller waits only for the workers that joined the job: one that wakes later
+    // (a machine busy with other work may not run it for milliseconds) skips the job.
     // When `body` throws (on any thread), the items not yet begun are skipped and the first exception
     // is rethrown here once every thread is done, so the pool can run the next job: a batch of renders
     // goes on after an input that ran out of memory.
@@ -44,7 +46,8 @@ class ThreadPool {
     std::size_t count_ = 0;
     std::atomic<std::size_t> next_{0};
     // Changed under mutex_; atomic so that waiting threads may poll them before they sleep.
-    std::atomic<int> busy_{0};                  // workers still inside the current job
+    std::atomic<int> busy_{0};                  // workers that joined the current job and are still in it
+    bool open_ = false;                         // workers may still join the current job
     std::exception_ptr failure_;                // the current job's first exception
     std::atomic<std::uint64_t> generation_{0};  // bumped for every job, so a worker runs each job once
     std::atomic<bool> stopping_{false};

@@ -89,5 +89,52 @@ TEST(Bin, SameBytesForAnyThreadCountAndTileSize) {
     }
 }
 
+// A context reused from a large draw for a small one: the small draw's image is the one a fresh context
+// gives. The front end empties only the bins the last batch filled, and the back end visits only the
+// tiles the chunks list. Breaks caught: a bin left holding the large draw's triangles, a tile binned but
+// not listed (never drawn), or a grid of another tile count reusing the old bins.
+TEST(Bin, AReusedContextDrawsOnlyTheNewDrawsTiles) {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(-1.2f, 1.2f);
+    std::vector<testing::ClipSpaceColorShader::Attributes> many;
+    for (int i = 0; i < 3 * 3000; ++i)
+        many.push_back({vec4(u(rng), u(rng), 0.5f * u(rng), 1.0f), vec4(u(rng), u(rng), u(rng), 1.0f)});
+    const std::vector<testing::ClipSpaceColorShader::Attributes> few = {
+        {vec4(-0.9f, -0.9f, 0.0f, 1.0f), vec4(1, 0, 0, 1)},
+        {vec4(0.9f, -0.5f, 0.0f, 1.0f), vec4(0, 1, 0, 1)},
+        {vec4(0.1f, 0.9f, 0.0f, 1.0f), vec4(0, 0, 1, 1)}};
+    auto drawInto = [](Framebuffer& fb, const std::vector<testing::ClipSpaceColorShader::Attributes>& v,
+                       DrawContext& context) {
+        std::vector<std::uint32_t> indices(v.size());
+        for (std::size_t i = 0; i < indices.size(); ++i)
+            indices[i] = static_cast<std::uint32_t>(i);
+        DrawState state = testing::stateFor(fb);
+        state.depth.testEnabled = false;  // the later draw covers the earlier one wherever it lies
+        draw<testing::ClipSpaceColorShader>(state, {},
+                                            std::span<const testing::ClipSpaceColorShader::Attributes>(v),
+                                            std::span<const std::uint32_t>(indices), fb, context);
+    };
+    for (const int threads : {1, 2}) {
+        DrawContext reused(threads, 16);
+        Framebuffer large(203, 157), small(203, 157), alone(203, 157);
+        for (Framebuffer* fb : {&large, &small, &alone})
+            fb->clearColor(vec4(0));
+        drawInto(large, many, reused);
+        drawInto(small, few, reused);
+        drawInto(small, few, reused);  // twice: the second draw's bins hold only its own triangle
+        DrawContext fresh(threads, 16);
+        drawInto(alone, few, fresh);
+        EXPECT_TRUE(small.colorPixels() == alone.colorPixels()) << threads << " threads";
+        // A framebuffer of another size: a grid of another tile count, the same context.
+        Framebuffer other(64, 48), otherAlone(64, 48);
+        other.clearColor(vec4(0));
+        otherAlone.clearColor(vec4(0));
+        drawInto(other, few, reused);
+        DrawContext fresh2(threads, 16);
+        drawInto(otherAlone, few, fresh2);
+        EXPECT_TRUE(other.colorPixels() == otherAlone.colorPixels()) << threads << " threads";
+    }
+}
+
 }  // namespace
 }  // namespace facet

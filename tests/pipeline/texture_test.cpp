@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -74,6 +75,27 @@ TEST(Texture, RepeatWrapping) {
     EXPECT_FLOAT_EQ(sampleBilinear(t, {0.0f, 0.25f}).r, 0.5f * (7 + 4));
     // v = 0 lies halfway between the bottom row and, wrapped, the top row.
     EXPECT_FLOAT_EQ(sampleBilinear(t, {0.125f, 0.0f}).r, 0.5f * (4 + 0));
+}
+
+// The bilinear filter's pair of wrapped indices, ⌊u⌋ and ⌊u⌋ + 1, by integer remainder below 2^24: the
+// same as fmod's wrapTexel for every integer-valued coordinate, negative, at the texture's edge, at
+// and beyond 2^24 (where u + 1 rounds back to u). Breaks caught: the second index not wrapped to 0 at
+// the last texel, a negative remainder left negative, or the exact-integer bound set too high.
+TEST(Texture, WrappedIndexPairsMatchFmod) {
+    for (const int n : {1, 3, 4, 256, 1000, 4096}) {
+        std::vector<float> coordinates;
+        for (int i = -3 * n - 2; i <= 3 * n + 2; ++i)
+            coordinates.push_back(static_cast<float>(i));
+        for (const float big : {16777214.0f, 16777215.0f, 16777216.0f, 16777218.0f, 3e9f, 1e20f})
+            for (const float sign : {1.0f, -1.0f})
+                coordinates.push_back(sign * big);
+        for (const float i : coordinates) {
+            int first = -1, second = -1;
+            detail::wrapTexelPair(i, n, first, second);
+            EXPECT_EQ(first, detail::wrapTexel(i, n)) << i << " mod " << n;
+            EXPECT_EQ(second, detail::wrapTexel(i + 1.0f, n)) << i << " + 1 mod " << n;
+        }
+    }
 }
 
 // An 8-bit texture decodes R, G and B through colorFromCode and alpha through alphaFromCode, and samples
