@@ -1,5 +1,7 @@
 // Which compiled copy of the frame's hot path renders (frame_kernels.h): the widest this CPU runs, or
 // the one FACET_ISA names.
+#include <cpuid.h>
+
 #include <cstdlib>
 #include <mutex>
 #include <optional>
@@ -88,6 +90,12 @@ const FrameKernels& chooseKernels() {
     return checkedKernels(*set, std::string("FACET_ISA=") + forced);
 }
 
+// F16C (CPUID leaf 1, ECX bit 29), which clang's __builtin_cpu_supports does not name.
+bool cpuHasF16c() {
+    unsigned eax = 0, ebx = 0, ecx = 0, edx = 0;
+    return __get_cpuid(1, &eax, &ebx, &ecx, &edx) && (ecx & bit_F16C);
+}
+
 struct Choice {
     std::once_flag once;
     const FrameKernels* kernels = nullptr;
@@ -121,9 +129,8 @@ bool cpuSupports(InstructionSet set) {
         case InstructionSet::Baseline:
             return true;
         case InstructionSet::Avx2:
-            return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") &&
-                   __builtin_cpu_supports("f16c") && __builtin_cpu_supports("bmi") &&
-                   __builtin_cpu_supports("bmi2");
+            return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && cpuHasF16c() &&
+                   __builtin_cpu_supports("bmi") && __builtin_cpu_supports("bmi2");
         case InstructionSet::Avx512:
             return cpuSupports(InstructionSet::Avx2) && __builtin_cpu_supports("avx512f") &&
                    __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512cd") &&

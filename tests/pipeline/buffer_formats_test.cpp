@@ -2,6 +2,8 @@
 // stores, checked against hand computations; reversed Z's clipping; z-fighting of two parallel planes
 // for each depth format and near/far ratio, against the resolution a double-precision formula predicts
 // (the table printed here is the one in docs/trade.md); and blending in an 8-bit or half colour buffer.
+#include <cpuid.h>
+
 #include <bit>
 #include <cmath>
 #include <cstdio>
@@ -261,9 +263,9 @@ TEST(ColorBufferFormats, EightBitBlendingRoundsAfterEveryLayer) {
     return _cvtsh_ss(_cvtss_sh(x, _MM_FROUND_TO_NEAREST_INT));
 }
 
-bool cpuHasF16c() {
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("f16c");
+bool cpuHasF16c() {  // CPUID leaf 1, ECX bit 29
+    unsigned eax = 0, ebx = 0, ecx = 0, edx = 0;
+    return __get_cpuid(1, &eax, &ebx, &ecx, &edx) && (ecx & bit_F16C);
 }
 
 // Half: 1/3 is stored as half(1/3) = 0.333251953125, every value as the hardware conversion rounds it
