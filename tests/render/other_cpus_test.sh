@@ -6,7 +6,8 @@
 #   Nehalem  SSE4.2, no AVX: the baseline copy
 #   Haswell  AVX2, FMA, F16C, no AVX-512: the avx2 copy
 # An AVX instruction anywhere on the baseline path (the program's own code, or an inline function of
-# a wider copy that the linker let replace the baseline one) stops the emulated run with SIGILL.
+# a wider copy that the linker let replace the baseline one) stops the emulated run with SIGILL. Where
+# the CPU has no AVX2, FACET_ISA=avx2 must be refused with one line of error.
 # QEMU emulates no AVX-512, so the avx512 copy is compared natively (tests/render/frame_kernels_test.cpp).
 # Usage: other_cpus_test.sh FACET SOURCE_DIR. Exit 77 (skipped) without qemu-x86_64 (Debian: qemu-user).
 set -euo pipefail
@@ -56,6 +57,20 @@ for cpu_and_copy in "qemu64 baseline" "Nehalem baseline" "Haswell avx2"; do
     if [[ $version != *"frame code: $copy (widest this CPU runs: $copy;"* ]]; then
         echo "FAIL $cpu: expected the $copy copy, facet --version says: ${version//$'\n'/ | }"
         failed=1
+    fi
+    # Forcing a copy this CPU cannot run is one line of error and exit 1, never an illegal instruction.
+    if [[ $copy == baseline ]]; then
+        status=0
+        FACET_ISA=avx2 "${emulated[@]}" "$facet" render "$source/models/cube/cube.obj" -o "$work/refused.png" \
+            >/dev/null 2>"$work/refusal" || status=$?
+        refusal=$(grep -v 'TCG doesn.t support' "$work/refusal" || true)
+        if [[ $status -ne 1 || -e $work/refused.png ||
+            $refusal != "facet: error: FACET_ISA=avx2: this CPU cannot run avx2 instructions (it runs: baseline)" ]]; then
+            echo "FAIL $cpu: FACET_ISA=avx2 was not refused as expected (exit $status): $refusal"
+            failed=1
+        else
+            echo "ok   $cpu: FACET_ISA=avx2 refused: $refusal"
+        fi
     fi
     for spec in "${cases[@]}"; do
         name=${spec%%|*}
