@@ -41,6 +41,7 @@ const FrameKernels* findBuilt(InstructionSet set) {
     return nullptr;
 }
 
+// The names of the built copies that `keep` accepts, comma-separated, for messages.
 std::string namesList(bool (*keep)(InstructionSet)) {
     std::string list;
     for (const FrameKernels& kernels : builtFrameKernels()) {
@@ -49,6 +50,10 @@ std::string namesList(bool (*keep)(InstructionSet)) {
         list += nameOf(kernels.instructionSet);
     }
     return list;
+}
+
+bool everyCopy(InstructionSet) {
+    return true;
 }
 
 // The widest built copy this CPU runs.
@@ -65,7 +70,7 @@ const FrameKernels& checkedKernels(InstructionSet set, std::string_view source) 
     std::string where(source);
     if (!kernels)
         throw InputError(where + ": this build of facet has no " + std::string(nameOf(set)) +
-                         " code (built: " + namesList([](InstructionSet) { return true; }) + ")");
+                         " code (built: " + namesList(everyCopy) + ")");
     if (!cpuSupports(set))
         throw InputError(where + ": this CPU cannot run " + std::string(nameOf(set)) +
                          " instructions (it runs: " + namesList(cpuSupports) + ")");
@@ -78,15 +83,9 @@ const FrameKernels& chooseKernels() {
     const char* forced = std::getenv("FACET_ISA");
     if (!forced || !*forced) return widestSupported();
     const std::optional<InstructionSet> set = parseName<InstructionSet>(forced);
-    if (!set) {
-        std::string names;
-        for (const std::string& name : namesOf<InstructionSet>()) {
-            if (!names.empty()) names += ", ";
-            names += name;
-        }
-        throw InputError("FACET_ISA=" + inQuotes(forced) + " names no instruction set (one of: " + names +
-                         ")");
-    }
+    if (!set)
+        throw InputError("FACET_ISA=" + inQuotes(forced) +
+                         " names no instruction set (one of: " + namesList(everyCopy) + ")");
     return checkedKernels(*set, std::string("FACET_ISA=") + forced);
 }
 
@@ -156,7 +155,7 @@ std::string describeFrameKernels() {
     text += " (widest this CPU runs: ";
     text += nameOf(widestSupported().instructionSet);
     text += "; built: ";
-    text += namesList([](InstructionSet) { return true; });
+    text += namesList(everyCopy);
     text += ")";
     return text;
 }

@@ -59,6 +59,14 @@ struct Variant {
     std::function<void(Scene&)> change;
 };
 
+// One variant per name E's table offers: `file` with `apply(scene, value)`.
+template <class E, class Apply>
+void addEveryValue(std::vector<Variant>& list, const std::string& label, const char* file, Apply apply) {
+    for (const EnumName<E>& entry : enumNames(E{}))
+        list.push_back({label + " " + std::string(entry.name), file,
+                        [apply, value = entry.value](Scene& s) { apply(s, value); }});
+}
+
 // Every bundled scene, and the textured spot through each choice that reaches different code: shading
 // frequencies, reflection models, the approximations, colour and depth buffer formats, anti-aliasing,
 // texture filters, transparency modes, the OpenGL preset.
@@ -68,32 +76,26 @@ std::vector<Variant> variants() {
                              "lighting-scene.json", "near-plane.json", "shadows.json", "shared-edge.json"})
         list.push_back({file, file, [](Scene&) {}});
     const char* spot = "spot/spot_triangulated.obj";
-    for (const std::string& name : namesOf<ShadingFrequency>())
-        list.push_back({"shading " + name, spot,
-                        [name](Scene& s) { s.lighting.shading = *parseName<ShadingFrequency>(name); }});
-    for (const std::string& name : namesOf<ReflectionModel>())
-        list.push_back({"reflection " + name, spot,
-                        [name](Scene& s) { s.lighting.model = *parseName<ReflectionModel>(name); }});
+    addEveryValue<ShadingFrequency>(list, "shading", spot,
+                                    [](Scene& s, ShadingFrequency v) { s.lighting.shading = v; });
+    addEveryValue<ReflectionModel>(list, "reflection", spot,
+                                   [](Scene& s, ReflectionModel v) { s.lighting.model = v; });
+    addEveryValue<ColorBufferFormat>(list, "color buffer", spot,
+                                     [](Scene& s, ColorBufferFormat v) { s.pipeline.colorBuffer = v; });
+    addEveryValue<DepthBufferFormat>(list, "depth buffer", spot,
+                                     [](Scene& s, DepthBufferFormat v) { s.pipeline.depth = v; });
+    addEveryValue<TextureFilter>(list, "texture filter", spot,
+                                 [](Scene& s, TextureFilter v) { s.textures.filter = v; });
+    addEveryValue<TransparencyMode>(list, "transparency", "fog-and-glass.json",
+                                    [](Scene& s, TransparencyMode v) { s.transparency.mode = v; });
     list.push_back({"exact powers, fast normalize", spot, [](Scene& s) {
                         s.lighting.powers = MathPrecision::Exact;
                         s.lighting.normalize = Normalization::Fast;
                     }});
     list.push_back({"gl preset", spot, [](Scene& s) { s.lighting.preset = LightingPreset::GL; }});
-    for (const std::string& name : namesOf<ColorBufferFormat>())
-        list.push_back({"color buffer " + name, spot,
-                        [name](Scene& s) { s.pipeline.colorBuffer = *parseName<ColorBufferFormat>(name); }});
-    for (const std::string& name : namesOf<DepthBufferFormat>())
-        list.push_back({"depth buffer " + name, spot,
-                        [name](Scene& s) { s.pipeline.depth = *parseName<DepthBufferFormat>(name); }});
     for (const Antialiasing aa : {Antialiasing::Msaa4, Antialiasing::Ssaa4})
         list.push_back({"antialiasing " + std::string(nameOf(aa)), spot,
                         [aa](Scene& s) { s.pipeline.antialiasing = aa; }});
-    for (const std::string& name : namesOf<TextureFilter>())
-        list.push_back({"texture filter " + name, spot,
-                        [name](Scene& s) { s.textures.filter = *parseName<TextureFilter>(name); }});
-    for (const std::string& name : namesOf<TransparencyMode>())
-        list.push_back({"transparency " + name, "fog-and-glass.json",
-                        [name](Scene& s) { s.transparency.mode = *parseName<TransparencyMode>(name); }});
     list.push_back({"affine, no culling", spot, [](Scene& s) {
                         s.pipeline.interpolation = Interpolation::Affine;
                         s.pipeline.cull = CullMode::None;
