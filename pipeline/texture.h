@@ -90,6 +90,13 @@ inline int wrapTexel(float i, int n) {
 // and agree: the remainder costs a fraction of fmodf's call, and the second index follows from the
 // first. Beyond, wrapTexel as it is.
 inline void wrapTexelPair(float i, int n, int& first, int& second) {
+    // Inside the texture (texture coordinates in [0, 1), the common case): no remainder, whose integer
+    // division would cost more than the rest of the sample.
+    if (i >= 0.0f && i < static_cast<float>(n - 1)) {
+        first = static_cast<int>(i);
+        second = first + 1;
+        return;
+    }
     if (std::abs(i) < 16777216.0f) {
         int m = static_cast<int>(i) % n;
         if (m < 0) m += n;
