@@ -96,7 +96,7 @@ unsigned runFragmentShader(FragmentQueue& queue, int n, const typename S::Unifor
 // per shader, without making any of them faster.)
 template <Shader S, FragmentOutput kOutput, class Depth, bool kRoundColor, class Observer>
 void shadeQueue(FragmentQueue& queue, const DrawPlan& plan, const Depth& depth,
-                const typename S::Uniforms& uniforms, Framebuffer& target, DrawStats& stats,
+                const typename S::Uniforms& uniforms, const FramebufferPlanes& target, DrawStats& stats,
                 Observer& observer) {
     constexpr bool kObserving = Observer::enabled;
     const int n = queue.count;
@@ -214,7 +214,7 @@ bool interpolateRow(const TriangleSetup& setup, const float* planes, const Varyi
 template <Shader S, FragmentOutput kOutput, class Depth, bool kRoundColor, bool kDerivatives, class Observer>
 void depthTestBlock(const TriangleSetup& setup, const float* planes, const CoverageBlock& block,
                     FragmentQueue& queue, const DrawPlan& plan, const Depth& depth,
-                    const typename S::Uniforms& uniforms, Framebuffer& target, DrawStats& stats,
+                    const typename S::Uniforms& uniforms, const FramebufferPlanes& target, DrawStats& stats,
                     Observer& observer) {
     constexpr bool kObserving = Observer::enabled;
     const BlockBarycentrics barycentrics(setup, block.x, block.y);
@@ -283,25 +283,47 @@ void depthTestBlock(const TriangleSetup& setup, const float* planes, const Cover
     }
 }
 
+// Asks for the stored depths the triangle's first rows in `rect` will test, a triangle ahead: the
+// depth test's loads would otherwise wait on memory each time a tile's rows are first read in a frame.
+// Small triangles (most of a dense mesh's) fit in the rows asked for.
+inline void prefetchDepthRows(const TriangleSetup& setup, const PixelRect& rect,
+                              const FramebufferPlanes& target) {
+    constexpr int kRows = 8;
+    const PixelRect box = rasterRect(setup, rect);
+    if (box.empty()) return;
+    const int lastRow = std::min(box.maxY, box.minY + kRows - 1);
+    for (int y = box.minY; y <= lastRow; ++y) {
+        __builtin_prefetch(&target.depth(box.minX, y));
+        __builtin_prefetch(&target.depth(box.maxX, y));
+    }
+}
+
 // One tile: its triangles from every chunk, in submission order. An observer also sees the coverage
 // decision at every sample of a triangle's bounding box inside the tile, before its fragments.
 template <Shader S, FragmentOutput kOutput, class Depth, bool kRoundColor, bool kDerivatives, class Observer>
 void drawTile(const PixelRect& rect, std::size_t tile, std::span<const SetupChunk> chunks,
               const DrawPlan& plan, const Depth& depth, const typename S::Uniforms& uniforms,
-              Framebuffer& target, DrawStats& stats, Observer& observer) {
+              Framebuffer& framebuffer, DrawStats& stats, Observer& observer) {
+    const FramebufferPlanes target = framebuffer.planesToDraw(rect);
     FragmentQueue queue;
     if constexpr (kOutput == FragmentOutput::AppendToLists)
         queue.lists = target.fragmentLists().writer(rect.minX, rect.minY);
     for (const SetupChunk& chunk : chunks) {
         const std::vector<std::uint32_t>& bin = chunk.bins[tile];
         for (std::size_t k = 0; k < bin.size(); ++k) {
-            // Setups were written by the front end a while ago: ask for the next one early.
+            // Setups were written by the front end a while ago: ask early for the one after next, and
+            // for the next one's planes (its setup, asked for one triangle ago, says where they are;
+            // reading the offset of a setup not yet in cache would stall on it here).
+            if (k + 2 < bin.size()) {
+                const char* afterNext = reinterpret_cast<const char*>(&chunk.setups[bin[k + 2]]);
+                __builtin_prefetch(afterNext);
+                __builtin_prefetch(afterNext + 64);
+                __builtin_prefetch(afterNext + 128);
+            }
             if (k + 1 < bin.size()) {
                 const TriangleSetup& next = chunk.setups[bin[k + 1]];
-                __builtin_prefetch(&next);
-                __builtin_prefetch(reinterpret_cast<const char*>(&next) + 64);
-                __builtin_prefetch(reinterpret_cast<const char*>(&next) + 128);
                 __builtin_prefetch(chunk.planesOf(next));
+                prefetchDepthRows(next, rect, target);
             }
             const TriangleSetup& setup = chunk.setups[bin[k]];
             const float* planes = chunk.planesOf(setup);
@@ -366,7 +388,8 @@ struct SampleOffsetsFixed {
 // writing those samples' depths.
 template <Shader S, class Depth>
 void shadeMultisampleQueue(MultisampleQueue& queue, const DrawPlan& plan, const Depth& depth,
-                           const typename S::Uniforms& uniforms, Framebuffer& target, DrawStats& stats) {
+                           const typename S::Uniforms& uniforms, const FramebufferPlanes& target,
+                           DrawStats& stats) {
     const int n = queue.count;
     if (n == 0) return;
     queue.count = 0;
@@ -401,7 +424,7 @@ void depthTestMultisampleBlock(const TriangleSetup& setup, const float* planes, 
                                const std::uint64_t* coverage, std::uint64_t covered,
                                const SampleOffsetsFixed& offsets, MultisampleQueue& queue,
                                const DrawPlan& plan, const Depth& depth, const typename S::Uniforms& uniforms,
-                               Framebuffer& target, DrawStats& stats) {
+                               const FramebufferPlanes& target, DrawStats& stats) {
     const BlockBarycentrics barycentrics(setup, blockX, blockY);
     VaryingPairSlopes uvSlopes;
     if constexpr (kDerivatives) uvSlopes = VaryingPairSlopes(setup, planes, derivativeVarying<S>());
@@ -489,7 +512,8 @@ void depthTestMultisampleBlock(const TriangleSetup& setup, const float* planes, 
 template <Shader S, class Depth, bool kDerivatives>
 void drawMultisampleTile(const PixelRect& tileRect, std::size_t tile, std::span<const SetupChunk> chunks,
                          const DrawPlan& plan, const Depth& depth, const typename S::Uniforms& uniforms,
-                         Framebuffer& target, DrawStats& stats) {
+                         Framebuffer& framebuffer, DrawStats& stats) {
+    const FramebufferPlanes target = framebuffer.planesToDraw(tileRect);
     const SampleOffsetsFixed offsets(plan.samples);
     MultisampleQueue queue;
     for (const SetupChunk& chunk : chunks) {

@@ -53,12 +53,13 @@ void FragmentLists::resolveTile(int tile, Framebuffer& target, ResolveScratch& s
     std::vector<Entry>& entries = scratch.entries;
     [[maybe_unused]] std::vector<ResolvedFragment> observed;  // an observer's view of one pixel's list
     const PixelRect rect = tileRect(tile);
+    const FramebufferPlanes planes = target.planesToDraw(rect);
     for (int y = rect.minY; y <= rect.maxY; ++y) {
         const std::uint32_t* heads = &heads_[pixelIndex(0, y)];
         for (int x = rect.minX; x <= rect.maxX; ++x) {
             const std::uint32_t head = heads[x];
             if (head == kEnd) continue;
-            vec4& color = target.color(x, y);
+            vec4& color = planes.color(x, y);
             const Node& newest = nodes[head];
             if (newest.previous() == kEnd) {
                 // One fragment: nothing to sort.

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -15,6 +16,32 @@ namespace facet {
 
 class ThreadPool;
 
+// The planes of a framebuffer as a draw writes them: what the back end and the fragment lists' resolve
+// are handed for the pixels they were given (Framebuffer::planesToDraw), with the framebuffer's own
+// names. Plain pointers: copying one is free, and reaching a pixel through one costs what it costs
+// through the framebuffer.
+class FramebufferPlanes {
+  public:
+    int width() const { return width_; }
+    vec4& color(int x, int y) const { return color_[index(x, y)]; }
+    DepthFormat::Stored& depth(int x, int y) const { return depth_[index(x, y)]; }
+    vec4* sampleColors(int x, int y) const { return sampleColor_ + index(x, y) * samples_; }
+    DepthFormat::Stored* sampleDepths(int x, int y) const { return sampleDepth_ + index(x, y) * samples_; }
+    FragmentLists& fragmentLists() const { return *lists_; }
+
+  private:
+    friend class Framebuffer;
+    std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * width_ + x; }
+
+    int width_ = 0;
+    std::size_t samples_ = 1;
+    vec4* color_ = nullptr;
+    DepthFormat::Stored* depth_ = nullptr;
+    vec4* sampleColor_ = nullptr;
+    DepthFormat::Stored* sampleDepth_ = nullptr;
+    FragmentLists* lists_ = nullptr;
+};
+
 class Framebuffer {
   public:
     Framebuffer() = default;
@@ -25,22 +52,46 @@ class Framebuffer {
 
     void clearColor(vec4 color);
     void clearDepth(DepthFormat::Stored depth = DepthFormat::kClear);
-    // Colour and depth at once, rows spread over the pool's threads (a 1080p float buffer is 41 MB to
-    // write), and the fragment lists emptied (their memory kept for the next frame).
-    void clear(vec4 color, DepthFormat::Stored depth, ThreadPool& pool);
+    // Colour and depth at once (and every sample's, when multisampled), bands of rows spread over the
+    // pool's threads, and the fragment lists emptied (their memory kept for the next frame).
+    // A 1080p float buffer is 41 MB to write, a 4K one 166 MB: more than a small frame's drawing. So
+    // the framebuffer remembers which cells (kClearCell pixels square) still hold the values of the
+    // last clear, untouched since, and a clear to the same values writes only the others: a frame
+    // that covers a tenth of the screen clears a tenth of it after the first (what a GPU's fast-clear
+    // metadata does). Returns the number of cells written.
+    std::size_t clear(vec4 color, DepthFormat::Stored depth, ThreadPool& pool);
 
-    vec4& color(int x, int y) { return color_[index(x, y)]; }
+    // Pixels, to read or to write. Writing through these (rather than a draw's planesToDraw) leaves the
+    // framebuffer no memory of which cells hold the clear values: the next clear() writes every pixel.
+    vec4& color(int x, int y) {
+        forgetClearedCells();
+        return color_[index(x, y)];
+    }
     const vec4& color(int x, int y) const { return color_[index(x, y)]; }
-    DepthFormat::Stored& depth(int x, int y) { return depth_[index(x, y)]; }
+    DepthFormat::Stored& depth(int x, int y) {
+        forgetClearedCells();
+        return depth_[index(x, y)];
+    }
     DepthFormat::Stored depth(int x, int y) const { return depth_[index(x, y)]; }
+
+    // The planes for a draw (or a resolve) that writes pixels only inside `area`: the cells `area`
+    // overlaps no longer hold the clear values. Safe to call from several threads at once.
+    FramebufferPlanes planesToDraw(const PixelRect& area);
+    static constexpr int kClearCell = 64;
 
     // Multisampling: per-sample colour and depth planes of `samples` samples per pixel (a pixel's samples
     // contiguous, in the standard pattern's order), allocated here and cleared by clear() from then on;
     // 1 releases them, and a framebuffer at one sample allocates and clears nothing more.
     void useSamples(int samples);
     int samples() const { return samples_; }
-    vec4* sampleColors(int x, int y) { return sampleColor_.data() + sampleIndex(x, y); }
-    DepthFormat::Stored* sampleDepths(int x, int y) { return sampleDepth_.data() + sampleIndex(x, y); }
+    vec4* sampleColors(int x, int y) {
+        forgetClearedCells();
+        return sampleColor_.data() + sampleIndex(x, y);
+    }
+    DepthFormat::Stored* sampleDepths(int x, int y) {
+        forgetClearedCells();
+        return sampleDepth_.data() + sampleIndex(x, y);
+    }
     // The box filter of multisampling: each pixel's colour becomes the average of its samples in linear
     // light, summed pairwise in sample order (so a pixel whose samples are equal keeps their exact
     // value), rounded as `format` stores it; its depth becomes its first sample's. Rows spread over the
@@ -60,6 +111,9 @@ class Framebuffer {
   private:
     std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * width_ + x; }
     std::size_t sampleIndex(int x, int y) const { return index(x, y) * static_cast<std::size_t>(samples_); }
+    void forgetClearedCells() { clearedCellsKnown_ = false; }
+    int cellsAcross() const { return (width_ + kClearCell - 1) / kClearCell; }
+    int cellsDown() const { return (height_ + kClearCell - 1) / kClearCell; }
 
     int width_ = 0;
     int height_ = 0;
@@ -69,6 +123,12 @@ class Framebuffer {
     int samples_ = 1;
     LargeBuffer<vec4> sampleColor_;                 // multisampling only: samples_ per pixel
     LargeBuffer<DepthFormat::Stored> sampleDepth_;  // likewise
+    // Per cell, row-major: 1 while it holds clearedColor_ and clearedDepth_ in every plane (and every
+    // sample), untouched since the last clear. Meaningful only while clearedCellsKnown_.
+    std::vector<std::uint8_t> cellHoldsClear_;
+    bool clearedCellsKnown_ = false;
+    vec4 clearedColor_{0.0f};
+    DepthFormat::Stored clearedDepth_{};
 };
 
 }  // namespace facet
