@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <bit>
 #include <cstdint>
+#include <cstring>
 #include <span>
 #include <type_traits>
 #include <vector>
@@ -54,6 +55,16 @@ struct FragmentQueue {
         return found;
     }
 };
+
+// Whether the depth test itself writes the depths of the fragments that pass, a block row at a time,
+// rather than the queue once they are shaded: when the shader cannot discard, a fragment that passes
+// is certain to be written, so its depth may be stored early. A row's eight depths are then read and
+// written whole; written one fragment at a time from the queue, they would have the next row test of
+// the same pixels wait for the store buffer (a load that spans several pending smaller stores cannot
+// take its value from them). Watched draws keep the late write, so that an observer's "depth before"
+// is the depth the fragment was tested against. The same bytes either way.
+template <Shader S, class Observer>
+inline constexpr bool kDepthWrittenAtTest = !kMayDiscard<S> && !Observer::enabled;
 
 // The interpolation stage's view of one fragment, for an observer's FragmentEvent.
 inline void describeInterpolation(FragmentEvent& event, float b1, float b2, float invW, int varyingCount) {
@@ -129,7 +140,8 @@ void shadeQueue(FragmentQueue& queue, const DrawPlan& plan, const Depth& depth,
             }
             continue;
         }
-        if (plan.depthWrite) target.depth(x, y) = depth.store(queue.z[lane]);
+        if (!kDepthWrittenAtTest<S, Observer> && plan.depthWrite)
+            target.depth(x, y) = depth.store(queue.z[lane]);
         if constexpr (kOutput == FragmentOutput::AppendToLists) {
             const bool stored = queue.lists.append(x, y, shaded[lane], queue.z[lane], plan.blend);
             stats.fragmentsStored += stored;
@@ -238,9 +250,10 @@ void depthTestBlock(const TriangleSetup& setup, const float* planes, const Cover
 
         typename Depth::Stored* depthRow = &target.depth(block.x, y);
         unsigned passed = rowMask;
+        const bool wholeRow = block.x + kBlockSize <= target.width();  // inside the framebuffer
         if (plan.depthTest) {
-            if (block.x + kBlockSize <= target.width()) {
-                // Eight stored depths at once (the row lies inside the framebuffer).
+            if (wholeRow) {
+                // Eight stored depths at once.
                 const Int8 pass = depth.passes(plan.depthCompare, z, Depth::load8(depthRow));
                 passed &= signMask(pass);
             } else {
@@ -248,6 +261,21 @@ void depthTestBlock(const TriangleSetup& setup, const float* planes, const Cover
                     if ((rowMask >> lane) & 1u)
                         if (!depth.passes(plan.depthCompare, z[lane], depthRow[lane]))
                             passed &= ~(1u << lane);
+            }
+        }
+        if constexpr (kDepthWrittenAtTest<S, Observer>) {
+            if (plan.depthWrite && passed) {
+                if (wholeRow) {
+                    const Int8 laneBit = {1, 2, 4, 8, 16, 32, 64, 128};
+                    const Int8 written = (laneBit & static_cast<std::int32_t>(passed)) != 0;
+                    const auto row = select(written, depth.store(z), Depth::load8(depthRow));
+                    std::memcpy(depthRow, &row, sizeof row);
+                } else {
+                    for (unsigned lanes = passed; lanes; lanes &= lanes - 1) {
+                        const int lane = std::countr_zero(lanes);
+                        depthRow[lane] = depth.store(z[lane]);
+                    }
+                }
             }
         }
         FragmentBatch rowVaryings;
