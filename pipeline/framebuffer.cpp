@@ -80,14 +80,13 @@ std::size_t Framebuffer::clear(vec4 color, DepthFormat::Stored depth, ThreadPool
 }
 
 FramebufferPlanes Framebuffer::planesToDraw(const PixelRect& area) {
-    if (clearedCellsKnown_ && !area.empty()) {
+    // The part of `area` inside the framebuffer (none, for an area beside it or a 0×0 framebuffer).
+    const PixelRect inside{std::max(area.minX, 0), std::max(area.minY, 0), std::min(area.maxX, width_ - 1),
+                           std::min(area.maxY, height_ - 1)};
+    if (clearedCellsKnown_ && !inside.empty()) {
         const int across = cellsAcross();
-        const int firstX = std::max(area.minX, 0) / kClearCell,
-                  lastX = std::min(area.maxX, width_ - 1) / kClearCell;
-        const int firstY = std::max(area.minY, 0) / kClearCell,
-                  lastY = std::min(area.maxY, height_ - 1) / kClearCell;
-        for (int cy = firstY; cy <= lastY; ++cy)
-            for (int cx = firstX; cx <= lastX; ++cx)
+        for (int cy = inside.minY / kClearCell; cy <= inside.maxY / kClearCell; ++cy)
+            for (int cx = inside.minX / kClearCell; cx <= inside.maxX / kClearCell; ++cx)
                 std::atomic_ref<std::uint8_t>(cellHoldsClear_[static_cast<std::size_t>(cy) * across + cx])
                     .store(0, std::memory_order_relaxed);
     }

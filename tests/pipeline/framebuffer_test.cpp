@@ -111,6 +111,20 @@ TEST(Framebuffer, FramesOfMovingContentMatchAFreshFramebuffer) {
     }
 }
 
+// Breaks caught: an area beside the framebuffer marking a cell (a truncating division takes −1/64 to
+// cell 0), or a 0×0 framebuffer's cells written past their end.
+TEST(Framebuffer, AnAreaOutsideTheFramebufferMarksNoCell) {
+    ThreadPool pool(1);
+    Framebuffer fb(kWidth, kHeight);
+    fb.clear(kBackground, 1.0f, pool);
+    fb.planesToDraw({-40, -30, -1, -1});
+    fb.planesToDraw({kWidth, 0, kWidth + 50, 20});
+    EXPECT_EQ(fb.clear(kBackground, 1.0f, pool), 0u);
+    Framebuffer empty(0, 0);
+    empty.planesToDraw({0, 0, 63, 63});
+    EXPECT_EQ(empty.clear(kBackground, 1.0f, pool), 0u);
+}
+
 // Breaks caught: color(), depth() or the sample planes' accessors handing out a pixel to write without
 // the framebuffer forgetting which cells hold the clear values (the pixel survives the next clear).
 TEST(Framebuffer, APixelWrittenDirectlyIsClearedByTheNextClear) {
