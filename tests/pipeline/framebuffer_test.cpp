@@ -81,8 +81,8 @@ TEST(Framebuffer, AClearAfterADrawWritesTheCellsTheDrawTouchedAndRestoresThem) {
 
 // Frames of different content into one framebuffer give the bytes of a fresh framebuffer, through
 // each path that writes pixels: blending, the fragment lists' resolve, multisampling and its resolve.
-// Breaks caught: any of those writing pixels without marking their cells (the previous frame's
-// triangle shows through), or useSamples keeping stale sample planes.
+// Break caught: any of those writing pixels without marking their cells (the previous frame's
+// triangle shows through).
 TEST(Framebuffer, FramesOfMovingContentMatchAFreshFramebuffer) {
     struct Path {
         const char* name;
@@ -126,7 +126,8 @@ TEST(Framebuffer, AnAreaOutsideTheFramebufferMarksNoCell) {
 }
 
 // Breaks caught: color(), depth() or the sample planes' accessors handing out a pixel to write without
-// the framebuffer forgetting which cells hold the clear values (the pixel survives the next clear).
+// the framebuffer forgetting which cells hold the clear values (the pixel survives the next clear), or
+// useSamples keeping the cells' memory for planes it has just made.
 TEST(Framebuffer, APixelWrittenDirectlyIsClearedByTheNextClear) {
     ThreadPool pool(1);
     Framebuffer fb(kWidth, kHeight);
@@ -139,7 +140,8 @@ TEST(Framebuffer, APixelWrittenDirectlyIsClearedByTheNextClear) {
     EXPECT_TRUE(holdsEverywhere(fb, kBackground, 1.0f));
 
     fb.useSamples(4);
-    fb.clear(kBackground, 1.0f, pool);
+    EXPECT_EQ(fb.clear(kBackground, 1.0f, pool), kCells) << "new sample planes hold no clear yet";
+    EXPECT_EQ(fb.sampleColors(0, 0)[2], kBackground);
     fb.sampleColors(5, 6)[3] = vec4(1.0f);
     fb.sampleDepths(7, 8)[1] = 0.125f;
     EXPECT_EQ(fb.clear(kBackground, 1.0f, pool), kCells);
