@@ -34,27 +34,38 @@ namespace detail {
 // planes), so a batch may mix triangles of one draw. No two queued fragments share a pixel: before a
 // fragment is depth-tested at a pixel that holds a queued one, the queue is shaded, so every pixel
 // still sees its fragments in submission order, and the image does not depend on how fragments were
-// grouped.
+// grouped. The slots in use are those of batch.mask: the first `count` for fragments queued one by
+// one, or the passing lanes of a block row shaded whole (shadeRowWhole), where slot = column.
 struct FragmentQueue {
     int count = 0;
-    int x[kBlockSize], y[kBlockSize];
-    float z[kBlockSize];
-    std::uint32_t triangle[kBlockSize];
+    int x[kBlockSize] = {}, y[kBlockSize] = {};
+    float z[kBlockSize] = {};
+    std::uint32_t triangle[kBlockSize] = {};
     FragmentBatch batch;              // interpolated varyings, lane = queue slot
     FragmentLists::TileWriter lists;  // the tile's fragment lists, for AppendToLists draws
     // For an observer only (written under Observer::enabled): each slot's λ1, λ2 and 1/w.
     float b1[kBlockSize], b2[kBlockSize], invW[kBlockSize];
 
     // Does a queued fragment sit in row y, at a column of [x, x + 8) whose bit is set in `columns`?
+    // All eight slots compared at once (this runs for every block row while the queue holds any).
     bool holdsAny(int rowY, int firstX, unsigned columns) const {
-        bool found = false;
-        for (int i = 0; i < count; ++i) {
-            const unsigned column = static_cast<unsigned>(x[i] - firstX);
-            found |= y[i] == rowY && column < kBlockSize && ((columns >> column) & 1u);
-        }
-        return found;
+        Int8 slotX, slotY;
+        std::memcpy(&slotX, x, sizeof slotX);
+        std::memcpy(&slotY, y, sizeof slotY);
+        const Int8 slot = {0, 1, 2, 3, 4, 5, 6, 7};
+        const Int8 column = slotX - firstX;
+        const Int8 columnBits = static_cast<std::int32_t>(columns) >> (column & (kBlockSize - 1));
+        const Int8 found = (slot < count) & (slotY == rowY) & (column >= 0) & (column < kBlockSize) &
+                           ((columnBits & 1) != 0);
+        return signMask(found) != 0;
     }
 };
+
+// A block row whose depth test passed at least this many of its eight pixels is shaded as one batch of
+// its own, its varyings interpolated straight into the batch (lane = column), rather than copied
+// fragment by fragment into the queue: a row of big triangles skips the copy, and the few lanes left
+// idle cost less than copying the others (measured: see README, Benchmark).
+inline constexpr int kRowShadedWhole = 6;
 
 // Whether the depth test itself writes the depths of the fragments that pass, a block row at a time,
 // rather than the queue once they are shaded: when the shader cannot discard, a fragment that passes
@@ -79,16 +90,16 @@ inline void describeInterpolation(FragmentEvent& event, float b1, float b2, floa
 template <Shader S>
 unsigned runFragmentShader(FragmentQueue& queue, int n, const typename S::Uniforms& uniforms,
                            vec4 (&shaded)[kBlockSize], DrawStats& stats) {
-    unsigned kept = (1u << n) - 1;
-    stats.fragmentsShaded += static_cast<unsigned>(n);
+    unsigned kept = queue.batch.mask;
+    stats.fragmentsShaded += static_cast<unsigned>(std::popcount(kept));
     if constexpr (BatchShader<S>) {
-        queue.batch.mask = kept;
         const Vec4x8 c = S::fragmentBatch(queue.batch, uniforms);
         for (int lane = 0; lane < n; ++lane)
             shaded[lane] = vec4(c.x[lane], c.y[lane], c.z[lane], c.w[lane]);
     } else {
         float varyings[kMaxVaryingFloats];
         for (int lane = 0; lane < n; ++lane) {
+            if (!(kept & (1u << lane))) continue;
             for (int k = 0; k < kVaryingFloatCount<typename S::Varyings>; ++k)
                 varyings[k] = queue.batch.varyings[k][lane];
             shaded[lane] = vec4(0.0f);  // what a discarded lane holds (never read)
@@ -116,9 +127,12 @@ void shadeQueue(FragmentQueue& queue, const DrawPlan& plan, const Depth& depth,
 
     vec4 shaded[kBlockSize];
     const unsigned kept = runFragmentShader<S>(queue, n, uniforms, shaded, stats);
+    const unsigned live = queue.batch.mask;
+    queue.batch.mask = 0;
 
     // Depth write, then blending into the colour buffer or appending to the pixel's fragment list.
     for (int lane = 0; lane < n; ++lane) {
+        if (!(live & (1u << lane))) continue;
         const int x = queue.x[lane], y = queue.y[lane];
         FragmentEvent event;
         if constexpr (kObserving) {
@@ -176,6 +190,7 @@ int queueFragment(FragmentQueue& queue, const TriangleSetup& setup, const float*
                   const FragmentBatch& rowVaryings, int lane, float b1, float b2) {
     constexpr int kUv = derivativeVarying<S>();
     const int slot = queue.count++;
+    queue.batch.mask |= 1u << slot;
     queue.x[slot] = x;
     queue.y[slot] = y;
     queue.z[slot] = z;
@@ -201,20 +216,24 @@ int queueFragment(FragmentQueue& queue, const TriangleSetup& setup, const float*
     return slot;
 }
 
+// The varyings (and texture coordinate derivatives) of a block row's eight lanes at once, into `out`.
+template <Shader S, bool kDerivatives>
+void interpolateRowWide(const TriangleSetup& setup, const float* planes, const VaryingPairSlopes& uvSlopes,
+                        Float8 b1, Float8 b2, FragmentBatch& out) {
+    constexpr int kUv = derivativeVarying<S>();
+    interpolateVaryings(setup, planes, b1, b2, out);
+    if constexpr (kDerivatives)
+        interpolateDerivatives<Float8>(setup, uvSlopes, b1, b2, &out.varyings[kUv], out.uvDerivatives);
+}
+
 // The varyings of a block row's eight lanes at once, when several fragments survived (`passed` has
 // more than two bits); one by one in queueFragment when a sliver of a triangle left one or two (the same
 // bits either way: interpolate.h). Returns whether the row was interpolated wide.
 template <Shader S, bool kDerivatives>
 bool interpolateRow(const TriangleSetup& setup, const float* planes, const VaryingPairSlopes& uvSlopes,
                     unsigned passed, Float8 b1, Float8 b2, FragmentBatch& rowVaryings) {
-    constexpr int kUv = derivativeVarying<S>();
     const bool wideRow = std::popcount(passed) > 2;
-    if (wideRow) {
-        interpolateVaryings(setup, planes, b1, b2, rowVaryings);
-        if constexpr (kDerivatives)
-            interpolateDerivatives<Float8>(setup, uvSlopes, b1, b2, &rowVaryings.varyings[kUv],
-                                           rowVaryings.uvDerivatives);
-    }
+    if (wideRow) interpolateRowWide<S, kDerivatives>(setup, planes, uvSlopes, b1, b2, rowVaryings);
     return wideRow;
 }
 
@@ -225,7 +244,7 @@ bool interpolateRow(const TriangleSetup& setup, const float* planes, const Varyi
 // from its own triangle's planes.
 template <Shader S, FragmentOutput kOutput, class Depth, bool kRoundColor, bool kDerivatives, class Observer>
 void depthTestBlock(const TriangleSetup& setup, const float* planes, const CoverageBlock& block,
-                    FragmentQueue& queue, const DrawPlan& plan, const Depth& depth,
+                    FragmentQueue& queue, FragmentQueue& rowQueue, const DrawPlan& plan, const Depth& depth,
                     const typename S::Uniforms& uniforms, const FramebufferPlanes& target, DrawStats& stats,
                     Observer& observer) {
     constexpr bool kObserving = Observer::enabled;
@@ -278,9 +297,15 @@ void depthTestBlock(const TriangleSetup& setup, const float* planes, const Cover
                 }
             }
         }
+        // A row that mostly passed is shaded whole, straight from its own batch (kRowShadedWhole); the
+        // fragments of other rows are queued.
+        const bool rowShadedWhole = std::popcount(passed) >= kRowShadedWhole;
         FragmentBatch rowVaryings;
-        const bool wideRow =
-            interpolateRow<S, kDerivatives>(setup, planes, uvSlopes, passed, b1, b2, rowVaryings);
+        bool wideRow = false;
+        if (rowShadedWhole)
+            interpolateRowWide<S, kDerivatives>(setup, planes, uvSlopes, b1, b2, rowQueue.batch);
+        else
+            wideRow = interpolateRow<S, kDerivatives>(setup, planes, uvSlopes, passed, b1, b2, rowVaryings);
         for (int lane = 0; lane < kBlockSize; ++lane) {
             if (!(rowMask & (1u << lane))) continue;
             if (!(passed & (1u << lane))) {
@@ -296,17 +321,32 @@ void depthTestBlock(const TriangleSetup& setup, const float* planes, const Cover
                 }
                 continue;
             }
-            const int slot =
-                queueFragment<S, kDerivatives>(queue, setup, planes, uvSlopes, block.x + lane, y, z[lane],
-                                               wideRow, rowVaryings, lane, b1[lane], b2[lane]);
+            FragmentQueue& into = rowShadedWhole ? rowQueue : queue;
+            int slot = lane;
+            if (rowShadedWhole) {
+                rowQueue.x[lane] = block.x + lane;
+                rowQueue.y[lane] = y;
+                rowQueue.z[lane] = z[lane];
+                rowQueue.triangle[lane] = setup.triangle;
+            } else {
+                slot =
+                    queueFragment<S, kDerivatives>(queue, setup, planes, uvSlopes, block.x + lane, y, z[lane],
+                                                   wideRow, rowVaryings, lane, b1[lane], b2[lane]);
+            }
             if constexpr (kObserving) {
-                queue.b1[slot] = b1[lane];
-                queue.b2[slot] = b2[lane];
-                queue.invW[slot] = interpolateInvW(setup, b1[lane], b2[lane]);
+                into.b1[slot] = b1[lane];
+                into.b2[slot] = b2[lane];
+                into.invW[slot] = interpolateInvW(setup, b1[lane], b2[lane]);
             }
             if (queue.count == kBlockSize)
                 shadeQueue<S, kOutput, Depth, kRoundColor>(queue, plan, depth, uniforms, target, stats,
                                                            observer);
+        }
+        if (rowShadedWhole) {
+            rowQueue.count = kBlockSize;
+            rowQueue.batch.mask = passed;
+            shadeQueue<S, kOutput, Depth, kRoundColor>(rowQueue, plan, depth, uniforms, target, stats,
+                                                       observer);
         }
     }
 }
@@ -333,9 +373,9 @@ void drawTile(const PixelRect& rect, std::size_t tile, std::span<const SetupChun
               const DrawPlan& plan, const Depth& depth, const typename S::Uniforms& uniforms,
               Framebuffer& framebuffer, DrawStats& stats, Observer& observer) {
     const FramebufferPlanes target = framebuffer.planesToDraw(rect);
-    FragmentQueue queue;
+    FragmentQueue queue, rowQueue;
     if constexpr (kOutput == FragmentOutput::AppendToLists)
-        queue.lists = target.fragmentLists().writer(rect.minX, rect.minY);
+        queue.lists = rowQueue.lists = target.fragmentLists().writer(rect.minX, rect.minY);
     for (const SetupChunk& chunk : chunks) {
         const std::vector<std::uint32_t>& bin = chunk.bins[tile];
         for (std::size_t k = 0; k < bin.size(); ++k) {
@@ -362,7 +402,7 @@ void drawTile(const PixelRect& rect, std::size_t tile, std::span<const SetupChun
             }
             rasterizeBlocks(setup, rect, [&](const CoverageBlock& block) {
                 depthTestBlock<S, kOutput, Depth, kRoundColor, kDerivatives>(
-                    setup, planes, block, queue, plan, depth, uniforms, target, stats, observer);
+                    setup, planes, block, queue, rowQueue, plan, depth, uniforms, target, stats, observer);
             });
         }
     }
@@ -423,6 +463,7 @@ void shadeMultisampleQueue(MultisampleQueue& queue, const DrawPlan& plan, const 
     queue.count = 0;
     vec4 shaded[kBlockSize];
     const unsigned kept = runFragmentShader<S>(queue, n, uniforms, shaded, stats);
+    queue.batch.mask = 0;
     for (int lane = 0; lane < n; ++lane) {
         if (!(kept & (1u << lane))) {
             ++stats.fragmentsDiscarded;
