@@ -170,14 +170,28 @@ inline PixelRect rasterRect(const TriangleSetup& setup, const PixelRect& area) {
             std::min(area.maxY, setup.maxY)};
 }
 
-// Calls visit(const CoverageBlock&) for every block of `rect` ∩ the triangle's bounds with a covered sample.
+// Where the blocks over `rect` (a triangle's pixels in `area`) start along one axis: at the multiple
+// of kBlockSize at or before rect's first pixel, unless rect fits in one block's span: then one block
+// is placed over it, inside `area` when area is at least a block wide, so that the back end's row
+// loads and stores stay in its tile. A small triangle is then one block, not the two to four aligned
+// blocks it straddles in most positions (a triangle of a dense mesh, a few pixels across, straddles a
+// block boundary more often than not), and its rows are walked once.
+inline int firstBlockAt(int rectMin, int rectMax, int areaMin, int areaMax) {
+    if (rectMax - rectMin < kBlockSize && areaMax - areaMin + 1 >= kBlockSize)
+        return std::min(rectMin, areaMax - (kBlockSize - 1));
+    return rectMin & ~(kBlockSize - 1);
+}
+
+// Calls visit(const CoverageBlock&) for every block of `rect` ∩ the triangle's bounds with a covered
+// sample: 8×8 blocks aligned to multiples of 8, or placed over the triangle along an axis where its
+// pixels fit in one block (firstBlockAt).
 template <class BlockVisitor>
 void rasterizeBlocks(const TriangleSetup& setup, const PixelRect& area, BlockVisitor&& visit) {
     const PixelRect rect = rasterRect(setup, area);
     if (rect.empty()) return;
     const BlockEdgeSteps steps(setup);
-    const int firstBlockX = rect.minX & ~(kBlockSize - 1);
-    const int firstBlockY = rect.minY & ~(kBlockSize - 1);
+    const int firstBlockX = firstBlockAt(rect.minX, rect.maxX, area.minX, area.maxX);
+    const int firstBlockY = firstBlockAt(rect.minY, rect.maxY, area.minY, area.maxY);
     CoverageBlock block;
     for (int by = firstBlockY; by <= rect.maxY; by += kBlockSize) {
         for (int bx = firstBlockX; bx <= rect.maxX; bx += kBlockSize) {

@@ -143,8 +143,8 @@ struct TriangleSetup {
 inline constexpr int kBlockSize = 8;
 
 struct CoverageBlock {
-    int x = 0;                  // multiple of kBlockSize
-    int y = 0;                  // multiple of kBlockSize
+    int x = 0;                  // first column: a multiple of kBlockSize, or placed (rasterize.h)
+    int y = 0;                  // first row: likewise
     std::uint64_t mask = 0;     // covered samples inside the triangle, the viewport and the tile
     bool fullyCovered = false;  // every sample of the block is inside the triangle (no edge test ran)
 };

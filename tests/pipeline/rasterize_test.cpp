@@ -20,12 +20,26 @@ WindowVertex fixedAt(std::int64_t xFixed, std::int64_t yFixed) {
     return v;
 }
 
+// Where a block may start along one axis: at a multiple of 8, or, when the triangle's pixels in the
+// area span at most a block along it, anywhere a whole block stays inside the area.
+void expectBlockStart(int start, int pixelsMin, int pixelsMax, int areaMin, int areaMax) {
+    if (pixelsMax - pixelsMin < kBlockSize && areaMax - areaMin + 1 >= kBlockSize) {
+        EXPECT_LE(start, pixelsMin);
+        EXPECT_GE(start + kBlockSize - 1, pixelsMax);
+        EXPECT_GE(start, areaMin);
+        EXPECT_LE(start + kBlockSize - 1, areaMax);
+    } else {
+        EXPECT_EQ(start % kBlockSize, 0);
+    }
+}
+
 // Walks `rect` block by block and counts how often each pixel is reported covered.
 std::vector<int> walk(const TriangleSetup& setup, const PixelRect& rect, int width, int height) {
     std::vector<int> covered(static_cast<std::size_t>(width) * height, 0);
+    const PixelRect pixels = rasterRect(setup, rect);
     rasterizeBlocks(setup, rect, [&](const CoverageBlock& b) {
-        EXPECT_EQ(b.x % kBlockSize, 0);
-        EXPECT_EQ(b.y % kBlockSize, 0);
+        expectBlockStart(b.x, pixels.minX, pixels.maxX, rect.minX, rect.maxX);
+        expectBlockStart(b.y, pixels.minY, pixels.maxY, rect.minY, rect.maxY);
         EXPECT_NE(b.mask, 0u);
         for (int bit = 0; bit < 64; ++bit) {
             if (!((b.mask >> bit) & 1)) continue;
@@ -142,6 +156,46 @@ TEST(Rasterize, OddBoundsAndTheLastRowAndColumn) {
         const std::vector<int> covered = walk(setup, {0, 0, width - 1, height - 1}, width, height);
         for (int v : covered)
             ASSERT_EQ(v, 1) << width << "x" << height;
+    }
+}
+
+// A triangle a few pixels across that straddles the corner of four aligned blocks is walked as one
+// block placed over it; near the area's right and bottom edges the block is moved back inside the area
+// (the back end loads and stores whole block rows, which must stay in the tile).
+TEST(Rasterize, ASmallTriangleIsOneBlockPlacedInsideTheArea) {
+    DrawState state;
+    state.viewport = {0, 0, 64, 64};
+    state.raster.cull = CullMode::None;
+    const auto smallTriangleAt = [&](int x, int y) {
+        WindowTriangle t;
+        t.vertices = {fixedAt(x * kFixedOne, y * kFixedOne), fixedAt((x + 5) * kFixedOne, y * kFixedOne),
+                      fixedAt(x * kFixedOne, (y + 5) * kFixedOne)};
+        TriangleSetup setup;
+        EXPECT_EQ(setupTriangle(t, state, setup, nullptr), TriangleFate::Drawn);
+        return setup;
+    };
+    struct Case {
+        int x, y;            // the triangle's corner
+        PixelRect area;      // the tile
+        int blockX, blockY;  // the one block expected
+    };
+    for (const Case& c : {Case{6, 5, {0, 0, 63, 63}, 6, 5}, Case{29, 29, {0, 0, 31, 31}, 24, 24},
+                          Case{12, 13, {8, 8, 15, 15}, 8, 8}}) {
+        const TriangleSetup setup = smallTriangleAt(c.x, c.y);
+        int blocks = 0, pixels = 0;
+        rasterizeBlocks(setup, c.area, [&](const CoverageBlock& b) {
+            ++blocks;
+            pixels += std::popcount(b.mask);
+            EXPECT_EQ(b.x, c.blockX);
+            EXPECT_EQ(b.y, c.blockY);
+        });
+        EXPECT_EQ(blocks, 1) << c.x << "," << c.y;
+        int expected = 0;
+        for (int y = c.area.minY; y <= c.area.maxY; ++y)
+            for (int x = c.area.minX; x <= c.area.maxX; ++x)
+                expected += coversSample(setup, x, y);
+        EXPECT_EQ(pixels, expected) << c.x << "," << c.y;
+        EXPECT_GT(pixels, 0);
     }
 }
 
