@@ -46,18 +46,28 @@ struct FragmentQueue {
     // For an observer only (written under Observer::enabled): each slot's λ1, λ2 and 1/w.
     float b1[kBlockSize], b2[kBlockSize], invW[kBlockSize];
 
+    // Bit (y mod 8)·8 + (x mod 8) set for each queued fragment's pixel (x, y): a filter that rules out
+    // most rows without reading the slots, whose positions were just stored one by one (a wide load of
+    // them would wait for those stores).
+    std::uint64_t pixelsMod8 = 0;
+
+    void remember(int pixelX, int pixelY) {
+        pixelsMod8 |= std::uint64_t{1} << ((pixelY & 7) * 8 + (pixelX & 7));
+    }
+
     // Does a queued fragment sit in row y, at a column of [x, x + 8) whose bit is set in `columns`?
-    // All eight slots compared at once (this runs for every block row while the queue holds any).
     bool holdsAny(int rowY, int firstX, unsigned columns) const {
-        Int8 slotX, slotY;
-        std::memcpy(&slotX, x, sizeof slotX);
-        std::memcpy(&slotY, y, sizeof slotY);
-        const Int8 slot = {0, 1, 2, 3, 4, 5, 6, 7};
-        const Int8 column = slotX - firstX;
-        const Int8 columnBits = static_cast<std::int32_t>(columns) >> (column & (kBlockSize - 1));
-        const Int8 found = (slot < count) & (slotY == rowY) & (column >= 0) & (column < kBlockSize) &
-                           ((columnBits & 1) != 0);
-        return signMask(found) != 0;
+        // Column c is pixel firstX + c, whose filter bit is (firstX + c) mod 8: the columns rotated.
+        const unsigned shift = static_cast<unsigned>(firstX) & 7u;
+        const unsigned rotated = ((columns << shift) | (columns >> ((8u - shift) & 7u))) & 0xffu;
+        const unsigned rowBits = static_cast<unsigned>(pixelsMod8 >> ((rowY & 7) * 8)) & 0xffu;
+        if (!(rowBits & rotated)) return false;
+        bool found = false;
+        for (int i = 0; i < count; ++i) {
+            const unsigned column = static_cast<unsigned>(x[i] - firstX);
+            found |= y[i] == rowY && column < kBlockSize && ((columns >> column) & 1u);
+        }
+        return found;
     }
 };
 
@@ -129,6 +139,10 @@ void shadeQueue(FragmentQueue& queue, const DrawPlan& plan, const Depth& depth,
     const unsigned kept = runFragmentShader<S>(queue, n, uniforms, shaded, stats);
     const unsigned live = queue.batch.mask;
     queue.batch.mask = 0;
+    queue.pixelsMod8 = 0;
+    stats.fragmentsDiscarded += static_cast<unsigned>(std::popcount(live & ~kept));
+    if constexpr (kOutput == FragmentOutput::Blend)
+        stats.fragmentsWritten += static_cast<unsigned>(std::popcount(live & kept));
 
     // Depth write, then blending into the colour buffer or appending to the pixel's fragment list.
     for (int lane = 0; lane < n; ++lane) {
@@ -147,7 +161,6 @@ void shadeQueue(FragmentQueue& queue, const DrawPlan& plan, const Depth& depth,
                     event.uvDerivatives[static_cast<std::size_t>(k)] = queue.batch.uvDerivatives[k][lane];
         }
         if (!(kept & (1u << lane))) {
-            ++stats.fragmentsDiscarded;
             if constexpr (kObserving) {
                 event.fate = FragmentFate::Discarded;
                 observer.onFragment(event);
@@ -167,7 +180,6 @@ void shadeQueue(FragmentQueue& queue, const DrawPlan& plan, const Depth& depth,
             destination = plan.blend == BlendMode::Replace ? shaded[lane]
                                                            : blend(plan.blend, shaded[lane], destination);
             if constexpr (kRoundColor) destination = roundToColorBuffer(plan.colorBuffer, destination);
-            ++stats.fragmentsWritten;
             if constexpr (kObserving) {
                 event.fate = FragmentFate::Written;
                 event.colorAfter = destination;
@@ -191,6 +203,7 @@ int queueFragment(FragmentQueue& queue, const TriangleSetup& setup, const float*
     constexpr int kUv = derivativeVarying<S>();
     const int slot = queue.count++;
     queue.batch.mask |= 1u << slot;
+    queue.remember(x, y);
     queue.x[slot] = x;
     queue.y[slot] = y;
     queue.z[slot] = z;
@@ -306,33 +319,36 @@ void depthTestBlock(const TriangleSetup& setup, const float* planes, const Cover
             interpolateRowWide<S, kDerivatives>(setup, planes, uvSlopes, b1, b2, rowQueue.batch);
         else
             wideRow = interpolateRow<S, kDerivatives>(setup, planes, uvSlopes, passed, b1, b2, rowVaryings);
-        for (int lane = 0; lane < kBlockSize; ++lane) {
-            if (!(rowMask & (1u << lane))) continue;
-            if (!(passed & (1u << lane))) {
-                ++stats.fragmentsDepthFailed;
-                if constexpr (kObserving) {
-                    FragmentEvent event{block.x + lane, y, setup.triangle, z[lane], depthRow[lane]};
-                    event.colorBefore = event.colorAfter = target.color(block.x + lane, y);
-                    event.fate = FragmentFate::DepthFailed;
-                    describeInterpolation(event, b1[lane], b2[lane],
-                                          interpolateInvW(setup, b1[lane], b2[lane]), setup.varyingCount);
-                    interpolateVaryings(setup, planes, b1[lane], b2[lane], event.varyings.data());
-                    observer.onFragment(event);
-                }
-                continue;
+        stats.fragmentsDepthFailed += static_cast<unsigned>(std::popcount(rowMask & ~passed));
+        if constexpr (kObserving) {
+            for (unsigned lanes = rowMask & ~passed; lanes; lanes &= lanes - 1) {
+                const int lane = std::countr_zero(lanes);
+                FragmentEvent event{block.x + lane, y, setup.triangle, z[lane], depthRow[lane]};
+                event.colorBefore = event.colorAfter = target.color(block.x + lane, y);
+                event.fate = FragmentFate::DepthFailed;
+                describeInterpolation(event, b1[lane], b2[lane], interpolateInvW(setup, b1[lane], b2[lane]),
+                                      setup.varyingCount);
+                interpolateVaryings(setup, planes, b1[lane], b2[lane], event.varyings.data());
+                observer.onFragment(event);
             }
+        }
+        if (rowShadedWhole) {
+            // Slot = column; the slots of lanes that failed are not live (batch.mask) and not read.
+            const Int8 column = {0, 1, 2, 3, 4, 5, 6, 7};
+            const Int8 rowX = column + block.x, rowY = column * 0 + y;
+            const Int8 triangle = column * 0 + static_cast<std::int32_t>(setup.triangle);
+            std::memcpy(rowQueue.x, &rowX, sizeof rowX);
+            std::memcpy(rowQueue.y, &rowY, sizeof rowY);
+            std::memcpy(rowQueue.z, &z, sizeof z);
+            std::memcpy(rowQueue.triangle, &triangle, sizeof triangle);
+        }
+        for (unsigned lanes = passed; lanes; lanes &= lanes - 1) {
+            const int lane = std::countr_zero(lanes);
             FragmentQueue& into = rowShadedWhole ? rowQueue : queue;
-            int slot = lane;
-            if (rowShadedWhole) {
-                rowQueue.x[lane] = block.x + lane;
-                rowQueue.y[lane] = y;
-                rowQueue.z[lane] = z[lane];
-                rowQueue.triangle[lane] = setup.triangle;
-            } else {
-                slot =
-                    queueFragment<S, kDerivatives>(queue, setup, planes, uvSlopes, block.x + lane, y, z[lane],
-                                                   wideRow, rowVaryings, lane, b1[lane], b2[lane]);
-            }
+            const int slot = rowShadedWhole ? lane
+                                            : queueFragment<S, kDerivatives>(
+                                                  queue, setup, planes, uvSlopes, block.x + lane, y, z[lane],
+                                                  wideRow, rowVaryings, lane, b1[lane], b2[lane]);
             if constexpr (kObserving) {
                 into.b1[slot] = b1[lane];
                 into.b2[slot] = b2[lane];
@@ -464,6 +480,7 @@ void shadeMultisampleQueue(MultisampleQueue& queue, const DrawPlan& plan, const 
     vec4 shaded[kBlockSize];
     const unsigned kept = runFragmentShader<S>(queue, n, uniforms, shaded, stats);
     queue.batch.mask = 0;
+    queue.pixelsMod8 = 0;
     for (int lane = 0; lane < n; ++lane) {
         if (!(kept & (1u << lane))) {
             ++stats.fragmentsDiscarded;
