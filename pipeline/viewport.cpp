@@ -12,7 +12,10 @@ namespace {
 // Rounds a window coordinate to the sub-pixel grid: multiples of 2^(8 − bits) in 8-fraction-bit units.
 std::int64_t snap(float windowCoordinate, int subpixelBits) {
     const int dropBits = kFixedFractionBits - subpixelBits;
-    const double scaled = std::ldexp(static_cast<double>(windowCoordinate), subpixelBits);
+    // × 2^bits by a multiplication: exact in double like std::ldexp, which is a call into libm per
+    // coordinate (two per vertex of every draw).
+    const double scaled =
+        static_cast<double>(windowCoordinate) * static_cast<double>(std::int64_t{1} << subpixelBits);
     return static_cast<std::int64_t>(std::nearbyint(scaled)) << dropBits;
 }
 

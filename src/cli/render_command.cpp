@@ -73,7 +73,8 @@ void printFrameStats(std::ostream& out, int frame, const facet::PreparedScene& p
         out << "; " << transparent << " transparent triangles";
         if (stats.sort.elements > 0) {
             out << " sorted "
-                << (stats.sort.fromScratch ? "from scratch" : "by insertion from the last frame's order")
+                << (stats.sort.fromScratch ? "from scratch (radix sort)"
+                                           : "by insertion from the last frame's order")
                 << ": " << stats.sort.comparisons << " comparisons, " << stats.sort.moves << " moves, ";
             char ms[32];
             std::snprintf(ms, sizeof ms, "%.2f ms", stats.sortMilliseconds);

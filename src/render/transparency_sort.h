@@ -22,10 +22,11 @@ struct SortStats {
     std::size_t elements = 0;
     std::size_t comparisons = 0;  // key comparisons (FromScratch: calls of std::sort's comparator)
     // Element moves: insertion sort's shifts by one place, so on a remembered order exactly the number of
-    // inversions between it and the new keys. Always 0 for FromScratch and for a from-scratch first frame:
+    // inversions between it and the new keys. Always 0 for FromScratch:
     // std::sort and std::stable_sort move elements by swaps, partitions and merges that are not
     // comparable with shifts, and counting them would take an instrumented element type inside the sort
     // being timed; their cost is O(n log n) whatever the input. Compare their comparisons instead.
+    // A radix sort (RadixFromScratch, and InsertionWithMemory's first frame) counts its 4·n writes.
     std::size_t moves = 0;
     bool fromScratch = false;  // no usable previous order (first frame, or the count changed)
 };
@@ -36,11 +37,12 @@ class TransparencySorter {
     // farther from the eye), ties kept in the previous order (in index order when from scratch), so the
     // result is deterministic. Returns the order (valid until the next call) and fills `stats`.
     // InsertionWithMemory starts from the order the previous call returned when it had the same element
-    // count; otherwise (first frame, changed count) it sorts from scratch with std::stable_sort and
-    // says so in stats.fromScratch. FromScratch uses std::sort (introsort: in place, no buffer to
-    // allocate, the usual baseline) with ties broken by index, which makes its result deterministic and
-    // the same as a stable sort's. A NaN key counts as farther than +∞ (drawn first), all NaNs equal to
-    // each other; −0 equals +0. At most 2³² − 1 elements (std::length_error beyond).
+    // count; otherwise (first frame, changed count) it sorts from scratch with the radix sort (the
+    // stable sort's order; stats.moves = 4·n, no comparisons) and says so in stats.fromScratch. FromScratch
+    // uses std::sort (introsort: in place, no buffer to allocate, the usual baseline) with ties broken by
+    // index, which makes its result deterministic and the same as a stable sort's. A NaN key counts as
+    // farther than +∞ (drawn first), all NaNs equal to each other; −0 equals +0. At most 2³² − 1 elements
+    // (std::length_error beyond).
     std::span<const std::uint32_t> sort(std::span<const float> keys, SortAlgorithm algorithm,
                                         SortStats& stats);
 
