@@ -427,19 +427,6 @@ void drawTile(const PixelRect& rect, std::size_t tile, std::span<const SetupChun
     shadeQueue<S, kOutput, Depth, kRoundColor>(queue, plan, depth, uniforms, target, stats, observer);
 }
 
-template <Shader S, FragmentOutput kOutput, class Depth, bool kRoundColor, bool kDerivatives, class Observer>
-void drawTiles(std::span<const std::uint32_t> activeTiles, const TileGrid& grid,
-               std::span<const SetupChunk> chunks, const DrawPlan& plan, const Depth& depth,
-               const typename S::Uniforms& uniforms, Framebuffer& target, ThreadPool& pool, bool inOrder,
-               std::span<DrawStats> threadStats, Observer& observer) {
-    forEachItem(pool, inOrder, activeTiles.size(), [&](std::size_t active, int thread) {
-        const std::size_t tile = activeTiles[active];
-        drawTile<S, kOutput, Depth, kRoundColor, kDerivatives>(
-            grid.tileRect(static_cast<int>(tile)), tile, chunks, plan, depth, uniforms, target,
-            threadStats[static_cast<std::size_t>(thread)], observer);
-    });
-}
-
 // ---- Multisampling ----------------------------------------------------------------------------------
 // Coverage and depth per sample, shading once per pixel and triangle (plan.samples > 1, the standard
 // positions of sample_position.h). Unobserved Blend draws only (the step mode refuses anti-aliasing,
@@ -630,25 +617,14 @@ void drawMultisampleTile(const PixelRect& tileRect, std::size_t tile, std::span<
     shadeMultisampleQueue<S>(queue, plan, depth, uniforms, target, stats);
 }
 
-}  // namespace detail
-
-// The back end for one batch of set-up chunks: only the tiles some triangle touches (a draw of a few
-// triangles, such as a short run of the transparent pass, then costs little more than its triangles,
-// and a single tile is drawn on the calling thread without waking the pool), in parallel unless
-// `inOrder`. The FragmentOutput, the depth coding, whether colours are rounded to the colour buffer's
-// format, and whether fragments get their texture coordinates' derivatives are chosen here, once per
-// draw. Returns the number of tiles drawn.
+// One tile of a draw's set-up chunks, with the draw's choices resolved here: the FragmentOutput, the
+// depth coding, whether colours are rounded to the colour buffer's format, whether fragments get their
+// texture coordinates' derivatives, and multisampling (a few branches per tile, beside its pixels).
 template <Shader S, class Observer>
-std::size_t drawBatchTiles(const TileGrid& grid, std::span<const SetupChunk> chunks, const DrawPlan& plan,
-                           const typename S::Uniforms& uniforms, Framebuffer& target, ThreadPool& pool,
-                           bool inOrder, std::vector<std::uint32_t>& activeTiles,
-                           std::span<DrawStats> threadStats, Observer& observer) {
-    // The tiles some chunk binned a triangle to, in tile order: each chunk's list, merged.
-    activeTiles.clear();
-    for (const SetupChunk& chunk : chunks)
-        activeTiles.insert(activeTiles.end(), chunk.touchedTiles.begin(), chunk.touchedTiles.end());
-    std::sort(activeTiles.begin(), activeTiles.end());
-    activeTiles.erase(std::unique(activeTiles.begin(), activeTiles.end()), activeTiles.end());
+void drawTileOfChunks(const TileGrid& grid, std::size_t tile, std::span<const SetupChunk> chunks,
+                      const DrawPlan& plan, const typename S::Uniforms& uniforms, Framebuffer& target,
+                      DrawStats& stats, Observer& observer) {
+    const PixelRect rect = grid.tileRect(static_cast<int>(tile));
     if constexpr (Observer::enabled) {
         // Watched draws (the step mode) are for reading, not speed: one copy of the tile loop per shader
         // and observer, with the depth coding and the colour buffer's rounding chosen per fragment
@@ -659,51 +635,75 @@ std::size_t drawBatchTiles(const TileGrid& grid, std::span<const SetupChunk> chu
         using Depth = DepthCoding<DepthCodingKind::PerFragment>;
         const Depth depth(plan.depthFormat);
         if (plan.output == FragmentOutput::AppendToLists)
-            detail::drawTiles<S, FragmentOutput::AppendToLists, Depth, false, kDerivatives>(
-                activeTiles, grid, chunks, plan, depth, uniforms, target, pool, inOrder, threadStats,
-                observer);
+            drawTile<S, FragmentOutput::AppendToLists, Depth, false, kDerivatives>(
+                rect, tile, chunks, plan, depth, uniforms, target, stats, observer);
         else
-            detail::drawTiles<S, FragmentOutput::Blend, Depth, true, kDerivatives>(
-                activeTiles, grid, chunks, plan, depth, uniforms, target, pool, inOrder, threadStats,
-                observer);
-        return activeTiles.size();
-    }
-    const auto drawWith = [&]<bool kDerivatives>() {
-        withDepthCoding(plan.depthFormat, [&](const auto& depth) {
-            using Depth = std::decay_t<decltype(depth)>;
-            // Multisampling, chosen here once per draw; never observed (draw() refuses it).
-            if constexpr (!Observer::enabled) {
+            drawTile<S, FragmentOutput::Blend, Depth, true, kDerivatives>(rect, tile, chunks, plan, depth,
+                                                                          uniforms, target, stats, observer);
+        return;
+    } else {
+        const auto drawWith = [&]<bool kDerivatives>() {
+            withDepthCoding(plan.depthFormat, [&](const auto& depth) {
+                using Depth = std::decay_t<decltype(depth)>;
+                // Multisampling; never observed (draw() refuses it).
                 if (plan.samples > 1) {
-                    forEachItem(pool, inOrder, activeTiles.size(), [&](std::size_t active, int thread) {
-                        const std::size_t tile = activeTiles[active];
-                        detail::drawMultisampleTile<S, Depth, kDerivatives>(
-                            grid.tileRect(static_cast<int>(tile)), tile, chunks, plan, depth, uniforms,
-                            target, threadStats[static_cast<std::size_t>(thread)]);
-                    });
+                    drawMultisampleTile<S, Depth, kDerivatives>(rect, tile, chunks, plan, depth, uniforms,
+                                                                target, stats);
                     return;
                 }
+                const auto drawOutput = [&]<FragmentOutput kOutput, bool kRoundColor>() {
+                    drawTile<S, kOutput, Depth, kRoundColor, kDerivatives>(rect, tile, chunks, plan, depth,
+                                                                           uniforms, target, stats, observer);
+                };
+                // Appended fragments reach the colour buffer in the resolve, which rounds them.
+                if (plan.output == FragmentOutput::AppendToLists)
+                    drawOutput.template operator()<FragmentOutput::AppendToLists, false>();
+                else if (plan.colorBuffer != ColorBufferFormat::Float)
+                    drawOutput.template operator()<FragmentOutput::Blend, true>();
+                else
+                    drawOutput.template operator()<FragmentOutput::Blend, false>();
+            });
+        };
+        if constexpr (derivativeVarying<S>() >= 0) {
+            if (drawUsesDerivatives<S>(uniforms)) {
+                drawWith.template operator()<true>();
+                return;
             }
-            const auto drawOutput = [&]<FragmentOutput kOutput, bool kRoundColor>() {
-                detail::drawTiles<S, kOutput, Depth, kRoundColor, kDerivatives>(
-                    activeTiles, grid, chunks, plan, depth, uniforms, target, pool, inOrder, threadStats,
-                    observer);
-            };
-            // Appended fragments reach the colour buffer in the resolve, which rounds them.
-            if (plan.output == FragmentOutput::AppendToLists)
-                drawOutput.template operator()<FragmentOutput::AppendToLists, false>();
-            else if (plan.colorBuffer != ColorBufferFormat::Float)
-                drawOutput.template operator()<FragmentOutput::Blend, true>();
-            else
-                drawOutput.template operator()<FragmentOutput::Blend, false>();
-        });
-    };
-    if constexpr (derivativeVarying<S>() >= 0) {
-        if (drawUsesDerivatives<S>(uniforms)) {
-            drawWith.template operator()<true>();
-            return activeTiles.size();
         }
+        drawWith.template operator()<false>();
     }
-    drawWith.template operator()<false>();
+}
+
+// Appends the tiles the chunks binned a triangle to (each chunk's list) to `tiles`.
+inline void appendTouchedTiles(std::span<const SetupChunk> chunks, std::vector<std::uint32_t>& tiles) {
+    for (const SetupChunk& chunk : chunks)
+        tiles.insert(tiles.end(), chunk.touchedTiles.begin(), chunk.touchedTiles.end());
+}
+
+// Sorts the tiles and drops repeats.
+inline void sortUniqueTiles(std::vector<std::uint32_t>& tiles) {
+    std::sort(tiles.begin(), tiles.end());
+    tiles.erase(std::unique(tiles.begin(), tiles.end()), tiles.end());
+}
+
+}  // namespace detail
+
+// The back end for one batch of set-up chunks: only the tiles some triangle touches (a draw of a few
+// triangles then costs little more than its triangles, and a single tile is drawn on the calling
+// thread without waking the pool), in tile order, in parallel unless `inOrder`; each tile with the
+// draw's choices resolved (drawTileOfChunks). Returns the number of tiles drawn.
+template <Shader S, class Observer>
+std::size_t drawBatchTiles(const TileGrid& grid, std::span<const SetupChunk> chunks, const DrawPlan& plan,
+                           const typename S::Uniforms& uniforms, Framebuffer& target, ThreadPool& pool,
+                           bool inOrder, std::vector<std::uint32_t>& activeTiles,
+                           std::span<DrawStats> threadStats, Observer& observer) {
+    activeTiles.clear();
+    detail::appendTouchedTiles(chunks, activeTiles);
+    detail::sortUniqueTiles(activeTiles);
+    forEachItem(pool, inOrder, activeTiles.size(), [&](std::size_t active, int thread) {
+        detail::drawTileOfChunks<S>(grid, activeTiles[active], chunks, plan, uniforms, target,
+                                    threadStats[static_cast<std::size_t>(thread)], observer);
+    });
     return activeTiles.size();
 }
 

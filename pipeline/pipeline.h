@@ -49,6 +49,20 @@ struct DrawContext {
     std::vector<std::uint32_t> activeTiles;  // the tiles a batch's triangles touch, in tile order
     std::vector<DrawStats> threadStats;      // back-end counters, one per thread
     std::uint64_t drawsStarted = 0;          // draws begun with this context: the next draw's id
+
+    // For drawRun: each draw's set-up chunks, plan and front-end counters, and each thread's vertices.
+    struct RunDrawSlot {
+        std::vector<SetupChunk> chunks;
+        std::size_t chunkCount = 0;
+        DrawPlan plan;
+        DrawStats frontEnd;
+    };
+    struct RunVertexScratch {
+        ShadedVertices shaded;
+        std::vector<WindowVertex> window;
+    };
+    std::vector<RunDrawSlot> runSlots;
+    std::vector<RunVertexScratch> runVertices;
 };
 
 // Work sizes: vertices are shaded in chunks of kVertexChunk, triangles set up in chunks of
@@ -107,6 +121,113 @@ DrawStats draw(const DrawState& state, const typename S::Uniforms& uniforms,
     for (const DrawStats& s : context.threadStats)
         total += s;
     if constexpr (Watcher::enabled) observer.onDrawEnd(drawId, total);
+    return total;
+}
+
+// One draw of a run (drawRun): what draw() takes, by reference (alive for the call).
+template <Shader S>
+struct RunDraw {
+    const DrawState* state = nullptr;
+    const typename S::Uniforms* uniforms = nullptr;
+    std::span<const typename S::Attributes> vertices;
+    std::span<const std::uint32_t> indices;
+};
+
+// Whether a draw may join a run: small enough that draw() would shade its vertices and set up its
+// triangles on one thread anyway (one chunk of each).
+inline bool fitsInRun(std::size_t vertexCount, std::size_t indexCount) {
+    return vertexCount <= kVertexChunk && indexCount / 3 <= kTriangleChunk;
+}
+
+// Draws consecutive small draws of one shader with the bytes draw() would give one after another, as
+// two jobs of the pool instead of two or three per draw: first the draws' front ends, one draw per
+// item (each on one thread, as draw() runs a draw this small), then the back end, tile by tile, each
+// tile drawing every draw's triangles in draw order, so that every pixel still sees its fragments in
+// submission order. A frame of many draws of a few triangles each (Lost Empire's 4,064 sorted
+// transparent runs) otherwise joins the pool per draw and runs every front end on the calling thread.
+// Every draw must fit in a run (fitsInRun) and have the first one's viewport; checked, with each draw's
+// state and indices as draw() checks them, before anything is drawn (std::invalid_argument). Not
+// observable: an observer watches draw() by draw(). Returns the draws' counters summed.
+template <Shader S>
+DrawStats drawRun(std::span<const RunDraw<S>> draws, Framebuffer& target, DrawContext& context) {
+    if (draws.empty()) return {};
+    const Viewport& viewport = draws.front().state->viewport;
+    for (const RunDraw<S>& d : draws) {
+        validateDraw(*d.state, target, d.vertices.size(), d.indices, context.tileSize);
+        if (!fitsInRun(d.vertices.size(), d.indices.size()))
+            throw std::invalid_argument("drawRun: a draw of more than " + std::to_string(kVertexChunk) +
+                                        " vertices or " + std::to_string(kTriangleChunk) +
+                                        " triangles: draw it with draw()");
+        const Viewport& v = d.state->viewport;
+        if (v.x != viewport.x || v.y != viewport.y || v.width != viewport.width ||
+            v.height != viewport.height)
+            throw std::invalid_argument("drawRun: the draws of a run must share one viewport");
+    }
+    const TileGrid grid = makeTileGrid(viewport, context.tileSize);
+    if (context.runSlots.size() < draws.size()) context.runSlots.resize(draws.size());
+    const auto threads = static_cast<std::size_t>(context.pool.threads());
+    if (context.runVertices.size() < threads) context.runVertices.resize(threads);
+    for (std::size_t i = 0; i < draws.size(); ++i) {
+        const DrawPlan plan = planDraw(*draws[i].state);
+        context.runSlots[i].plan = plan;
+        if (plan.output == FragmentOutput::AppendToLists) {
+            target.fragmentLists().prepare(target.width(), target.height(), context.tileSize);
+            target.fragmentLists().useFormats(plan.depthFormat, plan.colorBuffer);
+        }
+    }
+    context.drawsStarted += draws.size();
+
+    // The front ends: vertex stage, then setup and binning into the draw's own chunk.
+    context.pool.parallelFor(draws.size(), [&](std::size_t i, int thread) {
+        const RunDraw<S>& d = draws[i];
+        DrawContext::RunVertexScratch& scratch = context.runVertices[static_cast<std::size_t>(thread)];
+        DrawContext::RunDrawSlot& slot = context.runSlots[i];
+        NullObserver observer;
+        constexpr bool kOneThread = true;  // this item is the draw's whole front end
+        runVertexStage<S>(d.vertices, *d.uniforms, *d.state, context.pool, kOneThread, kVertexChunk,
+                          scratch.shaded, scratch.window, observer);
+        const std::size_t triangles = d.indices.size() / 3;
+        slot.chunkCount = setupBatch(d.indices, 0, triangles, kTriangleChunk, *d.state, grid, scratch.shaded,
+                                     scratch.window, flatVaryingFloats<S>(), context.pool, kOneThread,
+                                     slot.chunks, observer);
+        slot.frontEnd = DrawStats{};
+        slot.frontEnd.vertices = scratch.shaded.size();
+        slot.frontEnd.triangles = triangles;
+        for (std::size_t c = 0; c < slot.chunkCount; ++c)
+            slot.frontEnd += slot.chunks[c].stats;
+    });
+
+    // The back end: every tile some draw touches, each draw's triangles in draw order.
+    std::vector<std::uint32_t>& tiles = context.activeTiles;
+    tiles.clear();
+    for (std::size_t i = 0; i < draws.size(); ++i) {
+        const DrawContext::RunDrawSlot& slot = context.runSlots[i];
+        detail::appendTouchedTiles({slot.chunks.data(), slot.chunkCount}, tiles);
+    }
+    detail::sortUniqueTiles(tiles);
+    context.threadStats.assign(threads, DrawStats{});
+    context.pool.parallelFor(tiles.size(), [&](std::size_t active, int thread) {
+        const std::uint32_t tile = tiles[active];
+        DrawStats& stats = context.threadStats[static_cast<std::size_t>(thread)];
+        for (std::size_t i = 0; i < draws.size(); ++i) {
+            const DrawContext::RunDrawSlot& slot = context.runSlots[i];
+            const std::span<const SetupChunk> chunks(slot.chunks.data(), slot.chunkCount);
+            const bool touched = std::any_of(chunks.begin(), chunks.end(), [&](const SetupChunk& chunk) {
+                return !chunk.bins[tile].empty();
+            });
+            if (!touched) continue;
+            NullObserver observer;
+            detail::drawTileOfChunks<S>(grid, tile, chunks, slot.plan, *draws[i].uniforms, target, stats,
+                                        observer);
+            ++stats.tilesDrawn;
+        }
+    });
+
+    DrawStats total;
+    for (std::size_t i = 0; i < draws.size(); ++i)
+        total += context.runSlots[i].frontEnd;
+    for (const DrawStats& s : context.threadStats)
+        total += s;
     return total;
 }
 

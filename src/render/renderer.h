@@ -120,6 +120,7 @@ struct FrameStats {
     SortStats sort;                   // transparent triangles sorted this frame (elements = 0: none)
     double sortMilliseconds = 0;      // keys and sort
     std::size_t transparentRuns = 0;  // draw calls of the transparent pass
+    std::size_t drawRuns = 0;         // runs of consecutive small draw calls drawn together (drawRun)
     FragmentListStats fragmentLists;  // exact transparency: fragments stored, the longest list, bytes held
     double resolveMilliseconds = 0;   // exact transparency: sorting and compositing the lists
     // The copy of the frame's code that drew it (frame_kernels.h): the dispatched renderFrame's choice;
@@ -250,6 +251,64 @@ DrawStats drawSurface(const PlannedDraw& call, const SurfaceUniforms& uniforms, 
 
 namespace detail {
 
+// A call's uniforms: its draw's, or a copy in `scratch` with the selected lighting terms and a
+// supersampling pass's projection.
+inline const SurfaceUniforms& callUniforms(const PreparedDraw& d, std::uint8_t terms,
+                                           const glm::dmat4* clipFromView, SurfaceUniforms& scratch) {
+    if (terms == kAllTerms && !clipFromView) return d.uniforms;
+    scratch = d.uniforms;
+    if (terms != kAllTerms) scratch.terms = terms;
+    if (clipFromView) scratch.clipFromObject = mat4(*clipFromView * d.viewFromObjectExact);
+    return scratch;
+}
+
+// Runs of consecutive small draw calls of one shading frequency are drawn together (pipeline.h's
+// drawRun: two jobs of the pool for the run instead of two or three per call). A run's length and
+// triangles are bounded, so that its set-ups take no more memory than one big draw's batch.
+inline constexpr std::size_t kMaxRunCalls = 64;
+inline constexpr std::size_t kMaxRunTriangles = kTriangleChunk * kChunksPerBatch;
+
+// One past the last call of the run that starts at plan[first] (first + 1: a call drawn alone).
+inline std::size_t runEnd(const PreparedScene& prepared, std::span<const PlannedDraw> plan,
+                          std::size_t first) {
+    const auto fits = [&](const PlannedDraw& call) {
+        return fitsInRun(call.vertices.size(), call.indices.size());
+    };
+    if (!fits(plan[first])) return first + 1;
+    const ShadingFrequency frequency = prepared.draws[plan[first].draw].frequency;
+    const Viewport& viewport = plan[first].state.viewport;
+    std::size_t end = first + 1, triangles = plan[first].indices.size() / 3;
+    while (end < plan.size() && end - first < kMaxRunCalls) {
+        const PlannedDraw& call = plan[end];
+        const Viewport& v = call.state.viewport;
+        triangles += call.indices.size() / 3;
+        if (!fits(call) || prepared.draws[call.draw].frequency != frequency || triangles > kMaxRunTriangles ||
+            v.x != viewport.x || v.y != viewport.y || v.width != viewport.width ||
+            v.height != viewport.height)
+            break;
+        ++end;
+    }
+    return end;
+}
+
+// The calls of a run, drawn with drawRun.
+template <ShadingFrequency kFrequency>
+DrawStats drawSurfaceRun(const PreparedScene& prepared, std::span<const PlannedDraw> calls,
+                         std::uint8_t terms, const glm::dmat4* clipFromView, Framebuffer& target,
+                         DrawContext& context) {
+    using S = SurfaceShader<kFrequency>;
+    std::vector<SurfaceUniforms> scratch(terms != kAllTerms || clipFromView ? calls.size() : 0);
+    std::vector<RunDraw<S>> draws(calls.size());
+    for (std::size_t i = 0; i < calls.size(); ++i) {
+        const PreparedDraw& d = prepared.draws[calls[i].draw];
+        SurfaceUniforms unused;  // callUniforms writes its scratch only when it has one
+        const SurfaceUniforms& uniforms =
+            callUniforms(d, terms, clipFromView, scratch.empty() ? unused : scratch[i]);
+        draws[i] = {&calls[i].state, &uniforms, calls[i].vertices, calls[i].indices};
+    }
+    return drawRun<S>(std::span<const RunDraw<S>>(draws), target, context);
+}
+
 // One pass of the frame: clears `target` and draws the plan; `clipFromView` (null: the camera's own)
 // is the projection of a supersampling pass.
 template <class Observer>
@@ -259,17 +318,37 @@ void drawFramePass(const PreparedScene& prepared, std::span<const PlannedDraw> p
     // The background and the far plane, as the buffers' formats store them.
     target.clear(roundToColorBuffer(prepared.state.colorBuffer, prepared.clearColor),
                  depthClearValue(prepared.state.depth.format), context.pool);
-    for (const PlannedDraw& call : plan) {
+    for (std::size_t k = 0; k < plan.size();) {
+        const PlannedDraw& call = plan[k];
         const PreparedDraw& d = prepared.draws[call.draw];
-        if constexpr (requires { observer.onPlannedDraw(call, d); }) observer.onPlannedDraw(call, d);
-        const SurfaceUniforms* uniforms = &d.uniforms;
-        SurfaceUniforms selected;
-        if (terms != kAllTerms || clipFromView) {
-            selected = d.uniforms;
-            if (terms != kAllTerms) selected.terms = terms;
-            if (clipFromView) selected.clipFromObject = mat4(*clipFromView * d.viewFromObjectExact);
-            uniforms = &selected;
+        // An observer watches draw by draw.
+        if constexpr (!Observer::enabled && !requires { observer.onPlannedDraw(call, d); }) {
+            const std::size_t end = runEnd(prepared, plan, k);
+            if (end - k > 1) {
+                const std::span<const PlannedDraw> calls = plan.subspan(k, end - k);
+                switch (d.frequency) {
+                    case ShadingFrequency::Flat:
+                        stats.draw += drawSurfaceRun<ShadingFrequency::Flat>(prepared, calls, terms,
+                                                                             clipFromView, target, context);
+                        break;
+                    case ShadingFrequency::Gouraud:
+                        stats.draw += drawSurfaceRun<ShadingFrequency::Gouraud>(
+                            prepared, calls, terms, clipFromView, target, context);
+                        break;
+                    case ShadingFrequency::Phong:
+                        stats.draw += drawSurfaceRun<ShadingFrequency::Phong>(prepared, calls, terms,
+                                                                              clipFromView, target, context);
+                        break;
+                }
+                ++stats.drawRuns;
+                k = end;
+                continue;
+            }
         }
+        ++k;
+        if constexpr (requires { observer.onPlannedDraw(call, d); }) observer.onPlannedDraw(call, d);
+        SurfaceUniforms selected;
+        const SurfaceUniforms* uniforms = &callUniforms(d, terms, clipFromView, selected);
         switch (d.frequency) {
             case ShadingFrequency::Flat:
                 stats.draw += drawSurface<ShadingFrequency::Flat>(call, *uniforms, target, context, observer);

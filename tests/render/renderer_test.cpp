@@ -207,7 +207,9 @@ struct FrameRecorder : NullObserver {
 };
 
 // Watching a frame changes no byte of colour or depth, sorted or exact (breaks caught: an observed
-// frame drawing its calls in another order, or skipping the resolve).
+// frame drawing its calls in another order, or skipping the resolve). The unwatched frame draws the
+// sorted transparent calls in runs (drawRun), the watched one call by call: also caught, a run that
+// draws its calls out of order or with another call's state or uniforms.
 TEST(Renderer, WatchingAFrameChangesNoByte) {
     for (const TransparencyMode mode : {TransparencyMode::Sorted, TransparencyMode::Exact}) {
         PreparedScene prepared = mixedScene();
@@ -216,7 +218,8 @@ TEST(Renderer, WatchingAFrameChangesNoByte) {
         Framebuffer watched(prepared.scene.width, prepared.scene.height);
         DrawContext threads(3), calling(1);
         FrameMemory plainMemory, watchedMemory;
-        renderFrame(prepared, plain, threads, plainMemory);
+        const FrameStats plainStats = renderFrame(prepared, plain, threads, plainMemory);
+        EXPECT_GT(plainStats.drawRuns, 0u);
         FrameRecorder recorder;
         renderFrame(prepared, watched, calling, watchedMemory, recorder);
         EXPECT_GT(recorder.fragments, 0u);

@@ -1,0 +1,136 @@
+// drawRun: consecutive small draws drawn as one front-end job and one back-end job must give the bytes
+// and counters of the same draws drawn one by one with draw().
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "../support/test_shaders.h"
+#include "pipeline.h"
+
+namespace facet {
+namespace {
+
+using testing::FlatColorShader;
+
+struct RandomDraw {
+    DrawState state;
+    FlatColorShader::Uniforms uniforms;
+    std::vector<FlatColorShader::Attributes> vertices;
+    std::vector<std::uint32_t> indices;
+};
+
+// Draws of a few overlapping triangles each, with states that differ from draw to draw: blending,
+// depth test and write, the comparison, culling, and the uniforms (flat or smooth colour), so that a
+// draw drawn out of order, skipped in a tile, or with another draw's plan or uniforms changes bytes.
+std::vector<RandomDraw> randomDraws(const Framebuffer& fb, int count, std::mt19937& rng) {
+    std::uniform_real_distribution<float> x(-20.0f, static_cast<float>(fb.width()) + 20.0f),
+        y(-20.0f, static_cast<float>(fb.height()) + 20.0f), unit(0.0f, 1.0f), z(-0.9f, 0.9f);
+    const BlendMode blends[] = {BlendMode::Replace, BlendMode::Over, BlendMode::Additive,
+                                BlendMode::PremultipliedOver};
+    const CompareOp compares[] = {CompareOp::Less, CompareOp::LessEqual, CompareOp::Greater};
+    std::vector<RandomDraw> draws(static_cast<std::size_t>(count));
+    for (RandomDraw& d : draws) {
+        d.state = testing::stateFor(fb);
+        d.state.blend = blends[rng() % 4];
+        d.state.depth.testEnabled = rng() % 4 != 0;
+        d.state.depth.writeEnabled = rng() % 3 != 0;
+        d.state.depth.compare = compares[rng() % 3];
+        d.state.raster.cull = rng() % 3 == 0 ? CullMode::Back : CullMode::None;
+        d.uniforms.showSmooth = rng() % 2 == 0;
+        const int triangles = 1 + static_cast<int>(rng() % 6);
+        for (int t = 0; t < triangles; ++t) {
+            // Some small (a few pixels), some across much of the framebuffer.
+            const float size = rng() % 2 ? 6.0f : 60.0f;
+            const vec2 centre(x(rng), y(rng));
+            for (int k = 0; k < 3; ++k) {
+                const vec2 p = centre + size * vec2(unit(rng) - 0.5f, unit(rng) - 0.5f);
+                d.indices.push_back(static_cast<std::uint32_t>(d.vertices.size()));
+                d.vertices.push_back({testing::clipFromWindow(p, fb, z(rng)),
+                                      vec4(unit(rng), unit(rng), unit(rng), unit(rng))});
+            }
+        }
+    }
+    return draws;
+}
+
+std::vector<RunDraw<FlatColorShader>> asRun(const std::vector<RandomDraw>& draws) {
+    std::vector<RunDraw<FlatColorShader>> run;
+    for (const RandomDraw& d : draws)
+        run.push_back({&d.state, &d.uniforms, d.vertices, d.indices});
+    return run;
+}
+
+bool sameBytes(const Framebuffer& a, const Framebuffer& b) {
+    if (std::memcmp(a.colorPixels().data(), b.colorPixels().data(), a.colorPixels().size() * sizeof(vec4)))
+        return false;
+    for (int y = 0; y < a.height(); ++y)
+        for (int x = 0; x < a.width(); ++x)
+            if (const float da = a.depth(x, y), db = b.depth(x, y); std::memcmp(&da, &db, sizeof da))
+                return false;
+    return true;
+}
+
+// Breaks caught: the back end drawing a tile's draws in another order than the run's, skipping a draw
+// in a tile it touches, drawing every draw with the first one's plan or uniforms, or a front end
+// writing another draw's chunk; counters summed wrongly.
+TEST(DrawRun, GivesTheBytesAndCountersOfItsDrawsOneByOne) {
+    std::mt19937 rng(1201);
+    for (int trial = 0; trial < 6; ++trial) {
+        Framebuffer one(150, 90), run(150, 90);
+        const std::vector<RandomDraw> draws = randomDraws(one, 40, rng);
+        DrawContext sequential(1);
+        one.clear(vec4(0.1f, 0.2f, 0.3f, 1.0f), DepthFormat::kClear, sequential.pool);
+        DrawStats expected;
+        for (const RandomDraw& d : draws)
+            expected += draw<FlatColorShader>(d.state, d.uniforms, std::span(d.vertices),
+                                              std::span(d.indices), one, sequential);
+        ASSERT_GT(expected.fragmentsWritten, 1000u);
+        for (const auto& [threads, tileSize] :
+             {std::pair{1, kDefaultTileSize}, {2, kDefaultTileSize}, {2, 16}}) {
+            SCOPED_TRACE(::testing::Message()
+                         << "trial " << trial << ", " << threads << " threads, tiles of " << tileSize);
+            DrawContext context(threads, tileSize);
+            run.clear(vec4(0.1f, 0.2f, 0.3f, 1.0f), DepthFormat::kClear, context.pool);
+            const std::vector<RunDraw<FlatColorShader>> calls = asRun(draws);
+            const DrawStats stats = drawRun<FlatColorShader>(calls, run, context);
+            EXPECT_TRUE(sameBytes(one, run));
+            EXPECT_EQ(stats.vertices, expected.vertices);
+            EXPECT_EQ(stats.trianglesRasterized, expected.trianglesRasterized);
+            EXPECT_EQ(stats.trianglesCulled, expected.trianglesCulled);
+            EXPECT_EQ(stats.fragmentsShaded, expected.fragmentsShaded);
+            EXPECT_EQ(stats.fragmentsDepthFailed, expected.fragmentsDepthFailed);
+            EXPECT_EQ(stats.fragmentsWritten, expected.fragmentsWritten);
+            if (tileSize == kDefaultTileSize) {
+                EXPECT_EQ(stats.tilesDrawn, expected.tilesDrawn);
+            }
+            EXPECT_EQ(context.drawsStarted, draws.size());
+        }
+    }
+}
+
+// A draw too big for a run, or one with another viewport, is refused before anything is drawn.
+TEST(DrawRun, RefusesADrawTooBigOrWithAnotherViewportAndDrawsNothing) {
+    std::mt19937 rng(7);
+    Framebuffer fb(64, 48), untouched(64, 48);
+    std::vector<RandomDraw> draws = randomDraws(fb, 3, rng);
+    DrawContext context(2);
+    fb.clear(vec4(0.0f), DepthFormat::kClear, context.pool);
+    untouched.clear(vec4(0.0f), DepthFormat::kClear, context.pool);
+
+    draws[2].state.viewport.width = 32;
+    EXPECT_THROW(drawRun<FlatColorShader>(asRun(draws), fb, context), std::invalid_argument);
+    EXPECT_TRUE(sameBytes(fb, untouched));
+
+    draws[2].state.viewport = draws[0].state.viewport;
+    draws[1].indices.assign(3 * (kTriangleChunk + 1), 0u);
+    EXPECT_THROW(drawRun<FlatColorShader>(asRun(draws), fb, context), std::invalid_argument);
+    EXPECT_TRUE(sameBytes(fb, untouched));
+    EXPECT_FALSE(fitsInRun(3, 3 * (kTriangleChunk + 1)));
+    EXPECT_FALSE(fitsInRun(kVertexChunk + 1, 3));
+    EXPECT_TRUE(fitsInRun(kVertexChunk, 3 * kTriangleChunk));
+}
+
+}  // namespace
+}  // namespace facet
