@@ -105,9 +105,7 @@ unsigned runFragmentShader(FragmentQueue& queue, int n, const typename S::Unifor
     unsigned kept = queue.batch.mask;
     stats.fragmentsShaded += static_cast<unsigned>(std::popcount(kept));
     if constexpr (BatchShader<S>) {
-        const Vec4x8 c = S::fragmentBatch(queue.batch, uniforms);
-        for (int lane = 0; lane < n; ++lane)
-            shaded[lane] = vec4(c.x[lane], c.y[lane], c.z[lane], c.w[lane]);
+        storeTransposed(S::fragmentBatch(queue.batch, uniforms), shaded);
     } else {
         float varyings[kMaxVaryingFloats];
         for (int lane = 0; lane < n; ++lane) {

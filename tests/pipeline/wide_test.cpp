@@ -37,6 +37,24 @@ TEST(Wide, PowFollowsGlslAtTheEdges) {
         EXPECT_EQ(one[i], 1.0f);  // x^0 = 1, also for x = 0 (GLSL leaves it undefined)
 }
 
+// Lane i of the four Float8 ends as out[i] = (x_i, y_i, z_i, w_i) (breaks caught: a shuffle index off
+// by one, halves swapped between the 128-bit lanes of the transpose).
+TEST(Wide, StoreTransposedPutsEachLaneInItsVec4) {
+    Vec4x8 v;
+    for (int lane = 0; lane < 8; ++lane) {
+        v.x[lane] = 10.0f * lane + 1.0f;
+        v.y[lane] = 10.0f * lane + 2.0f;
+        v.z[lane] = 10.0f * lane + 3.0f;
+        v.w[lane] = 10.0f * lane + 4.0f;
+    }
+    vec4 out[8];
+    storeTransposed(v, out);
+    for (int lane = 0; lane < 8; ++lane)
+        EXPECT_EQ(out[lane],
+                  vec4(10.0f * lane + 1.0f, 10.0f * lane + 2.0f, 10.0f * lane + 3.0f, 10.0f * lane + 4.0f))
+            << "lane " << lane;
+}
+
 TEST(Wide, VectorHelpersAreLaneWise) {
     const Vec3x8 v(vec3(3, 4, 0));
     const Vec3x8 n = normalize(v);
