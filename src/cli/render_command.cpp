@@ -82,6 +82,9 @@ void printFrameStats(std::ostream& out, int frame, const facet::PreparedScene& p
         }
         out << "; " << stats.transparentRuns << (stats.transparentRuns == 1 ? " draw" : " draws")
             << " in the transparent pass";
+        if (stats.drawRuns > 0)
+            out << " (small draws drawn together in " << stats.drawRuns
+                << (stats.drawRuns == 1 ? " run)" : " runs)");
         if (stats.fragmentLists.fragments > 0) {
             char text[160];
             std::snprintf(

@@ -181,7 +181,8 @@ TEST_F(CliWithMesa, CompareWithOpenGlAgreesOnTheBundledScene) {
 }
 
 // A turntable writes numbered images; --stats shows the first frame sorted from scratch and the next
-// ones by insertion from the previous order, with their comparisons and moves.
+// ones by insertion from the previous order, with their comparisons and moves, and the transparent
+// pass's calls drawn in runs.
 TEST(Cli, TurntableFramesWithSortStatistics) {
     TempDir dir;
     const auto scene = std::filesystem::path(FACET_SOURCE_DIR) / "models/intersecting-quads.json";
@@ -197,6 +198,7 @@ TEST(Cli, TurntableFramesWithSortStatistics) {
     EXPECT_NE(run.out.find("frame 5: "), std::string::npos) << run.out;
     EXPECT_NE(run.out.find("by insertion from the last frame's order"), std::string::npos) << run.out;
     EXPECT_NE(run.out.find(" moves"), std::string::npos) << run.out;
+    EXPECT_NE(run.out.find("small draws drawn together in "), std::string::npos) << run.out;
     // Frames differ: the objects turned.
     EXPECT_FALSE(readImage(dir.path() / "spin-0003.png").pixels ==
                  readImage(dir.path() / "spin-0005.png").pixels);
