@@ -35,7 +35,7 @@ namespace detail {
 // fragment is depth-tested at a pixel that holds a queued one, the queue is shaded, so every pixel
 // still sees its fragments in submission order, and the image does not depend on how fragments were
 // grouped. The slots in use are those of batch.mask: the first `count` for fragments queued one by
-// one, or the passing lanes of a block row shaded whole (shadeRowWhole), where slot = column.
+// one, or the passing lanes of a block row shaded whole (kRowShadedWhole), where slot = column.
 struct FragmentQueue {
     int count = 0;
     int x[kBlockSize] = {}, y[kBlockSize] = {};
@@ -335,8 +335,8 @@ void depthTestBlock(const TriangleSetup& setup, const float* planes, const Cover
         if (rowShadedWhole) {
             // Slot = column; the slots of lanes that failed are not live (batch.mask) and not read.
             const Int8 column = {0, 1, 2, 3, 4, 5, 6, 7};
-            const Int8 rowX = column + block.x, rowY = column * 0 + y;
-            const Int8 triangle = column * 0 + static_cast<std::int32_t>(setup.triangle);
+            const Int8 rowX = column + block.x, rowY = Int8{} + y;
+            const Int8 triangle = Int8{} + static_cast<std::int32_t>(setup.triangle);
             std::memcpy(rowQueue.x, &rowX, sizeof rowX);
             std::memcpy(rowQueue.y, &rowY, sizeof rowY);
             std::memcpy(rowQueue.z, &z, sizeof z);
@@ -344,12 +344,13 @@ void depthTestBlock(const TriangleSetup& setup, const float* planes, const Cover
         }
         for (unsigned lanes = passed; lanes; lanes &= lanes - 1) {
             const int lane = std::countr_zero(lanes);
-            FragmentQueue& into = rowShadedWhole ? rowQueue : queue;
-            const int slot = rowShadedWhole ? lane
-                                            : queueFragment<S, kDerivatives>(
-                                                  queue, setup, planes, uvSlopes, block.x + lane, y, z[lane],
-                                                  wideRow, rowVaryings, lane, b1[lane], b2[lane]);
+            int slot = lane;  // a row shaded whole: its slots are its columns, filled above
+            if (!rowShadedWhole)
+                slot =
+                    queueFragment<S, kDerivatives>(queue, setup, planes, uvSlopes, block.x + lane, y, z[lane],
+                                                   wideRow, rowVaryings, lane, b1[lane], b2[lane]);
             if constexpr (kObserving) {
+                FragmentQueue& into = rowShadedWhole ? rowQueue : queue;
                 into.b1[slot] = b1[lane];
                 into.b2[slot] = b2[lane];
                 into.invW[slot] = interpolateInvW(setup, b1[lane], b2[lane]);

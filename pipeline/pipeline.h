@@ -158,9 +158,7 @@ DrawStats drawRun(std::span<const RunDraw<S>> draws, Framebuffer& target, DrawCo
             throw std::invalid_argument("drawRun: a draw of more than " + std::to_string(kVertexChunk) +
                                         " vertices or " + std::to_string(kTriangleChunk) +
                                         " triangles: draw it with draw()");
-        const Viewport& v = d.state->viewport;
-        if (v.x != viewport.x || v.y != viewport.y || v.width != viewport.width ||
-            v.height != viewport.height)
+        if (!samePixels(d.state->viewport, viewport))
             throw std::invalid_argument("drawRun: the draws of a run must share one viewport");
     }
     const TileGrid grid = makeTileGrid(viewport, context.tileSize);

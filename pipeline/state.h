@@ -22,6 +22,12 @@ struct Viewport {
     float maxDepth = 1.0f;  // window depth of the far plane (NDC z = +1)
 };
 
+// Whether two viewports cover the same pixels (their depth ranges may differ): draws into them share
+// one tile grid.
+inline bool samePixels(const Viewport& a, const Viewport& b) {
+    return a.x == b.x && a.y == b.y && a.width == b.width && a.height == b.height;
+}
+
 enum class CullMode : std::uint8_t { None, Back, Front };
 inline constexpr EnumName<CullMode> kCullModeNames[] = {
     {CullMode::Back, "back"}, {CullMode::Front, "front"}, {CullMode::None, "none"}};

@@ -280,11 +280,9 @@ inline std::size_t runEnd(const PreparedScene& prepared, std::span<const Planned
     std::size_t end = first + 1, triangles = plan[first].indices.size() / 3;
     while (end < plan.size() && end - first < kMaxRunCalls) {
         const PlannedDraw& call = plan[end];
-        const Viewport& v = call.state.viewport;
         triangles += call.indices.size() / 3;
         if (!fits(call) || prepared.draws[call.draw].frequency != frequency || triangles > kMaxRunTriangles ||
-            v.x != viewport.x || v.y != viewport.y || v.width != viewport.width ||
-            v.height != viewport.height)
+            !samePixels(call.state.viewport, viewport))
             break;
         ++end;
     }
@@ -297,16 +295,30 @@ DrawStats drawSurfaceRun(const PreparedScene& prepared, std::span<const PlannedD
                          std::uint8_t terms, const glm::dmat4* clipFromView, Framebuffer& target,
                          DrawContext& context) {
     using S = SurfaceShader<kFrequency>;
-    std::vector<SurfaceUniforms> scratch(terms != kAllTerms || clipFromView ? calls.size() : 0);
+    const bool adjusted = terms != kAllTerms || clipFromView;
+    std::vector<SurfaceUniforms> adjustedUniforms(adjusted ? calls.size() : 0);
     std::vector<RunDraw<S>> draws(calls.size());
     for (std::size_t i = 0; i < calls.size(); ++i) {
         const PreparedDraw& d = prepared.draws[calls[i].draw];
-        SurfaceUniforms unused;  // callUniforms writes its scratch only when it has one
         const SurfaceUniforms& uniforms =
-            callUniforms(d, terms, clipFromView, scratch.empty() ? unused : scratch[i]);
+            adjusted ? callUniforms(d, terms, clipFromView, adjustedUniforms[i]) : d.uniforms;
         draws[i] = {&calls[i].state, &uniforms, calls[i].vertices, calls[i].indices};
     }
     return drawRun<S>(std::span<const RunDraw<S>>(draws), target, context);
+}
+
+// body.template operator()<kFrequency>() for the frequency given at run time.
+template <class Body>
+decltype(auto) withShadingFrequency(ShadingFrequency frequency, Body&& body) {
+    switch (frequency) {
+        case ShadingFrequency::Flat:
+            return body.template operator()<ShadingFrequency::Flat>();
+        case ShadingFrequency::Gouraud:
+            return body.template operator()<ShadingFrequency::Gouraud>();
+        case ShadingFrequency::Phong:
+            break;
+    }
+    return body.template operator()<ShadingFrequency::Phong>();
 }
 
 // One pass of the frame: clears `target` and draws the plan; `clipFromView` (null: the camera's own)
@@ -326,20 +338,9 @@ void drawFramePass(const PreparedScene& prepared, std::span<const PlannedDraw> p
             const std::size_t end = runEnd(prepared, plan, k);
             if (end - k > 1) {
                 const std::span<const PlannedDraw> calls = plan.subspan(k, end - k);
-                switch (d.frequency) {
-                    case ShadingFrequency::Flat:
-                        stats.draw += drawSurfaceRun<ShadingFrequency::Flat>(prepared, calls, terms,
-                                                                             clipFromView, target, context);
-                        break;
-                    case ShadingFrequency::Gouraud:
-                        stats.draw += drawSurfaceRun<ShadingFrequency::Gouraud>(
-                            prepared, calls, terms, clipFromView, target, context);
-                        break;
-                    case ShadingFrequency::Phong:
-                        stats.draw += drawSurfaceRun<ShadingFrequency::Phong>(prepared, calls, terms,
-                                                                              clipFromView, target, context);
-                        break;
-                }
+                stats.draw += withShadingFrequency(d.frequency, [&]<ShadingFrequency kFrequency>() {
+                    return drawSurfaceRun<kFrequency>(prepared, calls, terms, clipFromView, target, context);
+                });
                 ++stats.drawRuns;
                 k = end;
                 continue;
@@ -348,20 +349,10 @@ void drawFramePass(const PreparedScene& prepared, std::span<const PlannedDraw> p
         ++k;
         if constexpr (requires { observer.onPlannedDraw(call, d); }) observer.onPlannedDraw(call, d);
         SurfaceUniforms selected;
-        const SurfaceUniforms* uniforms = &callUniforms(d, terms, clipFromView, selected);
-        switch (d.frequency) {
-            case ShadingFrequency::Flat:
-                stats.draw += drawSurface<ShadingFrequency::Flat>(call, *uniforms, target, context, observer);
-                break;
-            case ShadingFrequency::Gouraud:
-                stats.draw +=
-                    drawSurface<ShadingFrequency::Gouraud>(call, *uniforms, target, context, observer);
-                break;
-            case ShadingFrequency::Phong:
-                stats.draw +=
-                    drawSurface<ShadingFrequency::Phong>(call, *uniforms, target, context, observer);
-                break;
-        }
+        const SurfaceUniforms& uniforms = callUniforms(d, terms, clipFromView, selected);
+        stats.draw += withShadingFrequency(d.frequency, [&]<ShadingFrequency kFrequency>() {
+            return drawSurface<kFrequency>(call, uniforms, target, context, observer);
+        });
     }
     // Exact transparency: every pixel's fragments sorted by depth and composited, farthest first.
     if (prepared.scene.transparency.mode == TransparencyMode::Exact &&
