@@ -13,6 +13,7 @@
 
 #include "glsl.h"
 #include "names.h"
+#include "wide.h"
 
 namespace facet {
 
@@ -126,6 +127,64 @@ inline void wrapTexelPair(float i, int n, int& first, int& second) {
     detail::wrapTexelPair(fu, t.width, x0, x1);
     detail::wrapTexelPair(fv, t.height, y0, y1);
     return mix(mix(t.texel(x0, y0), t.texel(x1, y0), s), mix(t.texel(x0, y1), t.texel(x1, y1), s), r);
+}
+
+// The same at eight points at once (bit i of liveLanes: lane i is a fragment; the others, whose uv may
+// be anything, are opaque white). The lanes give sampleBilinear's bits: the same operations in the
+// same order, lane by lane. When every live lane's four texels lie inside the texture without
+// wrapping (the common case), the weights are computed eight at a time and the texels gathered;
+// otherwise each live lane is sampled alone.
+[[gnu::always_inline]] inline Vec4x8 sampleBilinear(const Texture& t, const Vec2x8& uv, unsigned liveLanes) {
+    const Float8 one = splat(1.0f);
+    if (t.empty()) return {one, one, one, one};
+    const Float8 u = uv.x * static_cast<float>(t.width) - 0.5f;
+    const Float8 v = (1.0f - uv.y) * static_cast<float>(t.height) - 0.5f;
+    // 0 ≤ u < width − 1 is 0 ≤ ⌊u⌋ ≤ width − 2: the texel and its right neighbour without wrapping
+    // (wrapTexelPair's first case); false for NaN and ±∞.
+    const Int8 live = laneMaskOf(liveLanes);
+    const Int8 inside = (u >= 0.0f) & (u < static_cast<float>(t.width - 1)) & (v >= 0.0f) &
+                        (v < static_cast<float>(t.height - 1));
+    if (signMask(inside | ~live) != 0xffu) {
+        Vec4x8 texel{one, one, one, one};
+        for (int lane = 0; lane < 8; ++lane) {
+            if (!((liveLanes >> lane) & 1)) continue;
+            const vec4 c = sampleBilinear(t, vec2(uv.x[lane], uv.y[lane]));
+            texel.x[lane] = c.r;
+            texel.y[lane] = c.g;
+            texel.z[lane] = c.b;
+            texel.w[lane] = c.a;
+        }
+        return texel;
+    }
+    // Dead lanes read texel 0 (their uv may be out of range or NaN) and are made white at the end.
+    const Int8 x0 = __builtin_convertvector(select(live, u, 0.0f), Int8);  // ⌊u⌋: u ≥ 0
+    const Int8 y0 = __builtin_convertvector(select(live, v, 0.0f), Int8);
+    const Float8 s = u - __builtin_convertvector(x0, Float8), r = v - __builtin_convertvector(y0, Float8);
+    const Int8 i00 = y0 * t.width + x0, i10 = i00 + 1, i01 = i00 + t.width, i11 = i01 + 1;
+    // mix(mix(t00, t10, s), mix(t01, t11, s), r), GLM's mix(x, y, a) = x·(1 − a) + y·a, per channel.
+    const Float8 notS = 1.0f - s, notR = 1.0f - r;
+    auto filter = [&](Float8 t00, Float8 t10, Float8 t01, Float8 t11) {
+        return select(live, (t00 * notS + t10 * s) * notR + (t01 * notS + t11 * s) * r, one);
+    };
+    if (t.codes.empty()) {
+        // Linear float RGBA: channel k of texel i is float 4·i + k.
+        const float* f = &t.texels[0].x;
+        auto channel = [&](int k) {
+            return filter(gather(f, i00 * 4 + k), gather(f, i10 * 4 + k), gather(f, i01 * 4 + k),
+                          gather(f, i11 * 4 + k));
+        };
+        return {channel(0), channel(1), channel(2), channel(3)};
+    }
+    // 8-bit codes: one word per texel, R in its lowest byte (Codes' order in memory, little-endian),
+    // each byte decoded through its table.
+    const Int8 c00 = gatherWords(t.codes.data(), i00), c10 = gatherWords(t.codes.data(), i10),
+               c01 = gatherWords(t.codes.data(), i01), c11 = gatherWords(t.codes.data(), i11);
+    auto channel = [&](const std::array<float, 256>& table, int shift) {
+        auto decode = [&](Int8 c) { return gather(table.data(), (c >> shift) & 0xff); };
+        return filter(decode(c00), decode(c10), decode(c01), decode(c11));
+    };
+    return {channel(t.colorFromCode, 0), channel(t.colorFromCode, 8), channel(t.colorFromCode, 16),
+            channel(t.alphaFromCode, 24)};
 }
 
 // GL_NEAREST: the texel whose square [i, i + 1)/size contains uv.

@@ -160,6 +160,42 @@ inline Vec3x8 select(Int8 cond, const Vec3x8& a, const Vec3x8& b) {
     return {select(cond, a.x, b.x), select(cond, a.y, b.y), select(cond, a.z, b.z)};
 }
 
+// Lane i all ones where bit i of `bits` is set: a lane mask (FragmentBatch::mask) as a comparison result.
+inline Int8 laneMaskOf(unsigned bits) {
+    const Int8 laneBits = {1, 2, 4, 8, 16, 32, 64, 128};
+    return (laneBits & static_cast<std::int32_t>(bits)) != 0;
+}
+
+// table[index[i]] in each lane: one gather instruction with AVX2, eight loads without. Every index
+// must be valid, dead lanes' too.
+inline Float8 gather(const float* table, Int8 index) {
+#if defined(__AVX2__)
+    return std::bit_cast<Float8>(_mm256_i32gather_ps(table, std::bit_cast<__m256i>(index), 4));
+#else
+    Float8 r;
+    for (int i = 0; i < 8; ++i)
+        r[i] = table[index[i]];
+    return r;
+#endif
+}
+// The 4-byte word at bytes + 4·index[i] in each lane, as the bytes lie in memory (any 4-byte element,
+// read without regard to its type: memcpy's semantics, one gather with AVX2).
+inline Int8 gatherWords(const void* bytes, Int8 index) {
+#if defined(__AVX2__)
+    return std::bit_cast<Int8>(
+        _mm256_i32gather_epi32(static_cast<const int*>(bytes), std::bit_cast<__m256i>(index), 4));
+#else
+    Int8 r;
+    for (int i = 0; i < 8; ++i) {
+        std::int32_t word;
+        std::memcpy(&word,
+                    static_cast<const unsigned char*>(bytes) + 4 * std::size_t(std::uint32_t(index[i])), 4);
+        r[i] = word;
+    }
+    return r;
+#endif
+}
+
 // Scalar counterparts, so shader templates can use the same names for both lane types.
 inline vec3 select(bool cond, const vec3& a, const vec3& b) {
     return cond ? a : b;

@@ -312,6 +312,7 @@ LaneVec4<F> texels(const Texture& map, const LaneVec2<F>& uv, unsigned liveLanes
                 return sampleTrilinear(map, at, footprint * dx, footprint * dy);
             });
         case TextureFilter::Bilinear:
+            if constexpr (LaneTraits<F>::kCount == 8) return sampleBilinear(map, uv, liveLanes);
             break;
     }
     return sampleLanes<F>(uv, liveLanes, d, [&](vec2 at, vec2, vec2) { return sampleBilinear(map, at); });
