@@ -200,6 +200,13 @@ concept LanewiseVertexLighting = requires(const typename Body::Attributes& in,
         } -> std::same_as<typename Body::template VaryingsT<Float8>>;
 };
 
+// A body that shades eight vertices at once itself (the matrices eight lanes at a time).
+template <class Body>
+concept HasVertexBatch = requires(const typename Body::Attributes* in, const typename Body::Uniforms& u,
+                                  VertexOut<typename Body::template VaryingsT<float>>* out) {
+    { Body::vertexBatch(in, u, out) } -> std::same_as<void>;
+};
+
 template <class Body>
 struct LaneShader : Body {
     using Varyings = typename Body::template VaryingsT<float>;
@@ -221,19 +228,26 @@ struct LaneShader : Body {
             return Body::template shade<Float8>(loadLanes<Body::template VaryingsT>(in), u, in.mask);
         }
     }
+    // Eight vertices at once: the body's own vertexBatch when it has one, else vertexInputs lane by
+    // lane and lightVertex on eight lanes (LanewiseVertexLighting).
     static void vertexBatch(const Attributes* in, const Uniforms& u,
-                            VertexOut<Varyings>* out) requires LanewiseVertexLighting<Body> {
-        using Inputs = typename Body::template VertexInputsT<float>;
-        Inputs inputs[kVertexBatch];
-        for (int lane = 0; lane < kVertexBatch; ++lane) {
-            const VertexOut<Inputs> prepared = Body::vertexInputs(in[lane], u);
-            out[lane].position = prepared.position;
-            inputs[lane] = prepared.varyings;
+                            VertexOut<Varyings>* out) requires(LanewiseVertexLighting<Body> ||
+                                                               HasVertexBatch<Body>) {
+        if constexpr (HasVertexBatch<Body>) {
+            Body::vertexBatch(in, u, out);
+        } else {
+            using Inputs = typename Body::template VertexInputsT<float>;
+            Inputs inputs[kVertexBatch];
+            for (int lane = 0; lane < kVertexBatch; ++lane) {
+                const VertexOut<Inputs> prepared = Body::vertexInputs(in[lane], u);
+                out[lane].position = prepared.position;
+                inputs[lane] = prepared.varyings;
+            }
+            const typename Body::template VaryingsT<Float8> lit =
+                Body::template lightVertex<Float8>(gatherLanes<Body::template VertexInputsT>(inputs), u);
+            for (int lane = 0; lane < kVertexBatch; ++lane)
+                out[lane].varyings = laneOf<Body::template VaryingsT>(lit, lane);
         }
-        const typename Body::template VaryingsT<Float8> lit =
-            Body::template lightVertex<Float8>(gatherLanes<Body::template VertexInputsT>(inputs), u);
-        for (int lane = 0; lane < kVertexBatch; ++lane)
-            out[lane].varyings = laneOf<Body::template VaryingsT>(lit, lane);
     }
 };
 

@@ -6,6 +6,7 @@
 #include "pipeline/pipeline.h"
 
 #include <algorithm>
+#include <cstring>
 #include <iterator>
 #include <random>
 #include <vector>
@@ -172,7 +173,6 @@ TEST(SurfaceShader, VertexBatchLanesEqualVertex) {
     const Texture map = fourColours();
     using Gouraud = SurfaceShader<ShadingFrequency::Gouraud>;
     static_assert(BatchVertexShader<Gouraud> && BatchVertexShader<SurfaceShader<ShadingFrequency::Flat>>);
-    static_assert(!BatchVertexShader<SurfaceShader<ShadingFrequency::Phong>>);  // nothing to light per vertex
     for (MathPrecision precision : kPrecisions)
         for (ReflectionModel model :
              {ReflectionModel::Phong, ReflectionModel::BlinnPhong, ReflectionModel::CookTorrance}) {
@@ -198,6 +198,39 @@ TEST(SurfaceShader, VertexBatchLanesEqualVertex) {
                 }
             }
         }
+}
+
+// Per-pixel shading's vertexBatch (the matrices eight vertices at a time) gives vertex()'s bits, lane by
+// lane, under a perspective projection with a rotated, scaled view and a non-uniform normal matrix.
+// Breaks caught: a matrix read by row instead of column (m[r][c] for m[c][r]); M·v's sums grouped
+// otherwise than GLM's ((x + y) + (z + w)); the normal transformed by the view matrix; the uv or a
+// lane's outputs crossed with another lane's.
+TEST(SurfaceShader, PerPixelVertexBatchLanesEqualVertex) {
+    using Phong = SurfaceShader<ShadingFrequency::Phong>;
+    static_assert(BatchVertexShader<Phong>);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    SurfaceUniforms uniforms;
+    for (int trial = 0; trial < 50; ++trial) {
+        const mat4 model = glm::scale(glm::rotate(mat4(1.0f), 3.0f * u(rng), vec3(u(rng), u(rng), 0.5f)),
+                                      vec3(1.0f + u(rng) * 0.5f, 2.0f, 0.7f));
+        uniforms.viewFromObject = glm::translate(mat4(1.0f), vec3(u(rng), u(rng), -3.0f + u(rng))) * model;
+        uniforms.clipFromObject = glm::perspective(1.0f, 1.3f, 0.1f, 10.0f) * uniforms.viewFromObject;
+        uniforms.normalFromObject = glm::transpose(glm::inverse(mat3(uniforms.viewFromObject)));
+        MeshVertex in[kVertexBatch];
+        for (MeshVertex& v : in)
+            v = {vec3(u(rng), u(rng), u(rng)) * 10.0f, normalize(vec3(u(rng), u(rng), u(rng) + 2.0f)),
+                 vec2(u(rng), u(rng))};
+        VertexOut<Phong::Varyings> out[kVertexBatch];
+        Phong::vertexBatch(in, uniforms, out);
+        for (int lane = 0; lane < kVertexBatch; ++lane) {
+            const VertexOut<Phong::Varyings> one = Phong::vertex(in[lane], uniforms);
+            ASSERT_EQ(std::memcmp(&out[lane].position, &one.position, sizeof one.position), 0)
+                << "trial " << trial << ", lane " << lane;
+            ASSERT_EQ(std::memcmp(&out[lane].varyings, &one.varyings, sizeof one.varyings), 0)
+                << "trial " << trial << ", lane " << lane;
+        }
+    }
 }
 
 // The precision is the uniforms' choice, at both lane widths: under each, the shader's colour is the
