@@ -1,6 +1,7 @@
 #include "bin.h"
 
 #include <algorithm>
+#include <bit>
 
 #include "sample_position.h"
 
@@ -9,6 +10,8 @@ namespace facet {
 TileGrid makeTileGrid(const Viewport& viewport, int tileSize) {
     TileGrid grid;
     grid.tileSize = tileSize;
+    if (tileSize > 0 && std::has_single_bit(static_cast<unsigned>(tileSize)))
+        grid.tileShift = std::countr_zero(static_cast<unsigned>(tileSize));
     grid.area = {viewport.x, viewport.y, viewport.x + viewport.width - 1, viewport.y + viewport.height - 1};
     grid.firstColumn = grid.area.minX / tileSize;
     grid.firstRow = grid.area.minY / tileSize;
@@ -27,10 +30,11 @@ PixelRect TileGrid::tileRect(int index) const {
 void binTriangle(const TileGrid& grid, const TriangleSetup& setup, std::uint32_t setupIndex,
                  std::vector<std::vector<std::uint32_t>>& bins, std::int64_t sampleReach,
                  std::vector<std::uint32_t>* touched) {
-    const int c0 = std::max(setup.minX / grid.tileSize, grid.firstColumn) - grid.firstColumn;
-    const int c1 = std::min(setup.maxX / grid.tileSize - grid.firstColumn, grid.columns - 1);
-    const int r0 = std::max(setup.minY / grid.tileSize, grid.firstRow) - grid.firstRow;
-    const int r1 = std::min(setup.maxY / grid.tileSize - grid.firstRow, grid.rows - 1);
+    // Pixel bounds are inside the viewport, so ≥ 0.
+    const int c0 = std::max(grid.tileOf(setup.minX), grid.firstColumn) - grid.firstColumn;
+    const int c1 = std::min(grid.tileOf(setup.maxX) - grid.firstColumn, grid.columns - 1);
+    const int r0 = std::max(grid.tileOf(setup.minY), grid.firstRow) - grid.firstRow;
+    const int r1 = std::min(grid.tileOf(setup.maxY) - grid.firstRow, grid.rows - 1);
     const bool single = c0 == c1 && r0 == r1;
     for (int r = r0; r <= r1; ++r)
         for (int c = c0; c <= c1; ++c) {

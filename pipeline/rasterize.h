@@ -9,6 +9,7 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <climits>
 #include <cstdint>
 
@@ -82,11 +83,15 @@ inline std::uint64_t partialBlockMask(const std::int64_t origin[3], const std::i
     if (fits32) {
         Int8 rowValue[3];
         std::int32_t down[3];
+        using Unsigned8 = std::uint32_t __attribute__((vector_size(32)));
+        const Unsigned8 column = {0, 1, 2, 3, 4, 5, 6, 7};
         for (int k = 0; k < count; ++k) {
             const int i = edges[k];
-            // Each lane's first value computed in 64 bits: it fits in 32, a partial product may not.
-            for (int x = 0; x < kBlockSize; ++x)
-                rowValue[k][x] = static_cast<std::int32_t>(origin[i] + firstRow * stepY[i] + x * stepX[i]);
+            // Each lane's first value, first + x·stepX, fits in 32 bits, though a partial product may
+            // not: computed modulo 2^32 (unsigned lanes, where wrapping is defined), it is exact.
+            const auto first = static_cast<std::uint32_t>(origin[i] + firstRow * stepY[i]);
+            const auto step = static_cast<std::uint32_t>(stepX[i]);
+            rowValue[k] = std::bit_cast<Int8>(first + column * step);
             down[k] = static_cast<std::int32_t>(stepY[i]);
         }
         for (int y = firstRow; y <= lastRow; ++y) {

@@ -24,15 +24,27 @@ TEST(TileGrid, CoversTheViewportWithTilesOnMultiplesOfTheTileSize) {
     EXPECT_EQ(pixels, 150 * 20);
 }
 
-// Every pixel a triangle covers lies in a tile the triangle was binned into.
+// A pixel's tile is its coordinate divided by the tile size, by a shift for powers of two only.
+// Breaks caught: the shift off by one; a shift used for a size that is not a power of two.
+TEST(TileGrid, TileOfIsTheQuotientForEverySize) {
+    for (int size : {8, 16, 24, 32, 40, 64, 96, 128, 256}) {
+        const TileGrid grid = makeTileGrid(Viewport{0, 0, 4000, 10}, size);
+        EXPECT_EQ(grid.tileShift >= 0, (size & (size - 1)) == 0) << size;
+        for (int p = 0; p < 4000; ++p)
+            ASSERT_EQ(grid.tileOf(p), p / size) << "pixel " << p << ", tiles of " << size;
+    }
+}
+
+// Every pixel a triangle covers lies in a tile the triangle was binned into, for tiles whose size is a
+// power of two and tiles whose size is not.
 TEST(Bin, EveryCoveredPixelIsInABinnedTile) {
     std::mt19937 rng(5);
     DrawState state;
     state.viewport = {0, 0, 300, 200};
     state.raster.cull = CullMode::None;
-    const TileGrid grid = makeTileGrid(state.viewport, 32);
     std::uniform_real_distribution<float> coord(-100.0f, 400.0f);
-    for (int trial = 0; trial < 300; ++trial) {
+    for (int trial = 0; trial < 600; ++trial) {
+        const TileGrid grid = makeTileGrid(state.viewport, trial % 2 ? 24 : 32);
         WindowTriangle t;
         for (auto& v : t.vertices) {
             v.xFixed = static_cast<std::int64_t>(coord(rng) * kFixedOne);
