@@ -1,5 +1,6 @@
 #include "pipeline.h"
 
+#include <algorithm>
 #include <sstream>
 
 namespace facet {
@@ -32,6 +33,12 @@ void validateDraw(const DrawState& state, const Framebuffer& target, std::size_t
     }
     if (state.samples > 1 && state.output == FragmentOutput::AppendToLists)
         throw std::invalid_argument("multisampling cannot append to fragment lists, which are per pixel");
+    // The largest index first, a loop without an early exit that the compiler vectorises (every draw
+    // of every frame pays this check); the position of a bad index only when there is one.
+    std::uint32_t largest = 0;
+    for (const std::uint32_t index : indices)
+        largest = std::max(largest, index);
+    if (indices.empty() || largest < vertexCount) return;
     for (std::size_t k = 0; k < indices.size(); ++k)
         if (indices[k] >= vertexCount)
             throw std::invalid_argument("index " + std::to_string(indices[k]) + " at position " +

@@ -30,18 +30,6 @@ inline constexpr SamplePoint samplePosition(int x, int y) {
     return {sampleCoordinate(x), sampleCoordinate(y)};
 }
 
-namespace detail {
-// Integer division rounding towards −∞ and towards +∞ (C++ rounds towards zero).
-inline constexpr std::int64_t floorDiv(std::int64_t a, std::int64_t b) {
-    std::int64_t q = a / b;
-    if ((a % b != 0) && ((a < 0) != (b < 0))) --q;
-    return q;
-}
-inline constexpr std::int64_t ceilDiv(std::int64_t a, std::int64_t b) {
-    return -floorDiv(-a, b);
-}
-}  // namespace detail
-
 // ---- The standard sample positions of multisampling ----------------------------------------------
 
 // A sample's offset from the pixel's centre in sixteenths of a pixel (x right, y down, as window
@@ -104,11 +92,15 @@ inline constexpr std::int64_t sampleReachFixed(int samples) {
 
 // The inverse of sampleCoordinate: the first pixel whose sample lies at or after the fixed-point
 // coordinate c, ⌈(c − ½)/one⌉, and the last pixel whose sample lies at or before it, ⌊(c − ½)/one⌋.
+// kFixedOne is 2^kFixedFractionBits, so the divisions are shifts: an arithmetic shift right rounds
+// towards −∞ (C++20), ⌈a/2^k⌉ = −⌊−a/2^k⌋ (setup asks four times per triangle; a division and its
+// rounding fix-up cost several times as many instructions).
+static_assert(kFixedOne == std::int64_t{1} << kFixedFractionBits);
 inline constexpr std::int64_t firstPixelSampledFrom(std::int64_t c) {
-    return detail::ceilDiv(c - kSampleOffsetFixed, kFixedOne);
+    return -((kSampleOffsetFixed - c) >> kFixedFractionBits);
 }
 inline constexpr std::int64_t lastPixelSampledUpTo(std::int64_t c) {
-    return detail::floorDiv(c - kSampleOffsetFixed, kFixedOne);
+    return (c - kSampleOffsetFixed) >> kFixedFractionBits;
 }
 
 }  // namespace facet

@@ -42,6 +42,20 @@ int countCovered(const WindowTriangle& t, const DrawState& s) {
     return n;
 }
 
+// The bounding box's pixel range: the first pixel whose sample lies at or after a coordinate and the
+// last at or before it, for coordinates on both sides of 0 and on sample points themselves.
+// Breaks caught: either shift rounding the other way (towards −∞ for the first pixel, or the ½-pixel
+// sample offset left out).
+TEST(SamplePosition, PixelsSampledFromAndUpToACoordinate) {
+    for (std::int64_t c = -5 * kFixedOne - 3; c <= 5 * kFixedOne + 3; ++c) {
+        const std::int64_t first = firstPixelSampledFrom(c), last = lastPixelSampledUpTo(c);
+        ASSERT_GE(sampleCoordinate(static_cast<int>(first)), c) << c;
+        ASSERT_LT(sampleCoordinate(static_cast<int>(first - 1)), c) << c;
+        ASSERT_LE(sampleCoordinate(static_cast<int>(last)), c) << c;
+        ASSERT_GT(sampleCoordinate(static_cast<int>(last + 1)), c) << c;
+    }
+}
+
 TEST(TriangleSetup, SignedAreaAndFacing) {
     // On a y-down screen, (0,0) → (0,4) → (4,0) turns counter-clockwise: negative orient2d.
     const WindowTriangle ccw = tri(at(0, 0), at(0, 4), at(4, 0));
