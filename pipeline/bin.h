@@ -44,7 +44,7 @@ void binTriangle(const TileGrid& grid, const TriangleSetup& setup, std::uint32_t
 // setups' varying planes, and for every tile the setups that may touch it, in submission order.
 struct SetupChunk {
     std::vector<TriangleSetup> setups;
-    std::vector<float> varyingPlanes;              // 3 · varyingCount floats per setup, in order
+    std::vector<float> varyingPlanes;              // 3 · varyingCount floats per setup (types.h), in order
     std::vector<std::vector<std::uint32_t>> bins;  // per tile: indices into setups
     // The tiles whose bins are not empty, in the order they were first binned: what the back end
     // visits and the next batch empties, so that a draw of a few triangles (Lost Empire's transparent

@@ -64,19 +64,21 @@ inline F reciprocal(F x) {
 // Affine: a = Σ λᵢ·aᵢ, which is only right when w is the same at all three vertices.
 // After clipping every wᵢ ≥ kMinClipW and λᵢ ≥ 0, so Σ λᵢ/wᵢ > 0 and the divide is safe.
 // Flat varyings (the first s.flatVaryingCount) are copied: the provoking vertex's value, exactly.
-// `planes` are the setup's 3 · varyingCount floats; out[k] receives varying k.
+// `planes` are the setup's 3 · varyingCount floats (types.h: a row of values at v0, a row of
+// differences to v1, one to v2); out[k] receives varying k.
 template <class F>
 inline void interpolateVaryings(const TriangleSetup& s, const float* planes, F b1, F b2, F* out) {
-    const float* plane = planes;
-    for (int k = 0; k < s.flatVaryingCount; ++k, plane += 3)
-        out[k] = lanes<F>(plane[0]);
+    const int n = s.varyingCount;
+    const float *atV0 = planes, *toV1 = planes + n, *toV2 = planes + 2 * n;
+    for (int k = 0; k < s.flatVaryingCount; ++k)
+        out[k] = lanes<F>(atV0[k]);
     if (s.perspective) {
         const F w = reciprocal(interpolateInvW(s, b1, b2));
-        for (int k = s.flatVaryingCount; k < s.varyingCount; ++k, plane += 3)
-            out[k] = (plane[0] + b1 * plane[1] + b2 * plane[2]) * w;
+        for (int k = s.flatVaryingCount; k < n; ++k)
+            out[k] = (atV0[k] + b1 * toV1[k] + b2 * toV2[k]) * w;
     } else {
-        for (int k = s.flatVaryingCount; k < s.varyingCount; ++k, plane += 3)
-            out[k] = plane[0] + b1 * plane[1] + b2 * plane[2];
+        for (int k = s.flatVaryingCount; k < n; ++k)
+            out[k] = atV0[k] + b1 * toV1[k] + b2 * toV2[k];
     }
 }
 
@@ -95,10 +97,10 @@ struct VaryingPairSlopes {
         const double b1y = static_cast<double>(s.edges[1].b * kFixedOne) * invArea;
         const double b2x = static_cast<double>(s.edges[2].a * kFixedOne) * invArea;
         const double b2y = static_cast<double>(s.edges[2].b * kFixedOne) * invArea;
+        const float *toV1 = planes + s.varyingCount, *toV2 = planes + 2 * s.varyingCount;
         for (int i = 0; i < 2; ++i) {
-            const float* plane = planes + 3 * (k + i);
-            ax[i] = static_cast<float>(plane[1] * b1x + plane[2] * b2x);
-            ay[i] = static_cast<float>(plane[1] * b1y + plane[2] * b2y);
+            ax[i] = static_cast<float>(toV1[k + i] * b1x + toV2[k + i] * b2x);
+            ay[i] = static_cast<float>(toV1[k + i] * b1y + toV2[k + i] * b2y);
         }
         wx = static_cast<float>(s.dInvW1 * b1x + s.dInvW2 * b2x);
         wy = static_cast<float>(s.dInvW1 * b1y + s.dInvW2 * b2y);

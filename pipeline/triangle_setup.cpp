@@ -69,10 +69,10 @@ TriangleFate setupTriangle(const WindowTriangle& triangle, const DrawState& stat
     const WindowVertex& t0 = triangle.vertices[0];
     const WindowVertex& t1 = triangle.vertices[1];
     const WindowVertex& t2 = triangle.vertices[2];
-    const std::int64_t minXf = std::min({t0.xFixed, t1.xFixed, t2.xFixed});
-    const std::int64_t maxXf = std::max({t0.xFixed, t1.xFixed, t2.xFixed});
-    const std::int64_t minYf = std::min({t0.yFixed, t1.yFixed, t2.yFixed});
-    const std::int64_t maxYf = std::max({t0.yFixed, t1.yFixed, t2.yFixed});
+    const std::int64_t minXf = std::min(std::min(t0.xFixed, t1.xFixed), t2.xFixed);
+    const std::int64_t maxXf = std::max(std::max(t0.xFixed, t1.xFixed), t2.xFixed);
+    const std::int64_t minYf = std::min(std::min(t0.yFixed, t1.yFixed), t2.yFixed);
+    const std::int64_t maxYf = std::max(std::max(t0.yFixed, t1.yFixed), t2.yFixed);
     // Multisampling: the pixels some sample of which may be inside, those whose centre lies within the
     // samples' reach of the triangle's extent.
     const Viewport& vp = state.viewport;
@@ -121,16 +121,21 @@ TriangleFate setupTriangle(const WindowTriangle& triangle, const DrawState& stat
     const float s1 = setup.perspective ? v1.invW : 1.0f;
     const float s2 = setup.perspective ? v2.invW : 1.0f;
     setup.flatVaryingCount = triangle.flatVaryingCount;
+    // The planes' three rows (TriangleSetup::varyingPlaneOffset): values at v0, differences to v1, to v2.
+    const int n = triangle.varyingCount;
+    float* const atV0 = varyingPlanes;
+    float* const toV1 = varyingPlanes + n;
+    float* const toV2 = varyingPlanes + 2 * n;
     for (int k = 0; k < triangle.flatVaryingCount; ++k) {
-        varyingPlanes[3 * k] = triangle.provokingVaryings[k];
-        varyingPlanes[3 * k + 1] = 0.0f;
-        varyingPlanes[3 * k + 2] = 0.0f;
+        atV0[k] = triangle.provokingVaryings[k];
+        toV1[k] = 0.0f;
+        toV2[k] = 0.0f;
     }
-    for (int k = triangle.flatVaryingCount; k < triangle.varyingCount; ++k) {
+    for (int k = triangle.flatVaryingCount; k < n; ++k) {
         const float p0 = a0[k] * s0;
-        varyingPlanes[3 * k] = p0;
-        varyingPlanes[3 * k + 1] = a1[k] * s1 - p0;
-        varyingPlanes[3 * k + 2] = a2[k] * s2 - p0;
+        atV0[k] = p0;
+        toV1[k] = a1[k] * s1 - p0;
+        toV2[k] = a2[k] * s2 - p0;
     }
     setup.varyingPlaneOffset = 0;  // the caller's buffer; the front end sets its offset in the chunk
     return TriangleFate::Drawn;

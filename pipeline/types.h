@@ -128,12 +128,13 @@ struct TriangleSetup {
     float z0 = 0, dz1 = 0, dz2 = 0;           // window depth (affine in screen space)
     float invW0 = 0, dInvW1 = 0, dInvW2 = 0;  // 1/w
     int varyingCount = 0;
-    int flatVaryingCount = 0;  // the first ones: constant, their plane is [value, 0, 0]
+    int flatVaryingCount = 0;  // the first ones: constant, their differences 0
     // Where this setup's varying planes start in the array of planes that holds them (the front end's
-    // SetupChunk::varyingPlanes; 0 for planes setupTriangle wrote to a caller's buffer). For each
-    // varying k: [3k] value at v0, [3k+1] and [3k+2] its differences to v1 and v2; premultiplied by
-    // 1/w when interpolation is perspective-correct. An offset, not a pointer, so a setup stays small
-    // whatever the shader and a copy of it never dangles when the array grows.
+    // SetupChunk::varyingPlanes; 0 for planes setupTriangle wrote to a caller's buffer). With n =
+    // varyingCount, three rows of n floats: [k] varying k's value at v0, [n + k] and [2n + k] its
+    // differences to v1 and v2 (rows, not triples, so that setup computes each row eight varyings at a
+    // time); premultiplied by 1/w when interpolation is perspective-correct. An offset, not a pointer,
+    // so a setup stays small whatever the shader and a copy of it never dangles when the array grows.
     std::uint32_t varyingPlaneOffset = 0;
 };
 

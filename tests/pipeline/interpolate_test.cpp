@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "../support/test_shaders.h"
+#include "triangle_setup.h"
 
 namespace facet {
 namespace {
@@ -108,6 +109,57 @@ TEST(Interpolate, PerspectiveFormulaOnHandValues) {
     EXPECT_FLOAT_EQ(out[0], 3.6f);
     interpolateVaryings(s, planes, 0.0f, 1.0f, out);
     EXPECT_FLOAT_EQ(out[0], 6.0f);
+}
+
+// The planes setupTriangle writes are the planes interpolateVaryings reads: at each vertex (λ = the
+// vertex's weights) every varying comes back as that vertex gave it, the flat ones as the provoking
+// vertex gave them, for five varyings (two flat), affine and perspective-correct, either orientation.
+// Breaks caught: setup and interpolation disagreeing on where a varying's three numbers lie (the
+// rows of types.h against triples); the differences taken to the wrong vertex; a flat varying
+// interpolated.
+TEST(Interpolate, SetUpPlanesGiveEachVertexItsVaryings) {
+    const float varyings[3][5] = {{7, 8, 1, 2, 3}, {-7, -8, 4, 5, 6}, {0.5f, 9, -1, -2, 10}};
+    for (const bool perspective : {false, true})
+        for (const bool flipped : {false, true}) {
+            WindowTriangle t;
+            const std::int64_t xs[3] = {10, 90, 30}, ys[3] = {10, 20, flipped ? -60 : 80};
+            const float invW[3] = {1.0f, 0.5f, 0.25f};
+            for (int i = 0; i < 3; ++i) {
+                t.vertices[i] = {xs[i] * kFixedOne, ys[i] * kFixedOne, 0.5f, invW[i],
+                                 vec2(float(xs[i]), float(ys[i]))};
+                t.varyings[i] = varyings[i];
+            }
+            t.varyingCount = 5;
+            t.flatVaryingCount = 2;
+            t.provokingVaryings = varyings[0];
+            DrawState state;
+            state.viewport = {0, 0, 128, 128};
+            state.raster.cull = CullMode::None;
+            state.interpolation = perspective ? Interpolation::PerspectiveCorrect : Interpolation::Affine;
+            TriangleSetup setup;
+            float planes[3 * 5];
+            ASSERT_EQ(setupTriangle(t, state, setup, planes), TriangleFate::Drawn);
+            // The setup may have swapped v1 and v2 to make the orientation positive: find each vertex
+            // by its λ = E_i(vertex) / 2·area.
+            for (int vertex = 0; vertex < 3; ++vertex) {
+                const float b1 =
+                    static_cast<float>(static_cast<double>(setup.edges[1].at(t.vertices[vertex].xFixed,
+                                                                             t.vertices[vertex].yFixed)) /
+                                       static_cast<double>(setup.doubleArea));
+                const float b2 =
+                    static_cast<float>(static_cast<double>(setup.edges[2].at(t.vertices[vertex].xFixed,
+                                                                             t.vertices[vertex].yFixed)) /
+                                       static_cast<double>(setup.doubleArea));
+                float out[5];
+                interpolateVaryings(setup, planes, b1, b2, out);
+                for (int k = 0; k < 5; ++k) {
+                    const float expected = k < 2 ? varyings[0][k] : varyings[vertex][k];
+                    EXPECT_NEAR(out[k], expected, 1e-5f * (1.0f + std::abs(expected)))
+                        << "vertex " << vertex << ", varying " << k
+                        << (perspective ? ", perspective" : ", affine") << (flipped ? ", flipped" : "");
+                }
+            }
+        }
 }
 
 // The back end interpolates a row's fragments eight at a time or one at a time depending on how many
