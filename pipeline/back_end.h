@@ -41,7 +41,7 @@ struct FragmentQueue {
     int x[kBlockSize] = {}, y[kBlockSize] = {};
     float z[kBlockSize] = {};
     std::uint32_t triangle[kBlockSize] = {};
-    FragmentBatch batch;              // interpolated varyings, lane = queue slot
+    FragmentBatch batch{};            // interpolated varyings, lane = queue slot (zeroed once per tile)
     FragmentLists::TileWriter lists;  // the tile's fragment lists, for AppendToLists draws
     // For an observer only (written under Observer::enabled): each slot's λ1, λ2 and 1/w.
     float b1[kBlockSize], b2[kBlockSize], invW[kBlockSize];
@@ -192,6 +192,13 @@ void shadeQueue(FragmentQueue& queue, const DrawPlan& plan, const Depth& depth,
     }
 }
 
+// Shader S's varying floats and how many of them are flat: every setup of S's draws has these counts,
+// known here when compiling, so that interpolation's and the queue's loops over varyings unroll.
+template <Shader S>
+inline constexpr int kVaryingsOf = kVaryingFloatCount<typename S::Varyings>;
+template <Shader S>
+inline constexpr int kFlatVaryingsOf = flatVaryingFloats<S>();
+
 // Puts a fragment that passed the depth test at pixel (x, y) into the next queue slot, with its varyings
 // (and texture coordinate derivatives) at barycentrics (b1, b2): lane `lane` of rowVaryings when the row
 // was interpolated eight lanes at once (wideRow), else interpolated alone (the same bits). Returns the
@@ -209,15 +216,15 @@ int queueFragment(FragmentQueue& queue, const TriangleSetup& setup, const float*
     queue.z[slot] = z;
     queue.triangle[slot] = setup.triangle;
     if (wideRow) {
-        for (int k = 0; k < setup.varyingCount; ++k)
+        for (int k = 0; k < kVaryingsOf<S>; ++k)
             queue.batch.varyings[k][slot] = rowVaryings.varyings[k][lane];
         if constexpr (kDerivatives)
             for (int k = 0; k < 4; ++k)
                 queue.batch.uvDerivatives[k][slot] = rowVaryings.uvDerivatives[k][lane];
     } else {
         float varyings[kMaxVaryingFloats];
-        interpolateVaryings(setup, planes, b1, b2, varyings);
-        for (int k = 0; k < setup.varyingCount; ++k)
+        interpolateVaryings<float, kVaryingsOf<S>, kFlatVaryingsOf<S>>(setup, planes, b1, b2, varyings);
+        for (int k = 0; k < kVaryingsOf<S>; ++k)
             queue.batch.varyings[k][slot] = varyings[k];
         if constexpr (kDerivatives) {
             float derivatives[4];
@@ -234,7 +241,7 @@ template <Shader S, bool kDerivatives>
 void interpolateRowWide(const TriangleSetup& setup, const float* planes, const VaryingPairSlopes& uvSlopes,
                         Float8 b1, Float8 b2, FragmentBatch& out) {
     constexpr int kUv = derivativeVarying<S>();
-    interpolateVaryings(setup, planes, b1, b2, out);
+    interpolateVaryings<Float8, kVaryingsOf<S>, kFlatVaryingsOf<S>>(setup, planes, b1, b2, out.varyings);
     if constexpr (kDerivatives)
         interpolateDerivatives<Float8>(setup, uvSlopes, b1, b2, &out.varyings[kUv], out.uvDerivatives);
 }

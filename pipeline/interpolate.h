@@ -66,18 +66,21 @@ inline F reciprocal(F x) {
 // Flat varyings (the first s.flatVaryingCount) are copied: the provoking vertex's value, exactly.
 // `planes` are the setup's 3 · varyingCount floats (types.h: a row of values at v0, a row of
 // differences to v1, one to v2); out[k] receives varying k.
-template <class F>
+// kVaryings and kFlat, when given (≥ 0), are s.varyingCount and s.flatVaryingCount known when compiling
+// (the back end's, from its shader), so that the loops unroll; the same operations either way.
+template <class F, int kVaryings = -1, int kFlat = -1>
 inline void interpolateVaryings(const TriangleSetup& s, const float* planes, F b1, F b2, F* out) {
-    const int n = s.varyingCount;
+    const int n = kVaryings >= 0 ? kVaryings : s.varyingCount;
+    const int flat = kFlat >= 0 ? kFlat : s.flatVaryingCount;
     const float *atV0 = planes, *toV1 = planes + n, *toV2 = planes + 2 * n;
-    for (int k = 0; k < s.flatVaryingCount; ++k)
+    for (int k = 0; k < flat; ++k)
         out[k] = lanes<F>(atV0[k]);
     if (s.perspective) {
         const F w = reciprocal(interpolateInvW(s, b1, b2));
-        for (int k = s.flatVaryingCount; k < n; ++k)
+        for (int k = flat; k < n; ++k)
             out[k] = (atV0[k] + b1 * toV1[k] + b2 * toV2[k]) * w;
     } else {
-        for (int k = s.flatVaryingCount; k < n; ++k)
+        for (int k = flat; k < n; ++k)
             out[k] = atV0[k] + b1 * toV1[k] + b2 * toV2[k];
     }
 }
