@@ -136,7 +136,9 @@ inline void wrapTexelPair(float i, int n, int& first, int& second) {
 // otherwise each live lane is sampled alone.
 [[gnu::always_inline]] inline Vec4x8 sampleBilinear(const Texture& t, const Vec2x8& uv, unsigned liveLanes) {
     const Float8 one = splat(1.0f);
-    if (t.empty()) return {one, one, one, one};
+    // No live lane: nothing to read (below, dead lanes read texel 0 and its neighbours, which exist only
+    // when some live lane has shown the texture to be at least 2×2).
+    if (t.empty() || liveLanes == 0) return {one, one, one, one};
     const Float8 u = uv.x * static_cast<float>(t.width) - 0.5f;
     const Float8 v = (1.0f - uv.y) * static_cast<float>(t.height) - 0.5f;
     // 0 ≤ u < width − 1 is 0 ≤ ⌊u⌋ ≤ width − 2: the texel and its right neighbour without wrapping
