@@ -305,9 +305,7 @@ void depthTestBlock(const TriangleSetup& setup, const float* planes, const Cover
         if constexpr (kDepthWrittenAtTest<S, Observer>) {
             if (plan.depthWrite && passed) {
                 if (wholeRow) {
-                    const Int8 laneBit = {1, 2, 4, 8, 16, 32, 64, 128};
-                    const Int8 written = (laneBit & static_cast<std::int32_t>(passed)) != 0;
-                    const auto row = select(written, depth.store(z), Depth::load8(depthRow));
+                    const auto row = select(laneMaskOf(passed), depth.store(z), Depth::load8(depthRow));
                     std::memcpy(depthRow, &row, sizeof row);
                 } else {
                     for (unsigned lanes = passed; lanes; lanes &= lanes - 1) {
