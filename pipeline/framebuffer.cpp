@@ -10,73 +10,111 @@
 
 namespace facet {
 
+namespace {
+
+// What a cell of the framebuffer holds (Framebuffer::cellState_).
+enum CellState : std::uint8_t {
+    kCellDrawn = 0,        // pixels written since the last clear (or the clear values unknown)
+    kCellHoldsClear = 1,   // the last clear's values, written and untouched since
+    kCellPending = 2,      // to hold the last clear's values: not written yet
+    kCellBeingWritten = 3  // pending, being written by one thread (settleCell)
+};
+
+}  // namespace
+
 Framebuffer::Framebuffer(int width, int height)
     : width_(width),
       height_(height),
       color_(static_cast<std::size_t>(width) * height, vec4(0.0f)),
       depth_(static_cast<std::size_t>(width) * height, DepthFormat::kClear),
-      cellHoldsClear_(static_cast<std::size_t>(cellsAcross()) * cellsDown(), 1),
+      cellState_(static_cast<std::size_t>(cellsAcross()) * cellsDown(), kCellHoldsClear),
       clearedCellsKnown_(true),
       clearedColor_(0.0f),
       clearedDepth_(DepthFormat::kClear) {}
 
 void Framebuffer::clearColor(vec4 color) {
+    settleClear();
     forgetClearedCells();
     std::fill(color_.begin(), color_.end(), color);
 }
 
 void Framebuffer::clearDepth(DepthFormat::Stored depth) {
+    settleClear();
     forgetClearedCells();
     std::fill(depth_.begin(), depth_.end(), depth);
 }
 
 std::size_t Framebuffer::clear(vec4 color, DepthFormat::Stored depth, ThreadPool& pool) {
-    // Cells still holding these very values (bit for bit) need no writes.
+    // Cells holding these very values (bit for bit), or pending with them, need nothing more. A cell
+    // pending with other values was never written nor read: it now waits for these.
     const bool sameValues = clearedCellsKnown_ && std::memcmp(&color, &clearedColor_, sizeof color) == 0 &&
                             std::memcmp(&depth, &clearedDepth_, sizeof depth) == 0;
-    const auto samples = static_cast<std::size_t>(samples_);
-    const int across = cellsAcross(), down = cellsDown();
-    std::vector<std::size_t> written(static_cast<std::size_t>(down), 0);
-
-    // A band of cells (kClearCell rows) per item; in a band, each run of cells that needs writing is
-    // filled row by row across every plane.
-    pool.parallelFor(static_cast<std::size_t>(down), [&](std::size_t band, int) {
-        const int firstRow = static_cast<int>(band) * kClearCell;
-        const int lastRow = std::min(height_, firstRow + kClearCell);
-        std::uint8_t* cells = cellHoldsClear_.data() + band * static_cast<std::size_t>(across);
-        for (int cell = 0; cell < across;) {
-            if (sameValues && cells[cell]) {
-                ++cell;
-                continue;
-            }
-            int runEnd = cell + 1;
-            while (runEnd < across && !(sameValues && cells[runEnd]))
-                ++runEnd;
-            const int firstX = cell * kClearCell, endX = std::min(width_, runEnd * kClearCell);
-            for (int y = firstRow; y < lastRow; ++y) {
-                const std::size_t first = index(firstX, y), last = index(endX - 1, y) + 1;
-                std::fill(color_.data() + first, color_.data() + last, color);
-                std::fill(depth_.data() + first, depth_.data() + last, depth);
-                if (samples > 1) {
-                    std::fill(sampleColor_.data() + first * samples, sampleColor_.data() + last * samples,
-                              color);
-                    std::fill(sampleDepth_.data() + first * samples, sampleDepth_.data() + last * samples,
-                              depth);
-                }
-            }
-            std::fill(cells + cell, cells + runEnd, std::uint8_t{1});
-            written[band] += static_cast<std::size_t>(runEnd - cell);
-            cell = runEnd;
+    std::size_t marked = 0, pending = 0;
+    for (std::uint8_t& state : cellState_) {
+        if (!sameValues || state == kCellDrawn) {
+            state = kCellPending;
+            ++marked;
         }
-    });
+        pending += state == kCellPending;
+    }
+    pendingCells_ = pending;
     lists_.clear(pool);
     clearedCellsKnown_ = true;
     clearedColor_ = color;
     clearedDepth_ = depth;
-    std::size_t total = 0;
-    for (const std::size_t n : written)
-        total += n;
-    return total;
+    return marked;
+}
+
+void Framebuffer::writeClearValues(std::size_t cell) {
+    const int across = cellsAcross();
+    const int cellX = static_cast<int>(cell % static_cast<std::size_t>(across));
+    const int cellY = static_cast<int>(cell / static_cast<std::size_t>(across));
+    const int firstX = cellX * kClearCell, endX = std::min(width_, firstX + kClearCell);
+    const int firstY = cellY * kClearCell, endY = std::min(height_, firstY + kClearCell);
+    const auto samples = static_cast<std::size_t>(samples_);
+    for (int y = firstY; y < endY; ++y) {
+        const std::size_t first = index(firstX, y), last = index(endX - 1, y) + 1;
+        std::fill(color_.data() + first, color_.data() + last, clearedColor_);
+        std::fill(depth_.data() + first, depth_.data() + last, clearedDepth_);
+        if (samples > 1) {
+            std::fill(sampleColor_.data() + first * samples, sampleColor_.data() + last * samples,
+                      clearedColor_);
+            std::fill(sampleDepth_.data() + first * samples, sampleDepth_.data() + last * samples,
+                      clearedDepth_);
+        }
+    }
+}
+
+void Framebuffer::settleCell(std::size_t cell) {
+    std::atomic_ref<std::uint8_t> state(cellState_[cell]);
+    std::uint8_t seen = state.load(std::memory_order_acquire);
+    if (seen == kCellPending &&
+        state.compare_exchange_strong(seen, kCellBeingWritten, std::memory_order_acquire)) {
+        writeClearValues(cell);
+        state.store(kCellHoldsClear, std::memory_order_release);
+        state.notify_all();
+        std::atomic_ref<std::size_t>(pendingCells_).fetch_sub(1, std::memory_order_release);
+        return;
+    }
+    // Another thread is writing it (a few microseconds): wait until the values are there.
+    while (seen == kCellBeingWritten) {
+        state.wait(kCellBeingWritten, std::memory_order_acquire);
+        seen = state.load(std::memory_order_acquire);
+    }
+}
+
+void Framebuffer::settleAllCells() {
+    for (std::size_t cell = 0; cell < cellState_.size(); ++cell)
+        settleCell(cell);
+}
+
+void Framebuffer::finishClear(ThreadPool& pool) {
+    if (pendingCells() == 0) return;
+    const auto across = static_cast<std::size_t>(cellsAcross());
+    pool.parallelFor(static_cast<std::size_t>(cellsDown()), [&](std::size_t band, int) {
+        for (std::size_t cell = band * across; cell < (band + 1) * across; ++cell)
+            settleCell(cell);
+    });
 }
 
 FramebufferPlanes Framebuffer::planesToDraw(const PixelRect& area) {
@@ -84,11 +122,14 @@ FramebufferPlanes Framebuffer::planesToDraw(const PixelRect& area) {
     const PixelRect inside{std::max(area.minX, 0), std::max(area.minY, 0), std::min(area.maxX, width_ - 1),
                            std::min(area.maxY, height_ - 1)};
     if (clearedCellsKnown_ && !inside.empty()) {
+        // The cells `area` overlaps get the clear values if pending, then no longer hold them.
         const int across = cellsAcross();
         for (int cy = inside.minY / kClearCell; cy <= inside.maxY / kClearCell; ++cy)
-            for (int cx = inside.minX / kClearCell; cx <= inside.maxX / kClearCell; ++cx)
-                std::atomic_ref<std::uint8_t>(cellHoldsClear_[static_cast<std::size_t>(cy) * across + cx])
-                    .store(0, std::memory_order_relaxed);
+            for (int cx = inside.minX / kClearCell; cx <= inside.maxX / kClearCell; ++cx) {
+                const auto cell = static_cast<std::size_t>(cy) * across + cx;
+                settleCell(cell);
+                std::atomic_ref<std::uint8_t>(cellState_[cell]).store(kCellDrawn, std::memory_order_relaxed);
+            }
     }
     FramebufferPlanes planes;
     planes.width_ = width_;
@@ -102,6 +143,7 @@ FramebufferPlanes Framebuffer::planesToDraw(const PixelRect& area) {
 }
 
 void Framebuffer::useSamples(int samples) {
+    settleClear();
     forgetClearedCells();  // new sample planes hold nothing yet
     samples_ = samples;
     const std::size_t size = samples > 1 ? color_.size() * static_cast<std::size_t>(samples) : 0;
@@ -116,6 +158,7 @@ void Framebuffer::useSamples(int samples) {
 
 void Framebuffer::resolveSamples(ColorBufferFormat format, ThreadPool& pool) {
     if (samples_ <= 1) return;
+    finishClear(pool);
     const int samples = samples_;
     const float weight = 1.0f / static_cast<float>(samples);  // exact: samples is a power of two
     pool.parallelFor(static_cast<std::size_t>(height_), [&](std::size_t row, int) {

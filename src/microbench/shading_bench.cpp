@@ -324,6 +324,7 @@ void BM_MsaaResolve(benchmark::State& state) {
     target.useSamples(samples);
     ThreadPool pool(1);
     target.clear(vec4(0.25f, 0.5f, 0.75f, 1.0f), DepthFormat::kClear, pool);
+    target.finishClear(pool);
     for (auto _ : state) {
         target.resolveSamples(format, pool);
         benchmark::DoNotOptimize(target.colorSpan().data());

@@ -365,6 +365,8 @@ void drawFramePass(const PreparedScene& prepared, std::span<const PlannedDraw> p
         stats.resolveMilliseconds +=
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     }
+    // The cells no draw reached still wait for the clear's values (Framebuffer::clear).
+    target.finishClear(context.pool);
 }
 
 }  // namespace detail

@@ -124,6 +124,7 @@ std::unique_ptr<ShadowMap> drawShadowMap(const PreparedScene& prepared, int ligh
             draw<DepthOnlyShader>(state, uniforms, std::span<const MeshVertex>(d.vertices), d.indices, target,
                                   context);
         }
+        target.finishClear(context.pool);  // the cells no triangle reached
         map->faces.push_back({mat4(face), target.depthPixels()});
     }
     return map;

@@ -1,10 +1,13 @@
 // The framebuffer's clear (framebuffer.h): a clear to the values of the last one writes only the cells
 // (kClearCell pixels square) written since, and whatever wrote them (a draw, a resolve, a caller
 // through color() or depth()), the pixels after a clear are the clear values, exactly as if every
-// pixel had been written.
+// pixel had been written. The writes wait until a draw asks for a cell's pixels (or finishClear(), or
+// any accessor), and nothing can see a cell before its clear values are in it.
 #include "framebuffer.h"
 
 #include <cstdint>
+#include <memory>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -92,22 +95,27 @@ TEST(Framebuffer, FramesOfMovingContentMatchAFreshFramebuffer) {
     for (const Path path :
          {Path{"blend", FragmentOutput::Blend, 1}, Path{"fragment lists", FragmentOutput::AppendToLists, 1},
           Path{"multisample", FragmentOutput::Blend, 4}}) {
-        DrawContext context(2);
-        Framebuffer reused(kWidth, kHeight);
-        auto frame = [&](Framebuffer& fb, float x, float y, vec4 color) {
-            if (fb.samples() != path.samples) fb.useSamples(path.samples);
-            fb.clear(kBackground, 1.0f, context.pool);
-            drawTriangleAt(fb, context, x, y, color, path.output, path.samples);
-            if (path.output == FragmentOutput::AppendToLists) resolveFragmentLists(fb, context.pool);
-            fb.resolveSamples(ColorBufferFormat::Float, context.pool);
-        };
-        frame(reused, 30.0f, 30.0f, vec4(1, 0, 0, 1));
-        frame(reused, 150.0f, 100.0f, vec4(0, 1, 0, 1));
-        Framebuffer fresh(kWidth, kHeight);
-        frame(fresh, 150.0f, 100.0f, vec4(0, 1, 0, 1));
-        EXPECT_TRUE(reused.colorPixels() == fresh.colorPixels()) << path.name;
-        EXPECT_TRUE(reused.depthPixels() == fresh.depthPixels()) << path.name;
-        EXPECT_EQ(fresh.colorPixels()[100 * kWidth + 150], vec4(0, 1, 0, 1)) << path.name << ": drawn";
+        // Tiles of 24 pixels share cells of 64 between the pool's two threads: a cell's clear values
+        // must be in before either draws into it, and written once.
+        for (const int tileSize : {kDefaultTileSize, 24}) {
+            SCOPED_TRACE(tileSize);
+            DrawContext context(2, tileSize);
+            Framebuffer reused(kWidth, kHeight);
+            auto frame = [&](Framebuffer& fb, float x, float y, vec4 color) {
+                if (fb.samples() != path.samples) fb.useSamples(path.samples);
+                fb.clear(kBackground, 1.0f, context.pool);
+                drawTriangleAt(fb, context, x, y, color, path.output, path.samples);
+                if (path.output == FragmentOutput::AppendToLists) resolveFragmentLists(fb, context.pool);
+                fb.resolveSamples(ColorBufferFormat::Float, context.pool);
+            };
+            frame(reused, 30.0f, 30.0f, vec4(1, 0, 0, 1));
+            frame(reused, 150.0f, 100.0f, vec4(0, 1, 0, 1));
+            Framebuffer fresh(kWidth, kHeight);
+            frame(fresh, 150.0f, 100.0f, vec4(0, 1, 0, 1));
+            EXPECT_TRUE(reused.colorPixels() == fresh.colorPixels()) << path.name;
+            EXPECT_TRUE(reused.depthPixels() == fresh.depthPixels()) << path.name;
+            EXPECT_EQ(fresh.colorPixels()[100 * kWidth + 150], vec4(0, 1, 0, 1)) << path.name << ": drawn";
+        }
     }
 }
 
@@ -147,6 +155,68 @@ TEST(Framebuffer, APixelWrittenDirectlyIsClearedByTheNextClear) {
     EXPECT_EQ(fb.clear(kBackground, 1.0f, pool), kCells);
     EXPECT_EQ(fb.sampleColors(5, 6)[3], kBackground);
     EXPECT_EQ(fb.sampleDepths(7, 8)[1], 1.0f);
+}
+
+// The planes of a framebuffer without asking for any cell (an area beside it): what its memory holds.
+FramebufferPlanes rawPlanes(Framebuffer& fb) {
+    return fb.planesToDraw({-40, -30, -1, -1});
+}
+
+// Breaks caught: clear() writing every cell at once (the cells a draw will reach are then written to
+// memory and read back by the draw), a draw's area not getting its cells' clear values before it
+// draws, or finishClear() leaving a cell pending.
+TEST(Framebuffer, AClearWritesACellWhenADrawAsksForItOrAtTheEnd) {
+    ThreadPool pool(2);
+    Framebuffer fb(kWidth, kHeight);
+    EXPECT_EQ(fb.clear(kBackground, 0.5f, pool), kCells);
+    EXPECT_EQ(fb.pendingCells(), kCells);
+    EXPECT_EQ(rawPlanes(fb).color(70, 10), vec4(0.0f)) << "the constructor's values, until asked for";
+    // A tile over pixels (64..127, 0..63): cell (1, 0) only.
+    const FramebufferPlanes tile = fb.planesToDraw({64, 0, 127, 63});
+    EXPECT_EQ(fb.pendingCells(), kCells - 1);
+    EXPECT_EQ(tile.color(70, 10), kBackground);
+    EXPECT_EQ(tile.depth(127, 63), 0.5f);
+    EXPECT_EQ(tile.color(63, 10), vec4(0.0f)) << "cell (0, 0) is not the tile's";
+    fb.finishClear(pool);
+    EXPECT_EQ(fb.pendingCells(), 0u);
+    EXPECT_EQ(rawPlanes(fb).color(63, 10), kBackground);
+    EXPECT_EQ(rawPlanes(fb).depth(199, 129), 0.5f) << "the last, partial cell";
+}
+
+// Breaks caught: any accessor of pixels handing out or reading one before the pending cells are
+// written (it would see the previous frame's pixels).
+TEST(Framebuffer, EveryAccessorSeesAPendingClear) {
+    ThreadPool pool(1);
+    const auto cleared = [&] {
+        auto fb = std::make_unique<Framebuffer>(kWidth, kHeight);
+        fb->clear(kBackground, 0.5f, pool);
+        return fb;
+    };
+    EXPECT_EQ(cleared()->color(150, 100), kBackground);
+    EXPECT_EQ(std::as_const(*cleared()).color(150, 100), kBackground);
+    EXPECT_EQ(cleared()->depth(150, 100), 0.5f);
+    EXPECT_EQ(std::as_const(*cleared()).depth(150, 100), 0.5f);
+    EXPECT_EQ(cleared()->colorSpan()[5], kBackground);
+    EXPECT_EQ(cleared()->depthSpan()[5], 0.5f);
+    EXPECT_EQ(cleared()->colorPixels()[5], kBackground);
+    EXPECT_EQ(cleared()->depthPixels()[5], 0.5f);
+    auto fb = cleared();
+    fb->clearColor(vec4(1.0f));
+    EXPECT_EQ(fb->depthSpan()[5], 0.5f) << "clearColor keeps the pending depth";
+    fb = cleared();
+    fb->clearDepth(0.25f);
+    EXPECT_EQ(fb->colorSpan()[5], kBackground) << "clearDepth keeps the pending colour";
+
+    Framebuffer samples(kWidth, kHeight);
+    samples.useSamples(4);
+    samples.clear(kBackground, 0.5f, pool);
+    EXPECT_EQ(samples.sampleColors(150, 100)[3], kBackground);
+    samples.clear(vec4(0.0f), 0.5f, pool);
+    EXPECT_EQ(samples.sampleDepths(150, 100)[3], 0.5f);
+    EXPECT_EQ(samples.sampleColors(150, 100)[3], vec4(0.0f));
+    samples.clear(kBackground, 0.5f, pool);
+    samples.useSamples(1);
+    EXPECT_EQ(samples.colorSpan()[5], kBackground) << "useSamples writes the pending cells first";
 }
 
 }  // namespace

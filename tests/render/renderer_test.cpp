@@ -56,6 +56,23 @@ TEST(Renderer, BundledSceneCoversMostOfTheFrame) {
     EXPECT_GT(stats.transparentRuns, 0u);  // the panes are drawn too
 }
 
+// A frame leaves no cell of its clear pending (Framebuffer::clear): the cells its draws never reached
+// are written by the frame, over the pool, not by whoever reads the image first. The cube at 640×480
+// leaves most cells to the end. Breaks if renderFrame forgets finishClear.
+TEST(Renderer, AFrameLeavesNoCellOfItsClearPending) {
+    Scene scene = sceneForModel(kModels / "cube/cube.obj");
+    scene.width = 640;
+    scene.height = 480;
+    const PreparedScene prepared = prepareScene(scene);
+    Framebuffer framebuffer(scene.width, scene.height);
+    DrawContext context(2);
+    FrameMemory memory;
+    renderFrame(prepared, framebuffer, context, memory);
+    EXPECT_EQ(framebuffer.pendingCells(), 0u);
+    const LinearImage image = toImage(framebuffer);
+    EXPECT_EQ(image.pixels.front(), prepared.clearColor) << "a corner cell no draw reached";
+}
+
 // ---- planFrame -------------------------------------------------------------------------------------
 
 // The intersecting quads (draw 0: the opaque backdrop; 1–3: the red, blue and green panes, d 0.5,
