@@ -20,25 +20,29 @@ namespace facet {
 // values at the block's first sample and their per-pixel steps are integers below 2^47, exact in
 // double, so each λ is rounded once, to float, whichever row or lane it is.
 struct BlockBarycentrics {
-    double invArea, e1, e2, e1x, e1y, e2x, e2y;
+    using Double8 = double __attribute__((vector_size(64)));
+    double invArea, e1y, e2y;
+    Double8 row0E1, row0E2;  // per lane (column): E at the block's first row, e + column·eₓ
 
     BlockBarycentrics(const TriangleSetup& setup, int blockX, int blockY)
         : invArea(1.0 / static_cast<double>(setup.doubleArea)) {
         const SamplePoint first = samplePosition(blockX, blockY);
-        e1 = static_cast<double>(setup.edges[1].at(first.x, first.y));
-        e2 = static_cast<double>(setup.edges[2].at(first.x, first.y));
-        e1x = static_cast<double>(setup.edges[1].a * kFixedOne);
+        const auto e1 = static_cast<double>(setup.edges[1].at(first.x, first.y));
+        const auto e2 = static_cast<double>(setup.edges[2].at(first.x, first.y));
+        const auto e1x = static_cast<double>(setup.edges[1].a * kFixedOne);
+        const auto e2x = static_cast<double>(setup.edges[2].a * kFixedOne);
         e1y = static_cast<double>(setup.edges[1].b * kFixedOne);
-        e2x = static_cast<double>(setup.edges[2].a * kFixedOne);
         e2y = static_cast<double>(setup.edges[2].b * kFixedOne);
+        const Double8 column = {0, 1, 2, 3, 4, 5, 6, 7};
+        row0E1 = e1 + column * e1x;
+        row0E2 = e2 + column * e2x;
     }
 
-    // The eight samples of block row `row`, lane = column.
+    // The eight samples of block row `row`, lane = column: (e + column·eₓ + row·e_y) / (2·area), the
+    // sums in that order (each term exact), once per block for the first two, per row for the last.
     void row(int row, Float8& b1, Float8& b2) const {
-        for (int lane = 0; lane < kBlockSize; ++lane) {
-            b1[lane] = static_cast<float>((e1 + lane * e1x + row * e1y) * invArea);
-            b2[lane] = static_cast<float>((e2 + lane * e2x + row * e2y) * invArea);
-        }
+        b1 = __builtin_convertvector((row0E1 + row * e1y) * invArea, Float8);
+        b2 = __builtin_convertvector((row0E2 + row * e2y) * invArea, Float8);
     }
 };
 

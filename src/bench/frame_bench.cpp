@@ -67,7 +67,7 @@ void runBench(const BenchOptions& options, std::ostream& out) {
         << *std::max_element(frameMs.begin(), frameMs.end()) << "\n";
     out << "full clear median " << median(clearMs)
         << " ms (colour + depth, every pixel; a frame clears only the 64×64 cells the previous one drew "
-           "into)\n";
+           "into, each as its tile is first drawn)\n";
 }
 
 }  // namespace facet

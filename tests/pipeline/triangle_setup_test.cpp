@@ -166,5 +166,43 @@ TEST(TriangleSetup, BarycentricsAreOneAtTheirVertex) {
     EXPECT_FLOAT_EQ(setup.z0 + setup.dz2, 0.3f);
 }
 
+// The front end reuses one TriangleSetup for every triangle of an unwatched draw, so setup must write
+// each field a drawn triangle's setup has (all but the triangle's number, which the caller sets).
+// Break caught: a field left out of setupTriangle (a triangle would inherit its predecessor's value).
+TEST(TriangleSetup, ADrawnTriangleWritesEveryFieldOfItsSetup) {
+    const WindowTriangle t = tri(at(0.5f, 0.5f, 0.1f), at(6.5f, 1.5f, 0.2f), at(1.5f, 6.5f, 0.3f));
+    TriangleSetup fresh;
+    ASSERT_EQ(setupTriangle(t, stateOf(8, 8), fresh, nullptr), TriangleFate::Drawn);
+    TriangleSetup reused;
+    reused.edges.fill(EdgeFunction{7, 7, 7, 7});
+    reused.doubleArea = 7;
+    reused.frontFacing = !fresh.frontFacing;
+    reused.perspective = !fresh.perspective;
+    reused.minX = reused.minY = reused.maxX = reused.maxY = 7;
+    reused.z0 = reused.dz1 = reused.dz2 = reused.invW0 = reused.dInvW1 = reused.dInvW2 = 7.0f;
+    reused.varyingCount = reused.flatVaryingCount = 7;
+    reused.varyingPlaneOffset = 7;
+    ASSERT_EQ(setupTriangle(t, stateOf(8, 8), reused, nullptr), TriangleFate::Drawn);
+    for (int i = 0; i < 3; ++i) {
+        EXPECT_EQ(reused.edges[i].a, fresh.edges[i].a) << i;
+        EXPECT_EQ(reused.edges[i].b, fresh.edges[i].b) << i;
+        EXPECT_EQ(reused.edges[i].c, fresh.edges[i].c) << i;
+        EXPECT_EQ(reused.edges[i].bias, fresh.edges[i].bias) << i;
+    }
+    EXPECT_EQ(reused.doubleArea, fresh.doubleArea);
+    EXPECT_EQ(reused.frontFacing, fresh.frontFacing);
+    EXPECT_EQ(reused.perspective, fresh.perspective);
+    EXPECT_EQ(reused.minX, fresh.minX);
+    EXPECT_EQ(reused.minY, fresh.minY);
+    EXPECT_EQ(reused.maxX, fresh.maxX);
+    EXPECT_EQ(reused.maxY, fresh.maxY);
+    for (const auto field : {&TriangleSetup::z0, &TriangleSetup::dz1, &TriangleSetup::dz2,
+                             &TriangleSetup::invW0, &TriangleSetup::dInvW1, &TriangleSetup::dInvW2})
+        EXPECT_EQ(reused.*field, fresh.*field);
+    EXPECT_EQ(reused.varyingCount, fresh.varyingCount);
+    EXPECT_EQ(reused.flatVaryingCount, fresh.flatVaryingCount);
+    EXPECT_EQ(reused.varyingPlaneOffset, fresh.varyingPlaneOffset);
+}
+
 }  // namespace
 }  // namespace facet
