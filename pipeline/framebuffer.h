@@ -98,7 +98,8 @@ class Framebuffer {
     }
 
     // The planes for a draw (or a resolve) that writes pixels only inside `area`: the cells `area`
-    // overlaps no longer hold the clear values. Safe to call from several threads at once.
+    // overlaps get the clear values first if they are pending, then no longer hold them. Safe to call
+    // from several threads at once, also for areas that share a cell.
     FramebufferPlanes planesToDraw(const PixelRect& area);
     static constexpr int kClearCell = 64;
 
