@@ -126,10 +126,16 @@ unsigned runFragmentShader(FragmentQueue& queue, int n, const typename S::Unifor
 // chosen per draw (drawBatchTiles), so the default float path is exactly what it would be without
 // fragment lists or other formats. (A template per format would multiply the back end's copies, one
 // per shader, without making any of them faster.)
+//
+// `slotsAreColumns`: the queue is a block row shaded whole (kRowShadedWhole), slot c at pixel
+// (x[0] + c, y[0]). An opaque draw (Replace) into the float colour buffer, unwatched, then stores the
+// row's colours straight into the framebuffer's row, all eight at once when every lane is written,
+// rather than finding each fragment's pixel from its position (the same values land in the same
+// pixels).
 template <Shader S, FragmentOutput kOutput, class Depth, bool kRoundColor, class Observer>
 void shadeQueue(FragmentQueue& queue, const DrawPlan& plan, const Depth& depth,
                 const typename S::Uniforms& uniforms, const FramebufferPlanes& target, DrawStats& stats,
-                Observer& observer) {
+                Observer& observer, bool slotsAreColumns = false) {
     constexpr bool kObserving = Observer::enabled;
     const int n = queue.count;
     if (n == 0) return;
@@ -143,6 +149,23 @@ void shadeQueue(FragmentQueue& queue, const DrawPlan& plan, const Depth& depth,
     stats.fragmentsDiscarded += static_cast<unsigned>(std::popcount(live & ~kept));
     if constexpr (kOutput == FragmentOutput::Blend)
         stats.fragmentsWritten += static_cast<unsigned>(std::popcount(live & kept));
+
+    if constexpr (!kObserving && kOutput == FragmentOutput::Blend && !kRoundColor &&
+                  kDepthWrittenAtTest<S, Observer>) {
+        if (slotsAreColumns && plan.blend == BlendMode::Replace) {
+            vec4* const row = &target.color(queue.x[0], queue.y[0]);
+            const unsigned written = live & kept;
+            if (written == 0xffu) {
+                std::memcpy(row, shaded, sizeof shaded);
+            } else {
+                for (unsigned lanes = written; lanes; lanes &= lanes - 1) {
+                    const int lane = std::countr_zero(lanes);
+                    row[lane] = shaded[lane];
+                }
+            }
+            return;
+        }
+    }
 
     // Depth write, then blending into the colour buffer or appending to the pixel's fragment list.
     for (int lane = 0; lane < n; ++lane) {
@@ -273,7 +296,11 @@ void depthTestBlock(const TriangleSetup& setup, const float* planes, const Cover
     VaryingPairSlopes uvSlopes;
     if constexpr (kDerivatives) uvSlopes = VaryingPairSlopes(setup, planes, kUv);
 
-    for (int row = 0; row < kBlockSize; ++row) {
+    // Only the rows between the first and the last covered one (the mask is never 0): a small
+    // triangle's block has one to three, not eight.
+    const int firstRow = std::countr_zero(block.mask) / kBlockSize;
+    const int lastRow = (63 - std::countl_zero(block.mask)) / kBlockSize;
+    for (int row = firstRow; row <= lastRow; ++row) {
         const unsigned rowMask = static_cast<unsigned>(block.mask >> (row * kBlockSize)) & 0xffu;
         if (!rowMask) continue;
         const int y = block.y + row;
@@ -367,8 +394,9 @@ void depthTestBlock(const TriangleSetup& setup, const float* planes, const Cover
         if (rowShadedWhole) {
             rowQueue.count = kBlockSize;
             rowQueue.batch.mask = passed;
+            constexpr bool kSlotsAreColumns = true;
             shadeQueue<S, kOutput, Depth, kRoundColor>(rowQueue, plan, depth, uniforms, target, stats,
-                                                       observer);
+                                                       observer, kSlotsAreColumns);
         }
     }
 }
