@@ -19,7 +19,9 @@
 namespace facet {
 namespace {
 
-constexpr int kWidth = 200, kHeight = 130;  // 4 × 3 cells of 64, the last column and row partial
+// 4 × 3 cells of 64, the last column and row partial; the last column is 11 pixels wide, not a multiple of
+// the clear's stores of four pixels.
+constexpr int kWidth = 203, kHeight = 130;
 constexpr std::size_t kCells = 12;
 const vec4 kBackground(0.25f, 0.5f, 0.75f, 1.0f);
 
