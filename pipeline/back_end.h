@@ -374,7 +374,10 @@ void depthTestBlock(const TriangleSetup& setup, const float* planes, const Cover
             std::memcpy(rowQueue.z, &z, sizeof z);
             std::memcpy(rowQueue.triangle, &triangle, sizeof triangle);
         }
-        for (unsigned lanes = passed; lanes; lanes &= lanes - 1) {
+        // The passing fragments of a row not shaded whole go to the queue (a row shaded whole has
+        // nothing to do here unless watched).
+        const unsigned queued = rowShadedWhole && !kObserving ? 0u : passed;
+        for (unsigned lanes = queued; lanes; lanes &= lanes - 1) {
             const int lane = std::countr_zero(lanes);
             int slot = lane;  // a row shaded whole: its slots are its columns, filled above
             if (!rowShadedWhole)
