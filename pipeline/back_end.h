@@ -30,12 +30,13 @@ namespace facet {
 namespace detail {
 
 // Fragments that passed the depth test, waiting to be shaded eight at a time: the fragments of tiny
-// triangles share a batch. Their varyings are interpolated on the way in (each with its own triangle's
-// planes), so a batch may mix triangles of one draw. No two queued fragments share a pixel: before a
-// fragment is depth-tested at a pixel that holds a queued one, the queue is shaded, so every pixel
-// still sees its fragments in submission order, and the image does not depend on how fragments were
-// grouped. The slots in use are those of batch.mask: the first `count` for fragments queued one by
-// one, or the passing lanes of a block row shaded whole (kRowShadedWhole), where slot = column.
+// triangles share a batch. Each slot keeps its fragment's λ1, λ2 and triangle (setup and planes); the
+// varyings are interpolated when the queue is shaded (interpolateQueue), each slot with its own
+// triangle's planes, so a batch may mix triangles of one draw. No two queued fragments share a pixel: before
+// a fragment is depth-tested at a pixel that holds a queued one, the queue is shaded, so every pixel still
+// sees its fragments in submission order, and the image does not depend on how fragments were grouped. The
+// slots in use are those of batch.mask: the first `count` for fragments queued one by one, or the passing
+// lanes of a block row shaded whole (kRowShadedWhole), where slot = column.
 struct FragmentQueue {
     int count = 0;
     int x[kBlockSize] = {}, y[kBlockSize] = {};
@@ -43,8 +44,13 @@ struct FragmentQueue {
     std::uint32_t triangle[kBlockSize] = {};
     FragmentBatch batch{};            // interpolated varyings, lane = queue slot (zeroed once per tile)
     FragmentLists::TileWriter lists;  // the tile's fragment lists, for AppendToLists draws
-    // For an observer only (written under Observer::enabled): each slot's λ1, λ2 and 1/w.
-    float b1[kBlockSize], b2[kBlockSize], invW[kBlockSize];
+    // Each slot's barycentrics λ1, λ2 and its triangle's setup and varying planes (zeroed once per tile,
+    // so that the lanes of empty slots compute with finite values).
+    float b1[kBlockSize] = {}, b2[kBlockSize] = {};
+    const TriangleSetup* setups[kBlockSize] = {};
+    const float* planes[kBlockSize] = {};
+    // For an observer only (written under Observer::enabled): each slot's 1/w.
+    float invW[kBlockSize];
 
     // Bit (y mod 8)·8 + (x mod 8) set for each queued fragment's pixel (x, y): a filter that rules out
     // most rows without reading the slots, whose positions were just stored one by one (a wide load of
@@ -72,11 +78,11 @@ struct FragmentQueue {
 };
 
 // A block row whose depth test passed at least this many of its eight pixels is shaded as one batch of
-// its own, its varyings interpolated straight into the batch (lane = column), rather than copied
-// fragment by fragment into the queue. The trade: shading a batch costs about as much whether 6 or 8
-// lanes are live, while queueing costs a copy of every varying per fragment; with a Blinn-Phong batch
-// at ~90 cycles and a copy at ~6 per fragment they break even near 5 live lanes. A row of a big
-// triangle skips the copy; the slivers of small ones still share batches through the queue.
+// its own, its varyings interpolated straight into the batch (lane = column), rather than queued. The
+// trade: shading a batch costs about as much whether 6 or 8 lanes are live, while a queued fragment
+// costs its slot's bookkeeping and, when the batch mixes triangles, a share of one more interpolation
+// and blend per triangle (interpolateQueue); near 5 live lanes the two are about even. A row of a big
+// triangle is shaded at once; the slivers of small ones share batches through the queue.
 inline constexpr int kRowShadedWhole = 6;
 
 // Whether the depth test itself writes the depths of the fragments that pass, a block row at a time,
@@ -94,6 +100,82 @@ inline void describeInterpolation(FragmentEvent& event, float b1, float b2, floa
     event.barycentrics = vec3(1.0f - b1 - b2, b1, b2);
     event.invW = invW;
     event.varyingCount = varyingCount;
+}
+
+// Shader S's varying floats and how many of them are flat: every setup of S's draws has these counts,
+// known here when compiling, so that interpolation's and the queue's loops over varyings unroll.
+template <Shader S>
+inline constexpr int kVaryingsOf = kVaryingFloatCount<typename S::Varyings>;
+template <Shader S>
+inline constexpr int kFlatVaryingsOf = flatVaryingFloats<S>();
+
+// Puts a fragment that passed the depth test at pixel (x, y), with barycentrics (b1, b2) of `setup`,
+// into the next queue slot; its varyings are interpolated when the queue is shaded. Returns the slot.
+inline int queueFragment(FragmentQueue& queue, const TriangleSetup& setup, const float* planes, int x, int y,
+                         float z, float b1, float b2) {
+    const int slot = queue.count++;
+    queue.batch.mask |= 1u << slot;
+    queue.remember(x, y);
+    queue.x[slot] = x;
+    queue.y[slot] = y;
+    queue.z[slot] = z;
+    queue.triangle[slot] = setup.triangle;
+    queue.b1[slot] = b1;
+    queue.b2[slot] = b2;
+    queue.setups[slot] = &setup;
+    queue.planes[slot] = planes;
+    return slot;
+}
+
+// The varyings (and texture coordinate derivatives) of a block row's eight lanes at once, into `out`.
+template <Shader S, bool kDerivatives>
+void interpolateRowWide(const TriangleSetup& setup, const float* planes, const VaryingPairSlopes& uvSlopes,
+                        Float8 b1, Float8 b2, FragmentBatch& out) {
+    constexpr int kUv = derivativeVarying<S>();
+    interpolateVaryings<Float8, kVaryingsOf<S>, kFlatVaryingsOf<S>>(setup, planes, b1, b2, out.varyings);
+    if constexpr (kDerivatives)
+        interpolateDerivatives<Float8>(setup, uvSlopes, b1, b2, &out.varyings[kUv], out.uvDerivatives);
+}
+
+// The varyings (and texture coordinate derivatives) of the queued fragments, into queue.batch, when the
+// queue is shaded: the slots of each triangle eight lanes at once, from each slot's own λ1, λ2 (a lane
+// gets the bits interpolating it alone gives: interpolate.h). A batch of the fragments of a few small
+// triangles then costs a wide interpolation per triangle, where interpolating each fragment as it was
+// queued cost one per fragment (or per block row, plus a copy of every varying per fragment).
+template <Shader S, bool kDerivatives>
+void interpolateQueue(FragmentQueue& queue) {
+    Float8 b1, b2;
+    std::memcpy(&b1, queue.b1, sizeof b1);
+    std::memcpy(&b2, queue.b2, sizeof b2);
+    unsigned remaining = queue.batch.mask;
+    bool first = true;
+    while (remaining) {
+        const int lead = std::countr_zero(remaining);
+        const TriangleSetup& setup = *queue.setups[lead];
+        const float* planes = queue.planes[lead];
+        unsigned group = 0;  // the live slots of lead's triangle
+        for (unsigned lanes = remaining; lanes; lanes &= lanes - 1) {
+            const int lane = std::countr_zero(lanes);
+            if (queue.setups[lane] == &setup) group |= 1u << lane;
+        }
+        remaining &= ~group;
+        VaryingPairSlopes uvSlopes;
+        if constexpr (kDerivatives) uvSlopes = VaryingPairSlopes(setup, planes, derivativeVarying<S>());
+        if (first && !remaining) {  // one triangle (the common case): straight into the batch
+            interpolateRowWide<S, kDerivatives>(setup, planes, uvSlopes, b1, b2, queue.batch);
+            return;
+        }
+        first = false;
+        FragmentBatch groupVaryings;
+        interpolateRowWide<S, kDerivatives>(setup, planes, uvSlopes, b1, b2, groupVaryings);
+        const Int8 take = laneMaskOf(group);
+        for (int k = 0; k < kVaryingsOf<S>; ++k)
+            queue.batch.varyings[k] = select(take, groupVaryings.varyings[k], queue.batch.varyings[k]);
+        if constexpr (kDerivatives)
+            for (int k = 0; k < 4; ++k)
+                queue.batch.uvDerivatives[k] =
+                    select(take, groupVaryings.uvDerivatives[k], queue.batch.uvDerivatives[k]);
+    }
 }
 
 // The fragment shader for the n queued fragments, into shaded[0..n): eight lanes at once when the
@@ -132,7 +214,7 @@ unsigned runFragmentShader(FragmentQueue& queue, int n, const typename S::Unifor
 // row's colours straight into the framebuffer's row, all eight at once when every lane is written,
 // rather than finding each fragment's pixel from its position (the same values land in the same
 // pixels).
-template <Shader S, FragmentOutput kOutput, class Depth, bool kRoundColor, class Observer>
+template <Shader S, FragmentOutput kOutput, class Depth, bool kRoundColor, bool kDerivatives, class Observer>
 void shadeQueue(FragmentQueue& queue, const DrawPlan& plan, const Depth& depth,
                 const typename S::Uniforms& uniforms, const FramebufferPlanes& target, DrawStats& stats,
                 Observer& observer, bool slotsAreColumns = false) {
@@ -141,6 +223,8 @@ void shadeQueue(FragmentQueue& queue, const DrawPlan& plan, const Depth& depth,
     if (n == 0) return;
     queue.count = 0;
 
+    // A row shaded whole was interpolated with its row (depthTestBlock); queued fragments are now.
+    if (!slotsAreColumns) interpolateQueue<S, kDerivatives>(queue);
     vec4 shaded[kBlockSize];
     const unsigned kept = runFragmentShader<S>(queue, n, uniforms, shaded, stats);
     const unsigned live = queue.batch.mask;
@@ -215,71 +299,6 @@ void shadeQueue(FragmentQueue& queue, const DrawPlan& plan, const Depth& depth,
     }
 }
 
-// Shader S's varying floats and how many of them are flat: every setup of S's draws has these counts,
-// known here when compiling, so that interpolation's and the queue's loops over varyings unroll.
-template <Shader S>
-inline constexpr int kVaryingsOf = kVaryingFloatCount<typename S::Varyings>;
-template <Shader S>
-inline constexpr int kFlatVaryingsOf = flatVaryingFloats<S>();
-
-// Puts a fragment that passed the depth test at pixel (x, y) into the next queue slot, with its varyings
-// (and texture coordinate derivatives) at barycentrics (b1, b2): lane `lane` of rowVaryings when the row
-// was interpolated eight lanes at once (wideRow), else interpolated alone (the same bits). Returns the
-// slot.
-template <Shader S, bool kDerivatives>
-int queueFragment(FragmentQueue& queue, const TriangleSetup& setup, const float* planes,
-                  const VaryingPairSlopes& uvSlopes, int x, int y, float z, bool wideRow,
-                  const FragmentBatch& rowVaryings, int lane, float b1, float b2) {
-    constexpr int kUv = derivativeVarying<S>();
-    const int slot = queue.count++;
-    queue.batch.mask |= 1u << slot;
-    queue.remember(x, y);
-    queue.x[slot] = x;
-    queue.y[slot] = y;
-    queue.z[slot] = z;
-    queue.triangle[slot] = setup.triangle;
-    if (wideRow) {
-        for (int k = 0; k < kVaryingsOf<S>; ++k)
-            queue.batch.varyings[k][slot] = rowVaryings.varyings[k][lane];
-        if constexpr (kDerivatives)
-            for (int k = 0; k < 4; ++k)
-                queue.batch.uvDerivatives[k][slot] = rowVaryings.uvDerivatives[k][lane];
-    } else {
-        float varyings[kMaxVaryingFloats];
-        interpolateVaryings<float, kVaryingsOf<S>, kFlatVaryingsOf<S>>(setup, planes, b1, b2, varyings);
-        for (int k = 0; k < kVaryingsOf<S>; ++k)
-            queue.batch.varyings[k][slot] = varyings[k];
-        if constexpr (kDerivatives) {
-            float derivatives[4];
-            interpolateDerivatives<float>(setup, uvSlopes, b1, b2, &varyings[kUv], derivatives);
-            for (int k = 0; k < 4; ++k)
-                queue.batch.uvDerivatives[k][slot] = derivatives[k];
-        }
-    }
-    return slot;
-}
-
-// The varyings (and texture coordinate derivatives) of a block row's eight lanes at once, into `out`.
-template <Shader S, bool kDerivatives>
-void interpolateRowWide(const TriangleSetup& setup, const float* planes, const VaryingPairSlopes& uvSlopes,
-                        Float8 b1, Float8 b2, FragmentBatch& out) {
-    constexpr int kUv = derivativeVarying<S>();
-    interpolateVaryings<Float8, kVaryingsOf<S>, kFlatVaryingsOf<S>>(setup, planes, b1, b2, out.varyings);
-    if constexpr (kDerivatives)
-        interpolateDerivatives<Float8>(setup, uvSlopes, b1, b2, &out.varyings[kUv], out.uvDerivatives);
-}
-
-// The varyings of a block row's eight lanes at once, when several fragments survived (`passed` has
-// more than two bits); one by one in queueFragment when a sliver of a triangle left one or two (the same
-// bits either way: interpolate.h). Returns whether the row was interpolated wide.
-template <Shader S, bool kDerivatives>
-bool interpolateRow(const TriangleSetup& setup, const float* planes, const VaryingPairSlopes& uvSlopes,
-                    unsigned passed, Float8 b1, Float8 b2, FragmentBatch& rowVaryings) {
-    const bool wideRow = std::popcount(passed) > 2;
-    if (wideRow) interpolateRowWide<S, kDerivatives>(setup, planes, uvSlopes, b1, b2, rowVaryings);
-    return wideRow;
-}
-
 // The covered pixels of one block: barycentrics, depth, and the depth test (before shading: the shader
 // cannot change depth, so testing early gives the same image and skips hidden fragments). Fragments
 // that pass go to the queue, which is shaded whenever it holds eight. kDerivatives (a draw whose shader
@@ -293,8 +312,8 @@ void depthTestBlock(const TriangleSetup& setup, const float* planes, const Cover
     constexpr bool kObserving = Observer::enabled;
     const BlockBarycentrics barycentrics(setup, block.x, block.y);
     constexpr int kUv = derivativeVarying<S>();
-    VaryingPairSlopes uvSlopes;
-    if constexpr (kDerivatives) uvSlopes = VaryingPairSlopes(setup, planes, kUv);
+    VaryingPairSlopes uvSlopes;  // for rows shaded whole, computed at the block's first such row
+    [[maybe_unused]] bool haveSlopes = false;
 
     // Only the rows between the first and the last covered one (the mask is never 0): a small
     // triangle's block has one to three, not eight.
@@ -312,7 +331,8 @@ void depthTestBlock(const TriangleSetup& setup, const float* planes, const Cover
 
         // A queued fragment at one of these pixels must reach the framebuffer before they are tested.
         if (queue.count && queue.holdsAny(y, block.x, rowMask))
-            shadeQueue<S, kOutput, Depth, kRoundColor>(queue, plan, depth, uniforms, target, stats, observer);
+            shadeQueue<S, kOutput, Depth, kRoundColor, kDerivatives>(queue, plan, depth, uniforms, target,
+                                                                     stats, observer);
 
         typename Depth::Stored* depthRow = &target.depth(block.x, y);
         unsigned passed = rowMask;
@@ -345,12 +365,13 @@ void depthTestBlock(const TriangleSetup& setup, const float* planes, const Cover
         // A row that mostly passed is shaded whole, straight from its own batch (kRowShadedWhole); the
         // fragments of other rows are queued.
         const bool rowShadedWhole = std::popcount(passed) >= kRowShadedWhole;
-        FragmentBatch rowVaryings;
-        bool wideRow = false;
-        if (rowShadedWhole)
+        if (rowShadedWhole) {
+            if constexpr (kDerivatives) {
+                if (!haveSlopes) uvSlopes = VaryingPairSlopes(setup, planes, kUv);
+                haveSlopes = true;
+            }
             interpolateRowWide<S, kDerivatives>(setup, planes, uvSlopes, b1, b2, rowQueue.batch);
-        else
-            wideRow = interpolateRow<S, kDerivatives>(setup, planes, uvSlopes, passed, b1, b2, rowVaryings);
+        }
         stats.fragmentsDepthFailed += static_cast<unsigned>(std::popcount(rowMask & ~passed));
         if constexpr (kObserving) {
             for (unsigned lanes = rowMask & ~passed; lanes; lanes &= lanes - 1) {
@@ -381,9 +402,7 @@ void depthTestBlock(const TriangleSetup& setup, const float* planes, const Cover
             const int lane = std::countr_zero(lanes);
             int slot = lane;  // a row shaded whole: its slots are its columns, filled above
             if (!rowShadedWhole)
-                slot =
-                    queueFragment<S, kDerivatives>(queue, setup, planes, uvSlopes, block.x + lane, y, z[lane],
-                                                   wideRow, rowVaryings, lane, b1[lane], b2[lane]);
+                slot = queueFragment(queue, setup, planes, block.x + lane, y, z[lane], b1[lane], b2[lane]);
             if constexpr (kObserving) {
                 FragmentQueue& into = rowShadedWhole ? rowQueue : queue;
                 into.b1[slot] = b1[lane];
@@ -391,15 +410,15 @@ void depthTestBlock(const TriangleSetup& setup, const float* planes, const Cover
                 into.invW[slot] = interpolateInvW(setup, b1[lane], b2[lane]);
             }
             if (queue.count == kBlockSize)
-                shadeQueue<S, kOutput, Depth, kRoundColor>(queue, plan, depth, uniforms, target, stats,
-                                                           observer);
+                shadeQueue<S, kOutput, Depth, kRoundColor, kDerivatives>(queue, plan, depth, uniforms, target,
+                                                                         stats, observer);
         }
         if (rowShadedWhole) {
             rowQueue.count = kBlockSize;
             rowQueue.batch.mask = passed;
             constexpr bool kSlotsAreColumns = true;
-            shadeQueue<S, kOutput, Depth, kRoundColor>(rowQueue, plan, depth, uniforms, target, stats,
-                                                       observer, kSlotsAreColumns);
+            shadeQueue<S, kOutput, Depth, kRoundColor, kDerivatives>(rowQueue, plan, depth, uniforms, target,
+                                                                     stats, observer, kSlotsAreColumns);
         }
     }
 }
@@ -459,7 +478,8 @@ void drawTile(const PixelRect& rect, std::size_t tile, std::span<const SetupChun
             });
         }
     }
-    shadeQueue<S, kOutput, Depth, kRoundColor>(queue, plan, depth, uniforms, target, stats, observer);
+    shadeQueue<S, kOutput, Depth, kRoundColor, kDerivatives>(queue, plan, depth, uniforms, target, stats,
+                                                             observer);
 }
 
 // ---- Multisampling ----------------------------------------------------------------------------------
@@ -494,13 +514,14 @@ struct SampleOffsetsFixed {
 // Shades the queued fragments (runFragmentShader, as the single-sample back end does) and blends each
 // kept fragment's colour into every sample of its pixel that it covers and that passed the depth test,
 // writing those samples' depths.
-template <Shader S, class Depth>
+template <Shader S, class Depth, bool kDerivatives>
 void shadeMultisampleQueue(MultisampleQueue& queue, const DrawPlan& plan, const Depth& depth,
                            const typename S::Uniforms& uniforms, const FramebufferPlanes& target,
                            DrawStats& stats) {
     const int n = queue.count;
     if (n == 0) return;
     queue.count = 0;
+    interpolateQueue<S, kDerivatives>(queue);
     vec4 shaded[kBlockSize];
     const unsigned kept = runFragmentShader<S>(queue, n, uniforms, shaded, stats);
     queue.batch.mask = 0;
@@ -536,8 +557,6 @@ void depthTestMultisampleBlock(const TriangleSetup& setup, const float* planes, 
                                const DrawPlan& plan, const Depth& depth, const typename S::Uniforms& uniforms,
                                const FramebufferPlanes& target, DrawStats& stats) {
     const BlockBarycentrics barycentrics(setup, blockX, blockY);
-    VaryingPairSlopes uvSlopes;
-    if constexpr (kDerivatives) uvSlopes = VaryingPairSlopes(setup, planes, derivativeVarying<S>());
     const double invArea = 1.0 / static_cast<double>(setup.doubleArea);
     const EdgeFunction& e1 = setup.edges[1];
     const EdgeFunction& e2 = setup.edges[2];
@@ -548,7 +567,7 @@ void depthTestMultisampleBlock(const TriangleSetup& setup, const float* planes, 
         if (!rowMask) continue;
         const int y = blockY + row;
         if (queue.count && queue.holdsAny(y, blockX, rowMask))
-            shadeMultisampleQueue<S>(queue, plan, depth, uniforms, target, stats);
+            shadeMultisampleQueue<S, Depth, kDerivatives>(queue, plan, depth, uniforms, target, stats);
 
         // The depth test at each covered sample: λᵢ = Eᵢ(sample) / (2·area), Eᵢ(sample) = Eᵢ(centre) +
         // aᵢ·dx + bᵢ·dy exact in integers, then z as interpolateDepth gives it at a pixel centre.
@@ -598,21 +617,17 @@ void depthTestMultisampleBlock(const TriangleSetup& setup, const float* planes, 
             b2[lane] = centroidB2[lane];
         }
         const Float8 z = interpolateDepth(setup, b1, b2);
-        FragmentBatch rowVaryings;
-        const bool wideRow =
-            interpolateRow<S, kDerivatives>(setup, planes, uvSlopes, passed, b1, b2, rowVaryings);
         for (unsigned lanes = passed; lanes; lanes &= lanes - 1) {
             const int lane = std::countr_zero(lanes);
             const int slot =
-                queueFragment<S, kDerivatives>(queue, setup, planes, uvSlopes, blockX + lane, y, z[lane],
-                                               wideRow, rowVaryings, lane, b1[lane], b2[lane]);
+                queueFragment(queue, setup, planes, blockX + lane, y, z[lane], b1[lane], b2[lane]);
             queue.samplesPassed[slot] = samplesPassed[lane];
             for (unsigned samples = samplesPassed[lane]; samples; samples &= samples - 1) {
                 const int s = std::countr_zero(samples);
                 queue.sampleZ[slot][s] = sampleZ[lane][s];
             }
             if (queue.count == kBlockSize)
-                shadeMultisampleQueue<S>(queue, plan, depth, uniforms, target, stats);
+                shadeMultisampleQueue<S, Depth, kDerivatives>(queue, plan, depth, uniforms, target, stats);
         }
     }
 }
@@ -649,7 +664,7 @@ void drawMultisampleTile(const PixelRect& tileRect, std::size_t tile, std::span<
             }
         }
     }
-    shadeMultisampleQueue<S>(queue, plan, depth, uniforms, target, stats);
+    shadeMultisampleQueue<S, Depth, kDerivatives>(queue, plan, depth, uniforms, target, stats);
 }
 
 // One tile of a draw's set-up chunks, with the draw's choices resolved here: the FragmentOutput, the
