@@ -148,7 +148,6 @@ void interpolateQueue(FragmentQueue& queue) {
     std::memcpy(&b1, queue.b1, sizeof b1);
     std::memcpy(&b2, queue.b2, sizeof b2);
     unsigned remaining = queue.batch.mask;
-    bool first = true;
     while (remaining) {
         const int lead = std::countr_zero(remaining);
         const TriangleSetup& setup = *queue.setups[lead];
@@ -161,11 +160,10 @@ void interpolateQueue(FragmentQueue& queue) {
         remaining &= ~group;
         VaryingPairSlopes uvSlopes;
         if constexpr (kDerivatives) uvSlopes = VaryingPairSlopes(setup, planes, derivativeVarying<S>());
-        if (first && !remaining) {  // one triangle (the common case): straight into the batch
+        if (group == queue.batch.mask) {  // one triangle (the common case): straight into the batch
             interpolateRowWide<S, kDerivatives>(setup, planes, uvSlopes, b1, b2, queue.batch);
             return;
         }
-        first = false;
         FragmentBatch groupVaryings;
         interpolateRowWide<S, kDerivatives>(setup, planes, uvSlopes, b1, b2, groupVaryings);
         const Int8 take = laneMaskOf(group);
@@ -394,6 +392,8 @@ void depthTestBlock(const TriangleSetup& setup, const float* planes, const Cover
             std::memcpy(rowQueue.y, &rowY, sizeof rowY);
             std::memcpy(rowQueue.z, &z, sizeof z);
             std::memcpy(rowQueue.triangle, &triangle, sizeof triangle);
+            std::memcpy(rowQueue.b1, &b1, sizeof b1);
+            std::memcpy(rowQueue.b2, &b2, sizeof b2);
         }
         // The passing fragments of a row not shaded whole go to the queue (a row shaded whole has
         // nothing to do here unless watched).
@@ -403,10 +403,8 @@ void depthTestBlock(const TriangleSetup& setup, const float* planes, const Cover
             int slot = lane;  // a row shaded whole: its slots are its columns, filled above
             if (!rowShadedWhole)
                 slot = queueFragment(queue, setup, planes, block.x + lane, y, z[lane], b1[lane], b2[lane]);
-            if constexpr (kObserving) {
+            if constexpr (kObserving) {  // λ1 and λ2 are in the slot already
                 FragmentQueue& into = rowShadedWhole ? rowQueue : queue;
-                into.b1[slot] = b1[lane];
-                into.b2[slot] = b2[lane];
                 into.invW[slot] = interpolateInvW(setup, b1[lane], b2[lane]);
             }
             if (queue.count == kBlockSize)
