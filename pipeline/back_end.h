@@ -207,11 +207,11 @@ unsigned runFragmentShader(FragmentQueue& queue, int n, const typename S::Unifor
 // fragment lists or other formats. (A template per format would multiply the back end's copies, one
 // per shader, without making any of them faster.)
 //
-// `slotsAreColumns`: the queue is a block row shaded whole (kRowShadedWhole), slot c at pixel
-// (x[0] + c, y[0]). An opaque draw (Replace) into the float colour buffer, unwatched, then stores the
-// row's colours straight into the framebuffer's row, all eight at once when every lane is written,
-// rather than finding each fragment's pixel from its position (the same values land in the same
-// pixels).
+// An opaque draw (Replace) into the float colour buffer, unwatched, whose depths the test wrote, only
+// stores colours. `slotsAreColumns`: the queue is a block row shaded whole (kRowShadedWhole), slot c at
+// pixel (x[0] + c, y[0]); such a draw then stores the row's colours straight into the framebuffer's row,
+// all eight at once when every lane is written, rather than finding each fragment's pixel from its
+// position (the same values land in the same pixels).
 template <Shader S, FragmentOutput kOutput, class Depth, bool kRoundColor, bool kDerivatives, class Observer>
 void shadeQueue(FragmentQueue& queue, const DrawPlan& plan, const Depth& depth,
                 const typename S::Uniforms& uniforms, const FramebufferPlanes& target, DrawStats& stats,
@@ -234,15 +234,24 @@ void shadeQueue(FragmentQueue& queue, const DrawPlan& plan, const Depth& depth,
 
     if constexpr (!kObserving && kOutput == FragmentOutput::Blend && !kRoundColor &&
                   kDepthWrittenAtTest<S, Observer>) {
-        if (slotsAreColumns && plan.blend == BlendMode::Replace) {
-            vec4* const row = &target.color(queue.x[0], queue.y[0]);
+        if (plan.blend == BlendMode::Replace) {
+            // The depths are written already and Replace needs no destination: only the colours to
+            // store, with no per-lane choice of blend mode or rounding.
             const unsigned written = live & kept;
-            if (written == 0xffu) {
-                std::memcpy(row, shaded, sizeof shaded);
+            if (slotsAreColumns) {
+                vec4* const row = &target.color(queue.x[0], queue.y[0]);
+                if (written == 0xffu) {
+                    std::memcpy(row, shaded, sizeof shaded);
+                } else {
+                    for (unsigned lanes = written; lanes; lanes &= lanes - 1) {
+                        const int lane = std::countr_zero(lanes);
+                        row[lane] = shaded[lane];
+                    }
+                }
             } else {
                 for (unsigned lanes = written; lanes; lanes &= lanes - 1) {
                     const int lane = std::countr_zero(lanes);
-                    row[lane] = shaded[lane];
+                    target.color(queue.x[lane], queue.y[lane]) = shaded[lane];
                 }
             }
             return;
