@@ -4,25 +4,6 @@
 
 namespace facet {
 
-std::uint8_t computeOutcode(const vec4& p, ClipDepthRange depth) {
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) || !std::isfinite(p.w))
-        return kNonFinite;
-    std::uint8_t code = 0;
-    if (p.x < -p.w) code |= kClipLeft;
-    if (p.x > p.w) code |= kClipRight;
-    if (p.y < -p.w) code |= kClipBottom;
-    if (p.y > p.w) code |= kClipTop;
-    if (depth == ClipDepthRange::MinusWToW) {
-        if (p.z < -p.w) code |= kClipNear;
-        if (p.z > p.w) code |= kClipFar;
-    } else {
-        if (p.z > p.w) code |= kClipNear;
-        if (p.z < 0.0f) code |= kClipFar;
-    }
-    if (p.w < kMinClipW) code |= kClipW;
-    return code;
-}
-
 float planeDistance(const vec4& p, std::uint8_t plane, ClipDepthRange depth) {
     const bool reversed = depth == ClipDepthRange::ReversedZeroToW;
     switch (plane) {

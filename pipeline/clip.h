@@ -4,6 +4,7 @@
 // In: ClipPolygon (a triangle). Out: the same ClipPolygon, convex, winding kept, 0 or ≥ 3 vertices.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 
 #include "types.h"
@@ -15,8 +16,26 @@ namespace facet {
 // DepthBufferFormat::ReversedFloat). kClipNear and kClipFar keep naming the near and far planes.
 enum class ClipDepthRange : std::uint8_t { MinusWToW, ReversedZeroToW };
 
-// Which planes `position` lies outside of (ClipPlaneBit mask); kNonFinite if any coordinate is NaN/Inf.
-std::uint8_t computeOutcode(const vec4& position, ClipDepthRange depth = ClipDepthRange::MinusWToW);
+// Which planes `p` lies outside of (ClipPlaneBit mask); kNonFinite if any coordinate is NaN/Inf. Inline:
+// the vertex stage asks it of every vertex.
+inline std::uint8_t computeOutcode(const vec4& p, ClipDepthRange depth = ClipDepthRange::MinusWToW) {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) || !std::isfinite(p.w))
+        return kNonFinite;
+    std::uint8_t code = 0;
+    if (p.x < -p.w) code |= kClipLeft;
+    if (p.x > p.w) code |= kClipRight;
+    if (p.y < -p.w) code |= kClipBottom;
+    if (p.y > p.w) code |= kClipTop;
+    if (depth == ClipDepthRange::MinusWToW) {
+        if (p.z < -p.w) code |= kClipNear;
+        if (p.z > p.w) code |= kClipFar;
+    } else {
+        if (p.z > p.w) code |= kClipNear;
+        if (p.z < 0.0f) code |= kClipFar;
+    }
+    if (p.w < kMinClipW) code |= kClipW;
+    return code;
+}
 
 // Signed distance-like value of `position` to one plane: ≥ 0 inside. `plane` is a single ClipPlaneBit.
 float planeDistance(const vec4& position, std::uint8_t plane,
