@@ -80,6 +80,11 @@ std::size_t Framebuffer::clear(vec4 color, DepthFormat::Stored depth, ThreadPool
 }
 
 void Framebuffer::writeClearValues(std::size_t cell) {
+    // A cell's rows are short (1 KiB of colour, 256 B of depth) and a frame apart in memory, so the
+    // hardware's stream prefetcher has little to go on and each row's first stores wait for memory: the
+    // lines of the row kRowsAhead below are asked for (for writing) while this one is written. A 1080p
+    // frame of large triangles (a 1k-triangle sphere, a third of it cells' clears) took ~2.5% less.
+    constexpr int kRowsAhead = 2;
     const int across = cellsAcross();
     const int cellX = static_cast<int>(cell % static_cast<std::size_t>(across));
     const int cellY = static_cast<int>(cell / static_cast<std::size_t>(across));
@@ -91,6 +96,15 @@ void Framebuffer::writeClearValues(std::size_t cell) {
     const DepthFormat::Stored depth = clearedDepth_;
     for (int y = firstY; y < endY; ++y) {
         const std::size_t first = index(firstX, y), last = index(endX - 1, y) + 1;
+        if (y + kRowsAhead < endY) {
+            const std::size_t ahead = first + static_cast<std::size_t>(kRowsAhead) * width_;
+            const char* colorAhead = reinterpret_cast<const char*>(color_.data() + ahead);
+            for (std::size_t byte = 0; byte < (last - first) * sizeof(vec4); byte += 64)
+                __builtin_prefetch(colorAhead + byte, 1);
+            const char* depthAhead = reinterpret_cast<const char*>(depth_.data() + ahead);
+            for (std::size_t byte = 0; byte < (last - first) * sizeof(DepthFormat::Stored); byte += 64)
+                __builtin_prefetch(depthAhead + byte, 1);
+        }
         fillColors(color_.data() + first, color_.data() + last, color);
         std::fill(depth_.data() + first, depth_.data() + last, depth);
         if (samples > 1) {
