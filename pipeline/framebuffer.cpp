@@ -156,8 +156,13 @@ FramebufferPlanes Framebuffer::planesToDraw(const PixelRect& area) {
         for (int cy = inside.minY / kClearCell; cy <= inside.maxY / kClearCell; ++cy)
             for (int cx = inside.minX / kClearCell; cx <= inside.maxX / kClearCell; ++cx) {
                 const auto cell = static_cast<std::size_t>(cy) * across + cx;
+                // Drawn already (a cell stays drawn until the next clear): nothing to write. The states
+                // of a frame's cells share a few cache lines that every tile of every draw asks for;
+                // storing kCellDrawn again each time made the threads take those lines from each other.
+                std::atomic_ref<std::uint8_t> state(cellState_[cell]);
+                if (state.load(std::memory_order_acquire) == kCellDrawn) continue;
                 settleCell(cell);
-                std::atomic_ref<std::uint8_t>(cellState_[cell]).store(kCellDrawn, std::memory_order_relaxed);
+                state.store(kCellDrawn, std::memory_order_relaxed);
             }
     }
     FramebufferPlanes planes;
