@@ -209,9 +209,8 @@ unsigned runFragmentShader(FragmentQueue& queue, int n, const typename S::Unifor
 //
 // An opaque draw (Replace) into the float colour buffer, unwatched, whose depths the test wrote, only
 // stores colours. `slotsAreColumns`: the queue is a block row shaded whole (kRowShadedWhole), slot c at
-// pixel (x[0] + c, y[0]); such a draw then stores the row's colours straight into the framebuffer's row,
-// all eight at once when every lane is written, rather than finding each fragment's pixel from its
-// position (the same values land in the same pixels).
+// pixel (x[0] + c, y[0]); when all eight of its lanes are written, such a draw stores the row's colours
+// with one copy into the framebuffer's row.
 template <Shader S, FragmentOutput kOutput, class Depth, bool kRoundColor, bool kDerivatives, class Observer>
 void shadeQueue(FragmentQueue& queue, const DrawPlan& plan, const Depth& depth,
                 const typename S::Uniforms& uniforms, const FramebufferPlanes& target, DrawStats& stats,
@@ -238,21 +237,13 @@ void shadeQueue(FragmentQueue& queue, const DrawPlan& plan, const Depth& depth,
             // The depths are written already and Replace needs no destination: only the colours to
             // store, with no per-lane choice of blend mode or rounding.
             const unsigned written = live & kept;
-            if (slotsAreColumns) {
-                vec4* const row = &target.color(queue.x[0], queue.y[0]);
-                if (written == 0xffu) {
-                    std::memcpy(row, shaded, sizeof shaded);
-                } else {
-                    for (unsigned lanes = written; lanes; lanes &= lanes - 1) {
-                        const int lane = std::countr_zero(lanes);
-                        row[lane] = shaded[lane];
-                    }
-                }
-            } else {
-                for (unsigned lanes = written; lanes; lanes &= lanes - 1) {
-                    const int lane = std::countr_zero(lanes);
-                    target.color(queue.x[lane], queue.y[lane]) = shaded[lane];
-                }
+            if (slotsAreColumns && written == 0xffu) {
+                std::memcpy(&target.color(queue.x[0], queue.y[0]), shaded, sizeof shaded);
+                return;
+            }
+            for (unsigned lanes = written; lanes; lanes &= lanes - 1) {
+                const int lane = std::countr_zero(lanes);
+                target.color(queue.x[lane], queue.y[lane]) = shaded[lane];
             }
             return;
         }

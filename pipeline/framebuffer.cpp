@@ -34,6 +34,13 @@ void fillColors(vec4* first, vec4* last, vec4 color) {
         *first = color;
 }
 
+// Asks for the cache lines of [start, start + bytes), to be written.
+void prefetchForWriting(const void* start, std::size_t bytes) {
+    const char* first = static_cast<const char*>(start);
+    for (std::size_t byte = 0; byte < bytes; byte += 64)
+        __builtin_prefetch(first + byte, 1);
+}
+
 }  // namespace
 
 Framebuffer::Framebuffer(int width, int height)
@@ -98,12 +105,8 @@ void Framebuffer::writeClearValues(std::size_t cell) {
         const std::size_t first = index(firstX, y), last = index(endX - 1, y) + 1;
         if (y + kRowsAhead < endY) {
             const std::size_t ahead = first + static_cast<std::size_t>(kRowsAhead) * width_;
-            const char* colorAhead = reinterpret_cast<const char*>(color_.data() + ahead);
-            for (std::size_t byte = 0; byte < (last - first) * sizeof(vec4); byte += 64)
-                __builtin_prefetch(colorAhead + byte, 1);
-            const char* depthAhead = reinterpret_cast<const char*>(depth_.data() + ahead);
-            for (std::size_t byte = 0; byte < (last - first) * sizeof(DepthFormat::Stored); byte += 64)
-                __builtin_prefetch(depthAhead + byte, 1);
+            prefetchForWriting(color_.data() + ahead, (last - first) * sizeof(vec4));
+            prefetchForWriting(depth_.data() + ahead, (last - first) * sizeof(DepthFormat::Stored));
         }
         fillColors(color_.data() + first, color_.data() + last, color);
         std::fill(depth_.data() + first, depth_.data() + last, depth);
