@@ -67,10 +67,13 @@ struct DrawContext {
 
 // Work sizes: vertices are shaded in chunks of kVertexChunk, triangles set up in chunks of
 // kTriangleChunk, and at most kChunksPerBatch chunks are binned before their tiles are drawn, which
-// bounds the memory held in setups whatever the size of the mesh.
+// bounds the memory held in setups whatever the size of the mesh (~17 MB at most for 65,536 triangles).
+// Each batch draws every tile it touches once more, fetching its pixels into a cache again and, with
+// two threads, often from the other core's: 32 chunks a batch rather than 8 made Lost Empire's frame
+// ~6% faster on two threads and the bunny's ~2%, and left one thread's unchanged.
 inline constexpr std::size_t kVertexChunk = 8192;
 inline constexpr std::size_t kTriangleChunk = 2048;
-inline constexpr std::size_t kChunksPerBatch = 8;
+inline constexpr std::size_t kChunksPerBatch = 32;
 
 // Checks a draw's state and the mesh's indices; throws std::invalid_argument naming the problem.
 void validateDraw(const DrawState& state, const Framebuffer& target, std::size_t vertexCount,

@@ -1,5 +1,6 @@
 #include "bin.h"
 
+#include <algorithm>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -99,6 +100,44 @@ TEST(Bin, SameBytesForAnyThreadCountAndTileSize) {
             EXPECT_TRUE(image.second == reference.second) << threads << " threads, tile " << tileSize;
         }
     }
+}
+
+// A draw of more triangles than one batch (kTriangleChunk · kChunksPerBatch: set up and binned, then
+// drawn, before the next batch is set up) gives the bytes of the same triangles drawn as draws of one
+// chunk each, which never span a batch. The triangles overlap and blend over each other, so an order
+// changed, a triangle dropped or drawn twice shows. Breaks caught: a batch's end computed from one chunk
+// instead of kChunksPerBatch (triangles dropped), the last partial batch skipped, the chunks of the
+// previous batch drawn again.
+TEST(Bin, ADrawOfSeveralBatchesMatchesItsTrianglesInChunkSizedDraws) {
+    const std::size_t triangles = 2 * kTriangleChunk * kChunksPerBatch + 777;  // two batches and a part
+    std::mt19937 rng(21);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    std::vector<testing::ClipSpaceColorShader::Attributes> vertices;
+    for (std::size_t i = 0; i < 3 * triangles; ++i) {
+        const vec2 centre(u(rng) * 0.8f, u(rng) * 0.8f);
+        vertices.push_back({vec4(centre + 0.15f * vec2(u(rng), u(rng)), u(rng) * 0.9f, 1.0f),
+                            vec4(0.5f + 0.5f * u(rng), 0.5f + 0.5f * u(rng), 0.5f + 0.5f * u(rng), 0.3f)});
+    }
+    std::vector<std::uint32_t> indices(vertices.size());
+    for (std::size_t i = 0; i < indices.size(); ++i)
+        indices[i] = static_cast<std::uint32_t>(i);
+    const std::span<const testing::ClipSpaceColorShader::Attributes> allVertices(vertices);
+    const std::span<const std::uint32_t> allIndices(indices);
+    auto render = [&](std::size_t trianglesPerDraw) {
+        Framebuffer fb(61, 47);
+        fb.clearColor(vec4(0));
+        DrawState state = testing::stateFor(fb);
+        state.blend = BlendMode::Over;
+        state.depth.testEnabled = false;  // every triangle blends: the order of all of them shows
+        DrawContext context(2);
+        for (std::size_t first = 0; first < triangles; first += trianglesPerDraw) {
+            const std::size_t count = std::min(trianglesPerDraw, triangles - first);
+            draw<testing::ClipSpaceColorShader>(state, {}, allVertices,
+                                                allIndices.subspan(3 * first, 3 * count), fb, context);
+        }
+        return fb.colorPixels();
+    };
+    EXPECT_TRUE(render(triangles) == render(kTriangleChunk));
 }
 
 // A context reused from a large draw for a small one: the small draw's image is the one a fresh context
