@@ -106,8 +106,7 @@ TEST(Bin, SameBytesForAnyThreadCountAndTileSize) {
 // drawn, before the next batch is set up) gives the bytes of the same triangles drawn as draws of one
 // chunk each, which never span a batch. The triangles overlap and blend over each other, so an order
 // changed, a triangle dropped or drawn twice shows. Breaks caught: a batch's end computed from one chunk
-// instead of kChunksPerBatch (triangles dropped), the last partial batch skipped, the chunks of the
-// previous batch drawn again.
+// instead of kChunksPerBatch (triangles dropped), the last partial batch skipped.
 TEST(Bin, ADrawOfSeveralBatchesMatchesItsTrianglesInChunkSizedDraws) {
     const std::size_t triangles = 2 * kTriangleChunk * kChunksPerBatch + 777;  // two batches and a part
     std::mt19937 rng(21);
@@ -132,8 +131,9 @@ TEST(Bin, ADrawOfSeveralBatchesMatchesItsTrianglesInChunkSizedDraws) {
         DrawContext context(2);
         for (std::size_t first = 0; first < triangles; first += trianglesPerDraw) {
             const std::size_t count = std::min(trianglesPerDraw, triangles - first);
-            draw<testing::ClipSpaceColorShader>(state, {}, allVertices,
-                                                allIndices.subspan(3 * first, 3 * count), fb, context);
+            // Each triangle has its own three vertices (indices 0, 1, 2, …): a draw takes only its own.
+            draw<testing::ClipSpaceColorShader>(state, {}, allVertices.subspan(3 * first, 3 * count),
+                                                allIndices.first(3 * count), fb, context);
         }
         return fb.colorPixels();
     };
