@@ -82,6 +82,7 @@ void printFrameStats(std::ostream& out, int frame, const facet::PreparedScene& p
         }
         out << "; " << stats.transparentRuns << (stats.transparentRuns == 1 ? " draw" : " draws")
             << " in the transparent pass";
+        if (stats.runsReused) out << ", the last frame's (the order did not change)";
         if (stats.drawRuns > 0)
             out << " (small draws drawn together in " << stats.drawRuns
                 << (stats.drawRuns == 1 ? " run)" : " runs)");

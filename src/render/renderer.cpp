@@ -1,6 +1,7 @@
 #include "render/renderer.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -205,6 +206,8 @@ void extractPart(const Mesh& mesh, const MeshPart& part, PreparedDraw& draw) {
 
 PreparedScene prepareScene(const Scene& scene, const TextureLimits& limits) {
     PreparedScene prepared;
+    static std::atomic<std::uint64_t> preparedScenes{0};
+    prepared.id = ++preparedScenes;
     prepared.scene = scene;
     if (scene.width < 1 || scene.height < 1 || scene.width > kMaxImageSide || scene.height > kMaxImageSide)
         throw InputError(scene.source.string() + ": image size " + std::to_string(scene.width) + "x" +
@@ -518,63 +521,20 @@ void depthKeys(const PreparedScene& prepared, SortKey key, FrameMemory& memory) 
     }
 }
 
-}  // namespace
-
-std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, TransparencyMode mode, FrameMemory& memory,
-                                   FrameStats& stats) {
-    std::vector<PlannedDraw> plan;
-    // Opaque draws, with depth writes, in file order.
-    for (std::uint32_t k = 0; k < prepared.draws.size(); ++k) {
-        const PreparedDraw& d = prepared.draws[k];
-        if (!d.transparent) plan.push_back({k, d.vertices, d.indices, prepared.state, {}});
-    }
+// Cuts the sorted transparent triangles into runs of consecutive triangles of one draw (memory.runs).
+// A run with all of its draw's triangles uses the draw's vertex array (every vertex of it is used:
+// extractPart); any other run gets a compact array of the vertices it uses, each once, and its
+// indices are renumbered into it. The vertex stage then shades, over all runs, at most three
+// vertices per transparent triangle, instead of the whole draw once per run. The image is the same:
+// a vertex is shaded alike wherever it sits in the array.
+void buildTransparentRuns(const PreparedScene& prepared, std::span<const std::uint32_t> order,
+                          FrameMemory& memory) {
     const std::vector<TransparentTriangle>& triangles = prepared.transparentTriangles;
-    if (triangles.empty()) return plan;
-
-    // The transparent pass: depth test on, depth writes off, each draw's own blend.
-    const TransparencyOptions& options = prepared.scene.transparency;
-    const auto transparentState = [&](std::uint32_t k) {
-        DrawState state = prepared.state;
-        state.depth.writeEnabled = false;
-        state.blend = prepared.draws[k].uniforms.blend;
-        if (mode == TransparencyMode::Exact) state.output = FragmentOutput::AppendToLists;
-        return state;
-    };
-    if (mode != TransparencyMode::Sorted) {
-        for (std::uint32_t k = 0; k < prepared.draws.size(); ++k)
-            if (prepared.draws[k].transparent) {
-                plan.push_back(
-                    {k, prepared.draws[k].vertices, prepared.draws[k].indices, transparentState(k), {}});
-                ++stats.transparentRuns;
-            }
-        return plan;
-    }
-
-    // Sorted back to front, then cut into runs of consecutive triangles of one draw.
-    const auto start = std::chrono::steady_clock::now();
-    depthKeys(prepared, options.key, memory);
-    const std::span<const std::uint32_t> order =
-        memory.sorter.sort(memory.keys, SortAlgorithm::InsertionWithMemory, stats.sort);
-    stats.sortMilliseconds =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-
-    // A run with all of its draw's triangles uses the draw's vertex array (every vertex of it is used:
-    // extractPart); any other run gets a compact array of the vertices it uses, each once, and its
-    // indices are renumbered into it. The vertex stage then shades, over all runs, at most three
-    // vertices per transparent triangle, instead of the whole draw once per run. The image is the same:
-    // a vertex is shaded alike wherever it sits in the array.
     memory.runIndices.resize(3 * triangles.size());
     memory.runTriangles.resize(triangles.size());
     memory.runVertices.clear();
     memory.runVertices.reserve(3 * triangles.size());  // at most three vertices a triangle: no regrowth
-    memory.runVertexRanges.clear();
-    // One call per run: reserved at once, rather than grown through a dozen copies of thousands of calls
-    // (each holds a DrawState).
-    std::size_t runs = 0;
-    for (std::size_t i = 0; i < order.size(); ++i)
-        runs += i == 0 || triangles[order[i]].draw != triangles[order[i - 1]].draw;
-    plan.reserve(plan.size() + runs);
-    const std::size_t firstRun = plan.size();
+    memory.runs.clear();
     std::size_t written = 0;
     // In sorted order the triangles, their indices and their vertices are read at random places (a
     // cache miss each, most of the plan's time): each loop below asks for what it reads kAhead steps
@@ -618,18 +578,73 @@ std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, TransparencyMo
             for (const std::uint32_t source : memory.runVertexSources)
                 memory.runVertexOf[source] = FrameMemory::kNotInRun;
         }
-        memory.runVertexRanges.push_back({start, memory.runVertices.size()});
-        const std::span<const std::uint32_t> runTriangles =
-            std::span<const std::uint32_t>(memory.runTriangles).subspan(first / 3, run.size() / 3);
-        plan.push_back({k, d.vertices, run, transparentState(k), runTriangles});
-        ++stats.transparentRuns;
+        memory.runs.push_back({k, first, run.size(), start, memory.runVertices.size() - start});
     }
-    // runVertices has stopped growing: point the compacted runs at their vertices.
-    for (std::size_t r = 0; r < memory.runVertexRanges.size(); ++r) {
-        const auto [begin, end] = memory.runVertexRanges[r];
-        if (end > begin)
-            plan[firstRun + r].vertices =
-                std::span<const MeshVertex>(memory.runVertices).subspan(begin, end - begin);
+}
+}  // namespace
+
+std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, TransparencyMode mode, FrameMemory& memory,
+                                   FrameStats& stats) {
+    std::vector<PlannedDraw> plan;
+    // Opaque draws, with depth writes, in file order.
+    for (std::uint32_t k = 0; k < prepared.draws.size(); ++k) {
+        const PreparedDraw& d = prepared.draws[k];
+        if (!d.transparent) plan.push_back({k, d.vertices, d.indices, prepared.state, {}});
+    }
+    const std::vector<TransparentTriangle>& triangles = prepared.transparentTriangles;
+    if (triangles.empty()) return plan;
+
+    // The transparent pass: depth test on, depth writes off, each draw's own blend.
+    const TransparencyOptions& options = prepared.scene.transparency;
+    const auto transparentState = [&](std::uint32_t k) {
+        DrawState state = prepared.state;
+        state.depth.writeEnabled = false;
+        state.blend = prepared.draws[k].uniforms.blend;
+        if (mode == TransparencyMode::Exact) state.output = FragmentOutput::AppendToLists;
+        return state;
+    };
+    if (mode != TransparencyMode::Sorted) {
+        for (std::uint32_t k = 0; k < prepared.draws.size(); ++k)
+            if (prepared.draws[k].transparent) {
+                plan.push_back(
+                    {k, prepared.draws[k].vertices, prepared.draws[k].indices, transparentState(k), {}});
+                ++stats.transparentRuns;
+            }
+        return plan;
+    }
+
+    // Sorted back to front, then cut into runs of consecutive triangles of one draw.
+    const auto start = std::chrono::steady_clock::now();
+    depthKeys(prepared, options.key, memory);
+    const std::span<const std::uint32_t> order =
+        memory.sorter.sort(memory.keys, SortAlgorithm::InsertionWithMemory, stats.sort);
+    stats.sortMilliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+
+    // The runs depend on the order and the scene's meshes alone: when the sort moved no triangle since
+    // the last frame this memory planned for this scene (a still camera over still objects), that
+    // frame's runs, index lists and compact vertex arrays are this frame's too. Only the calls are made
+    // again below, with the states the scene has now.
+    stats.runsReused = prepared.id != 0 && memory.runsScene == prepared.id && !stats.sort.fromScratch &&
+                       stats.sort.moves == 0;
+    if (!stats.runsReused) {
+        buildTransparentRuns(prepared, order, memory);
+        memory.runsScene = prepared.id;
+    }
+    plan.reserve(plan.size() + memory.runs.size());
+    for (const FrameMemory::TransparentRun& run : memory.runs) {
+        const PreparedDraw& d = prepared.draws[run.draw];
+        const std::span<const MeshVertex> vertices =
+            run.vertexCount == 0
+                ? std::span<const MeshVertex>(d.vertices)
+                : std::span<const MeshVertex>(memory.runVertices).subspan(run.firstVertex, run.vertexCount);
+        plan.push_back(
+            {run.draw, vertices,
+             std::span<const std::uint32_t>(memory.runIndices).subspan(run.firstIndex, run.indexCount),
+             transparentState(run.draw),
+             std::span<const std::uint32_t>(memory.runTriangles)
+                 .subspan(run.firstIndex / 3, run.indexCount / 3)});
+        ++stats.transparentRuns;
     }
     return plan;
 }

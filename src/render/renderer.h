@@ -57,6 +57,9 @@ struct PreparedScene {
     std::vector<std::string> warnings;  // from the importer, one line each
     std::size_t triangleCount = 0;
     std::size_t degenerateSkipped = 0;
+    // Unique to one prepareScene call (0: a scene made otherwise): what a FrameMemory's runs of
+    // transparent triangles were cut for, so that a memory moved to another scene never reuses them.
+    std::uint64_t id = 0;
     // The eye-space distance to the far side of the scene's bounding sphere: the scale of the scene's
     // coordinates, for the shadow rays' offset (shading/shadow.h).
     float sceneExtent = 1.0f;
@@ -103,9 +106,17 @@ struct FrameMemory {
     // The runs' compact vertex arrays, one after another: each run carries only the vertices it uses,
     // so that a draw cut into thousands of runs is not shaded whole thousands of times.
     std::vector<MeshVertex> runVertices;
-    // Per run, its vertices' range [first, last) in runVertices; empty: the run has all of its draw's
-    // triangles and uses the draw's own vertex array.
-    std::vector<std::pair<std::size_t, std::size_t>> runVertexRanges;
+    // The runs of the sorted transparent pass, in drawing order: each one's draw, its indices
+    // [firstIndex, firstIndex + indexCount) in runIndices (its triangles from firstIndex / 3 in
+    // runTriangles) and its vertices in runVertices (vertexCount 0: the run has all of its draw's
+    // triangles and uses the draw's own vertex array).
+    struct TransparentRun {
+        std::uint32_t draw = 0;
+        std::size_t firstIndex = 0, indexCount = 0;
+        std::size_t firstVertex = 0, vertexCount = 0;
+    };
+    std::vector<TransparentRun> runs;
+    std::uint64_t runsScene = 0;  // the PreparedScene::id the runs were cut for (0: none)
     // While a run is compacted: for each vertex of its draw, its index in the run's array, or kNotInRun;
     // and the draw's indices of the vertices copied so far, to put kNotInRun back after the run.
     std::vector<std::uint32_t> runVertexOf;
@@ -120,6 +131,7 @@ struct FrameStats {
     SortStats sort;                   // transparent triangles sorted this frame (elements = 0: none)
     double sortMilliseconds = 0;      // keys and sort
     std::size_t transparentRuns = 0;  // draw calls of the transparent pass
+    bool runsReused = false;          // the sort moved nothing: the last frame's runs were drawn again
     std::size_t drawRuns = 0;         // runs of consecutive small draw calls drawn together (drawRun)
     FragmentListStats fragmentLists;  // exact transparency: fragments stored, the longest list, bytes held
     double resolveMilliseconds = 0;   // exact transparency: sorting and compositing the lists

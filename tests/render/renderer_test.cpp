@@ -204,6 +204,64 @@ TEST(Renderer, SortedPlanIsOpaqueDrawsThenEveryTransparentTriangleBackToFront) {
     EXPECT_EQ(trianglesOf.size(), 5u);
 }
 
+// A still frame draws the last frame's runs again: the sort moved nothing, so the runs are reused, and
+// the bytes are those of a frame planned from scratch. A turned frame changes the order: its runs are
+// cut anew, again to a fresh memory's bytes. Breaks caught: reuse without the "no moves" condition (the
+// turned frame draws the still frame's order), no reuse at all (runsReused stays false).
+TEST(Renderer, AStillFrameReusesTheLastFramesRunsWithTheSameBytes) {
+    PreparedScene prepared = mixedScene();
+    DrawContext context(2);
+    Framebuffer kept(prepared.scene.width, prepared.scene.height);
+    Framebuffer fresh(prepared.scene.width, prepared.scene.height);
+    FrameMemory memory;
+    const auto expectFreshBytes = [&](const char* frame) {
+        SCOPED_TRACE(frame);
+        FrameMemory scratch;
+        renderFrame(prepared, fresh, context, scratch);
+        const LinearImage a = toImage(kept), b = toImage(fresh);
+        ASSERT_EQ(a.pixels.size(), b.pixels.size());
+        EXPECT_EQ(std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(vec4)), 0);
+    };
+    EXPECT_FALSE(renderFrame(prepared, kept, context, memory).runsReused);  // the first frame
+    expectFreshBytes("first");
+    const FrameStats still = renderFrame(prepared, kept, context, memory);
+    EXPECT_TRUE(still.runsReused);
+    EXPECT_EQ(still.sort.moves, 0u);
+    expectFreshBytes("still");
+    setTurntable(prepared, 180.0f);  // the panes' order reverses
+    const FrameStats turned = renderFrame(prepared, kept, context, memory);
+    EXPECT_GT(turned.sort.moves, 0u);
+    EXPECT_FALSE(turned.runsReused);
+    expectFreshBytes("turned");
+}
+
+// Reused runs are drawn with the states the scene has now (a blend changed between frames reaches the
+// calls), and a memory moved to another scene with as many transparent triangles cuts its runs anew.
+// Breaks caught: keeping the last frame's calls whole (their old blend), dropping the scene check.
+TEST(Renderer, ReusedRunsTakeTheScenesStatesAndBelongToOneScene) {
+    PreparedScene prepared = mixedScene();
+    FrameMemory memory;
+    FrameStats first, second;
+    planFrame(prepared, TransparencyMode::Sorted, memory, first);
+    prepared.draws[1].uniforms.blend = BlendMode::Additive;
+    const std::vector<PlannedDraw> plan = planFrame(prepared, TransparencyMode::Sorted, memory, second);
+    ASSERT_TRUE(second.runsReused);
+    std::size_t runsOfDraw1 = 0;
+    for (const PlannedDraw& call : plan)
+        if (call.draw == 1) {
+            ++runsOfDraw1;
+            EXPECT_EQ(call.state.blend, BlendMode::Additive);
+        }
+    EXPECT_GT(runsOfDraw1, 0u);
+
+    const PreparedScene twin = mixedScene();  // the same triangles, another scene
+    ASSERT_NE(twin.id, prepared.id);
+    FrameStats third;
+    planFrame(twin, TransparencyMode::Sorted, memory, third);
+    EXPECT_FALSE(third.sort.fromScratch);
+    EXPECT_FALSE(third.runsReused);
+}
+
 // ---- Watching a frame ------------------------------------------------------------------------------
 
 // Records what a frame observer sees: the draw calls, and per call the triangles that reached primitive
