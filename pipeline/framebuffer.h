@@ -133,6 +133,14 @@ class Framebuffer {
         settleClear();
         return depth_;
     }
+    // The colour plane in place, to write every pixel of (a resolve): what color(x, y) does for each
+    // pixel, done once on the calling thread, so that a pool's threads may then write rows of it
+    // without touching the framebuffer's own state.
+    std::span<vec4> colorSpanToWrite() {
+        settleClear();
+        forgetClearedCells();
+        return {color_.data(), color_.size()};
+    }
     std::vector<vec4> colorPixels() const {
         settleClear();
         return {color_.begin(), color_.end()};

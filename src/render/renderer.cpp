@@ -672,11 +672,14 @@ void accumulateSamplePass(Framebuffer& target, std::vector<vec4>& sum, std::size
     if (sum.size() != pixels) sum.resize(pixels);  // allocated by the first frame, reused after
     const float weight = 1.0f / static_cast<float>(passes);
     const bool first = pass == 0, last = pass + 1 == passes;
+    // Taken here, not per pixel through target.color(x, y): that call also marks the framebuffer's
+    // cleared cells unknown, a write every thread would make at once.
+    const std::span<vec4> colors = target.colorSpanToWrite();
     pool.parallelFor(static_cast<std::size_t>(target.height()), [&](std::size_t row, int) {
-        const int y = static_cast<int>(row);
+        vec4* rowColor = colors.data() + row * width;
         vec4* rowSum = sum.data() + row * width;
         for (int x = 0; x < width; ++x) {
-            vec4& c = target.color(x, y);
+            vec4& c = rowColor[x];
             rowSum[x] = first ? c : rowSum[x] + c;
             // The resolve writes into the colour buffer, rounded as its format stores a value.
             if (last) c = roundToColorBuffer(format, rowSum[x] * weight);

@@ -135,9 +135,9 @@ TEST(Framebuffer, AnAreaOutsideTheFramebufferMarksNoCell) {
     EXPECT_EQ(empty.clear(kBackground, 1.0f, pool), 0u);
 }
 
-// Breaks caught: color(), depth() or the sample planes' accessors handing out a pixel to write without
-// the framebuffer forgetting which cells hold the clear values (the pixel survives the next clear), or
-// useSamples keeping the cells' memory for planes it has just made.
+// Breaks caught: color(), depth(), colorSpanToWrite() or the sample planes' accessors handing out a pixel
+// to write without the framebuffer forgetting which cells hold the clear values (the pixel survives the
+// next clear), or useSamples keeping the cells' memory for planes it has just made.
 TEST(Framebuffer, APixelWrittenDirectlyIsClearedByTheNextClear) {
     ThreadPool pool(1);
     Framebuffer fb(kWidth, kHeight);
@@ -146,6 +146,9 @@ TEST(Framebuffer, APixelWrittenDirectlyIsClearedByTheNextClear) {
     EXPECT_EQ(fb.clear(kBackground, 1.0f, pool), kCells);
     EXPECT_TRUE(holdsEverywhere(fb, kBackground, 1.0f));
     fb.depth(199, 129) = 0.25f;
+    EXPECT_EQ(fb.clear(kBackground, 1.0f, pool), kCells);
+    EXPECT_TRUE(holdsEverywhere(fb, kBackground, 1.0f));
+    fb.colorSpanToWrite()[5 * kWidth + 6] = vec4(1.0f);  // as a resolve writes
     EXPECT_EQ(fb.clear(kBackground, 1.0f, pool), kCells);
     EXPECT_TRUE(holdsEverywhere(fb, kBackground, 1.0f));
 
