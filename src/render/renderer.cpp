@@ -581,6 +581,7 @@ void buildTransparentRuns(const PreparedScene& prepared, std::span<const std::ui
         memory.runs.push_back({k, first, run.size(), start, memory.runVertices.size() - start});
     }
 }
+
 }  // namespace
 
 std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, TransparencyMode mode, FrameMemory& memory,
