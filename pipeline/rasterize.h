@@ -81,26 +81,29 @@ inline std::uint64_t partialBlockMask(const std::int64_t origin[3], const std::i
     }
     std::uint64_t mask = 0;
     if (fits32) {
-        Int8 rowValue[3];
-        std::int32_t down[3];
+        // All three edges, each in its own register: an edge left out is 0 with no step, never
+        // negative (indexing the edges by a count kept their rows in memory, a store and a reload per
+        // edge and row on the loop's critical path).
+        Int8 rowValue[3], down[3];
         using Unsigned8 = std::uint32_t __attribute__((vector_size(32)));
         const Unsigned8 column = {0, 1, 2, 3, 4, 5, 6, 7};
-        for (int k = 0; k < count; ++k) {
-            const int i = edges[k];
+        for (int i = 0; i < 3; ++i) {
+            rowValue[i] = Int8{};
+            down[i] = Int8{};
+            if (origin[i] + minOffset[i] >= 0) continue;  // left out, as above
             // Each lane's first value, first + x·stepX, fits in 32 bits, though a partial product may
             // not: computed modulo 2^32 (unsigned lanes, where wrapping is defined), it is exact.
             const auto first = static_cast<std::uint32_t>(origin[i] + firstRow * stepY[i]);
             const auto step = static_cast<std::uint32_t>(stepX[i]);
-            rowValue[k] = std::bit_cast<Int8>(first + column * step);
-            down[k] = static_cast<std::int32_t>(stepY[i]);
+            rowValue[i] = std::bit_cast<Int8>(first + column * step);
+            down[i] = Int8{} + static_cast<std::int32_t>(stepY[i]);
         }
         for (int y = firstRow; y <= lastRow; ++y) {
-            Int8 all = {0, 0, 0, 0, 0, 0, 0, 0};
-            for (int k = 0; k < count; ++k) {
-                // Step down only between rows of the block: one step past its last row could leave int32.
-                if (y > firstRow) rowValue[k] += down[k];
-                all |= rowValue[k];
-            }
+            // Step down only between rows of the block: one step past its last row could leave int32.
+            if (y > firstRow)
+                for (int i = 0; i < 3; ++i)
+                    rowValue[i] += down[i];
+            const Int8 all = rowValue[0] | rowValue[1] | rowValue[2];
             // A sample is covered where no edge value is negative: where the OR has no sign bit.
             mask |= static_cast<std::uint64_t>(~signMask(all) & 0xffu) << (y * kBlockSize);
         }
