@@ -150,8 +150,10 @@ struct BlockEdgeSteps {
 // at (dx, dy) fixed-point units from each pixel's centre (0, 0: the centre itself; multisampling's
 // positions otherwise, where the edge function is E(centre) + a·dx + b·dy, exact). `inside`: whether all
 // three edges cover the whole block.
-inline std::uint64_t blockCoverage(const TriangleSetup& setup, const BlockEdgeSteps& steps, int bx, int by,
-                                   const PixelRect& rect, std::int64_t dx, std::int64_t dy, bool& inside) {
+[[gnu::always_inline]] inline std::uint64_t blockCoverage(const TriangleSetup& setup,
+                                                          const BlockEdgeSteps& steps, int bx, int by,
+                                                          const PixelRect& rect, std::int64_t dx,
+                                                          std::int64_t dy, bool& inside) {
     // Biased edge values at the block's first sample, that of pixel (bx, by).
     const SamplePoint first = samplePosition(bx, by);
     std::int64_t origin[3];
