@@ -1,11 +1,12 @@
 // `facet bench`: times whole frames of a model and prints medians (never a pass/fail test).
+// `facet bench --instruction-sets` times the frame with each copy of its hot path (frame_kernels.h).
 // `facet bench --vs-mesa` times Facet against Mesa's llvmpipe (mesa_peer.h) on the same scenes.
 // `facet bench --sort` times the transparency sorter (transparency_sort.h) on a turntable.
 // `facet bench --transparency` times the transparency modes side by side.
 // `facet bench --reference` times the reference renderer, Embree's ray casting and shadows.
-// One file per mode (frame_bench, transparency_bench, mesa_bench, sort_bench, reference_bench); what they
-// measure with
-// and draw their charts with is in process_stats.h and chart.h, for any command that times.
+// One file per mode (frame_bench, instruction_set_bench, transparency_bench, mesa_bench, sort_bench,
+// reference_bench); what they measure with and draw their charts with is in process_stats.h and chart.h, for
+// any command that times.
 #pragma once
 
 #include <filesystem>
@@ -26,6 +27,9 @@ struct BenchOptions {
     int threads = 0;  // 0: one per hardware thread
     // --aa: the anti-aliasing of the timed frames (the scene file's, else none, when not given).
     std::optional<Antialiasing> antialiasing;
+
+    // --instruction-sets
+    bool instructionSets = false;
 
     // --vs-mesa
     bool vsMesa = false;
@@ -56,6 +60,14 @@ Scene benchScene(const BenchOptions& options);
 // the median, minimum and maximum milliseconds per frame, the triangle and fragment counts, and the
 // cost of clearing the framebuffer alone (the floor under any frame). Throws InputError on bad input.
 void runBench(const BenchOptions& options, std::ostream& out);
+
+// The frame of options.model timed with each copy of the hot path this CPU runs (baseline, avx2, avx512:
+// what FACET_ISA chooses among), each with its own framebuffer and frame memory, the copies taking turns
+// frame by frame: prints each copy's median ms per frame and its ratio to the widest copy's, and whether
+// its image is byte-identical to the widest's. The copy the program had chosen is in use again
+// afterwards. Throws InputError on bad input, std::runtime_error when an image differs (a bug: every
+// copy must give the same bytes).
+void runInstructionSetBench(const BenchOptions& options, std::ostream& out);
 
 // The transparency modes side by side: options.model with every surface half transparent (opacity 0.5),
 // on a turntable of options.degreesPerFrame per frame, drawn with "sorted" (insertion sort with memory),

@@ -62,6 +62,9 @@ CLI::App* addBenchCommand(CLI::App& app, facet::BenchOptions& options) {
     addChoice(*command, "--aa", options.antialiasing,
               "Anti-aliasing of the timed frames, as facet render's --aa (default: the scene file's, else "
               "none)");
+    command->add_flag("--instruction-sets", options.instructionSets,
+                      "Time the frame with each instruction-set copy of its hot path this CPU runs (what "
+                      "FACET_ISA chooses among), frames taking turns, and check their images are identical");
     command->add_flag("--vs-mesa", options.vsMesa,
                       "Compare with Mesa llvmpipe (OSMesa, if installed) on fixed scenes and sweeps, "
                       "same thread count");
@@ -98,6 +101,15 @@ int bench(facet::BenchOptions& options, const CLI::App& command) {
         for (const char* option : {"--vs-mesa", "--sort", "--transparency", "--reference"})
             if (command.count(option))
                 throw facet::InputError(std::string("--aa does not go with ") + option);
+    if (options.instructionSets) {
+        for (const char* option : {"--vs-mesa", "--quick", "--csv", "--chart", "--sort", "--transparency",
+                                   "--degrees-per-frame", "--reference"})
+            if (command.count(option))
+                throw facet::InputError(std::string(option) + " does not go with --instruction-sets");
+        checkSize(options.width, options.height);
+        facet::runInstructionSetBench(options, std::cout);
+        return 0;
+    }
     if (options.reference) {
         // --threads sets the rasterizer's threads; the reference and the rays run on 1 and on 2.
         for (const char* option :

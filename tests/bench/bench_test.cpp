@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "bench/bench.h"
+#include "render/frame_kernels.h"
 #include "support/temp_folder.h"
 
 namespace facet {
@@ -123,6 +124,44 @@ TEST_F(BenchTest, TimesTheAntialiasingAskedFor) {
     ASSERT_GT(one, 100);
     EXPECT_GT(four, 3 * one);
     EXPECT_LT(four, 5 * one);
+}
+
+// facet bench --instruction-sets: every copy of the hot path this CPU runs is timed, its image is
+// identical to the widest copy's, and the copy chosen before is in use again afterwards. Fails if the
+// copies are taken from the built list without asking the CPU (a copy it cannot run throws), if a copy
+// is left out or its image not compared, or if the restore is dropped (one frame per copy: the widest
+// draws last).
+TEST_F(BenchTest, InstructionSetsAreEachTimedAndAgree) {
+    const InstructionSet initial = frameKernels().instructionSet;
+    useFrameKernels(InstructionSet::Baseline);
+    BenchOptions options;
+    options.model = std::filesystem::path(FACET_SOURCE_DIR) / "models/spot/spot_triangulated.obj";
+    options.width = 64;
+    options.height = 48;
+    options.frames = 1;
+    options.threads = 1;
+    std::ostringstream report;
+    runInstructionSetBench(options, report);
+    const InstructionSet after = frameKernels().instructionSet;
+    useFrameKernels(initial);
+    EXPECT_EQ(after, InstructionSet::Baseline);
+
+    const std::string text = report.str();
+    std::vector<InstructionSet> runnable;
+    for (const FrameKernels& kernels : builtFrameKernels())
+        if (cpuSupports(kernels.instructionSet)) runnable.push_back(kernels.instructionSet);
+    ASSERT_FALSE(runnable.empty());
+    const std::string widest(nameOf(runnable.back()));
+    for (const InstructionSet set : runnable) {
+        const std::string name(nameOf(set));
+        const std::size_t line = text.find("\n" + name + " ");
+        ASSERT_NE(line, std::string::npos) << name << " missing from:\n" << text;
+        const std::string row = text.substr(line + 1, text.find('\n', line + 1) - line - 1);
+        EXPECT_NE(row.find("median"), std::string::npos) << row;
+        if (name != widest) {
+            EXPECT_NE(row.find("image identical to " + widest + "'s"), std::string::npos) << row;
+        }
+    }
 }
 
 }  // namespace

@@ -350,6 +350,22 @@ TEST(Cli, BenchFindsItsDefaultModelFromAnyFolder) {
     EXPECT_NE(run.out.find("stanford-bunny.obj"), std::string::npos) << run.out;
 }
 
+// facet bench --instruction-sets reaches its benchmark (each copy's row, the baseline's always), and
+// refuses the other modes' options.
+TEST(Cli, BenchTimesEachInstructionSet) {
+    TempDir dir;
+    const auto obj = quoted(dir.write("cube.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
+    const RunResult run =
+        runFacet("bench --instruction-sets --frames 1 --width 16 --height 16 --threads 1 " + obj, dir);
+    EXPECT_EQ(run.status, 0) << run.err;
+    EXPECT_NE(run.out.find("the copies taking turns"), std::string::npos) << run.out;
+    EXPECT_NE(run.out.find("\nbaseline "), std::string::npos) << run.out;
+    const RunResult refused = runFacet("bench --instruction-sets --vs-mesa " + obj, dir);
+    EXPECT_EQ(refused.status, 1);
+    EXPECT_NE(refused.err.find("--vs-mesa does not go with --instruction-sets"), std::string::npos)
+        << refused.err;
+}
+
 TEST(Cli, BenchRefusesNonFiniteSteps) {
     TempDir dir;
     for (const char* value : {"nan", "inf", "-inf"}) {
