@@ -86,11 +86,11 @@ void runInstructionSetBench(const BenchOptions& options, std::ostream& out) {
     out << "code       built: " << joinedNames(built) << "; this CPU runs: " << joinedNames(runnable)
         << "; frames use " << nameOf(restore.chosen) << " (FACET_ISA chooses)\n";
     out << "frames     " << options.frames << " timed per copy after 1 warm-up, the copies taking turns\n";
-    std::string differing;
+    std::vector<InstructionSet> differing;
     for (const auto& copy : copies) {
         const std::span<const vec4> image = copy->framebuffer.colorSpan();
         const bool identical = std::memcmp(image.data(), widestImage.data(), image.size_bytes()) == 0;
-        if (!identical) differing += (differing.empty() ? "" : ", ") + std::string(nameOf(copy->set));
+        if (!identical) differing.push_back(copy->set);
         const double ms = median(copy->frameMs);
         out << std::left << std::setw(11) << nameOf(copy->set) << std::right << "median " << std::setw(8)
             << ms << " ms  " << std::setw(5) << ms / median(widest.frameMs) << "× " << nameOf(widest.set)
@@ -101,9 +101,9 @@ void runInstructionSetBench(const BenchOptions& options, std::ostream& out) {
         out << "\n";
     }
     if (!differing.empty())
-        throw std::runtime_error("facet bench --instruction-sets: the " + differing +
-                                 " copy drew an image different from the " + std::string(nameOf(widest.set)) +
-                                 " copy's; every copy must give the same bytes");
+        throw std::runtime_error("facet bench --instruction-sets: the image of " + joinedNames(differing) +
+                                 " differs from " + std::string(nameOf(widest.set)) +
+                                 "'s; every copy must give the same bytes");
 }
 
 }  // namespace facet

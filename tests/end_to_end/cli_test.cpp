@@ -354,7 +354,7 @@ TEST(Cli, BenchFindsItsDefaultModelFromAnyFolder) {
 // refuses the other modes' options.
 TEST(Cli, BenchTimesEachInstructionSet) {
     TempDir dir;
-    const auto obj = quoted(dir.write("cube.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
+    const auto obj = quoted(dir.write("triangle.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
     const RunResult run =
         runFacet("bench --instruction-sets --frames 1 --width 16 --height 16 --threads 1 " + obj, dir);
     EXPECT_EQ(run.status, 0) << run.err;
