@@ -274,26 +274,21 @@ inline const SurfaceUniforms& callUniforms(const PreparedDraw& d, std::uint8_t t
     return scratch;
 }
 
-// Runs of consecutive small draw calls of one shading frequency are drawn together (pipeline.h's
-// drawRun: two jobs of the pool for the run instead of two or three per call). A run's length and
-// triangles are bounded, so that its set-ups take no more memory than one big draw's batch.
-inline constexpr std::size_t kMaxRunCalls = 64;
-inline constexpr std::size_t kMaxRunTriangles = kTriangleChunk * kChunksPerBatch;
-
-// One past the last call of the run that starts at plan[first] (first + 1: a call drawn alone).
-inline std::size_t runEnd(const PreparedScene& prepared, std::span<const PlannedDraw> plan,
-                          std::size_t first) {
+// Consecutive small draw calls of one shading frequency are drawn together (pipeline.h's drawRun, which
+// draws them in runs of a few dozen: two jobs of the pool for each run instead of two or three per call).
+// One past the last call of the sequence that starts at plan[first] (first + 1: a call drawn alone).
+inline std::size_t smallCallsEnd(const PreparedScene& prepared, std::span<const PlannedDraw> plan,
+                                 std::size_t first) {
     const auto fits = [&](const PlannedDraw& call) {
         return fitsInRun(call.vertices.size(), call.indices.size());
     };
     if (!fits(plan[first])) return first + 1;
     const ShadingFrequency frequency = prepared.draws[plan[first].draw].frequency;
     const Viewport& viewport = plan[first].state.viewport;
-    std::size_t end = first + 1, triangles = plan[first].indices.size() / 3;
-    while (end < plan.size() && end - first < kMaxRunCalls) {
+    std::size_t end = first + 1;
+    while (end < plan.size()) {
         const PlannedDraw& call = plan[end];
-        triangles += call.indices.size() / 3;
-        if (!fits(call) || prepared.draws[call.draw].frequency != frequency || triangles > kMaxRunTriangles ||
+        if (!fits(call) || prepared.draws[call.draw].frequency != frequency ||
             !samePixels(call.state.viewport, viewport))
             break;
         ++end;
@@ -301,11 +296,11 @@ inline std::size_t runEnd(const PreparedScene& prepared, std::span<const Planned
     return end;
 }
 
-// The calls of a run, drawn with drawRun.
+// Consecutive small calls, drawn with drawRun; `runs` gets the number of runs.
 template <ShadingFrequency kFrequency>
 DrawStats drawSurfaceRun(const PreparedScene& prepared, std::span<const PlannedDraw> calls,
                          std::uint8_t terms, const glm::dmat4* clipFromView, Framebuffer& target,
-                         DrawContext& context) {
+                         DrawContext& context, std::size_t& runs) {
     using S = SurfaceShader<kFrequency>;
     const bool adjusted = terms != kAllTerms || clipFromView;
     std::vector<SurfaceUniforms> adjustedUniforms(adjusted ? calls.size() : 0);
@@ -316,7 +311,7 @@ DrawStats drawSurfaceRun(const PreparedScene& prepared, std::span<const PlannedD
             adjusted ? callUniforms(d, terms, clipFromView, adjustedUniforms[i]) : d.uniforms;
         draws[i] = {&calls[i].state, &uniforms, calls[i].vertices, calls[i].indices};
     }
-    return drawRun<S>(std::span<const RunDraw<S>>(draws), target, context);
+    return drawRun<S>(std::span<const RunDraw<S>>(draws), target, context, &runs);
 }
 
 // body.template operator()<kFrequency>() for the frequency given at run time.
@@ -347,13 +342,15 @@ void drawFramePass(const PreparedScene& prepared, std::span<const PlannedDraw> p
         const PreparedDraw& d = prepared.draws[call.draw];
         // An observer watches draw by draw.
         if constexpr (!Observer::enabled && !requires { observer.onPlannedDraw(call, d); }) {
-            const std::size_t end = runEnd(prepared, plan, k);
+            const std::size_t end = smallCallsEnd(prepared, plan, k);
             if (end - k > 1) {
                 const std::span<const PlannedDraw> calls = plan.subspan(k, end - k);
+                std::size_t runs = 0;
                 stats.draw += withShadingFrequency(d.frequency, [&]<ShadingFrequency kFrequency>() {
-                    return drawSurfaceRun<kFrequency>(prepared, calls, terms, clipFromView, target, context);
+                    return drawSurfaceRun<kFrequency>(prepared, calls, terms, clipFromView, target, context,
+                                                      runs);
                 });
-                ++stats.drawRuns;
+                stats.drawRuns += runs;
                 k = end;
                 continue;
             }
