@@ -59,6 +59,7 @@ void runBench(const BenchOptions& options, std::ostream& out) {
     out << "model      " << options.model.string() << "\n";
     out << "image      " << scene.width << "x" << scene.height << ", " << context.pool.threads()
         << (context.pool.threads() == 1 ? " thread" : " threads") << ", built-in Blinn-Phong shader\n";
+    out << coreHandoffLine(context.pool.threads());
     out << "code       compiled for " << describeFrameKernels() << "\n";
     const Antialiasing aa = scene.pipeline.antialiasing;
     out << "samples    " << samplesPerPixel(aa) << " per pixel (--aa " << nameOf(aa) << ")\n";

@@ -477,7 +477,8 @@ void runMesaComparison(const BenchOptions& options, std::ostream& out) {
         << "), llvmpipe LP_NUM_THREADS=" << MesaPeer::lpNumThreads(threads)
         << (threads == 1 ? " (bins and rasterizes on the calling thread; 1 would add a raster thread)" : "")
         << "\ncpus       " << cpus.str() << "\n"
-        << "code       Facet's frame compiled for " << describeFrameKernels() << "\n"
+        << coreHandoffLine(threads) << "code       Facet's frame compiled for " << describeFrameKernels()
+        << "\n"
         << "frames     " << options.frames << " timed per renderer after " << kWarmUpFrames
         << " warm-up frames each; median ms per frame; ratio = facet / mesa (< 1: Facet faster)\n"
         << "scenes     built-in per-pixel Lambert + Blinn-Phong, one white point light above left of the "

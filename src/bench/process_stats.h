@@ -55,7 +55,19 @@ double statusMiB(std::string_view key);
 // /proc/self/clear_refs (Linux ≥ 4.0, proc(5)). False where that is not possible.
 bool resetPeakResidentSet();
 
+// The bench header's line about coreHandoffNanoseconds, for `threads` ≥ 2 ("" below): "cores      one
+// core sees another's write after N ns ...", or that the two threads could not run at once.
+std::string coreHandoffLine(int threads);
+
 // Hands freed heap memory back to the system, so the resident set reflects what is in use.
 void trimHeap();
+
+// How long one core takes to see a cache line another core just wrote, in nanoseconds: two threads hand
+// a counter back and forth for about `milliseconds` and the time is divided by the hand-offs. Two-thread
+// frames depend on it (every stage hands its output to the other core): on one virtual machine it read
+// 55–90 ns or 190–230 ns depending on where the host placed the two cores, and two-thread frames took up
+// to a third longer in the second state. A value far above those means the two threads could not run
+// at once (other work on the machine). Returns 0 on a machine with one hardware thread.
+double coreHandoffNanoseconds(double milliseconds = 20.0);
 
 }  // namespace facet

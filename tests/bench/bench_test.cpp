@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "bench/bench.h"
+#include "bench/process_stats.h"
 #include "render/frame_kernels.h"
 #include "support/temp_folder.h"
 
@@ -130,6 +131,26 @@ TEST_F(BenchTest, TimesTheAntialiasingAskedFor) {
     ASSERT_GT(one, 100);
     EXPECT_GT(four, 3 * one);
     EXPECT_LT(four, 5 * one);
+}
+
+// With two threads the report says how long a cache line takes to reach the other core (what two-thread
+// frames depend on), measured then; with one it says nothing of it. Fails if the line is dropped, printed
+// for one thread, or its measurement returns nothing (0 on a machine of two hardware threads or more).
+TEST_F(BenchTest, TwoThreadsReportTheCoresHandOffTime) {
+    BenchOptions options = tinySpotOptions();
+    std::ostringstream one, two;
+    runBench(options, one);
+    options.threads = 2;
+    runBench(options, two);
+    const std::string label = "cores      one core sees another's write after ";
+    EXPECT_EQ(one.str().find("cores      "), std::string::npos) << one.str();
+    if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one hardware thread: nothing to hand off";
+    const std::size_t at = two.str().find(label);
+    if (two.str().find("cores      two threads did not run at once") != std::string::npos)
+        GTEST_SKIP() << "the machine is busy: the hand-off could not be timed";
+    ASSERT_NE(at, std::string::npos) << two.str();
+    EXPECT_GT(std::stol(two.str().substr(at + label.size())), 0) << two.str();
+    EXPECT_GT(coreHandoffNanoseconds(5.0), 0.0);
 }
 
 // facet bench --instruction-sets: every copy of the hot path this CPU runs is timed, its image is
