@@ -175,11 +175,11 @@ std::size_t runEnd(std::span<const RunDraw<S>> draws, std::size_t first) {
 // first the run's front ends, one draw per item (each on one thread, as draw() runs a draw this small),
 // then its back end, tile by tile, each tile drawing the run's triangles in draw order, so that every
 // pixel still sees its fragments in submission order. Each run's back end shares a job with the next
-// run's front ends (which write the other of two sets of chunks), so that neither waits for the
-// other's last items. A frame of many draws of a few triangles each (Lost Empire's 4,064 sorted
-// transparent draws) otherwise joins the pool per draw and runs every front end on the calling thread.
-// Every draw must fit in a run (fitsInRun) and have the first one's viewport; checked, with each draw's
-// state and indices as draw() checks them, before anything is drawn (std::invalid_argument). Not
+// run's front ends (which, on more than one thread, write the other of two sets of chunks), so that
+// neither waits for the other's last items. A frame of many draws of a few triangles each (Lost Empire's
+// 4,064 sorted transparent draws) otherwise joins the pool per draw and runs every front end on the calling
+// thread. Every draw must fit in a run (fitsInRun) and have the first one's viewport; checked, with each
+// draw's state and indices as draw() checks them, before anything is drawn (std::invalid_argument). Not
 // observable: an observer watches draw() by draw(). Returns the draws' counters summed; `runs`, when
 // given, gets the number of runs.
 template <Shader S>

@@ -127,8 +127,7 @@ std::string coreHandoffLine(int threads) {
                "two-thread timings now are not representative\n";
     return "cores      one core sees another's write after " + std::to_string(static_cast<long>(ns + 0.5)) +
            " ns (measured now; where this reads ~200 rather than ~60, as a virtual machine's cores placed "
-           "far "
-           "apart do, two-thread frames take up to a third longer)\n";
+           "far apart do, two-thread frames take up to a third longer)\n";
 }
 
 }  // namespace facet

@@ -55,10 +55,6 @@ double statusMiB(std::string_view key);
 // /proc/self/clear_refs (Linux ≥ 4.0, proc(5)). False where that is not possible.
 bool resetPeakResidentSet();
 
-// The bench header's line about coreHandoffNanoseconds, for `threads` ≥ 2 ("" below): "cores      one
-// core sees another's write after N ns ...", or that the two threads could not run at once.
-std::string coreHandoffLine(int threads);
-
 // Hands freed heap memory back to the system, so the resident set reflects what is in use.
 void trimHeap();
 
@@ -69,5 +65,9 @@ void trimHeap();
 // to a third longer in the second state. A value far above those means the two threads could not run
 // at once (other work on the machine). Returns 0 on a machine with one hardware thread.
 double coreHandoffNanoseconds(double milliseconds = 20.0);
+
+// The bench header's line about coreHandoffNanoseconds, for `threads` ≥ 2 ("" below): "cores      one
+// core sees another's write after N ns ...", or that the two threads could not run at once.
+std::string coreHandoffLine(int threads);
 
 }  // namespace facet
