@@ -35,13 +35,20 @@ void runVertexStage(std::span<const typename S::Attributes> vertices, const type
     prepareShadedVertices<S>(vertices.size(), shaded);
     window.resize(vertices.size());
     const std::size_t chunks = (vertices.size() + vertexChunk - 1) / vertexChunk;
+    // Chunks spread over threads are set up by any of them: their varyings and window positions are
+    // streamed to memory (handoff_store.h). On one thread the set-up reads them from this core's cache.
+    const bool streamed = !inOrder && pool.threads() > 1 && chunks > 1;
     forEachItem(pool, inOrder, chunks, [&](std::size_t chunk, int) {
         const std::size_t begin = chunk * vertexChunk, end = std::min(begin + vertexChunk, vertices.size());
-        shadeVertices<S>(vertices, uniforms, begin, end, shaded, clipDepthRange(state.depth.format));
+        shadeVertices<S>(vertices, uniforms, begin, end, shaded, clipDepthRange(state.depth.format),
+                         streamed);
         for (std::size_t i = begin; i < end; ++i)
             if (shaded.outcodes[i] == 0)
-                window[i] = toWindow(shaded.positions[i], state.viewport, state.raster.subpixelBits,
-                                     state.depth.format);
+                storeMaybeStreamed(window[i],
+                                   toWindow(shaded.positions[i], state.viewport, state.raster.subpixelBits,
+                                            state.depth.format),
+                                   streamed);
+        if (streamed) finishStreamedStores();
     });
     if constexpr (Observer::enabled)
         for (std::size_t i = 0; i < shaded.size(); ++i)

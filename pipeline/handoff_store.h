@@ -1,17 +1,16 @@
-// Stores of data that another core reads next: the set-ups and varying planes the front end hands the
-// threads that draw the tiles.
+// Stores of data that another core reads next: what the front end hands the tiles (set-ups and their
+// varying planes), and what the vertex stage spread over threads hands the set-up.
 //
-// An ordinary store first takes its cache line from the core that read it last (the tile thread that
-// read the previous batch's set-ups there), and a core has room for only so many such stores waiting:
-// on a machine whose two cores hand a line to each other in ~200 ns (a virtual machine whose vCPUs sit
-// on different core complexes), the set-up spent most of its time waiting for them. A non-temporal
-// store (x86 `movnti`) sends the line towards memory without taking it first (Intel SDM vol. 1
-// §10.4.6.2; AMD64 APM vol. 1 §3.9.1), and the reader fetches it from there: the tiles read a chunk's
-// set-ups in their order, which the hardware prefetcher follows.
-// With one thread the reader is the writer, whose own cache held the line: streaming would only send it
-// away, so the front end streams only when other threads draw the tiles (README, issue 14's thirteenth
-// stop, for the figures; the vertex stage's outputs, read in the order of the mesh's indices, are
-// stored plainly: streamed, they cost more where the cores are near than they saved where far).
+// An ordinary store first takes its cache line from the core that read it last (the reader of the
+// previous frame's copy), and a core may have only so many such stores waiting: on a machine whose two
+// cores hand a line to each other in ~200 ns (a virtual machine whose vCPUs sit on different core
+// complexes), the set-up lambda spent most of its time waiting for them. A non-temporal store (x86
+// `movnti`) writes the line towards memory without taking it first (Intel SDM vol. 1 §10.4.6.2;
+// AMD64 APM vol. 1 §3.9.1), and the reader fetches it from there when it needs it.
+// With one thread the reader is the writer, whose own cache held the line: there streaming only sends
+// it away, so callers stream only when other threads will read. Measured (`facet bench`, frames back to
+// back, alternating runs, the cores far apart): 2 threads, Lost Empire 0.98 and the bunny 0.94 of
+// their frame times; 1 thread, streaming everything, 1.00–1.19: slower.
 //
 // Non-temporal stores are weakly ordered: finishStreamedStores() (sfence) must run after a job's last
 // one, before the pool tells another thread the job is done.
@@ -49,6 +48,16 @@ inline void finishStreamedStores() {
 #if defined(__x86_64__) || defined(__i386__)
     _mm_sfence();
 #endif
+}
+
+// A value, stored with copyStreamed or plainly.
+template <class T>
+void storeMaybeStreamed(T& to, const T& value, bool streamed) {
+    static_assert(std::is_trivially_copyable_v<T> && sizeof(T) % 4 == 0 && alignof(T) >= 4);
+    if (streamed)
+        copyStreamed(&to, &value, sizeof value);
+    else
+        to = value;
 }
 
 // An allocator whose vector grows by resize() without writing the new elements (value-initialising

@@ -48,6 +48,12 @@ TEST(HandoffStore, AStreamedCopyWritesEveryByteAndNoMore) {
     EXPECT_EQ(std::memcmp(room, pattern, sizeof pattern), 0);
     for (std::size_t i = sizeof setup; i < sizeof room; ++i)
         ASSERT_EQ(room[i], 0xab) << "byte " << i << " past the copy";
+
+    // One value in place.
+    TriangleSetup stored;
+    storeMaybeStreamed(stored, setup, true);
+    finishStreamedStores();
+    EXPECT_EQ(std::memcmp(&stored, pattern, sizeof pattern), 0);
 }
 
 // Breaks caught: a streamed append that does not grow the vector, overwrites its last elements, or
@@ -66,12 +72,12 @@ TEST(HandoffStore, StreamedAndPlainAppendsGiveTheSameVector) {
     EXPECT_TRUE(std::equal(streamed.begin(), streamed.end(), plain.begin(), plain.end()));
 }
 
-// The front end with more threads than one streams its set-ups and planes; with one it stores them
-// plainly. A mesh of several vertex chunks and triangle chunks (some triangles clipped, some culled)
-// must give the same vertices and chunks either way.
-// Breaks caught: a set-up or its planes appended streamed at the wrong place, cut short or not at all,
-// binning of a streamed set-up reading what was not written yet; vertex chunks shaded into each
-// other's slots.
+// The front end with more threads than one streams its vertices' varyings and window positions and
+// its set-ups and planes; with one it stores them plainly. A mesh of several vertex chunks and
+// triangle chunks (some triangles clipped, some culled) must give the same chunks either way.
+// Breaks caught: a streamed window position or varying stored for another vertex or cut short, a
+// set-up or its planes appended streamed at the wrong place or not at all, binning of a streamed
+// set-up reading what was not written yet.
 TEST(HandoffStore, TheFrontEndOnSeveralThreadsHandsOnWhatOneThreadDoes) {
     using testing::FlatColorShader;
     Framebuffer fb(300, 200);
