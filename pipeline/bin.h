@@ -7,7 +7,6 @@
 #include <cstdint>
 #include <vector>
 
-#include "handoff_store.h"
 #include "state.h"
 #include "types.h"
 
@@ -44,9 +43,8 @@ void binTriangle(const TileGrid& grid, const TriangleSetup& setup, std::uint32_t
 // What the front end hands the back end for one chunk of consecutive triangles: their setups, the
 // setups' varying planes, and for every tile the setups that may touch it, in submission order.
 struct SetupChunk {
-    // Appended by the front end, streamed when other threads draw the tiles (handoff_store.h).
-    UnfilledVector<TriangleSetup> setups;
-    UnfilledVector<float> varyingPlanes;           // 3 · varyingCount floats per setup (types.h), in order
+    std::vector<TriangleSetup> setups;
+    std::vector<float> varyingPlanes;              // 3 · varyingCount floats per setup (types.h), in order
     std::vector<std::vector<std::uint32_t>> bins;  // per tile: indices into setups
     // The tiles whose bins are not empty, in the order they were first binned: what the back end
     // visits and the next batch empties, so that a draw of a few triangles (Lost Empire's transparent

@@ -35,20 +35,13 @@ void runVertexStage(std::span<const typename S::Attributes> vertices, const type
     prepareShadedVertices<S>(vertices.size(), shaded);
     window.resize(vertices.size());
     const std::size_t chunks = (vertices.size() + vertexChunk - 1) / vertexChunk;
-    // Chunks spread over threads are set up by any of them: their varyings and window positions are
-    // streamed to memory (handoff_store.h). On one thread the set-up reads them from this core's cache.
-    const bool streamed = !inOrder && pool.threads() > 1 && chunks > 1;
     forEachItem(pool, inOrder, chunks, [&](std::size_t chunk, int) {
         const std::size_t begin = chunk * vertexChunk, end = std::min(begin + vertexChunk, vertices.size());
-        shadeVertices<S>(vertices, uniforms, begin, end, shaded, clipDepthRange(state.depth.format),
-                         streamed);
+        shadeVertices<S>(vertices, uniforms, begin, end, shaded, clipDepthRange(state.depth.format));
         for (std::size_t i = begin; i < end; ++i)
             if (shaded.outcodes[i] == 0)
-                storeMaybeStreamed(window[i],
-                                   toWindow(shaded.positions[i], state.viewport, state.raster.subpixelBits,
-                                            state.depth.format),
-                                   streamed);
-        if (streamed) finishStreamedStores();
+                window[i] = toWindow(shaded.positions[i], state.viewport, state.raster.subpixelBits,
+                                     state.depth.format);
     });
     if constexpr (Observer::enabled)
         for (std::size_t i = 0; i < shaded.size(); ++i)
@@ -82,13 +75,12 @@ void observeCulled(std::uint32_t triangleIndex, const WindowTriangle& window, co
 
 // Front end for triangles [first, last): assembly, clipping, viewport, setup, binning into `chunk`
 // (which the caller has emptied). `window` holds the viewport transform of every vertex no plane clips.
-// The first flatVaryingCount varyings are flat (shader.h, flatVaryingFloats). `streamed`: other threads
-// draw the tiles, so the set-ups and planes are streamed to memory (handoff_store.h); the same values.
+// The first flatVaryingCount varyings are flat (shader.h, flatVaryingFloats).
 template <class Observer>
 void setupTriangles(std::span<const std::uint32_t> indices, std::size_t first, std::size_t last,
                     const DrawState& state, const TileGrid& grid, const ShadedVertices& shaded,
                     std::span<const WindowVertex> windowVertices, int flatVaryingCount, SetupChunk& chunk,
-                    Observer& observer, bool streamed = false) {
+                    Observer& observer) {
     constexpr bool kObserving = Observer::enabled;
     const int varyingCount = shaded.varyingCount;
     const int planeFloats = 3 * varyingCount;
@@ -121,8 +113,8 @@ void setupTriangles(std::span<const std::uint32_t> indices, std::size_t first, s
         ++stats.trianglesRasterized;
         const auto index = static_cast<std::uint32_t>(chunk.setups.size());
         setup.varyingPlaneOffset = static_cast<std::uint32_t>(chunk.varyingPlanes.size());
-        appendMaybeStreamed(chunk.setups, &setup, 1, streamed);
-        appendMaybeStreamed(chunk.varyingPlanes, planes, static_cast<std::size_t>(planeFloats), streamed);
+        chunk.setups.push_back(setup);
+        chunk.varyingPlanes.insert(chunk.varyingPlanes.end(), planes, planes + planeFloats);
         binTriangle(grid, setup, index, chunk.bins, sampleReach, &chunk.touchedTiles);
     };
 
@@ -198,13 +190,10 @@ void setupTriangles(std::span<const std::uint32_t> indices, std::size_t first, s
             previous = current;
         }
     }
-    if (streamed) finishStreamedStores();
 }
 
 // The front end for one batch of triangles [batchStart, batchEnd): chunks of `triangleChunk` triangles
 // set up and binned in parallel (unless `inOrder`), chunk c into chunks[c]. Returns the chunk count.
-// With more than one thread in the pool any of them may draw a chunk's tiles, in order or not, so the
-// set-ups are streamed (handoff_store.h).
 template <class Observer>
 std::size_t setupBatch(std::span<const std::uint32_t> indices, std::size_t batchStart, std::size_t batchEnd,
                        std::size_t triangleChunk, const DrawState& state, const TileGrid& grid,
@@ -213,7 +202,6 @@ std::size_t setupBatch(std::span<const std::uint32_t> indices, std::size_t batch
                        Observer& observer) {
     const std::size_t chunkCount = (batchEnd - batchStart + triangleChunk - 1) / triangleChunk;
     if (chunks.size() < chunkCount) chunks.resize(chunkCount);
-    const bool streamed = pool.threads() > 1;
     forEachItem(pool, inOrder, chunkCount, [&](std::size_t c, int) {
         SetupChunk& chunk = chunks[c];
         chunk.setups.clear();
@@ -229,7 +217,7 @@ std::size_t setupBatch(std::span<const std::uint32_t> indices, std::size_t batch
         chunk.stats = DrawStats{};
         const std::size_t first = batchStart + c * triangleChunk;
         setupTriangles(indices, first, std::min(first + triangleChunk, batchEnd), state, grid, shaded,
-                       windowVertices, flatVaryingCount, chunk, observer, streamed);
+                       windowVertices, flatVaryingCount, chunk, observer);
     });
     return chunkCount;
 }

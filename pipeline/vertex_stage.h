@@ -8,7 +8,6 @@
 #include <span>
 
 #include "clip.h"
-#include "handoff_store.h"
 #include "shader.h"
 
 namespace facet {
@@ -25,22 +24,15 @@ void prepareShadedVertices(std::size_t count, ShadedVertices& out) {
 
 // Shades vertices [begin, end) into `out` (already sized by prepareShadedVertices). Disjoint ranges
 // may run on different threads. Outcodes are those of the depth buffer's clip-depth range.
-// `streamedVaryings`: other threads set up the triangles, so the varyings are streamed to memory
-// (handoff_store.h; the caller then runs finishStreamedStores). The positions are not: the caller
-// reads them back for the viewport transform.
 template <Shader S>
 void shadeVertices(std::span<const typename S::Attributes> attributes, const typename S::Uniforms& uniforms,
                    std::size_t begin, std::size_t end, ShadedVertices& out,
-                   ClipDepthRange clipDepth = ClipDepthRange::MinusWToW, bool streamedVaryings = false) {
+                   ClipDepthRange clipDepth = ClipDepthRange::MinusWToW) {
     constexpr int kFloats = kVaryingFloatCount<typename S::Varyings>;
     const auto store = [&](std::size_t i, const VertexOut<typename S::Varyings>& shaded) {
         out.positions[i] = shaded.position;
-        if constexpr (kFloats > 0) {
-            if (streamedVaryings)
-                copyStreamed(out.varyings.data() + i * kFloats, &shaded.varyings, kFloats * sizeof(float));
-            else
-                std::memcpy(out.varyings.data() + i * kFloats, &shaded.varyings, kFloats * sizeof(float));
-        }
+        if constexpr (kFloats > 0)
+            std::memcpy(out.varyings.data() + i * kFloats, &shaded.varyings, kFloats * sizeof(float));
         out.outcodes[i] = computeOutcode(shaded.position, clipDepth);
     };
     if constexpr (BatchVertexShader<S>) {
