@@ -5,8 +5,7 @@
 
 namespace facet {
 
-void validateDraw(const DrawState& state, const Framebuffer& target, std::size_t vertexCount,
-                  std::span<const std::uint32_t> indices, int tileSize) {
+void validateDrawState(const DrawState& state, const Framebuffer& target, int tileSize) {
     if (tileSize < kBlockSize || tileSize % kBlockSize != 0)
         throw std::invalid_argument("tile size " + std::to_string(tileSize) +
                                     " is not a positive multiple of " + std::to_string(kBlockSize));
@@ -33,12 +32,9 @@ void validateDraw(const DrawState& state, const Framebuffer& target, std::size_t
     }
     if (state.samples > 1 && state.output == FragmentOutput::AppendToLists)
         throw std::invalid_argument("multisampling cannot append to fragment lists, which are per pixel");
-    // The largest index first, a loop without an early exit that the compiler vectorises (every draw
-    // of every frame pays this check); the position of a bad index only when there is one.
-    std::uint32_t largest = 0;
-    for (const std::uint32_t index : indices)
-        largest = std::max(largest, index);
-    if (indices.empty() || largest < vertexCount) return;
+}
+
+void throwIndexOutOfRange(std::size_t vertexCount, std::span<const std::uint32_t> indices) {
     for (std::size_t k = 0; k < indices.size(); ++k)
         if (indices[k] >= vertexCount)
             throw std::invalid_argument("index " + std::to_string(indices[k]) + " at position " +

@@ -249,6 +249,35 @@ TEST(PipelineRobustness, InvalidDrawsAreRefusedWithAReason) {
                  std::invalid_argument);
 }
 
+// Breaks caught: the largest index missing one position of a vectorised loop (its head or its tail, any
+// length), an index equal to the vertex count let through, the message not naming index and position.
+TEST(PipelineRobustness, EveryIndexIsCheckedAndTheFirstBadOneNamed) {
+    for (std::size_t count = 1; count <= 70; ++count)
+        for (std::size_t at = 0; at < count; ++at) {
+            std::vector<std::uint32_t> indices(count, 5u);
+            indices[at] = 9u;
+            ASSERT_EQ(largestIndex(indices), 9u) << count << " indices, the largest at " << at;
+        }
+    EXPECT_EQ(largestIndex({}), 0u);
+
+    Framebuffer fb(8, 8);
+    DrawContext scratch;
+    const DrawState state = testing::stateFor(fb);
+    std::vector<CountingShader::Attributes> v = {{{0, 0, 0, 1}}, {{1, 0, 0, 1}}, {{0, 1, 0, 1}}};
+    std::vector<std::uint32_t> indices = {0, 1, 2, 2, 1, 0, 0, 1, 2};
+    EXPECT_NO_THROW(draw<CountingShader>(state, {}, std::span<const CountingShader::Attributes>(v),
+                                         std::span<const std::uint32_t>(indices), fb, scratch));
+    indices[7] = 3;  // the vertex count: one past the last vertex
+    indices[8] = 4;
+    try {
+        draw<CountingShader>(state, {}, std::span<const CountingShader::Attributes>(v),
+                             std::span<const std::uint32_t>(indices), fb, scratch);
+        FAIL() << "an index out of range was drawn";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_STREQ(e.what(), "index 3 at position 7 is out of range (3 vertices)");
+    }
+}
+
 // The vertex shader runs once per vertex of an indexed mesh, however many triangles share it.
 struct CountingVertexShader {
     struct Attributes {
