@@ -251,6 +251,8 @@ TEST(PipelineRobustness, InvalidDrawsAreRefusedWithAReason) {
 
 // Breaks caught: the largest index missing one position of a vectorised loop (its head or its tail, any
 // length), an index equal to the vertex count let through, the message not naming index and position.
+// The loop is the copy this test is compiled with; the renderer's instruction-set copies compile the
+// same source (the bytes tests of FACET_ISA compare their images, not their refusals).
 TEST(PipelineRobustness, EveryIndexIsCheckedAndTheFirstBadOneNamed) {
     for (std::size_t count = 1; count <= 70; ++count)
         for (std::size_t at = 0; at < count; ++at) {
