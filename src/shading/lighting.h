@@ -103,7 +103,7 @@ struct LightVector {
 // or 0, nothing between.
 // Under Normalization::Fast, 1/d is fastInverseSqrt(d²) and d = d²·(1/d).
 template <class F, class V3 = LaneVec3<F>, Normalization kNormalization = Normalization::Exact>
-LightVector<F, V3> lightVector(const LightParams& light, const V3& position) {
+[[gnu::always_inline]] inline LightVector<F, V3> lightVector(const LightParams& light, const V3& position) {
     if (light.kind == LightKind::Directional) return {V3(-normalize(light.direction)), lanes<F>(0.0f)};
     const V3 toLight = light.position - position;
     const F squared = dot(toLight, toLight);
@@ -180,9 +180,11 @@ F spotFactorSmooth(const LightParams& light, const V3& L, Recording*... recordin
     return smoothstep(cosOuter, cosInner, cosAngle);
 }
 
-// The light's spot factor under its own profile.
+// The light's spot factor under its own profile. Inlined so that a point or directional light (1, no
+// record) costs a compare per batch, not a call that spills every live vector register.
 template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact, class... Recording>
-F spotFactor(const LightParams& light, const V3& L, Recording*... recording) {
+[[gnu::always_inline]] inline F spotFactor(const LightParams& light, const V3& L, Recording*... recording) {
+    if (light.kind != LightKind::Spot) return lanes<F>(1.0f);
     return light.spotProfile == SpotProfile::Smooth ? spotFactorSmooth<F, V3>(light, L, recording...)
                                                     : spotFactorOpenGL<F, V3, P>(light, L, recording...);
 }
