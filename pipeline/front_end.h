@@ -52,7 +52,9 @@ void runVertexStage(std::span<const typename S::Attributes> vertices, const type
 namespace detail {
 
 // Tells the observer what a triangle culled for its facing would have covered: its setup with culling
-// off, and the coverage decision at every sample of its bounding box (CoverageEvent::culled).
+// off, and the coverage decision at every sample of its bounding box (CoverageEvent::culled). Culling
+// comes before the bounding box, so a culled triangle may also lie between pixel centres: its setup
+// then has only the box, empty (minX > maxX or minY > maxY), and there is no sample to show.
 template <class Observer>
 void observeCulled(std::uint32_t triangleIndex, const WindowTriangle& window, const DrawState& state,
                    Observer& observer) {
@@ -60,9 +62,10 @@ void observeCulled(std::uint32_t triangleIndex, const WindowTriangle& window, co
     unculled.raster.cull = CullMode::None;
     TriangleSetup wouldBe;
     float planes[3 * kMaxVaryingFloats];
-    if (setupTriangle(window, unculled, wouldBe, planes) != TriangleFate::Drawn) return;
+    const TriangleFate wouldBeFate = setupTriangle(window, unculled, wouldBe, planes);
     wouldBe.triangle = triangleIndex;
     observer.onSetup(triangleIndex, window, TriangleFate::Culled, wouldBe);
+    if (wouldBeFate != TriangleFate::Drawn) return;
     for (int y = wouldBe.minY; y <= wouldBe.maxY; ++y)
         for (int x = wouldBe.minX; x <= wouldBe.maxX; ++x) {
             CoverageEvent event = coverageAt(wouldBe, x, y);

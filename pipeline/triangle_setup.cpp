@@ -79,6 +79,10 @@ TriangleFate setupTriangle(const WindowTriangle& triangle, const DrawState& stat
     // Cull on the snapped area: zero area in fixed point covers no sample, whatever its float size.
     const std::int64_t area = signedDoubleArea(triangle);
     if (area == 0) return TriangleFate::ZeroArea;
+    // Then on facing, as OpenGL does before rasterization: half of a closed mesh goes here, before the
+    // bounding box is worked out for it.
+    setup.frontFacing = isFrontFacing(area, state.raster.frontFace);
+    if (isCulled(setup.frontFacing, state.raster.cull)) return TriangleFate::Culled;
     // Bounding box of the pixels whose sample (sample_position.h) may be inside, clamped to the
     // viewport and to the fixed-point budget before any loop runs.
     const WindowVertex& t0 = triangle.vertices[0];
@@ -101,9 +105,6 @@ TriangleFate setupTriangle(const WindowTriangle& triangle, const DrawState& stat
 
     // A triangle between sample points covers none: common for the sub-pixel triangles of dense meshes.
     if (setup.minX > setup.maxX || setup.minY > setup.maxY) return TriangleFate::MissesSamples;
-
-    setup.frontFacing = isFrontFacing(area, state.raster.frontFace);
-    if (isCulled(setup.frontFacing, state.raster.cull)) return TriangleFate::Culled;
 
     // Make the orientation positive by swapping v1 and v2, so every edge function is ≥ 0 inside.
     std::array<int, 3> order = {0, 1, 2};

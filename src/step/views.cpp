@@ -309,8 +309,13 @@ Screen setupScreen(const TriangleTrace& t) {
                 continue;
             case TriangleFate::Culled:
                 out << "  " << (piece.setup.frontFacing ? "Front" : "Back")
-                    << "-facing, and that side is culled: the triangle is dropped.\n"
-                       "  (Below: the setup it would have had.)\n";
+                    << "-facing, and that side is culled: the triangle is dropped.\n";
+                if (piece.setup.minX > piece.setup.maxX || piece.setup.minY > piece.setup.maxY) {
+                    out << "  (Kept, it would have covered no pixel: its bounding box holds no pixel "
+                           "centre.)\n";
+                    continue;
+                }
+                out << "  (Below: the setup it would have had.)\n";
                 break;
             default:
                 out << "  " << (piece.setup.frontFacing ? "Front" : "Back") << "-facing: kept.\n";

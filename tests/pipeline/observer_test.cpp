@@ -276,6 +276,31 @@ TEST(Observer, CulledTrianglesShowWhatTheyWouldHaveCovered) {
     EXPECT_EQ(wouldCover, covers);
 }
 
+// A back face between pixel centres is culled before its bounding box is known: the observer is still
+// told (a Culled setup, its box empty) and is shown no sample, since there is none to show.
+// Breaks caught: observeCulled returning before onSetup when the unculled setup draws nothing (the
+// triangle vanishes from the step mode), or showing coverage of a setup that was never made.
+TEST(Observer, CulledTriangleBetweenPixelCentresIsShownWithNoSamples) {
+    Framebuffer fb(16, 16);
+    fb.clearColor(vec4(0));
+    std::vector<ClipSpaceColorShader::Attributes> v;
+    for (vec2 p : {vec2(3.6f, 3.6f), vec2(4.4f, 3.6f), vec2(3.6f, 4.4f)})  // clockwise: a back face
+        v.push_back({testing::clipFromWindow(p, fb), vec4(1)});
+    std::vector<std::uint32_t> indices = {0, 1, 2};
+    DrawState state = testing::stateFor(fb);
+    state.raster.cull = CullMode::Back;
+    DrawContext context;
+    RecordingObserver observer;
+    const DrawStats stats = draw<ClipSpaceColorShader>(
+        state, {}, std::span<const ClipSpaceColorShader::Attributes>(v), indices, fb, context, observer);
+    EXPECT_EQ(stats.trianglesCulled, 1u);
+    EXPECT_EQ(stats.trianglesMissingSamples, 0u);
+    ASSERT_EQ(observer.setups.size(), 1u);
+    EXPECT_EQ(observer.setups[0].second, TriangleFate::Culled);
+    EXPECT_TRUE(observer.coverage.empty());
+    EXPECT_TRUE(observer.fragments.empty());
+}
+
 // Each fragment carries its barycentrics, 1/w and interpolated varyings: exact at a vertex sitting on a
 // pixel centre, and everywhere the varyings the shader received (the written colour is the varying).
 // Breaks caught: the event's varyings taken from another queue slot, or its λ from another lane.

@@ -68,6 +68,21 @@ TEST(TriangleSetup, SignedAreaAndFacing) {
     EXPECT_FALSE(isCulled(false, CullMode::None));
 }
 
+// Facing is decided before the bounding box, as in OpenGL: a back face lying between pixel centres is
+// culled (and counted so), while the same triangle unculled, or a front face there, misses the samples.
+// Break caught: the facing test moved back after the box (the back face reported as missing samples).
+TEST(TriangleSetup, FacingIsCulledBeforeTheBoundingBox) {
+    const WindowTriangle front = tri(at(3.6f, 3.6f), at(3.6f, 4.4f), at(4.4f, 3.6f));
+    const WindowTriangle back = tri(at(3.6f, 3.6f), at(4.4f, 3.6f), at(3.6f, 4.4f));
+    TriangleSetup setup;
+    EXPECT_EQ(setupTriangle(back, stateOf(16, 16, CullMode::Back), setup, nullptr), TriangleFate::Culled);
+    EXPECT_FALSE(setup.frontFacing);
+    EXPECT_EQ(setupTriangle(back, stateOf(16, 16, CullMode::None), setup, nullptr),
+              TriangleFate::MissesSamples);
+    EXPECT_EQ(setupTriangle(front, stateOf(16, 16, CullMode::Back), setup, nullptr),
+              TriangleFate::MissesSamples);
+}
+
 TEST(TriangleSetup, BackFacesAreCulledFrontFacesKept) {
     const WindowTriangle ccw = tri(at(0, 0), at(0, 4), at(4, 0));
     const WindowTriangle cw = tri(at(0, 0), at(4, 0), at(0, 4));

@@ -410,6 +410,27 @@ TEST_F(StepTraceTest, TrianglesAreNumberedAcrossTheDrawsInOrder) {
     EXPECT_TRUE(contains(trace.walk.verdict, "triangle 1's fragment")) << trace.walk.verdict;
 }
 
+// A back face smaller than the gap between pixel centres is culled before its box is worked out; its
+// setup screen says both: culled, and that kept it would have covered no pixel (no edge functions of a
+// setup that was never made). The scene's pixels are 0.1203 units wide at z = 0, and world (0, 0) is
+// the corner of pixels (31, 23) to (32, 24): the triangle's box, ±0.03, holds no centre.
+// Catches: the screen printing the would-be setup's edges for a culled triangle that has none.
+TEST_F(StepTraceTest, CulledTriangleBetweenPixelCentresSaysItWouldCoverNoPixel) {
+    const PreparedScene prepared =
+        prepareScene(sceneOf("v -0.03 -0.03 0\nv 0.03 -0.03 0\nv 0 0.03 0\nf 1 3 2\n"));
+    DrawContext context(1);
+    StepRequest request;
+    request.pixel = std::pair(32, 24);
+    request.triangle = 0;
+    const StepTrace trace = traceStep(prepared, context, request);
+    const Screen* setup = screenOf(trace.walk, "setup");
+    ASSERT_NE(setup, nullptr);
+    EXPECT_EQ(setup->title, "Setup: culled for its facing");
+    EXPECT_TRUE(contains(setup->text, "Back-facing, and that side is culled")) << setup->text;
+    EXPECT_TRUE(contains(setup->text, "Kept, it would have covered no pixel")) << setup->text;
+    EXPECT_FALSE(contains(setup->text, "Edge functions")) << setup->text;
+}
+
 // Catches: a pixel outside the image or a triangle beyond the scene's accepted (and read out of range).
 TEST_F(StepTraceTest, PixelOutsideTheImageAndTriangleBeyondTheSceneAreRefused) {
     const PreparedScene prepared = prepareScene(sceneOf("v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n"));
