@@ -2,15 +2,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 
-#include <opencv2/core.hpp>
-#include <opencv2/quality/qualityssim.hpp>
-
+#include "base/module.h"
 #include "bench/chart.h"
 #include "io/image_file.h"
 #include "oracle/image_compare.h"
+
+#ifndef FACET_OPENCV_MODULE
+#error "FACET_OPENCV_MODULE: the module's path in the build, set by src/trade/CMakeLists.txt"
+#endif
 
 namespace facet {
 
@@ -33,12 +36,26 @@ double shareAbove(const std::vector<float>& a, const std::vector<float>& b, int 
     return pixels ? static_cast<double>(result.pixelsOver) / static_cast<double>(pixels) : 0.0;
 }
 
+// SSIM through the OpenCV module (ssim_module.cpp), loaded at the first call.
+double structuralSimilarity(const std::vector<float>& a, const std::vector<float>& b, int width, int height) {
+    using Entry = double (*)(const float*, const float*, int, int);
+    static std::once_flag loaded;
+    static Entry entry = nullptr;
+    std::call_once(loaded, [] {
+        entry = reinterpret_cast<Entry>(loadModuleEntry("libfacet_opencv.so", FACET_OPENCV_MODULE,
+                                                        "facetStructuralSimilarity",
+                                                        "scoring images by SSIM needs OpenCV"));
+    });
+    const double ssim = entry(a.data(), b.data(), width, height);
+    if (std::isnan(ssim)) throw std::runtime_error("OpenCV could not compute the SSIM of two images");
+    return ssim;
+}
+
 }  // namespace
 
 ErrorMetrics measurePlanes(const std::vector<float>& a, const std::vector<float>& b, int width, int height) {
     if (a.size() != b.size() || a.size() != static_cast<std::size_t>(width) * height * 3)
         throw std::invalid_argument("measurePlanes: the images differ in size");
-    std::vector<float> copyA = a, copyB = b;  // cv::Mat wraps them without copying
 
     ErrorMetrics metrics;
     const PixelComparison result = openImageIO().compare(a.data(), b.data(), width, height, 3, 1.0f);
@@ -52,13 +69,7 @@ ErrorMetrics measurePlanes(const std::vector<float>& a, const std::vector<float>
     metrics.over2 = shareAbove(a, b, width, height, 2.0f / 255.0f * 1.0001f);
 
     // SSIM with OpenCV's constants C1 = (0.01·255)², C2 = (0.03·255)²: values scaled to 0..255.
-    cv::Mat matA(height, width, CV_32FC3, copyA.data()), matB(height, width, CV_32FC3, copyB.data());
-    cv::Mat scaledA, scaledB;
-    matA.convertTo(scaledA, CV_32FC3, 255.0);
-    matB.convertTo(scaledB, CV_32FC3, 255.0);
-    cv::Mat qualityMap;
-    const cv::Scalar ssim = cv::quality::QualitySSIM::compute(scaledA, scaledB, qualityMap);
-    metrics.ssim = (ssim[0] + ssim[1] + ssim[2]) / 3.0;
+    metrics.ssim = structuralSimilarity(a, b, width, height);
     return metrics;
 }
 

@@ -54,9 +54,10 @@ TEST(Cli, RendersABundledModelToPng) {
 }
 
 // A render of a model with a PNG texture to a PNG file never loads OpenImageIO (its ~260 libraries
-// cost a quarter of a second before anything is drawn); an EXR output does load it. The dynamic
-// loader's own record (LD_DEBUG=files) says which libraries the process opened. Breaks caught: facet
-// linking OpenImageIO again, or PNG textures or outputs sent through it.
+// cost a quarter of a second before anything is drawn) nor OpenCV (facet trade's SSIM: ~15 libraries,
+// half of `facet --help`'s start-up); an EXR output does load OpenImageIO. The dynamic loader's own
+// record (LD_DEBUG=files) says which libraries the process opened. Breaks caught: facet linking
+// OpenImageIO or OpenCV again, or PNG textures or outputs sent through OpenImageIO.
 TEST(Cli, OpenImageIOIsLoadedOnlyForFormatsThatNeedIt) {
     TempDir dir;
     const std::string model =
@@ -72,6 +73,8 @@ TEST(Cli, OpenImageIOIsLoadedOnlyForFormatsThatNeedIt) {
     EXPECT_NE(png.err.find("libpng16"), std::string::npos);  // the record is there
     EXPECT_EQ(png.err.find("libOpenImageIO"), std::string::npos);
     EXPECT_EQ(png.err.find("libfacet_openimageio"), std::string::npos);
+    EXPECT_EQ(png.err.find("libopencv"), std::string::npos);
+    EXPECT_EQ(png.err.find("libfacet_opencv"), std::string::npos);
     EXPECT_NE(exr.err.find("libfacet_openimageio"), std::string::npos);
     EXPECT_NE(exr.err.find("libOpenImageIO"), std::string::npos);
 }
