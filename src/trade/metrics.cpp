@@ -11,7 +11,10 @@
 #include "io/image_file.h"
 #include "oracle/image_compare.h"
 
-#ifndef FACET_OPENCV_MODULE
+#if defined(FACET_OPENCV_LINKED)
+// Sanitized builds (src/trade/CMakeLists.txt says why): the module's function linked in.
+extern "C" double facetStructuralSimilarity(const float* a, const float* b, int width, int height);
+#elif !defined(FACET_OPENCV_MODULE)
 #error "FACET_OPENCV_MODULE: the module's path in the build, set by src/trade/CMakeLists.txt"
 #endif
 
@@ -42,9 +45,13 @@ double structuralSimilarity(const std::vector<float>& a, const std::vector<float
     static std::once_flag loaded;
     static Entry entry = nullptr;
     std::call_once(loaded, [] {
+#if defined(FACET_OPENCV_LINKED)
+        entry = facetStructuralSimilarity;
+#else
         entry = reinterpret_cast<Entry>(loadModuleEntry("libfacet_opencv.so", FACET_OPENCV_MODULE,
                                                         "facetStructuralSimilarity",
                                                         "scoring images by SSIM needs OpenCV"));
+#endif
     });
     const double ssim = entry(a.data(), b.data(), width, height);
     if (std::isnan(ssim)) throw std::runtime_error("OpenCV could not compute the SSIM of two images");
