@@ -54,7 +54,7 @@ namespace detail {
 // Tells the observer what a triangle culled for its facing would have covered: its setup with culling
 // off, and the coverage decision at every sample of its bounding box (CoverageEvent::culled). Culling
 // comes before the bounding box, so a culled triangle may also lie between pixel centres: its setup
-// then has only the box, empty (minX > maxX or minY > maxY), and there is no sample to show.
+// then has only the box, empty (TriangleSetup::boxEmpty), and there is no sample to show.
 template <class Observer>
 void observeCulled(std::uint32_t triangleIndex, const WindowTriangle& window, const DrawState& state,
                    Observer& observer) {

@@ -104,7 +104,7 @@ TriangleFate setupTriangle(const WindowTriangle& triangle, const DrawState& stat
         static_cast<int>(std::min<std::int64_t>(lastPixelSampledUpTo(maxYf + reach), vp.y + vp.height - 1));
 
     // A triangle between sample points covers none: common for the sub-pixel triangles of dense meshes.
-    if (setup.minX > setup.maxX || setup.minY > setup.maxY) return TriangleFate::MissesSamples;
+    if (setup.boxEmpty()) return TriangleFate::MissesSamples;
 
     // Make the orientation positive by swapping v1 and v2, so every edge function is ≥ 0 inside.
     std::array<int, 3> order = {0, 1, 2};

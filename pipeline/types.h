@@ -136,6 +136,9 @@ struct TriangleSetup {
     // time); premultiplied by 1/w when interpolation is perspective-correct. An offset, not a pointer,
     // so a setup stays small whatever the shader and a copy of it never dangles when the array grows.
     std::uint32_t varyingPlaneOffset = 0;
+
+    // The pixel bounds hold no pixel whose sample the triangle could cover (set-up's MissesSamples).
+    bool boxEmpty() const { return minX > maxX || minY > maxY; }
 };
 
 // The rasterizer's unit of work: an 8×8 block of pixels with one coverage bit per pixel.

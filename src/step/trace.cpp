@@ -179,11 +179,7 @@ void TraceRecorder::onSetup(std::uint32_t triangle, const WindowTriangle& window
         }
         view.pieces.push_back(std::move(piece));
     });
-    // A culled triangle whose box holds no pixel centre has no coverage to report (observeCulled).
-    const bool culledBetweenCentres =
-        fate == TriangleFate::Culled && (setup.minX > setup.maxX || setup.minY > setup.maxY);
-    if (fate != TriangleFate::ZeroArea && fate != TriangleFate::MissesSamples && !culledBetweenCentres)
-        return;
+    if (fate != TriangleFate::ZeroArea && fate != TriangleFate::MissesSamples) return;
     // These never reach the rasterizer: list them where their snapped box holds the pixel centre.
     double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
     for (const WindowVertex& v : window.vertices) {
@@ -191,9 +187,8 @@ void TraceRecorder::onSetup(std::uint32_t triangle, const WindowTriangle& window
         lo[0] = std::min(lo[0], x), hi[0] = std::max(hi[0], x);
         lo[1] = std::min(lo[1], y), hi[1] = std::max(hi[1], y);
     }
-    const PixelFate pixelFate = fate == TriangleFate::ZeroArea ? PixelFate::ZeroArea
-                                : culledBetweenCentres         ? PixelFate::Culled
-                                                               : PixelFate::MissesSamples;
+    const PixelFate pixelFate =
+        fate == TriangleFate::ZeroArea ? PixelFate::ZeroArea : PixelFate::MissesSamples;
     forEachTracedPixelIn(lo, hi, [&](std::size_t slot) {
         TriangleAtPixel& e = entry(slot, triangle);
         if (!e.coverage) e.fate = pixelFate;  // another piece of a clipped triangle may cover it

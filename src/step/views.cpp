@@ -310,7 +310,7 @@ Screen setupScreen(const TriangleTrace& t) {
             case TriangleFate::Culled:
                 out << "  " << (piece.setup.frontFacing ? "Front" : "Back")
                     << "-facing, and that side is culled: the triangle is dropped.\n";
-                if (piece.setup.minX > piece.setup.maxX || piece.setup.minY > piece.setup.maxY) {
+                if (piece.setup.boxEmpty()) {
                     out << "  (Kept, it would have covered no pixel: its bounding box holds no pixel "
                            "centre.)\n";
                     continue;
