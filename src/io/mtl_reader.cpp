@@ -31,8 +31,8 @@ bool LibraryReader::operator()(const std::string& name, std::vector<tinyobj::mat
     library.path = objFolder_ / name;
     std::string text;
     library.problem = readTextFile(library.path, text);
-    if (library.problem.empty()) library.error = checkMtlNumbers(text, library.path.string());
-    if (library.problem.empty() && library.error.empty()) {
+    if (library.problem.empty()) {
+        text = checkMtlNumbers(text, library.path.string(), library.warnings);
         std::istringstream stream(text);
         std::string ignoredWarnings, ignoredErrors;  // LoadMtl only warns of d + Tr, even when they agree
         tinyobj::LoadMtl(materialIds, materials, &stream, &ignoredWarnings, &ignoredErrors);
@@ -44,7 +44,8 @@ bool LibraryReader::operator()(const std::string& name, std::vector<tinyobj::mat
     return false;
 }
 
-std::string LibraryReader::checkMtlNumbers(std::string_view text, const std::string& file) {
+std::string LibraryReader::checkMtlNumbers(std::string_view text, const std::string& file,
+                                           std::vector<std::string>& warnings) {
     struct Rule {
         std::string_view keyword;
         int count;               // numbers read: 3 (a colour) or 1
@@ -61,13 +62,30 @@ std::string LibraryReader::checkMtlNumbers(std::string_view text, const std::str
         {"Pm", 1, -kAny, kAny, false},  {"Ps", 1, -kAny, kAny, false},    {"Pc", 1, -kAny, kAny, false},
         {"Pcr", 1, -kAny, kAny, false}, {"aniso", 1, -kAny, kAny, false}, {"anisor", 1, -kAny, kAny, false},
     };
+    // Warnings of statements ignored or clamped: the first few in full, then how many more.
+    constexpr std::size_t kShown = 3;
+    std::size_t changed = 0;
+    auto warn = [&](std::size_t line, const std::string& what) {
+        if (changed++ < kShown) warnings.push_back(located(file, line, what));
+    };
+    std::size_t strayCount = 0, strayLine = kNoLine;
+    std::string strayToken;
+    double strayValue = 0.0;
+
+    std::string out;  // the text for LoadMtl: the same lines, some rewritten
+    out.reserve(text.size());
     std::size_t lineNumber = 0;
     std::size_t pos = 0;
     while (pos < text.size()) {
         const std::size_t end = lineEnd(text, pos);
-        std::string_view s = text.substr(pos, end - pos);
-        pos = end + ((end + 1 < text.size() && text[end] == '\r' && text[end + 1] == '\n') ? 2 : 1);
+        const std::size_t next =
+            std::min(text.size(),
+                     end + ((end + 1 < text.size() && text[end] == '\r' && text[end + 1] == '\n') ? 2 : 1));
+        const std::string_view line = text.substr(pos, end - pos);
+        const std::string_view lineBreak = text.substr(end, next - end);
+        pos = next;
         ++lineNumber;
+        std::string_view s = line;
         while (!s.empty() && isBlank(s.front()))
             s.remove_prefix(1);
         // Matched as LoadMtl matches: the keyword, then a blank (so "Kd" alone is no statement).
@@ -77,44 +95,109 @@ std::string LibraryReader::checkMtlNumbers(std::string_view text, const std::str
                 isBlank(s[r.keyword.size()]))
                 rule = &r;
         }
-        if (rule == nullptr) continue;
+        if (rule == nullptr) {
+            out.append(line).append(lineBreak);
+            continue;
+        }
 
+        // The numbers LoadMtl takes (the first one or three; the rest it ignores, like the "illum 2" that
+        // follows "Tr 0" on one line of cube-mcguire's MTL), as it reads them.
         Tokens tokens(s.substr(rule->keyword.size()));
         std::string_view token;
         std::string got;
-        bool usable = true, inRange = true;
-        for (int i = 0; i < rule->count; ++i) {
-            if (!tokens.next(token)) {
-                usable = false;
-                break;
-            }
+        std::string numbers[3];  // each as LoadMtl is to read it
+        double values[3] = {};
+        int read = 0;
+        bool usable = true, inRange = true, rewrite = false;
+        std::size_t lineStrays = 0;  // counted once the statement is known to be used
+        std::string_view lineStray;
+        double lineStrayValue = 0.0;
+        for (; read < rule->count; ++read) {
+            if (!tokens.next(token) || token[0] == '#') break;
             if (!got.empty()) got += ' ';
             got.append(token);
-            if (checkNumber(token) != NumberCheck::kFinite) {
+            const NumberRead number = readNumber(token);
+            if (number.check != NumberCheck::kFinite && number.check != NumberCheck::kStrayCharacters) {
                 usable = false;
                 continue;
             }
-            const double value = std::strtod(std::string(token).c_str(), nullptr);
-            if (value < rule->lowest || value > rule->highest || (rule->whole && value != std::floor(value)))
+            if (number.check == NumberCheck::kStrayCharacters) {
+                rewrite = true;
+                if (lineStrays++ == 0) {
+                    lineStray = token;
+                    lineStrayValue = number.value;
+                }
+            }
+            numbers[read] = std::string(token.substr(0, number.length));
+            values[read] = number.value;
+        }
+        // The MTL format: "Ka r g b ... g and b are optional. If only r is specified, then g, and b are
+        // assumed to be equal to r" (tinyobjloader reads them as 0).
+        if (rule->count == 3 && read == 1 && usable) {
+            numbers[2] = numbers[1] = numbers[0];
+            values[2] = values[1] = values[0];
+            read = 3;
+            rewrite = true;
+        }
+        if (read < rule->count) usable = false;
+        for (int i = 0; usable && i < rule->count; ++i) {
+            if (values[i] < rule->lowest || values[i] > rule->highest ||
+                (rule->whole && values[i] != std::floor(values[i])))
                 inRange = false;
         }
         const std::string keyword(rule->keyword);
         if (!usable || (rule->whole && !inRange)) {
+            // tinyobjloader would read what it cannot parse as 0 and 1e39 as inf: the statement is left
+            // out instead, so the material keeps what it would have without it.
             const std::string expected = rule->whole        ? "a whole number from 0 to 10"
                                          : rule->count == 3 ? "three finite numbers"
                                                             : "a finite number";
-            return located(file, lineNumber,
-                           keyword + " expects " + expected + " (got " + inQuotes(got) + ")");
+            warn(lineNumber,
+                 keyword + " expects " + expected + " (got " + inQuotes(got) + "); the statement is ignored");
+            out.append(line.size(), ' ').append(lineBreak);
+            continue;
         }
+        if (lineStrays > 0 && strayCount == 0) {
+            strayLine = lineNumber;
+            strayToken = std::string(lineStray.substr(0, 64));
+            strayValue = lineStrayValue;
+        }
+        strayCount += lineStrays;
         if (!inRange) {
             std::string range = rule->highest == kAny
                                     ? "must not be negative"
                                     : "must be from 0 to " + std::to_string(int(rule->highest));
             if (rule->count == 3) range += " in each component";
-            return located(file, lineNumber, keyword + " " + range + " (got " + inQuotes(got) + ")");
+            std::string clamped;
+            for (int i = 0; i < rule->count; ++i) {
+                const double value = std::clamp(values[i], rule->lowest, rule->highest);
+                if (value != values[i]) numbers[i] = numberText(value);
+                clamped += (i ? " " : "") + numbers[i];
+            }
+            warn(lineNumber, keyword + " " + range + " (got " + inQuotes(got) + "); read as " + clamped);
+            rewrite = true;
         }
+        if (!rewrite) {
+            out.append(line).append(lineBreak);
+            continue;
+        }
+        // The statement as LoadMtl is to read it: the numbers, then whatever followed them.
+        out += keyword;
+        for (int i = 0; i < rule->count; ++i)
+            out += ' ' + numbers[i];
+        const std::string_view rest =
+            s.substr(std::min(s.size(), std::size_t(token.data() + token.size() - s.data())));
+        if (read == rule->count && !rest.empty() && token[0] != '#') out += rest;
+        out.append(lineBreak);
     }
-    return "";
+    if (changed > kShown) {
+        warnings.push_back(located(file, kNoLine,
+                                   std::to_string(changed - kShown) +
+                                       " more statements with numbers ignored or clamped, like those above"));
+    }
+    if (strayCount > 0)
+        warnings.push_back(strayNumberWarning(file, strayLine, strayToken, strayValue, strayCount));
+    return out;
 }
 
 void LibraryReader::scanMtl(const std::string& text, Library& library) {

@@ -21,8 +21,7 @@ namespace fs = std::filesystem;
 
 struct Library {
     fs::path path;
-    std::string problem;  // why it was not read; empty when it was
-    std::string error;    // "file:line: ..." of a number that cannot be used: loading the OBJ fails with it
+    std::string problem;                                  // why it was not read; empty when it was
     std::vector<std::string> warnings;                    // "file:line: ..." about its contents
     std::map<std::string, std::size_t> diffuseMapLines;   // material name → line of its map_Kd
     std::map<std::string, std::size_t> emissionMapLines;  // material name → line of its map_Ke
@@ -48,12 +47,18 @@ class LibraryReader final : public tinyobj::MaterialReader {
     }
 
   private:
-    // The first numeric statement of an MTL file whose numbers cannot be used, as "file:line: ...",
-    // or "". tinyobjloader reads what it cannot parse (nan, a word, a missing number) as 0 and
-    // 1e39 as inf, so "Kd nan 1 1" would silently lose its red; each statement it reads numbers from
-    // is checked first, its numbers as it takes them (the first one or three; the rest it ignores,
-    // like the "illum 2" that follows "Tr 0" on one line of cube-mcguire's MTL).
-    static std::string checkMtlNumbers(std::string_view text, const std::string& file);
+    // The MTL text as LoadMtl is to read it, the same lines with some statements rewritten, and warnings
+    // of what was changed. tinyobjloader reads what it cannot parse (nan, a word, a missing number) as 0
+    // and 1e39 as inf, so "Kd nan 1 1" would silently lose its red: each statement it reads numbers from
+    // is checked first, its numbers as it takes them (the first one or three; the rest it ignores, like
+    // the "illum 2" that follows "Tr 0" on one line of cube-mcguire's MTL). A material is optional to the
+    // image, so nothing here refuses the file: a statement whose numbers cannot be used is left out (the
+    // material is as without it), one out of range is clamped, a number with stray characters after it
+    // ("0.0000c") is read as the number, and "Kd r" is "Kd r r r" (the MTL format's rule). The first
+    // three statements left out or clamped are warned of, then a count; numbers with stray characters
+    // are one warning with their count.
+    static std::string checkMtlNumbers(std::string_view text, const std::string& file,
+                                       std::vector<std::string>& warnings);
 
     // Finds each material's map_Kd line, and d and Tr that disagree (d 1 with Tr 0 is common and
     // fine), splitting lines and names the way LoadMtl does.
@@ -69,8 +74,9 @@ class LibraryReader final : public tinyobj::MaterialReader {
     std::vector<std::size_t> materialLibrary_;  // tinyobjloader material index → libraries_ index
 };
 
-// A used MTL material in facet's terms. checkMtlNumbers has refused non-finite and out-of-range
-// numbers; should tinyobjloader still read one differently, the default is used and opacity clamped.
+// A used MTL material in facet's terms. checkMtlNumbers has left out non-finite numbers and clamped
+// out-of-range ones; should tinyobjloader still read one differently, the default is used and opacity
+// clamped.
 Material convertMaterial(const tinyobj::material_t& source, std::vector<std::string>& warnings,
                          const std::string& libraryFile);
 

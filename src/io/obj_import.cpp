@@ -126,7 +126,6 @@ Mesh loadObj(const std::filesystem::path& path, const ObjOptions& options) {
         for (const std::string& name : statement.names) {
             const Library* library = libraries.find(name);
             if (library == nullptr || !reported.insert(name).second) continue;
-            if (!library->error.empty()) throw InputError(library->error);
             if (!library->problem.empty()) {
                 warnings.push_back(located(file, statement.line,
                                            "material library " + inSingleQuotes(name) + ": " +
@@ -136,6 +135,18 @@ Mesh loadObj(const std::filesystem::path& path, const ObjOptions& options) {
             warnings.insert(warnings.end(), library->warnings.begin(), library->warnings.end());
         }
     }
+    if (scan.strayNumbers > 0) {
+        warnings.push_back(strayNumberWarning(file, scan.firstStrayLine, scan.firstStray,
+                                              scan.firstStrayValue, scan.strayNumbers));
+    }
+    const auto indexWarning = [&](const IndexWarning& bad, const char* instead) {
+        if (bad.count == 0) return;
+        std::string what = bad.what + "; " + instead;
+        if (bad.count > 1) what += " (" + std::to_string(bad.count) + " such corners in this file)";
+        warnings.push_back(located(file, bad.line, what));
+    };
+    indexWarning(scan.badTexcoordIndices, "the corner is drawn without a texture coordinate");
+    indexWarning(scan.badNormalIndices, "the corner gets a computed normal");
     if (scan.shortFaces > 0) {
         warnings.push_back(
             located(file, scan.firstShortFaceLine,
@@ -149,6 +160,7 @@ Mesh loadObj(const std::filesystem::path& path, const ObjOptions& options) {
     std::vector<std::vector<std::uint32_t>> buckets;
     std::set<std::string> unknownReported;
     std::size_t face = 0;
+    std::vector<tinyobj::index_t> repaired;  // a face's corners with out-of-range attribute indices dropped
     for (const tinyobj::shape_t& shape : shapes) {
         const tinyobj::mesh_t& m = shape.mesh;
         std::size_t offset = 0;
@@ -163,16 +175,29 @@ Mesh loadObj(const std::filesystem::path& path, const ObjOptions& options) {
                 ++mesh.stats.degenerateSkipped;
                 continue;
             }
-            // The pre-scan checked every index; this keeps a mismatch from reading out of bounds.
+            // The pre-scan checked every index; this keeps a mismatch from reading out of bounds. A texture
+            // coordinate or normal index out of range (the pre-scan warned of it) is dropped from a copy
+            // of the corners: the corner is drawn without it.
+            const auto outside = [](int index, std::size_t size) {
+                return index < -1 || (index >= 0 && std::size_t(index) >= size);
+            };
+            const std::size_t texcoordCount = attrib.texcoords.size() / 2,
+                              normalCount = attrib.normals.size() / 3;
+            bool dropped = false;
             for (std::size_t c = 0; c < count; ++c) {
                 const tinyobj::index_t& k = corners[c];
-                if (k.vertex_index < 0 || std::size_t(k.vertex_index) >= attrib.vertices.size() / 3 ||
-                    k.texcoord_index < -1 ||
-                    (k.texcoord_index >= 0 && std::size_t(k.texcoord_index) >= attrib.texcoords.size() / 2) ||
-                    k.normal_index < -1 ||
-                    (k.normal_index >= 0 && std::size_t(k.normal_index) >= attrib.normals.size() / 3)) {
+                if (k.vertex_index < 0 || std::size_t(k.vertex_index) >= attrib.vertices.size() / 3)
                     fail(file, line, "face index out of range");
+                dropped = dropped || outside(k.texcoord_index, texcoordCount) ||
+                          outside(k.normal_index, normalCount);
+            }
+            if (dropped) {
+                repaired.assign(corners, corners + count);
+                for (tinyobj::index_t& k : repaired) {
+                    if (outside(k.texcoord_index, texcoordCount)) k.texcoord_index = -1;
+                    if (outside(k.normal_index, normalCount)) k.normal_index = -1;
                 }
+                corners = repaired.data();
             }
 
             int tinyMaterial = f < m.material_ids.size() ? m.material_ids[f] : -1;

@@ -32,10 +32,15 @@ namespace facet {
 //   and falls back to the default material (or, for a texture, to the material without it). Every
 //   file on an `mtllib` line is read. `d` wins over `Tr` whichever comes first (tinyobjloader's rule);
 //   `Tr` alone gives opacity 1 - Tr. Mesh::materials holds the materials faces use, in first-use order;
-// - huge but finite coordinates (1e30) are accepted.
+// - huge but finite coordinates (1e30) are accepted;
+// - a number with stray characters after it ("0.0000c", "1.5,") is read as the number, as tinyobjloader
+//   and Blender read it, with one warning per file counting them; a texture coordinate or normal index
+//   out of range is dropped from its corner with a warning (the corner gets a computed normal); MTL
+//   numbers that cannot be used leave their statement out, out-of-range ones are clamped (warnings).
 // Throws InputError with "file:line: what" for: a missing or unreadable file, a malformed statement,
-// a face index out of range or zero, NaN/Inf coordinates (or ones beyond float range), a face with
-// more than 255 corners, or a file with no triangles at all ("file: no triangles to draw ...").
+// a position index out of range, any index 0, NaN/Inf coordinates (or ones beyond float range), a
+// word or a decimal comma ("2,5") where a coordinate must be, a face with more than 255 corners, or a
+// file with no triangles at all ("file: no triangles to draw ...").
 // Throws std::invalid_argument if options.creaseAngleDegrees is NaN or outside [0, 180] (a caller's
 // bug: the scene loader validates user input).
 struct ObjOptions {

@@ -146,18 +146,37 @@ std::vector<ScannedStatement> cleanAndSplit(std::string& text, ObjScan& scan) {
     return statements;
 }
 
-// The numbers of a v/vt/vn statement: all must be finite, and there must be at least `required`.
+// The numbers of a v/vt/vn statement: all must be finite, and there must be at least `required`. A number
+// with stray characters after it ("0.0000c", "1.5,") is read as the number, as tinyobjloader reads it,
+// and counted for one warning; a decimal comma ("2,5", read as 2 by tinyobjloader) would bend every
+// coordinate of the model, so it is refused, as are words, NaN and Inf (read as 0 by tinyobjloader).
 void checkNumbers(std::string_view body, std::size_t required, const char* what, const char* needs,
-                  const std::string& file, std::size_t line) {
+                  const std::string& file, std::size_t line, ObjScan& scan) {
     Tokens tokens(body);
     std::string_view token;
     std::size_t count = 0;
     while (tokens.next(token)) {
-        switch (checkNumber(token)) {
+        const NumberRead read = readNumber(token);
+        switch (read.check) {
             case NumberCheck::kNotANumber:
                 fail(file, line, std::string(what) + " " + inSingleQuotes(token) + " is not a number");
             case NumberCheck::kNotFinite:
                 fail(file, line, std::string(what) + " " + inSingleQuotes(token) + " is not a finite number");
+            case NumberCheck::kDecimalComma: {
+                std::string pointed(token);
+                pointed[read.length] = '.';
+                fail(file, line,
+                     std::string(what) + " " + inSingleQuotes(token) +
+                         " has a decimal comma; OBJ numbers are written with a point, like " +
+                         inSingleQuotes(pointed));
+            }
+            case NumberCheck::kStrayCharacters:
+                if (scan.strayNumbers++ == 0) {
+                    scan.firstStrayLine = line;
+                    scan.firstStray = std::string(token.substr(0, 64));
+                    scan.firstStrayValue = read.value;
+                }
+                break;
             case NumberCheck::kFinite:
                 break;
         }
@@ -166,22 +185,39 @@ void checkNumbers(std::string_view body, std::size_t required, const char* what,
     if (count < required) fail(file, line, std::string(needs) + ", found " + std::to_string(count));
 }
 
-// One index of a corner against the counts: `before` defined above this line, `total` in the file.
-void checkIndex(long long index, std::size_t before, std::size_t total, const char* what, const char* plural,
-                const std::string& file, std::size_t line) {
+// Why one index of a corner is not valid against the counts, `before` defined above this line and `total`
+// in the file, or "" when it is valid.
+std::string indexProblem(long long index, std::size_t before, std::size_t total, const char* what,
+                         const char* plural) {
     const bool inRange = index > 0 ? static_cast<unsigned long long>(index) <= total
                                    : index < 0 && index >= -static_cast<long long>(before);
-    if (inRange) return;  // the message below is only built for a bad index (this runs per corner)
+    if (inRange) return {};  // the message below is only built for a bad index (this runs per corner)
     const std::string name = std::string("face ") + what + "index " + std::to_string(index);
-    if (index == 0) fail(file, line, name + " is invalid (OBJ indices start at 1)");
-    if (index > 0 && static_cast<unsigned long long>(index) > total) {
-        fail(file, line,
-             name + " is out of range (the file has " + std::to_string(total) + " " + plural + ")");
-    }
-    if (index < 0 && index < -static_cast<long long>(before)) {  // not -index: LLONG_MIN has no negation
-        fail(file, line,
-             name + " is out of range (" + std::to_string(before) + " " + plural +
-                 " are defined before this line)");
+    if (index == 0) return name + " is invalid (OBJ indices start at 1)";
+    if (index > 0)
+        return name + " is out of range (the file has " + std::to_string(total) + " " + plural + ")";
+    // index < -before; not -index: LLONG_MIN has no negation
+    return name + " is out of range (" + std::to_string(before) + " " + plural +
+           " are defined before this line)";
+}
+
+void checkIndex(long long index, std::size_t before, std::size_t total, const char* what, const char* plural,
+                const std::string& file, std::size_t line) {
+    if (std::string problem = indexProblem(index, before, total, what, plural); !problem.empty())
+        fail(file, line, problem);
+}
+
+// A texture coordinate or normal index: out of range, the corner is drawn without it (as Blender does),
+// counted for one warning; 0 is refused, as tinyobjloader refuses the whole file for it.
+void checkAttributeIndex(long long index, std::size_t before, std::size_t total, const char* what,
+                         const char* plural, const std::string& file, std::size_t line,
+                         IndexWarning& warning) {
+    if (index == 0) checkIndex(index, before, total, what, plural, file, line);
+    std::string problem = indexProblem(index, before, total, what, plural);
+    if (problem.empty()) return;
+    if (warning.count++ == 0) {
+        warning.line = line;
+        warning.what = std::move(problem);
     }
 }
 
@@ -248,17 +284,17 @@ ObjScan checkObj(std::string_view text, const ObjStatements& split, const std::s
         switch (statement.kind) {
             case Statement::kVertex:
                 checkNumbers(s.substr(1), 3, "vertex coordinate", "a vertex needs 3 coordinates (x y z)",
-                             file, line);
+                             file, line, scan);
                 ++positions;
                 break;
             case Statement::kTexcoord:
                 checkNumbers(s.substr(2), 1, "texture coordinate", "a texture coordinate needs at least u",
-                             file, line);
+                             file, line, scan);
                 ++texcoords;
                 break;
             case Statement::kNormal:
                 checkNumbers(s.substr(2), 3, "normal component", "a normal needs 3 components (x y z)", file,
-                             line);
+                             line, scan);
                 ++normals;
                 break;
             case Statement::kFace:
@@ -278,12 +314,13 @@ ObjScan checkObj(std::string_view text, const ObjStatements& split, const std::s
                     if (isFace) {
                         checkIndex(corner.position, positions, scan.positions, "", "vertices", file, line);
                         if (corner.hasTexcoord) {
-                            checkIndex(corner.texcoord, texcoords, scan.texcoords, "texture coordinate ",
-                                       "texture coordinates", file, line);
+                            checkAttributeIndex(corner.texcoord, texcoords, scan.texcoords,
+                                                "texture coordinate ", "texture coordinates", file, line,
+                                                scan.badTexcoordIndices);
                         }
                         if (corner.hasNormal) {
-                            checkIndex(corner.normal, normals, scan.normals, "normal ", "normals", file,
-                                       line);
+                            checkAttributeIndex(corner.normal, normals, scan.normals, "normal ", "normals",
+                                                file, line, scan.badNormalIndices);
                         }
                     } else if (corner.position == 0 || (corner.hasTexcoord && corner.texcoord == 0) ||
                                (corner.hasNormal && corner.normal == 0)) {

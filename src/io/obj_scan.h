@@ -24,6 +24,13 @@ struct LibraryStatement {
     std::vector<std::string> names;
 };
 
+// Corners whose texture coordinate (or normal) index is out of range: the first, and how many.
+struct IndexWarning {
+    std::size_t count = 0;
+    std::size_t line = kNoLine;
+    std::string what;  // "face normal index 1 is out of range (the file has 0 normals)"
+};
+
 struct ObjScan {
     std::size_t positions = 0, texcoords = 0, normals = 0;  // v, vt, vn statements
     std::size_t facesRead = 0;                              // every f statement
@@ -32,6 +39,11 @@ struct ObjScan {
     std::size_t cornerCount = 0;             // over those faces
     std::size_t shortFaces = 0;              // f statements with < 3 corners
     std::size_t firstShortFaceLine = kNoLine;
+    std::size_t strayNumbers = 0;  // v/vt/vn numbers with stray characters after them ("0.0000c")
+    std::size_t firstStrayLine = kNoLine;
+    std::string firstStray;  // the first such token, as written
+    double firstStrayValue = 0.0;
+    IndexWarning badTexcoordIndices, badNormalIndices;  // drawn without them
     std::vector<UseMaterial> useMaterials;
     std::vector<LibraryStatement> libraries;
 };

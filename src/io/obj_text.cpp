@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -63,26 +64,98 @@ std::string readTextFile(const fs::path& path, std::string& text) {
     return "";
 }
 
-NumberCheck checkNumber(std::string_view token) {
-    std::string_view digits = token;
-    if (digits.size() > 1 && digits[0] == '+' && digits[1] != '-' && digits[1] != '+')
-        digits.remove_prefix(1);
+namespace {
+
+bool isDigit(char c) {
+    return c >= '0' && c <= '9';
+}
+
+// The length of the number tinyobjloader's tryParseDouble reads at the start of `s`, or 0 when it
+// reads none (it then leaves the default, 0) or the prefix holds no digit ("." and "-." it reads as 0).
+std::size_t numberPrefix(std::string_view s) {
+    std::size_t i = 0, digits = 0;
+    if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
+    for (; i < s.size() && isDigit(s[i]); ++i)
+        ++digits;
+    if (i < s.size() && s[i] == '.') {
+        for (++i; i < s.size() && isDigit(s[i]); ++i)
+            ++digits;
+    }
+    if (digits == 0) return 0;
+    if (i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
+        std::size_t exponent = i + 1;
+        if (exponent < s.size() && (s[exponent] == '+' || s[exponent] == '-')) ++exponent;
+        std::size_t exponentDigits = 0;
+        for (; exponent < s.size() && isDigit(s[exponent]); ++exponent)
+            ++exponentDigits;
+        if (exponentDigits == 0) return 0;  // tinyobjloader: "Empty E is not allowed", no number
+        i = exponent;
+    }
+    return i;
+}
+
+}  // namespace
+
+NumberRead readNumber(std::string_view token) {
+    NumberRead read;
+    read.length = numberPrefix(token);
+    if (read.length == 0) {
+        // "nan", "-inf", "infinity": strtod's spellings of what a float holds but a model cannot use.
+        std::string_view word = token;
+        if (word.size() > 1 && word[0] == '+') word.remove_prefix(1);
+        double value = 0.0;
+        const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
+        if (error == std::errc() && end == word.data() + word.size() && !std::isfinite(value))
+            read.check = NumberCheck::kNotFinite;
+        return read;  // else kNotANumber
+    }
+    std::string_view digits = token.substr(0, read.length);
+    if (digits[0] == '+') digits.remove_prefix(1);  // from_chars takes no '+'
     double value = 0.0;
     const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
-    if (end != digits.data() + digits.size() || error == std::errc::invalid_argument) {
-        // MSVC prints NaN and Inf as 1.#IND, 1.#QNAN, 1.#INF.
-        if (error != std::errc::invalid_argument && *end == '#') return NumberCheck::kNotFinite;
-        return NumberCheck::kNotANumber;
+    if (error == std::errc::invalid_argument || end != digits.data() + digits.size()) {
+        return read;  // not expected: the prefix has strtod's form
     }
     if (error == std::errc::result_out_of_range) {
         // Out of double range: overflow is not finite, underflow is a fine zero.
-        const double rounded = std::strtod(std::string(digits).c_str(), nullptr);
-        return std::isinf(rounded) ? NumberCheck::kNotFinite : NumberCheck::kFinite;
+        value = std::strtod(std::string(digits).c_str(), nullptr);
+        if (std::isinf(value)) {
+            read.check = NumberCheck::kNotFinite;
+            return read;
+        }
     }
+    read.value = value;
     if (!std::isfinite(value) || std::abs(value) > double(std::numeric_limits<float>::max())) {
-        return NumberCheck::kNotFinite;
+        read.check = NumberCheck::kNotFinite;
+        return read;
     }
-    return NumberCheck::kFinite;
+    const std::string_view rest = token.substr(read.length);
+    if (rest.empty()) {
+        read.check = NumberCheck::kFinite;
+    } else if (rest[0] == '#') {
+        read.check = NumberCheck::kNotFinite;  // MSVC prints NaN and Inf as 1.#IND, 1.#QNAN, 1.#INF
+    } else if (rest.size() > 1 && rest[0] == ',' && isDigit(rest[1])) {
+        read.check = NumberCheck::kDecimalComma;
+    } else {
+        read.check = NumberCheck::kStrayCharacters;
+    }
+    return read;
+}
+
+std::string numberText(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.9g", value);
+    return text;
+}
+
+std::string strayNumberWarning(const std::string& file, std::size_t line, std::string_view token,
+                               double value, std::size_t count) {
+    std::string what =
+        inQuotes(token) + " read as " + numberText(value) + " (stray characters after the number";
+    if (count > 1)
+        what += "; " + std::to_string(count) + " numbers in this file have them, the first is here";
+    what += ")";
+    return located(file, line, what);
 }
 
 IndexParse parseIndex(std::string_view token, long long& index) {

@@ -65,11 +65,35 @@ class Tokens {
     std::string_view rest_;
 };
 
-enum class NumberCheck { kFinite, kNotANumber, kNotFinite };
+enum class NumberCheck {
+    kFinite,           // the whole token is a number a float holds
+    kStrayCharacters,  // such a number followed by other characters ("0.0000c", "1.5,", "2.0)")
+    kDecimalComma,     // a number followed by a comma and a digit ("2,5"): a locale's decimal comma
+    kNotANumber,       // no number at its start ("abc", "nan", "", "1e")
+    kNotFinite         // beyond float range or an MSVC NaN/Inf ("1e39", "1.#IND")
+};
 
-// Accepts what strtod accepts as a whole token (plus a leading '+'), and rejects what a float cannot
-// hold: tinyobjloader reads "nan" and "inf" as 0 and 1e39 as inf, so they must be caught here.
-NumberCheck checkNumber(std::string_view token);
+struct NumberRead {
+    NumberCheck check = NumberCheck::kNotANumber;
+    double value = 0.0;      // the number read, for kFinite and kStrayCharacters (and kDecimalComma)
+    std::size_t length = 0;  // the characters of `token` it was read from
+};
+
+// Reads a number the way tinyobjloader's tryParseDouble does, which is how OBJ and MTL readers
+// generally read: the longest prefix of the form [+-](digits[.digits*]|.digits*)[(e|E)[+-]digits],
+// whatever follows it ("0.0000c" is 0, as in tinyobjloader and Blender); an exponent without digits
+// ("1e", "1ex") makes tinyobjloader read no number at all, and so does it here. Unlike tinyobjloader,
+// which reads "nan" and "inf" as 0 and 1e39 as inf, a prefix must hold a digit and a float must hold
+// its value, and a decimal comma is told apart from a stray character.
+NumberRead readNumber(std::string_view token);
+
+// The number read from `token` as it is shown in messages: "0", "1.5", "-2.5e-07" (up to 9 digits).
+std::string numberText(double value);
+
+// The one warning for the numbers of a file with stray characters after them: the first, at its line,
+// and how many there are, e.g. `car.mtl:12: "0.0000c" read as 0 (stray characters after the number)`.
+std::string strayNumberWarning(const std::string& file, std::size_t line, std::string_view token,
+                               double value, std::size_t count);
 
 enum class IndexParse { kOk, kMalformed, kTooLarge };
 
