@@ -15,6 +15,10 @@
 #include "cli/trade_command.h"
 #include "render/frame_kernels.h"
 
+#ifndef FACET_VERSION
+#error "FACET_VERSION: the project's version, set by src/cli/CMakeLists.txt"
+#endif
+
 int main(int argc, char** argv) {
     // Large blocks from the heap, kept after they are freed, instead of a fresh mapping each: loading a
     // model grows vectors by reallocation, and each fresh mapping is faulted in page by page again (the
@@ -26,7 +30,7 @@ int main(int argc, char** argv) {
     CLI::App app{"Facet: a software rasterizer. Renders OBJ models and scene files to images on the CPU."};
     app.require_subcommand(1);
     app.set_version_flag("--version", [] {
-        std::string text = "facet 0.1\nframe code: ";
+        std::string text = "facet " FACET_VERSION "\nframe code: ";
         try {
             text += facet::describeFrameKernels();
         } catch (const facet::InputError& e) {
