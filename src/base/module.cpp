@@ -4,14 +4,18 @@
 #include <unistd.h>
 
 #include <climits>
-#include <filesystem>
 
 #include "base/errors.h"
+
+// Set by src/base/CMakeLists.txt from the install layout and the build folder.
+#if !defined(FACET_MODULE_FOLDER_FROM_PROGRAM) || !defined(FACET_BUILD_TREE)
+#error "FACET_MODULE_FOLDER_FROM_PROGRAM and FACET_BUILD_TREE are set by src/base/CMakeLists.txt"
+#endif
 
 namespace facet {
 namespace {
 
-// The folder of the running program (/proc/self/exe), "" when unknown.
+// The folder of the running program (/proc/self/exe, symbolic links resolved), "" when unknown.
 std::filesystem::path programFolder() {
     char path[PATH_MAX];
     const ssize_t length = ::readlink("/proc/self/exe", path, sizeof path - 1);
@@ -20,15 +24,43 @@ std::filesystem::path programFolder() {
     return std::filesystem::path(path).parent_path();
 }
 
+// Whether `folder` is `tree` or below it, both taken with their symbolic links resolved as far as they
+// exist (the build folder may have been named through a link when it was configured).
+bool inside(const std::filesystem::path& folder, const std::filesystem::path& tree) {
+    if (folder.empty() || tree.empty()) return false;
+    std::error_code error;
+    const std::filesystem::path f = std::filesystem::weakly_canonical(folder, error);
+    if (error) return false;
+    const std::filesystem::path t = std::filesystem::weakly_canonical(tree, error);
+    if (error) return false;
+    const std::filesystem::path relative = f.lexically_relative(t);
+    return !relative.empty() && *relative.begin() != "..";
+}
+
 }  // namespace
+
+std::vector<std::filesystem::path> moduleCandidates(const std::filesystem::path& programFolder,
+                                                    const std::filesystem::path& moduleFolder,
+                                                    const std::filesystem::path& buildTree,
+                                                    const char* fileName, const char* buildPath) {
+    std::vector<std::filesystem::path> candidates;
+    if (!programFolder.empty()) {
+        candidates.push_back(programFolder / fileName);
+        candidates.push_back((programFolder / moduleFolder / fileName).lexically_normal());
+    }
+    if (inside(programFolder, buildTree) && buildPath != nullptr && *buildPath != '\0')
+        candidates.emplace_back(buildPath);
+    return candidates;
+}
 
 void* loadModuleEntry(const char* fileName, const char* buildPath, const char* entry,
                       const std::string& neededFor) {
+    const std::vector<std::filesystem::path> candidates = moduleCandidates(
+        programFolder(), FACET_MODULE_FOLDER_FROM_PROGRAM, FACET_BUILD_TREE, fileName, buildPath);
     std::string reasons;
-    for (const std::filesystem::path& candidate :
-         {programFolder() / fileName, std::filesystem::path(buildPath)}) {
+    for (const std::filesystem::path& candidate : candidates) {
         std::error_code error;
-        if (candidate.empty() || !std::filesystem::exists(candidate, error)) continue;
+        if (!std::filesystem::exists(candidate, error)) continue;
         // Never closed: the libraries behind a module may keep threads and caches for the process's life.
         void* module = ::dlopen(candidate.c_str(), RTLD_NOW | RTLD_LOCAL);
         if (module == nullptr) {
@@ -41,9 +73,17 @@ void* loadModuleEntry(const char* fileName, const char* buildPath, const char* e
         reasons += candidate.string() + " has no " + entry;
     }
     std::string message = neededFor + ", and " + fileName;
-    message += reasons.empty() ? " was not found beside the facet program nor in the build folder "
-                                 "(copy it next to facet)"
-                               : " could not be loaded: " + reasons;
+    if (reasons.empty()) {
+        // Every place looked, so that the message is right for a facet in its build folder, an installed
+        // one and a copied one alike.
+        message += " was not found (looked for ";
+        for (std::size_t k = 0; k < candidates.size(); ++k)
+            message += (k == 0 ? "" : k + 1 == candidates.size() ? " and " : ", ") + candidates[k].string();
+        message +=
+            candidates.empty() ? "nothing: the program's folder is unknown)" : "; copy it to one of them)";
+    } else {
+        message += " could not be loaded: " + reasons;
+    }
     throw InputError(message);
 }
 
