@@ -89,7 +89,7 @@ endif()
 
 # The .deb: cpack -G DEB in the build folder (or cpack --config <build>/CPackConfig.cmake). Its Depends
 # are the Debian packages of the libraries the program and the modules link, found by dpkg-shlibdeps
-# (Debian's dpkg-dev).
+# (Debian's dpkg-dev; CPack also runs file, to find the binaries).
 set(CPACK_GENERATOR DEB)
 set(CPACK_PACKAGE_NAME facet)
 set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})

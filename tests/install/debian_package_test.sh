@@ -1,12 +1,13 @@
 #!/bin/bash
 # Install.DebianPackageListsItsDependencies: cpack -G DEB makes facet_<version>_<arch>.deb whose Depends
 # are the Debian packages of the libraries the program and its modules link (dpkg-shlibdeps), so that
-# apt-get install ./facet_*.deb brings them. Skipped without dpkg-dev (dpkg-shlibdeps).
+# apt-get install ./facet_*.deb brings them. Skipped without dpkg-dev (dpkg-shlibdeps) or file, which
+# CPack runs to find the package's programs and libraries.
 # Usage: debian_package_test.sh BUILD_DIR VERSION
 set -euo pipefail
 build=$1 version=$2
-if ! command -v dpkg-shlibdeps >/dev/null || ! command -v dpkg-deb >/dev/null; then
-    echo "skipped: no dpkg-shlibdeps (apt-get install dpkg-dev)"
+if ! command -v dpkg-shlibdeps >/dev/null || ! command -v dpkg-deb >/dev/null || ! command -v file >/dev/null; then
+    echo "skipped: no dpkg-shlibdeps or file (apt-get install dpkg-dev file)"
     exit 77
 fi
 work=$(mktemp -d "${TMPDIR:-/tmp}/facet-deb.XXXXXX")
