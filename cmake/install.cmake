@@ -48,8 +48,7 @@ if(NOT (FACET_SANITIZE OR FACET_FUZZ))
     set_property(TARGET facet_pipeline APPEND PROPERTY INTERFACE_COMPILE_OPTIONS
                  $<INSTALL_INTERFACE:$<$<CXX_COMPILER_ID:GNU,Clang>:-Wno-psabi>>)
     install(TARGETS ${facet_exported} EXPORT FacetTargets
-            ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
-            INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+            ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
     install(EXPORT FacetTargets NAMESPACE Facet:: DESTINATION ${facet_cmakedir})
     configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/FacetConfig.cmake.in
                                   ${PROJECT_BINARY_DIR}/FacetConfig.cmake INSTALL_DESTINATION ${facet_cmakedir})
