@@ -26,8 +26,10 @@ endforeach()
 # themselves, so they work from here as from the repository.
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/models/ DESTINATION ${facet_datadir}/models)
 install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${facet_docdir})
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/ DESTINATION ${facet_docdir}
-        FILES_MATCHING PATTERN "*.md" PATTERN "*.png" PATTERN "*.svg")
+# The pages with their images and the example files they name (docs/batch's job scripts), laid out as in
+# the repository so that the README's links to docs/… and theirs to ../README.md hold; the man page's
+# source goes to man1 instead.
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/ DESTINATION ${facet_docdir}/docs PATTERN facet.1 EXCLUDE)
 install(FILES ${PROJECT_SOURCE_DIR}/docs/facet.1 DESTINATION ${CMAKE_INSTALL_MANDIR}/man1)
 
 # The libraries a program needs to draw with shaders of its own, load OBJ models and write images:
