@@ -109,8 +109,9 @@ set(CPACK_PACKAGE_CONTACT ${FACET_PACKAGE_MAINTAINER})
 set(CPACK_DEBIAN_PACKAGE_MAINTAINER ${FACET_PACKAGE_MAINTAINER})
 set(CPACK_DEBIAN_PACKAGE_SECTION graphics)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
-# What building against the installed headers needs besides a C++20 compiler (find_package(Facet)).
-set(CPACK_DEBIAN_PACKAGE_SUGGESTS "libglm-dev, libpng-dev, libtinyobjloader-dev, nlohmann-json3-dev")
+# OSMesa: facet compare and facet bench --vs-mesa load it at run time (the rest runs without it). The
+# others: what building against the installed headers needs besides a C++20 compiler (find_package(Facet)).
+set(CPACK_DEBIAN_PACKAGE_SUGGESTS "libosmesa6, libglm-dev, libpng-dev, libtinyobjloader-dev, nlohmann-json3-dev")
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)  # facet_<version>_<architecture>.deb
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 include(CPack)
