@@ -20,12 +20,6 @@ namespace facet {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double millisecondsSince(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
 // The settings of the trade, in order: the baseline, each selected knob at each of its values, the
 // presets; those the baseline already has are left out (their labels in `skipped`).
 std::vector<TradeSetting> tradeSettings(const Scene& baseline, const std::vector<const Knob*>& knobs,
@@ -148,17 +142,26 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
     DrawContext context(options.threads);
     std::filesystem::create_directories(options.outputDir);
 
+    // Milliseconds since the trade began, or options.clockMs's.
+    const auto origin = std::chrono::steady_clock::now();
+    const auto now = [&] {
+        return options.clockMs
+                   ? options.clockMs()
+                   : std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - origin)
+                         .count();
+    };
+
     // The reference: the scene as the user wrote it, drawn exactly. The reference renderer ignores the
     // rasterizer's approximations (it has no depth or colour buffer, composites every transparent
     // surface in depth order, ray-casts the shadows of every light that casts them, map or ray, and
     // uses exact pow, exp, normalisation and Fresnel), so what remains are the scene's own choices:
     // which lights cast shadows, its materials, maps and normals.
-    const auto referenceStart = Clock::now();
+    const double referenceStart = now();
     const PreparedScene referenceScene = prepareScene(baseline);
     ReferenceOptions referenceOptions;
     referenceOptions.samples = options.referenceSamples;
     const LinearImage reference = renderReference(referenceScene, referenceOptions, context.pool);
-    result.referenceMs = millisecondsSince(referenceStart);
+    result.referenceMs = now() - referenceStart;
     const ColorEncoding encoding = referenceScene.encoding;
     writeImage(options.outputDir / "reference.png", reference, encoding);
     if (options.progress)
@@ -189,11 +192,11 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
                 prepareShadows(prepared);  // warm-up: caches, buffers, threads
                 renderFrame(prepared, framebuffer, context, memory);
                 for (int frame = 0; frame < framesThisRound; ++frame) {
-                    const auto start = Clock::now();
+                    const double start = now();
                     prepareShadows(prepared);
-                    shadowMs[k].push_back(millisecondsSince(start));
+                    shadowMs[k].push_back(now() - start);
                     renderFrame(prepared, framebuffer, context, memory);
-                    frameMs[k].push_back(millisecondsSince(start));
+                    frameMs[k].push_back(now() - start);
                 }
                 // Rows are made in settings' order: the knobs' in the first phase, the presets' (the
                 // last settings) in the second; a setting already scored (the baseline again) is only timed.

@@ -29,6 +29,9 @@ struct TradeOptions {
     int referenceSamples = 4;
     std::filesystem::path outputDir;
     bool progress = true;  // "[3/17] --shading gouraud: 12.3 ms" lines on `log`
+    // The clock the reference and the frames are timed with: milliseconds since any fixed moment. Empty:
+    // the steady clock. A test gives each setting known durations through it.
+    std::function<double()> clockMs;
 };
 inline constexpr int kMaxTradeFrames = 1000;
 inline constexpr int kMaxTradeRounds = 100;

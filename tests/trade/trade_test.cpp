@@ -168,6 +168,65 @@ TEST_F(TradeRun, ASettingThatChangesNothingIsFlagged) {
     EXPECT_EQ(rows_[0].at("no_effect"), "0");  // the baseline is not compared with itself
 }
 
+// Each row's times are its own setting's frames: a clock of the test's (TradeOptions::clockMs) advances
+// by a step of each setting's own at every reading, so a frame of setting k (from before its shadows'
+// rebuild to after the draw: two readings after the start) takes 2·step_k ms and the rebuild step_k,
+// in every round and both phases. Catches every row given the baseline's times (median(frameMs[0])),
+// a row's min, max or shadow time taken from another setting's frames, or the clock option ignored.
+TEST(TradeTimes, EachRowReportsItsOwnSettingsFrames) {
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("facet-trade-times-test-" + std::to_string(getpid()));
+    std::filesystem::remove_all(dir);
+    cli::SceneArgs args;
+    args.input = kModel;
+    args.width = 32;
+    args.height = 24;
+    // A distinct step for each setting's words, in the order the trade first asks for them.
+    std::map<std::vector<std::string>, double> steps;
+    std::vector<std::string> current;
+    auto stepOf = [&](const std::vector<std::string>& words) {
+        return steps.emplace(words, 0.5 * double(steps.size() + 1)).first->second;
+    };
+    double now = 1000.0;
+    TradeOptions options;
+    options.knobs = "shading";
+    options.frames = 3;
+    options.rounds = 2;
+    options.threads = 1;
+    options.referenceSamples = 1;
+    options.outputDir = dir;
+    options.progress = false;
+    options.clockMs = [&] {
+        const double reading = now;
+        now += stepOf(current);
+        return reading;
+    };
+    std::ostringstream log;
+    const TradeResult result = runTrade(
+        [&](const std::vector<std::string>& words) {
+            current = words;
+            return cli::sceneWithWords(args, words);
+        },
+        options, log);
+    std::filesystem::remove_all(dir);
+    // The baseline, flat, Gouraud, the fast and best presets (phong and the default preset are skipped).
+    ASSERT_EQ(result.rows.size(), 5u);
+    std::vector<double> medians;
+    for (const TradeRow& row : result.rows) {
+        SCOPED_TRACE(row.setting.knob + " " + row.setting.value);
+        ASSERT_EQ(steps.count(row.setting.words), 1u);
+        const double step = steps.at(row.setting.words);
+        EXPECT_DOUBLE_EQ(row.msMedian, 2.0 * step);
+        EXPECT_DOUBLE_EQ(row.msMin, 2.0 * step);
+        EXPECT_DOUBLE_EQ(row.msMax, 2.0 * step);
+        EXPECT_DOUBLE_EQ(row.msShadows, step);
+        medians.push_back(row.msMedian);
+    }
+    std::sort(medians.begin(), medians.end());
+    EXPECT_EQ(std::unique(medians.begin(), medians.end()), medians.end());  // five different times
+    EXPECT_DOUBLE_EQ(result.referenceMs, steps.at({}));  // the reference: one reading, the baseline's step
+}
+
 // Every knob's every value is a command line `facet render` accepts (a renamed flag or value fails
 // here), and reaches the scene so that the knob reads it back (what the trade's skipping relies on).
 TEST(TradeKnobs, EverySettingIsAcceptedByTheRenderParserAndReachesTheScene) {
