@@ -2,8 +2,10 @@
 // say, checked against numbers computed by hand here. Each test names the one-line break it catches.
 #include "step/trace.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <optional>
 #include <set>
 #include <string>
@@ -362,6 +364,128 @@ TEST_F(StepTraceTest, ReversedZClipsAtTheReversedNearPlane) {
     const Screen* window = screenOf(trace.walk, "window");
     ASSERT_NE(window, nullptr);
     EXPECT_TRUE(contains(window->text, "z_w = n + z_ndc·(f − n)")) << window->text;
+}
+
+// The three numbers of "(a, b, c)" right after `marker` in `text`; empty when the marker is missing.
+std::vector<double> tripleAfter(const std::string& text, const std::string& marker) {
+    const std::size_t at = text.find(marker);
+    if (at == std::string::npos) return {};
+    const char* p = text.c_str() + at + marker.size();
+    if (*p++ != '(') return {};
+    std::vector<double> values;
+    for (int i = 0; i < 3; ++i) {
+        char* end = nullptr;
+        values.push_back(std::strtod(p, &end));
+        if (end == p || *end != (i < 2 ? ',' : ')')) return {};
+        p = end + 1;
+    }
+    return values;
+}
+
+// The number ending the line that begins with `marker` ("  λ0 = 120 / 345 = 0.347826"): what follows
+// the line's last "= ".
+std::optional<double> lineValue(const std::string& text, const std::string& marker) {
+    const std::size_t at = text.find(marker);
+    if (at == std::string::npos) return std::nullopt;
+    const std::string line = text.substr(at, text.find('\n', at) - at);
+    return std::strtod(line.c_str() + line.rfind("= ") + 2, nullptr);
+}
+
+// A screen's printed λ and λ' (or μ) against the test's own: the corners in the order of the printed λ
+// (the setup may exchange two), then each printed λ'_i within `tolerance` of the lecture's value.
+void expectPrintedWeights(const std::vector<double>& printedLambda, const std::vector<double>& printedPrime,
+                          const glm::dvec3& lambda, const glm::dvec3& prime, double tolerance) {
+    ASSERT_EQ(printedLambda.size(), 3u);
+    ASSERT_EQ(printedPrime.size(), 3u);
+    int order[3] = {0, 1, 2};
+    bool matched = false;
+    do {
+        matched = true;
+        for (int i = 0; i < 3; ++i)
+            matched = matched && std::abs(printedLambda[i] - lambda[order[i]]) <= tolerance;
+    } while (!matched && std::next_permutation(order, order + 3));
+    ASSERT_TRUE(matched) << "printed λ (" << printedLambda[0] << ", " << printedLambda[1] << ", "
+                         << printedLambda[2] << "), computed (" << lambda.x << ", " << lambda.y << ", "
+                         << lambda.z << ")";
+    for (int i = 0; i < 3; ++i)
+        EXPECT_NEAR(printedPrime[i], prime[order[i]], tolerance) << i;
+}
+
+// A triangle slanting away from the eye (its corners at w = 2, 5 and 9), Gouraud-shaded: every screen
+// that prints the perspective-correct weights prints the lecture's λ'_i = (λ_i/w_i) / Σ_j (λ_j/w_j),
+// computed here from the corners' window positions (snapped to 1/256 pixel, as the rasterizer does)
+// and their w: the pixel history's λ', the interpolation screen's λ' and the lighting screen's μ. The
+// affine weights λ differ from them by more than 0.05 here. Catches any of the three printing the
+// screen-space λ (or weights from the wrong corners' 1/w) as the perspective-correct ones: views.cpp's
+// history and interpolation screens, shading_view.cpp's Gouraud mix.
+TEST_F(StepTraceTest, PerspectiveWeightsOnEveryScreenAreTheLecturesFromTheCornersW) {
+    const glm::dvec3 corners[3] = {{-1.2, -0.9, 3.0}, {2.0, -1.0, 0.0}, {0.0, 1.5, -4.0}};
+    Scene scene = sceneOf("v -1.2 -0.9 3\nv 2 -1 0\nv 0 1.5 -4\nf 1 2 3\n");
+    scene.lighting.shading = ShadingFrequency::Gouraud;
+    const PreparedScene prepared = prepareScene(scene);
+    DrawContext context(1);
+    const glm::dmat4 clipFromWorld = prepared.camera.clipFromViewExact * prepared.camera.viewFromWorldExact;
+    glm::dvec2 window[3];
+    double w[3];
+    for (int i = 0; i < 3; ++i) {
+        const glm::dvec4 clip = clipFromWorld * glm::dvec4(corners[i], 1.0);
+        w[i] = clip.w;
+        window[i] = glm::dvec2(std::llround((clip.x / clip.w + 1) * 0.5 * 64 * 256) / 256.0,
+                               std::llround((1 - clip.y / clip.w) * 0.5 * 48 * 256) / 256.0);
+    }
+    EXPECT_NEAR(w[0], 2.0, 1e-9);
+    EXPECT_NEAR(w[2], 9.0, 1e-9);
+    // The pixel of the world-space centroid (whose screen-space λ is not (1/3, 1/3, 1/3)).
+    const glm::dvec4 centroid = clipFromWorld * glm::dvec4((corners[0] + corners[1] + corners[2]) / 3.0, 1.0);
+    const int px = int((centroid.x / centroid.w + 1) * 0.5 * 64);
+    const int py = int((1 - centroid.y / centroid.w) * 0.5 * 48);
+    const glm::dvec2 centre(px + 0.5, py + 0.5);
+    const auto area = [](glm::dvec2 a, glm::dvec2 b, glm::dvec2 c) {
+        return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+    };
+    const double whole = area(window[0], window[1], window[2]);
+    glm::dvec3 lambda, prime;
+    for (int i = 0; i < 3; ++i)
+        lambda[i] = area(centre, window[(i + 1) % 3], window[(i + 2) % 3]) / whole;
+    const double invW = lambda[0] / w[0] + lambda[1] / w[1] + lambda[2] / w[2];
+    for (int i = 0; i < 3; ++i)
+        prime[i] = lambda[i] / w[i] / invW;
+    EXPECT_GT(std::max({std::abs(prime[0] - lambda[0]), std::abs(prime[1] - lambda[1]),
+                        std::abs(prime[2] - lambda[2])}),
+              0.05);
+
+    StepRequest request;
+    request.pixel = std::pair(px, py);
+    const StepTrace trace = traceStep(prepared, context, request);
+    ASSERT_TRUE(trace.shading);
+    ASSERT_TRUE(trace.shading->weightsMatchCorners);  // unclipped: the μ line is printed
+
+    // Printed to 6 significant digits ("%.6g"); the pipeline's float arithmetic adds a little.
+    const Screen* history = screenOf(trace.walk, "history");
+    ASSERT_NE(history, nullptr);
+    {
+        SCOPED_TRACE(history->text);
+        expectPrintedWeights(tripleAfter(history->text, "  λ  = "), tripleAfter(history->text, "  λ' = "),
+                             lambda, prime, 2e-5);
+    }
+    const Screen* interpolate = screenOf(trace.walk, "interpolate");
+    ASSERT_NE(interpolate, nullptr);
+    {
+        SCOPED_TRACE(interpolate->text);
+        std::vector<double> printedLambda;
+        for (const char* marker : {"  λ0 = ", "  λ1 = ", "  λ2 = "})
+            if (const std::optional<double> value = lineValue(interpolate->text, marker))
+                printedLambda.push_back(*value);
+        expectPrintedWeights(printedLambda, tripleAfter(interpolate->text, "  λ' = "), lambda, prime, 2e-5);
+    }
+    // The lighting screen prints 4 significant digits ("%.4g").
+    const Screen* lighting = screenOf(trace.walk, "lighting");
+    ASSERT_NE(lighting, nullptr);
+    {
+        SCOPED_TRACE(lighting->text);
+        expectPrintedWeights(tripleAfter(lighting->text, "  λ = (λ0, λ1, λ2) = "),
+                             tripleAfter(lighting->text, "  μi = (λi/wi)/(1/w): μ = "), lambda, prime, 2e-4);
+    }
 }
 
 // With no --pixel, the covered pixel nearest the centre; with no --triangle, the one that gave it its
