@@ -274,5 +274,82 @@ TEST_F(SceneRenderTest, WrongChoiceListsTheTablesNames) {
     EXPECT_EQ(blend.find(std::string(nameOf(BlendMode::Replace))), std::string::npos) << blend;
 }
 
+// ---- Eye space scaled for huge and tiny scenes --------------------------------------------------------
+
+// Case `kind` of a scene at scale `s`: an 8 × 8 ground at y = 0 and a unit cube on it, seen from
+// (1.5, 3, 6), with every length of the scene file times s: the objects' scale and place, the camera,
+// light positions, fog start and end; and what is per length divided by it: c1 by s, c2 by s², fog
+// density by s. The renderer draws scenes of 2^20 and 2^-20 units in an eye space rescaled by
+// Camera::viewScale (a power of two near 1/size), so such a scene must look as at scale 1.
+nlohmann::json scaledScene(const std::string& kind, double s) {
+    using Json = nlohmann::json;
+    const auto at = [s](double x, double y, double z) { return Json::array({x * s, y * s, z * s}); };
+    Json scene = {
+        {"width", 48},
+        {"height", 36},
+        {"background", {0.6, 0.65, 0.7}},
+        {"ambient", {0.1, 0.1, 0.1}},
+        {"camera", {{"eye", at(1.5, 3, 6)}, {"target", at(0, 0.3, 0)}, {"near", 0.5 * s}, {"far", 40 * s}}},
+        {"objects",
+         {{{"model", FACET_SOURCE_DIR "/models/fog-and-glass/ground.obj"}, {"scale", 0.2 * s}},
+          {{"model", FACET_CUBE}, {"translate", at(0, 0.5, 0)}, {"scale", s}}}}};
+    Json light = {{"type", "point"}, {"position", at(-1, 2.5, 1.5)}};
+    if (kind == "linear attenuation") light["attenuation"] = {0.2, 0.6 / s, 0};
+    if (kind == "quadratic attenuation") light["attenuation"] = {0.2, 0, 0.3 / (s * s)};
+    if (kind == "camera-space light") {
+        // Just right of and above the cube, as the camera sees it, falling off over the scene.
+        light = {{"type", "point"},
+                 {"space", "camera"},
+                 {"position", at(0.8, 0.4, -4)},
+                 {"attenuation", {0.2, 0.5 / s, 0}}};
+    }
+    if (kind == "ray-cast shadow")
+        light = {{"type", "directional"}, {"direction", {-1, -1.5, -0.5}}, {"shadows", "ray"}};
+    if (kind == "linear fog") scene["fog"] = {{"mode", "linear"}, {"start", 5.5 * s}, {"end", 9 * s}};
+    if (kind == "linear fog, bounds") scene["fog"] = {{"mode", "linear"}};  // start and end from the bounds
+    if (kind == "exp fog") scene["fog"] = {{"mode", "exp"}, {"density", 0.2 / s}};
+    if (kind == "exp2 fog") scene["fog"] = {{"mode", "exp2"}, {"density", 0.12 / s}, {"distance", "radial"}};
+    scene["lights"] = Json::array({light});
+    return scene;
+}
+
+// Each eye-space length the renderer rescales, in a scene of 2^20 and one of 2^-20 units scaled
+// together with it: the image is the one at scale 1. Breaks caught (renderer.cpp), one case each:
+// fog start, end or density left in world units (linear fog, its start and end from the bounds, exp
+// and exp² fog), a light's c1 or c2 not divided by viewScale (linear and quadratic attenuation), a
+// camera-space light's position not scaled into eye space, and the shadow rays' offset from a scene
+// extent in world units (ray-cast shadow: offset past the cube, the shadow gone); also the projection's
+// near or far plane left in world units (scene/camera.cpp), which every case catches.
+TEST_F(SceneRenderTest, ScaledScenesLookAsAtUnitScale) {
+    const auto render = [&](const nlohmann::json& scene) {
+        const fs::path path = folder_ / "scene.json";
+        std::ofstream(path) << scene.dump();
+        const PreparedScene prepared = prepareScene(loadScene(path));
+        Framebuffer framebuffer(prepared.scene.width, prepared.scene.height);
+        DrawContext context(1);
+        renderFrame(prepared, framebuffer, context);
+        return toImage(framebuffer);
+    };
+    for (const char* kind : {"linear fog", "linear fog, bounds", "exp fog", "exp2 fog", "linear attenuation",
+                             "quadratic attenuation", "camera-space light", "ray-cast shadow"}) {
+        const LinearImage unit = render(scaledScene(kind, 1.0));
+        for (const double s : {0x1p20, 0x1p-20}) {
+            SCOPED_TRACE(std::string(kind) + " at scale 2^" + std::to_string(std::lround(std::log2(s))));
+            const LinearImage scaled = render(scaledScene(kind, s));
+            ASSERT_EQ(scaled.pixels.size(), unit.pixels.size());
+            float worst = 0.0f;
+            std::size_t worstAt = 0;
+            for (std::size_t i = 0; i < unit.pixels.size(); ++i) {
+                const float d = glm::length(scaled.pixels[i] - unit.pixels[i]);
+                if (!(d <= worst)) {
+                    worst = d;
+                    worstAt = i;
+                }
+            }
+            EXPECT_LE(worst, 1e-3f) << "pixel " << worstAt % 48 << ", " << worstAt / 48;
+        }
+    }
+}
+
 }  // namespace
 }  // namespace facet
