@@ -2,6 +2,7 @@
 // at (0, 0, 5) looking down −z at triangles near z = 0. Each test names the one-line break it catches.
 #include "step/stage_images.h"
 
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
@@ -225,6 +226,55 @@ TEST_F(StageImagesTest, FogImagesAppearOnlyWithFogAndShowTheFogFactor) {
     const ivec2 pixel = pixelOf(prepared, kLeftCentre);
     EXPECT_NEAR(rgbAt(find(images, "fog-factor"), pixel).r, 0.5f, 1e-6f);
     EXPECT_NE(rgbAt(find(images, "before-fog"), pixel), rgbAt(find(images, "final"), pixel));
+}
+
+// The number printed right after `marker` in `text` (the captions print 4 significant digits); NaN
+// when the marker is missing.
+double valueAfter(const std::string& text, const std::string& marker) {
+    const std::size_t at = text.find(marker);
+    if (at == std::string::npos) return std::nan("");
+    return std::strtod(text.c_str() + at + marker.size(), nullptr);
+}
+
+// A scene of 2^20 units (a plane 5·2^20 from the eye, linear fog from 3·2^20 to 7·2^20, exp and exp² fog
+// of density 0.2/2^20) is drawn in an eye space rescaled by Camera::viewScale, but the captions speak the
+// scene's own units: the fog's start, end and density as the scene gives them, the depth image's
+// distances 5·2^20. Breaks: stage_images.cpp's fog start, end or density printed in eye-space units
+// (its division or multiplication by viewScale dropped), or the depth image's distances not divided by
+// viewScale.
+TEST_F(StageImagesTest, CaptionsOfAScaledSceneSpeakTheScenesUnits) {
+    const double s = 0x1p20;
+    const auto vertex = [s](double x, double y) {
+        return "v " + std::to_string(x * s) + " " + std::to_string(y * s) + " 0\n";
+    };
+    Scene scene = sceneOf(vertex(-2, -1) + vertex(2, -1) + vertex(2, 1) + vertex(-2, 1) + "f 1 2 3 4\n");
+    scene.camera.eye = vec3(0.0f, 0.0f, float(5 * s));
+    scene.camera.near = float(s);
+    scene.camera.far = float(10 * s);
+    scene.fog.mode = FogMode::Linear;
+    scene.fog.start = float(3 * s);
+    scene.fog.end = float(7 * s);
+    const PreparedScene prepared = prepareScene(scene);
+    ASSERT_NE(prepared.camera.viewScale, 1.0);
+    const std::vector<Rendered> images = renderAll(prepared, {.buildFrames = 0});
+    const Rendered fog = find(images, "fog-factor");
+    EXPECT_NEAR(valueAfter(fog.image.description, "with start ") / (3 * s), 1.0, 1e-3)
+        << fog.image.description;
+    EXPECT_NEAR(valueAfter(fog.image.description, "and end ") / (7 * s), 1.0, 1e-3) << fog.image.description;
+    EXPECT_NEAR(rgbAt(fog, pixelOf(prepared, vec3(0.0f))).r, 0.5f, 1e-5f);  // (7 − 5)/(7 − 3)
+    const Rendered depth = find(images, "depth");
+    EXPECT_NEAR(valueAfter(depth.image.title, "white ") / (5 * s), 1.0, 1e-3) << depth.image.title;
+    EXPECT_NEAR(valueAfter(depth.image.title, "dark grey ") / (5 * s), 1.0, 1e-3) << depth.image.title;
+
+    scene.fog.start.reset();
+    scene.fog.end.reset();
+    scene.fog.density = float(0.2 / s);
+    for (const FogMode mode : {FogMode::Exponential, FogMode::ExponentialSquared}) {
+        scene.fog.mode = mode;
+        const std::string caption =
+            find(renderAll(prepareScene(scene), {.buildFrames = 0}), "fog-factor").image.description;
+        EXPECT_NEAR(valueAfter(caption, "with density ") / (0.2 / s), 1.0, 1e-3) << caption;
+    }
 }
 
 // A transparent triangle (A, opacity 0.5) in front of an opaque one (B). Break: counting the fragments
