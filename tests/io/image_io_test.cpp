@@ -22,23 +22,15 @@
 #include "io/image_io.h"
 #include "io/stored_bytes.h"
 #include "pipeline/color.h"
+#include "support/temp_folder.h"
 
 namespace facet {
 namespace {
 
 namespace fs = std::filesystem;
 
-class ImageIoTest : public ::testing::Test {
+class ImageIoTest : public testing_support::TempFolderTest {
   protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        folder_ = fs::temp_directory_path() /
-                  ("facet-imageio-test-" + std::to_string(::getpid()) + "-" + info->name());
-        fs::remove_all(folder_);
-        fs::create_directories(folder_);
-    }
-    void TearDown() override { fs::remove_all(folder_); }
-
     // Names of the entries in `folder` (hidden ones included, so a stray temporary file shows).
     static std::set<std::string> listing(const fs::path& folder) {
         std::set<std::string> names;
@@ -51,8 +43,6 @@ class ImageIoTest : public ::testing::Test {
         std::ifstream in(path, std::ios::binary);
         return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
     }
-
-    fs::path folder_;
 };
 
 // A gradient over the whole [0,1] range in each channel, with alpha varying too.

@@ -4,8 +4,6 @@
 
 #include "io/obj_import.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -23,6 +21,7 @@
 #include <gtest/gtest.h>
 
 #include "base/errors.h"
+#include "support/temp_folder.h"
 
 namespace facet {
 namespace {
@@ -31,28 +30,12 @@ namespace fs = std::filesystem;
 
 const fs::path kModels = FACET_SHARED_MODELS;
 
-// Each test gets its own folder, so tests may run in parallel (ctest -j) without sharing files.
+// Each test gets its own folder (support/temp_folder.h), so tests may run in parallel (ctest -j)
+// without sharing files.
 class ObjImport : public ::testing::Test {
   protected:
-    void SetUp() override {
-        const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
-        dir_ = fs::temp_directory_path() / ("facet_obj_import_" + test + "_" + std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override {
-        std::error_code error;
-        fs::remove_all(dir_, error);
-    }
-
     // Writes `text` byte for byte (no newline translation), creating folders as needed.
-    fs::path write(const std::string& name, const std::string& text) {
-        const fs::path path = dir_ / name;
-        fs::create_directories(path.parent_path());
-        std::ofstream out(path, std::ios::binary);
-        out << text;
-        return path;
-    }
+    fs::path write(const std::string& name, const std::string& text) { return folder_.write(name, text); }
 
     // The InputError message loadObj throws for `path`, or "" if it loads.
     static std::string errorOf(const fs::path& path) {
@@ -64,7 +47,8 @@ class ObjImport : public ::testing::Test {
         return "";
     }
 
-    fs::path dir_;
+    testing_support::TempFolder folder_;
+    const fs::path dir_ = folder_.path();
 };
 
 void expectVec3(glm::vec3 actual, glm::vec3 expected, float tolerance = 1e-6f) {

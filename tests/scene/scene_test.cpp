@@ -3,7 +3,6 @@
 // Scene files are written into a fresh folder under the system temp directory per test.
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <fstream>
 #include <functional>
 #include <future>
@@ -29,7 +28,7 @@ namespace facet {
 namespace {
 
 namespace fs = std::filesystem;
-using testing_support::errorWithinASecond;
+using testing_support::errorWithoutOpening;
 
 // A fresh temporary folder holding the scene files and (empty) model files of one test.
 class SceneTest : public testing_support::TempFolderTest {
@@ -1384,8 +1383,8 @@ TEST_F(SceneTest, FifoIsRefusedByEveryCommandWithoutOpeningIt) {
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
     const std::string expected =
         fifo.string() + ": is not a regular file (a device, a pipe or a socket), not a scene file";
-    EXPECT_EQ(errorWithinASecond(fifo, [&] { loadScene(fifo); }), expected);
-    EXPECT_EQ(errorWithinASecond(fifo, [&] { loadSceneOrModel(fifo); }), expected) << "render, compare";
+    EXPECT_EQ(errorWithoutOpening(fifo, [&] { loadScene(fifo); }), expected);
+    EXPECT_EQ(errorWithoutOpening(fifo, [&] { loadSceneOrModel(fifo); }), expected) << "render, compare";
 }
 
 // A device never ends (/dev/zero) or reads as empty (/dev/null): refused by its type, not by its text.
@@ -1422,18 +1421,17 @@ TEST_F(SceneTest, SceneFileLargerThan64MiBIsRefusedUnread) {
     }
 }
 
-// The light count is checked as soon as "lights" is seen, and parsing itself stays linear: nlohmann's
-// callback parser made 100,000 lights take seconds.
-TEST_F(SceneTest, HundredThousandLightsAreRefusedWithinASecond) {
-    std::string lights = "{}";
+// The light count is checked as soon as "lights" is seen, before any light is read: every light here
+// is wrong (an unknown key), so reading even the first would give another message. Breaks if the lights
+// are read (100,000 of them) before their count is checked. The time of parsing a large scene file is a
+// benchmark's matter, not a test's.
+TEST_F(SceneTest, HundredThousandLightsAreRefusedBeforeAnyIsRead) {
+    std::string lights = R"({"not_a_light_key": 1})";
     for (int i = 1; i < 100000; ++i)
-        lights += ", {}";
-    const auto start = std::chrono::steady_clock::now();
-    const std::string message = errorOf(R"({"model": "m.obj", "lights": [)" + lights + "]}");
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    EXPECT_NE(message.find(R"("lights" has 100000 lights, at most 8 are supported)"), std::string::npos)
-        << message;
-    EXPECT_LT(seconds, 1.0);
+        lights += R"(, {"not_a_light_key": 1})";
+    EXPECT_EQ(errorOf(R"({"model": "m.obj", "lights": [)" + lights + "]}"),
+              (folder_ / "scene.json").string() +
+                  R"(: "lights" has 100000 lights, at most 8 are supported (as in OpenGL 1.x))");
 }
 
 // Breaks if the object count is checked after reading every object (or not at all).

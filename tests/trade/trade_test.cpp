@@ -5,17 +5,17 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
 
 #include <gtest/gtest.h>
 
 #include "base/errors.h"
 #include "cli/render_command.h"
 #include "cli/trade_command.h"
+#include "support/temp_folder.h"
 #include "trade/knobs.h"
 #include "trade/metrics.h"
 #include "trade/pareto.h"
@@ -49,9 +49,10 @@ std::vector<std::string> splitCsvLine(const std::string& line) {  // the trade's
 class TradeRun : public ::testing::Test {
   protected:
     static void SetUpTestSuite() {
-        // ctest runs each test in its own process, two at a time: a folder per process.
-        dir_ = std::filesystem::temp_directory_path() / ("facet-trade-test-" + std::to_string(getpid()));
-        std::filesystem::remove_all(dir_);
+        // The suite's folder (ctest runs each test in its own process, two at a time); the trade makes
+        // its output folder in it.
+        folder_ = std::make_unique<testing_support::TempFolder>();
+        dir_ = folder_->path() / "trade";
         CLI::App app;
         cli::TradeArgs args;
         cli::addTradeCommand(app, args);
@@ -79,7 +80,7 @@ class TradeRun : public ::testing::Test {
             rows_.push_back(row);
         }
     }
-    static void TearDownTestSuite() { std::filesystem::remove_all(dir_); }
+    static void TearDownTestSuite() { folder_.reset(); }
     static const std::map<std::string, std::string>* row(const std::string& flags) {
         for (const auto& r : rows_)
             if (r.at("flags") == flags) return &r;
@@ -88,6 +89,7 @@ class TradeRun : public ::testing::Test {
     static double number(const std::map<std::string, std::string>& row, const std::string& column) {
         return std::stod(row.at(column));
     }
+    static inline std::unique_ptr<testing_support::TempFolder> folder_;
     static inline std::filesystem::path dir_;
     static inline std::vector<std::string> header_;
     static inline std::vector<std::map<std::string, std::string>> rows_;
@@ -174,9 +176,8 @@ TEST_F(TradeRun, ASettingThatChangesNothingIsFlagged) {
 // in every round and both phases. Catches every row given the baseline's times (median(frameMs[0])),
 // a row's min, max or shadow time taken from another setting's frames, or the clock option ignored.
 TEST(TradeTimes, EachRowReportsItsOwnSettingsFrames) {
-    const std::filesystem::path dir =
-        std::filesystem::temp_directory_path() / ("facet-trade-times-test-" + std::to_string(getpid()));
-    std::filesystem::remove_all(dir);
+    const testing_support::TempFolder folder;
+    const std::filesystem::path dir = folder.path() / "trade";
     cli::SceneArgs args;
     args.input = kModel;
     args.width = 32;
@@ -208,7 +209,6 @@ TEST(TradeTimes, EachRowReportsItsOwnSettingsFrames) {
             return cli::sceneWithWords(args, words);
         },
         options, log);
-    std::filesystem::remove_all(dir);
     // The baseline, flat, Gouraud, the fast and best presets (phong and the default preset are skipped).
     ASSERT_EQ(result.rows.size(), 5u);
     std::vector<double> medians;
