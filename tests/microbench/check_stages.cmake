@@ -2,7 +2,7 @@
 # reports every pipeline stage's benchmark: a stage dropped from the binary, or one that fails, fails
 # this test. Run by ctest as Microbench.ReportsEveryStage with -DMICROBENCH=<the binary>.
 set(stages VertexStage Clip Setup Rasterize Interpolate DepthTest FragmentShader TextureFilter Fog Blend
-           SupersampleResolve MsaaResolve)
+           SupersampleResolve MsaaResolve FragmentLists)
 execute_process(COMMAND ${MICROBENCH} --benchmark_min_time=0.001 --benchmark_format=json
                 OUTPUT_VARIABLE report ERROR_VARIABLE errors RESULT_VARIABLE status)
 if(NOT status EQUAL 0)

@@ -6,8 +6,6 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
-#include <chrono>
-#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <new>
@@ -556,71 +554,6 @@ TEST(FragmentLists, Printing) {
     EXPECT_EQ(fate.str(), "stored in the pixel's fragment list; dropped: its tile's fragment pool is full");
     stats << FragmentListStats{12, 5, 3, 0, 1000};
     EXPECT_EQ(stats.str(), "12 fragments in 5 pixel lists (longest 3), 1000 bytes held");
-}
-
-// Time and memory of the lists against sorted blending at 1920×1080 with eight full-screen transparent
-// layers (submitted in a shuffled order for the lists, far to near for blending). Not a check: run it
-// with --gtest_also_run_disabled_tests --gtest_filter='*FullHd*'.
-TEST(FragmentListsBenchmark, DISABLED_FullHdEightLayers) {
-    using Clock = std::chrono::steady_clock;
-    auto ms = [](Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); };
-    constexpr int kLayers = 8, kFrames = 7;
-    Framebuffer fb(1920, 1080);
-    std::vector<Quad> layers;
-    for (int k = 0; k < kLayers; ++k)  // far to near
-        layers.push_back(
-            Quad{0, 0, 1920, 1080, 0.8f - 0.2f * static_cast<float>(k),
-                 vec4(0.1f * static_cast<float>(k), 0.5f, 1.0f - 0.1f * static_cast<float>(k), 0.3f)});
-    std::vector<std::vector<FlatColorShader::Attributes>> sorted(kLayers), shuffled(kLayers);
-    for (int k = 0; k < kLayers; ++k)
-        appendQuad(fb, layers[static_cast<std::size_t>(k)], sorted[static_cast<std::size_t>(k)]);
-    const int order[kLayers] = {3, 7, 0, 5, 1, 6, 2, 4};
-    for (int k = 0; k < kLayers; ++k)
-        shuffled[static_cast<std::size_t>(k)] = sorted[static_cast<std::size_t>(order[k])];
-    const std::vector<std::uint32_t> indices = {0, 1, 2, 3, 4, 5};
-    auto drawLayers = [&](const std::vector<std::vector<FlatColorShader::Attributes>>& all,
-                          const DrawState& state, DrawContext& context) {
-        for (const auto& v : all)
-            draw<FlatColorShader>(state, {}, std::span<const FlatColorShader::Attributes>(v),
-                                  std::span<const std::uint32_t>(indices), fb, context);
-    };
-    for (int threads : {1, 2}) {
-        DrawContext context(threads);
-        std::vector<double> blendMs, appendMs, resolveMs, clearMs;
-        FragmentListStats stats;
-        std::vector<vec4> blended;
-        for (int frame = 0; frame < kFrames; ++frame) {
-            fb.clear(vec4(0, 0, 0, 1), 1.0f, context.pool);
-            auto t0 = Clock::now();
-            drawLayers(sorted, transparentState(fb, BlendMode::Over, FragmentOutput::Blend), context);
-            blendMs.push_back(ms(Clock::now() - t0));
-            blended = fb.colorPixels();
-
-            fb.clear(vec4(0, 0, 0, 1), 1.0f, context.pool);
-            t0 = Clock::now();
-            drawLayers(shuffled, transparentState(fb), context);
-            const auto t1 = Clock::now();
-            stats = resolveFragmentLists(fb, context.pool);
-            const auto t2 = Clock::now();
-            appendMs.push_back(ms(t1 - t0));
-            resolveMs.push_back(ms(t2 - t1));
-            if (frame + 1 < kFrames) {
-                const auto t3 = Clock::now();
-                fb.fragmentLists().clear(context.pool);
-                clearMs.push_back(ms(Clock::now() - t3));
-            }
-        }
-        EXPECT_TRUE(sameBytes(fb.colorPixels(), blended));
-        auto median = [](std::vector<double> v) {
-            std::sort(v.begin(), v.end());
-            return v[v.size() / 2];
-        };
-        std::printf(
-            "%d thread%s: sorted blending %.1f ms; lists: append %.1f ms + resolve %.1f ms (clear %.1f ms); "
-            "%s\n",
-            threads, threads == 1 ? "" : "s", median(blendMs), median(appendMs), median(resolveMs),
-            median(clearMs), (std::ostringstream() << stats).str().c_str());
-    }
 }
 
 }  // namespace
