@@ -1,6 +1,6 @@
 // The frame's code compiled once per instruction set (render/frame_kernels.h): every copy this CPU can
 // run draws the same bytes, renderFrame runs the copy chosen, and a copy the CPU cannot run is refused.
-// (tests/render/other_cpus_test.sh runs the program on emulated CPUs without AVX and without AVX-512,
+// (tests/cli/other_cpus_test.sh runs the program on emulated CPUs without AVX and without AVX-512,
 // and checks there that FACET_ISA cannot force a copy the CPU lacks.)
 #include <cstdlib>
 #include <cstring>

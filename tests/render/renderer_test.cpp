@@ -19,12 +19,12 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
-#include "end_to_end/test_files.h"
+#include "support/temp_folder.h"
 
 namespace facet {
 namespace {
 
-using testing::TempDir;
+using testing_support::TempFolder;
 
 const std::filesystem::path kModels = std::filesystem::path(FACET_SOURCE_DIR) / "models";
 
@@ -354,7 +354,7 @@ TEST(Renderer, FrameObserverSeesTheDrawsOwnTriangleNumbers) {
 // (OBJ texture coordinates: v = 1 is the top row of the image file). Lit head on with Kd 1 and no
 // specular, the top of the square is red and its bottom blue; a texture read upside down swaps them.
 TEST(Renderer, TextureTopRowIsDrawnAtTheTop) {
-    TempDir dir;
+    TempFolder dir;
     LinearImage texture;
     texture.width = 2;
     texture.height = 4;

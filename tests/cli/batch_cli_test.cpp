@@ -5,20 +5,20 @@
 
 #include <gtest/gtest.h>
 
-#include "test_files.h"
+#include "run_facet.h"
 
 namespace facet {
 namespace {
 
-using testing::runFacet;
-using testing::RunResult;
-using testing::TempDir;
+using testing_support::runFacet;
+using testing_support::RunResult;
+using testing_support::TempFolder;
 
 // Standard error redirected to a file is no terminal: no progress line (no carriage return) in it,
 // only the summary and the failure; a line per image on standard output; status 1 for the broken
 // input. Breaks if renderBatch takes every standard error for a terminal, or returns 0 with a failure.
 TEST(BatchCli, ALogGetsNoProgressLineAndAFailureExitsOne) {
-    TempDir dir;
+    TempFolder dir;
     const std::filesystem::path models = std::filesystem::path(FACET_SOURCE_DIR) / "models";
     const std::filesystem::path broken = dir.write("broken.obj", "v 0 0 0\nv 1 0 0\nf 1 2 9\n");
     const RunResult run =

@@ -10,16 +10,16 @@
 #include <gtest/gtest.h>
 
 #include "io/image_io.h"
+#include "run_facet.h"
 #include "support/mesa_fixture.h"
-#include "test_files.h"
 
 namespace facet {
 namespace {
 
-using testing::readText;
-using testing::runFacet;
-using testing::RunResult;
-using testing::TempDir;
+using testing_support::readText;
+using testing_support::runFacet;
+using testing_support::RunResult;
+using testing_support::TempFolder;
 
 int lineCount(const std::string& text) {
     int n = 0;
@@ -35,7 +35,7 @@ std::string quoted(const std::filesystem::path& p) {
 }
 
 TEST(Cli, RendersABundledModelToPng) {
-    TempDir dir;
+    TempFolder dir;
     const auto png = dir.path() / "spot.png";
     const RunResult run = runFacet(
         "render " + quoted(std::filesystem::path(FACET_SOURCE_DIR) / "models/spot/spot_triangulated.obj") +
@@ -59,7 +59,7 @@ TEST(Cli, RendersABundledModelToPng) {
 // record (LD_DEBUG=files) says which libraries the process opened. Breaks caught: facet linking
 // OpenImageIO or OpenCV again, or PNG textures or outputs sent through OpenImageIO.
 TEST(Cli, OpenImageIOIsLoadedOnlyForFormatsThatNeedIt) {
-    TempDir dir;
+    TempFolder dir;
     const std::string model =
         quoted(std::filesystem::path(FACET_SOURCE_DIR) / "models/spot/spot_triangulated.obj");
     ::setenv("LD_DEBUG", "files", 1);
@@ -86,7 +86,7 @@ TEST(Cli, OpenImageIOIsLoadedOnlyForFormatsThatNeedIt) {
 // Breaks if the variable is ignored, or checked only when a frame is drawn (a batch would repeat the
 // error per model).
 TEST(Cli, FacetIsaForcesTheFrameCodeAndABadOneIsOneError) {
-    TempDir dir;
+    TempFolder dir;
     ::setenv("FACET_ISA", "baseline", 1);
     const RunResult version = runFacet("--version", dir);
     ::setenv("FACET_ISA", "sse9", 1);
@@ -107,7 +107,7 @@ TEST(Cli, FacetIsaForcesTheFrameCodeAndABadOneIsOneError) {
 // The same render on 1, 2 and 7 threads gives the same image: every float of every pixel. (The EXR
 // files' bytes may differ: OpenEXR's writer does not promise identical files, only identical pixels.)
 TEST(Cli, ThreadCountDoesNotChangeTheImage) {
-    TempDir dir;
+    TempFolder dir;
     const auto model = std::filesystem::path(FACET_SHARED_MODELS) / "stanford-bunny/stanford-bunny.obj";
     if (!std::filesystem::exists(model)) GTEST_SKIP() << model << " is not here";
     std::vector<glm::vec4> reference;
@@ -127,7 +127,7 @@ TEST(Cli, ThreadCountDoesNotChangeTheImage) {
 // --components writes the four terms next to the output; over a black background they add up to the
 // image itself (EXR keeps the linear values). --only writes one of them as the output.
 TEST(Cli, ComponentImagesAddUpToTheImage) {
-    TempDir dir;
+    TempFolder dir;
     const auto model = std::filesystem::path(FACET_SOURCE_DIR) / "models/spot/spot_triangulated.obj";
     const auto scene = dir.write("scene.json", "{\"model\": \"" + model.string() +
                                                    "\", \"background\": [0, 0, 0, 1], \"width\": 80, "
@@ -172,7 +172,7 @@ TEST(Cli, ComponentImagesAddUpToTheImage) {
 class CliWithMesa : public SoftpipeTest {};
 
 TEST_F(CliWithMesa, CompareWithOpenGlAgreesOnTheBundledScene) {
-    TempDir dir;
+    TempFolder dir;
     const auto scene = std::filesystem::path(FACET_SOURCE_DIR) / "models/example-scene.json";
     const RunResult run =
         runFacet("compare " + quoted(scene) + " --width 160 --height 120 --lighting gl --diff " +
@@ -189,7 +189,7 @@ TEST_F(CliWithMesa, CompareWithOpenGlAgreesOnTheBundledScene) {
 // ones by insertion from the previous order, with their comparisons and moves, and the transparent
 // pass's calls drawn in runs.
 TEST(Cli, TurntableFramesWithSortStatistics) {
-    TempDir dir;
+    TempFolder dir;
     const auto scene = std::filesystem::path(FACET_SOURCE_DIR) / "models/intersecting-quads.json";
     const RunResult run = runFacet("render " + quoted(scene) + " -o " + quoted(dir.path() / "spin.png") +
                                        " --width 64 --height 48 --frames 3-5 --turntable 30 --stats",
@@ -229,7 +229,7 @@ class CliBadInput : public ::testing::TestWithParam<BadInput> {};
 
 TEST_P(CliBadInput, FailsWithOneLineAndKeepsTheOldImage) {
     const BadInput& c = GetParam();
-    TempDir dir;
+    TempFolder dir;
     std::string input = quoted(dir.path() / "missing.obj");
     if (c.objText) input = quoted(dir.write("bad.obj", c.objText));
     if (c.sceneText) input = quoted(dir.write("bad.json", c.sceneText));
@@ -284,7 +284,7 @@ INSTANTIATE_TEST_SUITE_P(
     [](const ::testing::TestParamInfo<BadInput>& info) { return std::string(info.param.name); });
 
 TEST(Cli, UnknownImageFormatWritesNothing) {
-    TempDir dir;
+    TempFolder dir;
     const auto obj = dir.write("ok.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     const RunResult run =
         runFacet("render " + quoted(obj) + " -o " + quoted(dir.path() / "x.notaformat"), dir);
@@ -297,7 +297,7 @@ TEST(Cli, UnknownImageFormatWritesNothing) {
 // Counts are checked before the model is loaded: with a model that is not even there, the error is
 // about the images --frames and --components would write, and it comes at once.
 TEST(Cli, ImageCountIsCheckedBeforeTheModelIsLoaded) {
-    TempDir dir;
+    TempFolder dir;
     const RunResult run = runFacet("render " + quoted(dir.path() / "missing.obj") + " -o " +
                                        quoted(dir.path() / "x.png") + " --frames 0-20000 --components",
                                    dir);
@@ -308,7 +308,7 @@ TEST(Cli, ImageCountIsCheckedBeforeTheModelIsLoaded) {
 }
 
 TEST(Cli, OutputPathsGetPlainMessages) {
-    TempDir dir;
+    TempFolder dir;
     const auto obj = quoted(dir.write("ok.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
     const auto file = dir.write("file.png", "a file, not a folder");
     const struct {
@@ -336,7 +336,7 @@ TEST(Cli, OutputPathsGetPlainMessages) {
 // hidden temporary file the image is first written to. (/sys refuses files even to root.)
 TEST(Cli, UnwritableFolderNamesThePathAndTheReason) {
     if (!std::filesystem::is_directory("/sys")) GTEST_SKIP() << "no /sys here";
-    TempDir dir;
+    TempFolder dir;
     const auto obj = quoted(dir.write("ok.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
     const RunResult run = runFacet("render " + obj + " -o /sys/facet-test.png --width 8 --height 8", dir);
     EXPECT_EQ(run.status, 1);
@@ -349,7 +349,7 @@ TEST(Cli, UnwritableFolderNamesThePathAndTheReason) {
 TEST(Cli, BenchFindsItsDefaultModelFromAnyFolder) {
     const auto bunny = std::filesystem::path(FACET_SHARED_MODELS) / "stanford-bunny/stanford-bunny.obj";
     if (!std::filesystem::exists(bunny)) GTEST_SKIP() << bunny << " is not here";
-    TempDir dir;
+    TempFolder dir;
     const RunResult run = runFacet("bench --frames 1 --width 16 --height 16 --threads 1", dir, dir.path());
     EXPECT_EQ(run.status, 0) << run.err;
     EXPECT_NE(run.out.find("stanford-bunny.obj"), std::string::npos) << run.out;
@@ -358,7 +358,7 @@ TEST(Cli, BenchFindsItsDefaultModelFromAnyFolder) {
 // facet bench --instruction-sets reaches its benchmark (each copy's row, the baseline's always), and
 // refuses the other modes' options.
 TEST(Cli, BenchTimesEachInstructionSet) {
-    TempDir dir;
+    TempFolder dir;
     const auto obj = quoted(dir.write("triangle.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
     const RunResult run =
         runFacet("bench --instruction-sets --frames 1 --width 16 --height 16 --threads 1 " + obj, dir);
@@ -372,7 +372,7 @@ TEST(Cli, BenchTimesEachInstructionSet) {
 }
 
 TEST(Cli, BenchRefusesNonFiniteSteps) {
-    TempDir dir;
+    TempFolder dir;
     for (const char* value : {"nan", "inf", "-inf"}) {
         const RunResult run = runFacet(std::string("bench --transparency --degrees-per-frame ") + value +
                                            " " + quoted(dir.path() / "missing.obj"),
@@ -388,7 +388,7 @@ constexpr const char* kCubeObj =
 
 // The last line of defence: a frame that draws nothing says so, and what became of its triangles.
 TEST(Cli, FrameThatDrawsNothingIsWarnedAbout) {
-    TempDir dir;
+    TempFolder dir;
     const auto obj = quoted(dir.write("cube.obj", kCubeObj));
     const RunResult away = runFacet("render " + obj + " -o " + quoted(dir.path() / "away.png") +
                                         " --width 32 --height 24 --eye 0,0,5 --target 0,0,10",
@@ -409,7 +409,7 @@ TEST(Cli, FrameThatDrawsNothingIsWarnedAbout) {
 
 // Straight above the target with the default up vector: drawn, with the up vector chosen and named.
 TEST(Cli, EyeStraightAboveTheTargetRendersWithAWarning) {
-    TempDir dir;
+    TempFolder dir;
     const auto obj = quoted(dir.write("cube.obj", kCubeObj));
     const auto scene = dir.write("above.json", "{\"model\": \"cube.obj\", \"camera\": {\"eye\": [0, 5, 0]}}");
     for (const std::string& input :
@@ -427,7 +427,7 @@ TEST(Cli, EyeStraightAboveTheTargetRendersWithAWarning) {
 // Camera numbers that leave nothing to see are refused with the scene file's name; extreme ones that
 // still work render.
 TEST(Cli, ImpossibleNearPlaneIsRefusedAndExtremeFarPlaneRenders) {
-    TempDir dir;
+    TempFolder dir;
     dir.write("cube.obj", kCubeObj);
     const auto tiny = dir.write("tiny-near.json", "{\"model\": \"cube.obj\", \"camera\": {\"near\": 1e-10}}");
     const RunResult refused = runFacet("render " + quoted(tiny) + " -o " + quoted(dir.path() / "x.png"), dir);
@@ -447,7 +447,7 @@ TEST(Cli, ImpossibleNearPlaneIsRefusedAndExtremeFarPlaneRenders) {
 
 // A model of size 2 at 1e7 from the origin, where floats are 1 apart: drawn, with a warning.
 TEST(Cli, ModelFarFromTheOriginForItsSizeIsWarnedAbout) {
-    TempDir dir;
+    TempFolder dir;
     const auto obj = dir.write("far.obj", "v 10000000 0 0\nv 10000002 0 0\nv 10000000 2 0\nf 1 2 3\n");
     const RunResult run = runFacet(
         "render " + quoted(obj) + " -o " + quoted(dir.path() / "far.png") + " --width 32 --height 24", dir);
@@ -459,7 +459,7 @@ TEST(Cli, ModelFarFromTheOriginForItsSizeIsWarnedAbout) {
 }
 
 TEST(Cli, MissingMaterialFileWarnsAndRenders) {
-    TempDir dir;
+    TempFolder dir;
     const auto obj =
         dir.write("m.obj", "mtllib nowhere.mtl\nusemtl red\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     const RunResult run = runFacet(
@@ -471,7 +471,7 @@ TEST(Cli, MissingMaterialFileWarnsAndRenders) {
 }
 
 TEST(Cli, NoArgumentsPrintsUsageAndFails) {
-    TempDir dir;
+    TempFolder dir;
     const RunResult run = runFacet("", dir);
     EXPECT_NE(run.status, 0);
     EXPECT_NE((run.out + run.err).find("render"), std::string::npos);
@@ -480,7 +480,7 @@ TEST(Cli, NoArgumentsPrintsUsageAndFails) {
 // ---- Textures ------------------------------------------------------------------------------------
 
 // A square facing the camera, its material's MTL statements given (e.g. "map_Kd t.png\n").
-std::filesystem::path writeTexturedSquare(const TempDir& dir, const std::string& mtlStatements) {
+std::filesystem::path writeTexturedSquare(const TempFolder& dir, const std::string& mtlStatements) {
     dir.write("square.mtl", "newmtl square\nKd 1 1 1\n" + mtlStatements);
     return dir.write("square.obj",
                      "mtllib square.mtl\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n"
@@ -498,7 +498,7 @@ bool onlyFacetLines(const std::string& err) {
 // A PNG header declaring 30000 × 30000 pixels (about 29 GB as float RGBA) in a file of a few hundred
 // bytes: refused from the header at once, naming the texture and the limit.
 TEST(Cli, TextureDeclaringAHugeSizeFailsNamingIt) {
-    TempDir dir;
+    TempFolder dir;
     const auto texture = dir.path() / "huge.png";
     LinearImage small;
     small.width = small.height = 4;
@@ -530,7 +530,7 @@ TEST(Cli, TextureDeclaringAHugeSizeFailsNamingIt) {
 // A texture that is not an image, or a truncated one, is a warning like a missing one: one line
 // naming the file and the reason, no library output, and the square drawn untextured.
 TEST(Cli, UnreadableTextureWarnsAndDrawsWithoutIt) {
-    TempDir dir;
+    TempFolder dir;
     LinearImage checker;
     checker.width = checker.height = 256;
     for (int i = 0; i < 256 * 256; ++i)

@@ -3,7 +3,7 @@
 # every image README.md shows from docs/gallery/ comes out a valid PNG of the committed image's size
 # that is not one flat colour.
 #
-#   tests/docs/gallery_test.sh FACET_BINARY SOURCE_DIR WORK_DIR
+#   tests/cli/gallery_test.sh FACET_BINARY SOURCE_DIR WORK_DIR
 #
 # Exit 77 (skipped) without python3, which checks the PNG files.
 set -euo pipefail

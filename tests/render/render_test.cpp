@@ -8,33 +8,20 @@
 #include <gtest/gtest.h>
 
 #include "base/errors.h"
-#include "oracle/gl_scene.h"
 #include "pipeline/color.h"
 #include "render/renderer.h"
-#include "test_files.h"
+#include "support/interleaved_quads.h"
+#include "support/temp_folder.h"
 
 namespace facet {
 namespace {
 
-using testing::TempDir;
-
-// A 2×2 square in the z = 0 plane facing +z, seen head-on.
-constexpr const char* kSquareObj =
-    "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvn 0 0 1\nf 1//1 2//1 3//1 4//1\n";
-
-Scene headOnScene(const std::filesystem::path& model) {
-    Scene scene = sceneForModel(model);
-    scene.width = 64;
-    scene.height = 48;
-    scene.camera.eye = vec3(0, 0, 5);
-    scene.camera.target = vec3(0, 0, 0);
-    scene.ambientLight = vec3(0);
-    LightSpec light;
-    light.type = LightKind::Directional;
-    light.direction = vec3(0, 0, -1);  // travelling into the screen: straight onto the square
-    scene.lights = {light};
-    return scene;
-}
+using testing_support::headOnScene;
+using testing_support::interleavedQuadsScene;
+using testing_support::kSquareObj;
+using testing_support::opaqueVertexCount;
+using testing_support::TempFolder;
+using testing_support::writeInterleavedQuads;
 
 LinearImage renderScene(const Scene& scene) {
     const PreparedScene prepared = prepareScene(scene);
@@ -46,7 +33,7 @@ LinearImage renderScene(const Scene& scene) {
 
 // c = k_d·(N·L) + k_s·(N·H)^n with N = L = V = H = +z at the centre: k_d + k_s, both decoded from sRGB.
 TEST(Render, HeadOnSquareHasTheHandComputedColour) {
-    TempDir dir;
+    TempFolder dir;
     const auto obj = dir.write("square.obj", std::string("mtllib square.mtl\nusemtl grey\n") + kSquareObj);
     dir.write("square.mtl", "newmtl grey\nKa 0 0 0\nKd 0.5 0.25 0.75\nKs 0.2 0.2 0.2\nNs 10\n");
     const LinearImage image = renderScene(headOnScene(obj));
@@ -63,7 +50,7 @@ TEST(Render, HeadOnSquareHasTheHandComputedColour) {
 }
 
 TEST(Render, LightFromBehindLeavesOnlyAmbientAndEmission) {
-    TempDir dir;
+    TempFolder dir;
     const auto obj = dir.write("square.obj", std::string("mtllib square.mtl\nusemtl glow\n") + kSquareObj);
     dir.write("square.mtl", "newmtl glow\nKa 1 1 1\nKd 0.5 0.5 0.5\nKs 1 1 1\nKe 0.1 0.2 0.3\n");
     Scene scene = headOnScene(obj);
@@ -79,7 +66,7 @@ TEST(Render, LightFromBehindLeavesOnlyAmbientAndEmission) {
 // The GL preset takes colours as given (no sRGB decoding) and writes them without encoding, as
 // OpenGL 1.x does: the centre is k_d exactly, and its 8-bit code is round(255·c).
 TEST(Render, GlPresetUsesColoursAsGivenAndWritesThemUnencoded) {
-    TempDir dir;
+    TempFolder dir;
     const auto obj = dir.write("square.obj", std::string("mtllib square.mtl\nusemtl grey\n") + kSquareObj);
     dir.write("square.mtl", "newmtl grey\nKa 0 0 0\nKd 0.5 0.25 0.6\nKs 0 0 0\n");
     Scene scene = headOnScene(obj);
@@ -99,7 +86,7 @@ TEST(Render, GlPresetUsesColoursAsGivenAndWritesThemUnencoded) {
 // (attenuated by 1/(c0 + c1·d + c2·d²) at d = 2) and leaves a point 0.9 from the centre (24° off the
 // axis) dark.
 TEST(Render, SpotLightConeAndAttenuation) {
-    TempDir dir;
+    TempFolder dir;
     const auto obj = dir.write("square.obj", std::string("mtllib square.mtl\nusemtl white\n") + kSquareObj);
     dir.write("square.mtl", "newmtl white\nKa 0 0 0\nKd 1 1 1\nKs 0 0 0\n");
     Scene scene = headOnScene(obj);
@@ -122,7 +109,7 @@ TEST(Render, SpotLightConeAndAttenuation) {
 // Flat shading lights each triangle once, with its face normal: vertex normals that lean outwards do
 // not matter, and with no specular term every pixel of a square facing the light is k_d.
 TEST(Render, FlatShadingUsesTheFaceNormal) {
-    TempDir dir;
+    TempFolder dir;
     const auto obj = dir.write("square.obj",
                                "mtllib square.mtl\nusemtl grey\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n"
                                "vn -1 -1 1\nvn 1 -1 1\nvn 1 1 1\nvn -1 1 1\nf 1//1 2//2 3//3 4//4\n");
@@ -158,7 +145,7 @@ struct TransparentQuad {
 
 // A 2×2 quad whose colour is its emission alone, at opacity `alpha`; its left edge at depth zLeft, its
 // right edge at zRight (equal: facing the camera).
-std::filesystem::path writeEmissiveQuad(TempDir& dir, const std::string& name, float zLeft, float zRight,
+std::filesystem::path writeEmissiveQuad(TempFolder& dir, const std::string& name, float zLeft, float zRight,
                                         vec3 color, float alpha) {
     dir.write(name + ".mtl", "newmtl m\nKa 0 0 0\nKd 0 0 0\nKs 0 0 0\nKe " + std::to_string(color.r) + " " +
                                  std::to_string(color.g) + " " + std::to_string(color.b) + "\nd " +
@@ -169,7 +156,7 @@ std::filesystem::path writeEmissiveQuad(TempDir& dir, const std::string& name, f
 }
 
 TEST(Render, TransparentQuadsGiveTheOverOperatorInEveryOrderWhenSorted) {
-    TempDir dir;
+    TempFolder dir;
     const TransparentQuad quads[3] = {{"far", -1.0f, vec3(1.0f, 0.0f, 0.0f), 0.5f},
                                       {"middle", 0.0f, vec3(0.0f, 1.0f, 0.0f), 0.25f},
                                       {"near", 1.0f, vec3(0.0f, 0.0f, 1.0f), 0.75f}};
@@ -216,7 +203,7 @@ TEST(Render, TransparentQuadsGiveTheOverOperatorInEveryOrderWhenSorted) {
 
 // "gamma": {"decode_inputs": false} reads colours as linear values; the chosen curve encodes the output.
 TEST(Render, GammaOptionsDecideDecodingAndEncoding) {
-    TempDir dir;
+    TempFolder dir;
     const auto obj = dir.write("square.obj", std::string("mtllib square.mtl\nusemtl grey\n") + kSquareObj);
     dir.write("square.mtl", "newmtl grey\nKa 0 0 0\nKd 0.5 0.25 0.6\nKs 0 0 0\n");
     Scene scene = headOnScene(obj);
@@ -234,7 +221,7 @@ TEST(Render, GammaOptionsDecideDecodingAndEncoding) {
 // The turntable turns the objects about the vertical axis through the scene's centre: a whole turn
 // is the scene as written, a quarter turn of a square seen head-on shows its edge (nothing drawn).
 TEST(Render, TurntableTurnsAboutTheVerticalAxis) {
-    TempDir dir;
+    TempFolder dir;
     const auto obj = dir.write("square.obj", std::string("mtllib square.mtl\nusemtl grey\n") + kSquareObj);
     dir.write("square.mtl", "newmtl grey\nKa 0 0 0\nKd 0.5 0.5 0.5\nKs 0 0 0\n");
     Scene scene = headOnScene(obj);
@@ -259,7 +246,7 @@ TEST(Render, TurntableTurnsAboutTheVerticalAxis) {
 
 // A texture's alpha makes a part transparent: drawn in the transparent pass, its alpha in the image.
 TEST(Render, TextureAlphaMakesThePartTransparent) {
-    TempDir dir;
+    TempFolder dir;
     LinearImage texture;
     texture.width = texture.height = 2;
     texture.pixels.assign(4, vec4(1.0f, 1.0f, 1.0f, 0.5f));
@@ -281,7 +268,7 @@ TEST(Render, TextureAlphaMakesThePartTransparent) {
 
 // map_Ke without Ke: the texture is the emission (Ke taken as 1); unlit, the square shows the texel.
 TEST(Render, EmissionMapWithoutKeGlowsWithTheTexture) {
-    TempDir dir;
+    TempFolder dir;
     LinearImage texture;
     texture.width = texture.height = 2;
     texture.pixels.assign(4, vec4(0.2f, 0.6f, 0.9f, 1.0f));
@@ -307,7 +294,7 @@ TEST(Render, EmissionMapWithoutKeGlowsWithTheTexture) {
 // The memory budget covers all textures of a render together: the second texture that would pass it
 // is refused, named, before it is decoded.
 TEST(Render, TexturesTogetherBeyondTheBudgetAreAnError) {
-    TempDir dir;
+    TempFolder dir;
     LinearImage texture;
     texture.width = texture.height = 64;  // 16 KiB each as 8-bit texels
     texture.pixels.assign(64 * 64, vec4(0.5f, 0.5f, 0.5f, 1.0f));
@@ -335,7 +322,7 @@ TEST(Render, TexturesTogetherBeyondTheBudgetAreAnError) {
 // Every object copies its model: the scene's triangles (objects × their models') are bounded before
 // the copies are made. Breaks if the total counts each model once, or is checked after the draws.
 TEST(Render, SceneDrawingTooManyTrianglesIsAnError) {
-    TempDir dir;
+    TempFolder dir;
     std::string strip = "v 0 0 0\nv 0 1 0\n";
     constexpr int kTriangles = 20000;
     for (int i = 1; i <= kTriangles / 2; ++i)
@@ -370,7 +357,7 @@ TEST(Render, SceneDrawingTooManyTrianglesIsAnError) {
 // sides; exact transparency (per-pixel fragment lists) is, and gives the over operator of the nearer
 // surface over the farther one at every pixel.
 TEST(Render, ExactTransparencyIsRightWhereSortingCannotBe) {
-    TempDir dir;
+    TempFolder dir;
     const vec3 red(1.0f, 0.0f, 0.0f), blue(0.0f, 0.0f, 1.0f);
     Scene scene = headOnScene(writeEmissiveQuad(dir, "rising", -0.5f, 0.5f, red, 0.5f));
     ObjectSpec falling;
@@ -398,40 +385,6 @@ TEST(Render, ExactTransparencyIsRightWhereSortingCannotBe) {
         }
     }
     EXPECT_GT(sortedWrong, 0) << "sorting per triangle should get some of these pixels wrong";
-}
-
-// Many small see-through quads of three materials, one behind the other with the materials taking
-// turns, so that back to front they make one run per quad; a fourth see-through material with a single
-// quad at the back (a run with all of its part), and an opaque quad behind everything. The quads are
-// scattered and tilted, some across the image's edge (clipped). Draws of the transparent pass: quadCount + 1.
-std::filesystem::path writeInterleavedQuads(TempDir& dir, int quadCount) {
-    dir.write(
-        "quads.mtl",
-        "newmtl red\nKd 1 0.2 0.2\nd 0.5\nnewmtl green\nKd 0.2 1 0.2\nd 0.4\nnewmtl blue\nKd 0.2 0.2 1\n"
-        "d 0.6\nnewmtl alone\nKd 1 1 0.2\nd 0.3\nnewmtl wall\nKd 0.5 0.5 0.5\n");
-    std::string obj = "mtllib quads.mtl\n";
-    std::uint32_t seed = 12345;
-    const auto random = [&seed] {  // [0, 1)
-        seed = seed * 1664525u + 1013904223u;
-        return static_cast<float>(seed >> 8) / 16777216.0f;
-    };
-    int vertexCount = 0;
-    const auto quad = [&](const char* material, float x, float y, float z, float size, float tilt) {
-        obj += std::string("usemtl ") + material + "\n";
-        for (const vec2 corner : {vec2(-1, -1), vec2(1, -1), vec2(1, 1), vec2(-1, 1)})
-            obj += "v " + std::to_string(x + size * corner.x) + " " + std::to_string(y + size * corner.y) +
-                   " " + std::to_string(z + tilt * corner.x) + "\n";
-        obj += "f " + std::to_string(vertexCount + 1) + " " + std::to_string(vertexCount + 2) + " " +
-               std::to_string(vertexCount + 3) + " " + std::to_string(vertexCount + 4) + "\n";
-        vertexCount += 4;
-    };
-    quad("wall", 0.0f, 0.0f, -4.0f, 3.0f, 0.0f);
-    quad("alone", 0.0f, 0.0f, -3.0f, 1.5f, 0.0f);
-    const char* const materials[3] = {"red", "green", "blue"};
-    for (int q = 0; q < quadCount; ++q)
-        quad(materials[q % 3], 3.0f * random() - 1.5f, 3.0f * random() - 1.5f, -2.0f + 0.04f * q,
-             0.3f + 0.6f * random(), 0.01f * (random() - 0.5f));
-    return dir.write("quads.obj", obj);
 }
 
 // The straightforward way of drawing a sorted frame: every run with its part's whole vertex array and
@@ -469,27 +422,10 @@ void drawRunsWithWholeParts(const PreparedScene& prepared, TransparencySorter& s
     }
 }
 
-Scene interleavedQuadsScene(const std::filesystem::path& obj) {
-    Scene scene = headOnScene(obj);
-    scene.width = 96;
-    scene.height = 72;
-    scene.camera.near = 0.5f;
-    scene.camera.far = 20.0f;
-    scene.pipeline.cull = CullMode::None;
-    return scene;
-}
-
-std::size_t opaqueVertexCount(const PreparedScene& prepared) {
-    std::size_t count = 0;
-    for (const PreparedDraw& d : prepared.draws)
-        if (!d.transparent) count += d.vertices.size();
-    return count;
-}
-
 // A sorted frame cut into many runs shades, over all runs, at most three vertices per transparent
 // triangle (a run's own vertices), not its part's whole vertex array once per run.
 TEST(Render, SortedRunsShadeOnlyTheVerticesTheyUse) {
-    TempDir dir;
+    TempFolder dir;
     const int quadCount = 60;
     PreparedScene prepared = prepareScene(interleavedQuadsScene(writeInterleavedQuads(dir, quadCount)));
     ASSERT_EQ(prepared.draws.size(), 5u);
@@ -516,7 +452,7 @@ TEST(Render, SortedRunsShadeOnlyTheVerticesTheyUse) {
 // Runs with their own compact vertex arrays draw the same bytes as runs drawn against their part's whole
 // vertex array, frame after frame of a turntable (the order remembered), with one thread or two.
 TEST(Render, SortedRunsDrawTheSameBytesAsRunsOverWholeParts) {
-    TempDir dir;
+    TempFolder dir;
     PreparedScene prepared = prepareScene(interleavedQuadsScene(writeInterleavedQuads(dir, 45)));
     for (const int threads : {1, 2}) {
         DrawContext context(threads);
@@ -534,40 +470,6 @@ TEST(Render, SortedRunsDrawTheSameBytesAsRunsOverWholeParts) {
                 << threads << " threads, " << degrees << " degrees";
         }
     }
-}
-
-// The scene handed to OpenGL keeps each run's compact vertex array, not a copy of its part's whole one:
-// its vertices add up to at most the opaque parts' and three per transparent triangle, and each run's
-// corners are, in order, those of its part's triangles back to front.
-TEST(Render, GlSceneRunsCarryOnlyTheVerticesTheyUse) {
-    TempDir dir;
-    const PreparedScene prepared = prepareScene(interleavedQuadsScene(writeInterleavedQuads(dir, 60)));
-    const GlScene gl = toGlScene(prepared);
-    std::size_t stored = 0;
-    std::vector<MeshVertex> drawnCorners;
-    for (const GlDraw& draw : gl.draws) {
-        stored += draw.vertices.size();
-        if (draw.depthWrite) continue;  // opaque
-        for (const std::uint32_t index : draw.indices)
-            drawnCorners.push_back(draw.vertices.at(index));
-    }
-    EXPECT_LE(stored, opaqueVertexCount(prepared) + 3 * prepared.transparentTriangles.size());
-
-    FrameMemory keys;
-    FrameStats unused;
-    planFrame(prepared, TransparencyMode::Sorted, keys, unused);
-    TransparencySorter sorter;
-    SortStats sortStats;
-    std::vector<MeshVertex> sortedCorners;
-    for (const std::uint32_t t : sorter.sort(keys.keys, SortAlgorithm::InsertionWithMemory, sortStats)) {
-        const TransparentTriangle& triangle = prepared.transparentTriangles[t];
-        const PreparedDraw& d = prepared.draws[triangle.draw];
-        for (int c = 0; c < 3; ++c)
-            sortedCorners.push_back(d.vertices[d.indices[3 * triangle.triangle + c]]);
-    }
-    ASSERT_EQ(drawnCorners.size(), sortedCorners.size());
-    EXPECT_EQ(
-        std::memcmp(drawnCorners.data(), sortedCorners.data(), sortedCorners.size() * sizeof(MeshVertex)), 0);
 }
 
 // Each bundled model, and the classic ones in ../shared/models, render with every default: the corner
@@ -625,7 +527,7 @@ INSTANTIATE_TEST_SUITE_P(Models, BundledModel,
 // Rounding used to put N·L a hair above 0 at some pixels and a hair below at others: highlights
 // speckled the face at random, and at the light's own position L was 0/0.
 TEST(Render, PointLightOnAFaceLightsItEvenly) {
-    TempDir dir;
+    TempFolder dir;
     const auto obj = dir.write("square.obj", std::string("mtllib square.mtl\nusemtl shiny\n") + kSquareObj);
     dir.write("square.mtl", "newmtl shiny\nKa 0 0 0\nKd 0.5 0.5 0.5\nKs 1 1 1\nNs 10\n");
     for (const ReflectionModel model :
@@ -670,7 +572,7 @@ std::string scaledCubeObj(double scale) {
 // unit-sized one, lighting and highlight included; so does one of 1e-7, once framed five times too
 // small. (1e30 used to overflow the float projection, 1e-30 to underflow it: blank images.)
 TEST(Render, ExtremeScalesRenderTheSameImageAsUnitSize) {
-    TempDir dir;
+    TempFolder dir;
     dir.write("cube.mtl", "newmtl shiny\nKa 0 0 0\nKd 0.6 0.4 0.2\nKs 0.5 0.5 0.5\nNs 20\n");
     const auto render = [&](double scale) {
         Scene scene = sceneForModel(dir.write("cube.obj", scaledCubeObj(scale)));

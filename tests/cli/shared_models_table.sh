@@ -4,7 +4,7 @@
 # or refused (with the message). A change of any model's outcome or message fails this test, which prints
 # the difference; a rendered image must not be blank unless Facet warned that nothing was drawn.
 # Run by ctest as EndToEnd.SharedModelsGiveTheirTabledOutcome:
-#   shared_models_table.sh FACET SOURCE_DIR            compare with tests/end_to_end/shared_models_table.tsv
+#   shared_models_table.sh FACET SOURCE_DIR            compare with tests/cli/shared_models_table.tsv
 #   shared_models_table.sh FACET SOURCE_DIR --update   rewrite the table from this run
 # Exit 77 (ctest: skipped) when ../shared/models is missing.
 set -uo pipefail
@@ -12,7 +12,7 @@ facet=$1
 source_dir=$(cd "$2" && pwd) || exit 1
 update=${3:-}
 shared="$source_dir/../shared/models"
-table="$source_dir/tests/end_to_end/shared_models_table.tsv"
+table="$source_dir/tests/cli/shared_models_table.tsv"
 if [[ ! -d $shared ]]; then
     echo "skipped: $shared is missing"
     exit 77
@@ -27,8 +27,8 @@ trap 'rm -rf "$work"' EXIT
 actual="$work/table.tsv"
 blank_failures=0
 {
-    printf '# What facet render gives for each OBJ of ../shared/models at 64x48 (tests/end_to_end/shared_models_table.sh).\n'
-    printf '# Regenerate: bash tests/end_to_end/shared_models_table.sh FACET . --update   (then review the diff)\n'
+    printf '# What facet render gives for each OBJ of ../shared/models at 64x48 (tests/cli/shared_models_table.sh).\n'
+    printf '# Regenerate: bash tests/cli/shared_models_table.sh FACET . --update   (then review the diff)\n'
     printf '# model\toutcome\tmessage (one row per warning)\n'
 } > "$actual"
 while IFS= read -r -d '' model; do
@@ -70,7 +70,7 @@ if ! diff -u "$table" "$actual"; then
     echo
     echo "The outcome of a shared model changed (- the table, + this run): $summary."
     echo "If the change is intended, regenerate the table and review its diff:"
-    echo "  bash tests/end_to_end/shared_models_table.sh $facet $source_dir --update"
+    echo "  bash tests/cli/shared_models_table.sh $facet $source_dir --update"
     exit 1
 fi
 ((blank_failures == 0)) || exit 1

@@ -8,15 +8,15 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "test_files.h"
+#include "run_facet.h"
 
 namespace facet {
 namespace {
 
-using testing::readText;
-using testing::runFacet;
-using testing::RunResult;
-using testing::TempDir;
+using testing_support::readText;
+using testing_support::runFacet;
+using testing_support::RunResult;
+using testing_support::TempFolder;
 
 const std::string kSpot =
     std::string("'") + FACET_SOURCE_DIR + "/models/spot/spot_triangulated.obj' --width 96 --height 72";
@@ -33,7 +33,7 @@ std::size_t columns(const std::string& line) {
 // falling back to --print without a terminal (it would wait for keys), a screen left out of the walk,
 // a line of a screen over 80 columns.
 TEST(StepCli, WithoutATerminalPrintsEveryScreenWithin80Columns) {
-    TempDir dir;
+    TempFolder dir;
     for (const char* shading : {"flat", "gouraud", "phong"}) {
         SCOPED_TRACE(shading);
         const RunResult run = runFacet("step " + kSpot + " --shading " + shading, dir);
@@ -51,7 +51,7 @@ TEST(StepCli, WithoutATerminalPrintsEveryScreenWithin80Columns) {
 // --json writes the trace as data, and its final bytes are the rendered image's. Catches: --json
 // ignored, or a trace of another pixel than --pixel asks for.
 TEST(StepCli, JsonHasThePixelAskedForAndItsHistory) {
-    TempDir dir;
+    TempFolder dir;
     const auto json = dir.path() / "trace.json";
     const RunResult run =
         runFacet("step " + kSpot + " --pixel 40,30 --print --json '" + json.string() + "'", dir);
@@ -70,7 +70,7 @@ TEST(StepCli, JsonHasThePixelAskedForAndItsHistory) {
 // they part: affine interpolation first changes the fragment's weights in the pixel history. Catches:
 // --versus's options not applied to the second trace (no difference), or applied to both.
 TEST(StepCli, VersusMarksWhereAffineInterpolationFirstDiffers) {
-    TempDir dir;
+    TempFolder dir;
     const RunResult run = runFacet("step " + kSpot + " --pixel 48,30 --versus '--interpolation affine'", dir);
     ASSERT_EQ(run.status, 0) << run.err;
     // The pixel history lists what interpolation gave each fragment: the weights part there first.
@@ -89,7 +89,7 @@ TEST(StepCli, VersusMarksWhereAffineInterpolationFirstDiffers) {
 // Catches: a pixel outside the image, a triangle the scene lacks, a malformed --pixel or --versus
 // option accepted (or a crash) instead of one line and exit status 1.
 TEST(StepCli, BadRequestsAreRefusedWithOneLine) {
-    TempDir dir;
+    TempFolder dir;
     for (const std::string& bad :
          {std::string(" --pixel 96,0"), std::string(" --pixel 3"), std::string(" --pixel -1,2"),
           std::string(" --triangle 99999"), std::string(" --versus '--shading wobbly'")}) {
@@ -105,7 +105,7 @@ TEST(StepCli, BadRequestsAreRefusedWithOneLine) {
 // A web page of too many traced pixels is refused before anything is written. Catches: the bound
 // checked only after the stage images are written (the folder appears), or not at all.
 TEST(StepCli, HtmlStepTooFineIsRefusedBeforeAnythingIsWritten) {
-    TempDir dir;
+    TempFolder dir;
     const auto page = dir.path() / "page";
     const RunResult run =
         runFacet(std::string("step '") + FACET_SOURCE_DIR +

@@ -1,4 +1,5 @@
-// Temporary folders and files for the end-to-end tests.
+// The facet program run as a user runs it, for the tests of the command line (tests/cli): its exit
+// status and what it printed, kept in the test's temporary folder (support/temp_folder.h).
 #pragma once
 
 #include <sys/wait.h>
@@ -6,36 +7,13 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 
-#include <gtest/gtest.h>
-#include <unistd.h>
+#include "support/temp_folder.h"
 
-namespace facet::testing {
-
-// A fresh folder under the system temp directory, removed when the test ends.
-class TempDir {
-  public:
-    TempDir() {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        path_ =
-            std::filesystem::temp_directory_path() / ("facet-" + std::string(info->test_suite_name()) + "-" +
-                                                      info->name() + "-" + std::to_string(::getpid()));
-        std::filesystem::remove_all(path_);
-        std::filesystem::create_directories(path_);
-    }
-    ~TempDir() { std::filesystem::remove_all(path_); }
-    const std::filesystem::path& path() const { return path_; }
-    std::filesystem::path write(const std::string& name, const std::string& text) const {
-        const std::filesystem::path file = path_ / name;
-        std::ofstream(file, std::ios::binary) << text;
-        return file;
-    }
-
-  private:
-    std::filesystem::path path_;
-};
+namespace facet::testing_support {
 
 inline std::string readText(const std::filesystem::path& file) {
     std::ifstream in(file, std::ios::binary);
@@ -43,7 +21,6 @@ inline std::string readText(const std::filesystem::path& file) {
 }
 
 #ifdef FACET_BINARY
-// The facet program run as a user runs it: its exit status and what it printed.
 struct RunResult {
     int status = -1;
     std::string out;
@@ -52,7 +29,7 @@ struct RunResult {
 
 // Runs facet (FACET_BINARY) with `args`, its output captured in `dir`, standard input empty; in
 // `workingFolder` when one is given.
-inline RunResult runFacet(const std::string& args, const TempDir& dir,
+inline RunResult runFacet(const std::string& args, const TempFolder& dir,
                           const std::filesystem::path& workingFolder = {}) {
     const auto outFile = dir.path() / "stdout.txt", errFile = dir.path() / "stderr.txt";
     // Built with a stream: GCC 12 reports a false -Wrestrict on chains of std::string operator+.
@@ -69,4 +46,4 @@ inline RunResult runFacet(const std::string& args, const TempDir& dir,
 }
 #endif  // FACET_BINARY
 
-}  // namespace facet::testing
+}  // namespace facet::testing_support
