@@ -292,6 +292,39 @@ Mesh loadObj(const std::filesystem::path& path, const ObjOptions& options) {
         mesh.materials.push_back(std::move(material));
     }
 
+    // 6b. Materials that draw nothing. `Tr` is written both ways by exporters (opacity, or its
+    // complement, which the MTL format means), and some write `d 0` for opaque: a model whose every
+    // part is fully transparent would render as an empty image reported as success, so it is drawn
+    // opaque with a warning. Some parts invisible among visible ones may be meant (a glass pane, a
+    // hidden helper mesh): only named.
+    std::vector<std::string> invisible;
+    std::size_t invisibleTriangles = 0;
+    for (const MeshPart& part : mesh.parts) {
+        const Material& material = mesh.materials[part.material];
+        if (material.opacity > 0.0f) continue;
+        invisible.push_back(inSingleQuotes(material.name));
+        invisibleTriangles += part.indexCount / 3;
+    }
+    if (!invisible.empty() && invisible.size() == mesh.parts.size()) {
+        for (Material& material : mesh.materials)
+            material.opacity = 1.0f;
+        warnings.push_back(located(file, kNoLine,
+                                   "every material of the model is fully transparent (d 0, or Tr 1), which "
+                                   "would draw nothing; drawing it opaque (some exporters write Tr as the "
+                                   "opacity)"));
+    } else if (!invisible.empty()) {
+        std::string names = invisible.front();
+        for (std::size_t k = 1; k < invisible.size() && k < 3; ++k)
+            names += ", " + invisible[k];
+        if (invisible.size() > 3) names += " and " + std::to_string(invisible.size() - 3) + " more";
+        warnings.push_back(located(
+            file, kNoLine,
+            (invisible.size() > 1 ? "materials " + names + " are" : "material " + names + " is") +
+                " fully transparent (d 0, or Tr 1): " +
+                (invisibleTriangles == 1 ? std::string("1 triangle draws nothing")
+                                         : std::to_string(invisibleTriangles) + " triangles draw nothing")));
+    }
+
     // 7. Bounds: every vertex is used, as vertices are only made for kept triangles.
     mesh.boundsMin = mesh.boundsMax = mesh.vertices.front().position;
     for (const MeshVertex& v : mesh.vertices) {

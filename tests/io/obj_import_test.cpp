@@ -885,7 +885,12 @@ TEST_F(ObjImport, MtlNumbersThatCannotBeUsedWarnAndAreLeftOutOrClamped) {
         glm::vec3 diffuse{0.5f};  // line 2's Kd, unless line 3 changes it
         float shininess = 1.0f;   // tinyobjloader's default
         float opacity = 1.0f;
+        std::string modelWarning{};  // after "m.obj: ", the model's own; empty for none
     };
+    const std::string drawnOpaque =
+        "every material of the model is fully transparent (d 0, or Tr 1), which "
+        "would draw nothing; drawing it opaque (some exporters write Tr as the "
+        "opacity)";
     const Case cases[] = {
         {"Kd nan 1 1", R"(Kd expects three finite numbers (got "nan 1 1"); the statement is ignored)",
          glm::vec3(0.5f)},
@@ -909,7 +914,9 @@ TEST_F(ObjImport, MtlNumbersThatCannotBeUsedWarnAndAreLeftOutOrClamped) {
         {"Ni inf", R"(Ni expects a finite number (got "inf"); the statement is ignored)"},
         {"d 1.5", R"(d must be from 0 to 1 (got "1.5"); read as 1)"},
         {"Tr -0.25", R"(Tr must be from 0 to 1 (got "-0.25"); read as 0)"},
-        {"Tr 1.25", R"(Tr must be from 0 to 1 (got "1.25"); read as 1)", glm::vec3(0.5f), 1.0f, 0.0f},
+        // Clamped to Tr 1, opacity 0: the model's only material would draw nothing, so it is drawn opaque.
+        {"Tr 1.25", R"(Tr must be from 0 to 1 (got "1.25"); read as 1)", glm::vec3(0.5f), 1.0f, 1.0f,
+         drawnOpaque},
         {"d", ""},  // no blank after the keyword: not a statement, as for LoadMtl
         {"d  ", R"(d expects a finite number (got ""); the statement is ignored)"},
         {"illum two", R"(illum expects a whole number from 0 to 10 (got "two"); the statement is ignored)"},
@@ -930,8 +937,10 @@ TEST_F(ObjImport, MtlNumbersThatCannotBeUsedWarnAndAreLeftOutOrClamped) {
         SCOPED_TRACE(c.line);
         write("m.mtl", "newmtl a\nKd 0.5 0.5 0.5\n" + c.line + "\n");
         const Mesh mesh = loadObj(obj);
-        EXPECT_EQ(mesh.warnings, c.warning.empty() ? std::vector<std::string>{}
-                                                   : std::vector<std::string>{mtl + ":3: " + c.warning});
+        std::vector<std::string> expected;
+        if (!c.warning.empty()) expected.push_back(mtl + ":3: " + c.warning);
+        if (!c.modelWarning.empty()) expected.push_back(obj.string() + ": " + c.modelWarning);
+        EXPECT_EQ(mesh.warnings, expected);
         ASSERT_EQ(mesh.materials.size(), 1u);
         EXPECT_EQ(mesh.materials[0].diffuse, c.diffuse);
         EXPECT_EQ(mesh.materials[0].shininess, c.shininess);
@@ -961,6 +970,36 @@ TEST_F(ObjImport, MtlNumbersWithStrayCharactersAreReadAsTheNumber) {
     EXPECT_EQ(loadObj(obj).warnings,
               std::vector<std::string>{(dir_ / "car.mtl").string() +
                                        R"(:3: "0.0000c" read as 0 (stray characters after the number))"});
+}
+
+// A model whose every material is fully transparent (`d 0`, or `Tr 1`, which some exporters write for
+// opaque) would render as an empty image reported as success: it is drawn opaque, with a warning. A
+// fully transparent part among visible ones may be meant: it stays invisible and is named. (Breaks
+// caught: the opaque fallback removed — opacity stays 0; the check made per part — the glass pane below
+// turns opaque.)
+TEST_F(ObjImport, AModelWhoseEveryMaterialIsFullyTransparentIsDrawnOpaque) {
+    const std::string quad = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n";
+    const fs::path obj =
+        write("clear.obj", "mtllib clear.mtl\n" + quad + "usemtl a\nf 1 2 3\nusemtl b\nf 2 4 3\n");
+    write("clear.mtl", "newmtl a\nKd 1 0 0\nd 0\nnewmtl b\nKd 0 1 0\nTr 1.000000\n");
+    const Mesh all = loadObj(obj);
+    EXPECT_EQ(
+        all.warnings,
+        std::vector<std::string>{
+            obj.string() + ": every material of the model is fully transparent (d 0, or Tr 1), which "
+                           "would draw nothing; drawing it opaque (some exporters write Tr as the opacity)"});
+    ASSERT_EQ(all.materials.size(), 2u);
+    EXPECT_EQ(all.materials[0].opacity, 1.0f);
+    EXPECT_EQ(all.materials[1].opacity, 1.0f);
+
+    write("clear.mtl", "newmtl a\nKd 1 0 0\nnewmtl b\nKd 0 1 0\nd 0\n");
+    const Mesh pane = loadObj(obj);
+    EXPECT_EQ(pane.warnings,
+              std::vector<std::string>{obj.string() + ": material 'b' is fully transparent (d 0, or Tr 1): 1 "
+                                                      "triangle draws nothing"});
+    ASSERT_EQ(pane.materials.size(), 2u);
+    EXPECT_EQ(pane.materials[0].opacity, 1.0f);
+    EXPECT_EQ(pane.materials[1].opacity, 0.0f);
 }
 
 // A file with thousands of defects says so in a few lines: statements left out or clamped are warned of
