@@ -27,6 +27,27 @@ bool LibraryReader::operator()(const std::string& name, std::vector<tinyobj::mat
     // Returning false makes tinyobjloader go on to the next name of the same mtllib line: the
     // format reads them all, tinyobjloader alone stops at the first one found.
     if (name.empty() || byName_.count(name) != 0) return false;
+    read(name, materials, materialIds);
+    if (libraries_[byName_[name]].problem.empty()) {
+        missingRun_.clear();
+        return false;
+    }
+    // Not found: with the names missing before it on the line, it may be one file name with blanks.
+    // (A run may span two mtllib lines, as tinyobjloader does not say where a line ends; such a name
+    // would have to exist as a file.)
+    missingRun_ = missingRun_.empty() ? name : missingRun_ + " " + name;
+    if (missingRun_ != name && byName_.count(missingRun_) == 0) {
+        std::error_code error;
+        if (fs::is_regular_file(objFolder_ / missingRun_, error)) {
+            read(missingRun_, materials, materialIds);
+            missingRun_.clear();
+        }
+    }
+    return false;
+}
+
+void LibraryReader::read(const std::string& name, std::vector<tinyobj::material_t>* materials,
+                         std::map<std::string, int>* materialIds) {
     Library library;
     library.path = objFolder_ / name;
     std::string text;
@@ -41,7 +62,6 @@ bool LibraryReader::operator()(const std::string& name, std::vector<tinyobj::mat
     }
     byName_[name] = libraries_.size();
     libraries_.push_back(std::move(library));
-    return false;
 }
 
 std::string LibraryReader::checkMtlNumbers(std::string_view text, const std::string& file,
@@ -305,7 +325,11 @@ Material convertMaterial(const tinyobj::material_t& source, std::vector<std::str
     return m;
 }
 
-FoundTexture findTexture(const fs::path& folder, const std::string& name) {
+namespace {
+
+// The texture `name` as written (relative to `folder`, or absolute), its '\\' read as '/', each
+// component matched case-insensitively when not found exactly.
+FoundTexture findTextureAsWritten(const fs::path& folder, const std::string& name) {
     std::error_code error;
     fs::path candidate = folder / name;
     if (fs::is_regular_file(candidate, error)) return {candidate, {}};
@@ -340,6 +364,25 @@ FoundTexture findTexture(const fs::path& folder, const std::string& name) {
     if (!fs::is_regular_file(found, error)) return {};
     return {found,
             "not found as written; using " + pathInSingleQuotes(found) + ", whose name differs in case"};
+}
+
+}  // namespace
+
+FoundTexture findTexture(const fs::path& folder, const std::string& name) {
+    FoundTexture found = findTextureAsWritten(folder, name);
+    if (!found.path.empty() || !found.warning.empty()) return found;
+    // Exporters often write the path the texture had on the author's machine ("C:\Users\…\wood.png",
+    // "/home/…/wood.png"); as Blender's importer does, the file name alone is then looked for beside
+    // the MTL file.
+    std::string slashed = name;
+    std::replace(slashed.begin(), slashed.end(), '\\', '/');
+    const fs::path fileName = fs::path(slashed).filename();
+    if (fileName.empty() || fileName == fs::path(slashed)) return found;
+    FoundTexture beside = findTextureAsWritten(folder, fileName.string());
+    if (beside.path.empty()) return found;
+    beside.warning = "not found as written; using " + pathInSingleQuotes(beside.path) +
+                     ", the file of that name beside the MTL file";
+    return beside;
 }
 
 }  // namespace facet::obj

@@ -68,7 +68,14 @@ class LibraryReader final : public tinyobj::MaterialReader {
     // map_Kd and map_Ke are used.
     static std::string_view unusedMap(std::string_view s);
 
+    // Reads the MTL file `name` (relative to the OBJ's folder) and records it under that name.
+    void read(const std::string& name, std::vector<tinyobj::material_t>* materials,
+              std::map<std::string, int>* materialIds);
+
     fs::path objFolder_;
+    // The names of the current mtllib line not found so far, joined by blanks: exporters write file
+    // names with blanks ("mtllib My Model.mtl"), which the format splits into several names.
+    std::string missingRun_;
     std::vector<Library> libraries_;
     std::map<std::string, std::size_t> byName_;
     std::vector<std::size_t> materialLibrary_;  // tinyobjloader material index → libraries_ index
@@ -89,7 +96,9 @@ struct FoundTexture {
 // The texture file `name` from the MTL in `folder`; a Windows path ("maps\wood.png") is tried with '/'.
 // Models made on Windows or macOS often name files in another case than they have on disk
 // ("SP_LUK.JPG" for sp_luk.JPG): when the exact name is missing, each component of the path that is
-// missing is matched without regard to case in its folder, if exactly one entry matches.
+// missing is matched without regard to case in its folder, if exactly one entry matches. A path not
+// found at all (often the one the texture had on the author's machine) falls back to its file name
+// alone beside the MTL file, with a warning.
 FoundTexture findTexture(const fs::path& folder, const std::string& name);
 
 }  // namespace facet::obj

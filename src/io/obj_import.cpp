@@ -123,17 +123,39 @@ Mesh loadObj(const std::filesystem::path& path, const ObjOptions& options) {
     for (const LibraryStatement& statement : scan.libraries) {
         if (statement.names.empty())
             warnings.push_back(located(file, statement.line, "mtllib names no file"));
+        // The warnings of names not found are held back while those names may be the parts of one file
+        // name with blanks (LibraryReader reads "My Model.mtl" when "My" and "Model.mtl" are not files).
+        std::string missingRun;
+        std::vector<std::string> held;
         for (const std::string& name : statement.names) {
             const Library* library = libraries.find(name);
-            if (library == nullptr || !reported.insert(name).second) continue;
-            if (!library->problem.empty()) {
-                warnings.push_back(located(file, statement.line,
-                                           "material library " + inSingleQuotes(name) + ": " +
-                                               library->problem +
-                                               "; its materials fall back to the default"));
+            if (library == nullptr) continue;
+            if (library->problem.empty()) {
+                warnings.insert(warnings.end(), held.begin(), held.end());
+                held.clear();
+                missingRun.clear();
+                if (reported.insert(name).second)
+                    warnings.insert(warnings.end(), library->warnings.begin(), library->warnings.end());
+                continue;
             }
-            warnings.insert(warnings.end(), library->warnings.begin(), library->warnings.end());
+            if (reported.insert(name).second)
+                held.push_back(located(file, statement.line,
+                                       "material library " + inSingleQuotes(name) + ": " + library->problem +
+                                           "; its materials fall back to the default"));
+            missingRun = missingRun.empty() ? name : missingRun + " " + name;
+            const Library* joined = missingRun != name ? libraries.find(missingRun) : nullptr;
+            if (joined == nullptr || !joined->problem.empty()) continue;
+            held.clear();
+            if (reported.insert(missingRun).second) {
+                warnings.push_back(located(file, statement.line,
+                                           "material library " + inSingleQuotes(missingRun) +
+                                               " read as one file name with blanks (mtllib separates "
+                                               "file names by blanks)"));
+                warnings.insert(warnings.end(), joined->warnings.begin(), joined->warnings.end());
+            }
+            missingRun.clear();
         }
+        warnings.insert(warnings.end(), held.begin(), held.end());
     }
     if (scan.strayNumbers > 0) {
         warnings.push_back(strayNumberWarning(file, scan.firstStrayLine, scan.firstStray,

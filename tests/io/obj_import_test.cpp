@@ -972,6 +972,31 @@ TEST_F(ObjImport, MtlNumbersWithStrayCharactersAreReadAsTheNumber) {
                                        R"(:3: "0.0000c" read as 0 (stray characters after the number))"});
 }
 
+// Exporters write MTL file names with blanks ("mtllib My Model.mtl"), which the format splits into
+// several names: when the names are not files but the whole is, the whole is read, with a warning.
+// Names that are truly missing are still each warned of. (Breaks caught: LibraryReader not trying the
+// joined name — the material stays the default; the held warnings not dropped — two extra warnings.)
+TEST_F(ObjImport, AnMtlFileNameWithBlanksIsReadAsOneName) {
+    const std::string triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n";
+    write("My Model.mtl", "newmtl red\nKd 1 0 0\n");
+    const fs::path obj = write("spaces.obj", "mtllib My Model.mtl\n" + triangle);
+    const Mesh mesh = loadObj(obj);
+    EXPECT_EQ(mesh.warnings,
+              std::vector<std::string>{obj.string() + ":1: material library 'My Model.mtl' read as one file "
+                                                      "name with blanks (mtllib separates file names by "
+                                                      "blanks)"});
+    ASSERT_EQ(mesh.materials.size(), 1u);
+    EXPECT_FALSE(mesh.materials[0].fallback);
+    EXPECT_EQ(mesh.materials[0].diffuse, glm::vec3(1.0f, 0.0f, 0.0f));
+
+    const fs::path missing = write("missing.obj", "mtllib Other Model.mtl\n" + triangle);
+    const std::vector<std::string> warnings = loadObj(missing).warnings;
+    ASSERT_EQ(warnings.size(), 3u);
+    EXPECT_NE(warnings[0].find(":1: material library 'Other': "), std::string::npos) << warnings[0];
+    EXPECT_NE(warnings[1].find(":1: material library 'Model.mtl': "), std::string::npos) << warnings[1];
+    EXPECT_NE(warnings[2].find(":5: unknown material 'red'"), std::string::npos) << warnings[2];
+}
+
 // A model whose every material is fully transparent (`d 0`, or `Tr 1`, which some exporters write for
 // opaque) would render as an empty image reported as success: it is drawn opaque, with a warning. A
 // fully transparent part among visible ones may be meant: it stays invisible and is named. (Breaks
@@ -1098,6 +1123,35 @@ TEST_F(ObjImport, TextureNameInAnotherCaseFindsTheFileAndWarns) {
                                  ":3: texture 'maps\\\\SP_LUK.JPG' of material 'wall' not "
                                  "found as written; using '" +
                                  (dir_ / "Maps" / "sp_luk.JPG").string() + "', whose name differs in case"});
+}
+
+// Exporters write the path a texture had on the author's machine: not found there, the file name alone
+// is looked for beside the MTL file (in any case), with a warning; a name found nowhere still warns
+// "not found". (Break caught: the fallback removed — no texture, the plain "not found" warning.)
+TEST_F(ObjImport, TextureAtTheAuthorsAbsolutePathIsFoundBesideTheMtl) {
+    write("Wood.png", "not really a png");
+    const std::string triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n";
+    for (const std::string written :
+         {"C:\\Users\\bob\\textures\\wood.png", "/home/bob/textures/Wood.png", "textures/Wood.png"}) {
+        SCOPED_TRACE(written);
+        const fs::path mtl = write("m.mtl", "newmtl a\nmap_Kd " + written + "\n");
+        const Mesh mesh = loadObj(write("m.obj", "mtllib m.mtl\n" + triangle));
+        ASSERT_EQ(mesh.materials.size(), 1u);
+        EXPECT_EQ(mesh.materials[0].diffuseTexture, dir_ / "Wood.png");
+        std::string quoted = written;
+        for (std::size_t at = 0; (at = quoted.find('\\', at)) != std::string::npos; at += 2)
+            quoted.insert(at, 1, '\\');  // messages escape a backslash
+        EXPECT_EQ(mesh.warnings, std::vector<std::string>{mtl.string() + ":2: texture '" + quoted +
+                                                          "' of material 'a' not found as written; using '" +
+                                                          (dir_ / "Wood.png").string() +
+                                                          "', the file of that name beside the MTL file"});
+    }
+    const fs::path mtl = write("m.mtl", "newmtl a\nmap_Kd /home/bob/textures/stone.png\n");
+    const Mesh none = loadObj(write("m.obj", "mtllib m.mtl\n" + triangle));
+    EXPECT_TRUE(none.materials[0].diffuseTexture.empty());
+    EXPECT_EQ(none.warnings, std::vector<std::string>{
+                                 mtl.string() + ":2: texture '/home/bob/textures/stone.png' of material "
+                                                "'a' not found; drawing without it"});
 }
 
 // Two files that differ only in case are two candidates: neither is guessed.
