@@ -60,6 +60,8 @@ LinearImage readImage(const std::filesystem::path& path);
 struct TextureLimits {
     int maxSide = 16384;                               // pixels, either side
     std::size_t maxTotalBytes = std::size_t{1} << 30;  // all textures of a render together, in memory
+
+    bool operator==(const TextureLimits&) const = default;
 };
 
 // How texture colour becomes linear: integer data (8- and 16-bit) holds sRGB-encoded codes and float

@@ -51,6 +51,8 @@ struct ObjOptions {
     float creaseAngleDegrees = 60.0f;
     // Computed normals only: how each face around a position is weighted (scene/mesh.h).
     VertexNormals normals = VertexNormals::PolygonArea;
+
+    bool operator==(const ObjOptions&) const = default;
 };
 Mesh loadObj(const std::filesystem::path& path, const ObjOptions& options = {});
 
