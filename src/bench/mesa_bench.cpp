@@ -238,11 +238,10 @@ void measureFacetMemory(BenchScene& bench, int threads) {
     const PreparedScene prepared = prepareBenchScene(bench);
     trimHeap();  // the importer's temporaries
     bench.triangles = prepared.triangleCount;
-    std::size_t meshBytes = 0, textureBytes = 0;
+    std::size_t meshBytes = 0;
     for (const PreparedDraw& draw : prepared.draws)
         meshBytes += draw.vertices.size() * sizeof(MeshVertex) + draw.indices.size() * sizeof(std::uint32_t);
-    for (const auto& texture : prepared.textures)
-        textureBytes += texture->bytes();
+    const std::size_t textureBytes = prepared.assets->textureBytes;
     bench.meshMiB = static_cast<double>(meshBytes) / kMiB;
     bench.textureMiB = static_cast<double>(textureBytes) / kMiB;
     bench.framebufferMiB =

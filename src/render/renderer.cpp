@@ -1,20 +1,14 @@
 #include "render/renderer.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <optional>
-#include <set>
-#include <sstream>
 #include <stdexcept>
 #include <unordered_map>
 
 #include "base/errors.h"
-#include "base/quote.h"
-#include "io/obj_import.h"
 #include "pipeline/color.h"
 #include "render/shadow_maps.h"
 
@@ -126,23 +120,6 @@ FogParams fogParams(const Scene& scene, const Bounds& bounds, const Camera& came
     return fog;
 }
 
-// Vertices are 32-bit floats: at coordinates of 1e7 they are 1 apart. A model far from the origin
-// compared with its size lands on that coarse grid, and the vertex transform's float arithmetic
-// loses as much again: a warning once the grid is coarser than 1/1000 of the model's size.
-std::optional<std::string> coordinatePrecisionWarning(const Mesh& mesh, const std::filesystem::path& source) {
-    const glm::dvec3 low(mesh.boundsMin), high(mesh.boundsMax);
-    const double size = glm::length(high - low);
-    const float reach = float(std::max({std::abs(low.x), std::abs(low.y), std::abs(low.z), std::abs(high.x),
-                                        std::abs(high.y), std::abs(high.z)}));
-    const double spacing = std::nextafter(reach, std::numeric_limits<float>::infinity()) - reach;
-    if (!(size > 0.0) || spacing * 1000.0 <= size) return std::nullopt;
-    std::ostringstream message;
-    message << source.string() << ": coordinates reach " << reach << " while the model is only " << size
-            << " across: 32-bit floats there are " << spacing
-            << " apart, so its shape and position are coarse (move the model near the origin)";
-    return message.str();
-}
-
 // The draw's matrices for an object placed by `worldFromObject`: composed in double with the camera's
 // and rounded to float once, so that a model far from the origin or of extreme size (1e30, 1e-30)
 // keeps its precision. The normal matrix is scaled to determinant 1: the shaders renormalise
@@ -161,7 +138,7 @@ void placeDraw(SurfaceUniforms& u, const Camera& camera, const glm::dmat4& world
 // One vertex per triangle corner, each with its face's normal: flat shading's input. The face normal
 // is the cross product of two edges, turned to agree with the corners' own normals (so a model whose
 // winding disagrees with its normals still lights the side its normals show).
-void unweldWithFaceNormals(PreparedDraw& draw) {
+void unweldWithFaceNormals(DrawTriangles& draw) {
     std::vector<MeshVertex> corners;
     corners.reserve(draw.indices.size());
     for (std::size_t t = 0; t + 2 < draw.indices.size(); t += 3) {
@@ -180,17 +157,9 @@ void unweldWithFaceNormals(PreparedDraw& draw) {
         draw.indices[k] = static_cast<std::uint32_t>(k);
 }
 
-// Whether a texture is see-through anywhere (an alpha below 1).
-bool hasTranslucentTexel(const Texture& texture) {
-    if (!texture.codes.empty())
-        return std::any_of(texture.codes.begin(), texture.codes.end(),
-                           [&](const Texture::Codes& c) { return texture.alphaFromCode[c[3]] < 1.0f; });
-    return std::any_of(texture.texels.begin(), texture.texels.end(),
-                       [](const vec4& t) { return t.a < 1.0f; });
-}
-
 // Splits one part of a mesh into its own vertex array, so its draw shades only the vertices it uses.
-void extractPart(const Mesh& mesh, const MeshPart& part, PreparedDraw& draw) {
+DrawTriangles extractPart(const Mesh& mesh, const MeshPart& part) {
+    DrawTriangles draw;
     std::unordered_map<std::uint32_t, std::uint32_t> local;
     local.reserve(part.indexCount);
     draw.indices.reserve(part.indexCount);
@@ -200,15 +169,231 @@ void extractPart(const Mesh& mesh, const MeshPart& part, PreparedDraw& draw) {
         if (inserted) draw.vertices.push_back(mesh.vertices[global]);
         draw.indices.push_back(it->second);
     }
+    return draw;
+}
+
+// The colours a user writes, as the lighting takes them: decoded from sRGB (Facet preset, unless the
+// scene says not to) or as written.
+struct ColourDecoding {
+    bool decode = true;
+    vec3 operator()(vec3 c) const { return decode ? decodeSrgb(c) : c; }
+};
+
+// The box around every object as placed.
+Bounds sceneBounds(const Scene& scene, const SceneAssets& assets) {
+    Bounds bounds{vec3(std::numeric_limits<float>::max()), vec3(std::numeric_limits<float>::lowest())};
+    for (const ObjectSpec& object : scene.objects) {
+        const Bounds b = transformedBounds(assets.model(object.model), object.worldFromObject);
+        bounds.min = min(bounds.min, b.min);
+        bounds.max = max(bounds.max, b.max);
+    }
+    return bounds;
+}
+
+// Every object copies its model's vertices into its draws: the total is bounded before they are made.
+void checkTriangleLimit(const Scene& scene, const SceneAssets& assets) {
+    std::size_t sceneTriangles = 0;
+    for (const ObjectSpec& object : scene.objects)
+        sceneTriangles += assets.model(object.model).stats.trianglesKept;
+    if (sceneTriangles > kMaxSceneTriangles)
+        throw InputError(scene.source.string() + ": the scene draws " + std::to_string(sceneTriangles) +
+                         " triangles (each object counts its model's), more than the limit of " +
+                         std::to_string(kMaxSceneTriangles) + "; use fewer objects or lighter models");
+}
+
+Camera sceneCamera(const Scene& scene, const Bounds& bounds) {
+    const float aspect = static_cast<float>(scene.width) / static_cast<float>(scene.height);
+    try {
+        return frameCamera(scene.camera, bounds, aspect, scene.pipeline.depth);
+    } catch (const InputError& e) {
+        throw InputError(scene.source.string() + ": " + e.what());
+    }
+}
+
+// The scene's lights; without any, one white key light from the upper left, behind the viewer.
+std::vector<LightSpec> sceneLights(const Scene& scene) {
+    std::vector<LightSpec> lights = scene.lights;
+    if (lights.empty()) {
+        LightSpec key;
+        key.type = LightKind::Directional;
+        key.direction = vec3(0.45f, -0.55f, -1.0f);
+        key.cameraRelative = true;
+        lights.push_back(key);
+    }
+    if (lights.size() > static_cast<std::size_t>(kMaxLights))
+        throw InputError(scene.source.string() + ": " + std::to_string(lights.size()) +
+                         " lights given, at most " + std::to_string(kMaxLights) + " are supported");
+    return lights;
+}
+
+// A light as the shaders take it: in eye space, its colours decoded and scaled by its intensity.
+LightParams eyeSpaceLight(const LightSpec& l, const Camera& camera, ColourDecoding decode) {
+    const double s = camera.viewScale;
+    // Camera-relative lights are given in world units: eye space is scaled by viewScale.
+    const auto toView = [&](vec3 v, float w) {
+        return l.cameraRelative ? vec3(glm::dvec3(v) * s)
+                                : vec3(camera.viewFromWorldExact * glm::dvec4(glm::dvec3(v), double(w)));
+    };
+    LightParams out;
+    out.kind = l.type;
+    // Made unit length in double first: in float, the squared length of [0, -1e-30, 0] underflows
+    // to 0 and that of [-3e38, 0, 0] overflows, and normalize would give NaN (a black image).
+    const vec3 direction = vec3(glm::normalize(glm::dvec3(l.direction)));
+    if (out.kind == LightKind::Directional) out.direction = normalize(toView(direction, 0.0f));
+    if (out.kind == LightKind::Spot) out.spotDirection = normalize(toView(direction, 0.0f));
+    if (out.kind != LightKind::Directional) out.position = toView(l.position, 1.0f);
+    out.ambient = decode(l.ambient.value_or(vec3(0.0f))) * l.intensity;
+    out.diffuse = decode(l.diffuse.value_or(l.color)) * l.intensity;
+    out.specular = decode(l.specular.value_or(l.color)) * l.intensity;
+    // att = 1/(c0 + c1·d + c2·d²) with d in world units, d = d_eye / viewScale.
+    out.c0 = l.attenuation.x;
+    out.c1 = float(l.attenuation.y / s);
+    out.c2 = float(l.attenuation.z / (s * s));
+    out.spotCutoffDegrees = out.kind == LightKind::Spot ? l.spotCutoffDegrees : 180.0f;
+    out.spotExponent = l.spotExponent;
+    if (l.spotInnerDegrees && l.spotOuterDegrees) {
+        out.spotProfile = SpotProfile::Smooth;
+        out.spotInnerDegrees = *l.spotInnerDegrees;
+        out.spotOuterDegrees = *l.spotOuterDegrees;
+    }
+    return out;
+}
+
+// The uniforms every draw shares: lights, fog, the lighting's options.
+SurfaceUniforms commonUniforms(const Scene& scene, std::span<const LightSpec> lights, const Bounds& bounds,
+                               const Camera& camera, ColourDecoding decode) {
+    const bool glPreset = scene.lighting.preset == LightingPreset::GL;
+    SurfaceUniforms common;
+    common.globalAmbient = decode(scene.ambientLight);
+    common.lightCount = static_cast<int>(lights.size());
+    common.brdf = scene.lighting.brdf;
+    common.precision = scene.lighting.powers;
+    common.normalization = scene.lighting.normalize;
+    common.twoSidedFlip = !glPreset;
+    common.clampColor = glPreset;
+    common.fog = fogParams(scene, bounds, camera, decode);
+    common.textureFilter = scene.textures.filter;
+    if (!isMultisampled(scene.pipeline.antialiasing))  // ssaaN: each pass samples 1/N of the pixel
+        common.textureFootprint =
+            1.0f / std::sqrt(static_cast<float>(samplesPerPixel(scene.pipeline.antialiasing)));
+    for (std::size_t i = 0; i < lights.size(); ++i)
+        common.lights[i] = eyeSpaceLight(lights[i], camera, decode);
+    return common;
+}
+
+// The texture of `file` in the assets, or null (none, or unreadable).
+const Texture* textureOf(const SceneAssets& assets, const std::filesystem::path& file) {
+    if (file.empty()) return nullptr;
+    const LoadedTexture* loaded = assets.texture(file);
+    return loaded ? loaded->texture.get() : nullptr;
+}
+
+// One object's draws, made one per part alike.
+struct ObjectDraws {
+    const Scene& scene;
+    const SceneAssets& assets;
+    const ObjectSpec& object;
+    SurfaceUniforms uniforms;  // the common ones, placed for the object, its reflection model chosen
+    ShadingFrequency frequency;
+    BlendMode blend;
+    bool glPreset;
+    ColourDecoding decode;
+};
+
+// The draw of one part of an object's mesh; its triangles go to `triangles`.
+PreparedDraw partDraw(const ObjectDraws& o, const Camera& camera, const Mesh& mesh, const MeshPart& part,
+                      DrawTriangles& triangles) {
+    PreparedDraw draw;
+    draw.uniforms = o.uniforms;
+    draw.frequency = o.frequency;
+    draw.worldFromObject = o.object.worldFromObject;
+    draw.viewFromObjectExact = camera.viewFromWorldExact * glm::dmat4(o.object.worldFromObject);
+    Material material = mesh.materials.at(part.material);
+    draw.uniforms.emissionMap = textureOf(o.assets, material.emissionTexture);
+    // map_Ke without Ke (or with Ke 0) means the texture is the emission, as exporters write it.
+    if (draw.uniforms.emissionMap && material.emission == vec3(0.0f)) material.emission = vec3(1.0f);
+    // The gl preset: faces without a material get OpenGL 1.x's default glMaterial, and the
+    // shininess is clamped to GL_SHININESS's range [0, 128].
+    if (o.glPreset && material.fallback) material = glDefaultMaterial();
+    draw.uniforms.material = phongMaterial(material, o.object.material, o.decode);
+    if (o.glPreset) draw.uniforms.material.shininess = std::min(draw.uniforms.material.shininess, 128.0f);
+    draw.uniforms.pbr = pbrMaterial(draw.uniforms.material, o.object.material, o.decode, o.scene.source);
+    draw.uniforms.opacity = o.object.material.opacity.value_or(material.opacity);
+    const LoadedTexture* diffuse =
+        material.diffuseTexture.empty() ? nullptr : o.assets.texture(material.diffuseTexture);
+    draw.uniforms.diffuseMap = diffuse ? diffuse->texture.get() : nullptr;
+    // Transparent: see through it (opacity, a texture's alpha) or blended other than over.
+    const bool textureAlpha = diffuse && diffuse->translucent;
+    draw.transparent = draw.uniforms.opacity < 1.0f || textureAlpha || o.blend != BlendMode::Over;
+    // The gl preset blends over as glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA) does,
+    // alpha included; Facet's keeps Porter–Duff's α.
+    draw.uniforms.blend = !draw.transparent                          ? BlendMode::Replace
+                          : o.glPreset && o.blend == BlendMode::Over ? BlendMode::OverGL
+                                                                     : o.blend;
+    triangles = extractPart(mesh, part);
+    // Flat shading lights each face with its own normal; the GL preset keeps OpenGL's rule
+    // instead: the provoking vertex's colour, lit with that vertex's normal.
+    if (o.frequency == ShadingFrequency::Flat && !o.glPreset) unweldWithFaceNormals(triangles);
+    return draw;
+}
+
+// One draw per (object, material part) into frame.draws, their triangles into `triangles`.
+void addDraws(PreparedScene& frame, const SceneAssets& assets, const SurfaceUniforms& common,
+              ColourDecoding decode, std::vector<DrawTriangles>& triangles) {
+    const Scene& scene = frame.scene;
+    for (const ObjectSpec& object : scene.objects) {
+        const Mesh& mesh = assets.model(object.model);
+        ObjectDraws o{scene,
+                      assets,
+                      object,
+                      common,
+                      object.shading.value_or(scene.lighting.shadingOrDefault()),
+                      object.blend.value_or(BlendMode::Over),
+                      scene.lighting.preset == LightingPreset::GL,
+                      decode};
+        placeDraw(o.uniforms, frame.camera, glm::dmat4(object.worldFromObject));
+        o.uniforms.reflection = object.reflection.value_or(
+            object.material.physicallyBased() ? ReflectionModel::CookTorrance : scene.lighting.model);
+        for (const MeshPart& part : mesh.parts) {
+            if (part.indexCount == 0) continue;
+            frame.draws.push_back(partDraw(o, frame.camera, mesh, part, triangles.emplace_back()));
+        }
+    }
+}
+
+DrawState pipelineState(const Scene& scene) {
+    DrawState state;
+    state.viewport = {0, 0, scene.width, scene.height};
+    state.raster.cull = scene.pipeline.cull;
+    state.raster.subpixelBits = scene.pipeline.subpixelBits;
+    state.interpolation = scene.pipeline.interpolation;
+    state.depth.format = scene.pipeline.depth;
+    state.depth.compare = nearerPasses(state.depth.format, CompareOp::Less);
+    state.colorBuffer = scene.pipeline.colorBuffer;
+    if (isMultisampled(scene.pipeline.antialiasing))
+        state.samples = samplesPerPixel(scene.pipeline.antialiasing);
+    state.raster.provokingVertex = ProvokingVertex::Last;  // OpenGL's convention
+    return state;
+}
+
+// The eye-space distance to the far side of the bounding sphere.
+float sceneExtent(const Bounds& bounds, const Camera& camera) {
+    const glm::dvec3 centre = 0.5 * (glm::dvec3(bounds.min) + glm::dvec3(bounds.max));
+    const double radius = 0.5 * glm::length(glm::dvec3(bounds.max) - glm::dvec3(bounds.min));
+    return float((glm::length(glm::dvec3(camera.eye) - centre) + radius) * camera.viewScale);
+}
+
+// The importer's warnings, then the camera's, then the unreadable textures'.
+std::vector<std::string> frameWarnings(const SceneAssets& assets, const Camera& camera) {
+    std::vector<std::string> warnings = assets.modelWarnings;
+    warnings.insert(warnings.end(), camera.warnings.begin(), camera.warnings.end());
+    warnings.insert(warnings.end(), assets.textureWarnings.begin(), assets.textureWarnings.end());
+    return warnings;
 }
 
 }  // namespace
 
-PreparedScene prepareScene(const Scene& scene, const TextureLimits& limits) {
-    PreparedScene prepared;
-    static std::atomic<std::uint64_t> preparedScenes{0};
-    prepared.id = ++preparedScenes;
-    prepared.scene = scene;
+void checkFrameSettings(const Scene& scene) {
     if (scene.width < 1 || scene.height < 1 || scene.width > kMaxImageSide || scene.height > kMaxImageSide)
         throw InputError(scene.source.string() + ": image size " + std::to_string(scene.width) + "x" +
                          std::to_string(scene.height) + " is outside 1.." + std::to_string(kMaxImageSide));
@@ -224,216 +409,71 @@ PreparedScene prepareScene(const Scene& scene, const TextureLimits& limits) {
         message += " or --transparency sorted";
         throw InputError(message);
     }
+}
+
+PreparedScene prepareFrame(const Scene& scene, std::shared_ptr<const SceneAssets> assets) {
+    checkFrameSettings(scene);
+    if (!assets || !(assets->options == assetOptionsFor(scene, assets->options.limits)))
+        throw std::invalid_argument("prepareFrame: the assets were loaded for another scene");
+    PreparedScene frame;
+    frame.scene = scene;
+    frame.assets = assets;
+    frame.degenerateSkipped = assets->degenerateSkipped;
+    const Bounds bounds = sceneBounds(scene, *assets);
+    checkTriangleLimit(scene, *assets);
+    frame.turntableCentre = 0.5f * (bounds.min + bounds.max);
+    frame.camera = sceneCamera(scene, bounds);
+    frame.warnings = frameWarnings(*assets, frame.camera);
 
     const bool glPreset = scene.lighting.preset == LightingPreset::GL;
-    // Facet: colours are sRGB-encoded as written (unless "gamma": {"decode_inputs": false}); GL: taken
-    // as given (OpenGL 1.x knows no gamma).
-    const bool decodeInputs = !glPreset && scene.gamma.decodeInputs;
-    const auto decode = [decodeInputs](vec3 c) { return decodeInputs ? decodeSrgb(c) : c; };
+    const ColourDecoding decode{!glPreset && scene.gamma.decodeInputs};
+    const std::vector<LightSpec> lights = sceneLights(scene);
+    std::vector<DrawTriangles> triangles;
+    addDraws(frame, *assets, commonUniforms(scene, lights, bounds, frame.camera, decode), decode, triangles);
+    setTriangles(frame, std::move(triangles));
 
-    // Load each model once, even if several objects use it.
-    std::map<std::filesystem::path, std::unique_ptr<Mesh>> meshes;
-    std::map<std::filesystem::path, Texture*> textures;  // nullptr: could not be read, said once
-    std::set<const Texture*> texturesWithAlpha;          // see-through somewhere: their parts are transparent
-    std::size_t textureBytes = 0;
-    // A texture file, read once; one that cannot be read is a warning and its parts go untextured.
-    const auto loadTexture = [&](const std::filesystem::path& file, const std::string& material) -> Texture* {
-        const auto [it, first] = textures.try_emplace(file, nullptr);
-        if (!first) return it->second;
-        TextureRead read = readTexture(file, decodeInputs, limits, limits.maxTotalBytes - textureBytes);
-        if (read.texture.empty()) {
-            prepared.warnings.push_back(file.string() + ": " + read.problem + "; drawing material " +
-                                        inQuotes(material, '\'') + " without this texture");
-            return nullptr;
-        }
-        auto owned = std::make_unique<Texture>(std::move(read.texture));
-        // Every draw filters as the scene says: trilinear needs the mip chain, built once here (a third
-        // more memory), and no other filter builds it.
-        if (scene.textures.filter == TextureFilter::Trilinear) buildMipChain(*owned);
-        textureBytes += owned->bytes();
-        if (hasTranslucentTexel(*owned)) texturesWithAlpha.insert(owned.get());
-        it->second = owned.get();
-        prepared.textures.push_back(std::move(owned));
-        return it->second;
-    };
-    Bounds sceneBounds{vec3(std::numeric_limits<float>::max()), vec3(std::numeric_limits<float>::lowest())};
-    for (const ObjectSpec& object : scene.objects) {
-        auto& mesh = meshes[object.model];
-        if (!mesh) {
-            mesh = std::make_unique<Mesh>(
-                loadObj(object.model, ObjOptions{.creaseAngleDegrees = scene.lighting.creaseAngleDegrees,
-                                                 .normals = scene.lighting.normals}));
-            prepared.warnings.insert(prepared.warnings.end(), mesh->warnings.begin(), mesh->warnings.end());
-            prepared.degenerateSkipped += mesh->stats.degenerateSkipped;
-            if (std::optional<std::string> warning = coordinatePrecisionWarning(*mesh, object.model))
-                prepared.warnings.push_back(*warning);
-        }
-        const Bounds b = transformedBounds(*mesh, object.worldFromObject);
-        sceneBounds.min = min(sceneBounds.min, b.min);
-        sceneBounds.max = max(sceneBounds.max, b.max);
-    }
-
-    // Every object copies its model's vertices into its draws: bound the total before making them.
-    std::size_t sceneTriangles = 0;
-    for (const ObjectSpec& object : scene.objects)
-        sceneTriangles += meshes[object.model]->stats.trianglesKept;
-    if (sceneTriangles > kMaxSceneTriangles)
-        throw InputError(scene.source.string() + ": the scene draws " + std::to_string(sceneTriangles) +
-                         " triangles (each object counts its model's), more than the limit of " +
-                         std::to_string(kMaxSceneTriangles) + "; use fewer objects or lighter models");
-
-    prepared.turntableCentre = 0.5f * (sceneBounds.min + sceneBounds.max);
-
-    // Camera.
-    const float aspect = static_cast<float>(scene.width) / static_cast<float>(scene.height);
-    try {
-        prepared.camera = frameCamera(scene.camera, sceneBounds, aspect, scene.pipeline.depth);
-    } catch (const InputError& e) {
-        throw InputError(scene.source.string() + ": " + e.what());
-    }
-    const Camera& camera = prepared.camera;
-    prepared.warnings.insert(prepared.warnings.end(), camera.warnings.begin(), camera.warnings.end());
-
-    // Lights, in eye space; without any, one white key light from the upper left, behind the viewer.
-    std::vector<LightSpec> lights = scene.lights;
-    if (lights.empty()) {
-        LightSpec key;
-        key.type = LightKind::Directional;
-        key.direction = vec3(0.45f, -0.55f, -1.0f);
-        key.cameraRelative = true;
-        lights.push_back(key);
-    }
-    if (lights.size() > static_cast<std::size_t>(kMaxLights))
-        throw InputError(scene.source.string() + ": " + std::to_string(lights.size()) +
-                         " lights given, at most " + std::to_string(kMaxLights) + " are supported");
-    SurfaceUniforms common;
-    common.globalAmbient = decode(scene.ambientLight);
-    common.lightCount = static_cast<int>(lights.size());
-    common.brdf = scene.lighting.brdf;
-    common.precision = scene.lighting.powers;
-    common.normalization = scene.lighting.normalize;
-    common.twoSidedFlip = !glPreset;
-    common.clampColor = glPreset;
-    common.fog = fogParams(scene, sceneBounds, camera, decode);
-    common.textureFilter = scene.textures.filter;
-    if (!isMultisampled(scene.pipeline.antialiasing))  // ssaaN: each pass samples 1/N of the pixel
-        common.textureFootprint =
-            1.0f / std::sqrt(static_cast<float>(samplesPerPixel(scene.pipeline.antialiasing)));
-    const bool textured = scene.textures.maps == TextureMaps::On;
-    const glm::dmat4& viewFromWorld = camera.viewFromWorldExact;
-    const double s = camera.viewScale;
-    for (std::size_t i = 0; i < lights.size(); ++i) {
-        const LightSpec& l = lights[i];
-        LightParams& out = common.lights[i];
-        // Camera-relative lights are given in world units: eye space is scaled by viewScale.
-        const auto toView = [&](vec3 v, float w) {
-            return l.cameraRelative ? vec3(glm::dvec3(v) * s)
-                                    : vec3(viewFromWorld * glm::dvec4(glm::dvec3(v), double(w)));
-        };
-        out.kind = l.type;
-        // Made unit length in double first: in float, the squared length of [0, -1e-30, 0] underflows
-        // to 0 and that of [-3e38, 0, 0] overflows, and normalize would give NaN (a black image).
-        const vec3 direction = vec3(glm::normalize(glm::dvec3(l.direction)));
-        if (out.kind == LightKind::Directional) out.direction = normalize(toView(direction, 0.0f));
-        if (out.kind == LightKind::Spot) out.spotDirection = normalize(toView(direction, 0.0f));
-        if (out.kind != LightKind::Directional) out.position = toView(l.position, 1.0f);
-        out.ambient = decode(l.ambient.value_or(vec3(0.0f))) * l.intensity;
-        out.diffuse = decode(l.diffuse.value_or(l.color)) * l.intensity;
-        out.specular = decode(l.specular.value_or(l.color)) * l.intensity;
-        // att = 1/(c0 + c1·d + c2·d²) with d in world units, d = d_eye / viewScale.
-        out.c0 = l.attenuation.x;
-        out.c1 = float(l.attenuation.y / s);
-        out.c2 = float(l.attenuation.z / (s * s));
-        out.spotCutoffDegrees = out.kind == LightKind::Spot ? l.spotCutoffDegrees : 180.0f;
-        out.spotExponent = l.spotExponent;
-        if (l.spotInnerDegrees && l.spotOuterDegrees) {
-            out.spotProfile = SpotProfile::Smooth;
-            out.spotInnerDegrees = *l.spotInnerDegrees;
-            out.spotOuterDegrees = *l.spotOuterDegrees;
-        }
-    }
-
-    // One draw per (object, material part).
-    for (const ObjectSpec& object : scene.objects) {
-        const Mesh& mesh = *meshes[object.model];
-        SurfaceUniforms uniforms = common;
-        placeDraw(uniforms, camera, glm::dmat4(object.worldFromObject));
-        uniforms.reflection = object.reflection.value_or(
-            object.material.physicallyBased() ? ReflectionModel::CookTorrance : scene.lighting.model);
-        const ShadingFrequency frequency = object.shading.value_or(scene.lighting.shadingOrDefault());
-        const BlendMode blend = object.blend.value_or(BlendMode::Over);
-        for (const MeshPart& part : mesh.parts) {
-            if (part.indexCount == 0) continue;
-            PreparedDraw draw;
-            draw.uniforms = uniforms;
-            draw.frequency = frequency;
-            draw.worldFromObject = object.worldFromObject;
-            draw.viewFromObjectExact = camera.viewFromWorldExact * glm::dmat4(object.worldFromObject);
-            Material material = mesh.materials.at(part.material);
-            if (textured && !material.emissionTexture.empty())
-                draw.uniforms.emissionMap = loadTexture(material.emissionTexture, material.name);
-            // map_Ke without Ke (or with Ke 0) means the texture is the emission, as exporters write it.
-            if (draw.uniforms.emissionMap && material.emission == vec3(0.0f)) material.emission = vec3(1.0f);
-            // The gl preset: faces without a material get OpenGL 1.x's default glMaterial, and the
-            // shininess is clamped to GL_SHININESS's range [0, 128].
-            if (glPreset && material.fallback) material = glDefaultMaterial();
-            draw.uniforms.material = phongMaterial(material, object.material, decode);
-            if (glPreset)
-                draw.uniforms.material.shininess = std::min(draw.uniforms.material.shininess, 128.0f);
-            draw.uniforms.pbr = pbrMaterial(draw.uniforms.material, object.material, decode, scene.source);
-            draw.uniforms.opacity = object.material.opacity.value_or(material.opacity);
-            if (textured && !material.diffuseTexture.empty())
-                draw.uniforms.diffuseMap = loadTexture(material.diffuseTexture, material.name);
-            extractPart(mesh, part, draw);
-            // Transparent: see through it (opacity, a texture's alpha) or blended other than over.
-            const bool textureAlpha =
-                draw.uniforms.diffuseMap && texturesWithAlpha.count(draw.uniforms.diffuseMap);
-            draw.transparent = draw.uniforms.opacity < 1.0f || textureAlpha || blend != BlendMode::Over;
-            // The gl preset blends over as glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA) does,
-            // alpha included; Facet's keeps Porter–Duff's α.
-            draw.uniforms.blend = !draw.transparent                      ? BlendMode::Replace
-                                  : glPreset && blend == BlendMode::Over ? BlendMode::OverGL
-                                                                         : blend;
-            // Flat shading lights each face with its own normal; the GL preset keeps OpenGL's rule
-            // instead: the provoking vertex's colour, lit with that vertex's normal.
-            if (frequency == ShadingFrequency::Flat && !glPreset) unweldWithFaceNormals(draw);
-            prepared.triangleCount += draw.indices.size() / 3;
-            if (draw.transparent) {
-                const auto drawIndex = static_cast<std::uint32_t>(prepared.draws.size());
-                for (std::uint32_t t = 0; t < draw.indices.size() / 3; ++t)
-                    prepared.transparentTriangles.push_back({drawIndex, t});
-            }
-            prepared.draws.push_back(std::move(draw));
-        }
-    }
-
-    // Pipeline state.
-    DrawState& state = prepared.state;
-    state.viewport = {0, 0, scene.width, scene.height};
-    state.raster.cull = scene.pipeline.cull;
-    state.raster.subpixelBits = scene.pipeline.subpixelBits;
-    state.interpolation = scene.pipeline.interpolation;
-    state.depth.format = scene.pipeline.depth;
-    state.depth.compare = nearerPasses(state.depth.format, CompareOp::Less);
-    state.colorBuffer = scene.pipeline.colorBuffer;
-    if (isMultisampled(scene.pipeline.antialiasing))
-        state.samples = samplesPerPixel(scene.pipeline.antialiasing);
-    state.raster.provokingVertex = ProvokingVertex::Last;  // OpenGL's convention
-    prepared.clearColor = vec4(decode(vec3(scene.background)), scene.background.a);
-    prepared.encoding = glPreset ? kGlEncoding : ColorEncoding{scene.gamma.encode, scene.gamma.exponent};
-
+    frame.state = pipelineState(scene);
+    frame.clearColor = vec4(decode(vec3(scene.background)), scene.background.a);
+    frame.encoding = glPreset ? kGlEncoding : ColorEncoding{scene.gamma.encode, scene.gamma.exponent};
     // Shadows: each light's method (the command line's for all of them, when given).
     for (std::size_t i = 0; i < lights.size(); ++i)
-        prepared.shadowMethods[i] = scene.shadows.value_or(lights[i].shadows);
-    prepared.shadowMapOptions = scene.shadowMap;
-    {
-        const glm::dvec3 centre = 0.5 * (glm::dvec3(sceneBounds.min) + glm::dvec3(sceneBounds.max));
-        const double radius = 0.5 * glm::length(glm::dvec3(sceneBounds.max) - glm::dvec3(sceneBounds.min));
-        prepared.sceneExtent =
-            float((glm::length(glm::dvec3(camera.eye) - centre) + radius) * camera.viewScale);
+        frame.shadowMethods[i] = scene.shadows.value_or(lights[i].shadows);
+    frame.shadowMapOptions = scene.shadowMap;
+    frame.sceneExtent = sceneExtent(bounds, frame.camera);
+    prepareShadows(frame);
+    return frame;
+}
+
+PreparedScene prepareScene(const Scene& scene, const TextureLimits& limits) {
+    checkFrameSettings(scene);  // before any file is read
+    return prepareFrame(scene, loadSharedAssets(scene, limits));
+}
+
+PreparedScene prepareScene(const Scene& scene, std::shared_ptr<const SceneAssets> assets,
+                           const TextureLimits& limits) {
+    checkFrameSettings(scene);
+    return prepareFrame(scene, assetsFor(scene, std::move(assets), limits));
+}
+
+void setTriangles(PreparedScene& frame, std::vector<DrawTriangles> triangles) {
+    if (triangles.size() != frame.draws.size())
+        throw std::invalid_argument("setTriangles: one DrawTriangles per draw");
+    auto geometry = std::make_shared<FrameGeometry>();
+    geometry->draws = std::move(triangles);
+    frame.triangleCount = 0;
+    for (std::size_t k = 0; k < frame.draws.size(); ++k) {
+        const DrawTriangles& t = geometry->draws[k];
+        PreparedDraw& draw = frame.draws[k];
+        draw.vertices = t.vertices;
+        draw.indices = t.indices;
+        const auto count = static_cast<std::uint32_t>(t.indices.size() / 3);
+        frame.triangleCount += count;
+        if (!draw.transparent) continue;
+        for (std::uint32_t i = 0; i < count; ++i)
+            geometry->transparentTriangles.push_back({static_cast<std::uint32_t>(k), i});
     }
-    prepareShadows(prepared);
-    return prepared;
+    frame.transparentTriangles = geometry->transparentTriangles;
+    frame.geometry = std::move(geometry);
 }
 
 std::vector<RayMesh> rayMeshes(const PreparedScene& prepared, std::vector<std::vector<vec3>>& positions) {
@@ -451,8 +491,6 @@ std::vector<RayMesh> rayMeshes(const PreparedScene& prepared, std::vector<std::v
 }
 
 void prepareShadows(PreparedScene& prepared) {
-    prepared.rays.reset();
-    prepared.shadowMaps.clear();
     prepared.shadows.reset();
     for (PreparedDraw& d : prepared.draws)
         d.uniforms.shadows = nullptr;
@@ -461,24 +499,25 @@ void prepareShadows(PreparedScene& prepared) {
                prepared.shadowMethods.end();
     };
     if (!casts(ShadowMethod::Ray) && !casts(ShadowMethod::Map)) return;  // no BVH, no map, no cost
-    auto shadows = std::make_unique<SceneShadows>();
-    shadows->rayOffset = kShadowRayOffset * prepared.sceneExtent;
+    auto shadows = std::make_shared<FrameShadows>();
+    SceneShadows& forShaders = shadows->forShaders;
+    forShaders.rayOffset = kShadowRayOffset * prepared.sceneExtent;
     if (casts(ShadowMethod::Ray)) {
         std::vector<std::vector<vec3>> positions;
         const std::vector<RayMesh> meshes = rayMeshes(prepared, positions);
-        prepared.rays = std::make_unique<RayScene>(meshes);
-        shadows->rays = prepared.rays.get();
+        shadows->rays = std::make_unique<RayScene>(meshes);
+        forShaders.rays = shadows->rays.get();
     }
     for (std::size_t i = 0; i < kMaxLights; ++i) {
-        shadows->lights[i].method = prepared.shadowMethods[i];
+        forShaders.lights[i].method = prepared.shadowMethods[i];
         if (prepared.shadowMethods[i] == ShadowMethod::Map) {
-            prepared.shadowMaps.push_back(drawShadowMap(prepared, static_cast<int>(i)));
-            shadows->lights[i].map = prepared.shadowMaps.back().get();
+            shadows->maps.push_back(drawShadowMap(prepared, static_cast<int>(i)));
+            forShaders.lights[i].map = shadows->maps.back().get();
         }
     }
-    prepared.shadows = std::move(shadows);
     for (PreparedDraw& d : prepared.draws)
-        d.uniforms.shadows = prepared.shadows.get();
+        d.uniforms.shadows = &forShaders;
+    prepared.shadows = std::move(shadows);
 }
 
 void setTurntable(PreparedScene& prepared, float degrees) {
@@ -494,13 +533,19 @@ void setTurntable(PreparedScene& prepared, float degrees) {
     prepareShadows(prepared);  // the shadows move with the objects
 }
 
+PreparedScene turned(const PreparedScene& prepared, float degrees) {
+    PreparedScene variant = prepared;
+    setTurntable(variant, degrees);
+    return variant;
+}
+
 namespace {
 
 // The sort keys of the transparent triangles: the distance along the view direction (−z_eye) of each
 // triangle's centroid or of its farthest corner; larger is farther. The triangles of one draw are
 // consecutive, so each draw's vertex depths are computed once, then shared by its triangles.
 void depthKeys(const PreparedScene& prepared, SortKey key, FrameMemory& memory) {
-    const std::vector<TransparentTriangle>& triangles = prepared.transparentTriangles;
+    const std::span<const TransparentTriangle> triangles = prepared.transparentTriangles;
     memory.keys.resize(triangles.size());
     std::uint32_t current = std::numeric_limits<std::uint32_t>::max();
     for (std::size_t t = 0; t < triangles.size(); ++t) {
@@ -529,7 +574,7 @@ void depthKeys(const PreparedScene& prepared, SortKey key, FrameMemory& memory) 
 // a vertex is shaded alike wherever it sits in the array.
 void buildTransparentRuns(const PreparedScene& prepared, std::span<const std::uint32_t> order,
                           FrameMemory& memory) {
-    const std::vector<TransparentTriangle>& triangles = prepared.transparentTriangles;
+    const std::span<const TransparentTriangle> triangles = prepared.transparentTriangles;
     memory.runIndices.resize(3 * triangles.size());
     memory.runTriangles.resize(triangles.size());
     memory.runVertices.clear();
@@ -582,6 +627,26 @@ void buildTransparentRuns(const PreparedScene& prepared, std::span<const std::ui
     }
 }
 
+// Whether memory's runs were cut for the frame's triangles (the same FrameGeometry, not merely one at
+// the same address).
+bool runsCutFor(const FrameMemory& memory, const PreparedScene& prepared) {
+    return prepared.geometry && !memory.runsGeometry.owner_before(prepared.geometry) &&
+           !prepared.geometry.owner_before(memory.runsGeometry);
+}
+
+// The draw call of a transparent run: its compact vertices (or its draw's own) and indices in `memory`.
+PlannedDraw runCall(const PreparedScene& prepared, const FrameMemory& memory,
+                    const FrameMemory::TransparentRun& run, const DrawState& state) {
+    const std::span<const MeshVertex> vertices =
+        run.vertexCount == 0
+            ? prepared.draws[run.draw].vertices
+            : std::span<const MeshVertex>(memory.runVertices).subspan(run.firstVertex, run.vertexCount);
+    return {
+        run.draw, vertices,
+        std::span<const std::uint32_t>(memory.runIndices).subspan(run.firstIndex, run.indexCount), state,
+        std::span<const std::uint32_t>(memory.runTriangles).subspan(run.firstIndex / 3, run.indexCount / 3)};
+}
+
 }  // namespace
 
 std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, TransparencyMode mode, FrameMemory& memory,
@@ -592,7 +657,7 @@ std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, TransparencyMo
         const PreparedDraw& d = prepared.draws[k];
         if (!d.transparent) plan.push_back({k, d.vertices, d.indices, prepared.state, {}});
     }
-    const std::vector<TransparentTriangle>& triangles = prepared.transparentTriangles;
+    const std::span<const TransparentTriangle> triangles = prepared.transparentTriangles;
     if (triangles.empty()) return plan;
 
     // The transparent pass: depth test on, depth writes off, each draw's own blend.
@@ -622,29 +687,18 @@ std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, TransparencyMo
     stats.sortMilliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 
-    // The runs depend on the order and the scene's meshes alone: when the sort moved no triangle since
-    // the last frame this memory planned for this scene (a still camera over still objects), that
-    // frame's runs, index lists and compact vertex arrays are this frame's too. Only the calls are made
-    // again below, with the states the scene has now.
-    stats.runsReused = prepared.id != 0 && memory.runsScene == prepared.id && !stats.sort.fromScratch &&
-                       stats.sort.moves == 0;
+    // The runs depend on the order and the frame's triangles alone: when the sort moved no triangle
+    // since the last frame this memory planned for these triangles (a still camera over still objects,
+    // or another variant of the same frame), that frame's runs, index lists and compact vertex arrays
+    // are this frame's too. Only the calls are made again below, with the states the frame has now.
+    stats.runsReused = runsCutFor(memory, prepared) && !stats.sort.fromScratch && stats.sort.moves == 0;
     if (!stats.runsReused) {
         buildTransparentRuns(prepared, order, memory);
-        memory.runsScene = prepared.id;
+        memory.runsGeometry = prepared.geometry;
     }
     plan.reserve(plan.size() + memory.runs.size());
     for (const FrameMemory::TransparentRun& run : memory.runs) {
-        const PreparedDraw& d = prepared.draws[run.draw];
-        const std::span<const MeshVertex> vertices =
-            run.vertexCount == 0
-                ? std::span<const MeshVertex>(d.vertices)
-                : std::span<const MeshVertex>(memory.runVertices).subspan(run.firstVertex, run.vertexCount);
-        plan.push_back(
-            {run.draw, vertices,
-             std::span<const std::uint32_t>(memory.runIndices).subspan(run.firstIndex, run.indexCount),
-             transparentState(run.draw),
-             std::span<const std::uint32_t>(memory.runTriangles)
-                 .subspan(run.firstIndex / 3, run.indexCount / 3)});
+        plan.push_back(runCall(prepared, memory, run, transparentState(run.draw)));
         ++stats.transparentRuns;
     }
     return plan;

@@ -1,5 +1,6 @@
-// Renders a Scene with the pipeline: loads its models once (prepareScene), then draws frames
-// (renderFrame) with the built-in surface shaders (shaders.h), one draw per object part (material).
+// Renders a Scene with the pipeline: makes a frame of it from its loaded assets (prepareFrame, or
+// prepareScene to load them too), then draws it (renderFrame) with the built-in surface shaders
+// (shaders.h), one draw per object part (material).
 #pragma once
 
 #include <chrono>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "io/image_io.h"
+#include "io/scene_assets.h"
 #include "pipeline/fragment_lists_resolve.h"
 #include "pipeline/pipeline.h"
 #include "pipeline/sample_position.h"
@@ -24,10 +26,33 @@
 
 namespace facet {
 
-// One draw: the triangles of one material of one object, with their own compact vertex array.
-struct PreparedDraw {
-    std::vector<MeshVertex> vertices;  // flat shading (Facet preset): one vertex per corner, face normals
+// One draw's triangles: its own compact vertex array (flat shading, Facet preset: one vertex per corner,
+// face normals) and its indices.
+struct DrawTriangles {
+    std::vector<MeshVertex> vertices;
     std::vector<std::uint32_t> indices;
+};
+
+// A transparent triangle, for sorting: which draw, which triangle of it.
+struct TransparentTriangle {
+    std::uint32_t draw;
+    std::uint32_t triangle;
+};
+
+// The triangles of a frame's draws (in the frame's draw order) and its transparent triangles listed for
+// sorting. Immutable once made and shared by every copy of the frame; a variant with other triangles
+// gets its own (setTriangles), which is also what a FrameMemory's runs are cut for.
+struct FrameGeometry {
+    std::vector<DrawTriangles> draws;
+    std::vector<TransparentTriangle> transparentTriangles;  // of every transparent draw, in file order
+};
+
+// One draw: the triangles of one material of one object.
+struct PreparedDraw {
+    // The draw's triangles in the frame's FrameGeometry (which its PreparedScene holds): views, so that
+    // copying a draw copies no vertices. setTriangles points them.
+    std::span<const MeshVertex> vertices;
+    std::span<const std::uint32_t> indices;
     SurfaceUniforms uniforms;  // uniforms.blend: Replace for opaque draws
     ShadingFrequency frequency = ShadingFrequency::Phong;
     mat4 worldFromObject{1.0f};  // the object's placement (the turntable turns it)
@@ -38,40 +63,49 @@ struct PreparedDraw {
     bool transparent = false;
 };
 
-// A transparent triangle, for sorting: which draw, which triangle of it.
-struct TransparentTriangle {
-    std::uint32_t draw;
-    std::uint32_t triangle;
+// What the shadows of a frame need, for its objects as placed (and its camera: all in eye space): the
+// BVH of the opaque triangles for ray-cast shadows, the shadow maps, and what the draws' uniforms.shadows
+// point to. Derived from the frame by prepareShadows and shared by copies that keep the placement; a
+// variant that moves objects or changes its shadows builds its own.
+struct FrameShadows {
+    std::unique_ptr<RayScene> rays;  // null without ray-cast shadows
+    std::vector<std::unique_ptr<ShadowMap>> maps;
+    SceneShadows forShaders;
 };
 
+// A frame to draw: the camera, the pipeline state, the draws and what they draw with. Cheap to copy:
+// the assets (meshes and textures, which the draws' uniforms point into), the triangles and the
+// shadows are shared, immutable, so a copy is a variant to change (a turntable angle, other uniforms,
+// fewer triangles) that leaves the original as it was and needs nothing of it to live on.
 struct PreparedScene {
     Scene scene;
     Camera camera;
     DrawState state;
     vec4 clearColor{0.0f};                   // linear (Facet preset) or as given (GL preset)
     ColorEncoding encoding = kSrgbEncoding;  // how 8-bit image files encode the colour buffer
+    std::shared_ptr<const SceneAssets> assets;
     std::vector<PreparedDraw> draws;
-    std::vector<TransparentTriangle> transparentTriangles;  // of every transparent draw, in file order
-    vec3 turntableCentre{0.0f};                             // world space: the centre of the bounding box
-    std::vector<std::unique_ptr<Texture>> textures;
-    std::vector<std::string> warnings;  // from the importer, one line each
+    std::shared_ptr<const FrameGeometry> geometry;              // the draws' triangles
+    std::span<const TransparentTriangle> transparentTriangles;  // geometry's, in file order
+    vec3 turntableCentre{0.0f};                                 // world space: the centre of the bounding box
+    std::vector<std::string> warnings;  // from the importer and the camera, one line each
     std::size_t triangleCount = 0;
     std::size_t degenerateSkipped = 0;
-    // Unique to one prepareScene call (0: a scene made otherwise): what a FrameMemory's runs of
-    // transparent triangles were cut for, so that a memory moved to another scene never reuses them.
-    std::uint64_t id = 0;
     // The eye-space distance to the far side of the scene's bounding sphere: the scale of the scene's
     // coordinates, for the shadow rays' offset (shading/shadow.h).
     float sceneExtent = 1.0f;
-    // Shadows, when a light casts them (else all null and empty, and nothing is built): per light its
-    // method (in the uniforms' light order), the BVH of the scene's triangles for ray-cast shadows,
-    // the shadow maps, and what the draws' uniforms.shadows point to.
+    // Shadows: per light its method (in the uniforms' light order) and the maps' options; `shadows` is
+    // null when no light casts shadows (nothing is built then).
     std::array<ShadowMethod, kMaxLights> shadowMethods{};
     ShadowMapOptions shadowMapOptions;
-    std::unique_ptr<RayScene> rays;
-    std::vector<std::unique_ptr<ShadowMap>> shadowMaps;
-    std::unique_ptr<SceneShadows> shadows;
+    std::shared_ptr<const FrameShadows> shadows;
 };
+
+// Gives `frame` the triangles `triangles` (one DrawTriangles per draw, in frame.draws' order) as a new
+// FrameGeometry: points the draws' views at them, lists the transparent draws' triangles again and sets
+// the triangle count. The old geometry stays with the copies that hold it; FrameMemory never reuses runs
+// cut for it.
+void setTriangles(PreparedScene& frame, std::vector<DrawTriangles> triangles);
 
 // The scene's triangles as they are placed now, in eye space, for ray queries: one RayMesh per draw
 // (the draw's index is the mesh's), transparent draws as see-through. The positions are kept in
@@ -79,21 +113,41 @@ struct PreparedScene {
 std::vector<RayMesh> rayMeshes(const PreparedScene& prepared, std::vector<std::vector<vec3>>& positions);
 
 // Builds what the scene's shadows need (the BVH for ray-cast shadows, the shadow maps) for the objects as
-// placed now, and points the draws' uniforms at it; nothing when no light casts shadows. prepareScene
-// and setTurntable call it.
+// placed now, as a new FrameShadows, and points the draws' uniforms at it; nothing when no light casts
+// shadows. prepareFrame and setTurntable call it; so must whoever changes a frame's placement or shadows.
 void prepareShadows(PreparedScene& prepared);
 
-// Loads every model and texture the scene names and computes camera, lights and materials.
+// Refuses a scene no frame can be made of (InputError): an image size out of range, no objects, exact
+// transparency multisampled.
+void checkFrameSettings(const Scene& scene);
+
+// The frame of `scene` drawn from `assets` (loaded for it: assetOptionsFor(scene)): camera, lights,
+// materials, draws, shadows.
 // Facet preset: every colour a user writes (MTL Ka/Kd/Ks/Ke, scene materials, lights, background,
 // ambient) is taken as an sRGB-encoded value, as a colour picker shows it, and decoded to linear light
 // here; lighting and blending then happen in linear space. GL preset: colours are used as given and
 // written without encoding (docs/lighting.md). Lights end up in eye space. Throws InputError for
-// unusable input, textures beyond `limits` included (an unreadable texture is a warning instead).
+// unusable input, and std::invalid_argument for assets loaded for another scene.
+PreparedScene prepareFrame(const Scene& scene, std::shared_ptr<const SceneAssets> assets);
+
+// Loads every model and texture the scene names (loadSharedAssets) and makes its frame (prepareFrame).
+// Throws InputError for unusable input, textures beyond `limits` included (an unreadable texture is a
+// warning instead).
 PreparedScene prepareScene(const Scene& scene, const TextureLimits& limits = {});
 
+// The frame of `scene` drawn from `assets` when they were loaded with the options it needs (a variant of
+// the scene that changes nothing about loading, as most of the trade's knobs), else from its own, loaded
+// now.
+PreparedScene prepareScene(const Scene& scene, std::shared_ptr<const SceneAssets> assets,
+                           const TextureLimits& limits = {});
+
 // Turns every object by `degrees` about the vertical (world y) axis through turntableCentre, as on a
-// turntable: camera and lights stay where they are. 0 is the scene as written.
+// turntable: camera and lights stay where they are. 0 is the scene as written. The shadows are built
+// again for the turned objects.
 void setTurntable(PreparedScene& prepared, float degrees);
+
+// A copy of `prepared` turned by `degrees` (setTurntable); `prepared` stays as it is.
+PreparedScene turned(const PreparedScene& prepared, float degrees);
 
 // What a frame keeps for the next one: the back-to-front order of the transparent triangles (so that
 // insertion sort starts from an almost sorted order), and scratch buffers.
@@ -116,7 +170,9 @@ struct FrameMemory {
         std::size_t firstVertex = 0, vertexCount = 0;
     };
     std::vector<TransparentRun> runs;
-    std::uint64_t runsScene = 0;  // the PreparedScene::id the runs were cut for (0: none)
+    // The triangles the runs were cut for (empty: none), held weakly: a geometry made later, even at the
+    // same address, never counts as the same.
+    std::weak_ptr<const FrameGeometry> runsGeometry;
     // While a run is compacted: for each vertex of its draw, its index in the run's array, or kNotInRun;
     // and the draw's indices of the vertices copied so far, to put kNotInRun back after the run.
     std::vector<std::uint32_t> runVertexOf;

@@ -68,29 +68,13 @@ std::string encodingInWords(ColorEncoding encoding) {
     return "";
 }
 
-// ---- Copies of the prepared scene ---------------------------------------------------------------------
+// ---- Variants of the frame ----------------------------------------------------------------------------
 
-// A copy of `prepared` without its draws, to give it changed ones. The textures are not copied: the
-// draws' uniforms keep pointing to those of `prepared`, which must outlive the copy.
-PreparedScene copyWithoutDraws(const PreparedScene& prepared) {
-    PreparedScene copy;
-    copy.scene = prepared.scene;
-    copy.camera = prepared.camera;
-    copy.state = prepared.state;
-    copy.clearColor = prepared.clearColor;
-    copy.encoding = prepared.encoding;
-    copy.turntableCentre = prepared.turntableCentre;
-    copy.triangleCount = prepared.triangleCount;
-    copy.degenerateSkipped = prepared.degenerateSkipped;
-    return copy;  // the warnings stay with `prepared`, which reports them
-}
-
-// A copy of `prepared` with every draw as `change` leaves it (one draw at a time).
+// A copy of `prepared` (which shares its assets, triangles and shadows) with every draw as `change`
+// leaves it (one draw at a time).
 template <class Change>
 PreparedScene copyWithDraws(const PreparedScene& prepared, Change change) {
-    PreparedScene copy = copyWithoutDraws(prepared);
-    copy.draws = prepared.draws;
-    copy.transparentTriangles = prepared.transparentTriangles;
+    PreparedScene copy = prepared;
     for (PreparedDraw& draw : copy.draws)
         change(draw);
     return copy;
@@ -134,34 +118,24 @@ PreparedScene firstTriangles(const PreparedScene& prepared, std::span<const Draw
     for (std::size_t i = 0; i < count; ++i)
         kept[order[i].draw][order[i].triangle] = true;
 
-    PreparedScene part = copyWithoutDraws(prepared);
-    constexpr std::uint32_t kLeftOut = 0xffffffffu;
-    std::vector<std::uint32_t> newDraw(prepared.draws.size(), kLeftOut);
-    std::vector<std::vector<std::uint32_t>> newTriangle(prepared.draws.size());
-    part.triangleCount = 0;
+    PreparedScene part = prepared;
+    part.draws.clear();
+    std::vector<DrawTriangles> triangles;
     for (std::size_t k = 0; k < prepared.draws.size(); ++k) {
         const PreparedDraw& whole = prepared.draws[k];
-        newTriangle[k].assign(kept[k].size(), kLeftOut);
-        PreparedDraw draw;
-        for (std::uint32_t t = 0; t < kept[k].size(); ++t) {
-            if (!kept[k][t]) continue;
-            newTriangle[k][t] = static_cast<std::uint32_t>(draw.indices.size() / 3);
-            draw.indices.insert(draw.indices.end(), whole.indices.begin() + 3 * t,
-                                whole.indices.begin() + 3 * t + 3);
-        }
-        if (draw.indices.empty()) continue;
-        draw.vertices = whole.vertices;
-        draw.uniforms = whole.uniforms;
-        draw.frequency = whole.frequency;
-        draw.worldFromObject = whole.worldFromObject;
-        draw.transparent = whole.transparent;
-        newDraw[k] = static_cast<std::uint32_t>(part.draws.size());
-        part.triangleCount += draw.indices.size() / 3;
-        part.draws.push_back(std::move(draw));
+        DrawTriangles drawn;
+        for (std::uint32_t t = 0; t < kept[k].size(); ++t)
+            if (kept[k][t])
+                drawn.indices.insert(drawn.indices.end(), whole.indices.begin() + 3 * t,
+                                     whole.indices.begin() + 3 * t + 3);
+        if (drawn.indices.empty()) continue;
+        drawn.vertices.assign(whole.vertices.begin(), whole.vertices.end());
+        part.draws.push_back(whole);
+        triangles.push_back(std::move(drawn));
     }
-    for (const TransparentTriangle& t : prepared.transparentTriangles)
-        if (kept[t.draw][t.triangle])
-            part.transparentTriangles.push_back({newDraw[t.draw], newTriangle[t.draw][t.triangle]});
+    // The transparent triangles keep their order: the kept ones of each draw, draw by draw, as the
+    // whole frame lists them.
+    setTriangles(part, std::move(triangles));
     return part;
 }
 

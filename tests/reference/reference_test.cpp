@@ -254,10 +254,12 @@ TEST_F(ReferenceTest, CullsBackFacesAsThePipelineDoes) {
 // a NaN), the rest is drawn.
 TEST_F(ReferenceTest, NonFiniteTrianglesAreLeftOut) {
     PreparedScene prepared = prepareScene(sphereScene());
-    prepared.draws[0].vertices[prepared.draws[0].indices[0]].position.x =
-        std::numeric_limits<float>::quiet_NaN();
-    prepared.draws[0].vertices[prepared.draws[0].indices[30]].position.y =
-        std::numeric_limits<float>::infinity();
+    std::vector<DrawTriangles> triangles;
+    for (const PreparedDraw& d : prepared.draws)
+        triangles.push_back({{d.vertices.begin(), d.vertices.end()}, {d.indices.begin(), d.indices.end()}});
+    triangles[0].vertices[triangles[0].indices[0]].position.x = std::numeric_limits<float>::quiet_NaN();
+    triangles[0].vertices[triangles[0].indices[30]].position.y = std::numeric_limits<float>::infinity();
+    setTriangles(prepared, std::move(triangles));
     ThreadPool pool(1);
     ReferenceStats stats;
     const LinearImage image = renderReference(prepared, {.samples = 1}, pool, &stats);

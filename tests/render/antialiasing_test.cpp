@@ -118,11 +118,11 @@ class SupersampledRectangle : public TempFolderTest {
         d.uniforms.material.emission = vec3(1.0f);
         d.uniforms.terms = kEmissionTerm;
         const float a = float(x0), b = float(x1), c = float(y0), e = float(y1);
-        d.vertices = {{{a, c, 0.0f}, {0, 0, 1}, {}},
-                      {{b, c, 0.0f}, {0, 0, 1}, {}},
-                      {{b, e, 0.0f}, {0, 0, 1}, {}},
-                      {{a, e, 0.0f}, {0, 0, 1}, {}}};
-        d.indices = {0, 1, 2, 0, 2, 3};  // counter-clockwise: front faces
+        setTriangles(prepared, {{{{{a, c, 0.0f}, {0, 0, 1}, {}},
+                                  {{b, c, 0.0f}, {0, 0, 1}, {}},
+                                  {{b, e, 0.0f}, {0, 0, 1}, {}},
+                                  {{a, e, 0.0f}, {0, 0, 1}, {}}},
+                                 {0, 1, 2, 0, 2, 3}}});  // counter-clockwise: front faces
         return prepared;
     }
 
@@ -224,10 +224,14 @@ TEST_F(SupersampledRectangle, MultisampledDepthTestPerSample) {
     PreparedDraw& flat = prepared.draws[0];
     flat.uniforms.material.emission = vec3(0.0f, 1.0f, 0.0f);
     tilted.uniforms.material.emission = vec3(1.0f, 0.0f, 0.0f);
+    const DrawTriangles flatTriangles{{flat.vertices.begin(), flat.vertices.end()},
+                                      {flat.indices.begin(), flat.indices.end()}};
+    DrawTriangles tiltedTriangles = flatTriangles;
     const float crossing = float(ndcX(0));
-    for (MeshVertex& v : tilted.vertices)
+    for (MeshVertex& v : tiltedTriangles.vertices)
         v.position.z = 0.5f * (v.position.x - crossing);  // nearer (z < 0) left of the crossing
     prepared.draws.insert(prepared.draws.begin(), tilted);
+    setTriangles(prepared, {tiltedTriangles, flatTriangles});
     Framebuffer target(kSide, kSide);
     DrawContext context(1);
     FrameMemory memory;

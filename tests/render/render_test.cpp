@@ -308,7 +308,7 @@ TEST(Render, TexturesTogetherBeyondTheBudgetAreAnError) {
     const Scene scene = headOnScene(obj);
     TextureLimits limits;
     limits.maxTotalBytes = 2 * 64 * 64 * 4;
-    EXPECT_EQ(prepareScene(scene, limits).textures.size(), 2u);  // exactly fits
+    EXPECT_EQ(prepareScene(scene, limits).assets->textures.size(), 2u);  // exactly fits
     limits.maxTotalBytes -= 1;
     try {
         prepareScene(scene, limits);
@@ -407,7 +407,7 @@ void drawRunsWithWholeParts(const PreparedScene& prepared, TransparencySorter& s
     target.clear(prepared.clearColor, 1.0f, context.pool);
     for (const PreparedDraw& d : prepared.draws)
         if (!d.transparent) drawPart(d, prepared.state, d.indices);
-    const std::vector<TransparentTriangle>& triangles = prepared.transparentTriangles;
+    const std::span<const TransparentTriangle> triangles = prepared.transparentTriangles;
     std::vector<std::uint32_t> run;
     for (std::size_t i = 0; i < order.size();) {
         const PreparedDraw& d = prepared.draws[triangles[order[i]].draw];

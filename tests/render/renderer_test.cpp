@@ -255,7 +255,7 @@ TEST(Renderer, ReusedRunsTakeTheScenesStatesAndBelongToOneScene) {
     EXPECT_GT(runsOfDraw1, 0u);
 
     const PreparedScene twin = mixedScene();  // the same triangles, another scene
-    ASSERT_NE(twin.id, prepared.id);
+    ASSERT_NE(twin.geometry, prepared.geometry);
     FrameStats third;
     planFrame(twin, TransparencyMode::Sorted, memory, third);
     EXPECT_FALSE(third.sort.fromScratch);

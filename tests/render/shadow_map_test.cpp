@@ -218,7 +218,7 @@ constexpr const char* kCubeOnGround = R"({
 // The map's lit share at `count` points of the ground along x ∈ [−1, 2] (across the cube's shadow and
 // its edge), z = 0.1, in eye space.
 std::vector<float> litSharesAcrossTheEdge(const PreparedScene& prepared, int count) {
-    const ShadowMap& map = *prepared.shadowMaps.at(0);
+    const ShadowMap& map = *prepared.shadows->maps.at(0);
     std::vector<float> shares;
     for (int k = 0; k < count; ++k) {
         const double x = -1.0 + 3.0 * k / (count - 1);
@@ -237,8 +237,9 @@ TEST_F(ShadowMapTest, OneTapIsAllOrNothingAndMoreTapsRampAtTheEdge) {
         SCOPED_TRACE(taps);
         scene.shadowMap.filterTaps = taps;
         const PreparedScene prepared = prepareScene(scene);
-        ASSERT_EQ(prepared.shadowMaps.size(), 1u);
-        EXPECT_EQ(prepared.shadowMaps[0]->filterTaps, taps);
+        ASSERT_NE(prepared.shadows, nullptr);
+        ASSERT_EQ(prepared.shadows->maps.size(), 1u);
+        EXPECT_EQ(prepared.shadows->maps[0]->filterTaps, taps);
         int lit = 0, shadowed = 0, between = 0, notQuarters = 0;
         for (float share : litSharesAcrossTheEdge(prepared, 3001)) {
             EXPECT_EQ(share * float(taps), std::round(share * float(taps))) << share;
@@ -267,7 +268,7 @@ TEST_F(ShadowMapTest, EightLanesAndDoubleLookUpAsOneLane) {
     Scene scene = loadScene(write("cube.json", kCubeOnGround));
     scene.shadowMap.filterTaps = 16;
     const PreparedScene prepared = prepareScene(scene);
-    const ShadowMap& map = *prepared.shadowMaps.at(0);
+    const ShadowMap& map = *prepared.shadows->maps.at(0);
     const LightParams& light = prepared.draws.at(0).uniforms.lights[0];
     const vec3 up(prepared.camera.viewFromWorldExact * glm::dvec4(0, 1, 0, 0));
     Vec3x8 P{}, N{};
@@ -328,7 +329,7 @@ TEST_F(ShadowMapTest, PointLightsShadowAllAroundThemselves) {
     scene.shadowMap.filterTaps = 1;
     scene.shadowMap.size = 512;
     const PreparedScene prepared = prepareScene(scene);
-    const ShadowMap& map = *prepared.shadowMaps.at(0);
+    const ShadowMap& map = *prepared.shadows->maps.at(0);
     ASSERT_EQ(map.faces.size(), 6u);
     const auto share = [&](glm::dvec3 world) {
         return shadowMapLitShare(map, vec3(prepared.camera.viewFromWorldExact * glm::dvec4(world, 1.0)));
@@ -371,7 +372,7 @@ TEST_F(ShadowMapTest, SpotMapsCoverTheirWholeCone) {
         Scene scene = loadScene(write("spot.json", text));
         scene.shadowMap.filterTaps = 1;
         const PreparedScene prepared = prepareScene(scene);
-        const ShadowMap& map = *prepared.shadowMaps.at(0);
+        const ShadowMap& map = *prepared.shadows->maps.at(0);
         EXPECT_EQ(map.faces.size(), c.faces);
         const auto share = [&](double x) {
             return shadowMapLitShare(map, vec3(prepared.camera.viewFromWorldExact * glm::dvec4(x, 0, 0, 1)));

@@ -93,34 +93,33 @@ TEST_F(ShadowTest, BvhIsBuiltOnlyForAShadowingLight) {
     for (const char* none : {"", "\"none\"", "false"}) {
         SCOPED_TRACE(none);
         const PreparedScene prepared = prepareScene(loadScene(writeScene(scene, none)));
-        EXPECT_EQ(prepared.rays, nullptr);
         EXPECT_EQ(prepared.shadows, nullptr);
-        EXPECT_TRUE(prepared.shadowMaps.empty());
         for (const PreparedDraw& d : prepared.draws)
             EXPECT_EQ(d.uniforms.shadows, nullptr);
     }
     for (const char* ray : {"\"ray\"", "true"}) {
         SCOPED_TRACE(ray);
         const PreparedScene prepared = prepareScene(loadScene(writeScene(scene, ray)));
-        ASSERT_NE(prepared.rays, nullptr);
         ASSERT_NE(prepared.shadows, nullptr);
-        EXPECT_EQ(prepared.shadows->rays, prepared.rays.get());
-        EXPECT_EQ(prepared.shadows->lights[0].method, ShadowMethod::Ray);
-        EXPECT_EQ(prepared.shadows->lights[1].method, ShadowMethod::None);
-        EXPECT_FLOAT_EQ(prepared.shadows->rayOffset, kShadowRayOffset * prepared.sceneExtent);
-        EXPECT_GT(prepared.shadows->rayOffset, 0.0f);
-        EXPECT_EQ(prepared.rays->stats().triangles, 4u);  // the ground's two and the quad's two
+        ASSERT_NE(prepared.shadows->rays, nullptr);
+        const SceneShadows& forShaders = prepared.shadows->forShaders;
+        EXPECT_EQ(forShaders.rays, prepared.shadows->rays.get());
+        EXPECT_EQ(forShaders.lights[0].method, ShadowMethod::Ray);
+        EXPECT_EQ(forShaders.lights[1].method, ShadowMethod::None);
+        EXPECT_FLOAT_EQ(forShaders.rayOffset, kShadowRayOffset * prepared.sceneExtent);
+        EXPECT_GT(forShaders.rayOffset, 0.0f);
+        EXPECT_EQ(prepared.shadows->rays->stats().triangles, 4u);  // the ground's two and the quad's two
         ASSERT_EQ(prepared.draws.size(), 2u);
         for (const PreparedDraw& d : prepared.draws)
-            EXPECT_EQ(d.uniforms.shadows, prepared.shadows.get());
+            EXPECT_EQ(d.uniforms.shadows, &forShaders);
     }
     // A shadow map needs no BVH.
     const PreparedScene mapped = prepareScene(loadScene(writeScene(scene, "\"map\"")));
-    EXPECT_EQ(mapped.rays, nullptr);
     ASSERT_NE(mapped.shadows, nullptr);
     EXPECT_EQ(mapped.shadows->rays, nullptr);
-    EXPECT_EQ(mapped.shadows->lights[0].method, ShadowMethod::Map);
-    EXPECT_EQ(mapped.draws[0].uniforms.shadows, mapped.shadows.get());
+    EXPECT_EQ(mapped.shadows->forShaders.rays, nullptr);
+    EXPECT_EQ(mapped.shadows->forShaders.lights[0].method, ShadowMethod::Map);
+    EXPECT_EQ(mapped.draws[0].uniforms.shadows, &mapped.shadows->forShaders);
 }
 
 // The command line's --shadows (Scene::shadows) overrides every light's, the default light's too when
@@ -134,7 +133,8 @@ TEST_F(ShadowTest, CommandLineShadowsReachEveryLightTheDefaultOneToo) {
     noLights.shadows = ShadowMethod::Ray;
     const PreparedScene prepared = prepareScene(noLights);
     EXPECT_EQ(prepared.shadowMethods[0], ShadowMethod::Ray);
-    ASSERT_NE(prepared.rays, nullptr);
+    ASSERT_NE(prepared.shadows, nullptr);
+    ASSERT_NE(prepared.shadows->rays, nullptr);
     const LinearImage shadowed = render(prepared);
     std::size_t darker = 0;
     for (std::size_t i = 0; i < shadowed.pixels.size(); ++i)
@@ -144,7 +144,6 @@ TEST_F(ShadowTest, CommandLineShadowsReachEveryLightTheDefaultOneToo) {
     Scene rayInFile = loadScene(writeScene(scene, "\"ray\""));
     rayInFile.shadows = ShadowMethod::None;
     const PreparedScene off = prepareScene(rayInFile);
-    EXPECT_EQ(off.rays, nullptr);
     EXPECT_EQ(off.shadows, nullptr);
 }
 
@@ -159,7 +158,8 @@ TEST_F(ShadowTest, DegenerateTrianglesLeaveTheShadowExact) {
                                    std::to_string(scene.quad[0].y) + " " + std::to_string(scene.quad[0].z) +
                                    "\nf 1 5 2\n";
     const PreparedScene prepared = prepareScene(loadScene(writeScene(scene, "\"ray\"", degenerate)));
-    ASSERT_NE(prepared.rays, nullptr);
+    ASSERT_NE(prepared.shadows, nullptr);
+    ASSERT_NE(prepared.shadows->rays, nullptr);
     const std::vector<GroundPixel> pixels = checkedPixels(scene, prepared);
     EXPECT_EQ(shadowDisagreements(render(prepared), pixels, darkLitThreshold(prepared, pixels)), 0u);
 }
@@ -172,7 +172,10 @@ TEST_F(ShadowTest, NonFiniteTrianglesAreLeftOutOfTheBvhAndTheShadowStays) {
     const AnalyticShadowScene scene = floatingSquare();
     PreparedScene prepared = prepareScene(loadScene(writeScene(scene, "\"ray\"")));
     ASSERT_EQ(prepared.draws.size(), 2u);
-    PreparedDraw& quad = prepared.draws[1];
+    std::vector<DrawTriangles> triangles;
+    for (const PreparedDraw& d : prepared.draws)
+        triangles.push_back({{d.vertices.begin(), d.vertices.end()}, {d.indices.begin(), d.indices.end()}});
+    DrawTriangles& quad = triangles[1];
     const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
     for (const vec3 bad : {vec3(nan, 0, 0), vec3(0, inf, 0), vec3(-inf, nan, 1e30f)}) {
         const auto first = static_cast<std::uint32_t>(quad.vertices.size());
@@ -184,9 +187,11 @@ TEST_F(ShadowTest, NonFiniteTrianglesAreLeftOutOfTheBvhAndTheShadowStays) {
         quad.vertices.push_back(corner);
         quad.indices.insert(quad.indices.end(), {first, first + 1, first + 2});
     }
+    setTriangles(prepared, std::move(triangles));
     prepareShadows(prepared);
-    ASSERT_NE(prepared.rays, nullptr);
-    EXPECT_EQ(prepared.rays->stats().nonFiniteSkipped, 3u);
+    ASSERT_NE(prepared.shadows, nullptr);
+    ASSERT_NE(prepared.shadows->rays, nullptr);
+    EXPECT_EQ(prepared.shadows->rays->stats().nonFiniteSkipped, 3u);
     const std::vector<GroundPixel> pixels = checkedPixels(scene, prepared);
     const LinearImage image = render(prepared);
     std::size_t covered = 0;
@@ -208,7 +213,8 @@ TEST_F(ShadowTest, TurntableMovesTheShadowWithTheObjects) {
     for (const float degrees : {90.0f, 200.0f}) {
         SCOPED_TRACE(degrees);
         setTurntable(prepared, degrees);
-        ASSERT_NE(prepared.rays, nullptr);
+        ASSERT_NE(prepared.shadows, nullptr);
+        ASSERT_NE(prepared.shadows->rays, nullptr);
         AnalyticShadowScene turned = scene;
         const glm::dvec3 c(prepared.turntableCentre);
         const glm::dmat4 turn =
