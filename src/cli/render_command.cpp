@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <tuple>
@@ -233,8 +234,8 @@ RenderedInput renderInput(const RenderArgs& args, const RenderSettings& settings
     facet::checkImageDestination(args.output, scene.width, scene.height);
 
     const auto start = std::chrono::steady_clock::now();
-    facet::PreparedScene prepared = facet::prepareScene(scene);
-    for (const std::string& warning : prepared.warnings)
+    const facet::PreparedScene asWritten = facet::prepareScene(scene);
+    for (const std::string& warning : asWritten.warnings)
         warnings << "facet: warning: " << warning << "\n";
     facet::Framebuffer framebuffer(scene.width, scene.height);
     facet::FrameMemory memory;  // the transparent triangles' order, carried from frame to frame
@@ -248,8 +249,12 @@ RenderedInput renderInput(const RenderArgs& args, const RenderSettings& settings
     std::filesystem::path firstEmpty;
     for (int k = 0; k < frameCount; ++k) {
         const int frame = settings.firstFrame + k;
-        // A turntable: frame k of n turns the objects by turntable·k/n degrees.
-        if (args.frames) facet::setTurntable(prepared, settings.turntable * float(k) / float(frameCount));
+        // A turntable: frame k of n is a copy of the scene's frame with the objects turned by
+        // turntable·k/n degrees (sharing its models, textures and triangles).
+        std::optional<facet::PreparedScene> turnedFrame;
+        if (args.frames)
+            turnedFrame = facet::turned(asWritten, settings.turntable * float(k) / float(frameCount));
+        const facet::PreparedScene& prepared = turnedFrame ? *turnedFrame : asWritten;
         const std::filesystem::path output =
             args.frames ? framePath(args.output, frame) : std::filesystem::path(args.output);
         if (settings.reference) {
@@ -311,8 +316,8 @@ RenderedInput renderInput(const RenderArgs& args, const RenderSettings& settings
 
     result.width = scene.width;
     result.height = scene.height;
-    result.triangles = prepared.triangleCount;
-    result.degenerateSkipped = prepared.degenerateSkipped;
+    result.triangles = asWritten.triangleCount;
+    result.degenerateSkipped = asWritten.degenerateSkipped;
     result.fragmentsShaded = total.fragmentsShaded;
     result.milliseconds = std::chrono::duration<double, std::milli>(rendered - start).count();
     return result;
