@@ -192,7 +192,7 @@ int step(const StepArgs& args) {
         // The same pixel and triangle under the other setting.
         const facet::Scene otherScene = sceneFromArgs(*other);
         refuseSupersampling(otherScene);
-        const facet::PreparedScene otherPrepared = facet::prepareScene(otherScene);
+        const facet::PreparedScene otherPrepared = facet::prepareScene(otherScene, prepared.assets);
         facet::step::StepRequest otherRequest = request;
         otherRequest.pixel = std::pair(trace.walk.x, trace.walk.y);
         if (trace.walk.triangle) otherRequest.triangle = trace.walk.triangle->number;

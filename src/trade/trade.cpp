@@ -182,7 +182,9 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
         for (int round = 0; round < rounds; ++round) {
             const int framesThisRound = options.frames / rounds + (round < options.frames % rounds ? 1 : 0);
             for (const std::size_t k : indices) {
-                PreparedScene prepared = prepareScene(sceneWithWords(rendered[k].words));
+                // The reference's models and textures, unless the setting changes how they load.
+                PreparedScene prepared =
+                    prepareScene(sceneWithWords(rendered[k].words), referenceScene.assets);
                 Framebuffer framebuffer(prepared.scene.width, prepared.scene.height);
                 FrameMemory
                     memory;  // the transparent triangles' order from frame to frame, as an animation's
