@@ -201,6 +201,13 @@ std::vector<SceneKnob> makeTable() {
                                 [](S s) -> CullMode& { return s.pipeline.cull; }),
                {"back", "none"}, "back", ""),
         traded(reflectionKnob(), {}, "", ""),
+        // Changes the look (the highlight's size), not how exactly it is drawn: no fast or best value.
+        traded(choice<BlinnExponent>("blinn-exponent", "--blinn-exponent",
+                                     "Blinn-Phong's exponent: the material's shininess n, or 4n so that its "
+                                     "highlight matches Phong's",
+                                     "lighting", "blinn_exponent",
+                                     [](S s) -> BlinnExponent& { return s.lighting.brdf.blinnExponent; }),
+               {}, "", ""),
         traded(choice<Antialiasing>(
                    "aa", "--aa",
                    "Anti-aliasing: supersampling (ssaaN) draws the frame once per sample (2, 4, 8 or 16, at "

@@ -15,6 +15,7 @@
 #include "cli/render_command.h"
 #include "cli/step_command.h"
 #include "cli/trade_command.h"
+#include "run_facet.h"
 #include "scene/knobs.h"
 #include "support/temp_folder.h"
 #include "trade/knobs.h"
@@ -164,6 +165,49 @@ TEST_F(KnobKeysTest, OutOfRangeIsRefusedByBothWithTheSameWords) {
             EXPECT_NE(message.find(knob.allowed()), std::string::npos) << message;
         }
     }
+}
+
+// Blinn-Phong's exponent reaches the shaders, the reference and the step mode: with --blinn-exponent
+// matched, or "lighting": {"blinn_exponent": "matched"}, a Blinn-Phong model of shininess n renders as the
+// same model of shininess 4n, and not as it does with the exponent given; the option wins over the
+// scene's key. Catches the knob set in the scene but not used by the shader (matched = given), a factor
+// other than 4, the reference shading with the material's n, and the step screen printing n where e′
+// was used.
+TEST(BlinnExponent, MatchedRendersAsFourTimesTheShininess) {
+    const testing_support::TempFolder dir;
+    const std::string spot = std::string(FACET_SOURCE_DIR) + "/models/spot/spot_triangulated.obj";
+    const auto scene = [&](const std::string& name, int shininess, const std::string& exponent) {
+        return dir
+            .write(name, R"({"width": 64, "height": 48, "objects": [{"model": ")" + spot +
+                             R"(", "material": {"shininess": )" + std::to_string(shininess) +
+                             R"(, "specular": [1, 1, 1]}}], "lighting": {"model": "blinn-phong")" + exponent +
+                             "}}")
+            .string();
+    };
+    const std::string n = scene("n.json", 10, "");
+    const std::string fourN = scene("4n.json", 40, "");
+    const std::string matched = scene("matched.json", 10, R"(, "blinn_exponent": "matched")");
+    int images = 0;
+    const auto render = [&](const std::string& input, const std::string& options) {
+        const std::string image = (dir.path() / ("image" + std::to_string(++images) + ".png")).string();
+        const testing_support::RunResult run =
+            testing_support::runFacet("render -q '" + input + "' -o '" + image + "' " + options, dir);
+        EXPECT_EQ(run.status, 0) << run.err;
+        return testing_support::readText(image);
+    };
+    for (const std::string renderer : {"", "--renderer reference --samples 1"}) {
+        SCOPED_TRACE(renderer);
+        const std::string given = render(n, renderer);
+        const std::string four = render(fourN, renderer);
+        EXPECT_NE(given, four);
+        EXPECT_EQ(render(n, renderer + " --blinn-exponent matched"), four) << "the option";
+        EXPECT_EQ(render(matched, renderer), four) << "the scene key";
+        EXPECT_EQ(render(matched, renderer + " --blinn-exponent given"), given) << "the option over the key";
+    }
+    const testing_support::RunResult step =
+        testing_support::runFacet("step --print '" + n + "' --versus '--blinn-exponent matched'", dir);
+    ASSERT_EQ(step.status, 0) << step.err;
+    EXPECT_NE(step.out.find("e′ = 4n = 40"), std::string::npos) << step.out;
 }
 
 }  // namespace
