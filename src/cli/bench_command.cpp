@@ -59,9 +59,9 @@ CLI::App* addBenchCommand(CLI::App& app, facet::BenchOptions& options) {
         ->check(wholeNumber(1, kMaxBenchFrames));
     command->add_option("--threads", options.threads, "Worker threads (default: one per hardware thread)")
         ->check(wholeNumber(0, 1024));
-    addChoice(*command, "--aa", options.antialiasing,
-              "Anti-aliasing of the timed frames, as facet render's --aa (default: the scene file's, else "
-              "none)");
+    addKnobOption(*command, *facet::sceneKnobNamed("aa"), [&options](const std::string& value) {
+        options.antialiasing = parseName<facet::Antialiasing>(value);
+    });
     command->add_flag("--instruction-sets", options.instructionSets,
                       "Time the frame with each instruction-set copy of its hot path this CPU runs (what "
                       "FACET_ISA chooses among), frames taking turns, and check their images are identical");

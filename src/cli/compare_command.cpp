@@ -28,14 +28,12 @@ CLI::App* addCompareCommand(CLI::App& app, CompareArgs& args) {
     command->add_option("--height", args.scene.height, "Image height in pixels")->check(kWholeNumber);
     addChoice(*command, "--driver", args.driver,
               "Mesa's rasterizer: softpipe (its reference implementation, the default) or llvmpipe");
-    addChoice(*command, "--lighting", args.scene.lighting, "As for render");
-    addChoice(*command, "--reflection", args.scene.reflection, "As for render");
-    addChoice(*command, "--shading", args.scene.shading, "As for render");
-    command->add_option("--crease-angle", args.scene.creaseAngle, "as for render")->check(kFiniteNumber);
-    // OpenGL draws in the same depth and colour formats and filters textures the same way (gl_scene.h).
-    addBufferFormatOptions(*command, args.scene);
-    addChoice(*command, "--texture-filter", args.scene.textureFilter, "As for render; OpenGL filters alike");
-    addFormulaOptions(*command, args.scene);
+    // The knobs that decide what both renderers draw: OpenGL draws in the same depth and colour formats
+    // and filters textures the same way (gl_scene.h).
+    for (const char* knob : {"lighting", "reflection", "shading", "crease-angle", "depth", "color-buffer",
+                             "texture-filter", "normals", "powers", "normalize", "fresnel"})
+        addKnobOption(*command, knob, args.scene);
+    addInfiniteFarOption(*command, args.scene);
     command->add_option("--facet", args.facetImage, "Also write Facet's image here");
     command->add_option("--mesa", args.mesaImage, "Also write OpenGL's image here");
     command->add_option("--diff", args.diffImage,
@@ -51,13 +49,11 @@ CLI::App* addCompareCommand(CLI::App& app, CompareArgs& args) {
     for (CLI::Option* mesaOnly :
          {command->get_option("--driver"), command->get_option("--mesa"), command->get_option("--diff")})
         reference->excludes(mesaOnly);
-    // Not with --reference: its per-pixel surface check follows the pixel centre of one drawing.
-    addChoice(*command, "--aa", args.scene.antialiasing,
-              "Facet's anti-aliasing, as for render (OpenGL's image is not anti-aliased)")
-        ->excludes(reference);
-    addChoice(*command, "--shadows", args.scene.shadows,
-              "With --reference: every light's shadows (none, ray, map; map is compared as ray)")
-        ->needs(reference);
+    // --aa: Facet's image only (OpenGL's is not anti-aliased), and not with --reference, whose per-pixel
+    // surface check follows the pixel centre of one drawing. --shadows: with --reference only, a map
+    // compared as a ray.
+    addKnobOption(*command, "aa", args.scene)->excludes(reference);
+    addKnobOption(*command, "shadows", args.scene)->needs(reference);
     command
         ->add_option("--shadow-map-sizes", args.shadowMapSizes,
                      "With --reference: the shadow-map table's sizes, e.g. 256,1024 (default "
@@ -71,7 +67,8 @@ CLI::App* addCompareCommand(CLI::App& app, CompareArgs& args) {
         "Exit status: 0 when at least 99.5% of the pixels are within 2/255 on every channel, 3 when not, "
         "1 for bad input, 2 for a bad command line. With --reference: 0 when no pixel shows another "
         "surface than the reference's except at an edge, those edge pixels are under 1% of the covered "
-        "ones, 99% of the rest are within 1/255, and ray-cast shadows differ only at shadow boundaries.");
+        "ones, 99% of the rest are within 1/255, and ray-cast shadows differ only at shadow boundaries. "
+        "--aa anti-aliases Facet's image only; with --reference, --shadows map is compared as ray.");
     return command;
 }
 

@@ -1,8 +1,10 @@
 // What the commands share: the command line's number validators and value parsers, the image size
-// checks, and the scene choices (size, camera, lighting, transparency, encoding) of render and compare.
+// checks, and the scene choices (size, camera, knobs, encoding) that render, step, trade and compare take.
 #pragma once
 
 #include <filesystem>
+#include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,6 +14,7 @@
 
 #include "pipeline/names.h"
 #include "reference/reference.h"
+#include "scene/knobs.h"
 #include "scene/scene.h"
 #include "shaders/shaders.h"
 
@@ -54,53 +57,39 @@ void checkSize(int width, int height, const std::string& fromScene = "");
 // For checkSize: " (\"height\" from scenes/a.json)" when a side of the image comes from the scene file.
 std::string sizeFromScene(const std::filesystem::path& input, bool widthGiven, bool heightGiven);
 
+// The knobs the command line gives (scene/knobs.h), by the knob's name, each value as typed.
+using KnobChoices = std::map<std::string, std::string>;
+
 // The choices that decide what a frame shows, which every command that renders a scene takes (render,
-// step; compare some of them): the input, the image size, the camera and the lighting, shading,
-// transparency and encoding options.
+// step, trade; compare some of them): the input, the image size, the camera, the knobs (lighting,
+// shading, transparency, buffers, shadows, textures, anti-aliasing) and the output's encoding.
 struct SceneArgs {
     std::string input;
     std::optional<int> width, height;
     std::optional<std::string> eye, target;
     std::optional<float> fovy;
     int threads = 0;
-    std::optional<LightingPreset> lighting;
-    std::optional<ReflectionModel> reflection;
-    std::optional<ShadingFrequency> shading;
     std::optional<LightingTerm> only;
-    std::optional<float> creaseAngle;
-    std::optional<VertexNormals> normals;
-    std::optional<MathPrecision> powers;
-    std::optional<Normalization> normalize;
-    std::optional<FresnelModel> fresnel;
-    std::optional<TransparencyMode> transparency;
-    std::optional<SortKey> sortKey;
     std::optional<TransferCurve> encode;
     std::optional<float> gamma;
-    std::optional<Interpolation> interpolation;
-    std::optional<CullMode> cull;
-    std::optional<int> subpixelBits;
-    std::optional<DepthBufferFormat> depth;
-    std::optional<ColorBufferFormat> colorBuffer;
     bool infiniteFar = false;
-    std::optional<Antialiasing> antialiasing;
-    std::optional<ShadowMethod> shadows;
-    std::optional<int> shadowMapSize;
-    std::optional<float> shadowBias, shadowSlopeBias;
-    std::optional<int> shadowFilter;
-    std::optional<TextureMaps> textures;
-    std::optional<TextureFilter> textureFilter;
+    KnobChoices knobs;
 };
 
-// Adds the accuracy choices of the formulas (--normals, --powers, --normalize, --fresnel) to `command`:
-// part of addSceneOptions, and what `facet compare` takes of them.
-void addFormulaOptions(CLI::App& command, SceneArgs& args);
+// The knob's option, as every command shows it: its flag, its one help text and its default, the
+// value's form checked while parsing (a name of its table, a whole or a finite number); `take` gets the
+// value as typed (its range is checked when applied, by the knob's entry).
+CLI::Option* addKnobOption(CLI::App& command, const facet::SceneKnob& knob,
+                           std::function<void(const std::string&)> take);
+// The option of the knob named `name`, into args.knobs.
+CLI::Option* addKnobOption(CLI::App& command, const std::string& name, SceneArgs& args);
 
-// Adds SceneArgs's options (and the input) to `command`, as `facet render` describes them.
+// Adds SceneArgs's options (and the input) to `command`, as `facet render` describes them: every knob
+// with a flag, in the table's order.
 void addSceneOptions(CLI::App& command, SceneArgs& args);
 
-// The depth and colour buffer formats and the infinite far plane (--depth, --color-buffer,
-// --infinite-far), which compare takes too.
-void addBufferFormatOptions(CLI::App& command, SceneArgs& args);
+// The infinite far plane (--infinite-far), which compare takes too.
+void addInfiniteFarOption(CLI::App& command, SceneArgs& args);
 
 // Loads the input and applies every choice of `args` to it; throws InputError for a bad value or an
 // unusable input. The size is checked (checkSize), the camera's eye and target are not the same point.
@@ -123,7 +112,8 @@ struct RenderArgs : SceneArgs {
     std::optional<int> samples;  // --renderer reference: N×N rays per pixel
 };
 
-// Applies the command line's lighting choices to every object (they win over the scene file's).
+// Applies the command line's knobs (each checked by its entry: InputError naming the flag and what it
+// must be), the infinite far plane and the encoding to `scene`: they win over the scene file's.
 void applyLightingOptions(const SceneArgs& args, facet::Scene& scene);
 
 }  // namespace facet::cli

@@ -34,23 +34,6 @@ std::pair<int, int> parsePixel(const std::string& text) {
     return {static_cast<int>(x), static_cast<int>(y)};
 }
 
-// The options of --versus applied over the command's own: the second setting of the comparison.
-SceneArgs versusArgs(const SceneArgs& base, const std::string& options) {
-    SceneArgs args = base;
-    CLI::App app{"--versus"};
-    addSceneOptions(app, args);
-    app.get_option("input")->required(false);  // the same input: only options may differ
-    try {
-        app.parse(options, false);
-    } catch (const CLI::ParseError& e) {
-        throw facet::InputError("--versus " + facet::inQuotes(options) + ": " + e.what());
-    }
-    if (args.input != base.input)
-        throw facet::InputError("--versus " + facet::inQuotes(options) +
-                                ": give only options; the input is the command's own");
-    return args;
-}
-
 // The web page's grid: every gridStep-th pixel of every gridStep-th row is traced. By default about 2000
 // pixels, so that the data file stays a few megabytes for any image size; each traced pixel adds a few
 // kilobytes, and a bound keeps the page loadable. Throws InputError for a step beyond the bound.
@@ -102,20 +85,42 @@ void writeHtml(const StepArgs& args, const facet::PreparedScene& prepared, facet
               << "th row, and " << page.stages.size() << " stage images)\n";
 }
 
-// The step mode follows one pixel through one drawing of the frame; supersampling draws the frame once per
-// sample, shifted, and averages the passes, so no single pass is the image (the trace would not match).
-void refuseSupersampling(const facet::Scene& scene) {
+// The step mode follows one pixel's centre through one drawing of the frame. Supersampling draws the
+// frame once per sample, shifted, and averages the passes, so no single pass is the image; multisampling
+// draws it once but tests coverage and depth at each sample, away from the centre, and averages the
+// samples after the frame's draws. Either way the trace would not match the image.
+void refuseAntialiasing(const facet::Scene& scene) {
     const facet::Antialiasing aa = scene.pipeline.antialiasing;
     if (aa == facet::Antialiasing::None) return;
-    std::string message = "facet step follows a pixel through one drawing of the frame, but --aa ";
+    const std::string samples = std::to_string(facet::samplesPerPixel(aa));
+    std::string message =
+        "facet step follows the centre of a pixel through one drawing of the frame, but --aa ";
     message += nameOf(aa);
-    message += " (or the scene's \"pipeline\": {\"antialiasing\"}) draws it ";
-    message += std::to_string(facet::samplesPerPixel(aa));
-    message += " times and averages them: step with --aa none";
+    message += " (or the scene's \"pipeline\": {\"antialiasing\"}) ";
+    message += facet::isMultisampled(aa) ? "tests coverage and depth at " + samples +
+                                               " sample positions of each pixel and averages them"
+                                         : "draws the frame " + samples + " times and averages them";
+    message += ": step with --aa none";
     throw facet::InputError(message);
 }
 
 }  // namespace
+
+SceneArgs versusArgs(const SceneArgs& base, const std::string& options) {
+    SceneArgs args = base;
+    CLI::App app{"--versus"};
+    addSceneOptions(app, args);
+    app.get_option("input")->required(false);  // the same input: only options may differ
+    try {
+        app.parse(options, false);
+    } catch (const CLI::ParseError& e) {
+        throw facet::InputError("--versus " + facet::inQuotes(options) + ": " + e.what());
+    }
+    if (args.input != base.input)
+        throw facet::InputError("--versus " + facet::inQuotes(options) +
+                                ": give only options; the input is the command's own");
+    return args;
+}
 
 CLI::App* addStepCommand(CLI::App& app, StepArgs& args) {
     CLI::App* command = app.add_subcommand(
@@ -162,7 +167,7 @@ int step(const StepArgs& args) {
     const std::optional<SceneArgs> other =
         args.versus ? std::optional(versusArgs(args, *args.versus)) : std::nullopt;
     const facet::Scene scene = sceneFromArgs(args);
-    refuseSupersampling(scene);
+    refuseAntialiasing(scene);
     if (args.json) facet::checkTextDestination(*args.json);
     if (args.html) htmlGridStep(args, scene.width, scene.height);  // a step too fine refused before any work
 
@@ -191,7 +196,7 @@ int step(const StepArgs& args) {
     if (other) {
         // The same pixel and triangle under the other setting.
         const facet::Scene otherScene = sceneFromArgs(*other);
-        refuseSupersampling(otherScene);
+        refuseAntialiasing(otherScene);
         const facet::PreparedScene otherPrepared = facet::prepareScene(otherScene, prepared.assets);
         facet::step::StepRequest otherRequest = request;
         otherRequest.pixel = std::pair(trace.walk.x, trace.walk.y);

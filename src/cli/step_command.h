@@ -23,6 +23,10 @@ struct StepArgs : SceneArgs {
     std::string commandLine;  // as typed, for the web page to show
 };
 
+// The options of --versus (`options`, as typed) parsed as the command's own and applied over `base`:
+// the second setting of the comparison. Throws InputError for options CLI11 refuses or an input.
+SceneArgs versusArgs(const SceneArgs& base, const std::string& options);
+
 // Adds the `step` command and its options to `app`, filling `args` when it is parsed.
 CLI::App* addStepCommand(CLI::App& app, StepArgs& args);
 

@@ -46,6 +46,10 @@ GlScene toGlScene(const PreparedScene& prepared) {
         out.reflection = d.uniforms.reflection;
         out.frequency = d.frequency;
         out.material = d.uniforms.material;
+        // OpenGL raises N·H to the shininess as given: give it the exponent Facet uses (e′ when matched).
+        if (d.uniforms.reflection == ReflectionModel::BlinnPhong)
+            out.material.shininess = SpecularFormula(SpecularModel::BlinnPhong, d.uniforms.brdf.blinnExponent)
+                                         .exponent(out.material.shininess);
         out.pbr = d.uniforms.pbr;
         out.diffuseMap = d.uniforms.diffuseMap;
         out.emissionMap = d.uniforms.emissionMap;
@@ -57,7 +61,7 @@ GlScene toGlScene(const PreparedScene& prepared) {
         // blended with straight alpha, without an emission map.
         const bool fixedFunction = glPreset && d.frequency != ShadingFrequency::Phong && !out.emissionMap &&
                                    d.uniforms.reflection == ReflectionModel::BlinnPhong && !smoothSpot &&
-                                   d.uniforms.material.shininess <= 128.0f &&
+                                   out.material.shininess <= 128.0f &&
                                    (out.blend == BlendMode::Replace || out.blend == BlendMode::Over ||
                                     out.blend == BlendMode::OverGL);
         out.program = fixedFunction                            ? GlProgram::FixedFunction

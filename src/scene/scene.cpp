@@ -38,13 +38,20 @@ Scene loadScene(const fs::path& path) {
     if (const Json* v = reader.find(document, "background")) scene.background = readBackground(reader, *v);
     if (const Json* v = reader.find(document, "ambient")) scene.ambientLight = reader.color(*v, "ambient");
     if (const Json* v = reader.find(document, "camera")) scene.camera = readCamera(reader, *v);
-    if (const Json* v = reader.find(document, "pipeline")) scene.pipeline = readPipeline(reader, *v);
-    if (const Json* v = reader.find(document, "textures")) scene.textures = readTextures(reader, *v);
-    if (const Json* v = reader.find(document, "lighting")) scene.lighting = readLighting(reader, *v);
+    // The knobs' sections (scene/knobs.h), before the objects: "lighting"'s model and shading are the
+    // scene's, which an object's own "lighting" overrides.
+    if (const Json* v = reader.find(document, "pipeline"))
+        readKnobSection(reader, *v, "pipeline", "an object like {\"cull\": \"back\"}", scene);
+    if (const Json* v = reader.find(document, "textures"))
+        readKnobSection(reader, *v, "textures", "an object like {\"filter\": \"trilinear\"}", scene);
+    if (const Json* v = reader.find(document, "lighting")) readLighting(reader, *v, scene);
     if (const Json* v = reader.find(document, "transparency"))
-        scene.transparency = readTransparency(reader, *v);
+        readKnobSection(reader, *v, "transparency", "an object like {\"mode\": \"exact\"}", scene);
     if (const Json* v = reader.find(document, "fog")) scene.fog = readFog(reader, *v);
-    if (const Json* v = reader.find(document, "shadow_map")) scene.shadowMap = readShadowMap(reader, *v);
+    if (const Json* v = reader.find(document, "shadow_map"))
+        readKnobSection(reader, *v, "shadow_map",
+                        "an object like {\"size\": 2048, \"bias\": 1, \"slope_bias\": 1.5, \"filter\": 4}",
+                        scene);
     if (const Json* v = reader.find(document, "gamma")) {
         // The gl preset neither decodes nor encodes; a "gamma" beside it would silently do nothing.
         if (scene.lighting.preset == LightingPreset::GL) {

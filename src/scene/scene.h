@@ -105,7 +105,7 @@ struct LightingOptions {
     ReflectionModel model = ReflectionModel::BlinnPhong;
     std::optional<ShadingFrequency> shading;  // absent: Phong (Facet preset) or Gouraud (GL preset)
     float creaseAngleDegrees = 60.0f;  // computed normals: faces meeting at a sharper angle keep a hard edge
-    BrdfModel brdf;                    // Cook-Torrance's D, F and G
+    BrdfModel brdf;                    // Cook-Torrance's D, F and G; Blinn-Phong's exponent
     VertexNormals normals = VertexNormals::PolygonArea;  // computed normals: how the faces are weighted
     MathPrecision powers = MathPrecision::Fast;          // pow and exp in lighting and fog (wide.h)
     Normalization normalize = Normalization::Exact;      // N, L, V, H made unit length (wide.h)

@@ -11,6 +11,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "base/quote.h"
+#include "scene/knobs.h"
 #include "scene/limits.h"
 #include "scene/mesh.h"
 
@@ -28,18 +29,10 @@ constexpr std::string_view kObjectKeys[] = {"model",    "translate", "rotate", "
 constexpr std::string_view kMaterialKeys[] = {"ambient",   "diffuse",   "specular", "emission",
                                               "shininess", "opacity",   "preset",   "base_color",
                                               "metalness", "roughness", "f0"};
-constexpr std::string_view kPipelineKeys[] = {"cull",  "interpolation", "subpixel_bits",
-                                              "depth", "color_buffer",  "antialiasing"};
-constexpr std::string_view kTexturesKeys[] = {"maps", "filter"};
-constexpr std::string_view kLightingKeys[] = {"preset",  "model",   "shading",   "crease_angle",
-                                              "normals", "powers",  "normalize", "distribution",
-                                              "fresnel", "geometry"};
 constexpr std::string_view kObjectLightingKeys[] = {"model", "shading"};
 constexpr std::string_view kLightSpaces[] = {"world", "camera"};
-constexpr std::string_view kTransparencyKeys[] = {"mode", "sort_key"};
 constexpr std::string_view kFogKeys[] = {"mode", "color", "start", "end", "density", "distance"};
 constexpr std::string_view kGammaKeys[] = {"encode", "exponent", "decode_inputs"};
-constexpr std::string_view kShadowMapKeys[] = {"size", "bias", "slope_bias", "filter"};
 
 }  // namespace
 
@@ -317,8 +310,8 @@ void readObjectLighting(const SceneReader& reader, const Json& lighting, const s
     for (const auto& [key, value] : lighting.items()) {
         const bool perObject = std::find(std::begin(kObjectLightingKeys), std::end(kObjectLightingKeys),
                                          key) != std::end(kObjectLightingKeys);
-        const bool sceneWide =
-            std::find(std::begin(kLightingKeys), std::end(kLightingKeys), key) != std::end(kLightingKeys);
+        const std::vector<std::string_view> lightingKeys = knobKeysOf("lighting");
+        const bool sceneWide = std::find(lightingKeys.begin(), lightingKeys.end(), key) != lightingKeys.end();
         if (!perObject && sceneWide) {
             reader.fail(inQuotes(childPath(path, key)) +
                         " cannot be set per object (only \"model\" and \"shading\" can): set it in the "
@@ -391,96 +384,55 @@ ObjectSpec readObject(const SceneReader& reader, const Json& object, const std::
     return spec;
 }
 
-PipelineOptions readPipeline(const SceneReader& reader, const Json& pipeline) {
-    const std::string path = "pipeline";
-    reader.requireObject(pipeline, path, "an object like {\"cull\": \"back\"}");
-    reader.checkKeys(pipeline, path, kPipelineKeys);
+namespace {
 
-    PipelineOptions options;
-    if (const Json* v = reader.find(pipeline, "cull")) {
-        options.cull = reader.enumChoice<CullMode>(*v, "pipeline.cull");
+// One knob's value in a scene file, checked by its entry: a name of its table, or a number in its range.
+std::string knobValue(const SceneReader& reader, const SceneKnob& knob, const Json& value) {
+    const std::string path = knob.scenePath();
+    switch (knob.kind) {
+        case KnobKind::Names: {
+            const std::vector<std::string_view> names(knob.names.begin(), knob.names.end());
+            return knob.names[reader.choice(value, path, names)];
+        }
+        case KnobKind::WholeNumber: {
+            if (!value.is_number())
+                reader.fail(inQuotes(path) + " must be a whole number (got " + describe(value) + ")");
+            const double number = value.get<double>();
+            if (!knob.allows(number))
+                reader.fail(inQuotes(path) + " must be " + (knob.only.empty() ? "a whole number " : "") +
+                            knob.allowed() + " (got " + describe(value) + ")");
+            return std::to_string(static_cast<int>(number));
+        }
+        case KnobKind::Number: {
+            const float number = reader.number(value, path);
+            if (!knob.allows(number))
+                reader.fail(inQuotes(path) + " must be " + knob.allowed() + " (got " + describe(value) + ")");
+            return knobNumberText(number);
+        }
     }
-    if (const Json* v = reader.find(pipeline, "interpolation")) {
-        options.interpolation = reader.enumChoice<Interpolation>(*v, "pipeline.interpolation");
-    }
-    if (const Json* v = reader.find(pipeline, "depth")) {
-        options.depth = reader.enumChoice<DepthBufferFormat>(*v, "pipeline.depth");
-    }
-    if (const Json* v = reader.find(pipeline, "color_buffer")) {
-        options.colorBuffer = reader.enumChoice<ColorBufferFormat>(*v, "pipeline.color_buffer");
-    }
-    if (const Json* v = reader.find(pipeline, "subpixel_bits")) {
-        options.subpixelBits = reader.wholeNumber(*v, "pipeline.subpixel_bits", 0, 8);
-    }
-    if (const Json* v = reader.find(pipeline, "antialiasing")) {
-        options.antialiasing = reader.enumChoice<Antialiasing>(*v, "pipeline.antialiasing");
-    }
-    return options;
+    return {};
 }
 
-TextureOptions readTextures(const SceneReader& reader, const Json& textures) {
-    const std::string path = "textures";
-    reader.requireObject(textures, path, "an object like {\"filter\": \"trilinear\"}");
-    reader.checkKeys(textures, path, kTexturesKeys);
+}  // namespace
 
-    TextureOptions options;
-    if (const Json* v = reader.find(textures, "maps"))
-        options.maps = reader.enumChoice<TextureMaps>(*v, "textures.maps");
-    if (const Json* v = reader.find(textures, "filter"))
-        options.filter = reader.enumChoice<TextureFilter>(*v, "textures.filter");
-    return options;
+void readKnobSection(const SceneReader& reader, const Json& object, const std::string& section,
+                     std::string_view example, Scene& scene) {
+    reader.requireObject(object, section, example);
+    reader.checkKeys(object, section, knobKeysOf(section));
+    for (const SceneKnob& knob : sceneKnobs())
+        if (knob.section == section)
+            if (const Json* v = reader.find(object, knob.key)) knob.set(scene, knobValue(reader, knob, *v));
 }
 
-// The scene's "lighting": a preset name alone, or an object.
-LightingOptions readLighting(const SceneReader& reader, const Json& lighting) {
-    const std::string path = "lighting";
-    LightingOptions options;
+void readLighting(const SceneReader& reader, const Json& lighting, Scene& scene) {
     if (lighting.is_string()) {
-        options.preset = reader.enumChoice<LightingPreset>(lighting, path);
-        return options;
+        scene.lighting.preset = reader.enumChoice<LightingPreset>(lighting, "lighting");
+        return;
     }
-    reader.requireObject(
-        lighting, path,
-        quotedList(namesOf<LightingPreset>(), ", ") + " or an object like {\"model\": \"cook-torrance\"}");
-    reader.checkKeys(lighting, path, kLightingKeys);
-
-    if (const Json* v = reader.find(lighting, "preset"))
-        options.preset = reader.enumChoice<LightingPreset>(*v, "lighting.preset");
-    if (const Json* v = reader.find(lighting, "model"))
-        options.model = readReflectionModel(reader, *v, "lighting.model");
-    if (const Json* v = reader.find(lighting, "shading"))
-        options.shading = readShading(reader, *v, "lighting.shading");
-    if (const Json* v = reader.find(lighting, "crease_angle"))
-        options.creaseAngleDegrees =
-            reader.numberFromTo(*v, "lighting.crease_angle", 0.0f, 180.0f, " degrees");
-    if (const Json* v = reader.find(lighting, "normals"))
-        options.normals = reader.enumChoice<VertexNormals>(*v, "lighting.normals");
-    if (const Json* v = reader.find(lighting, "powers"))
-        options.powers = reader.enumChoice<MathPrecision>(*v, "lighting.powers");
-    if (const Json* v = reader.find(lighting, "normalize"))
-        options.normalize = reader.enumChoice<Normalization>(*v, "lighting.normalize");
-    if (const Json* v = reader.find(lighting, "distribution"))
-        options.brdf.distribution = reader.enumChoice<NormalDistribution>(*v, "lighting.distribution");
-    if (const Json* v = reader.find(lighting, "fresnel"))
-        options.brdf.fresnel = reader.enumChoice<FresnelModel>(*v, "lighting.fresnel");
-    if (const Json* v = reader.find(lighting, "geometry"))
-        options.brdf.geometry = reader.enumChoice<GeometryTerm>(*v, "lighting.geometry");
-    return options;
-}
-
-TransparencyOptions readTransparency(const SceneReader& reader, const Json& transparency) {
-    const std::string path = "transparency";
-    reader.requireObject(transparency, path, "an object like {\"mode\": \"exact\"}");
-    reader.checkKeys(transparency, path, kTransparencyKeys);
-
-    TransparencyOptions options;
-    if (const Json* v = reader.find(transparency, "mode"))
-        options.mode = reader.enumChoice<TransparencyMode>(*v, "transparency.mode");
-    // Used by "sorted" only, but accepted with every mode: switching the mode (in the file or with
-    // --transparency) must not make the rest of the file wrong.
-    if (const Json* v = reader.find(transparency, "sort_key"))
-        options.key = reader.enumChoice<SortKey>(*v, "transparency.sort_key");
-    return options;
+    readKnobSection(
+        reader, lighting, "lighting",
+        quotedList(namesOf<LightingPreset>(), ", ") + " or an object like {\"model\": \"cook-torrance\"}",
+        scene);
 }
 
 FogSpec readFog(const SceneReader& reader, const Json& fog) {
@@ -546,27 +498,6 @@ GammaOptions readGamma(const SceneReader& reader, const Json& gamma) {
     }
     if (const Json* v = reader.find(gamma, "decode_inputs"))
         options.decodeInputs = reader.boolean(*v, "gamma.decode_inputs");
-    return options;
-}
-
-ShadowMapOptions readShadowMap(const SceneReader& reader, const Json& shadowMap) {
-    const std::string path = "shadow_map";
-    reader.requireObject(shadowMap, path,
-                         "an object like {\"size\": 2048, \"bias\": 1, \"slope_bias\": 1.5, \"filter\": 4}");
-    reader.checkKeys(shadowMap, path, kShadowMapKeys);
-    ShadowMapOptions options;
-    if (const Json* v = reader.find(shadowMap, "size"))
-        options.size = reader.wholeNumber(*v, "shadow_map.size", 16, kMaxShadowMapSize);
-    if (const Json* v = reader.find(shadowMap, "bias"))
-        options.constantBias = reader.nonNegative(*v, "shadow_map.bias");
-    if (const Json* v = reader.find(shadowMap, "slope_bias"))
-        options.slopeBias = reader.nonNegative(*v, "shadow_map.slope_bias");
-    if (const Json* v = reader.find(shadowMap, "filter")) {
-        options.filterTaps = reader.wholeNumber(*v, "shadow_map.filter", 1, 16);
-        if (options.filterTaps != 1 && options.filterTaps != 4 && options.filterTaps != 16)
-            reader.fail("\"shadow_map.filter\" must be 1, 4 or 16 depth comparisons per point (got " +
-                        describe(*v) + ")");
-    }
     return options;
 }
 

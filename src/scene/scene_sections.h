@@ -23,13 +23,14 @@ fs::path readModel(const SceneReader& reader, const Json& value, const std::stri
                    const fs::path& folder);
 ObjectSpec readObject(const SceneReader& reader, const Json& object, const std::string& path,
                       const fs::path& folder);
-PipelineOptions readPipeline(const SceneReader& reader, const Json& pipeline);
-TextureOptions readTextures(const SceneReader& reader, const Json& textures);
-// The scene's "lighting": a preset name alone, or an object.
-LightingOptions readLighting(const SceneReader& reader, const Json& lighting);
-TransparencyOptions readTransparency(const SceneReader& reader, const Json& transparency);
+// A section whose every key is a knob (scene/knobs.h: "pipeline", "textures", "transparency",
+// "shadow_map", "lighting"), each value checked by its knob's entry and set in `scene`; `example` says
+// what the section must be when it is not an object.
+void readKnobSection(const SceneReader& reader, const Json& object, const std::string& section,
+                     std::string_view example, Scene& scene);
+// The scene's "lighting": a preset name alone, or a section of knobs.
+void readLighting(const SceneReader& reader, const Json& lighting, Scene& scene);
 FogSpec readFog(const SceneReader& reader, const Json& fog);
 GammaOptions readGamma(const SceneReader& reader, const Json& gamma);
-ShadowMapOptions readShadowMap(const SceneReader& reader, const Json& shadowMap);
 
 }  // namespace facet::scene_file

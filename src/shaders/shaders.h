@@ -203,8 +203,9 @@ template <class F, class V3, MathPrecision kPrecision, Normalization kNormalizat
             break;
         case ReflectionModel::BlinnPhong:
             t = standardLighting<F, V3, kPrecision, kNormalization>(
-                P, N, eye, u.material, albedo, u.globalAmbient, u.activeLights(), SpecularModel::BlinnPhong,
-                visibility, &recording->lighting...);
+                P, N, eye, u.material, albedo, u.globalAmbient, u.activeLights(),
+                SpecularFormula(SpecularModel::BlinnPhong, u.brdf.blinnExponent), visibility,
+                &recording->lighting...);
             break;
         case ReflectionModel::CookTorrance:
             t = physicallyBasedTerms<F, V3, kPrecision, kNormalization>(

@@ -200,7 +200,37 @@ struct PhongMaterial {
 
 enum class SpecularModel {
     Phong,       // max(R·V, 0)^n, R = 2(N·L)N − L (Phong 1975)
-    BlinnPhong,  // max(N·H, 0)^n, H = normalize(L + V) (Blinn 1977)
+    BlinnPhong,  // max(N·H, 0)^e, H = normalize(L + V) (Blinn 1977), e by BlinnExponent
+};
+
+// The exponent Blinn-Phong raises N·H to ("lighting": {"blinn_exponent"}, --blinn-exponent). H is halfway
+// between L and V, so where N, L and V are coplanar the angle between N and H is half the angle between
+// R and V, and (N·H)^e′ ≈ (R·V)^n takes e′ ≈ 4n: with the material's n, Blinn's highlight is wider than
+// Phong's; with 4n it matches it.
+enum class BlinnExponent : std::uint8_t {
+    Given,    // e = n, the material's shininess (as OpenGL 1.x does)
+    Matched,  // e′ = 4n: the highlight of Phong's model with the same n
+};
+inline constexpr EnumName<BlinnExponent> kBlinnExponentNames[] = {{BlinnExponent::Given, "given"},
+                                                                  {BlinnExponent::Matched, "matched"}};
+constexpr std::span<const EnumName<BlinnExponent>> enumNames(BlinnExponent) {
+    return kBlinnExponentNames;
+}
+
+// The standard equation's specular formula: the model and, for Blinn-Phong, its exponent. Made from a
+// SpecularModel alone, Blinn-Phong takes the material's shininess as it is.
+struct SpecularFormula {
+    SpecularModel model = SpecularModel::BlinnPhong;
+    BlinnExponent blinnExponent = BlinnExponent::Given;
+    constexpr SpecularFormula(SpecularModel m = SpecularModel::BlinnPhong,
+                              BlinnExponent exponent = BlinnExponent::Given)
+        : model(m), blinnExponent(exponent) {}
+    // The exponent the cosine (R·V or N·H) is raised to, for a material of shininess n.
+    constexpr float exponent(float shininess) const {
+        return model == SpecularModel::BlinnPhong && blinnExponent == BlinnExponent::Matched
+                   ? 4.0f * shininess
+                   : shininess;
+    }
 };
 
 // The equation's four terms apart, so each can be drawn as its own image; sum() is the colour.
@@ -230,9 +260,8 @@ template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exac
           Normalization kNormalization = Normalization::Exact, class... Recording>
 [[gnu::always_inline]] inline LightingTerms<V3> standardLighting(
     const V3& position, const V3& normal, const vec3& eye, const PhongMaterial& m, const V3& diffuseColor,
-    const vec3& globalAmbient, std::span<const LightParams> lights,
-    SpecularModel specularModel = SpecularModel::BlinnPhong, const F* visibility = nullptr,
-    Recording*... recording) {
+    const vec3& globalAmbient, std::span<const LightParams> lights, SpecularFormula specular = {},
+    const F* visibility = nullptr, Recording*... recording) {
     using Record = RecordOf<Recording...>;
     static_assert(!Record::enabled || std::is_same_v<F, float>, "records hold one lane");
     const V3 N = safeNormalize<F, V3, kNormalization>(normal);
@@ -240,7 +269,7 @@ template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exac
     LightingTerms<V3> terms{V3(m.emission), V3(globalAmbient * m.ambient), V3(vec3(0.0f)), V3(vec3(0.0f))};
     if constexpr (Record::enabled)
         *recordOf(recording...) = {.physicallyBased = false,
-                                   .specularModel = specularModel,
+                                   .specularModel = specular.model,
                                    .position = position,
                                    .normal = normal,
                                    .N = N,
@@ -249,6 +278,8 @@ template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exac
                                    .materialDiffuse = diffuseColor,
                                    .materialSpecular = m.specular,
                                    .shininess = m.shininess,
+                                   .blinnExponent = specular.blinnExponent,
+                                   .specularExponent = specular.exponent(m.shininess),
                                    .globalAmbient = globalAmbient,
                                    .globalAmbientTerm = terms.ambient,
                                    .lightCount = static_cast<int>(lights.size())};
@@ -273,7 +304,7 @@ template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exac
 
         // Specular, only where the light is in front of the surface.
         F cosine;
-        if (specularModel == SpecularModel::Phong) {
+        if (specular.model == SpecularModel::Phong) {
             const V3 R = N * (2.0f * NdotL) - L;
             cosine = dot(R, V);
             if constexpr (Record::enabled)
@@ -285,9 +316,10 @@ template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exac
                 recordOf(recording...)->lights[&light - lights.data()].reflected = H;
         }
         const F spec =
-            select(NdotL > kGrazingCosine, Maths<P>::pow(max(cosine, 0.0f), m.shininess), lanes<F>(0.0f));
-        const V3 specular = (light.specular * m.specular) * (lit * spec);
-        terms.specular += specular;
+            select(NdotL > kGrazingCosine, Maths<P>::pow(max(cosine, 0.0f), specular.exponent(m.shininess)),
+                   lanes<F>(0.0f));
+        const V3 specularTerm = (light.specular * m.specular) * (lit * spec);
+        terms.specular += specularTerm;
 
         if constexpr (Record::enabled) {
             auto& r = recordOf(recording...)->lights[&light - lights.data()];
@@ -303,7 +335,7 @@ template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exac
             r.grazing = !(NdotL > kGrazingCosine);
             r.spec = spec;
             r.diffuse = diffuse;
-            r.specular = specular;
+            r.specular = specularTerm;
         }
     }
     if constexpr (Record::enabled) recordOf(recording...)->terms = terms;
@@ -314,11 +346,10 @@ template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exac
           Normalization kNormalization = Normalization::Exact, class... Recording>
 LightingTerms<V3> standardLighting(const V3& position, const V3& normal, const vec3& eye,
                                    const PhongMaterial& m, const vec3& globalAmbient,
-                                   std::span<const LightParams> lights,
-                                   SpecularModel specularModel = SpecularModel::BlinnPhong,
+                                   std::span<const LightParams> lights, SpecularFormula specular = {},
                                    const F* visibility = nullptr, Recording*... recording) {
     return standardLighting<F, V3, P, kNormalization>(position, normal, eye, m, V3(m.diffuse), globalAmbient,
-                                                      lights, specularModel, visibility, recording...);
+                                                      lights, specular, visibility, recording...);
 }
 
 // =====================================================================================================
@@ -351,10 +382,12 @@ constexpr std::span<const EnumName<GeometryTerm>> enumNames(GeometryTerm) {
     return kGeometryTermNames;
 }
 
+// The reflection models' formulas: Cook-Torrance's D, F and G, and Blinn-Phong's exponent.
 struct BrdfModel {
     NormalDistribution distribution = NormalDistribution::GGX;
     FresnelModel fresnel = FresnelModel::Schlick;
     GeometryTerm geometry = GeometryTerm::SmithGGX;
+    BlinnExponent blinnExponent = BlinnExponent::Given;
 };
 
 // α = roughness² (Burley 2012), kept ≥ 1e−3 so D stays finite for a mirror.
@@ -657,7 +690,9 @@ struct LightingRecord {
     vec3 materialDiffuse{0.0f};  // m_diffuse or c_base, textured
     vec3 materialSpecular{0.0f};
     float shininess = 0;  // n
-    PbrMaterial pbr{};    // Cook-Torrance
+    BlinnExponent blinnExponent = BlinnExponent::Given;
+    float specularExponent = 0;  // what the cosine is raised to: n, or Blinn-Phong's e′ = 4n when matched
+    PbrMaterial pbr{};           // Cook-Torrance
     BrdfModel brdf{};
     vec3 globalAmbient{0.0f};
     vec3 globalAmbientTerm{0.0f};  // a_global ⊗ m_ambient

@@ -334,6 +334,9 @@ void writeStandardLight(Lines& out, const LightingRecord& lighting, const LightR
     if (r.grazing)
         out.add("  N·L ≤ " + num(kGrazingCosine) +
                 ": the light grazes the surface or is behind it: spec = 0");
+    else if (lighting.specularExponent != lighting.shininess)  // Blinn-Phong's exponent matched to Phong's
+        out.add("  spec = max(N·H, 0)^e′, e′ = 4n = " + num(lighting.specularExponent) + ": max(" +
+                num(r.cosine) + ", 0)^" + num(lighting.specularExponent) + " = " + num(r.spec));
     else
         out.add(std::string("  spec = max(") + (phong ? "R·V" : "N·H") + ", 0)^n = max(" + num(r.cosine) +
                 ", 0)^" + num(lighting.shininess) + " = " + num(r.spec));
@@ -837,7 +840,8 @@ nlohmann::json toJson(const SurfaceTermsRecord& s) {
         j["material"] = {{"ambient", json3(r.materialAmbient)},
                          {"diffuse", json3(r.materialDiffuse)},
                          {"specular", json3(r.materialSpecular)},
-                         {"shininess", r.shininess}};
+                         {"shininess", r.shininess},
+                         {"specularExponent", r.specularExponent}};
     return j;
 }
 

@@ -1,7 +1,8 @@
-// The accuracy knobs `facet trade` turns, one row each: the command-line flag of `facet render` that
-// selects it, the values it takes, and which of them the default, fast and best presets use. A knob
-// setting is the words a user would type (`--shading flat`), so every label of the trade is a flag a
-// user can copy and every setting goes through the render command's own parser.
+// The accuracy knobs `facet trade` turns, one row each, made from the knobs' table (scene/knobs.h): the
+// command-line flag of `facet render` that selects it, the values it takes, and which of them the
+// default, fast and best presets use. A knob setting is the words a user would type (`--shading flat`),
+// so every label of the trade is a flag a user can copy and every setting goes through the render
+// command's own parser.
 #pragma once
 
 #include <functional>
@@ -31,7 +32,7 @@ struct Knob {
     std::function<std::string(const Scene&)> valueIn;
 };
 
-// Every knob, in the order the trade runs them. Adding a knob is adding a row (knobs.cpp).
+// Every knob of scene/knobs.h with values to try, in that table's order (the order the trade runs them).
 const std::vector<Knob>& knobTable();
 
 // The row named `name`; throws InputError listing the valid names when there is none.

@@ -48,6 +48,21 @@ TEST(StepCli, WithoutATerminalPrintsEveryScreenWithin80Columns) {
     }
 }
 
+// Anti-aliasing is refused, each kind for what it does: multisampling tests coverage at sample positions
+// within one drawing, supersampling draws the frame once per sample. Catches the old message that said
+// msaa4 draws the frame 4 times.
+TEST(StepCli, AntialiasingIsRefusedSayingWhatItDoes) {
+    TempFolder dir;
+    const RunResult msaa = runFacet("step " + kSpot + " --print --aa msaa4", dir);
+    EXPECT_EQ(msaa.status, 1);
+    EXPECT_NE(msaa.err.find("--aa msaa4"), std::string::npos) << msaa.err;
+    EXPECT_NE(msaa.err.find("tests coverage and depth at 4 sample positions"), std::string::npos) << msaa.err;
+    EXPECT_EQ(msaa.err.find("times"), std::string::npos) << msaa.err;
+    const RunResult ssaa = runFacet("step " + kSpot + " --print --aa ssaa4", dir);
+    EXPECT_EQ(ssaa.status, 1);
+    EXPECT_NE(ssaa.err.find("draws the frame 4 times"), std::string::npos) << ssaa.err;
+}
+
 // --json writes the trace as data, and its final bytes are the rendered image's. Catches: --json
 // ignored, or a trace of another pixel than --pixel asks for.
 TEST(StepCli, JsonHasThePixelAskedForAndItsHistory) {

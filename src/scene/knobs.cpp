@@ -1,0 +1,364 @@
+#include "scene/knobs.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+#include <type_traits>
+
+#include "base/quote.h"
+#include "pipeline/names.h"
+
+namespace facet {
+
+namespace {
+
+// One name when every item of `items` gives the same value of E, else "" (the scene mixes them).
+template <class E, class Items, class Get>
+std::string commonName(const Items& items, Get get) {
+    std::string common;
+    for (const auto& item : items) {
+        const std::string name(nameOf(static_cast<E>(get(item))));
+        if (!common.empty() && common != name) return "";
+        common = name;
+    }
+    return common;
+}
+
+// A knob's name, flag, help and scene file key (the rest set by the callers below).
+SceneKnob named(std::string name, std::string flag, std::string help, std::string section = "",
+                std::string key = "") {
+    SceneKnob knob;
+    knob.name = std::move(name);
+    knob.flag = std::move(flag);
+    knob.help = std::move(help);
+    knob.section = std::move(section);
+    knob.key = std::move(key);
+    return knob;
+}
+
+// A knob whose value is one of E's names, in the field `field` of a Scene.
+template <class E, class Field>
+SceneKnob choice(std::string name, std::string flag, std::string help, std::string section, std::string key,
+                 Field field) {
+    SceneKnob knob =
+        named(std::move(name), std::move(flag), std::move(help), std::move(section), std::move(key));
+    knob.kind = KnobKind::Names;
+    knob.names = namesOf<E>();
+    knob.tradeValues = {};
+    knob.get = [field](const Scene& scene) {
+        return std::string(nameOf<E>(field(const_cast<Scene&>(scene))));
+    };
+    knob.set = [field](Scene& scene, const std::string& value) { field(scene) = *parseName<E>(value); };
+    return knob;
+}
+
+// A knob whose value is a number of type T (int: whole) from `lowest` to `highest`.
+template <class T, class Field>
+SceneKnob number(std::string name, std::string flag, std::string help, std::string section, std::string key,
+                 double lowest, double highest, std::string unit, Field field) {
+    SceneKnob knob =
+        named(std::move(name), std::move(flag), std::move(help), std::move(section), std::move(key));
+    knob.kind = std::is_integral_v<T> ? KnobKind::WholeNumber : KnobKind::Number;
+    knob.lowest = lowest;
+    knob.highest = highest;
+    knob.unit = std::move(unit);
+    knob.get = [field](const Scene& scene) {
+        return knobNumberText(static_cast<double>(field(const_cast<Scene&>(scene))));
+    };
+    knob.set = [field](Scene& scene, const std::string& value) {
+        field(scene) = static_cast<T>(std::strtod(value.c_str(), nullptr));
+    };
+    return knob;
+}
+
+// `knob` as the trade turns it: the values it tries, those of the fast and best presets, and the knob
+// and value it acts under.
+SceneKnob traded(SceneKnob knob, std::vector<std::string> values, std::string fast, std::string best,
+                 std::string needsKnob = "", std::string needsValue = "") {
+    knob.tradeValues = values.empty() ? knob.names : std::move(values);
+    knob.fastValue = std::move(fast);
+    knob.bestValue = std::move(best);
+    knob.needsKnob = std::move(needsKnob);
+    knob.needsValue = std::move(needsValue);
+    return knob;
+}
+
+// --reflection and --shading choose for every object; the scene file's "lighting" keys are the
+// scene's defaults, which an object's own "lighting" overrides (read after them).
+SceneKnob reflectionKnob() {
+    SceneKnob knob =
+        choice<ReflectionModel>("reflection", "--reflection", "Reflection model for every object", "lighting",
+                                "model", [](Scene& s) -> ReflectionModel& { return s.lighting.model; });
+    knob.get = [](const Scene& scene) {
+        return commonName<ReflectionModel>(scene.objects, [&](const ObjectSpec& object) {
+            return object.reflection.value_or(scene.lighting.model);
+        });
+    };
+    knob.set = [](Scene& scene, const std::string& value) {
+        scene.lighting.model = *parseName<ReflectionModel>(value);
+        for (ObjectSpec& object : scene.objects)
+            object.reflection = scene.lighting.model;
+    };
+    return knob;
+}
+
+SceneKnob shadingKnob() {
+    SceneKnob knob =
+        named("shading", "--shading", "Shading frequency for every object: per face, per vertex or per pixel",
+              "lighting", "shading");
+    knob.names = namesOf<ShadingFrequency>();
+    knob.get = [](const Scene& scene) {
+        return commonName<ShadingFrequency>(scene.objects, [&](const ObjectSpec& object) {
+            return object.shading.value_or(scene.lighting.shadingOrDefault());
+        });
+    };
+    knob.set = [](Scene& scene, const std::string& value) {
+        scene.lighting.shading = *parseName<ShadingFrequency>(value);
+        for (ObjectSpec& object : scene.objects)
+            object.shading = scene.lighting.shading;
+    };
+    return knob;
+}
+
+// --shadows sets every light's method; a scene file sets each light's own ("lights[i].shadows").
+SceneKnob shadowsKnob() {
+    SceneKnob knob = named("shadows", "--shadows",
+                           "Shadows of every light: none, a ray to the light (exact), or a shadow map");
+    knob.names = namesOf<ShadowMethod>();
+    knob.defaultNote = "(default: each light's \"shadows\" in the scene file, else none)";
+    knob.get = [](const Scene& scene) {
+        if (scene.shadows) return std::string(nameOf(*scene.shadows));
+        if (scene.lights.empty()) return std::string(nameOf(ShadowMethod::None));  // the default light's
+        return commonName<ShadowMethod>(scene.lights, [](const LightSpec& light) { return light.shadows; });
+    };
+    knob.set = [](Scene& scene, const std::string& value) { scene.shadows = parseName<ShadowMethod>(value); };
+    return knob;
+}
+
+// The table. Notes on the trade's values:
+//   cull: front-face culling draws the wrong side, not a trade; culling back faces is the fast choice (the
+//     same image for closed models); no best value, the reference culls as the scene does.
+//   reflection: a choice of look more than of accuracy: no fast or best value, the reference keeps the
+//     scene's.
+//   the shadow map's bias and slope bias: tuning, neither faster nor slower: no fast or best value.
+//   shadows: whether a light casts shadows is the scene's choice; the reference ray-casts the shadows
+//     of the lights that cast them, so the best preset keeps the scene's (adding shadows to a scene
+//     without any would move it away from its reference); the fast preset drops them.
+//   colour buffer: the narrower formats are emulated by rounding a float buffer (pipeline/blend.h), so
+//     they cost time rather than save it: no fast value.
+//   textures and normals: what the model looks like (its maps; how its smooth normals are made) rather
+//     than how exactly it is drawn; the reference draws the scene's own: no fast or best value.
+//   subpixel bits: no measurable speed difference (the edge functions are integers at any precision).
+std::vector<SceneKnob> makeTable() {
+    using S = Scene&;
+    SceneKnob shadowFilter = number<int>("shadow-filter", "--shadow-filter",
+                                         "Shadow maps: depth comparisons averaged per point, 1, 4 or 16",
+                                         "shadow_map", "filter", 1, 16, " depth comparisons per point",
+                                         [](S s) -> int& { return s.shadowMap.filterTaps; });
+    shadowFilter.only = {1, 4, 16};
+    return {
+        choice<LightingPreset>(
+            "lighting", "--lighting",
+            "Conventions: linear light and sRGB output, or OpenGL 1.x fixed function (docs/lighting.md)",
+            "lighting", "preset", [](S s) -> LightingPreset& { return s.lighting.preset; }),
+        traded(shadingKnob(), {}, "flat", "phong"),
+        traded(choice<Interpolation>("interpolation", "--interpolation",
+                                     "Varyings across a triangle: perspective-correct, or affine in screen "
+                                     "space (wrong, for teaching)",
+                                     "pipeline", "interpolation",
+                                     [](S s) -> Interpolation& { return s.pipeline.interpolation; }),
+               {}, "affine", "perspective"),
+        traded(shadowsKnob(), {}, "none", ""),
+        traded(number<int>("shadow-map-size", "--shadow-map-size",
+                           "Shadow maps: texels per side (a point light draws six)", "shadow_map", "size", 16,
+                           kMaxShadowMapSize, " texels", [](S s) -> int& { return s.shadowMap.size; }),
+               {"256", "512", "1024", "2048", "4096"}, "512", "4096", "shadows", "map"),
+        traded(shadowFilter, {"1", "4", "16"}, "1", "16", "shadows", "map"),
+        traded(number<float>("shadow-bias", "--shadow-bias",
+                             "Shadow maps: constant depth offset, in units of the map's depth resolution",
+                             "shadow_map", "bias", 0, 1e6, "",
+                             [](S s) -> float& { return s.shadowMap.constantBias; }),
+               {"0.5", "1", "2", "4"}, "", "", "shadows", "map"),
+        traded(number<float>("shadow-slope-bias", "--shadow-slope-bias",
+                             "Shadow maps: depth offset per unit of the surface's depth slope across a texel",
+                             "shadow_map", "slope_bias", 0, 1e6, "",
+                             [](S s) -> float& { return s.shadowMap.slopeBias; }),
+               {"0", "1.5", "4"}, "", "", "shadows", "map"),
+        traded(choice<TransparencyMode>(
+                   "transparency", "--transparency",
+                   "Transparent triangles back to front, in file order, or in exact per-pixel lists",
+                   "transparency", "mode", [](S s) -> TransparencyMode& { return s.transparency.mode; }),
+               {}, "unsorted", "exact"),
+        // Used by "sorted" only, but accepted with every mode: switching the mode (in the file or with
+        // --transparency) must not make the rest of the file wrong.
+        traded(
+            choice<SortKey>("sort-key", "--sort-key",
+                            "Depth that orders transparent triangles: the centroid's or the farthest "
+                            "vertex's",
+                            "transparency", "sort_key", [](S s) -> SortKey& { return s.transparency.key; }),
+            {}, "", "", "transparency", "sorted"),
+        traded(choice<CullMode>("cull", "--cull", "Which faces are not drawn", "pipeline", "cull",
+                                [](S s) -> CullMode& { return s.pipeline.cull; }),
+               {"back", "none"}, "back", ""),
+        traded(reflectionKnob(), {}, "", ""),
+        // Changes the look (the highlight's size), not how exactly it is drawn: no fast or best value.
+        traded(choice<BlinnExponent>("blinn-exponent", "--blinn-exponent",
+                                     "Blinn-Phong's exponent: the material's shininess n, or 4n so that its "
+                                     "highlight matches Phong's",
+                                     "lighting", "blinn_exponent",
+                                     [](S s) -> BlinnExponent& { return s.lighting.brdf.blinnExponent; }),
+               {}, "", ""),
+        traded(choice<Antialiasing>(
+                   "aa", "--aa",
+                   "Anti-aliasing: supersampling (ssaaN) draws the frame once per sample (2, 4, 8 or 16, at "
+                   "the standard sample positions) and averages them; multisampling (msaaN) draws it once, "
+                   "testing coverage and depth per sample and shading once per pixel",
+                   "pipeline", "antialiasing", [](S s) -> Antialiasing& { return s.pipeline.antialiasing; }),
+               {}, "none", "ssaa16"),
+        traded(number<int>("subpixel-bits", "--subpixel-bits",
+                           "Rasterizer precision: vertices snapped to 1/2^N of a pixel, N from 0 to 8 (8 as "
+                           "GPUs and Mesa)",
+                           "pipeline", "subpixel_bits", 0, kMaxSubpixelBits, "",
+                           [](S s) -> int& { return s.pipeline.subpixelBits; }),
+               {"0", "2", "4", "8"}, "", "8"),
+        traded(choice<DepthBufferFormat>("depth", "--depth",
+                                         "Depth buffer format: 16- or 24-bit unorm, 32-bit float, or float "
+                                         "with reversed Z (docs/trade.md)",
+                                         "pipeline", "depth",
+                                         [](S s) -> DepthBufferFormat& { return s.pipeline.depth; }),
+               {}, "float", "reversed-float"),
+        traded(choice<ColorBufferFormat>("color-buffer", "--color-buffer",
+                                         "Colour buffer precision, rounded after every write: 8-bit linear, "
+                                         "half or float (docs/trade.md)",
+                                         "pipeline", "color_buffer",
+                                         [](S s) -> ColorBufferFormat& { return s.pipeline.colorBuffer; }),
+               {}, "", "float"),
+        traded(choice<TextureFilter>(
+                   "texture-filter", "--texture-filter",
+                   "Texture filtering: the nearest texel, bilinear, or trilinear over mipmaps "
+                   "(docs/trade.md)",
+                   "textures", "filter", [](S s) -> TextureFilter& { return s.textures.filter; }),
+               {}, "nearest", "trilinear"),
+        traded(choice<TextureMaps>(
+                   "textures", "--textures",
+                   "The MTL's texture maps: used, or ignored so surfaces take their materials' colours",
+                   "textures", "maps", [](S s) -> TextureMaps& { return s.textures.maps; }),
+               {}, "", ""),
+        number<float>("crease-angle", "--crease-angle",
+                      "Computed normals: faces meeting at a sharper angle (degrees) keep a hard edge",
+                      "lighting", "crease_angle", 0, 180, " degrees",
+                      [](S s) -> float& { return s.lighting.creaseAngleDegrees; }),
+        traded(choice<VertexNormals>("normals", "--normals",
+                                     "Computed normals: each face weighted by its triangles' areas, its "
+                                     "polygon's area, or its angle at the vertex (docs/trade.md)",
+                                     "lighting", "normals",
+                                     [](S s) -> VertexNormals& { return s.lighting.normals; }),
+               {}, "", ""),
+        traded(choice<MathPrecision>(
+                   "powers", "--powers",
+                   "pow and exp in lighting and fog: the C library's, or polynomials on the "
+                   "float's bits",
+                   "lighting", "powers", [](S s) -> MathPrecision& { return s.lighting.powers; }),
+               {}, "fast", "exact"),
+        traded(choice<Normalization>(
+                   "normalize", "--normalize",
+                   "Unit vectors N, L, V, H: 1/sqrt, or the reciprocal square root estimate "
+                   "and one Newton step",
+                   "lighting", "normalize", [](S s) -> Normalization& { return s.lighting.normalize; }),
+               {}, "fast", "exact"),
+        traded(choice<FresnelModel>(
+                   "fresnel", "--fresnel",
+                   "Cook-Torrance's Fresnel term: Schlick's approximation or the exact dielectric one",
+                   "lighting", "fresnel", [](S s) -> FresnelModel& { return s.lighting.brdf.fresnel; }),
+               {}, "schlick", "exact"),
+        // Cook-Torrance's other terms: scene file keys only.
+        choice<NormalDistribution>("distribution", "", "", "lighting", "distribution",
+                                   [](S s) -> NormalDistribution& { return s.lighting.brdf.distribution; }),
+        choice<GeometryTerm>("geometry", "", "", "lighting", "geometry",
+                             [](S s) -> GeometryTerm& { return s.lighting.brdf.geometry; }),
+    };
+}
+
+}  // namespace
+
+std::string knobNumberText(double value) {
+    std::ostringstream stream;
+    stream << value;
+    std::string text = stream.str();
+    // 1e+06 → 1e6, 1e-05 → 1e-5: as a user writes it.
+    const std::size_t e = text.find('e');
+    if (e != std::string::npos) {
+        std::size_t digits = e + 1;
+        if (text[digits] == '+')
+            text.erase(digits, 1);
+        else if (text[digits] == '-')
+            ++digits;
+        while (digits + 1 < text.size() && text[digits] == '0')
+            text.erase(digits, 1);
+    }
+    return text;
+}
+
+const std::vector<SceneKnob>& sceneKnobs() {
+    static const std::vector<SceneKnob> table = makeTable();
+    return table;
+}
+
+const SceneKnob* sceneKnobNamed(std::string_view name) {
+    for (const SceneKnob& knob : sceneKnobs())
+        if (knob.name == name) return &knob;
+    return nullptr;
+}
+
+Scene defaultKnobScene() {
+    Scene scene;
+    scene.objects.emplace_back();
+    return scene;
+}
+
+std::vector<std::string_view> knobKeysOf(std::string_view section) {
+    std::vector<std::string_view> keys;
+    for (const SceneKnob& knob : sceneKnobs())
+        if (knob.section == section) keys.emplace_back(knob.key);
+    return keys;
+}
+
+std::string SceneKnob::defaultValue() const {
+    return defaultNote.empty() ? get(defaultKnobScene()) : "";
+}
+
+std::string SceneKnob::allowed() const {
+    if (kind == KnobKind::Names) {
+        std::string list;
+        for (std::size_t i = 0; i < names.size(); ++i) {
+            if (i > 0) list += i + 1 == names.size() ? " or " : ", ";
+            list += inQuotes(names[i]);
+        }
+        return list;
+    }
+    if (!only.empty()) {
+        std::string list;
+        for (std::size_t i = 0; i < only.size(); ++i) {
+            if (i > 0) list += i + 1 == only.size() ? " or " : ", ";
+            list += std::to_string(only[i]);
+        }
+        return list + unit;
+    }
+    return "from " + knobNumberText(lowest) + " to " + knobNumberText(highest) + unit;
+}
+
+bool SceneKnob::allows(double value) const {
+    if (!(value >= lowest && value <= highest)) return false;
+    if (kind == KnobKind::WholeNumber && value != std::floor(value)) return false;
+    if (only.empty()) return true;
+    for (const int allowedValue : only)
+        if (value == allowedValue) return true;
+    return false;
+}
+
+std::optional<std::string> SceneKnob::commandLineProblem(const std::string& text) const {
+    if (kind == KnobKind::Names || allows(std::strtod(text.c_str(), nullptr))) return std::nullopt;
+    return flag + " must be " + allowed() + " (got " + text + ")";
+}
+
+}  // namespace facet
