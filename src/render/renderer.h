@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "io/image_io.h"
+#include "pipeline/draw_run.h"
 #include "pipeline/fragment_lists_resolve.h"
-#include "pipeline/pipeline.h"
 #include "pipeline/sample_position.h"
 #include "raycast/ray_scene.h"
 #include "render/frame_kernels.h"
