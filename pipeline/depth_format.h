@@ -2,7 +2,7 @@
 // which way is nearer, how the viewport maps NDC z to window depth, and how a fragment's window depth
 // is stored and compared. The framebuffer, the viewport transform, the back end's depth test and the
 // fragment lists' sort order all go through DepthFormatOf<format>, chosen once per draw
-// (DrawState::depth.format; back_end.h's drawBatchTiles switches on it), so the default Float path is
+// (DrawState::depth.format; the back end's drawTileOfChunks switches on it), so the default Float path is
 // the code it was before the other formats existed.
 //
 // Storage: every format keeps the framebuffer's 32-bit float buffer. The unorm formats store their
@@ -196,11 +196,13 @@ struct DepthCoding {
             return windowDepth;
     }
     static Stored8 load8(const Stored* row) { return DepthFormat::load8(row); }
-    bool passes(CompareOp op, float fragmentDepth, Stored stored) const {
-        return depthTestPasses(op, store(fragmentDepth), stored);
+    // The depth test with the draw's compare (resolved once per draw, DepthCompare), on the stored
+    // representation as DepthFormatOf::passes tests it.
+    bool passes(const DepthCompare& compare, float fragmentDepth, Stored stored) const {
+        return compare.passes(store(fragmentDepth), stored);
     }
-    Int8 passes(CompareOp op, Float8 fragmentDepth, Stored8 stored) const {
-        return depthTestPasses(op, store(fragmentDepth), stored);
+    Int8 passes(const DepthCompare& compare, Float8 fragmentDepth, Stored8 stored) const {
+        return compare.passes(store(fragmentDepth), stored);
     }
 };
 
