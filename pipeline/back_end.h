@@ -139,16 +139,20 @@ template <class C>
         vec4* colors = walk.target.sampleColors(queue.x[lane], queue.y[lane]);
         typename C::Depth::Stored* depths = walk.target.sampleDepths(queue.x[lane], queue.y[lane]);
         const unsigned samples = queue.samplesPassed[lane];
+        if (walk.write.plainStores) {  // one pass over the samples, as for an opaque draw's pixels
+            for (unsigned bits = samples; bits; bits &= bits - 1) {
+                const int s = std::countr_zero(bits);
+                if (walk.plan.depthWrite) depths[s] = walk.depth.store(queue.sampleZ[lane][s]);
+                colors[s] = shaded[lane];
+            }
+            continue;
+        }
         if (walk.plan.depthWrite)
             for (unsigned bits = samples; bits; bits &= bits - 1) {
                 const int s = std::countr_zero(bits);
                 depths[s] = walk.depth.store(queue.sampleZ[lane][s]);
             }
-        if (walk.write.plainStores)
-            for (unsigned bits = samples; bits; bits &= bits - 1)
-                colors[std::countr_zero(bits)] = shaded[lane];
-        else
-            walk.write.samples(colors, samples, shaded[lane]);
+        walk.write.samples(colors, samples, shaded[lane]);
     }
 }
 
