@@ -6,8 +6,9 @@
 // One walk serves every draw, single-sample and multisampled: drawTile → each triangle's blocks →
 // each block row's depth test (per pixel, or per sample) → the fragment queue (fragment_queue.h) →
 // shadeQueue → the depth write and the output merger. It is compiled per BackEndConfig, chosen once per
-// draw (drawTileOfChunks); the draw's other choices (depth compare, blend mode, colour buffer format)
-// are resolved once per draw into values the walk applies without choosing (DepthCompare, ColorWrite).
+// draw (drawTileOfChunks); the blend mode and the colour buffer format are resolved once per draw into
+// the output merger the walk calls (ColorWrite). The depth compare stays a switch in the depth test, one
+// predicted branch per block row: resolved into masks once per draw it measured slower (docs/trade.md).
 #pragma once
 
 #include <algorithm>
@@ -203,8 +204,9 @@ void writeWatched(TileWalk<C>& walk, FragmentQueue& queue, int n, const vec4 (&s
 
 // The queued fragments (or a block row shaded whole, `slotsAreColumns`, interpolated with its row):
 // interpolation, the fragment shader, then the depth write and the output.
+// Left to the compiler (out of line, as it chooses): the walk calls it from three places.
 template <class C, class Queue>
-[[gnu::always_inline]] inline void shadeQueue(TileWalk<C>& walk, Queue& queue, bool slotsAreColumns = false) {
+void shadeQueue(TileWalk<C>& walk, Queue& queue, bool slotsAreColumns = false) {
     const int n = queue.count;
     if (n == 0) return;
     queue.count = 0;
@@ -244,11 +246,11 @@ template <class C>
     const bool wholeRow = row.x + kBlockSize <= walk.target.width();  // inside the framebuffer
     if (walk.plan.depthTest) {
         if (wholeRow) {
-            passed &= signMask(walk.depth.passes(walk.plan.depthPasses, row.z, Depth::load8(depthRow)));
+            passed &= signMask(walk.depth.passes(walk.plan.depthCompare, row.z, Depth::load8(depthRow)));
         } else {
             for (int lane = 0; lane < kBlockSize; ++lane)
                 if ((row.mask >> lane) & 1u)
-                    if (!walk.depth.passes(walk.plan.depthPasses, row.z[lane], depthRow[lane]))
+                    if (!walk.depth.passes(walk.plan.depthCompare, row.z[lane], depthRow[lane]))
                         passed &= ~(1u << lane);
         }
     }
@@ -399,7 +401,7 @@ template <class C>
                 first = false;
             }
             const float z = interpolateDepth(setup, b1, b2);
-            if (walk.plan.depthTest && !walk.depth.passes(walk.plan.depthPasses, z, stored[s])) continue;
+            if (walk.plan.depthTest && !walk.depth.passes(walk.plan.depthCompare, z, stored[s])) continue;
             pass |= 1u << s;
             sampleZ[lane][s] = z;
         }

@@ -196,13 +196,11 @@ struct DepthCoding {
             return windowDepth;
     }
     static Stored8 load8(const Stored* row) { return DepthFormat::load8(row); }
-    // The depth test with the draw's compare (resolved once per draw, DepthCompare), on the stored
-    // representation as DepthFormatOf::passes tests it.
-    bool passes(const DepthCompare& compare, float fragmentDepth, Stored stored) const {
-        return compare.passes(store(fragmentDepth), stored);
+    bool passes(CompareOp op, float fragmentDepth, Stored stored) const {
+        return depthTestPasses(op, store(fragmentDepth), stored);
     }
-    Int8 passes(const DepthCompare& compare, Float8 fragmentDepth, Stored8 stored) const {
-        return compare.passes(store(fragmentDepth), stored);
+    Int8 passes(CompareOp op, Float8 fragmentDepth, Stored8 stored) const {
+        return depthTestPasses(op, store(fragmentDepth), stored);
     }
 };
 

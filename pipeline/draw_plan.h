@@ -3,7 +3,6 @@
 // print what a draw will do).
 #pragma once
 
-#include "depth_test.h"
 #include "state.h"
 
 namespace facet {
@@ -11,7 +10,6 @@ namespace facet {
 struct DrawPlan {
     // The depth test as it runs: Always when DrawState::depth.testEnabled is off.
     CompareOp depthCompare = CompareOp::Less;
-    DepthCompare depthPasses;  // depthCompare as the back end's test applies it
     // Whether stored depths are read and compared at all (false when every fragment passes).
     bool depthTest = true;
     // Whether a fragment that passes writes its depth. OpenGL: with GL_DEPTH_TEST disabled the depth
@@ -27,7 +25,6 @@ struct DrawPlan {
 inline DrawPlan planDraw(const DrawState& state) {
     DrawPlan plan;
     plan.depthCompare = state.depth.testEnabled ? state.depth.compare : CompareOp::Always;
-    plan.depthPasses = DepthCompare(plan.depthCompare);
     plan.depthTest = plan.depthCompare != CompareOp::Always;
     plan.depthWrite = state.depth.testEnabled && state.depth.writeEnabled;
     plan.blend = state.blend;

@@ -361,7 +361,7 @@ void BM_DepthTest(benchmark::State& state) {
             rows.push_back({block.coverage.x, block.coverage.y + row, mask, z});
         }
     }
-    const DepthCompare compare(nearerPasses(format, CompareOp::Less));
+    const CompareOp compare = nearerPasses(format, CompareOp::Less);
     std::vector<float> buffer(static_cast<std::size_t>(kFrameWidth) * kFrameHeight);
     std::int64_t passedCount = 0;
     withDepthCoding(format, [&](const auto& depth) {
