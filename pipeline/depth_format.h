@@ -2,7 +2,7 @@
 // which way is nearer, how the viewport maps NDC z to window depth, and how a fragment's window depth
 // is stored and compared. The framebuffer, the viewport transform, the back end's depth test and the
 // fragment lists' sort order all go through DepthFormatOf<format>, chosen once per draw
-// (DrawState::depth.format; back_end.h's drawBatchTiles switches on it), so the default Float path is
+// (DrawState::depth.format; the back end's drawTileOfChunks switches on it), so the default Float path is
 // the code it was before the other formats existed.
 //
 // Storage: every format keeps the framebuffer's 32-bit float buffer. The unorm formats store their

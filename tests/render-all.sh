@@ -79,6 +79,37 @@ for scene in "$here"/models/fog-and-glass.json "$here"/models/intersecting-quads
         done
     done
 done
+# The back end's variants, small: every anti-aliasing mode, depth format and colour buffer format, alone
+# and multisampled, on scenes with transparency, every blend mode and shadows, and a plain model.
+small=(--width 160 --height 120)
+for scene in "$here"/models/fog-and-glass.json "$here"/tests/conformance/scenes/facet-blend-modes-spheres.json \
+    "$here"/models/shadows.json "$spot"; do
+    for aa in none ssaa2 ssaa4 msaa2 msaa4 msaa8 msaa16; do
+        render aa.png "$scene" "${small[@]}" --aa $aa
+    done
+    for depth in float unorm16 unorm24 reversed-float; do
+        for color in float half unorm8; do
+            render formats.png "$scene" "${small[@]}" --depth $depth --color-buffer $color
+            render formats-msaa.png "$scene" "${small[@]}" --depth $depth --color-buffer $color --aa msaa4
+        done
+    done
+    for aa in none msaa4; do  # exact transparency is per pixel: supersampled instead
+        render cull.png "$scene" "${small[@]}" --cull none --aa $aa
+        render cull-front.png "$scene" "${small[@]}" --cull front --aa $aa
+        render affine.png "$scene" "${small[@]}" --interpolation affine --aa $aa
+        render exact.png "$scene" "${small[@]}" --transparency exact --aa ${aa/msaa/ssaa}
+        render exact-formats.png "$scene" "${small[@]}" --transparency exact --aa ${aa/msaa/ssaa} --depth unorm16 \
+            --color-buffer half
+        render unsorted.png "$scene" "${small[@]}" --transparency unsorted --aa $aa
+        for shadows in map ray; do
+            render shadows.png "$scene" "${small[@]}" --shadows $shadows --aa $aa
+            render shadows-formats.png "$scene" "${small[@]}" --shadows $shadows --aa $aa --depth unorm24 \
+                --color-buffer unorm8
+        done
+    done
+    render infinite.png "$scene" "${small[@]}" --infinite-far --depth reversed-float
+    render nearest.png "$scene" "${small[@]}" --texture-filter trilinear --subpixel-bits 4
+done
 render large.png "$shared/lost-empire/lost_empire.obj" --width 1280 --height 960
 render large-glass.png "$here/models/fog-and-glass.json" --width 1280 --height 960 --transparency exact
 echo "$count renders" >&2

@@ -13,8 +13,8 @@
 
 #include "io/image_io.h"
 #include "io/scene_assets.h"
+#include "pipeline/draw_run.h"
 #include "pipeline/fragment_lists_resolve.h"
-#include "pipeline/pipeline.h"
 #include "pipeline/sample_position.h"
 #include "raycast/ray_scene.h"
 #include "render/frame_kernels.h"

@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "../support/test_shaders.h"
-#include "pipeline.h"
+#include "draw_run.h"
 
 namespace facet {
 namespace {
