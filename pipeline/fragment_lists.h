@@ -164,6 +164,10 @@ class FragmentLists {
     template <bool kLessIsNearer, ColorBufferFormat kColor, class Observer>
     void resolveTile(int tile, Framebuffer& target, ResolveScratch& scratch, Observer& observer) const;
     template <bool kLessIsNearer, ColorBufferFormat kColor, class Observer>
+    void resolvePixel(int x, int y, const Node* nodes, std::uint32_t head, vec4& color,
+                      ResolveScratch& scratch, std::vector<ResolvedFragment>& observed,
+                      Observer& observer) const;
+    template <bool kLessIsNearer, ColorBufferFormat kColor, class Observer>
     void resolveTiles(Framebuffer& target, ThreadPool& pool, Observer& observer);
 
     int width_ = 0, height_ = 0;

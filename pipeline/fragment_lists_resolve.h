@@ -42,15 +42,35 @@ std::uint64_t resolveSortKey(float depth, std::uint32_t submission) {
 
 }  // namespace detail
 
+namespace detail {
+
+// A list's entries farthest first, equal depths in submission order (their keys: resolveSortKey).
+template <class Entry>
+void sortFarthestFirst(std::vector<Entry>& entries) {
+    const std::size_t n = entries.size();
+    if (n <= kInsertionSortLimit) {
+        for (std::size_t i = 1; i < n; ++i) {
+            const Entry e = entries[i];
+            std::size_t j = i;
+            for (; j > 0 && entries[j - 1].key > e.key; --j)
+                entries[j] = entries[j - 1];
+            entries[j] = e;
+        }
+    } else {
+        std::sort(entries.begin(), entries.end(),
+                  [](const Entry& a, const Entry& b) { return a.key < b.key; });
+    }
+}
+
+}  // namespace detail
+
 template <bool kLessIsNearer, ColorBufferFormat kColor, class Observer>
 void FragmentLists::resolveTile(int tile, Framebuffer& target, ResolveScratch& scratch,
                                 Observer& observer) const {
-    constexpr bool kObserving = Observer::enabled;
     const TilePool& pool = pools_[static_cast<std::size_t>(tile)];
     scratch.stats.dropped += pool.dropped;
     if (pool.nodes.empty()) return;
     const Node* nodes = pool.nodes.data();
-    std::vector<Entry>& entries = scratch.entries;
     [[maybe_unused]] std::vector<ResolvedFragment> observed;  // an observer's view of one pixel's list
     const PixelRect rect = tileRect(tile);
     const FramebufferPlanes planes = target.planesToDraw(rect);
@@ -59,64 +79,62 @@ void FragmentLists::resolveTile(int tile, Framebuffer& target, ResolveScratch& s
         for (int x = rect.minX; x <= rect.maxX; ++x) {
             const std::uint32_t head = heads[x];
             if (head == kEnd) continue;
-            vec4& color = planes.color(x, y);
-            const Node& newest = nodes[head];
-            if (newest.previous() == kEnd) {
-                // One fragment: nothing to sort.
-                if constexpr (kObserving) {
-                    const vec4 before = color;
-                    observed.assign(
-                        1, ResolvedFragment{0, newest.depth, newest.blend(), newest.color, vec4(0.0f)});
-                    observed[0].colorAfter =
-                        roundToColorBuffer<kColor>(blend(newest.blend(), newest.color, before));
-                    observer.onResolve(ResolveEvent{x, y, before, observed});
-                }
-                color = roundToColorBuffer<kColor>(blend(newest.blend(), newest.color, color));
-                ++scratch.stats.fragments;
-                ++scratch.stats.pixels;
-                scratch.stats.longestList = std::max(scratch.stats.longestList, 1u);
-                continue;
-            }
-            // Gather the list (newest first), then put it in submission order.
-            entries.clear();
-            for (std::uint32_t k = head; k != kEnd; k = nodes[k].previous())
-                entries.push_back(Entry{0, k});
-            std::reverse(entries.begin(), entries.end());
-            const std::size_t n = entries.size();
-            for (std::size_t i = 0; i < n; ++i)
-                entries[i].key = detail::resolveSortKey<kLessIsNearer>(nodes[entries[i].node].depth,
-                                                                       static_cast<std::uint32_t>(i));
-
-            // Farthest first, equal depths in submission order.
-            if (n <= detail::kInsertionSortLimit) {
-                for (std::size_t i = 1; i < n; ++i) {
-                    const Entry e = entries[i];
-                    std::size_t j = i;
-                    for (; j > 0 && entries[j - 1].key > e.key; --j)
-                        entries[j] = entries[j - 1];
-                    entries[j] = e;
-                }
-            } else {
-                std::sort(entries.begin(), entries.end(),
-                          [](const Entry& a, const Entry& b) { return a.key < b.key; });
-            }
-
-            vec4 c = color;
-            if constexpr (kObserving) observed.clear();
-            for (const Entry& e : entries) {
-                const Node& node = nodes[e.node];
-                c = roundToColorBuffer<kColor>(blend(node.blend(), node.color, c));
-                if constexpr (kObserving)
-                    observed.push_back(ResolvedFragment{static_cast<std::uint32_t>(e.key & 0xffffffffu),
-                                                        node.depth, node.blend(), node.color, c});
-            }
-            if constexpr (kObserving) observer.onResolve(ResolveEvent{x, y, color, observed});
-            color = c;
-            scratch.stats.fragments += n;
-            ++scratch.stats.pixels;
-            scratch.stats.longestList = std::max(scratch.stats.longestList, static_cast<std::uint32_t>(n));
+            resolvePixel<kLessIsNearer, kColor>(x, y, nodes, head, planes.color(x, y), scratch, observed,
+                                                observer);
         }
     }
+}
+
+// One pixel's list, from its newest node `head`, composited over `color` farthest first.
+template <bool kLessIsNearer, ColorBufferFormat kColor, class Observer>
+[[gnu::always_inline]] inline void FragmentLists::resolvePixel(int x, int y, const Node* nodes,
+                                                               std::uint32_t head, vec4& color,
+                                                               ResolveScratch& scratch,
+                                                               std::vector<ResolvedFragment>& observed,
+                                                               Observer& observer) const {
+    constexpr bool kObserving = Observer::enabled;
+    std::vector<Entry>& entries = scratch.entries;
+    const Node& newest = nodes[head];
+    if (newest.previous() == kEnd) {
+        // One fragment: nothing to sort.
+        if constexpr (kObserving) {
+            const vec4 before = color;
+            observed.assign(1, ResolvedFragment{0, newest.depth, newest.blend(), newest.color, vec4(0.0f)});
+            observed[0].colorAfter = roundToColorBuffer<kColor>(blend(newest.blend(), newest.color, before));
+            observer.onResolve(ResolveEvent{x, y, before, observed});
+        }
+        color = roundToColorBuffer<kColor>(blend(newest.blend(), newest.color, color));
+        ++scratch.stats.fragments;
+        ++scratch.stats.pixels;
+        scratch.stats.longestList = std::max(scratch.stats.longestList, 1u);
+        return;
+    }
+    // Gather the list (newest first), then put it in submission order.
+    entries.clear();
+    for (std::uint32_t k = head; k != kEnd; k = nodes[k].previous())
+        entries.push_back(Entry{0, k});
+    std::reverse(entries.begin(), entries.end());
+    const std::size_t n = entries.size();
+    for (std::size_t i = 0; i < n; ++i)
+        entries[i].key = detail::resolveSortKey<kLessIsNearer>(nodes[entries[i].node].depth,
+                                                               static_cast<std::uint32_t>(i));
+
+    detail::sortFarthestFirst(entries);
+
+    vec4 c = color;
+    if constexpr (kObserving) observed.clear();
+    for (const Entry& e : entries) {
+        const Node& node = nodes[e.node];
+        c = roundToColorBuffer<kColor>(blend(node.blend(), node.color, c));
+        if constexpr (kObserving)
+            observed.push_back(ResolvedFragment{static_cast<std::uint32_t>(e.key & 0xffffffffu), node.depth,
+                                                node.blend(), node.color, c});
+    }
+    if constexpr (kObserving) observer.onResolve(ResolveEvent{x, y, color, observed});
+    color = c;
+    scratch.stats.fragments += n;
+    ++scratch.stats.pixels;
+    scratch.stats.longestList = std::max(scratch.stats.longestList, static_cast<std::uint32_t>(n));
 }
 
 template <class Observer>
@@ -128,7 +146,7 @@ FragmentListStats FragmentLists::resolve(Framebuffer& target, ThreadPool& pool, 
     }
     for (ResolveScratch& s : scratch_)
         s.stats = FragmentListStats{};
-    // The formats chosen once for the whole resolve, as drawBatchTiles chooses them for a draw.
+    // The formats chosen once for the whole resolve, as drawTileOfChunks chooses a draw's walk.
     withDepthFormat(depthFormat_, [&](auto depthFormat) {
         constexpr bool kLessIsNearer = decltype(depthFormat)::kLessIsNearer;
         switch (colorBuffer_) {

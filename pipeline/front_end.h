@@ -74,39 +74,33 @@ void observeCulled(std::uint32_t triangleIndex, const WindowTriangle& window, co
         }
 }
 
-}  // namespace detail
-
-// Front end for triangles [first, last): assembly, clipping, viewport, setup, binning into `chunk`
-// (which the caller has emptied). `window` holds the viewport transform of every vertex no plane clips.
-// The first flatVaryingCount varyings are flat (shader.h, flatVaryingFloats).
+// Setup and binning of one window triangle (a whole triangle, or one fan piece of a clipped one) into
+// `chunk`. One TriangleSetup serves every triangle of an unwatched draw: setupTriangle writes each of
+// its fields for a triangle it draws, and only those are copied to the chunk (zeroing a fresh one per
+// triangle cost ~30 instructions). An observer is shown a fresh one, even for a triangle not drawn.
 template <class Observer>
-void setupTriangles(std::span<const std::uint32_t> indices, std::size_t first, std::size_t last,
-                    const DrawState& state, const TileGrid& grid, const ShadedVertices& shaded,
-                    std::span<const WindowVertex> windowVertices, int flatVaryingCount, SetupChunk& chunk,
-                    Observer& observer) {
-    constexpr bool kObserving = Observer::enabled;
-    const int varyingCount = shaded.varyingCount;
-    const int planeFloats = 3 * varyingCount;
-    DrawStats& stats = chunk.stats;
-    const std::int64_t sampleReach = sampleReachFixed(state.samples);
-
-    // Setup and binning of one window triangle (a whole triangle, or one fan piece of a clipped one).
-    // One TriangleSetup serves every triangle of an unwatched draw: setupTriangle writes each of its
-    // fields for a triangle it draws, and only those are copied to the chunk (zeroing a fresh one per
-    // triangle cost ~30 instructions). An observer is shown a fresh one, even for a triangle not drawn.
+struct SetupAndBin {
+    const DrawState& state;
+    const TileGrid& grid;
+    SetupChunk& chunk;
+    Observer& observer;
+    int planeFloats;
+    std::int64_t sampleReach;
     TriangleSetup reusedSetup;
-    auto setupAndBin = [&](std::uint32_t triangleIndex, const WindowTriangle& window) {
+
+    void operator()(std::uint32_t triangleIndex, const WindowTriangle& window) {
         TriangleSetup& setup = reusedSetup;
-        if constexpr (kObserving) setup = TriangleSetup{};
+        if constexpr (Observer::enabled) setup = TriangleSetup{};
         float planes[3 * kMaxVaryingFloats];
         const TriangleFate fate = setupTriangle(window, state, setup, planes);
         setup.triangle = triangleIndex;
-        if constexpr (kObserving) {
+        if constexpr (Observer::enabled) {
             if (fate == TriangleFate::Culled)
-                detail::observeCulled(triangleIndex, window, state, observer);
+                observeCulled(triangleIndex, window, state, observer);
             else
                 observer.onSetup(triangleIndex, window, fate, setup);
         }
+        DrawStats& stats = chunk.stats;
         if (fate != TriangleFate::Drawn) {
             if (fate == TriangleFate::ZeroArea) ++stats.trianglesZeroArea;
             if (fate == TriangleFate::Culled) ++stats.trianglesCulled;
@@ -119,30 +113,85 @@ void setupTriangles(std::span<const std::uint32_t> indices, std::size_t first, s
         chunk.setups.push_back(setup);
         chunk.varyingPlanes.insert(chunk.varyingPlanes.end(), planes, planes + planeFloats);
         binTriangle(grid, setup, index, chunk.bins, sampleReach, &chunk.touchedTiles);
-    };
+    }
+};
 
+// A mesh's indices jump about its vertices: asks for triangle t + kVerticesAhead's window vertices,
+// outcodes and varyings now, so that they are in cache when it comes (else each triangle waits on
+// memory).
+[[gnu::always_inline]] inline void prefetchVerticesAhead(std::span<const std::uint32_t> indices,
+                                                         std::size_t t, std::size_t last,
+                                                         const ShadedVertices& shaded,
+                                                         std::span<const WindowVertex> windowVertices) {
+    constexpr std::size_t kVerticesAhead = 8;
+    if (t + kVerticesAhead < last) {
+        for (int k = 0; k < 3; ++k) {
+            const std::uint32_t ahead = indices[3 * (t + kVerticesAhead) + k];
+            __builtin_prefetch(&windowVertices[ahead]);
+            __builtin_prefetch(&shaded.outcodes[ahead]);
+            __builtin_prefetch(shaded.varyingsOf(ahead));
+        }
+    }
+}
+
+// Clipping of an assembled triangle that crosses at least one plane (outcodeOr ≠ 0), then the
+// clipped polygon, convex, set up as a fan around its first vertex.
+template <class Observer>
+[[gnu::always_inline]] inline void clipAndSetUp(std::uint32_t triangleIndex, ClipPolygon& polygon,
+                                                std::uint8_t outcodeOr, WindowTriangle& window,
+                                                SetupAndBin<Observer>& setupAndBin) {
+    const DrawState& state = setupAndBin.state;
+    DrawStats& stats = setupAndBin.chunk.stats;
+    ++stats.trianglesClipped;
+    clipPolygon(polygon, outcodeOr, clipDepthRange(state.depth.format));
+    if constexpr (Observer::enabled) setupAndBin.observer.onClipped(triangleIndex, polygon);
+    if (polygon.count == 0) {
+        ++stats.trianglesRejected;
+        if constexpr (Observer::enabled)
+            setupAndBin.observer.onRejected(triangleIndex, TriangleFate::ClippedAway);
+        return;
+    }
+    const int bits = state.raster.subpixelBits;
+    const DepthBufferFormat depthFormat = state.depth.format;
+    const WindowVertex firstVertex =
+        toWindow(polygon.vertices[0].position, state.viewport, bits, depthFormat);
+    WindowVertex previous = toWindow(polygon.vertices[1].position, state.viewport, bits, depthFormat);
+    for (int k = 2; k < polygon.count; ++k) {
+        const WindowVertex current =
+            toWindow(polygon.vertices[k].position, state.viewport, bits, depthFormat);
+        window.vertices = {firstVertex, previous, current};
+        window.varyings = {polygon.vertices[0].varyings.data(), polygon.vertices[k - 1].varyings.data(),
+                           polygon.vertices[k].varyings.data()};
+        setupAndBin(triangleIndex, window);
+        previous = current;
+    }
+}
+
+}  // namespace detail
+
+// Front end for triangles [first, last): assembly, clipping, viewport, setup, binning into `chunk`
+// (which the caller has emptied). `window` holds the viewport transform of every vertex no plane clips.
+// The first flatVaryingCount varyings are flat (shader.h, flatVaryingFloats).
+template <class Observer>
+void setupTriangles(std::span<const std::uint32_t> indices, std::size_t first, std::size_t last,
+                    const DrawState& state, const TileGrid& grid, const ShadedVertices& shaded,
+                    std::span<const WindowVertex> windowVertices, int flatVaryingCount, SetupChunk& chunk,
+                    Observer& observer) {
+    constexpr bool kObserving = Observer::enabled;
+    const int varyingCount = shaded.varyingCount;
+    detail::SetupAndBin<Observer> setupAndBin{
+        state, grid, chunk, observer, 3 * varyingCount, sampleReachFixed(state.samples), {}};
     for (std::size_t t = first; t < last; ++t) {
         const auto triangleIndex = static_cast<std::uint32_t>(t);
         const std::array<std::uint32_t, 3> i = {indices[3 * t], indices[3 * t + 1], indices[3 * t + 2]};
-        // A mesh's indices jump about its vertices: ask for a later triangle's window vertices,
-        // outcodes and varyings now, so that they are in cache when it comes (else each triangle waits on
-        // memory).
-        constexpr std::size_t kVerticesAhead = 8;
-        if (t + kVerticesAhead < last) {
-            for (int k = 0; k < 3; ++k) {
-                const std::uint32_t ahead = indices[3 * (t + kVerticesAhead) + k];
-                __builtin_prefetch(&windowVertices[ahead]);
-                __builtin_prefetch(&shaded.outcodes[ahead]);
-                __builtin_prefetch(shaded.varyingsOf(ahead));
-            }
-        }
+        detail::prefetchVerticesAhead(indices, t, last, shaded, windowVertices);
 
         // Primitive assembly and trivial reject.
         const std::uint8_t outcodeAnd = shaded.outcodes[i[0]] & shaded.outcodes[i[1]] & shaded.outcodes[i[2]];
         const std::uint8_t outcodeOr = shaded.outcodes[i[0]] | shaded.outcodes[i[1]] | shaded.outcodes[i[2]];
         const TriangleFate rejected = trivialReject(outcodeAnd, outcodeOr);
         if (rejected != TriangleFate::Drawn) {
-            ++stats.trianglesRejected;
+            ++chunk.stats.trianglesRejected;
             if constexpr (kObserving) observer.onRejected(triangleIndex, rejected);
             continue;
         }
@@ -166,32 +215,7 @@ void setupTriangles(std::span<const std::uint32_t> indices, std::size_t first, s
             setupAndBin(triangleIndex, window);
             continue;
         }
-
-        // Clipping: the triangle crosses at least one plane.
-        ++stats.trianglesClipped;
-        clipPolygon(polygon, outcodeOr, clipDepthRange(state.depth.format));
-        if constexpr (kObserving) observer.onClipped(triangleIndex, polygon);
-        if (polygon.count == 0) {
-            ++stats.trianglesRejected;
-            if constexpr (kObserving) observer.onRejected(triangleIndex, TriangleFate::ClippedAway);
-            continue;
-        }
-
-        // The clipped polygon is convex: a fan around its first vertex.
-        const int bits = state.raster.subpixelBits;
-        const DepthBufferFormat depthFormat = state.depth.format;
-        const WindowVertex firstVertex =
-            toWindow(polygon.vertices[0].position, state.viewport, bits, depthFormat);
-        WindowVertex previous = toWindow(polygon.vertices[1].position, state.viewport, bits, depthFormat);
-        for (int k = 2; k < polygon.count; ++k) {
-            const WindowVertex current =
-                toWindow(polygon.vertices[k].position, state.viewport, bits, depthFormat);
-            window.vertices = {firstVertex, previous, current};
-            window.varyings = {polygon.vertices[0].varyings.data(), polygon.vertices[k - 1].varyings.data(),
-                               polygon.vertices[k].varyings.data()};
-            setupAndBin(triangleIndex, window);
-            previous = current;
-        }
+        detail::clipAndSetUp(triangleIndex, polygon, outcodeOr, window, setupAndBin);
     }
 }
 

@@ -1,6 +1,7 @@
 #include "triangle_setup.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <utility>
 
@@ -39,6 +40,59 @@ void writePlaneRows(const float* __restrict a0, const float* __restrict a1, cons
         toV1[k] = a1[k] * s1 - p0;
         toV2[k] = a2[k] * s2 - p0;
     }
+}
+
+// The bounding box of the pixels whose sample (sample_position.h) may be inside, clamped to the
+// viewport and to the fixed-point budget before any loop runs.
+[[gnu::always_inline]] inline void setBoundingBox(const WindowTriangle& triangle, const DrawState& state,
+                                                  TriangleSetup& setup) {
+    const WindowVertex& t0 = triangle.vertices[0];
+    const WindowVertex& t1 = triangle.vertices[1];
+    const WindowVertex& t2 = triangle.vertices[2];
+    const std::int64_t minXf = std::min(std::min(t0.xFixed, t1.xFixed), t2.xFixed);
+    const std::int64_t maxXf = std::max(std::max(t0.xFixed, t1.xFixed), t2.xFixed);
+    const std::int64_t minYf = std::min(std::min(t0.yFixed, t1.yFixed), t2.yFixed);
+    const std::int64_t maxYf = std::max(std::max(t0.yFixed, t1.yFixed), t2.yFixed);
+    // Multisampling: the pixels some sample of which may be inside, those whose centre lies within the
+    // samples' reach of the triangle's extent.
+    const Viewport& vp = state.viewport;
+    const std::int64_t reach = sampleReachFixed(state.samples);
+    setup.minX = static_cast<int>(std::max<std::int64_t>(firstPixelSampledFrom(minXf - reach), vp.x));
+    setup.minY = static_cast<int>(std::max<std::int64_t>(firstPixelSampledFrom(minYf - reach), vp.y));
+    setup.maxX =
+        static_cast<int>(std::min<std::int64_t>(lastPixelSampledUpTo(maxXf + reach), vp.x + vp.width - 1));
+    setup.maxY =
+        static_cast<int>(std::min<std::int64_t>(lastPixelSampledUpTo(maxYf + reach), vp.y + vp.height - 1));
+}
+
+// The varyings' planes in barycentric form (value = v0 + λ1·(v1 − v0) + λ2·(v2 − v0), of a·s with s =
+// 1/w when perspective-correct, else 1), vertices in `order`, into varyingPlanes' three rows
+// (TriangleSetup::varyingPlaneOffset): values at v0, differences to v1, to v2; flat varyings take the
+// provoking vertex's value.
+[[gnu::always_inline]] inline void writeVaryingPlanes(const WindowTriangle& triangle,
+                                                      const std::array<int, 3>& order, TriangleSetup& setup,
+                                                      float* varyingPlanes) {
+    const WindowVertex& v0 = triangle.vertices[order[0]];
+    const WindowVertex& v1 = triangle.vertices[order[1]];
+    const WindowVertex& v2 = triangle.vertices[order[2]];
+    setup.varyingCount = triangle.varyingCount;
+    const float* a0 = triangle.varyings[order[0]];
+    const float* a1 = triangle.varyings[order[1]];
+    const float* a2 = triangle.varyings[order[2]];
+    const float s0 = setup.perspective ? v0.invW : 1.0f;
+    const float s1 = setup.perspective ? v1.invW : 1.0f;
+    const float s2 = setup.perspective ? v2.invW : 1.0f;
+    setup.flatVaryingCount = triangle.flatVaryingCount;
+    const int n = triangle.varyingCount;
+    float* const atV0 = varyingPlanes;
+    float* const toV1 = varyingPlanes + n;
+    float* const toV2 = varyingPlanes + 2 * n;
+    for (int k = 0; k < triangle.flatVaryingCount; ++k) {
+        atV0[k] = triangle.provokingVaryings[k];
+        toV1[k] = 0.0f;
+        toV2[k] = 0.0f;
+    }
+    writePlaneRows(a0, a1, a2, s0, s1, s2, triangle.flatVaryingCount, n, atV0, toV1, toV2);
 }
 
 }  // namespace
@@ -83,25 +137,7 @@ TriangleFate setupTriangle(const WindowTriangle& triangle, const DrawState& stat
     // bounding box is worked out for it.
     setup.frontFacing = isFrontFacing(area, state.raster.frontFace);
     if (isCulled(setup.frontFacing, state.raster.cull)) return TriangleFate::Culled;
-    // Bounding box of the pixels whose sample (sample_position.h) may be inside, clamped to the
-    // viewport and to the fixed-point budget before any loop runs.
-    const WindowVertex& t0 = triangle.vertices[0];
-    const WindowVertex& t1 = triangle.vertices[1];
-    const WindowVertex& t2 = triangle.vertices[2];
-    const std::int64_t minXf = std::min(std::min(t0.xFixed, t1.xFixed), t2.xFixed);
-    const std::int64_t maxXf = std::max(std::max(t0.xFixed, t1.xFixed), t2.xFixed);
-    const std::int64_t minYf = std::min(std::min(t0.yFixed, t1.yFixed), t2.yFixed);
-    const std::int64_t maxYf = std::max(std::max(t0.yFixed, t1.yFixed), t2.yFixed);
-    // Multisampling: the pixels some sample of which may be inside, those whose centre lies within the
-    // samples' reach of the triangle's extent.
-    const Viewport& vp = state.viewport;
-    const std::int64_t reach = sampleReachFixed(state.samples);
-    setup.minX = static_cast<int>(std::max<std::int64_t>(firstPixelSampledFrom(minXf - reach), vp.x));
-    setup.minY = static_cast<int>(std::max<std::int64_t>(firstPixelSampledFrom(minYf - reach), vp.y));
-    setup.maxX =
-        static_cast<int>(std::min<std::int64_t>(lastPixelSampledUpTo(maxXf + reach), vp.x + vp.width - 1));
-    setup.maxY =
-        static_cast<int>(std::min<std::int64_t>(lastPixelSampledUpTo(maxYf + reach), vp.y + vp.height - 1));
+    setBoundingBox(triangle, state, setup);
 
     // A triangle between sample points covers none: common for the sub-pixel triangles of dense meshes.
     if (setup.boxEmpty()) return TriangleFate::MissesSamples;
@@ -129,25 +165,7 @@ TriangleFate setupTriangle(const WindowTriangle& triangle, const DrawState& stat
     setup.dInvW1 = v1.invW - v0.invW;
     setup.dInvW2 = v2.invW - v0.invW;
     setup.perspective = state.interpolation == Interpolation::PerspectiveCorrect;
-    setup.varyingCount = triangle.varyingCount;
-    const float* a0 = triangle.varyings[order[0]];
-    const float* a1 = triangle.varyings[order[1]];
-    const float* a2 = triangle.varyings[order[2]];
-    const float s0 = setup.perspective ? v0.invW : 1.0f;
-    const float s1 = setup.perspective ? v1.invW : 1.0f;
-    const float s2 = setup.perspective ? v2.invW : 1.0f;
-    setup.flatVaryingCount = triangle.flatVaryingCount;
-    // The planes' three rows (TriangleSetup::varyingPlaneOffset): values at v0, differences to v1, to v2.
-    const int n = triangle.varyingCount;
-    float* const atV0 = varyingPlanes;
-    float* const toV1 = varyingPlanes + n;
-    float* const toV2 = varyingPlanes + 2 * n;
-    for (int k = 0; k < triangle.flatVaryingCount; ++k) {
-        atV0[k] = triangle.provokingVaryings[k];
-        toV1[k] = 0.0f;
-        toV2[k] = 0.0f;
-    }
-    writePlaneRows(a0, a1, a2, s0, s1, s2, triangle.flatVaryingCount, n, atV0, toV1, toV2);
+    writeVaryingPlanes(triangle, order, setup, varyingPlanes);
     setup.varyingPlaneOffset = 0;  // the caller's buffer; the front end sets its offset in the chunk
     return TriangleFate::Drawn;
 }
