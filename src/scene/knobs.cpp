@@ -7,6 +7,7 @@
 
 #include "base/quote.h"
 #include "pipeline/names.h"
+#include "scene/json_reader.h"
 
 namespace facet {
 
@@ -36,7 +37,7 @@ SceneKnob named(std::string name, std::string flag, std::string help, std::strin
     return knob;
 }
 
-// A knob whose value is one of E's names, in the field `field` of a Scene.
+// A knob whose value is one of E's names, in the field `field(scene)` returns (of a Scene or a const one).
 template <class E, class Field>
 SceneKnob choice(std::string name, std::string flag, std::string help, std::string section, std::string key,
                  Field field) {
@@ -45,9 +46,7 @@ SceneKnob choice(std::string name, std::string flag, std::string help, std::stri
     knob.kind = KnobKind::Names;
     knob.names = namesOf<E>();
     knob.tradeValues = {};
-    knob.get = [field](const Scene& scene) {
-        return std::string(nameOf<E>(field(const_cast<Scene&>(scene))));
-    };
+    knob.get = [field](const Scene& scene) { return std::string(nameOf<E>(field(scene))); };
     knob.set = [field](Scene& scene, const std::string& value) { field(scene) = *parseName<E>(value); };
     return knob;
 }
@@ -62,9 +61,7 @@ SceneKnob number(std::string name, std::string flag, std::string help, std::stri
     knob.lowest = lowest;
     knob.highest = highest;
     knob.unit = std::move(unit);
-    knob.get = [field](const Scene& scene) {
-        return knobNumberText(static_cast<double>(field(const_cast<Scene&>(scene))));
-    };
+    knob.get = [field](const Scene& scene) { return knobNumberText(static_cast<double>(field(scene))); };
     knob.set = [field](Scene& scene, const std::string& value) {
         field(scene) = static_cast<T>(std::strtod(value.c_str(), nullptr));
     };
@@ -86,9 +83,9 @@ SceneKnob traded(SceneKnob knob, std::vector<std::string> values, std::string fa
 // --reflection and --shading choose for every object; the scene file's "lighting" keys are the
 // scene's defaults, which an object's own "lighting" overrides (read after them).
 SceneKnob reflectionKnob() {
-    SceneKnob knob =
-        choice<ReflectionModel>("reflection", "--reflection", "Reflection model for every object", "lighting",
-                                "model", [](Scene& s) -> ReflectionModel& { return s.lighting.model; });
+    SceneKnob knob = choice<ReflectionModel>(
+        "reflection", "--reflection", "Reflection model for every object", "lighting", "model",
+        [](auto& s) -> auto& { return s.lighting.model; });
     knob.get = [](const Scene& scene) {
         return commonName<ReflectionModel>(scene.objects, [&](const ObjectSpec& object) {
             return object.reflection.value_or(scene.lighting.model);
@@ -150,132 +147,139 @@ SceneKnob shadowsKnob() {
 //     than how exactly it is drawn; the reference draws the scene's own: no fast or best value.
 //   subpixel bits: no measurable speed difference (the edge functions are integers at any precision).
 std::vector<SceneKnob> makeTable() {
-    using S = Scene&;
-    SceneKnob shadowFilter = number<int>("shadow-filter", "--shadow-filter",
-                                         "Shadow maps: depth comparisons averaged per point, 1, 4 or 16",
-                                         "shadow_map", "filter", 1, 16, " depth comparisons per point",
-                                         [](S s) -> int& { return s.shadowMap.filterTaps; });
+    SceneKnob shadowFilter = number<int>(
+        "shadow-filter", "--shadow-filter", "Shadow maps: depth comparisons averaged per point, 1, 4 or 16",
+        "shadow_map", "filter", 1, 16, " depth comparisons per point",
+        [](auto& s) -> auto& { return s.shadowMap.filterTaps; });
     shadowFilter.only = {1, 4, 16};
     return {
         choice<LightingPreset>(
             "lighting", "--lighting",
             "Conventions: linear light and sRGB output, or OpenGL 1.x fixed function (docs/lighting.md)",
-            "lighting", "preset", [](S s) -> LightingPreset& { return s.lighting.preset; }),
+            "lighting", "preset", [](auto& s) -> auto& { return s.lighting.preset; }),
         traded(shadingKnob(), {}, "flat", "phong"),
-        traded(choice<Interpolation>("interpolation", "--interpolation",
-                                     "Varyings across a triangle: perspective-correct, or affine in screen "
-                                     "space (wrong, for teaching)",
-                                     "pipeline", "interpolation",
-                                     [](S s) -> Interpolation& { return s.pipeline.interpolation; }),
+        traded(choice<Interpolation>(
+                   "interpolation", "--interpolation",
+                   "Varyings across a triangle: perspective-correct, or affine in screen "
+                   "space (wrong, for teaching)",
+                   "pipeline", "interpolation", [](auto& s) -> auto& { return s.pipeline.interpolation; }),
                {}, "affine", "perspective"),
         traded(shadowsKnob(), {}, "none", ""),
-        traded(number<int>("shadow-map-size", "--shadow-map-size",
-                           "Shadow maps: texels per side (a point light draws six)", "shadow_map", "size", 16,
-                           kMaxShadowMapSize, " texels", [](S s) -> int& { return s.shadowMap.size; }),
+        traded(number<int>(
+                   "shadow-map-size", "--shadow-map-size",
+                   "Shadow maps: texels per side (a point light draws six)", "shadow_map", "size", 16,
+                   kMaxShadowMapSize, " texels", [](auto& s) -> auto& { return s.shadowMap.size; }),
                {"256", "512", "1024", "2048", "4096"}, "512", "4096", "shadows", "map"),
         traded(shadowFilter, {"1", "4", "16"}, "1", "16", "shadows", "map"),
-        traded(number<float>("shadow-bias", "--shadow-bias",
-                             "Shadow maps: constant depth offset, in units of the map's depth resolution",
-                             "shadow_map", "bias", 0, 1e6, "",
-                             [](S s) -> float& { return s.shadowMap.constantBias; }),
+        traded(number<float>(
+                   "shadow-bias", "--shadow-bias",
+                   "Shadow maps: constant depth offset, in units of the map's depth resolution", "shadow_map",
+                   "bias", 0, 1e6, "", [](auto& s) -> auto& { return s.shadowMap.constantBias; }),
                {"0.5", "1", "2", "4"}, "", "", "shadows", "map"),
-        traded(number<float>("shadow-slope-bias", "--shadow-slope-bias",
-                             "Shadow maps: depth offset per unit of the surface's depth slope across a texel",
-                             "shadow_map", "slope_bias", 0, 1e6, "",
-                             [](S s) -> float& { return s.shadowMap.slopeBias; }),
+        traded(number<float>(
+                   "shadow-slope-bias", "--shadow-slope-bias",
+                   "Shadow maps: depth offset per unit of the surface's depth slope across a texel",
+                   "shadow_map", "slope_bias", 0, 1e6, "",
+                   [](auto& s) -> auto& { return s.shadowMap.slopeBias; }),
                {"0", "1.5", "4"}, "", "", "shadows", "map"),
         traded(choice<TransparencyMode>(
                    "transparency", "--transparency",
                    "Transparent triangles back to front, in file order, or in exact per-pixel lists",
-                   "transparency", "mode", [](S s) -> TransparencyMode& { return s.transparency.mode; }),
+                   "transparency", "mode", [](auto& s) -> auto& { return s.transparency.mode; }),
                {}, "unsorted", "exact"),
         // Used by "sorted" only, but accepted with every mode: switching the mode (in the file or with
         // --transparency) must not make the rest of the file wrong.
-        traded(
-            choice<SortKey>("sort-key", "--sort-key",
-                            "Depth that orders transparent triangles: the centroid's or the farthest "
-                            "vertex's",
-                            "transparency", "sort_key", [](S s) -> SortKey& { return s.transparency.key; }),
-            {}, "", "", "transparency", "sorted"),
-        traded(choice<CullMode>("cull", "--cull", "Which faces are not drawn", "pipeline", "cull",
-                                [](S s) -> CullMode& { return s.pipeline.cull; }),
+        traded(choice<SortKey>(
+                   "sort-key", "--sort-key",
+                   "Depth that orders transparent triangles: the centroid's or the farthest "
+                   "vertex's",
+                   "transparency", "sort_key", [](auto& s) -> auto& { return s.transparency.key; }),
+               {}, "", "", "transparency", "sorted"),
+        traded(choice<CullMode>(
+                   "cull", "--cull", "Which faces are not drawn", "pipeline", "cull",
+                   [](auto& s) -> auto& { return s.pipeline.cull; }),
                {"back", "none"}, "back", ""),
         traded(reflectionKnob(), {}, "", ""),
         // Changes the look (the highlight's size), not how exactly it is drawn: no fast or best value.
-        traded(choice<BlinnExponent>("blinn-exponent", "--blinn-exponent",
-                                     "Blinn-Phong's exponent: the material's shininess n, or 4n so that its "
-                                     "highlight matches Phong's",
-                                     "lighting", "blinn_exponent",
-                                     [](S s) -> BlinnExponent& { return s.lighting.brdf.blinnExponent; }),
-               {}, "", ""),
+        traded(
+            choice<BlinnExponent>(
+                "blinn-exponent", "--blinn-exponent",
+                "Blinn-Phong's exponent: the material's shininess n, or 4n so that its "
+                "highlight matches Phong's",
+                "lighting", "blinn_exponent", [](auto& s) -> auto& { return s.lighting.brdf.blinnExponent; }),
+            {}, "", ""),
         traded(choice<Antialiasing>(
                    "aa", "--aa",
                    "Anti-aliasing: supersampling (ssaaN) draws the frame once per sample (2, 4, 8 or 16, at "
                    "the standard sample positions) and averages them; multisampling (msaaN) draws it once, "
                    "testing coverage and depth per sample and shading once per pixel",
-                   "pipeline", "antialiasing", [](S s) -> Antialiasing& { return s.pipeline.antialiasing; }),
+                   "pipeline", "antialiasing", [](auto& s) -> auto& { return s.pipeline.antialiasing; }),
                {}, "none", "ssaa16"),
-        traded(number<int>("subpixel-bits", "--subpixel-bits",
-                           "Rasterizer precision: vertices snapped to 1/2^N of a pixel, N from 0 to 8 (8 as "
-                           "GPUs and Mesa)",
-                           "pipeline", "subpixel_bits", 0, kMaxSubpixelBits, "",
-                           [](S s) -> int& { return s.pipeline.subpixelBits; }),
+        traded(number<int>(
+                   "subpixel-bits", "--subpixel-bits",
+                   "Rasterizer precision: vertices snapped to 1/2^N of a pixel, N from 0 to 8 (8 as "
+                   "GPUs and Mesa)",
+                   "pipeline", "subpixel_bits", 0, kMaxSubpixelBits, "",
+                   [](auto& s) -> auto& { return s.pipeline.subpixelBits; }),
                {"0", "2", "4", "8"}, "", "8"),
-        traded(choice<DepthBufferFormat>("depth", "--depth",
-                                         "Depth buffer format: 16- or 24-bit unorm, 32-bit float, or float "
-                                         "with reversed Z (docs/trade.md)",
-                                         "pipeline", "depth",
-                                         [](S s) -> DepthBufferFormat& { return s.pipeline.depth; }),
+        traded(choice<DepthBufferFormat>(
+                   "depth", "--depth",
+                   "Depth buffer format: 16- or 24-bit unorm, 32-bit float, or float "
+                   "with reversed Z (docs/trade.md)",
+                   "pipeline", "depth", [](auto& s) -> auto& { return s.pipeline.depth; }),
                {}, "float", "reversed-float"),
-        traded(choice<ColorBufferFormat>("color-buffer", "--color-buffer",
-                                         "Colour buffer precision, rounded after every write: 8-bit linear, "
-                                         "half or float (docs/trade.md)",
-                                         "pipeline", "color_buffer",
-                                         [](S s) -> ColorBufferFormat& { return s.pipeline.colorBuffer; }),
+        traded(choice<ColorBufferFormat>(
+                   "color-buffer", "--color-buffer",
+                   "Colour buffer precision, rounded after every write: 8-bit linear, "
+                   "half or float (docs/trade.md)",
+                   "pipeline", "color_buffer", [](auto& s) -> auto& { return s.pipeline.colorBuffer; }),
                {}, "", "float"),
         traded(choice<TextureFilter>(
                    "texture-filter", "--texture-filter",
                    "Texture filtering: the nearest texel, bilinear, or trilinear over mipmaps "
                    "(docs/trade.md)",
-                   "textures", "filter", [](S s) -> TextureFilter& { return s.textures.filter; }),
+                   "textures", "filter", [](auto& s) -> auto& { return s.textures.filter; }),
                {}, "nearest", "trilinear"),
         traded(choice<TextureMaps>(
                    "textures", "--textures",
                    "The MTL's texture maps: used, or ignored so surfaces take their materials' colours",
-                   "textures", "maps", [](S s) -> TextureMaps& { return s.textures.maps; }),
+                   "textures", "maps", [](auto& s) -> auto& { return s.textures.maps; }),
                {}, "", ""),
-        number<float>("crease-angle", "--crease-angle",
-                      "Computed normals: faces meeting at a sharper angle (degrees) keep a hard edge",
-                      "lighting", "crease_angle", 0, 180, " degrees",
-                      [](S s) -> float& { return s.lighting.creaseAngleDegrees; }),
-        traded(choice<VertexNormals>("normals", "--normals",
-                                     "Computed normals: each face weighted by its triangles' areas, its "
-                                     "polygon's area, or its angle at the vertex (docs/trade.md)",
-                                     "lighting", "normals",
-                                     [](S s) -> VertexNormals& { return s.lighting.normals; }),
+        number<float>(
+            "crease-angle", "--crease-angle",
+            "Computed normals: faces meeting at a sharper angle (degrees) keep a hard edge", "lighting",
+            "crease_angle", 0, 180, " degrees",
+            [](auto& s) -> auto& { return s.lighting.creaseAngleDegrees; }),
+        traded(choice<VertexNormals>(
+                   "normals", "--normals",
+                   "Computed normals: each face weighted by its triangles' areas, its "
+                   "polygon's area, or its angle at the vertex (docs/trade.md)",
+                   "lighting", "normals", [](auto& s) -> auto& { return s.lighting.normals; }),
                {}, "", ""),
         traded(choice<MathPrecision>(
                    "powers", "--powers",
                    "pow and exp in lighting and fog: the C library's, or polynomials on the "
                    "float's bits",
-                   "lighting", "powers", [](S s) -> MathPrecision& { return s.lighting.powers; }),
+                   "lighting", "powers", [](auto& s) -> auto& { return s.lighting.powers; }),
                {}, "fast", "exact"),
         traded(choice<Normalization>(
                    "normalize", "--normalize",
                    "Unit vectors N, L, V, H: 1/sqrt, or the reciprocal square root estimate "
                    "and one Newton step",
-                   "lighting", "normalize", [](S s) -> Normalization& { return s.lighting.normalize; }),
+                   "lighting", "normalize", [](auto& s) -> auto& { return s.lighting.normalize; }),
                {}, "fast", "exact"),
         traded(choice<FresnelModel>(
                    "fresnel", "--fresnel",
                    "Cook-Torrance's Fresnel term: Schlick's approximation or the exact dielectric one",
-                   "lighting", "fresnel", [](S s) -> FresnelModel& { return s.lighting.brdf.fresnel; }),
+                   "lighting", "fresnel", [](auto& s) -> auto& { return s.lighting.brdf.fresnel; }),
                {}, "schlick", "exact"),
         // Cook-Torrance's other terms: scene file keys only.
-        choice<NormalDistribution>("distribution", "", "", "lighting", "distribution",
-                                   [](S s) -> NormalDistribution& { return s.lighting.brdf.distribution; }),
-        choice<GeometryTerm>("geometry", "", "", "lighting", "geometry",
-                             [](S s) -> GeometryTerm& { return s.lighting.brdf.geometry; }),
+        choice<NormalDistribution>(
+            "distribution", "", "", "lighting", "distribution",
+            [](auto& s) -> auto& { return s.lighting.brdf.distribution; }),
+        choice<GeometryTerm>(
+            "geometry", "", "", "lighting", "geometry",
+            [](auto& s) -> auto& { return s.lighting.brdf.geometry; }),
     };
 }
 
@@ -328,14 +332,7 @@ std::string SceneKnob::defaultValue() const {
 }
 
 std::string SceneKnob::allowed() const {
-    if (kind == KnobKind::Names) {
-        std::string list;
-        for (std::size_t i = 0; i < names.size(); ++i) {
-            if (i > 0) list += i + 1 == names.size() ? " or " : ", ";
-            list += inQuotes(names[i]);
-        }
-        return list;
-    }
+    if (kind == KnobKind::Names) return scene_file::quotedList(names, " or ");
     if (!only.empty()) {
         std::string list;
         for (std::size_t i = 0; i < only.size(); ++i) {
