@@ -31,6 +31,20 @@ LinearImage renderScene(const Scene& scene) {
     return toImage(framebuffer);
 }
 
+// A textured unit square facing +z whose material "t" is `mtlBody` (naming `texel.png`), its 2×2
+// texture all `texel`; the path of the OBJ.
+std::filesystem::path texturedSquare(const TempFolder& dir, vec4 texel, const std::string& mtlBody) {
+    LinearImage texture;
+    texture.width = texture.height = 2;
+    texture.pixels.assign(4, texel);
+    writeImage(dir.path() / "texel.png", texture);
+    dir.write("square.mtl", "newmtl t\n" + mtlBody);
+    return dir.write("square.obj",
+                     std::string("mtllib square.mtl\nusemtl t\n") +
+                         "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                         "vn 0 0 1\nf 1/1/1 2/2/1 3/3/1 4/4/1\n");
+}
+
 // c = k_d·(N·L) + k_s·(N·H)^n with N = L = V = H = +z at the centre: k_d + k_s, both decoded from sRGB.
 TEST(Render, HeadOnSquareHasTheHandComputedColour) {
     TempFolder dir;
@@ -247,15 +261,8 @@ TEST(Render, TurntableTurnsAboutTheVerticalAxis) {
 // A texture's alpha makes a part transparent: drawn in the transparent pass, its alpha in the image.
 TEST(Render, TextureAlphaMakesThePartTransparent) {
     TempFolder dir;
-    LinearImage texture;
-    texture.width = texture.height = 2;
-    texture.pixels.assign(4, vec4(1.0f, 1.0f, 1.0f, 0.5f));
-    writeImage(dir.path() / "half.png", texture);
     const auto obj =
-        dir.write("square.obj", std::string("mtllib square.mtl\nusemtl t\n") +
-                                    "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
-                                    "vn 0 0 1\nf 1/1/1 2/2/1 3/3/1 4/4/1\n");
-    dir.write("square.mtl", "newmtl t\nKa 0 0 0\nKd 1 1 1\nKs 0 0 0\nmap_Kd half.png\n");
+        texturedSquare(dir, vec4(1.0f, 1.0f, 1.0f, 0.5f), "Ka 0 0 0\nKd 1 1 1\nKs 0 0 0\nmap_Kd texel.png\n");
     Scene scene = headOnScene(obj);
     scene.background = vec4(0.0f, 0.0f, 0.0f, 1.0f);
     const PreparedScene prepared = prepareScene(scene);
@@ -269,16 +276,9 @@ TEST(Render, TextureAlphaMakesThePartTransparent) {
 // map_Ke without Ke: the texture is the emission (Ke taken as 1); unlit, the square shows the texel.
 TEST(Render, EmissionMapWithoutKeGlowsWithTheTexture) {
     TempFolder dir;
-    LinearImage texture;
-    texture.width = texture.height = 2;
-    texture.pixels.assign(4, vec4(0.2f, 0.6f, 0.9f, 1.0f));
-    writeImage(dir.path() / "glow.png", texture);
-    const vec4 texel = readImage(dir.path() / "glow.png").at(0, 0);  // the 8-bit file's value
     const auto obj =
-        dir.write("square.obj", std::string("mtllib square.mtl\nusemtl t\n") +
-                                    "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
-                                    "vn 0 0 1\nf 1/1/1 2/2/1 3/3/1 4/4/1\n");
-    dir.write("square.mtl", "newmtl t\nKa 0 0 0\nKd 0 0 0\nKs 0 0 0\nmap_Ke glow.png\n");
+        texturedSquare(dir, vec4(0.2f, 0.6f, 0.9f, 1.0f), "Ka 0 0 0\nKd 0 0 0\nKs 0 0 0\nmap_Ke texel.png\n");
+    const vec4 texel = readImage(dir.path() / "texel.png").at(0, 0);  // the 8-bit file's value
     Scene scene = headOnScene(obj);
     scene.background = vec4(0.0f, 0.0f, 0.0f, 1.0f);
     const PreparedScene prepared = prepareScene(scene);
