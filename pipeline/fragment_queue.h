@@ -166,6 +166,8 @@ unsigned runFragmentShader(FragmentQueue& queue, int n, const typename S::Unifor
     stats.fragmentsShaded += static_cast<unsigned>(std::popcount(kept));
     if constexpr (BatchShader<S>) {
         storeTransposed(S::fragmentBatch(queue.batch, uniforms), shaded);
+    } else if constexpr (DiscardingBatchShader<S>) {
+        storeTransposed(S::fragmentBatch(queue.batch, uniforms, kept), shaded);
     } else {
         float varyings[kMaxVaryingFloats];
         for (int lane = 0; lane < n; ++lane) {

@@ -17,6 +17,16 @@ concept BatchShader = Shader<S> && !kMayDiscard<S> &&
     { S::fragmentBatch(batch, uniforms) } -> std::same_as<Vec4x8>;
 };
 
+// A shader that may discard and shades eight fragments at once: static Vec4x8 fragmentBatch(const
+// FragmentBatch&, const Uniforms&, unsigned& kept), which clears in `kept` (on entry the batch's mask)
+// the bit of every lane it discards, as fragment() returning nullopt would.
+template <class S>
+concept DiscardingBatchShader =
+    Shader<S> && kMayDiscard<S> &&
+    requires(const FragmentBatch& batch, const typename S::Uniforms& uniforms, unsigned& kept) {
+    { S::fragmentBatch(batch, uniforms, kept) } -> std::same_as<Vec4x8>;
+};
+
 template <Shader S>
 inline bool shadeFragment(const float* varyingFloats, const typename S::Uniforms& uniforms, vec4& color) {
     using Varyings = typename S::Varyings;
