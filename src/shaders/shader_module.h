@@ -93,6 +93,14 @@ struct WatcherRef {
     void onResolve(const ResolveEvent& e) { watcher->onResolve(e); }
 };
 
+// One fragment as the fragment part sees it: the interpolated varyings (the shader's floats), the
+// texture coordinates' derivatives, the barycentrics λ0, λ1, λ2 of the pixel in its triangle.
+struct FragmentInput {
+    const float* varyings = nullptr;
+    TexCoordDerivativesT<float> uvDerivatives{};
+    vec3 barycentric{1.0f / 3.0f};
+};
+
 // A compiled user shader, as facet sees it.
 struct ShaderModule {
     std::string_view name;  // the shader's struct, as FACET_SHADER named it
@@ -106,10 +114,9 @@ struct ShaderModule {
                              DrawWatcher& watcher);
     // The vertex part at one vertex: the clip position, and the varyings into varyings[0, count).
     vec4 (*shadeVertex)(const MeshVertex& vertex, const ShaderCall& call, float* varyings);
-    // The fragment part at one fragment (one lane), from its interpolated varyings and uv derivatives:
-    // false when it discards, else the colour in `color`; `trace`, when given, receives its record()s.
-    bool (*shadeFragment)(const float* varyings, const TexCoordDerivativesT<float>& uvDerivatives,
-                          const ShaderCall& call, vec4& color, ShaderTrace* trace);
+    // The fragment part at one fragment (one lane): false when it discards, else the colour in `color`;
+    // `trace`, when given, receives its record()s.
+    bool (*shadeFragment)(const FragmentInput& in, const ShaderCall& call, vec4& color, ShaderTrace* trace);
 };
 
 // ---- Making one from a shader's struct (the module's side) -------------------------------------------
@@ -312,13 +319,12 @@ vec4 shadeVertex(const MeshVertex& vertex, const ShaderCall& call, float* varyin
 }
 
 template <class Body>
-bool shadeFragment(const float* varyings, const TexCoordDerivativesT<float>& uvDerivatives,
-                   const ShaderCall& call, vec4& color, ShaderTrace* trace) {
+bool shadeFragment(const FragmentInput& fragment, const ShaderCall& call, vec4& color, ShaderTrace* trace) {
     const Uniforms<Body> u = uniformsOf<Body>(call);
     Varyings<Body> in;
-    std::memcpy(&in, varyings, sizeof in);
+    std::memcpy(&in, fragment.varyings, sizeof in);
     Fragment<float> gl;
-    gl.uvDerivatives = uvDerivatives;
+    gl.uvDerivatives = fragment.uvDerivatives;
     gl.trace = trace;
     if constexpr (discards<Body>()) {
         const FragmentOut<float> out = Body::template fragment<float>(in, u, gl);
