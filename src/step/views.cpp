@@ -218,7 +218,7 @@ Screen userVertexScreen(const PreparedScene& prepared, const TriangleTrace& t) {
     if (nonFinite)
         out << "\n(!) not a finite number: NaN (0/0, normalize of a zero vector?) or infinite (a\n"
                "    division by zero?); interpolation spreads it over the whole triangle.\n";
-    out << "\n(What the pipeline received from the module: the clip position goes on to\nclipping.)\n";
+    out << "\n(As the pipeline received them from the module; the clip positions go on to\nclipping.)\n";
     return {"transform", "Vertex shader: " + std::string(shader.module->name) + "'s vertex part", out.str()};
 }
 

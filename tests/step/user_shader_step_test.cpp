@@ -1,7 +1,8 @@
 // The step mode traces a shader of one's own (--shader): the trace equals the rendered bytes, the
 // shader's recorded values, uniforms and output are on its screens and in the JSON, NaN is flagged and
 // counted (--stats), and --versus puts it beside the built-in shader. One shader
-// (tests/step/shaders/toon_step.cpp) is compiled once, into a cache folder of the tests' own.
+// (tests/step/shaders/toon_step.cpp) and one that discards (cutout_step.cpp) are compiled once, into a
+// cache folder of the tests' own.
 // Each test names the one-line break it catches.
 #include <unistd.h>
 
@@ -26,6 +27,7 @@ namespace {
 namespace fs = std::filesystem;
 
 const fs::path kShader = fs::path(FACET_SOURCE_DIR) / "tests/step/shaders/toon_step.cpp";
+const fs::path kCutout = fs::path(FACET_SOURCE_DIR) / "tests/step/shaders/cutout_step.cpp";
 const fs::path kSpot = fs::path(FACET_SOURCE_DIR) / "models/spot/spot_triangulated.obj";
 
 class UserShaderStep : public ::testing::Test {
@@ -40,11 +42,12 @@ class UserShaderStep : public ::testing::Test {
     }
 
     // spot at 96×72 drawn with the test shader and `uniforms` (as --uniform gives them).
-    static PreparedScene prepared(const std::vector<std::pair<std::string, std::vector<double>>>& uniforms) {
+    static PreparedScene prepared(const std::vector<std::pair<std::string, std::vector<double>>>& uniforms,
+                                  const fs::path& shader = kShader) {
         Scene scene = loadSceneOrModel(kSpot);
         scene.width = 96;
         scene.height = 72;
-        scene.shader = ShaderSpec{kShader, {}};
+        scene.shader = ShaderSpec{shader, {}};
         for (const auto& [name, numbers] : uniforms) {
             std::ostringstream origin;  // a stream: GCC 12 warns falsely on sums of strings (-Wrestrict)
             origin << "--uniform " << name << "=";
@@ -207,6 +210,49 @@ TEST_F(UserShaderStep, NaNIsFlaggedOnTheScreenAndCounted) {
               std::string::npos)
         << stats;
     expectWithin80Columns(trace.walk);
+}
+
+// A discarding shader: where it discards, the shader screen says so (and no colour), the history's fate
+// is "discarded" and the JSON has it; where it keeps the fragment, its one-lane output is the rendered
+// pixel. Catches: a discarded fragment shown with a colour (FragmentOut's colour), the discard lost in
+// the trace, the discarding draw traced with other inputs than the frame's.
+TEST_F(UserShaderStep, DiscardIsShownAndKeptFragmentsMatchTheRender) {
+    const PreparedScene scene = prepared({}, kCutout);
+    Framebuffer rendered(scene.scene.width, scene.scene.height);
+    DrawContext threads(2);
+    FrameMemory memory;
+    renderFrame(scene, rendered, threads, memory);
+    DrawContext calling(1);
+    int discarded = 0, kept = 0;
+    for (int x = 30; x < 70; x += 4) {
+        StepRequest request;
+        request.pixel = std::pair(x, 36);
+        const StepTrace trace = traceStep(scene, calling, request);
+        EXPECT_EQ(trace.pixel.finalBytes, bytesOf(rendered.color(x, 36), scene.encoding)) << x;
+        if (!trace.userShader || !trace.userShader->shaderRan) continue;
+        const UserShaderTrace& u = *trace.userShader;
+        ASSERT_EQ(u.recorded.size(), 1u);
+        const Screen* shader = screen(trace.walk, "shader");
+        ASSERT_TRUE(shader);
+        const nlohmann::json j = toJson(trace)["userShader"];
+        if (u.discarded) {
+            ++discarded;
+            EXPECT_LT(u.recorded[0].values[0], 0.0f) << "it discards eye-space x < 0";
+            EXPECT_NE(shader->title.find("discarded the fragment"), std::string::npos) << shader->title;
+            EXPECT_NE(shader->text.find("Its output: discarded"), std::string::npos) << shader->text;
+            EXPECT_EQ(shader->text.find("Its output: colour"), std::string::npos);
+            EXPECT_EQ(j["discarded"], true);
+            EXPECT_FALSE(j.contains("output"));
+            EXPECT_NE(screen(trace.walk, "history")->text.find("discarded"), std::string::npos);
+        } else if (trace.pixel.producer &&
+                   trace.pixel.triangles[*trace.pixel.producer].ref == trace.triangle->ref) {
+            ++kept;
+            EXPECT_EQ(bytesOf(u.output, scene.encoding), bytesOf(rendered.color(x, 36), scene.encoding)) << x;
+            EXPECT_EQ(j["discarded"], false);
+        }
+    }
+    EXPECT_GT(discarded, 0);
+    EXPECT_GT(kept, 0);
 }
 
 // The facet program: --shader with --versus "" puts the user's shader beside the built-in one (both
