@@ -71,7 +71,7 @@ struct NonFiniteSeen {
 };
 
 nlohmann::json jsonNumber(float v) {
-    if (std::isnan(v)) return "nan";
+    if (std::isnan(v)) return "NaN";
     if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
     return v;
 }

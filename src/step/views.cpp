@@ -15,7 +15,8 @@
 namespace facet::step {
 
 std::string number(double value) {
-    if (value == 0.0) value = 0.0;  // no "-0"
+    if (std::isnan(value)) return "NaN";  // not "-nan": the sign of a NaN means nothing
+    if (value == 0.0) value = 0.0;        // no "-0"
     char text[32];
     std::snprintf(text, sizeof text, "%.6g", value);
     return text;

@@ -190,7 +190,8 @@ TEST_F(UserShaderStep, UniformsShownAreThoseOfUniformOptions) {
 }
 
 // A shader that normalizes a zero vector: the NaN is flagged on the shader screen with what may cause
-// it, and counted by --stats. Catches: non-finite values printed as plain numbers, the count missing.
+// it, counted by --stats and named in the JSON. Catches: non-finite values printed as plain numbers
+// (or "-nan"), the count missing, NaN turned into null in the JSON.
 TEST_F(UserShaderStep, NaNIsFlaggedOnTheScreenAndCounted) {
     const PreparedScene scene = prepared({{"normal_scale", {0}}});
     DrawContext context(1);
@@ -203,6 +204,12 @@ TEST_F(UserShaderStep, NaNIsFlaggedOnTheScreenAndCounted) {
     ASSERT_TRUE(shader);
     EXPECT_NE(shader->text.find("<- NaN!"), std::string::npos) << shader->text;
     EXPECT_NE(shader->text.find("normalize of a zero vector?"), std::string::npos) << shader->text;
+    EXPECT_NE(shader->text.find("N.V = NaN"), std::string::npos) << shader->text;
+    // The JSON says so too (a NaN would otherwise be written as null).
+    const nlohmann::json j = toJson(trace)["userShader"];
+    EXPECT_EQ(j["recorded"][1]["value"], "NaN");
+    EXPECT_EQ(j["recorded"][1]["finite"], false);
+    EXPECT_EQ(j["nonFinite"], nonFiniteCount(*trace.userShader));
     EXPECT_GE(nonFiniteCount(*trace.userShader), 2);  // N, N.V, (c, output)
     const std::string stats = stepStats(trace);
     EXPECT_NE(stats.find("non-finite shader values (NaN or infinite): " +
