@@ -4,8 +4,6 @@
 // (tests/step/shaders/toon_step.cpp) and one that discards (cutout_step.cpp) are compiled once, into a
 // cache folder of the tests' own.
 // Each test names the one-line break it catches.
-#include <unistd.h>
-
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
@@ -20,6 +18,7 @@
 #include "step/versus.h"
 #include "step/views.h"
 #include "step/walk.h"
+#include "test_shader_cache.h"
 
 namespace facet::step {
 namespace {
@@ -32,14 +31,7 @@ const fs::path kSpot = fs::path(FACET_SOURCE_DIR) / "models/spot/spot_triangulat
 
 class UserShaderStep : public ::testing::Test {
   protected:
-    // The shader cache of these tests: compiled once per cache folder, shared by the facet program the
-    // CLI tests run (it inherits the variable).
-    static void SetUpTestSuite() {
-        static const fs::path cache =
-            fs::temp_directory_path() / ("facet-step-shader-cache-" + std::to_string(::getuid()));
-        fs::create_directories(cache);
-        ::setenv("FACET_SHADER_CACHE", cache.c_str(), 1);
-    }
+    static void SetUpTestSuite() { useTestShaderCache(); }
 
     // spot at 96×72 drawn with the test shader and `uniforms` (as --uniform gives them).
     static PreparedScene prepared(const std::vector<std::pair<std::string, std::vector<double>>>& uniforms,
