@@ -12,10 +12,12 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <map>
 #include <mutex>
+#include <random>
 #include <sstream>
 
 #include "base/errors.h"
@@ -215,12 +217,18 @@ const ShaderModule* compiledModule(const fs::path& source, const std::string& la
     if (error)
         throw InputError(label + ": cannot make the shader cache " + folder.string() + ": " +
                          error.message());
-    // Written under names of this process's own, then renamed: a run at the same time finds either no
-    // module or a whole one.
-    const std::string unique = "." + std::to_string(::getpid()) + ".tmp";
+    // Written under names of this run's own, then renamed: a run at the same time (another process, or
+    // one on another machine or in another container sharing the folder, where process ids repeat) finds
+    // either no module or a whole one, and two runs compiling at once each rename a whole module into
+    // place, the same module.
+    const std::string unique = "." + std::to_string(::getpid()) + "-" + hex(std::random_device()()) + ".tmp";
     const fs::path partial = folder / (name + unique + ".so");
     const fs::path dependencies = folder / (name + unique + ".d");
     const fs::path log = folder / (name + unique + ".log");
+    // A folder one cannot write in would otherwise surface as the compiler failing to start.
+    if (!std::ofstream(log))
+        throw InputError(label + ": cannot write in the shader cache " + folder.string() + ": " +
+                         std::strerror(errno));
     std::vector<std::string> command = shaderCompileCommand(source, partial);
     command.insert(command.end(), {"-MD", "-MF", dependencies.string()});
     std::cerr << "facet: compiling " << label << " (the first time only: the module is kept in "
