@@ -217,11 +217,16 @@ TEST_F(UserShaderCli, CompileErrorPointsAtTheFileAndLine) {
     EXPECT_TRUE(fs::is_empty(dir.path() / "cache"));
 }
 
-// A shader without a part says which part and how it is written (shader_module.h's checkParts()).
-// Breaks caught: the static_asserts' readable messages replaced by template errors from the pipeline.
-TEST_F(UserShaderCli, MissingPartSaysWhatThePartLooksLike) {
-    const RunResult run = render(dir, image(), "--shader " + quoted(kShaders / "no_fragment.cpp"));
-    expectRefused(run, "no_fragment.cpp: the shader did not compile", false);
+// A shader whose parts are wrong (a vertex part of another signature, no fragment part) is told how
+// each is written (shader_module.h's checkParts()). Breaks caught: the static_asserts' readable messages
+// lost among (or replaced by) template errors from the pipeline.
+TEST_F(UserShaderCli, WrongPartsSayHowThePartsAreWritten) {
+    const RunResult run = render(dir, image(), "--shader " + quoted(kShaders / "wrong_parts.cpp"));
+    expectRefused(run, "wrong_parts.cpp: the shader did not compile", false);
+    EXPECT_TRUE(contains(run.err,
+                         "a user shader's vertex part: static VertexOut<VaryingsT<float>> "
+                         "vertex(const MeshVertex&, const Uniforms&)"))
+        << run.err;
     EXPECT_TRUE(contains(run.err,
                          "a user shader's fragment part: template <class F> static LaneVec4<F> "
                          "fragment(const VaryingsT<F>&, const Uniforms&, Fragment<F>&)"))
