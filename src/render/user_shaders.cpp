@@ -161,22 +161,27 @@ int runCommand(const std::vector<std::string>& command, const fs::path& log) {
     return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
-// Loads a module file and checks that it is a shader module built for this facet.
+// Loads a module file and checks that it is a shader module built for this facet. A refused module is
+// unloaded again, so that a later dlopen of the same path (the cache's module compiled anew) loads the
+// new file instead of finding the refused one by its name.
 const ShaderModule* openModule(const fs::path& file, const std::string& label) {
     void* handle = ::dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (!handle) throw InputError(label + ": the shader module does not load: " + ::dlerror());
+    auto refuse = [&](const std::string& why) {
+        ::dlclose(handle);
+        return InputError(label + ": " + why);
+    };
     using Abi = const char* (*)();
     const auto abi = reinterpret_cast<Abi>(::dlsym(handle, "facet_shader_abi"));
     const auto entry = reinterpret_cast<const ShaderModule* (*)()>(::dlsym(handle, "facet_shader_module"));
     if (!abi || !entry)
-        throw InputError(label +
-                         ": not a facet shader module (it exports no facet_shader_abi or "
-                         "facet_shader_module: does the shader's file end with FACET_SHADER(Name)?)");
-    const std::string_view built = abi();
+        throw refuse(
+            "not a facet shader module (it exports no facet_shader_abi or facet_shader_module: does the "
+            "shader's file end with FACET_SHADER(Name)?)");
+    const std::string built = abi();
     if (built != FACET_SHADER_ABI)
-        throw InputError(label + ": the shader module was built for " + std::string(built) +
-                         ", and this is " + FACET_SHADER_ABI +
-                         ": build it again against this facet (or give its .cpp file)");
+        throw refuse("the shader module was built for " + built + ", and this is " + FACET_SHADER_ABI +
+                     ": build it again against this facet (or give its .cpp file)");
     return entry();
 }
 
@@ -205,8 +210,15 @@ const ShaderModule* compiledModule(const fs::path& source, const std::string& la
     std::error_code error;
     if (fs::exists(module, error) && fs::exists(keyFile, error)) {
         const std::string stored = readWhole(keyFile);
-        if (stored.starts_with(key) && stampsStillHold(stored.substr(key.size())))
-            return openModule(module, label);
+        // A cached module that does not load (damaged: cut short by a full disk, overwritten) is
+        // compiled again rather than standing in the way until someone empties the cache.
+        if (stored.starts_with(key) && stampsStillHold(stored.substr(key.size()))) {
+            try {
+                return openModule(module, label);
+            } catch (const InputError& refused) {
+                std::cerr << "facet: " << refused.what() << ": compiling it again\n";
+            }
+        }
     }
     bool found = false;
     for (const fs::path& folder : headers)

@@ -246,10 +246,12 @@ void writeShaderWithHelper(const fs::path& folder, const std::string& light) {
 }
 
 // One shader through the cache: compiled once, then loaded; compiled again when a header it includes
-// changes, and when the shader itself does; each time the image follows the change.
+// changes, when the shader itself does, and when its cached module is damaged; each time the image
+// follows the change.
 // Breaks caught, in order: the cache never hit (every run compiles); an edited included header not
-// noticed (the stale module drawn); an edited source not noticed.
-TEST_F(UserShaderCli, CacheCompilesOnceAndAgainWhenTheShaderOrItsHeaderChanges) {
+// noticed (the stale module drawn); an edited source not noticed; a damaged cached module an error
+// for ever (or the damaged file found again by dlopen under its name).
+TEST_F(UserShaderCli, CacheCompilesOnceAndAgainWhenTheShaderItsHeaderOrTheModuleChanges) {
     writeShaderWithHelper(dir.path(), "0.8f");
     const std::string shader = "--shader " + quoted(dir.path() / "shader.cpp");
     const RunResult first = render(dir, dir.path() / "first.ppm", shader);
@@ -277,6 +279,16 @@ TEST_F(UserShaderCli, CacheCompilesOnceAndAgainWhenTheShaderOrItsHeaderChanges) 
     ASSERT_EQ(again.status, 0) << again.err;
     EXPECT_TRUE(contains(again.err, "facet: compiling ")) << "an edited source did not compile again";
     EXPECT_NE(readText(dir.path() / "header.ppm"), readText(dir.path() / "source.ppm"));
+
+    // The cached modules, damaged: compiled again, not an error until the cache is emptied by hand.
+    for (const auto& entry : fs::directory_iterator(dir.path() / "cache"))
+        if (entry.path().extension() == ".so") writeFile(entry.path(), "cut short\n");
+    const RunResult healed = render(dir, dir.path() / "healed.ppm", shader);
+    ASSERT_EQ(healed.status, 0) << healed.err;
+    EXPECT_TRUE(contains(healed.err, "the shader module does not load")) << healed.err;
+    EXPECT_TRUE(contains(healed.err, "facet: compiling "))
+        << "a damaged cached module was not compiled again";
+    EXPECT_EQ(readText(dir.path() / "source.ppm"), readText(dir.path() / "healed.ppm"));
 }
 
 // Two shaders called toon.cpp in two folders, one cache: each draws its own picture.
