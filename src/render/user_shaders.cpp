@@ -3,6 +3,7 @@
 #include <dlfcn.h>
 #include <fcntl.h>
 #include <spawn.h>
+#include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -208,18 +209,21 @@ const ShaderModule* compiledModule(const fs::path& source, const std::string& la
     const fs::path module = folder / (name + ".so");
     const fs::path keyFile = folder / (name + ".key");
     std::error_code error;
-    if (fs::exists(module, error) && fs::exists(keyFile, error)) {
+    // The cached module when there is one for this key whose included files are unchanged, else null. A
+    // cached module that does not load (damaged: cut short by a full disk, overwritten) is compiled
+    // again rather than standing in the way until someone empties the cache.
+    auto cached = [&](bool sayWhy) -> const ShaderModule* {
+        if (!fs::exists(module, error) || !fs::exists(keyFile, error)) return nullptr;
         const std::string stored = readWhole(keyFile);
-        // A cached module that does not load (damaged: cut short by a full disk, overwritten) is
-        // compiled again rather than standing in the way until someone empties the cache.
-        if (stored.starts_with(key) && stampsStillHold(stored.substr(key.size()))) {
-            try {
-                return openModule(module, label);
-            } catch (const InputError& refused) {
-                std::cerr << "facet: " << refused.what() << ": compiling it again\n";
-            }
+        if (!stored.starts_with(key) || !stampsStillHold(stored.substr(key.size()))) return nullptr;
+        try {
+            return openModule(module, label);
+        } catch (const InputError& refused) {
+            if (sayWhy) std::cerr << "facet: " << refused.what() << ": compiling it again\n";
+            return nullptr;
         }
-    }
+    };
+    if (const ShaderModule* found = cached(true)) return found;
     bool found = false;
     for (const fs::path& folder : headers)
         found = found || fs::exists(folder / "shaders" / "user_shader.h", error);
@@ -233,6 +237,26 @@ const ShaderModule* compiledModule(const fs::path& source, const std::string& la
     if (error)
         throw InputError(label + ": cannot make the shader cache " + folder.string() + ": " +
                          error.message());
+    // One run compiles a shader at a time: the others (a job array's tasks started together) wait for
+    // it and load its module, instead of each compiling the same. The lock goes with the process, so
+    // one killed while compiling holds nobody up; where the file system has no locks, the runs compile
+    // side by side, which the names below keep safe.
+    const fs::path lockFile = folder / (name + ".lock");
+    const int lock = ::open(lockFile.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (lock < 0)
+        throw InputError(label + ": cannot write in the shader cache " + folder.string() + ": " +
+                         std::strerror(errno));
+    const struct Unlock {
+        int fd;
+        ~Unlock() { ::close(fd); }
+    } unlock{lock};
+    if (::flock(lock, LOCK_EX | LOCK_NB) != 0 && errno == EWOULDBLOCK) {
+        std::cerr << "facet: waiting for another facet compiling " << label << "\n";
+        while (::flock(lock, LOCK_EX) != 0 && errno == EINTR) {
+        }
+    }
+    // Another run may have compiled it since the look above.
+    if (const ShaderModule* found = cached(false)) return found;
     // Written under names of this run's own, then renamed: a run at the same time (another process, or
     // one on another machine or in another container sharing the folder, where process ids repeat) finds
     // either no module or a whole one, and two runs compiling at once each rename a whole module into

@@ -213,8 +213,9 @@ TEST_F(UserShaderCli, CompileErrorPointsAtTheFileAndLine) {
     EXPECT_TRUE(contains(run.err, "compile_error.cpp:14:")) << run.err;
     EXPECT_TRUE(contains(run.err, "undeclared_colour")) << run.err;
     EXPECT_FALSE(fs::exists(image()));
-    // Nothing half-made is kept in the cache.
-    EXPECT_TRUE(fs::is_empty(dir.path() / "cache"));
+    // Nothing half-made is kept in the cache (its lock file alone).
+    for (const auto& entry : fs::directory_iterator(dir.path() / "cache"))
+        EXPECT_EQ(entry.path().extension(), ".lock") << entry.path();
 }
 
 // A shader whose parts are wrong (a vertex part of another signature, no fragment part) is told how
@@ -314,10 +315,11 @@ TEST_F(UserShaderCli, SameFileNameInTwoFoldersDoesNotCollide) {
     EXPECT_EQ(readText(dir.path() / "a.ppm"), readText(dir.path() / "a2.ppm"));
 }
 
-// Two facet processes compiling one shader into one cache at the same moment both draw, the same picture,
-// and a third run finds a whole module. Breaks caught: the two writing one file (a torn module, "file too
-// short" from dlopen), or one removing what the other is about to load.
-TEST_F(UserShaderCli, TwoRunsCompilingAtOnceBothSucceed) {
+// Two facet processes asking for one shader of one cache at the same moment both draw, the same picture:
+// one compiles, the other waits and loads its module; a third run finds a whole module. Breaks caught:
+// the two writing one file (a torn module, "file too short" from dlopen), one removing what the other is
+// about to load, or both compiling (a job array's hundred tasks compiling one shader a hundred times).
+TEST_F(UserShaderCli, TwoRunsAtOnceBothSucceedAndOneCompiles) {
     fs::copy_file(kShaders / "toon.cpp", dir.path() / "toon.cpp");
     const std::string shader = "--shader " + quoted(dir.path() / "toon.cpp");
     TempFolder other("second");  // runFacet keeps each run's output in its folder
@@ -327,13 +329,18 @@ TEST_F(UserShaderCli, TwoRunsCompilingAtOnceBothSucceed) {
     const RunResult two = second.get();
     ASSERT_EQ(one.status, 0) << one.err;
     ASSERT_EQ(two.status, 0) << two.err;
+    // One compiled; the other waited for it (or came after it) and loaded its module.
+    const auto compiled = [](const RunResult& run) { return contains(run.err, "facet: compiling ") ? 1 : 0; };
+    EXPECT_EQ(compiled(one) + compiled(two), 1) << one.err << "---\n" << two.err;
     EXPECT_EQ(readText(dir.path() / "one.ppm"), readText(dir.path() / "two.ppm"));
     const RunResult third = render(dir, dir.path() / "three.ppm", shader);
     ASSERT_EQ(third.status, 0) << third.err;
     EXPECT_FALSE(contains(third.err, "compiling")) << third.err;
-    // Nothing of theirs is left but the module and its key.
-    for (const auto& entry : fs::directory_iterator(dir.path() / "cache"))
-        EXPECT_TRUE(entry.path().extension() == ".so" || entry.path().extension() == ".key") << entry.path();
+    // Nothing of theirs is left but the module, its key and its lock.
+    for (const auto& entry : fs::directory_iterator(dir.path() / "cache")) {
+        const fs::path kind = entry.path().extension();
+        EXPECT_TRUE(kind == ".so" || kind == ".key" || kind == ".lock") << entry.path();
+    }
 }
 
 // Breaks caught: a cache folder that cannot be made ending in an exception's what() or a compiler error
