@@ -216,9 +216,9 @@ LinearImage renderReference(const PreparedScene& prepared, const ReferenceOption
         const Barycentric b = intersect(ray.origin, ray.direction, draw.positions[corner[0]],
                                         draw.positions[corner[1]], draw.positions[corner[2]], hit.t);
         if (draw.userShader) {
-            constexpr std::size_t kMostVaryings = 64;
-            float varyings[kMostVaryings + 1] = {};
-            const std::size_t count = std::min(draw.varyingCount, kMostVaryings);
+            // A shader has at most kMaxVaryingFloats (pipeline/types.h: its VaryingsT is checked).
+            float varyings[kMaxVaryingFloats + 1] = {};
+            const std::size_t count = std::min(draw.varyingCount, std::size_t(kMaxVaryingFloats));
             const float* v0 = &draw.varyings[corner[0] * draw.varyingCount];
             const float* v1 = &draw.varyings[corner[1] * draw.varyingCount];
             const float* v2 = &draw.varyings[corner[2] * draw.varyingCount];
