@@ -353,5 +353,34 @@ TEST_F(UserShaderCli, CacheFolderThatCannotBeMadeIsAnError) {
                   "toon.cpp: cannot make the shader cache " + (dir.path() / "file/cache").string() + ": ");
 }
 
+// ---- The README's shader -----------------------------------------------------------------------------
+
+// The shader README.md shows, cut from it, compiles, draws with its uniform and shows its record in the
+// step mode. Breaks caught: the README's example going stale against user_shader.h (a renamed part, a
+// GLSL function missing for eight lanes), --uniform not reaching the draw, gl.record not traced.
+TEST_F(UserShaderCli, ReadmeShaderDrawsAndIsTraced) {
+    const std::string readme = readText(kSource / "README.md");
+    const std::size_t begin = readme.find("<!-- readme-shader:begin -->");
+    const std::size_t end = readme.find("<!-- readme-shader:end -->");
+    ASSERT_NE(begin, std::string::npos);
+    ASSERT_NE(end, std::string::npos);
+    const std::size_t codeStart = readme.find("```cpp\n", begin);
+    const std::size_t codeEnd = readme.rfind("```", end);
+    ASSERT_LT(codeStart, codeEnd);
+    const fs::path shader = dir.path() / "bands.cpp";
+    writeFile(shader, readme.substr(codeStart + 7, codeEnd - codeStart - 7));
+    const RunResult three = render(dir, image(), "--shader " + quoted(shader) + " --uniform bands=3");
+    ASSERT_EQ(three.status, 0) << three.err;
+    const RunResult two =
+        render(dir, dir.path() / "two.ppm", "--shader " + quoted(shader) + " --uniform bands=2");
+    ASSERT_EQ(two.status, 0) << two.err;
+    EXPECT_NE(readText(image()), readText(dir.path() / "two.ppm"));
+    const RunResult step = runFacet(
+        "step " + quoted(kModel) + " --width 64 --height 48 --pixel 32,24 --print --shader " + quoted(shader),
+        dir);
+    ASSERT_EQ(step.status, 0) << step.err;
+    EXPECT_TRUE(contains(step.out, "level = ")) << step.out;
+}
+
 }  // namespace
 }  // namespace facet
