@@ -297,8 +297,9 @@ inline float sqrt(float x) {
 inline float abs(float x) {
     return std::fabs(x);
 }
+// The sign bit cleared, as fabs does (max(x, −x) would give −0 for +0 and −NaN for a NaN).
 inline Float8 abs(Float8 x) {
-    return max(x, -x);
+    return std::bit_cast<Float8>(std::bit_cast<Int8>(x) & 0x7fffffff);
 }
 
 // ---- Double: one lane in double precision, the exact reference renderer's -------------------------

@@ -42,6 +42,9 @@
 #include "shading/gamma.h"
 #include "shading/lighting.h"
 
+// Last: its one-lane min, clamp and mix are for user shaders, not for the headers above.
+#include "shaders/lane_glsl.h"
+
 namespace facet {
 
 // The scene's uniforms, which a user shader's Uniforms derive from: clipFromObject, viewFromObject,
@@ -53,12 +56,9 @@ using SceneUniforms = SurfaceUniforms;
 
 // The types a uniform of one's own may have.
 enum class UniformType : std::uint8_t { Float, Int, Bool, Vec2, Vec3, Vec4 };
-inline constexpr EnumName<UniformType> kUniformTypeNames[] = {{UniformType::Float, "float"},
-                                                              {UniformType::Int, "int"},
-                                                              {UniformType::Bool, "bool"},
-                                                              {UniformType::Vec2, "vec2"},
-                                                              {UniformType::Vec3, "vec3"},
-                                                              {UniformType::Vec4, "vec4"}};
+inline constexpr EnumName<UniformType> kUniformTypeNames[] = {
+    {UniformType::Float, "float"}, {UniformType::Int, "int"},   {UniformType::Bool, "bool"},
+    {UniformType::Vec2, "vec2"},   {UniformType::Vec3, "vec3"}, {UniformType::Vec4, "vec4"}};
 constexpr std::span<const EnumName<UniformType>> enumNames(UniformType) {
     return kUniformTypeNames;
 }
@@ -77,9 +77,9 @@ constexpr int componentCount(UniformType type) {
 }
 
 template <class T>
-constexpr bool kIsUniformType = std::is_same_v<T, float> || std::is_same_v<T, int> ||
-                                std::is_same_v<T, bool> || std::is_same_v<T, vec2> ||
-                                std::is_same_v<T, vec3> || std::is_same_v<T, vec4>;
+constexpr bool kIsUniformType =
+    std::is_same_v<T, float> || std::is_same_v<T, int> || std::is_same_v<T, bool> ||
+    std::is_same_v<T, vec2> || std::is_same_v<T, vec3> || std::is_same_v<T, vec4>;
 
 template <class T>
 constexpr UniformType uniformTypeOf() {
