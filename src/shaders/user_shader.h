@@ -42,7 +42,9 @@
 #include "shading/gamma.h"
 #include "shading/lighting.h"
 
-// Last: its one-lane min, clamp and mix are for user shaders, not for the headers above.
+// Last: the built-in formulas by term, and GLSL over lanes (whose one-lane min, clamp and mix are for
+// user shaders, not for the headers above).
+#include "shaders/formulas.h"
 #include "shaders/lane_glsl.h"
 
 namespace facet {
