@@ -211,6 +211,10 @@ struct FragmentBatch {
     // ∂u/∂x, ∂v/∂x, ∂u/∂y, ∂v/∂y of the shader's texture coordinates (its kDerivativeVarying pair, per
     // pixel), filled only in a draw whose shader asks for them (shader.h); otherwise not written.
     Float8 uvDerivatives[4];
+    // λ1, λ2 of each lane's pixel in its window triangle (λ0 = 1 − λ1 − λ2), in the setup's vertex order
+    // (FragmentEvent::barycentrics'), filled only in a draw whose shader asks (shader.h's
+    // wantsBarycentrics); otherwise not written.
+    Float8 barycentrics[2];
     std::uint32_t mask = 0;  // bit i: lane i is a live fragment (others hold meaningless values)
 };
 
