@@ -13,9 +13,7 @@
 #endif
 
 namespace facet {
-namespace {
 
-// The folder of the running program (/proc/self/exe, symbolic links resolved), "" when unknown.
 std::filesystem::path programFolder() {
     char path[PATH_MAX];
     const ssize_t length = ::readlink("/proc/self/exe", path, sizeof path - 1);
@@ -24,8 +22,6 @@ std::filesystem::path programFolder() {
     return std::filesystem::path(path).parent_path();
 }
 
-// Whether `folder` is `tree` or below it, both taken with their symbolic links resolved as far as they
-// exist (the build folder may have been named through a link when it was configured).
 bool inside(const std::filesystem::path& folder, const std::filesystem::path& tree) {
     if (folder.empty() || tree.empty()) return false;
     std::error_code error;
@@ -37,7 +33,9 @@ bool inside(const std::filesystem::path& folder, const std::filesystem::path& tr
     return !relative.empty() && *relative.begin() != "..";
 }
 
-}  // namespace
+bool programInBuildTree() {
+    return inside(programFolder(), FACET_BUILD_TREE);
+}
 
 std::vector<std::filesystem::path> moduleCandidates(const std::filesystem::path& programFolder,
                                                     const std::filesystem::path& moduleFolder,

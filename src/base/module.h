@@ -10,6 +10,17 @@
 
 namespace facet {
 
+// The folder of the running program (/proc/self/exe, symbolic links resolved), "" when unknown.
+std::filesystem::path programFolder();
+
+// Whether `folder` is `tree` or below it, both taken with their symbolic links resolved as far as they
+// exist (the build folder may have been named through a link when it was configured).
+bool inside(const std::filesystem::path& folder, const std::filesystem::path& tree);
+
+// Whether the running program is inside the build folder it was built in (a test program, or facet run
+// from the build): only such a program uses files of the build tree (modules, headers).
+bool programInBuildTree();
+
 // Loads the module `fileName` (e.g. "libfacet_openimageio.so") and returns the address of its entry
 // point `entry`. It looks where moduleCandidates() says, for the running program: beside it, in the
 // install layout's module folder relative to it, and at `buildPath` (where the build wrote it) only when

@@ -34,6 +34,7 @@ CLI::App* addCompareCommand(CLI::App& app, CompareArgs& args) {
                              "texture-filter", "normals", "powers", "normalize", "fresnel"})
         addKnobOption(*command, knob, args.scene);
     addInfiniteFarOption(*command, args.scene);
+    addShaderOptions(*command, args.scene);
     command->add_option("--facet", args.facetImage, "Also write Facet's image here");
     command->add_option("--mesa", args.mesaImage, "Also write OpenGL's image here");
     command->add_option("--diff", args.diffImage,

@@ -115,12 +115,57 @@ void addSceneOptions(CLI::App& command, SceneArgs& args) {
     for (const facet::SceneKnob& knob : facet::sceneKnobs())
         if (!knob.flag.empty()) addKnobOption(command, knob.name, args);
     addInfiniteFarOption(command, args);
+    addShaderOptions(command, args);
     addChoice(command, "--only", args.only, "Render one term of the lighting equation alone");
     addChoice(command, "--encode", args.encode,
               "8-bit output encoding: the exact sRGB curve, a power 1/gamma, or none" +
                   byDefault(TransferCurve::Srgb));
     command.add_option("--gamma", args.gamma, "Encode 8-bit output as c^(1/GAMMA) (e.g. 2.2)")
         ->check(kFiniteNumber);
+}
+
+void addShaderOptions(CLI::App& command, SceneArgs& args) {
+    command.add_option("--shader", args.shader,
+                       "A shader of your own: a C++ file (compiled on first use, then cached) or a module "
+                       "(.so) built with facet_add_shader (docs/shaders.md)");
+    command
+        .add_option("--uniform", args.uniforms,
+                    "Set a uniform of your shader: NAME=VALUE, VALUE a number, true/false or x,y,z "
+                    "(repeat for more)")
+        ->type_name("NAME=VALUE");
+}
+
+facet::UniformValue parseUniform(const std::string& text) {
+    const std::string origin = "--uniform " + text;
+    const std::size_t equals = text.find('=');
+    if (equals == std::string::npos || equals == 0)
+        throw facet::InputError(origin + ": give NAME=VALUE (e.g. --uniform bands=3)");
+    facet::UniformValue value{text.substr(0, equals), {}, false, origin};
+    const std::string given = text.substr(equals + 1);
+    if (given == "true" || given == "false") {
+        value.isBool = true;
+        value.numbers.push_back(given == "true" ? 1.0 : 0.0);
+        return value;
+    }
+    std::size_t start = 0;
+    while (true) {
+        const std::size_t comma = std::min(given.find(',', start), given.size());
+        const std::string part = given.substr(start, comma - start);
+        std::size_t used = 0;
+        double number = 0;
+        try {
+            number = std::stod(part, &used);
+        } catch (const std::exception&) {
+            used = 0;
+        }
+        if (part.empty() || used != part.size() || !std::isfinite(number))
+            throw facet::InputError(origin + ": " + facet::inQuotes(part) +
+                                    " is not a number (VALUE is a number, true, false or numbers x,y,z)");
+        value.numbers.push_back(number);
+        if (comma == given.size()) break;
+        start = comma + 1;
+    }
+    return value;
 }
 
 void addInfiniteFarOption(CLI::App& command, SceneArgs& args) {
@@ -162,6 +207,9 @@ void applyLightingOptions(const SceneArgs& args, facet::Scene& scene) {
             throw facet::InputError(*problem);
         knob.set(scene, given->second);
     }
+    if (args.shader) scene.shader = facet::ShaderSpec{*args.shader, {}};
+    for (const std::string& uniform : args.uniforms)
+        scene.uniforms.push_back(parseUniform(uniform));
     if (args.infiniteFar) {
         scene.camera.infiniteFar = true;
         scene.camera.far.reset();

@@ -74,6 +74,8 @@ struct SceneArgs {
     std::optional<float> gamma;
     bool infiniteFar = false;
     KnobChoices knobs;
+    std::optional<std::string> shader;  // --shader FILE: a shader of one's own for the scene
+    std::vector<std::string> uniforms;  // --uniform NAME=VALUE, as typed
 };
 
 // The knob's option, as every command shows it: its flag, its one help text and its default, the
@@ -87,6 +89,12 @@ CLI::Option* addKnobOption(CLI::App& command, const std::string& name, SceneArgs
 // Adds SceneArgs's options (and the input) to `command`, as `facet render` describes them: every knob
 // with a flag, in the table's order.
 void addSceneOptions(CLI::App& command, SceneArgs& args);
+
+// --shader FILE and --uniform NAME=VALUE: a shader of one's own (docs/shaders.md) and its uniforms.
+void addShaderOptions(CLI::App& command, SceneArgs& args);
+
+// One --uniform NAME=VALUE: VALUE is a number, true or false, or numbers separated by commas (a vector).
+facet::UniformValue parseUniform(const std::string& text);
 
 // The infinite far plane (--infinite-far), which compare takes too.
 void addInfiniteFarOption(CLI::App& command, SceneArgs& args);

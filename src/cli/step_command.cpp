@@ -119,7 +119,13 @@ SceneArgs versusArgs(const SceneArgs& base, const std::string& options) {
     if (args.input != base.input)
         throw facet::InputError("--versus " + facet::inQuotes(options) +
                                 ": give only options; the input is the command's own");
+    if (base.shader && options.find_first_not_of(" \t") == std::string::npos) args.shader = kBuiltInShaders;
+    if (wantsBuiltInShaders(args)) args.uniforms.clear();
     return args;
+}
+
+bool wantsBuiltInShaders(const SceneArgs& args) {
+    return args.shader && *args.shader == kBuiltInShaders;
 }
 
 CLI::App* addStepCommand(CLI::App& app, StepArgs& args) {
@@ -150,8 +156,12 @@ CLI::App* addStepCommand(CLI::App& app, StepArgs& args) {
         ->check(wholeNumber(1, 1024));
     command->add_option(
         "--versus", args.versus,
-        "Trace the pixel again with these options over the others (like \"--shading gouraud\") "
+        "Trace the pixel again with these options over the others (like \"--shading gouraud\", or "
+        "\"--shader mine.cpp\"; \"--shader builtin\", or \"\" after --shader, for the built-in shaders) "
         "and print both side by side, marking where they first differ");
+    command->add_flag("--stats", args.stats,
+                      "Print a few numbers on the trace to standard error (with a shader of your own: its "
+                      "recorded values, and how many were NaN or infinite)");
     command->footer(
         "On a terminal, the walk shows one stage at a time: Enter or n next, b back, a number jumps to a "
         "stage, "
@@ -183,6 +193,7 @@ int step(const StepArgs& args) {
     const facet::step::StepTrace trace = facet::step::traceStep(prepared, context, request);
 
     if (args.json) facet::writeTextFile(*args.json, facet::step::toJson(trace).dump(1) + "\n");
+    if (args.stats) std::cerr << facet::step::stepStats(trace);
     if (args.stages) {
         facet::step::StageImageOptions options;
         options.terms = request.terms;
@@ -195,7 +206,13 @@ int step(const StepArgs& args) {
 
     if (other) {
         // The same pixel and triangle under the other setting.
-        const facet::Scene otherScene = sceneFromArgs(*other);
+        facet::Scene otherScene = sceneFromArgs(*other);
+        if (wantsBuiltInShaders(*other)) {  // no shader of one's own anywhere in the scene
+            otherScene.shader.reset();
+            otherScene.uniforms.clear();
+            for (facet::ObjectSpec& object : otherScene.objects)
+                object.shader.reset();
+        }
         refuseAntialiasing(otherScene);
         const facet::PreparedScene otherPrepared = facet::prepareScene(otherScene, prepared.assets);
         facet::step::StepRequest otherRequest = request;
@@ -204,7 +221,11 @@ int step(const StepArgs& args) {
         otherRequest.terms = other->only.value_or(facet::kAllTerms);
         const facet::step::StepTrace otherTrace =
             facet::step::traceStep(otherPrepared, context, otherRequest);
-        std::cout << facet::step::sideBySide(trace.walk, "as given", otherTrace.walk, "with " + *args.versus);
+        const std::string otherName =
+            args.versus->find_first_not_of(" \t") == std::string::npos && wantsBuiltInShaders(*other)
+                ? "with the built-in shaders"
+                : "with " + *args.versus;
+        std::cout << facet::step::sideBySide(trace.walk, "as given", otherTrace.walk, otherName);
         return 0;
     }
     if (!args.print && facet::step::isInteractive()) {

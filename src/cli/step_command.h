@@ -20,12 +20,21 @@ struct StepArgs : SceneArgs {
     std::optional<std::string> html;
     std::optional<int> htmlStep;
     std::optional<std::string> versus;
+    bool stats = false;
     std::string commandLine;  // as typed, for the web page to show
 };
 
 // The options of --versus (`options`, as typed) parsed as the command's own and applied over `base`:
 // the second setting of the comparison. Throws InputError for options CLI11 refuses or an input.
+// "--shader builtin" stands for the built-in shaders (no shader of one's own, no --uniform); so do
+// empty options when `base` has --shader (the user's shader against the built-in one).
 SceneArgs versusArgs(const SceneArgs& base, const std::string& options);
+
+// The name --versus gives the built-in shaders: --shader builtin.
+inline constexpr const char* kBuiltInShaders = "builtin";
+
+// Whether `args` (of versusArgs) ask for the built-in shaders.
+bool wantsBuiltInShaders(const SceneArgs& args);
 
 // Adds the `step` command and its options to `app`, filling `args` when it is parsed.
 CLI::App* addStepCommand(CLI::App& app, StepArgs& args);

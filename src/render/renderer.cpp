@@ -9,6 +9,7 @@
 #include <unordered_map>
 
 #include "base/errors.h"
+#include "base/quote.h"
 #include "pipeline/color.h"
 #include "render/shadow_maps.h"
 
@@ -337,6 +338,36 @@ PreparedDraw partDraw(const ObjectDraws& o, const Camera& camera, const Mesh& me
     return draw;
 }
 
+// The shader of one's own an object is drawn with (its own, else the scene's) and its uniforms' values:
+// the scene file's for it, then --uniform's where it declares them. Nothing for the built-in shaders.
+void chooseUserShader(const Scene& scene, const ObjectSpec& object, PreparedDraw& draw) {
+    const std::optional<ShaderSpec>& spec = object.shader ? object.shader : scene.shader;
+    if (!spec) return;
+    draw.userShader = loadUserShader(spec->source);
+    draw.userUniforms = uniformSettings(draw.userShader, spec->uniforms);
+    const std::vector<UniformSetting> given = uniformSettings(draw.userShader, scene.uniforms, true);
+    draw.userUniforms.insert(draw.userUniforms.end(), given.begin(), given.end());
+}
+
+// Every --uniform must reach a shader: one no shader of the scene declares is a mistake (a misspelt name).
+void checkUniformsUsed(const PreparedScene& frame) {
+    for (const UniformValue& value : frame.scene.uniforms) {
+        bool declared = false;
+        const UserShader* any = nullptr;
+        for (const PreparedDraw& draw : frame.draws) {
+            if (!draw.userShader.module) continue;
+            any = &draw.userShader;
+            declared = declared || declaresUniform(draw.userShader, value.name);
+        }
+        if (!any)
+            throw InputError(value.origin +
+                             ": the scene uses no shader of one's own to give it to (--shader FILE)");
+        if (!declared)
+            throw InputError(value.origin + ": " + any->label + " declares no uniform " +
+                             inQuotes(value.name) + " (it has: " + describeUniforms(*any->module) + ")");
+    }
+}
+
 // One draw per (object, material part) into frame.draws, their triangles into `triangles`.
 void addDraws(PreparedScene& frame, const SceneAssets& assets, const SurfaceUniforms& common,
               ColourDecoding decode, std::vector<DrawTriangles>& triangles) {
@@ -357,8 +388,10 @@ void addDraws(PreparedScene& frame, const SceneAssets& assets, const SurfaceUnif
         for (const MeshPart& part : mesh.parts) {
             if (part.indexCount == 0) continue;
             frame.draws.push_back(partDraw(o, frame.camera, mesh, part, triangles.emplace_back()));
+            chooseUserShader(scene, object, frame.draws.back());
         }
     }
+    checkUniformsUsed(frame);
 }
 
 DrawState pipelineState(const Scene& scene) {

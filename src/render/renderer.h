@@ -19,6 +19,7 @@
 #include "raycast/ray_scene.h"
 #include "render/frame_kernels.h"
 #include "render/transparency_sort.h"
+#include "render/user_shaders.h"
 #include "scene/camera.h"
 #include "scene/mesh.h"
 #include "scene/scene.h"
@@ -61,6 +62,10 @@ struct PreparedDraw {
     glm::dmat4 viewFromObjectExact{1.0};
     // Drawn in the transparent pass: opacity or texture alpha below 1, or a blend other than over.
     bool transparent = false;
+    // A shader of one's own ("shader", --shader), which then draws instead of the built-in surface
+    // shader of `frequency`, with the values of its uniforms set by the scene and --uniform.
+    UserShader userShader;
+    std::vector<UniformSetting> userUniforms;
 };
 
 // What the shadows of a frame need, for its objects as placed (and its camera: all in eye space): the
@@ -304,6 +309,44 @@ struct DrawTriangleNumbers {
     void onResolve(const ResolveEvent& event) { inner.onResolve(event); }
 };
 
+// A DrawWatcher (shaders/shader_module.h) that hands a user shader's draw's hooks to an observer.
+template <class Observer>
+class WatcherOf final : public DrawWatcher {
+  public:
+    explicit WatcherOf(Observer observer) : observer_(observer) {}
+    void onDrawBegin(std::uint64_t id, const DrawState& state) override { observer_.onDrawBegin(id, state); }
+    void onDrawEnd(std::uint64_t id, const DrawStats& stats) override { observer_.onDrawEnd(id, stats); }
+    void onVertex(std::uint32_t index, const vec4& clip, const float* varyings, int count,
+                  std::uint8_t outcode) override {
+        observer_.onVertex(index, clip, varyings, count, outcode);
+    }
+    void onAssembled(std::uint32_t t, const ClipPolygon& p) override { observer_.onAssembled(t, p); }
+    void onClipped(std::uint32_t t, const ClipPolygon& p) override { observer_.onClipped(t, p); }
+    void onSetup(std::uint32_t t, const WindowTriangle& w, TriangleFate f, const TriangleSetup& s) override {
+        observer_.onSetup(t, w, f, s);
+    }
+    void onCoverage(const CoverageEvent& e) override { observer_.onCoverage(e); }
+    void onRejected(std::uint32_t t, TriangleFate f) override { observer_.onRejected(t, f); }
+    void onFragment(const FragmentEvent& e) override { observer_.onFragment(e); }
+    void onResolve(const ResolveEvent& e) override { observer_.onResolve(e); }
+
+  private:
+    Observer observer_;
+};
+
+// A draw call of a user shader: the module's own copy of the pipeline's draw for it.
+template <class Observer>
+DrawStats drawUserShader(const PlannedDraw& call, const PreparedDraw& d, const SurfaceUniforms& uniforms,
+                         Framebuffer& target, DrawContext& context, Observer& observer) {
+    const ShaderCall shaderCall{&call.state, &uniforms, d.userUniforms, call.vertices, call.indices};
+    if constexpr (Observer::enabled) {
+        WatcherOf<DrawTriangleNumbers<Observer>> watcher(DrawTriangleNumbers<Observer>{observer, call});
+        return d.userShader.module->drawWatched(shaderCall, target, context, watcher);
+    } else {
+        return d.userShader.module->draw(shaderCall, target, context);
+    }
+}
+
 template <ShadingFrequency kFrequency, class Observer>
 DrawStats drawSurface(const PlannedDraw& call, const SurfaceUniforms& uniforms, Framebuffer& target,
                       DrawContext& context, Observer& observer) {
@@ -336,7 +379,8 @@ inline const SurfaceUniforms& callUniforms(const PreparedDraw& d, std::uint8_t t
 inline std::size_t smallCallsEnd(const PreparedScene& prepared, std::span<const PlannedDraw> plan,
                                  std::size_t first) {
     const auto fits = [&](const PlannedDraw& call) {
-        return fitsInRun(call.vertices.size(), call.indices.size());
+        return fitsInRun(call.vertices.size(), call.indices.size()) &&
+               !prepared.draws[call.draw].userShader.module;
     };
     if (!fits(plan[first])) return first + 1;
     const ShadingFrequency frequency = prepared.draws[plan[first].draw].frequency;
@@ -415,6 +459,10 @@ void drawFramePass(const PreparedScene& prepared, std::span<const PlannedDraw> p
         if constexpr (requires { observer.onPlannedDraw(call, d); }) observer.onPlannedDraw(call, d);
         SurfaceUniforms selected;
         const SurfaceUniforms& uniforms = callUniforms(d, terms, clipFromView, selected);
+        if (d.userShader.module) {
+            stats.draw += drawUserShader(call, d, uniforms, target, context, observer);
+            continue;
+        }
         stats.draw += withShadingFrequency(d.frequency, [&]<ShadingFrequency kFrequency>() {
             return drawSurface<kFrequency>(call, uniforms, target, context, observer);
         });

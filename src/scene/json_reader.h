@@ -45,6 +45,7 @@ std::string quotedList(const std::vector<std::string>& names, std::string_view l
 class SceneReader {
   public:
     explicit SceneReader(const fs::path& file) : file_(file) {}
+    const fs::path& file() const { return file_; }
 
     [[noreturn]] void fail(const std::string& what) const;
 

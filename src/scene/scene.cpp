@@ -78,6 +78,8 @@ Scene loadScene(const fs::path& path) {
 
     // Objects: the "model" shorthand or the "objects" array, exactly one of them.
     const fs::path folder = path.parent_path();
+    if (const Json* v = reader.find(document, "shader"))
+        scene.shader = readShader(reader, *v, "shader", folder);
     const Json* model = reader.find(document, "model");
     const Json* objects = reader.find(document, "objects");
     if (model && objects) reader.fail("give either \"model\" or \"objects\", not both");

@@ -73,6 +73,23 @@ struct MaterialOverride {
     bool physicallyBased() const { return preset || baseColor || metalness || roughness || f0; }
 };
 
+// A value for a uniform of a shader of one's own ("shader": {"uniforms": {...}} in a scene file,
+// --uniform NAME=VALUE): its numbers as given (a bool's as 0 or 1), checked against the shader's
+// declaration of it when the frame is prepared.
+struct UniformValue {
+    std::string name;
+    std::vector<double> numbers;
+    bool isBool = false;  // given as true or false
+    std::string origin;   // where it was given, for messages: "scene.json: \"shader.uniforms.bands\""
+};
+
+// "shader": a shader of one's own (docs/shaders.md), for the whole scene or for one object: a C++
+// file compiled into a module on first use and cached, or a module built with facet_add_shader (.so).
+struct ShaderSpec {
+    std::filesystem::path source;  // resolved against the scene file's folder
+    std::vector<UniformValue> uniforms;
+};
+
 struct ObjectSpec {
     std::filesystem::path model;      // resolved against the scene file's folder
     glm::mat4 worldFromObject{1.0f};  // translate · rotate(Z·Y·X degrees) · scale
@@ -87,6 +104,7 @@ struct ObjectSpec {
     // sorted. The shaders write what each blend needs: over c with α; additive and premultiplied α·c
     // (so additive adds α·c_s); multiply mix(1, c_s, α), a coloured filter.
     std::optional<BlendMode> blend;
+    std::optional<ShaderSpec> shader;  // absent: the scene's shader, or the built-in ones
 };
 
 // How the scene is lit ("lighting" in the scene file).
@@ -243,6 +261,10 @@ struct Scene {
     ShadowMapOptions shadowMap;  // "shadow_map": how every light with map shadows draws and reads its map
     // The command line's --shadows: every light's method, the default light's too (absent: each light's).
     std::optional<ShadowMethod> shadows;
+    // "shader" (--shader): the shader of every object that names none; absent: the built-in ones.
+    std::optional<ShaderSpec> shader;
+    // --uniform NAME=VALUE: set in every shader of one's own that declares NAME (at least one must).
+    std::vector<UniformValue> uniforms;
 };
 
 // Reads a JSON scene file. Throws InputError with a one-line message naming the file and the

@@ -25,7 +25,8 @@ constexpr std::string_view kLightKeys[] = {"type",     "direction", "position", 
                                            "exponent", "inner",     "outer",    "space",       "shadows"};
 constexpr std::string_view kSpotOnlyKeys[] = {"cutoff", "exponent", "inner", "outer"};
 constexpr std::string_view kObjectKeys[] = {"model",    "translate", "rotate", "scale",
-                                            "material", "lighting",  "blend"};
+                                            "material", "lighting",  "blend",  "shader"};
+constexpr std::string_view kShaderKeys[] = {"source", "uniforms"};
 constexpr std::string_view kMaterialKeys[] = {"ambient",   "diffuse",   "specular", "emission",
                                               "shininess", "opacity",   "preset",   "base_color",
                                               "metalness", "roughness", "f0"};
@@ -337,6 +338,49 @@ fs::path readModel(const SceneReader& reader, const Json& value, const std::stri
     return model;
 }
 
+ShaderSpec readShader(const SceneReader& reader, const Json& value, const std::string& path,
+                      const fs::path& folder) {
+    const Json* source = &value;
+    const Json* uniforms = nullptr;
+    std::string sourcePath = path;
+    if (value.is_object()) {
+        reader.checkKeys(value, path, kShaderKeys);
+        source = reader.find(value, "source");
+        if (!source) reader.fail(inQuotes(childPath(path, "source")) + " is missing: name the shader's file");
+        sourcePath = childPath(path, "source");
+        uniforms = reader.find(value, "uniforms");
+    } else if (!value.is_string()) {
+        reader.fail(inQuotes(path) +
+                    " must be a file name or an object like {\"source\": \"toon.cpp\", "
+                    "\"uniforms\": {\"bands\": 3}} (got " +
+                    describe(value) + ")");
+    }
+    const std::string written = reader.string(*source, sourcePath);
+    if (written.empty()) reader.fail(inQuotes(sourcePath) + " must name a shader file (got an empty string)");
+    ShaderSpec spec{folder / fs::path(written), {}};
+    if (!uniforms) return spec;
+    const std::string uniformsPath = childPath(path, "uniforms");
+    reader.requireObject(*uniforms, uniformsPath, "an object like {\"bands\": 3, \"ink\": [0, 0, 0]}");
+    for (const auto& [name, given] : uniforms->items()) {
+        const std::string at = childPath(uniformsPath, name);
+        UniformValue uniform{name, {}, given.is_boolean(), reader.file().string() + ": " + inQuotes(at)};
+        if (given.is_boolean()) {
+            uniform.numbers.push_back(given.get<bool>() ? 1.0 : 0.0);
+        } else if (given.is_number()) {
+            uniform.numbers.push_back(reader.number(given, at));
+        } else if (given.is_array() && !given.empty() && given.size() <= 4) {
+            for (std::size_t i = 0; i < given.size(); ++i)
+                uniform.numbers.push_back(reader.number(given[i], elementPath(at, i)));
+        } else {
+            reader.fail(inQuotes(at) +
+                        " must be a number, true or false, or an array of 2 to 4 numbers (got " +
+                        describe(given) + ")");
+        }
+        spec.uniforms.push_back(std::move(uniform));
+    }
+    return spec;
+}
+
 ObjectSpec readObject(const SceneReader& reader, const Json& object, const std::string& path,
                       const fs::path& folder) {
     reader.requireObject(object, path, "an object like {\"model\": \"bunny.obj\"}");
@@ -369,6 +413,8 @@ ObjectSpec readObject(const SceneReader& reader, const Json& object, const std::
         spec.material = readMaterial(reader, *v, childPath(path, "material"));
     if (const Json* v = reader.find(object, "lighting"))
         readObjectLighting(reader, *v, childPath(path, "lighting"), spec);
+    if (const Json* v = reader.find(object, "shader"))
+        spec.shader = readShader(reader, *v, childPath(path, "shader"), folder);
     if (const Json* v = reader.find(object, "blend")) {
         spec.blend = reader.enumChoice<BlendMode>(*v, childPath(path, "blend"),
                                                   {BlendMode::Replace, BlendMode::OverGL});

@@ -12,8 +12,8 @@
 namespace facet::scene_file {
 
 inline constexpr std::string_view kTopLevelKeys[] = {
-    "width",    "height",   "background",   "ambient", "camera", "lights",     "objects", "model",
-    "pipeline", "lighting", "transparency", "fog",     "gamma",  "shadow_map", "textures"};
+    "shader", "width",    "height",   "background",   "ambient", "camera", "lights",     "objects",
+    "model",  "pipeline", "lighting", "transparency", "fog",     "gamma",  "shadow_map", "textures"};
 
 glm::vec4 readBackground(const SceneReader& reader, const Json& value);
 CameraSpec readCamera(const SceneReader& reader, const Json& camera);
@@ -21,6 +21,12 @@ LightSpec readLight(const SceneReader& reader, const Json& light, const std::str
 // The model path as written, checked for existence relative to the scene file's folder.
 fs::path readModel(const SceneReader& reader, const Json& value, const std::string& path,
                    const fs::path& folder);
+// "shader": a file name, or {"source": file, "uniforms": {"name": value, …}}; the file resolved against
+// `folder`, each uniform's value a number, true/false or an array of numbers (checked against the
+// shader's declarations when the frame is prepared).
+ShaderSpec readShader(const SceneReader& reader, const Json& value, const std::string& path,
+                      const fs::path& folder);
+
 ObjectSpec readObject(const SceneReader& reader, const Json& object, const std::string& path,
                       const fs::path& folder);
 // A section whose every key is a knob (scene/knobs.h: "pipeline", "textures", "transparency",

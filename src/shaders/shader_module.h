@@ -55,7 +55,7 @@ struct ShaderCall {
 // The pipeline's observer hooks (pipeline/observer.h) as virtual functions, for a draw watched across
 // the module's boundary (the step mode's; it is the one draw path that is not the hot path).
 class DrawWatcher {
-public:
+  public:
     static constexpr bool enabled = true;
     virtual ~DrawWatcher() = default;
     virtual void onDrawBegin(std::uint64_t drawId, const DrawState& state) = 0;
@@ -129,9 +129,9 @@ template <class Body>
 using Varyings = typename Body::template VaryingsT<float>;
 
 template <class Body>
-using FragmentResult = decltype(Body::template fragment<float>(
-    std::declval<const Varyings<Body>&>(), std::declval<const Uniforms<Body>&>(),
-    std::declval<Fragment<float>&>()));
+using FragmentResult = decltype(Body::template fragment<float>(std::declval<const Varyings<Body>&>(),
+                                                               std::declval<const Uniforms<Body>&>(),
+                                                               std::declval<Fragment<float>&>()));
 
 template <class Body>
 constexpr bool discards() {
@@ -149,30 +149,38 @@ constexpr int namedFloats() {
 // Checks, with a message a student can act on, that Body has every part a user shader needs.
 template <class Body>
 constexpr bool checkParts() {
-    static_assert(requires { typename Body::Uniforms; },
-                  "a user shader declares struct Uniforms : SceneUniforms { ... } (user_shader.h)");
+    static_assert(
+        requires { typename Body::Uniforms; },
+        "a user shader declares struct Uniforms : SceneUniforms { ... } (user_shader.h)");
     static_assert(std::is_base_of_v<SceneUniforms, typename Body::Uniforms>,
                   "a user shader's Uniforms derive from SceneUniforms: struct Uniforms : SceneUniforms");
     static_assert(std::is_default_constructible_v<typename Body::Uniforms> &&
                       std::is_copy_assignable_v<typename Body::Uniforms>,
                   "a user shader's Uniforms are plain values with defaults");
-    static_assert(requires { typename Body::template VaryingsT<float>; },
-                  "a user shader declares template <class F> struct VaryingsT { LaneVec3<F> ...; }");
+    static_assert(
+        requires { typename Body::template VaryingsT<float>; },
+        "a user shader declares template <class F> struct VaryingsT { LaneVec3<F> ...; }");
     static_assert(kIsLaneBundle<Body::template VaryingsT>,
                   "VaryingsT<F> holds only F, LaneVec2<F>, LaneVec3<F> and LaneVec4<F> members");
-    static_assert(requires { Body::kVaryings; },
-                  "a user shader names its varyings: static constexpr VaryingName kVaryings[] = {...}");
+    static_assert(
+        requires { Body::kVaryings; },
+        "a user shader names its varyings: static constexpr VaryingName kVaryings[] = {...}");
     static_assert(namedFloats<Body>() == kLaneBundleFloats<Body::template VaryingsT>,
                   "kVaryings names every float of VaryingsT<F>, in order: {\"N_eye\", 3} for a LaneVec3<F>");
-    static_assert(requires(const MeshVertex& v, const Uniforms<Body>& u) {
-        { Body::vertex(v, u) } -> std::same_as<VertexOut<Varyings<Body>>>;
-    }, "a user shader's vertex part: static VertexOut<VaryingsT<float>> vertex(const MeshVertex&, "
-       "const Uniforms&)");
-    static_assert(requires(const Varyings<Body>& in, const Uniforms<Body>& u, Fragment<float>& gl) {
-        Body::template fragment<float>(in, u, gl);
-    }, "a user shader's fragment part: template <class F> static LaneVec4<F> fragment(const "
-       "VaryingsT<F>&, const Uniforms&, Fragment<F>&) (or returning FragmentOut<F> to discard)");
-    static_assert(std::is_same_v<FragmentResult<Body>, vec4> || std::is_same_v<FragmentResult<Body>, FragmentOut<float>>,
+    static_assert(
+        requires(const MeshVertex& v, const Uniforms<Body>& u) {
+            { Body::vertex(v, u) } -> std::same_as<VertexOut<Varyings<Body>>>;
+        },
+        "a user shader's vertex part: static VertexOut<VaryingsT<float>> vertex(const MeshVertex&, "
+        "const Uniforms&)");
+    static_assert(
+        requires(const Varyings<Body>& in, const Uniforms<Body>& u, Fragment<float>& gl) {
+            Body::template fragment<float>(in, u, gl);
+        },
+        "a user shader's fragment part: template <class F> static LaneVec4<F> fragment(const "
+        "VaryingsT<F>&, const Uniforms&, Fragment<F>&) (or returning FragmentOut<F> to discard)");
+    static_assert(std::is_same_v<FragmentResult<Body>, vec4> ||
+                      std::is_same_v<FragmentResult<Body>, FragmentOut<float>>,
                   "a user shader's fragment part returns LaneVec4<F>, or FragmentOut<F> to discard");
     return true;
 }
@@ -183,7 +191,9 @@ constexpr bool checkParts() {
 template <class Body>
 struct DerivativesOf {};
 template <class Body>
-    requires requires { Body::kDerivativeVarying; }
+requires requires {
+    Body::kDerivativeVarying;
+}
 struct DerivativesOf<Body> {
     static constexpr int kDerivativeVarying = Body::kDerivativeVarying;
 };
@@ -222,7 +232,8 @@ struct Adapter : DerivativesOf<Body>, BarycentricsOf<Body> {
     static Fragment<Float8> batchFragment(const FragmentBatch& in) {
         Fragment<Float8> gl;
         gl.liveLanes = in.mask;
-        if constexpr (kHasDerivatives) std::memcpy(&gl.uvDerivatives, in.uvDerivatives, sizeof in.uvDerivatives);
+        if constexpr (kHasDerivatives)
+            std::memcpy(&gl.uvDerivatives, in.uvDerivatives, sizeof in.uvDerivatives);
         if constexpr (wantsBarycentrics<Body>()) {
             // λ0 as describeInterpolation computes it for the FragmentEvent: (1 − λ1) − λ2.
             const Float8 b1 = in.barycentrics[0], b2 = in.barycentrics[1];
@@ -234,10 +245,11 @@ struct Adapter : DerivativesOf<Body>, BarycentricsOf<Body> {
         Fragment<Float8> gl = batchFragment(in);
         return Body::template fragment<Float8>(loadLanes<Body::template VaryingsT>(in), u, gl);
     }
-    static Vec4x8 fragmentBatch(const FragmentBatch& in, const Uniforms& u, unsigned& kept)
-        requires(discards<Body>()) {
+    static Vec4x8 fragmentBatch(const FragmentBatch& in, const Uniforms& u,
+                                unsigned& kept) requires(discards<Body>()) {
         Fragment<Float8> gl = batchFragment(in);
-        const FragmentOut<Float8> out = Body::template fragment<Float8>(loadLanes<Body::template VaryingsT>(in), u, gl);
+        const FragmentOut<Float8> out =
+            Body::template fragment<Float8>(loadLanes<Body::template VaryingsT>(in), u, gl);
         kept &= ~signMask(out.discard);
         return out.color;
     }
@@ -385,10 +397,10 @@ const ShaderModule& moduleOf(const char* name) {
 }  // namespace facet
 
 // The end of a user shader's file: FACET_SHADER(Toon) makes the module of struct Toon.
-#define FACET_SHADER(Body)                                                                        \
-    extern "C" __attribute__((visibility("default"))) const char* facet_shader_abi() {           \
-        return FACET_SHADER_ABI;                                                                  \
-    }                                                                                             \
+#define FACET_SHADER(Body)                                                                               \
+    extern "C" __attribute__((visibility("default"))) const char* facet_shader_abi() {                   \
+        return FACET_SHADER_ABI;                                                                         \
+    }                                                                                                    \
     extern "C" __attribute__((visibility("default"))) const facet::ShaderModule* facet_shader_module() { \
-        return &facet::user_shader::moduleOf<Body>(#Body);                                        \
+        return &facet::user_shader::moduleOf<Body>(#Body);                                               \
     }

@@ -58,12 +58,9 @@ using SceneUniforms = SurfaceUniforms;
 
 // The types a uniform of one's own may have.
 enum class UniformType : std::uint8_t { Float, Int, Bool, Vec2, Vec3, Vec4 };
-inline constexpr EnumName<UniformType> kUniformTypeNames[] = {{UniformType::Float, "float"},
-                                                              {UniformType::Int, "int"},
-                                                              {UniformType::Bool, "bool"},
-                                                              {UniformType::Vec2, "vec2"},
-                                                              {UniformType::Vec3, "vec3"},
-                                                              {UniformType::Vec4, "vec4"}};
+inline constexpr EnumName<UniformType> kUniformTypeNames[] = {
+    {UniformType::Float, "float"}, {UniformType::Int, "int"},   {UniformType::Bool, "bool"},
+    {UniformType::Vec2, "vec2"},   {UniformType::Vec3, "vec3"}, {UniformType::Vec4, "vec4"}};
 constexpr std::span<const EnumName<UniformType>> enumNames(UniformType) {
     return kUniformTypeNames;
 }
@@ -82,9 +79,9 @@ constexpr int componentCount(UniformType type) {
 }
 
 template <class T>
-constexpr bool kIsUniformType = std::is_same_v<T, float> || std::is_same_v<T, int> ||
-                                std::is_same_v<T, bool> || std::is_same_v<T, vec2> ||
-                                std::is_same_v<T, vec3> || std::is_same_v<T, vec4>;
+constexpr bool kIsUniformType =
+    std::is_same_v<T, float> || std::is_same_v<T, int> || std::is_same_v<T, bool> ||
+    std::is_same_v<T, vec2> || std::is_same_v<T, vec3> || std::is_same_v<T, vec4>;
 
 template <class T>
 constexpr UniformType uniformTypeOf() {

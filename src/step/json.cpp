@@ -144,6 +144,8 @@ json triangleJson(const TriangleTrace& t) {
         {"raster",
          {{"left", t.focusX - t.rasterWidth / 2}, {"top", t.focusY - t.rasterHeight / 2}, {"rows", raster}}}};
     if (t.rejected) triangle["rejected"] = nameOf(*t.rejected);
+    if (!t.vertexVaryings[0].empty())
+        triangle["vertexVaryings"] = {t.vertexVaryings[0], t.vertexVaryings[1], t.vertexVaryings[2]};
     return triangle;
 }
 
@@ -156,6 +158,7 @@ nlohmann::json toJson(const StepTrace& trace) {
     json out = {{"pixel", pixelJson(trace.pixel)}, {"verdict", trace.walk.verdict}, {"screens", screens}};
     if (trace.triangle) out["triangle"] = triangleJson(*trace.triangle);
     if (trace.shading) out["shading"] = toJson(*trace.shading);
+    if (trace.userShader) out["userShader"] = toJson(*trace.userShader);
     return out;
 }
 

@@ -520,13 +520,19 @@ void renderStageImages(const PreparedScene& prepared, const StageImageOptions& o
 
     // The observed frame, every draw shaded per pixel so that every fragment's varyings carry the
     // eye-space position and normal (coverage, depth and fates do not depend on the shading frequency).
+    // A shader of one's own is replaced by the built-in one here, its varyings being its own: only the
+    // fragments a discarding one drops differ (the colour images below are drawn with it).
     std::optional<Stage> fogFactor, layers;
     {
         std::optional<PreparedScene> perPixel;
-        if (std::any_of(prepared.draws.begin(), prepared.draws.end(),
-                        [](const PreparedDraw& d) { return d.frequency != ShadingFrequency::Phong; }))
-            perPixel =
-                copyWithDraws(prepared, [](PreparedDraw& d) { d.frequency = ShadingFrequency::Phong; });
+        if (std::any_of(prepared.draws.begin(), prepared.draws.end(), [](const PreparedDraw& d) {
+                return d.frequency != ShadingFrequency::Phong || d.userShader.module;
+            }))
+            perPixel = copyWithDraws(prepared, [](PreparedDraw& d) {
+                d.frequency = ShadingFrequency::Phong;
+                d.userShader = {};
+                d.userUniforms.clear();
+            });
         const PreparedScene& observed = perPixel ? *perPixel : prepared;
         StageRecorder recorder(observed);
         FrameMemory memory;

@@ -69,11 +69,23 @@ void TraceRecorder::beginCall(std::uint32_t draw, const DrawState& state,
             trace_.transparentOrder.push_back(refOf(draw, triangles.empty() ? t : triangles[t]));
     clip_.assign(vertexCount, vec4(0.0f));
     outcodes_.assign(vertexCount, 0);
+    keepVaryings_ = std::any_of(views_.begin(), views_.end(),
+                                [&](const TriangleTrace& view) { return view.ref.draw == draw; });
+    varyingCount_ = 0;
+    varyings_.clear();
 }
 
-void TraceRecorder::onVertex(std::uint32_t index, const vec4& clip, const float*, int, std::uint8_t outcode) {
+void TraceRecorder::onVertex(std::uint32_t index, const vec4& clip, const float* varyings, int varyingCount,
+                             std::uint8_t outcode) {
     clip_[index] = clip;
     outcodes_[index] = outcode;
+    if (!keepVaryings_ || varyingCount <= 0 || !varyings) return;
+    if (varyings_.empty()) {
+        varyingCount_ = varyingCount;
+        varyings_.assign(clip_.size() * static_cast<std::size_t>(varyingCount), 0.0f);
+    }
+    if (varyingCount != varyingCount_) return;
+    std::copy(varyings, varyings + varyingCount, varyings_.begin() + std::ptrdiff_t(index) * varyingCount);
 }
 
 void TraceRecorder::onRejected(std::uint32_t triangle, TriangleFate fate) {
@@ -318,6 +330,10 @@ void TraceRecorder::fillVertices(TriangleTrace& view, std::uint32_t triangle) {
         const std::uint32_t vertex = call_.indices[3 * local + k];
         view.clipPositions[k] = clip_[vertex];
         view.outcodes[k] = outcodes_[vertex];
+        if (!varyings_.empty()) {
+            const auto first = varyings_.begin() + std::ptrdiff_t(vertex) * varyingCount_;
+            view.vertexVaryings[k].assign(first, first + varyingCount_);
+        }
     }
 }
 

@@ -129,6 +129,8 @@ struct TriangleTrace {
     std::array<vec3, 3> objectNormals{};
     mat4 worldFromObject{1.0f}, viewFromWorld{1.0f}, clipFromView{1.0f};
     std::array<vec4, 3> clipPositions{};  // the vertex shader's gl_Position
+    // The vertex shader's other outputs at the corners: its varyings, as the pipeline received them.
+    std::array<std::vector<float>, 3> vertexVaryings{};
     std::array<std::uint8_t, 3> outcodes{};
     std::optional<TriangleFate> rejected;  // NonFinite, OutsideFrustum or ClippedAway
     std::vector<ClipStep> clipSteps;       // only for a triangle some plane cut
@@ -265,6 +267,9 @@ class TraceRecorder : public NullObserver {
     std::uint32_t transparentBase_ = 0;
     std::vector<std::uint32_t> localOf_;  // a run's call-local number of each of its draw's triangles
     std::vector<vec4> clip_;              // the call's vertices in clip space (onVertex)
+    bool keepVaryings_ = false;           // a traced triangle is of this call's draw: keep its varyings
+    int varyingCount_ = 0;
+    std::vector<float> varyings_;  // the call's vertices' varyings (onVertex), when kept
     std::vector<std::uint8_t> outcodes_;
 };
 

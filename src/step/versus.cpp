@@ -69,17 +69,29 @@ std::vector<Row> align(const std::vector<std::string>& a, const std::vector<std:
 }  // namespace
 
 std::string sideBySide(const Walk& a, const std::string& nameA, const Walk& b, const std::string& nameB) {
+    // A shader of one's own (its screen "shader") faces the built-in lighting (its screen "lighting").
+    const auto counterpart = [](const std::string& id) -> std::string {
+        return id == "shader" ? "lighting" : id == "lighting" ? "shader" : "";
+    };
+    auto find = [&](const Walk& w, const std::string& id) -> const Screen* {
+        for (const Screen& s : w.screens)
+            if (s.id == id) return &s;
+        return nullptr;
+    };
+    auto findOrCounterpart = [&](const Walk& w, const Walk& other, const std::string& id) -> const Screen* {
+        if (const Screen* s = find(w, id)) return s;
+        const std::string c = counterpart(id);
+        return !c.empty() && !find(other, c) ? find(w, c) : nullptr;
+    };
     // The screens by id, in A's order, then those only B has.
     std::vector<std::string> ids;
     for (const Screen& s : a.screens)
         ids.push_back(s.id);
     for (const Screen& s : b.screens)
-        if (std::find(ids.begin(), ids.end(), s.id) == ids.end()) ids.push_back(s.id);
-    auto find = [](const Walk& w, const std::string& id) -> const Screen* {
-        for (const Screen& s : w.screens)
-            if (s.id == id) return &s;
-        return nullptr;
-    };
+        if (std::find(ids.begin(), ids.end(), s.id) == ids.end() &&
+            (counterpart(s.id).empty() || find(b, counterpart(s.id)) ||
+             std::find(ids.begin(), ids.end(), counterpart(s.id)) == ids.end()))
+            ids.push_back(s.id);
 
     struct Block {
         std::string titleA, titleB;
@@ -96,8 +108,8 @@ std::string sideBySide(const Walk& a, const std::string& nameA, const Walk& b, c
             if (verdict.rows[r].left != verdict.rows[r].right) first = std::pair(std::size_t{0}, r);
     }
     for (const std::string& id : ids) {
-        const Screen* sa = find(a, id);
-        const Screen* sb = find(b, id);
+        const Screen* sa = findOrCounterpart(a, b, id);
+        const Screen* sb = findOrCounterpart(b, a, id);
         Block block{sa ? sa->title : "(no such screen)", sb ? sb->title : "(no such screen)",
                     align(sa ? linesOf(sa->text) : std::vector<std::string>{},
                           sb ? linesOf(sb->text) : std::vector<std::string>{})};

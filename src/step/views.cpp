@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <map>
 #include <sstream>
 
@@ -14,7 +15,8 @@
 namespace facet::step {
 
 std::string number(double value) {
-    if (value == 0.0) value = 0.0;  // no "-0"
+    if (std::isnan(value)) return "NaN";  // not "-nan": the sign of a NaN means nothing
+    if (value == 0.0) value = 0.0;        // no "-0"
     char text[32];
     std::snprintf(text, sizeof text, "%.6g", value);
     return text;
@@ -127,11 +129,15 @@ std::string compareText(CompareOp op) {
     return "?";
 }
 
-// The names of a draw's varyings: its surface shader's (shaders.h), when the draw is one of the scene's
-// and the count is the shader's; else numbered.
+// The names of a draw's varyings: its user shader's or its surface shader's (shaders.h), when the draw is one
+// of the scene's and the count is the shader's; else numbered.
 std::vector<std::string> varyingNames(const PreparedScene* prepared, std::uint32_t draw, int count) {
     std::vector<std::string> names;
     if (prepared && draw < prepared->draws.size()) {
+        // A shader of one's own names its varyings itself (kVaryings: one name per float).
+        if (const ShaderModule* module = prepared->draws[draw].userShader.module)
+            if (static_cast<int>(module->varyingNames.size()) == count)
+                return {module->varyingNames.begin(), module->varyingNames.end()};
         const std::span<const std::string_view> known = varyingNamesOf(prepared->draws[draw].frequency);
         if (static_cast<int>(known.size()) == count) return {known.begin(), known.end()};
     }
@@ -173,6 +179,48 @@ Screen transformScreen(const TriangleTrace& t) {
     }
     out << "\n(clip is the vertex shader's gl_Position as the pipeline computed it.)\n";
     return {"transform", "Vertex shader: object → world → eye → clip space", out.str()};
+}
+
+// A shader of one's own: its vertex part's outputs at the three corners, as the pipeline received them.
+Screen userVertexScreen(const PreparedScene& prepared, const TriangleTrace& t) {
+    const UserShader& shader = prepared.draws[t.ref.draw].userShader;
+    std::ostringstream out;
+    out << wrapText("The vertex part of your shader " + std::string(shader.module->name) + " (" +
+                        shader.label +
+                        ") runs once per corner: from the vertex (position, normal, texture coordinates) "
+                        "and the uniforms it makes the clip position gl_Position and its varyings, the "
+                        "values the triangle interpolates for the fragment part.",
+                    80, 0)
+        << "\n";
+    const std::vector<std::string> names(shader.module->varyingNames.begin(),
+                                         shader.module->varyingNames.end());
+    for (int k = 0; k < 3; ++k) {
+        out << "  v" << k << "  clip   " << vectorText(t.clipPositions[k]) << "\n";
+        const std::vector<float>& v = t.vertexVaryings[static_cast<std::size_t>(k)];
+        std::string line = "     ";
+        for (std::size_t i = 0; i < v.size(); ++i) {
+            std::string item = " ";  // appended piece by piece: GCC 12 warns falsely on a sum (-Wrestrict)
+            item += i < names.size() ? names[i] : "varying " + std::to_string(i);
+            item += " = ";
+            item += number(v[i]);
+            if (!std::isfinite(v[i])) item += " (!)";
+            if (line.size() + item.size() > 78) {
+                out << line << "\n";
+                line.assign(5, ' ');
+            }
+            line += item;
+        }
+        if (!v.empty()) out << line << "\n";
+    }
+    bool nonFinite = false;
+    for (const std::vector<float>& v : t.vertexVaryings)
+        for (float x : v)
+            nonFinite = nonFinite || !std::isfinite(x);
+    if (nonFinite)
+        out << "\n(!) not a finite number: NaN (0/0, normalize of a zero vector?) or infinite (a\n"
+               "    division by zero?); interpolation spreads it over the whole triangle.\n";
+    out << "\n(As the pipeline received them from the module; the clip positions go on to\nclipping.)\n";
+    return {"transform", "Vertex shader: " + std::string(shader.module->name) + "'s vertex part", out.str()};
 }
 
 Screen clipScreen(const TriangleTrace& t) {
@@ -480,8 +528,14 @@ std::string fateText(const TriangleAtPixel& e) {
 }  // namespace
 
 std::vector<Screen> triangleScreens(const PreparedScene& prepared, const TriangleTrace& triangle) {
-    return {inputScreen(prepared, triangle), transformScreen(triangle), clipScreen(triangle),
-            windowScreen(triangle),          setupScreen(triangle),     rasterScreen(triangle)};
+    const bool user =
+        triangle.ref.draw < prepared.draws.size() && prepared.draws[triangle.ref.draw].userShader.module;
+    return {inputScreen(prepared, triangle),
+            user ? userVertexScreen(prepared, triangle) : transformScreen(triangle),
+            clipScreen(triangle),
+            windowScreen(triangle),
+            setupScreen(triangle),
+            rasterScreen(triangle)};
 }
 
 std::string verdictOf(const PixelTrace& p) {
@@ -647,6 +701,10 @@ std::vector<Screen> fragmentScreens(const PreparedScene* prepared, const PixelTr
         for (int k = 0; k < f.varyingCount; ++k) {
             char cell[48];
             std::snprintf(cell, sizeof cell, "  %-8s %-13s", names[k].c_str(), number(f.varyings[k]).c_str());
+            if (!line.empty() && line.size() + std::strlen(cell) > 80) {  // long names of one's own
+                out << line.substr(0, line.find_last_not_of(' ') + 1) << "\n";
+                line.clear();
+            }
             line += cell;
             if (k % 3 == 2 || k + 1 == f.varyingCount) {
                 out << line.substr(0, line.find_last_not_of(' ') + 1) << "\n";

@@ -11,7 +11,7 @@
 
 namespace facet::step {
 
-// Numbers as the screens print them: 6 significant digits, "-0" printed as "0".
+// Numbers as the screens print them: 6 significant digits, "-0" printed as "0", any NaN as "NaN".
 std::string number(double value);
 std::string vectorText(const vec2& v);
 std::string vectorText(const vec3& v);

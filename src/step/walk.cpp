@@ -1,5 +1,7 @@
 #include "step/walk.h"
 
+#include <sstream>
+
 #include "base/errors.h"
 #include "pipeline/rasterize.h"
 #include "step/views.h"
@@ -32,6 +34,7 @@ std::optional<ShadingTrace> shadingOf(const PreparedScene& prepared, const Pixel
     const TriangleAtPixel* entry = entryOf(pixel, triangle.ref);
     if (!entry || !entry->fragment || entry->fragment->fate == FragmentFate::DepthFailed) return std::nullopt;
     const PreparedDraw& draw = prepared.draws[triangle.ref.draw];
+    if (draw.userShader.module) return std::nullopt;  // its own shader: userShaderOf
     // The corners in the order of the setup that rasterized the pixel: the triangle's, v1 and v2
     // exchanged when setup made its area positive; the provoking vertex among them.
     bool exchanged = false;
@@ -51,8 +54,41 @@ std::optional<ShadingTrace> shadingOf(const PreparedScene& prepared, const Pixel
     return traceShading(uniforms, draw.frequency, *entry->fragment, corners, provoking);
 }
 
+std::optional<UserShaderTrace> userShaderOf(const PreparedScene& prepared, const PixelTrace& pixel,
+                                            const TriangleTrace& triangle, std::uint8_t terms) {
+    const TriangleAtPixel* entry = entryOf(pixel, triangle.ref);
+    if (!entry || !entry->fragment || triangle.ref.draw >= prepared.draws.size()) return std::nullopt;
+    const PreparedDraw& draw = prepared.draws[triangle.ref.draw];
+    if (!draw.userShader.module) return std::nullopt;
+    SurfaceUniforms scratch;
+    const SurfaceUniforms& uniforms =
+        detail::callUniforms(draw, terms, nullptr, scratch);  // as renderFrame draws it
+    return traceUserShader(draw, uniforms, triangle.state, *entry->fragment, &prepared.scene);
+}
+
+std::string stepStats(const StepTrace& trace) {
+    std::ostringstream out;
+    const PixelTrace& p = trace.pixel;
+    int fragments = 0;
+    for (const TriangleAtPixel& e : p.triangles)
+        fragments += e.fragment.has_value();
+    out << "pixel " << p.x << "," << p.y << ": " << p.triangles.size() << " triangles near it, " << fragments
+        << " fragments\n";
+    if (trace.triangle) out << "triangle " << trace.triangle->ref.number << " traced\n";
+    if (const auto& u = trace.userShader) {
+        out << "shader " << u->file << " (" << u->name << "): " << u->uniforms.size() << " uniforms, "
+            << u->recorded.size() << " values recorded, output "
+            << (!u->shaderRan  ? "none (not run)"
+                : u->discarded ? "discarded"
+                               : "a colour")
+            << "\n";
+        out << "non-finite shader values (NaN or infinite): " << nonFiniteCount(*u) << "\n";
+    }
+    return out.str();
+}
+
 Walk walkOf(const PreparedScene& prepared, const PixelTrace& pixel, const TriangleTrace* triangle,
-            const ShadingTrace* shading) {
+            const ShadingTrace* shading, const UserShaderTrace* userShader) {
     Walk walk;
     walk.x = pixel.x;
     walk.y = pixel.y;
@@ -68,6 +104,9 @@ Walk walkOf(const PreparedScene& prepared, const PixelTrace& pixel, const Triang
             walk.screens.push_back(std::move(screen));
     if (shading)
         for (Screen& screen : shadingScreens(*shading))
+            walk.screens.push_back(std::move(screen));
+    if (userShader)
+        for (Screen& screen : userShaderScreens(*userShader))
             walk.screens.push_back(std::move(screen));
     for (Screen& screen : outputScreens(prepared, pixel, entry))
         walk.screens.push_back(std::move(screen));
@@ -114,9 +153,13 @@ StepTrace traceStep(const PreparedScene& prepared, DrawContext& context, const S
         }
     }
     if (triangle && !frame.triangles.empty()) trace.triangle = std::move(frame.triangles.front());
-    if (trace.triangle) trace.shading = shadingOf(prepared, trace.pixel, *trace.triangle, request.terms);
-    trace.walk = walkOf(prepared, trace.pixel, trace.triangle ? &*trace.triangle : nullptr,
-                        trace.shading ? &*trace.shading : nullptr);
+    if (trace.triangle) {
+        trace.shading = shadingOf(prepared, trace.pixel, *trace.triangle, request.terms);
+        trace.userShader = userShaderOf(prepared, trace.pixel, *trace.triangle, request.terms);
+    }
+    trace.walk =
+        walkOf(prepared, trace.pixel, trace.triangle ? &*trace.triangle : nullptr,
+               trace.shading ? &*trace.shading : nullptr, trace.userShader ? &*trace.userShader : nullptr);
     return trace;
 }
 
@@ -148,7 +191,10 @@ std::vector<Walk> traceWalks(const PreparedScene& prepared, DrawContext& context
             view = &second.triangles[next++];
         const std::optional<ShadingTrace> shading =
             view ? shadingOf(prepared, first.pixels[k], *view, terms) : std::nullopt;
-        walks.push_back(walkOf(prepared, first.pixels[k], view, shading ? &*shading : nullptr));
+        const std::optional<UserShaderTrace> user =
+            view ? userShaderOf(prepared, first.pixels[k], *view, terms) : std::nullopt;
+        walks.push_back(
+            walkOf(prepared, first.pixels[k], view, shading ? &*shading : nullptr, user ? &*user : nullptr));
     }
     return walks;
 }

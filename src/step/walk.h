@@ -12,6 +12,7 @@
 #include "step/screens.h"
 #include "step/shading_view.h"
 #include "step/trace.h"
+#include "step/user_shader_view.h"
 
 namespace facet::step {
 
@@ -25,7 +26,8 @@ struct StepTrace {
     Walk walk;
     PixelTrace pixel;
     std::optional<TriangleTrace> triangle;
-    std::optional<ShadingTrace> shading;  // when the triangle's shader ran at the pixel
+    std::optional<ShadingTrace> shading;        // when the triangle's built-in shader ran at the pixel
+    std::optional<UserShaderTrace> userShader;  // when its draw has a shader of one's own and a fragment here
 };
 
 // Traces the frame of `prepared` for the request. Throws InputError for a pixel outside the image or a
@@ -42,9 +44,18 @@ std::vector<Walk> traceWalks(const PreparedScene& prepared, DrawContext& context
 std::optional<ShadingTrace> shadingOf(const PreparedScene& prepared, const PixelTrace& pixel,
                                       const TriangleTrace& triangle, std::uint8_t terms);
 
+// The fragment part of a shader of one's own at the traced triangle's fragment at the pixel, run again
+// with its record on; none when the triangle's draw has no such shader or made no fragment there.
+std::optional<UserShaderTrace> userShaderOf(const PreparedScene& prepared, const PixelTrace& pixel,
+                                            const TriangleTrace& triangle, std::uint8_t terms);
+
 // The walk's screens in pipeline order for a traced pixel and triangle.
 Walk walkOf(const PreparedScene& prepared, const PixelTrace& pixel, const TriangleTrace* triangle,
-            const ShadingTrace* shading);
+            const ShadingTrace* shading, const UserShaderTrace* userShader = nullptr);
+
+// facet step --stats: a few lines on the trace (the pixel's history in numbers; a shader of one's own:
+// its recorded values and how many values were NaN or infinite).
+std::string stepStats(const StepTrace& trace);
 
 // The whole trace as data: the pixel's history, the triangle's stages and the screens.
 nlohmann::json toJson(const StepTrace& trace);

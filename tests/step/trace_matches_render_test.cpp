@@ -1,8 +1,9 @@
 // The trace is of exactly the frame `facet render` draws: its final 8-bit value at every traced pixel
 // equals the byte of the image file the renderer writes, over scenes and settings that take different
 // paths (opaque; sorted, unsorted and exact transparency; each fog; each shading frequency; the GL
-// preset). Catches: the observed frame drawing anything differently (an observer hook that changes
-// state, a draw call left out or added when observed), and the trace encoding the colour otherwise
+// preset; a shader of one's own, opaque and transparent). Catches: the observed frame drawing anything
+// differently (an observer hook that changes state, a draw call left out or added when observed, a
+// user shader's watched draw that differs from its draw), and the trace encoding the colour otherwise
 // than the image file (a channel, the encoding or its rounding).
 #include <filesystem>
 #include <string>
@@ -14,6 +15,7 @@
 #include "io/image_io.h"
 #include "step/trace.h"
 #include "support/temp_folder.h"
+#include "test_shader_cache.h"
 
 namespace facet::step {
 namespace {
@@ -26,6 +28,7 @@ struct Setting {
     std::optional<ShadingFrequency> shading = std::nullopt;
     std::optional<TransparencyMode> transparency = std::nullopt;
     std::optional<LightingPreset> preset = std::nullopt;
+    std::optional<std::string> shader = std::nullopt;  // a shader of one's own, relative to the source folder
 };
 
 void PrintTo(const Setting& s, std::ostream* os) {
@@ -62,6 +65,10 @@ TEST_P(TraceMatchesRender, FinalBytesOfEveryTracedPixelAreTheImageFilesBytes) {
     }
     if (setting.transparency) scene.transparency.mode = *setting.transparency;
     if (setting.preset) scene.lighting.preset = *setting.preset;
+    if (setting.shader) {
+        useTestShaderCache();
+        scene.shader = ShaderSpec{fs::path(FACET_SOURCE_DIR) / *setting.shader, {}};
+    }
     const PreparedScene prepared = prepareScene(scene);
 
     // As facet render does it: a frame on two threads, written as a PNG.
@@ -114,7 +121,11 @@ INSTANTIATE_TEST_SUITE_P(
         Setting{"fog_exp_exact", "tests/conformance/scenes/gl-fog-exp-transparent-teapots.json", std::nullopt,
                 TransparencyMode::Exact},
         Setting{"glass_exact", "models/fog-and-glass.json", std::nullopt, TransparencyMode::Exact},
-        Setting{"blend_modes", "tests/conformance/scenes/facet-blend-modes-spheres.json"}),
+        Setting{"blend_modes", "tests/conformance/scenes/facet-blend-modes-spheres.json"},
+        Setting{"user_shader", "models/spot/spot_triangulated.obj", std::nullopt, std::nullopt, std::nullopt,
+                "tests/step/shaders/toon_step.cpp"},
+        Setting{"user_shader_transparent", "tests/conformance/scenes/gl-fog-exp-transparent-teapots.json",
+                std::nullopt, TransparencyMode::Sorted, std::nullopt, "tests/step/shaders/toon_step.cpp"}),
     [](const ::testing::TestParamInfo<Setting>& info) { return info.param.name; });
 
 }  // namespace

@@ -1,0 +1,387 @@
+#include "render/user_shaders.h"
+
+#include <dlfcn.h>
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <mutex>
+#include <sstream>
+
+#include "base/errors.h"
+#include "base/module.h"
+#include "base/quote.h"
+#include "facet_shader_build.h"  // FACET_SHADER_COMPILER, _FLAGS, _BUILD_INCLUDES, _INCLUDES_FROM_PROGRAM
+#include "render/frame_kernels.h"
+
+extern char** environ;
+
+namespace facet {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<std::string> splitList(std::string_view list) {
+    std::vector<std::string> items;
+    std::size_t start = 0;
+    while (start <= list.size()) {
+        const std::size_t end = std::min(list.find(';', start), list.size());
+        if (end > start) items.emplace_back(list.substr(start, end - start));
+        start = end + 1;
+    }
+    return items;
+}
+
+// The folders a shader's #include "shaders/user_shader.h" is found in: the source tree's for a facet
+// inside its build folder, else the installed headers' relative to the program.
+std::vector<fs::path> headerFolders() {
+    std::vector<fs::path> folders;
+    if (programInBuildTree()) {
+        for (const std::string& folder : splitList(FACET_SHADER_BUILD_INCLUDES))
+            folders.emplace_back(folder);
+        return folders;
+    }
+    for (const std::string& folder : splitList(FACET_SHADER_INCLUDES_FROM_PROGRAM))
+        folders.push_back((programFolder() / folder).lexically_normal());
+    return folders;
+}
+
+// The code generation flags of the frame's copy this CPU runs (frame_kernels.h), so that the shader's
+// eight lanes use the same vectors as the built-in shaders'.
+std::vector<std::string> instructionSetFlags() {
+    switch (frameKernels().instructionSet) {
+        case InstructionSet::Baseline:
+            return {};
+        case InstructionSet::Avx2:
+            return splitList(FACET_SHADER_AVX2_FLAGS);
+        case InstructionSet::Avx512:
+            return splitList(FACET_SHADER_AVX512_FLAGS);
+    }
+    return {};
+}
+
+// FNV-1a, 64 bits, from `seed`: two seeds make the cache's 128-bit key of a source and its settings.
+std::uint64_t fnv1a(std::string_view bytes, std::uint64_t seed) {
+    std::uint64_t hash = seed;
+    for (const char c : bytes) {
+        hash ^= static_cast<unsigned char>(c);
+        hash *= 0x100000001b3ull;
+    }
+    return hash;
+}
+
+std::string hex(std::uint64_t value) {
+    char text[17];
+    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(value));
+    return text;
+}
+
+std::string readWhole(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+// Size and modification time of a file a shader includes, "" when it is gone.
+std::string fileStamp(const fs::path& path) {
+    std::error_code error;
+    const auto size = fs::file_size(path, error);
+    if (error) return "";
+    const auto time = fs::last_write_time(path, error);
+    if (error) return "";
+    return std::to_string(size) + " " + std::to_string(time.time_since_epoch().count());
+}
+
+// The files a compiled shader included besides facet's headers and the system's (a make rule from
+// -MD), each with its stamp: a change to one compiles the shader again.
+std::string includedFileStamps(const fs::path& dependencyFile, const fs::path& source,
+                               const std::vector<fs::path>& facetHeaders) {
+    std::string rule = readWhole(dependencyFile);
+    std::string stamps;
+    std::istringstream words(rule);
+    std::string word;
+    bool afterColon = false;
+    while (words >> word) {
+        if (!afterColon) {
+            afterColon = !word.empty() && word.back() == ':';
+            continue;
+        }
+        if (word == "\\") continue;
+        const fs::path file = fs::weakly_canonical(word);
+        if (file == fs::weakly_canonical(source) || file.string().starts_with("/usr/")) continue;
+        bool facets = false;
+        for (const fs::path& folder : facetHeaders)
+            facets = facets || inside(file.parent_path(), folder);
+        if (!facets) stamps += file.string() + " " + fileStamp(file) + "\n";
+    }
+    return stamps;
+}
+
+bool stampsStillHold(const std::string& stamps) {
+    std::istringstream lines(stamps);
+    std::string line;
+    while (std::getline(lines, line)) {
+        const std::size_t cut = line.find(' ');
+        if (cut == std::string::npos) continue;
+        if (fileStamp(line.substr(0, cut)) != line.substr(cut + 1)) return false;
+    }
+    return true;
+}
+
+// Runs `command`, its output and errors into `log`; returns its exit status (127: not started).
+int runCommand(const std::vector<std::string>& command, const fs::path& log) {
+    std::vector<char*> argv;
+    for (const std::string& word : command)
+        argv.push_back(const_cast<char*>(word.c_str()));
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_adddup2(&actions, 1, 2);
+    pid_t child = 0;
+    const int started = posix_spawnp(&child, argv[0], &actions, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    if (started != 0) return 127;
+    int status = 0;
+    while (::waitpid(child, &status, 0) < 0)
+        if (errno != EINTR) return 127;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+// Loads a module file and checks that it is a shader module built for this facet.
+const ShaderModule* openModule(const fs::path& file, const std::string& label) {
+    void* handle = ::dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!handle) throw InputError(label + ": the shader module does not load: " + ::dlerror());
+    using Abi = const char* (*)();
+    const auto abi = reinterpret_cast<Abi>(::dlsym(handle, "facet_shader_abi"));
+    const auto entry = reinterpret_cast<const ShaderModule* (*)()>(::dlsym(handle, "facet_shader_module"));
+    if (!abi || !entry)
+        throw InputError(label +
+                         ": not a facet shader module (it exports no facet_shader_abi or "
+                         "facet_shader_module: does the shader's file end with FACET_SHADER(Name)?)");
+    const std::string_view built = abi();
+    if (built != FACET_SHADER_ABI)
+        throw InputError(label + ": the shader module was built for " + std::string(built) +
+                         ", and this is " + FACET_SHADER_ABI +
+                         ": build it again against this facet (or give its .cpp file)");
+    return entry();
+}
+
+// The compiled module of `source`, from the cache or compiled now.
+const ShaderModule* compiledModule(const fs::path& source, const std::string& label) {
+    const std::string text = readWhole(source);
+    std::vector<std::string> flags = splitList(FACET_SHADER_FLAGS);
+    for (std::string& flag : instructionSetFlags())
+        flags.push_back(std::move(flag));
+    std::string key = std::string(FACET_SHADER_ABI) + "\n" + FACET_SHADER_COMPILER + "\n";
+    for (const std::string& flag : flags)
+        key += flag + " ";
+    const std::vector<fs::path> headers = headerFolders();
+    for (const fs::path& folder : headers)
+        key += "\n-I" + folder.string();
+    key += "\n" + hex(fnv1a(text, 0xcbf29ce484222325ull)) + hex(fnv1a(text, 0x84222325cbf29ce4ull)) + "\n";
+    const std::string name = source.stem().string() + "-" + hex(fnv1a(key, 0xcbf29ce484222325ull)) +
+                             hex(fnv1a(key, 0x9e3779b97f4a7c15ull));
+    const fs::path folder = shaderCacheFolder();
+    const fs::path module = folder / (name + ".so");
+    const fs::path keyFile = folder / (name + ".key");
+    std::error_code error;
+    if (fs::exists(module, error) && fs::exists(keyFile, error)) {
+        const std::string stored = readWhole(keyFile);
+        if (stored.starts_with(key) && stampsStillHold(stored.substr(key.size())))
+            return openModule(module, label);
+    }
+    bool found = false;
+    for (const fs::path& folder : headers)
+        found = found || fs::exists(folder / "shaders" / "user_shader.h", error);
+    if (!found)
+        throw InputError(
+            label + ": compiling a shader needs facet's headers, which are not in " +
+            (headers.empty() ? std::string("the program's install folder") : headers.front().string()) +
+            " (install them, or build the shader with facet_add_shader of facet's CMake package "
+            "and give the .so)");
+    fs::create_directories(folder, error);
+    if (error)
+        throw InputError(label + ": cannot make the shader cache " + folder.string() + ": " +
+                         error.message());
+    // Written under names of this process's own, then renamed: a run at the same time finds either no
+    // module or a whole one.
+    const std::string unique = "." + std::to_string(::getpid()) + ".tmp";
+    const fs::path partial = folder / (name + unique + ".so");
+    const fs::path dependencies = folder / (name + unique + ".d");
+    const fs::path log = folder / (name + unique + ".log");
+    std::vector<std::string> command = shaderCompileCommand(source, partial);
+    command.insert(command.end(), {"-MD", "-MF", dependencies.string()});
+    std::cerr << "facet: compiling " << label << " (the first time only: the module is kept in "
+              << folder.string() << ")\n";
+    const auto start = std::chrono::steady_clock::now();
+    const int status = runCommand(command, log);
+    const std::string messages = readWhole(log);
+    fs::remove(log, error);
+    if (!messages.empty()) std::cerr << messages;
+    if (status != 0) {
+        fs::remove(partial, error);
+        fs::remove(dependencies, error);
+        if (status == 127)
+            throw InputError(label + ": the compiler " + std::string(FACET_SHADER_COMPILER) +
+                             " could not be run: install it (facet compiles shaders with the compiler it was "
+                             "built with)");
+        throw InputError(label + ": the shader did not compile (the compiler's messages are above)");
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::cerr << "facet: compiled " << label << " in " << std::lround(seconds * 10) / 10.0 << " s\n";
+    std::ofstream(keyFile.string() + unique) << key << includedFileStamps(dependencies, source, headers);
+    fs::remove(dependencies, error);
+    fs::rename(partial, module, error);
+    if (!error) fs::rename(keyFile.string() + unique, keyFile, error);
+    if (error)
+        throw InputError(label + ": cannot keep the compiled shader in " + folder.string() + ": " +
+                         error.message());
+    return openModule(module, label);
+}
+
+// Reads a uniform's numbers into the module's form, or says why they do not fit its type.
+std::array<float, 4> checkedValue(const UniformInfo& info, const UniformValue& value,
+                                  const std::string& shader) {
+    const int count = componentCount(info.type);
+    const std::string declared =
+        shader + " declares " + std::string(info.name) + " as " + std::string(nameOf(info.type));
+    if (static_cast<int>(value.numbers.size()) != count || (info.type == UniformType::Bool) != value.isBool) {
+        std::string wanted = info.type == UniformType::Bool ? "true or false"
+                             : count == 1                   ? "one number"
+                                                            : std::to_string(count) + " numbers";
+        throw InputError(value.origin + ": " + declared + ": give " + wanted);
+    }
+    std::array<float, 4> result{};
+    for (int k = 0; k < count; ++k) {
+        const double number = value.numbers[static_cast<std::size_t>(k)];
+        if (!std::isfinite(number) || std::fabs(number) > 3.0e38)
+            throw InputError(value.origin + ": " + declared + ": " + std::to_string(number) +
+                             " is not a finite number");
+        if (info.type == UniformType::Int && (number != std::floor(number) || std::fabs(number) > 16777216.0))
+            throw InputError(value.origin + ": " + declared +
+                             ": give a whole number (at most 16777216 in size)");
+        result[static_cast<std::size_t>(k)] = static_cast<float>(number);
+    }
+    return result;
+}
+
+struct Registry {
+    std::mutex mutex;
+    std::map<fs::path, const ShaderModule*> loaded;  // by canonical path
+};
+
+Registry& registry() {
+    static Registry r;
+    return r;
+}
+
+}  // namespace
+
+fs::path shaderCacheFolder() {
+    if (const char* cache = std::getenv("FACET_SHADER_CACHE"); cache && *cache) return cache;
+    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
+        return fs::path(xdg) / "facet" / "shaders";
+    if (const char* home = std::getenv("HOME"); home && *home)
+        return fs::path(home) / ".cache" / "facet" / "shaders";
+    return fs::temp_directory_path() / ("facet-shaders-" + std::to_string(::getuid()));
+}
+
+std::vector<std::string> shaderCompileCommand(const fs::path& source, const fs::path& output) {
+    std::vector<std::string> command{FACET_SHADER_COMPILER};
+    for (const std::string& flag : splitList(FACET_SHADER_FLAGS))
+        command.push_back(flag);
+    for (std::string& flag : instructionSetFlags())
+        command.push_back(std::move(flag));
+    // A shared library whose only visible symbols are the two entry points: the pipeline's functions
+    // it calls are facet's own (the program exports them).
+    command.insert(command.end(), {"-fPIC", "-shared", "-fvisibility=hidden", "-fvisibility-inlines-hidden"});
+    for (const fs::path& folder : headerFolders())
+        command.push_back("-I" + folder.string());
+    command.insert(command.end(), {"-o", output.string(), source.string()});
+    return command;
+}
+
+UserShader loadUserShader(const fs::path& source) {
+    const std::string label = source.string();
+    std::error_code error;
+    if (!fs::is_regular_file(source, error))
+        throw InputError(label + ": no such shader file" +
+                         (fs::exists(source, error) ? " (not a regular file)" : ""));
+    const fs::path canonical = fs::weakly_canonical(source, error);
+    Registry& r = registry();
+    const std::lock_guard lock(r.mutex);
+    if (const auto found = r.loaded.find(canonical); found != r.loaded.end()) return {found->second, label};
+    const ShaderModule* module =
+        source.extension() == ".so" ? openModule(fs::absolute(source), label) : compiledModule(source, label);
+    r.loaded.emplace(canonical, module);
+    return {module, label};
+}
+
+bool declaresUniform(const UserShader& shader, std::string_view name) {
+    for (const UniformInfo& info : shader.module->uniforms)
+        if (info.name == name) return true;
+    return false;
+}
+
+std::string uniformValueText(UniformType type, const std::array<float, 4>& value) {
+    auto number = [](float v) {
+        std::ostringstream text;
+        text << v;
+        return text.str();
+    };
+    if (type == UniformType::Bool) return value[0] != 0 ? "true" : "false";
+    const int count = componentCount(type);
+    if (count == 1) return number(value[0]);
+    std::string text = "(";
+    for (int k = 0; k < count; ++k)
+        text += (k ? ", " : "") + number(value[static_cast<std::size_t>(k)]);
+    return text + ")";
+}
+
+std::string describeUniforms(const ShaderModule& module) {
+    if (module.uniforms.empty()) return "no uniforms of its own";
+    std::string text;
+    for (const UniformInfo& info : module.uniforms) {
+        if (!text.empty()) text += ", ";
+        text += std::string(info.name) + " (" + std::string(nameOf(info.type)) + ", " +
+                uniformValueText(info.type, info.defaults) + ")";
+    }
+    return text;
+}
+
+std::vector<UniformSetting> uniformSettings(const UserShader& shader, std::span<const UniformValue> values,
+                                            bool onlyDeclared) {
+    std::vector<UniformSetting> settings;
+    for (const UniformValue& value : values) {
+        std::uint32_t index = 0;
+        const UniformInfo* info = nullptr;
+        for (const UniformInfo& candidate : shader.module->uniforms) {
+            if (candidate.name == value.name) {
+                info = &candidate;
+                break;
+            }
+            ++index;
+        }
+        if (!info) {
+            if (onlyDeclared) continue;
+            throw InputError(value.origin + ": " + shader.label + " declares no uniform " +
+                             inQuotes(value.name) + " (it has: " + describeUniforms(*shader.module) + ")");
+        }
+        settings.push_back({index, checkedValue(*info, value, shader.label)});
+    }
+    return settings;
+}
+
+}  // namespace facet
