@@ -12,6 +12,7 @@
 #include "shaders/shader_module.h"
 
 using namespace facet;
+using namespace facet::glsl;  // GLSL's functions for one lane (float, vec3), beside the eight-lane ones
 
 struct Checker {
     struct Uniforms : SceneUniforms {

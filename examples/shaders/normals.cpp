@@ -9,6 +9,7 @@
 #include "shaders/shader_module.h"
 
 using namespace facet;
+using namespace facet::glsl;  // GLSL's functions for one lane (float, vec3), beside the eight-lane ones
 
 struct Normals {
     // No uniforms of our own: the scene's (matrices, lights, material) are all there is.

@@ -16,6 +16,7 @@
 #include "shaders/shader_module.h"
 
 using namespace facet;
+using namespace facet::glsl;  // GLSL's functions for one lane (float, vec3), beside the eight-lane ones
 
 struct PhongSolution {
     struct Uniforms : SceneUniforms {};  // the material and lights come from the scene

@@ -14,6 +14,7 @@
 #include "shaders/shader_module.h"
 
 using namespace facet;
+using namespace facet::glsl;  // GLSL's functions for one lane (float, vec3), beside the eight-lane ones
 
 struct Toon {
     // The scene's uniforms, and ours with their defaults (the scene file or --uniform override them).

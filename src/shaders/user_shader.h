@@ -42,8 +42,8 @@
 #include "shading/gamma.h"
 #include "shading/lighting.h"
 
-// Last: the built-in formulas by term, and GLSL over lanes (whose one-lane min, clamp and mix are for
-// user shaders, not for the headers above).
+// The built-in formulas by term, and GLSL's functions over lanes (their one-lane versions in namespace
+// facet::glsl, which a shader's file brings in: `using namespace facet::glsl;`).
 #include "shaders/formulas.h"
 #include "shaders/lane_glsl.h"
 

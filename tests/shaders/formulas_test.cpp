@@ -13,6 +13,8 @@
 namespace facet {
 namespace {
 
+using namespace glsl;  // the one-lane functions
+
 SurfaceUniforms threeLights() {
     SurfaceUniforms u;
     u.globalAmbient = vec3(0.1f, 0.12f, 0.08f);

@@ -14,6 +14,8 @@
 namespace facet {
 namespace {
 
+using namespace glsl;  // the one-lane functions
+
 constexpr float kInf = std::numeric_limits<float>::infinity();
 const float kNaN = std::numeric_limits<float>::quiet_NaN();
 
