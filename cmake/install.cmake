@@ -52,12 +52,16 @@ if(NOT (FACET_SANITIZE OR FACET_FUZZ))
     install(TARGETS ${facet_exported} EXPORT FacetTargets
             ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
     install(EXPORT FacetTargets NAMESPACE Facet:: DESTINATION ${facet_cmakedir})
+    # FacetConfig.cmake also defines facet_add_shader() (FacetShader.cmake), with this build's
+    # floating-point flags and compiler.
     configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/FacetConfig.cmake.in
-                                  ${PROJECT_BINARY_DIR}/FacetConfig.cmake INSTALL_DESTINATION ${facet_cmakedir})
+                                  ${PROJECT_BINARY_DIR}/FacetConfig.cmake INSTALL_DESTINATION ${facet_cmakedir}
+                                  PATH_VARS facet_includedir)
     # 0.x: a minor version may change the interface.
     write_basic_package_version_file(${PROJECT_BINARY_DIR}/FacetConfigVersion.cmake
                                      COMPATIBILITY SameMinorVersion)
     install(FILES ${PROJECT_BINARY_DIR}/FacetConfig.cmake ${PROJECT_BINARY_DIR}/FacetConfigVersion.cmake
+                  ${CMAKE_CURRENT_LIST_DIR}/FacetShader.cmake
             DESTINATION ${facet_cmakedir})
 
     # The headers, under include/facet/ with their folders, so that "pipeline/state.h" and
@@ -78,6 +82,14 @@ if(NOT (FACET_SANITIZE OR FACET_FUZZ))
     foreach(header obj_import.h image_io.h image_file.h text_file.h)
         install(FILES ${PROJECT_SOURCE_DIR}/src/io/${header} DESTINATION ${facet_includedir}/io)
     endforeach()
+    # What a shader of one's own compiles against (docs/install.md, "Shader modules"): the installed facet
+    # compiles `--shader toon.cpp` with them (src/render/user_shaders.cpp finds them relative to the
+    # program), and facet_add_shader() of the CMake package builds a module with them. shadowing.h names
+    # the ray caster's header; facet_shader_abi.h, generated, holds the key the modules must carry.
+    install(DIRECTORY ${PROJECT_SOURCE_DIR}/src/shaders/ DESTINATION ${facet_includedir}/shaders
+            FILES_MATCHING PATTERN "*.h")
+    install(FILES ${PROJECT_SOURCE_DIR}/src/raycast/ray_scene.h DESTINATION ${facet_includedir}/raycast)
+    install(FILES ${PROJECT_BINARY_DIR}/generated/facet_shader_abi.h DESTINATION ${facet_includedir})
 
     # facet.pc, for builds without CMake: the pipeline. Its prefix is found from the file's own folder
     # (${pcfiledir}), so that a prefix given to cmake --install, or one moved, is right.
@@ -109,9 +121,20 @@ set(CPACK_PACKAGE_CONTACT ${FACET_PACKAGE_MAINTAINER})
 set(CPACK_DEBIAN_PACKAGE_MAINTAINER ${FACET_PACKAGE_MAINTAINER})
 set(CPACK_DEBIAN_PACKAGE_SECTION graphics)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+# Recommends: what `facet render --shader toon.cpp` needs to compile a shader of one's own: the compiler
+# facet was built with (it runs that one, FACET_SHADER_COMPILER of src/render/CMakeLists.txt) and GLM's
+# headers, which the installed shader headers include. Recommended, not required: facet draws with its
+# built-in shaders and loads ready-built modules (.so) without them, and says what is missing when a
+# .cpp cannot be compiled.
+if(CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    set(facet_shader_compiler_package clang)
+else()
+    set(facet_shader_compiler_package g++)
+endif()
+set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "${facet_shader_compiler_package}, libglm-dev")
 # OSMesa: facet compare and facet bench --vs-mesa load it at run time (the rest runs without it). The
 # others: what building against the installed headers needs besides a C++20 compiler (find_package(Facet)).
-set(CPACK_DEBIAN_PACKAGE_SUGGESTS "libosmesa6, libglm-dev, libpng-dev, libtinyobjloader-dev, nlohmann-json3-dev")
+set(CPACK_DEBIAN_PACKAGE_SUGGESTS "libosmesa6, libpng-dev, libtinyobjloader-dev, nlohmann-json3-dev")
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)  # facet_<version>_<architecture>.deb
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 include(CPack)

@@ -27,6 +27,10 @@ struct BenchOptions {
     int threads = 0;  // 0: one per hardware thread
     // --aa: the anti-aliasing of the timed frames (the scene file's, else none, when not given).
     std::optional<Antialiasing> antialiasing;
+    // --shader FILE, --uniform NAME=VALUE: the frame drawn with a shader of one's own, timed against
+    // the built-in per-pixel Blinn-Phong frame of the same model.
+    std::optional<ShaderSpec> shader;
+    std::vector<UniformValue> uniforms;
 
     // --instruction-sets
     bool instructionSets = false;
@@ -59,6 +63,9 @@ Scene benchScene(const BenchOptions& options);
 // Renders options.frames frames on options.threads threads and prints a report to `out`:
 // the median, minimum and maximum milliseconds per frame, the triangle and fragment counts, and the
 // cost of clearing the framebuffer alone (the floor under any frame). Throws InputError on bad input.
+// With options.shader: the frames drawn with that shader and the same model's frames drawn with the
+// built-in per-pixel Blinn-Phong shader take turns, and the report gives both medians (wall-clock and
+// the process's CPU time) and their ratios, the shader's over the built-in's.
 void runBench(const BenchOptions& options, std::ostream& out);
 
 // The frame of options.model timed with each copy of the hot path this CPU runs (baseline, avx2, avx512:

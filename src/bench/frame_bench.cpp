@@ -19,11 +19,89 @@ Scene benchScene(const BenchOptions& options) {
     scene.width = options.width;
     scene.height = options.height;
     if (options.antialiasing) scene.pipeline.antialiasing = *options.antialiasing;
+    if (options.shader) scene.shader = options.shader;
+    scene.uniforms.insert(scene.uniforms.end(), options.uniforms.begin(), options.uniforms.end());
     return scene;
 }
 
+namespace {
+
+// The same scene drawn by the built-in per-pixel Blinn-Phong shader: no shader of one's own anywhere.
+Scene builtInBlinnPhong(Scene scene) {
+    scene.shader.reset();
+    scene.uniforms.clear();
+    scene.lighting.model = ReflectionModel::BlinnPhong;
+    scene.lighting.shading = ShadingFrequency::Phong;
+    for (ObjectSpec& object : scene.objects) {
+        object.shader.reset();
+        object.reflection.reset();
+        object.shading.reset();
+    }
+    return scene;
+}
+
+// --shader: the shader's frames and the built-in's, taking turns frame by frame (a shared machine
+// drifts), each with its own framebuffer and memory.
+void runShaderBench(const BenchOptions& options, const Scene& scene, std::ostream& out) {
+    using Clock = std::chrono::steady_clock;
+    struct Side {
+        const char* label;
+        PreparedScene prepared;
+        Framebuffer framebuffer;
+        FrameMemory memory;
+        DrawStats stats;
+        std::vector<double> wallMs, cpuMs;
+    };
+    Side sides[2] = {{"shader", prepareScene(scene), Framebuffer(scene.width, scene.height), {}, {}, {}, {}},
+                     {"built-in",
+                      prepareScene(builtInBlinnPhong(scene)),
+                      Framebuffer(scene.width, scene.height),
+                      {},
+                      {},
+                      {},
+                      {}}};
+    const std::string label = scene.shader ? scene.shader->source.filename().string() : "the scene's shaders";
+    DrawContext context(options.threads);
+    for (Side& side : sides)  // warm-up: caches, buffers, threads
+        side.stats = renderFrame(side.prepared, side.framebuffer, context, side.memory).draw;
+    for (int i = 0; i < options.frames; ++i) {
+        for (int k = 0; k < 2; ++k) {
+            Side& side = sides[(i + k) % 2];  // each goes first every other round
+            const double cpuStart = processCpuMs();
+            const auto start = Clock::now();
+            side.stats = renderFrame(side.prepared, side.framebuffer, context, side.memory).draw;
+            side.wallMs.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+            side.cpuMs.push_back(processCpuMs() - cpuStart);
+        }
+    }
+    out << std::fixed << std::setprecision(2);
+    out << "model      " << options.model.string() << "\n";
+    out << "image      " << scene.width << "x" << scene.height << ", " << context.pool.threads()
+        << (context.pool.threads() == 1 ? " thread" : " threads") << "\n";
+    out << coreHandoffLine(context.pool.threads());
+    out << "code       compiled for " << describeFrameKernels() << "\n";
+    out << "triangles  " << sides[0].prepared.triangleCount << "\n";
+    out << "frames     " << options.frames << " of each, taking turns, after 1 warm-up each\n";
+    for (const Side& side : sides) {
+        const std::string name = &side == &sides[0] ? label : "built-in per-pixel Blinn-Phong";
+        out << (&side == &sides[0] ? "shader     " : "built-in   ") << name << ": median "
+            << median(side.wallMs) << " ms/frame (min "
+            << *std::min_element(side.wallMs.begin(), side.wallMs.end()) << "), CPU " << median(side.cpuMs)
+            << " ms/frame; fragments " << side.stats.fragmentsShaded << " shaded, "
+            << side.stats.fragmentsWritten << " written\n";
+    }
+    const double wallRatio = median(sides[0].wallMs) / median(sides[1].wallMs);
+    const double cpuRatio = median(sides[0].cpuMs) / median(sides[1].cpuMs);
+    out << std::setprecision(3);
+    out << "ratio      " << wallRatio << "x the built-in's frame (wall-clock medians), " << cpuRatio
+        << "x (CPU time medians)\n";
+}
+
+}  // namespace
+
 void runBench(const BenchOptions& options, std::ostream& out) {
     const Scene scene = benchScene(options);
+    if (options.shader) return runShaderBench(options, scene, out);
     const PreparedScene prepared = prepareScene(scene);
 
     Framebuffer framebuffer(scene.width, scene.height);

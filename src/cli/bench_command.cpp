@@ -62,6 +62,25 @@ CLI::App* addBenchCommand(CLI::App& app, facet::BenchOptions& options) {
     addKnobOption(*command, *facet::sceneKnobNamed("aa"), [&options](const std::string& value) {
         options.antialiasing = parseName<facet::Antialiasing>(value);
     });
+    command
+        ->add_option_function<std::string>(
+            "--shader",
+            [&options](const std::string& file) {
+                options.shader = facet::ShaderSpec{file, {}};
+            },
+            "Time the frame drawn with a shader of your own (a C++ file or a .so, as facet render "
+            "--shader), frames taking turns with the built-in per-pixel Blinn-Phong's on the same model: "
+            "both medians and their ratio")
+        ->type_name("FILE");
+    command
+        ->add_option_function<std::vector<std::string>>(
+            "--uniform",
+            [&options](const std::vector<std::string>& values) {
+                for (const std::string& value : values)
+                    options.uniforms.push_back(parseUniform(value));
+            },
+            "With --shader: set a uniform of the shader, NAME=VALUE (repeat for more)")
+        ->type_name("NAME=VALUE");
     command->add_flag("--instruction-sets", options.instructionSets,
                       "Time the frame with each instruction-set copy of its hot path this CPU runs (what "
                       "FACET_ISA chooses among), frames taking turns, and check their images are identical");
@@ -96,6 +115,14 @@ CLI::App* addBenchCommand(CLI::App& app, facet::BenchOptions& options) {
 
 int bench(facet::BenchOptions& options, const CLI::App& command) {
     chooseDefaultBenchModels(options, command.count("model") > 0);
+    // --shader times plain frames against the built-in's; the other modes draw fixed configurations.
+    if (command.count("--uniform") && !options.shader)
+        throw facet::InputError("--uniform goes with --shader FILE");
+    if (options.shader)
+        for (const char* option :
+             {"--instruction-sets", "--vs-mesa", "--sort", "--transparency", "--reference"})
+            if (command.count(option))
+                throw facet::InputError(std::string("--shader does not go with ") + option);
     // --aa times plain frames; the other modes draw fixed configurations.
     if (command.count("--aa"))
         for (const char* option : {"--vs-mesa", "--sort", "--transparency", "--reference"})

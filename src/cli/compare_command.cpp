@@ -1,15 +1,22 @@
 #include "cli/compare_command.h"
 
 #include <algorithm>
+#include <cctype>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <string_view>
 
 #include "base/errors.h"
 #include "io/image_io.h"
 #include "oracle/compare.h"
 #include "oracle/reference_compare.h"
+#include "oracle/shader_compare.h"
+#include "shading/gamma.h"
 #include "shading/shadow.h"
+#include "step/versus.h"
+#include "step/walk.h"
 
 namespace facet::cli {
 
@@ -17,6 +24,8 @@ namespace {
 
 // Exit status when the images differ beyond the bar (0: they agree; 1: bad input; 2: bad command line).
 constexpr int kImagesDiffer = 3;
+// --against: the images differ (as diff(1) says so).
+constexpr int kShaderDiffers = 1;
 
 }  // namespace
 
@@ -64,7 +73,22 @@ CLI::App* addCompareCommand(CLI::App& app, CompareArgs& args) {
         ->needs(reference);
     command->add_option("--reference-image", args.referenceImage, "With --reference: write its image here")
         ->needs(reference);
+    CLI::Option* against = addChoice(
+        *command, "--against", args.against,
+        "With --shader: render the scene with your shader and with this built-in reflection model (both "
+        "per pixel; your shader sees the model in its uniforms), count the pixels whose 8-bit codes differ, "
+        "and trace the first one in both side by side (as facet step --versus does); no OpenGL");
+    against->excludes(reference);
+    for (const char* mesaOnly : {"--driver", "--mesa", "--diff"})
+        against->excludes(command->get_option(mesaOnly));
+    command
+        ->add_flag("--no-trace", args.noTrace,
+                   "With --against: give the first differing pixel's colours and the facet step command "
+                   "that traces it, not the traces themselves")
+        ->needs(against);
     command->footer(
+        "With --against: exit status 0 when the two images are identical, 1 when they differ (as diff(1); "
+        "bad input is 1 too, with a \"facet: error:\" line); --facet writes your shader's image. "
         "Exit status: 0 when at least 99.5% of the pixels are within 2/255 on every channel, 3 when not, "
         "1 for bad input, 2 for a bad command line. With --reference: 0 when no pixel shows another "
         "surface than the reference's except at an edge, those edge pixels are under 1% of the covered "
@@ -128,6 +152,89 @@ int compareAgainstReference(const CompareArgs& args, const facet::Scene& scene) 
     return result.agrees() ? 0 : kImagesDiffer;
 }
 
+// A word as a POSIX shell reads it back: as it is when it holds only safe characters, else in single
+// quotes.
+std::string shellWord(const std::string& word) {
+    const bool safe = !word.empty() && std::all_of(word.begin(), word.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) ||
+               std::string_view("_./,=:+-@%").find(c) != std::string_view::npos;
+    });
+    if (safe) return word;
+    std::string quoted = "'";
+    for (const char c : word)
+        quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return quoted + "'";
+}
+
+// A colour as its 8-bit codes: "(201, 143, 96)".
+std::string codes(const facet::vec4& color, facet::ColorEncoding encoding) {
+    std::string text = "(";
+    for (int k = 0; k < 3; ++k) {
+        if (k) text += ", ";
+        text += std::to_string(int(facet::encodeChannel(color[k], encoding)));
+    }
+    return text + ")";
+}
+
+// facet compare --shader FILE --against MODEL.
+int compareAgainstBuiltIn(const CompareArgs& args, const facet::Scene& scene) {
+    if (!scene.shader) {
+        bool any = false;
+        for (const facet::ObjectSpec& object : scene.objects)
+            any = any || object.shader.has_value();
+        if (!any)
+            throw facet::InputError(
+                "--against compares a shader of your own with a built-in one: give --shader FILE");
+    }
+    if (args.facetImage) facet::checkImageDestination(*args.facetImage, scene.width, scene.height);
+    const facet::ReflectionModel model = *args.against;
+    const std::string modelName(nameOf(model));
+    const facet::ShaderAgainstScenes scenes = facet::shaderAgainstScenes(scene, model);
+    facet::PreparedScene mine, builtIn;
+    const facet::ShaderComparison c =
+        facet::compareShaderWithBuiltIn(scenes, args.scene.threads, &mine, &builtIn);
+    const std::string shaderName =
+        scene.shader ? scene.shader->source.filename().string() : std::string("the scene's shaders");
+    const std::string builtInName = "built-in " + modelName;
+    std::cout << "facet compare --against " << modelName << ": " << args.scene.input << ", " << shaderName
+              << " against the built-in " << modelName << " shader (per pixel), " << c.width << "x"
+              << c.height << "\n";
+    if (args.facetImage) facet::writeImage(*args.facetImage, c.mine, c.encoding);
+    if (c.identical()) {
+        std::cout << "identical: every pixel has the same 8-bit codes\n";
+        return 0;
+    }
+    const std::size_t pixels = static_cast<std::size_t>(c.width) * c.height;
+    char share[32];
+    std::snprintf(share, sizeof share, "%.3f%%", 100.0 * double(c.differing) / double(pixels));
+    const auto [x, y] = *c.first;
+    std::cout << "differ: " << c.differing << " of " << pixels << " pixels (" << share << "), by at most "
+              << c.largest << " in 8-bit codes\n";
+    std::cout << "first differing pixel (reading order): " << x << "," << y << ": " << shaderName << " "
+              << codes(c.mine.at(x, y), c.encoding) << ", " << builtInName << " "
+              << codes(c.builtIn.at(x, y), c.encoding) << "\n";
+    // The facet step command that shows the same: the built-in side is the --versus.
+    std::string command = "facet step " + shellWord(args.scene.input) + " --pixel " + std::to_string(x) +
+                          "," + std::to_string(y) + " --width " + std::to_string(c.width) + " --height " +
+                          std::to_string(c.height) + " --reflection " + modelName + " --shading phong";
+    if (scene.shader) command += " --shader " + shellWord(scene.shader->source.string());
+    for (const std::string& uniform : args.scene.uniforms)
+        command += " --uniform " + shellWord(uniform);
+    std::cout << "trace it: " << command << " --print\n";
+    if (args.noTrace) return kShaderDiffers;
+    // Both traces of that pixel, side by side (facet step --versus's layout), the built-in following
+    // the triangle that gave the pixel its colour in the shader's frame.
+    facet::DrawContext context(args.scene.threads);
+    facet::step::StepRequest request;
+    request.pixel = *c.first;
+    const facet::step::StepTrace traced = facet::step::traceStep(mine, context, request);
+    facet::step::StepRequest other = request;
+    if (traced.walk.triangle) other.triangle = traced.walk.triangle->number;
+    const facet::step::StepTrace otherTraced = facet::step::traceStep(builtIn, context, other);
+    std::cout << "\n" << facet::step::sideBySide(traced.walk, shaderName, otherTraced.walk, builtInName);
+    return kShaderDiffers;
+}
+
 }  // namespace
 
 int compare(const CompareArgs& args) {
@@ -147,6 +254,7 @@ int compare(const CompareArgs& args) {
         throw facet::InputError(message);
     }
     if (args.reference) return compareAgainstReference(args, scene);
+    if (args.against) return compareAgainstBuiltIn(args, scene);
     for (const auto& path : {args.facetImage, args.mesaImage, args.diffImage})
         if (path) facet::checkImageDestination(*path, scene.width, scene.height);
 

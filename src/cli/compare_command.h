@@ -21,6 +21,10 @@ struct CompareArgs {
     std::optional<std::string> shadowMapSizes;  // "256,512": the shadow-map table's sizes
     std::optional<std::string> csv;             // the shadow-map table as CSV
     std::optional<std::string> referenceImage;  // the reference's image
+    // --against MODEL (with --shader): the shader of one's own against the built-in reflection model,
+    // both per pixel, with the rasterizer alone.
+    std::optional<facet::ReflectionModel> against;
+    bool noTrace = false;  // --no-trace: with --against, no side-by-side trace of the first pixel
 };
 
 // Adds the `compare` command and its options to `app`, filling `args` when it is parsed.

@@ -9,6 +9,7 @@
 
 #include "pipeline/observer.h"
 #include "reference/reference.h"
+#include "render/draw_geometry.h"
 #include "shading/gamma.h"
 
 namespace facet {
@@ -40,14 +41,13 @@ struct SurfaceRecorder : NullObserver {
     }
 };
 
-// The eye-space corners of a surface's triangle, in double as the reference has them.
+// The eye-space corners of a surface's triangle, in double as the reference has them (where a user
+// shader's vertex part puts them).
 std::array<dvec3, 3> eyeCorners(const PreparedScene& prepared, const RayHit& surface) {
     const PreparedDraw& d = prepared.draws[surface.mesh];
     std::array<dvec3, 3> corners;
-    for (int k = 0; k < 3; ++k) {
-        const vec3& p = d.vertices[d.indices[3 * std::size_t(surface.triangle) + k]].position;
-        corners[k] = dvec3(d.viewFromObjectExact * dvec4(dvec3(p), 1.0));
-    }
+    for (int k = 0; k < 3; ++k)
+        corners[k] = eyePosition(prepared, d, d.indices[3 * std::size_t(surface.triangle) + k]);
     return corners;
 }
 

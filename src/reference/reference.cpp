@@ -5,10 +5,13 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <optional>
 #include <vector>
 
 #include "pipeline/blend.h"
 #include "raycast/ray_scene.h"
+#include "render/draw_geometry.h"
 #include "shaders/shaders.h"
 
 namespace facet {
@@ -22,16 +25,49 @@ using glm::dvec3;
 using glm::dvec4;
 
 // A draw as the reference shades it: its corners in eye space in double, and uniforms asking for the
-// exact formulas.
+// exact formulas. A draw with a shader of one's own keeps its vertex part's output instead of normals
+// and texture coordinates: its corners where the vertex part puts them (eyePositions), and its
+// varyings, which each hit interpolates in double.
 struct ReferenceDraw {
     std::vector<dvec3> positions;  // eye space
     std::vector<dvec3> normals;    // eye space, not unit length (the shader normalises)
     std::vector<dvec2> uvs;
     SurfaceUniforms uniforms;
+    const ShaderModule* userShader = nullptr;
+    std::size_t varyingCount = 0;  // floats per vertex
+    std::vector<float> varyings;   // the vertex part's, varyingCount per vertex
+    // An opaque draw whose shader may discard: traced as see-through, the nearest fragment it keeps
+    // on a ray being the opaque surface there.
+    bool discardsOpaque = false;
 };
 
-ReferenceDraw referenceDraw(const PreparedDraw& draw, const SceneShadows* shadows, std::uint8_t terms) {
+ReferenceDraw referenceDraw(const PreparedScene& prepared, const PreparedDraw& draw,
+                            const SceneShadows* shadows, std::uint8_t terms) {
     ReferenceDraw out;
+    out.uniforms = draw.uniforms;
+    out.uniforms.precision = MathPrecision::Exact;      // std::pow and std::exp, in double
+    out.uniforms.normalization = Normalization::Exact;  // 1/sqrt in double
+    out.uniforms.brdf.fresnel = FresnelModel::Exact;    // the exact dielectric Fresnel, not Schlick's
+    out.uniforms.shadows = shadows;                     // ray-cast, whatever the scene's method
+    out.uniforms.terms = terms;
+    // Bilinear at each ray's point, whatever the draw's filter: with N×N rays a pixel the reference
+    // integrates the pixel's footprint itself, the truth a filter (nearest, trilinear) approximates.
+    out.uniforms.textureFilter = TextureFilter::Bilinear;
+    if (draw.userShader.module) {
+        // The vertex part at every vertex: where it puts the corners, and the varyings.
+        const ShaderModule& module = *draw.userShader.module;
+        out.userShader = &module;
+        out.varyingCount = module.varyingNames.size();
+        out.discardsOpaque = module.discards && !draw.transparent;
+        out.varyings.resize(draw.vertices.size() * out.varyingCount + 1);
+        const ShaderCall call = userShaderCall(prepared, draw, &out.uniforms);
+        out.positions.reserve(draw.vertices.size());
+        for (std::size_t v = 0; v < draw.vertices.size(); ++v) {
+            const vec4 clip = module.shadeVertex(draw.vertices[v], call, &out.varyings[v * out.varyingCount]);
+            out.positions.push_back(eyeFromClip(prepared, clip));
+        }
+        return out;
+    }
     const dmat4& viewFromObject = draw.viewFromObjectExact;
     // Normals transform by the inverse transpose; its scale does not matter (they are normalised).
     const dmat3 normalFromObject = glm::transpose(glm::inverse(dmat3(viewFromObject)));
@@ -43,15 +79,6 @@ ReferenceDraw referenceDraw(const PreparedDraw& draw, const SceneShadows* shadow
         out.normals.push_back(normalFromObject * dvec3(v.normal));
         out.uvs.push_back(dvec2(v.uv));
     }
-    out.uniforms = draw.uniforms;
-    out.uniforms.precision = MathPrecision::Exact;      // std::pow and std::exp, in double
-    out.uniforms.normalization = Normalization::Exact;  // 1/sqrt in double
-    out.uniforms.brdf.fresnel = FresnelModel::Exact;    // the exact dielectric Fresnel, not Schlick's
-    out.uniforms.shadows = shadows;                     // ray-cast, whatever the scene's method
-    out.uniforms.terms = terms;
-    // Bilinear at each ray's point, whatever the draw's filter: with N×N rays a pixel the reference
-    // integrates the pixel's footprint itself, the truth a filter (nearest, trilinear) approximates.
-    out.uniforms.textureFilter = TextureFilter::Bilinear;
     return out;
 }
 
@@ -136,14 +163,32 @@ LinearImage renderReference(const PreparedScene& prepared, const ReferenceOption
     const int n = std::clamp(options.samples, 1, kMaxReferenceSamples);
     const int width = prepared.scene.width, height = prepared.scene.height;
 
-    // The BVHs, of the scene as placed now.
+    // The BVHs, of the scene as placed now (a user shader's triangles where its vertex part puts them).
     std::vector<std::vector<vec3>> positions;
-    const std::vector<RayMesh> meshes = rayMeshes(prepared, positions);
+    std::vector<RayMesh> meshes = rayMeshes(prepared, positions);
+    // Opaque draws whose shader may discard are traced as see-through by the camera rays (the nearest
+    // fragment they keep is the opaque surface); the shadow rays see them opaque, as the rasterizer's
+    // ray-cast shadows do, through a BVH of their own.
+    bool anyDiscardingOpaque = false;
+    for (std::size_t k = 0; k < prepared.draws.size(); ++k) {
+        const PreparedDraw& d = prepared.draws[k];
+        if (d.userShader.module && d.userShader.module->discards && !d.transparent) {
+            meshes[k].opaque = false;
+            anyDiscardingOpaque = true;
+        }
+    }
     const RayScene rays(meshes);
+    std::unique_ptr<RayScene> shadowRays;
+    if (anyDiscardingOpaque) {
+        std::vector<RayMesh> shadowMeshes = meshes;
+        for (std::size_t k = 0; k < prepared.draws.size(); ++k)
+            shadowMeshes[k].opaque = !prepared.draws[k].transparent;
+        shadowRays = std::make_unique<RayScene>(shadowMeshes);
+    }
 
     // Shadows: every light that casts them, by a ray.
     SceneShadows shadows;
-    shadows.rays = &rays;
+    shadows.rays = shadowRays ? shadowRays.get() : &rays;
     shadows.rayOffset = kShadowRayOffset * prepared.sceneExtent;
     bool anyShadows = false;
     for (std::size_t i = 0; i < kMaxLights; ++i) {
@@ -154,19 +199,40 @@ LinearImage renderReference(const PreparedScene& prepared, const ReferenceOption
     std::vector<ReferenceDraw> draws;
     draws.reserve(prepared.draws.size());
     for (const PreparedDraw& d : prepared.draws)
-        draws.push_back(referenceDraw(d, anyShadows ? &shadows : nullptr, options.terms));
+        draws.push_back(referenceDraw(prepared, d, anyShadows ? &shadows : nullptr, options.terms));
 
     // Camera rays: from the eye through the near plane's point of each sample, t from near to far.
     const ReferenceCamera camera(prepared);
     const RayScene::Culling culling = camera.culling();
     const dvec4 background(prepared.clearColor);
 
-    // The colour seen along one ray, and the shading of one hit.
-    const auto shadeHit = [&](const Ray& ray, const RayHit& hit) {
+    // The colour seen along one ray, and the shading of one hit: nothing where a user shader discards.
+    // A user shader's varyings are interpolated in double with the hit's barycentrics (in eye space,
+    // which is perspective-correct interpolation) and its fragment part runs in float: the reference is
+    // exact for it in coverage, depth and interpolation, and shades as the shader's own code does.
+    const auto shadeHit = [&](const Ray& ray, const RayHit& hit) -> std::optional<dvec4> {
         const ReferenceDraw& draw = draws[hit.mesh];
         const std::uint32_t* corner = &prepared.draws[hit.mesh].indices[3 * hit.triangle];
         const Barycentric b = intersect(ray.origin, ray.direction, draw.positions[corner[0]],
                                         draw.positions[corner[1]], draw.positions[corner[2]], hit.t);
+        if (draw.userShader) {
+            // A shader has at most kMaxVaryingFloats (pipeline/types.h: its VaryingsT is checked).
+            float varyings[kMaxVaryingFloats + 1] = {};
+            const std::size_t count = std::min(draw.varyingCount, std::size_t(kMaxVaryingFloats));
+            const float* v0 = &draw.varyings[corner[0] * draw.varyingCount];
+            const float* v1 = &draw.varyings[corner[1] * draw.varyingCount];
+            const float* v2 = &draw.varyings[corner[2] * draw.varyingCount];
+            for (std::size_t i = 0; i < count; ++i)
+                varyings[i] = float(b.weights.x * double(v0[i]) + b.weights.y * double(v1[i]) +
+                                    b.weights.z * double(v2[i]));
+            FragmentInput in;
+            in.varyings = varyings;
+            in.barycentric = vec3(b.weights);
+            const ShaderCall call = userShaderCall(prepared, prepared.draws[hit.mesh], &draw.uniforms);
+            vec4 color(0.0f);
+            if (!draw.userShader->shadeFragment(in, call, color, nullptr)) return std::nullopt;
+            return dvec4(color);
+        }
         PerPixelSurface::VaryingsT<double> in;
         in.position = b.weights.x * draw.positions[corner[0]] + b.weights.y * draw.positions[corner[1]] +
                       b.weights.z * draw.positions[corner[2]];
@@ -221,17 +287,41 @@ LinearImage renderReference(const PreparedScene& prepared, const ReferenceOption
                 const std::size_t k = static_cast<std::size_t>(x) * samplesPerPixel + s;
                 const Ray& ray = rowRays[k];
                 dvec4 color = background;
-                if (opaque[k].hit()) {
-                    color = shadeHit(ray, opaque[k]);
+                RayHit& front = opaque[k];  // the opaque surface the sample shows
+                std::optional<dvec4> frontColor;
+                if (front.hit()) frontColor = shadeHit(ray, front);  // never discarded: see above
+                std::size_t inFront = 0;  // of `see`, the hits in front of the opaque surface
+                if (anyTransparent) {
+                    const double until = front.hit() ? double(front.t) : ray.tfar;
+                    rays.allTransparent(ray.origin, ray.direction, ray.tnear, until, culling, see);
+                    // The nearest fragment an opaque draw that discards keeps is the opaque surface.
+                    inFront = see.size();
+                    for (std::size_t h = 0; h < see.size(); ++h) {
+                        if (!draws[see[h].mesh].discardsOpaque) continue;
+                        if (std::optional<dvec4> kept = shadeHit(ray, see[h])) {
+                            front = see[h];
+                            frontColor = kept;
+                            inFront = h;
+                            break;
+                        }
+                    }
+                }
+                if (frontColor) {
+                    color = *frontColor;
                     ++rowSurfaceHits;
                 }
-                if (anyTransparent) {
-                    const double until = opaque[k].hit() ? double(opaque[k].t) : ray.tfar;
-                    rays.allTransparent(ray.origin, ray.direction, ray.tnear, until, culling, see);
-                    rowTransparentHits += see.size();
-                    if (!opaque[k].hit() && !see.empty()) ++rowSurfaceHits;
-                    for (auto hit = see.rbegin(); hit != see.rend(); ++hit)
-                        color = blend(prepared.draws[hit->mesh].uniforms.blend, shadeHit(ray, *hit), color);
+                if (inFront > 0) {
+                    bool any = false;
+                    for (std::size_t h = inFront; h-- > 0;) {
+                        const RayHit& hit = see[h];
+                        if (draws[hit.mesh].discardsOpaque) continue;  // discarded (above)
+                        ++rowTransparentHits;
+                        if (std::optional<dvec4> shaded = shadeHit(ray, hit)) {
+                            color = blend(prepared.draws[hit.mesh].uniforms.blend, *shaded, color);
+                            any = true;
+                        }
+                    }
+                    if (!frontColor && any) ++rowSurfaceHits;
                 }
                 sum += color;
             }

@@ -11,7 +11,13 @@
 //     pow and exp exact, Fresnel exact, at every hit (per-pixel lighting whatever the draw's frequency);
 //   - transparency exact: every see-through surface on the ray, composited in depth order over the
 //     nearest opaque one, each with its own blend;
-//   - shadows from every light that casts them, always by a ray to the light (never a map).
+//   - shadows from every light that casts them, always by a ray to the light (never a map);
+//   - a draw with a shader of one's own (--shader): its vertex part run at every vertex, the triangles
+//     traced where it puts them (its clip positions mapped back to eye space in double), its varyings
+//     interpolated at the hit in double (perspective-correct: linear in eye space) and handed to its
+//     fragment part, which runs in float as the shader's code is written: for such a draw the reference
+//     is exact in coverage, depth and interpolation, not in the shading's arithmetic. Where the fragment
+//     part discards, the ray goes on to what lies behind.
 #pragma once
 
 #include <cstdint>

@@ -3,6 +3,7 @@
 #include <dlfcn.h>
 #include <fcntl.h>
 #include <spawn.h>
+#include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -12,10 +13,12 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <map>
 #include <mutex>
+#include <random>
 #include <sstream>
 
 #include "base/errors.h"
@@ -159,22 +162,27 @@ int runCommand(const std::vector<std::string>& command, const fs::path& log) {
     return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
-// Loads a module file and checks that it is a shader module built for this facet.
+// Loads a module file and checks that it is a shader module built for this facet. A refused module is
+// unloaded again, so that a later dlopen of the same path (the cache's module compiled anew) loads the
+// new file instead of finding the refused one by its name.
 const ShaderModule* openModule(const fs::path& file, const std::string& label) {
     void* handle = ::dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (!handle) throw InputError(label + ": the shader module does not load: " + ::dlerror());
+    auto refuse = [&](const std::string& why) {
+        ::dlclose(handle);
+        return InputError(label + ": " + why);
+    };
     using Abi = const char* (*)();
     const auto abi = reinterpret_cast<Abi>(::dlsym(handle, "facet_shader_abi"));
     const auto entry = reinterpret_cast<const ShaderModule* (*)()>(::dlsym(handle, "facet_shader_module"));
     if (!abi || !entry)
-        throw InputError(label +
-                         ": not a facet shader module (it exports no facet_shader_abi or "
-                         "facet_shader_module: does the shader's file end with FACET_SHADER(Name)?)");
-    const std::string_view built = abi();
+        throw refuse(
+            "not a facet shader module (it exports no facet_shader_abi or facet_shader_module: does the "
+            "shader's file end with FACET_SHADER(Name)?)");
+    const std::string built = abi();
     if (built != FACET_SHADER_ABI)
-        throw InputError(label + ": the shader module was built for " + std::string(built) +
-                         ", and this is " + FACET_SHADER_ABI +
-                         ": build it again against this facet (or give its .cpp file)");
+        throw refuse("the shader module was built for " + built + ", and this is " + FACET_SHADER_ABI +
+                     ": build it again against this facet (or give its .cpp file)");
     return entry();
 }
 
@@ -190,18 +198,32 @@ const ShaderModule* compiledModule(const fs::path& source, const std::string& la
     const std::vector<fs::path> headers = headerFolders();
     for (const fs::path& folder : headers)
         key += "\n-I" + folder.string();
-    key += "\n" + hex(fnv1a(text, 0xcbf29ce484222325ull)) + hex(fnv1a(text, 0x84222325cbf29ce4ull)) + "\n";
+    // Appended piece by piece: GCC 12 reports a false -Wrestrict on "…" + std::string chains.
+    key += '\n';
+    key += hex(fnv1a(text, 0xcbf29ce484222325ull));
+    key += hex(fnv1a(text, 0x84222325cbf29ce4ull));
+    key += '\n';
     const std::string name = source.stem().string() + "-" + hex(fnv1a(key, 0xcbf29ce484222325ull)) +
                              hex(fnv1a(key, 0x9e3779b97f4a7c15ull));
     const fs::path folder = shaderCacheFolder();
     const fs::path module = folder / (name + ".so");
     const fs::path keyFile = folder / (name + ".key");
     std::error_code error;
-    if (fs::exists(module, error) && fs::exists(keyFile, error)) {
+    // The cached module when there is one for this key whose included files are unchanged, else null. A
+    // cached module that does not load (damaged: cut short by a full disk, overwritten) is compiled
+    // again rather than standing in the way until someone empties the cache.
+    auto cached = [&](bool sayWhy) -> const ShaderModule* {
+        if (!fs::exists(module, error) || !fs::exists(keyFile, error)) return nullptr;
         const std::string stored = readWhole(keyFile);
-        if (stored.starts_with(key) && stampsStillHold(stored.substr(key.size())))
+        if (!stored.starts_with(key) || !stampsStillHold(stored.substr(key.size()))) return nullptr;
+        try {
             return openModule(module, label);
-    }
+        } catch (const InputError& refused) {
+            if (sayWhy) std::cerr << "facet: " << refused.what() << ": compiling it again\n";
+            return nullptr;
+        }
+    };
+    if (const ShaderModule* found = cached(true)) return found;
     bool found = false;
     for (const fs::path& folder : headers)
         found = found || fs::exists(folder / "shaders" / "user_shader.h", error);
@@ -215,12 +237,42 @@ const ShaderModule* compiledModule(const fs::path& source, const std::string& la
     if (error)
         throw InputError(label + ": cannot make the shader cache " + folder.string() + ": " +
                          error.message());
-    // Written under names of this process's own, then renamed: a run at the same time finds either no
-    // module or a whole one.
-    const std::string unique = "." + std::to_string(::getpid()) + ".tmp";
+    // One run compiles a shader at a time: the others (a job array's tasks started together) wait for
+    // it and load its module, instead of each compiling the same. The lock goes with the process, so
+    // one killed while compiling holds nobody up; where the file system has no locks, the runs compile
+    // side by side, which the names below keep safe.
+    const fs::path lockFile = folder / (name + ".lock");
+    const int lock = ::open(lockFile.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (lock < 0)
+        throw InputError(label + ": cannot write in the shader cache " + folder.string() + ": " +
+                         std::strerror(errno));
+    const struct Unlock {
+        int fd;
+        ~Unlock() { ::close(fd); }
+    } unlock{lock};
+    if (::flock(lock, LOCK_EX | LOCK_NB) != 0 && errno == EWOULDBLOCK) {
+        std::cerr << "facet: waiting for another facet compiling " << label << "\n";
+        while (::flock(lock, LOCK_EX) != 0 && errno == EINTR) {
+        }
+    }
+    // Another run may have compiled it since the look above.
+    if (const ShaderModule* found = cached(false)) return found;
+    // Written under names of this run's own, then renamed: a run at the same time (another process, or
+    // one on another machine or in another container sharing the folder, where process ids repeat) finds
+    // either no module or a whole one, and two runs compiling at once each rename a whole module into
+    // place, the same module.
+    std::string unique = ".";
+    unique += std::to_string(::getpid());
+    unique += '-';
+    unique += hex(std::random_device()());
+    unique += ".tmp";
     const fs::path partial = folder / (name + unique + ".so");
     const fs::path dependencies = folder / (name + unique + ".d");
     const fs::path log = folder / (name + unique + ".log");
+    // A folder one cannot write in would otherwise surface as the compiler failing to start.
+    if (!std::ofstream(log))
+        throw InputError(label + ": cannot write in the shader cache " + folder.string() + ": " +
+                         std::strerror(errno));
     std::vector<std::string> command = shaderCompileCommand(source, partial);
     command.insert(command.end(), {"-MD", "-MF", dependencies.string()});
     std::cerr << "facet: compiling " << label << " (the first time only: the module is kept in "

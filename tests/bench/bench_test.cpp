@@ -14,6 +14,7 @@
 #include "bench/process_stats.h"
 #include "render/frame_kernels.h"
 #include "support/temp_folder.h"
+#include "support/user_shader_files.h"
 
 namespace facet {
 namespace {
@@ -184,6 +185,36 @@ TEST_F(BenchTest, InstructionSetsAreEachTimedAndAgree) {
             EXPECT_NE(row.find("image identical to " + widest + "'s"), std::string::npos) << row;
         }
     }
+}
+
+// facet bench --shader: the shader's frames and the built-in per-pixel Blinn-Phong's take turns, and
+// the report gives both and their ratio. Breaks caught: the built-in side left drawing with the shader
+// (or the shader side with the built-in: the written fragments of the two sides then agree where the
+// discarding shader writes fewer of them), the ratio's line missing.
+TEST_F(BenchTest, ShaderIsTimedAgainstTheBuiltInBlinnPhong) {
+    const testing_support::OwnShaderCache cache;
+    BenchOptions options;
+    options.model = FACET_SOURCE_DIR "/models/spot/spot_triangulated.obj";
+    options.width = 64;
+    options.height = 48;
+    options.frames = 2;
+    options.threads = 1;
+    options.shader = ShaderSpec{testing_support::kUserShaders / "displace_cutout.cpp", {}};
+    options.uniforms = {{"cut", {0.3}, false, "test: cut"}};
+    std::ostringstream out;
+    runBench(options, out);
+    const std::string report = out.str();
+    EXPECT_NE(report.find("shader     displace_cutout.cpp: median "), std::string::npos) << report;
+    EXPECT_NE(report.find("built-in   built-in per-pixel Blinn-Phong: median "), std::string::npos) << report;
+    EXPECT_NE(report.find("x the built-in's frame (wall-clock medians)"), std::string::npos) << report;
+    EXPECT_NE(report.find("frames     2 of each"), std::string::npos) << report;
+    // The shader discards the fragments facing up, the built-in none: fewer written on its side.
+    const auto written = [&](const std::string& line) {
+        const std::size_t at = report.find(line);
+        const std::size_t shaded = report.find(" shaded, ", at);
+        return std::stoull(report.substr(shaded + 9));
+    };
+    EXPECT_LT(written("shader     "), written("built-in   ")) << report;
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include "io/image_io.h"
 #include "run_facet.h"
 #include "support/mesa_fixture.h"
+#include "support/user_shader_files.h"
 
 namespace facet {
 namespace {
@@ -554,6 +555,33 @@ TEST(Cli, UnreadableTextureWarnsAndDrawsWithoutIt) {
         EXPECT_GT(centre.r + centre.g + centre.b, 0.5f) << name;
         EXPECT_NEAR(centre.r, centre.b, 1e-3f) << name;  // untextured: grey, not the texture's blue
     }
+}
+
+// facet compare --shader FILE --against MODEL: exit 0 and "identical" for a shader computing the built-in
+// formula; exit 1 (as diff) for one without the specular term, with the count, the first pixel's two
+// colours, the facet step command and both traces side by side. Breaks caught: --against falling
+// through to the Mesa comparison (exit 3 or a Mesa message), the exit statuses swapped or 3, the trace
+// of the first pixel left out.
+TEST(CompareAgainst, AShaderIsComparedWithTheBuiltInModel) {
+    const testing_support::OwnShaderCache cache;
+    const TempFolder dir;
+    const std::string shader = (testing_support::kUserShaders / "own_phong.cpp").string();
+    const std::string common = "compare '" FACET_SOURCE_DIR
+                               "/models/spot/spot_triangulated.obj' --width 64 "
+                               "--height 48 --against phong --shader '" +
+                               shader + "'";
+    const RunResult same = runFacet(common, dir);
+    EXPECT_EQ(same.status, 0) << same.out << same.err;
+    EXPECT_NE(same.out.find("identical: every pixel has the same 8-bit codes"), std::string::npos)
+        << same.out;
+    const RunResult differ = runFacet(common + " --uniform specular=false", dir);
+    EXPECT_EQ(differ.status, 1) << differ.out << differ.err;
+    EXPECT_NE(differ.out.find("differ: "), std::string::npos) << differ.out;
+    EXPECT_NE(differ.out.find("first differing pixel (reading order): "), std::string::npos) << differ.out;
+    EXPECT_NE(differ.out.find("trace it: facet step "), std::string::npos) << differ.out;
+    EXPECT_NE(differ.out.find("under two settings. Left: own_phong.cpp. Right: built-in phong."),
+              std::string::npos)
+        << differ.out;
 }
 
 }  // namespace

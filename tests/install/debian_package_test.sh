@@ -36,12 +36,17 @@ depends=$(dpkg-deb -f "$deb" Depends)
 for package in libopenimageio libembree libpng16 libopencv-core libc6; do
     [[ "$depends" == *"$package"* ]] || fail "Depends lacks $package: $depends"
 done
+# Compiling a shader of one's own (--shader toon.cpp) needs a compiler and GLM's headers.
+recommends=$(dpkg-deb -f "$deb" Recommends)
+[[ "$recommends" == *libglm-dev* ]] || fail "Recommends lacks libglm-dev: $recommends"
+[[ "$recommends" == *g++* || "$recommends" == *clang* ]] || fail "Recommends names no compiler: $recommends"
 # The program, its modules (in lib/facet or lib/<multiarch>/facet, as GNUInstallDirs gave), the models,
 # the man page and what programs of one's own need.
 files=$(dpkg-deb -c "$deb" | awk '{ print $NF }')
 for path in ./usr/bin/facet './usr/lib/([^/]+/)?facet/libfacet_openimageio\.so' \
     './usr/lib/([^/]+/)?facet/libfacet_opencv\.so' ./usr/share/facet/models/spot/spot_triangulated.obj \
     ./usr/share/man/man1/facet.1 ./usr/include/facet/pipeline/pipeline.h \
+    ./usr/include/facet/shaders/user_shader.h ./usr/include/facet/facet_shader_abi.h \
     './usr/lib/([^/]+/)?cmake/Facet/FacetConfig\.cmake' './usr/lib/([^/]+/)?pkgconfig/facet\.pc'; do
     grep -qxE "$path" <<<"$files" || fail "the package has no $path"
 done

@@ -15,7 +15,9 @@
 #include "base/errors.h"
 #include "cli/render_command.h"
 #include "cli/trade_command.h"
+#include "reference/reference.h"
 #include "support/temp_folder.h"
+#include "support/user_shader_files.h"
 #include "trade/knobs.h"
 #include "trade/metrics.h"
 #include "trade/pareto.h"
@@ -356,6 +358,57 @@ TEST(TradeMetrics, IdenticalImagesHaveTheCappedPsnrAndAnSsimOfOne) {
     EXPECT_NEAR(two.encoded.maxAbs, 2.0 / 255.0, 1e-6);
     EXPECT_LT(two.encoded.psnr, kMaxPsnr);
     EXPECT_LT(two.encoded.ssim, 1.0);
+}
+
+// facet trade --shader: the knobs timed and scored with a shader of one's own, against the reference
+// traced with it (displace_cutout.cpp, its vertices moved along the normal). Breaks caught: the trade's
+// settings parsed onto a fresh scene that drops --shader or --uniform (the rows drawn with the built-in
+// shader, far from the reference); the reference traced with the built-in shader or at the mesh's own
+// positions (its image the built-in's, the rows far from it).
+TEST(TradeWithShader, TheKnobsAreScoredAgainstTheReferenceOfTheShader) {
+    const testing_support::OwnShaderCache cache;
+    const testing_support::TempFolder folder;
+    CLI::App app;
+    cli::TradeArgs args;
+    cli::addTradeCommand(app, args);
+    const std::string shader = (testing_support::kUserShaders / "displace_cutout.cpp").string();
+    // clang-format off
+    const std::vector<std::string> words = {"trade", kModel, "--shader", shader, "--uniform", "displacement=0.04",
+                                            "--knobs", "depth", "--frames", "1", "--rounds", "1",
+                                            "--reference-samples", "1", "--width", "48", "--height", "36",
+                                            "--threads", "1", "-q", "-o", (folder.path() / "trade").string()};
+    // clang-format on
+    app.parse(std::vector<std::string>(words.rbegin(), words.rend()));
+    TradeOptions options;
+    options.knobs = args.knobs;
+    selectKnobs(options.knobs);
+    options.frames = args.frames;
+    options.rounds = args.rounds;
+    options.threads = 1;
+    options.referenceSamples = args.referenceSamples;
+    options.progress = false;
+    options.outputDir = folder.path() / "trade";
+    std::ostringstream log;
+    const TradeResult result = runTrade(
+        [&](const std::vector<std::string>& settingWords) {
+            return cli::sceneWithWords(args.scene, settingWords);
+        },
+        options, log);
+    ASSERT_GE(result.rows.size(), 2u);
+    // The baseline (the shader as given) is close to the shader's reference.
+    EXPECT_EQ(result.rows[0].setting.knob, "baseline");
+    EXPECT_GT(result.rows[0].error.encoded.ssim, 0.95) << result.rows[0].image;
+    // That reference is not the built-in shader's: the built-in's own reference image differs from it.
+    Scene builtIn = loadSceneOrModel(kModel);
+    builtIn.width = 48;
+    builtIn.height = 36;
+    ReferenceOptions referenceOptions;
+    referenceOptions.samples = 1;
+    ThreadPool pool(1);
+    const LinearImage builtInReference = renderReference(prepareScene(builtIn), referenceOptions, pool);
+    const LinearImage reference = readImage(options.outputDir / "reference.png");
+    const ImageError error = measureError(reference, builtInReference, kSrgbEncoding);
+    EXPECT_LT(error.encoded.ssim, 0.9) << error.encoded.ssim;
 }
 
 }  // namespace
