@@ -115,6 +115,10 @@ void interpolateRowWide(const TriangleSetup& setup, const float* planes, const V
     interpolateVaryings<Float8, kVaryingsOf<S>, kFlatVaryingsOf<S>>(setup, planes, b1, b2, out.varyings);
     if constexpr (kDerivatives)
         interpolateDerivatives<Float8>(setup, uvSlopes, b1, b2, &out.varyings[kUv], out.uvDerivatives);
+    if constexpr (wantsBarycentrics<S>()) {
+        out.barycentrics[0] = b1;
+        out.barycentrics[1] = b2;
+    }
 }
 
 // The varyings (and texture coordinate derivatives) of the queued fragments, into queue.batch, when the
@@ -127,6 +131,10 @@ void interpolateQueue(FragmentQueue& queue) {
     Float8 b1, b2;
     std::memcpy(&b1, queue.b1, sizeof b1);
     std::memcpy(&b2, queue.b2, sizeof b2);
+    if constexpr (wantsBarycentrics<S>()) {  // each slot's own λ1, λ2, whichever its triangle
+        queue.batch.barycentrics[0] = b1;
+        queue.batch.barycentrics[1] = b2;
+    }
     unsigned remaining = queue.batch.mask;
     while (remaining) {
         const int lead = std::countr_zero(remaining);

@@ -91,6 +91,17 @@ bool drawUsesDerivatives(const typename S::Uniforms& uniforms) {
     }
 }
 
+// A shader may declare `static constexpr bool kBarycentrics = true;` (GLSL's gl_BaryCoordEXT): each
+// batch then carries its lanes' barycentrics λ1, λ2 (FragmentBatch::barycentrics), the very values an
+// observer's FragmentEvent reports. A shader that does not declare it gets nothing written, at no cost.
+template <class S>
+constexpr bool wantsBarycentrics() {
+    if constexpr (requires { S::kBarycentrics; })
+        return S::kBarycentrics;
+    else
+        return false;
+}
+
 // The screen-space derivatives of a texture coordinate pair at one fragment or eight: ∂uv/∂x and ∂uv/∂y
 // (per pixel; y down the rows). Zero (the default): a point, which a texture samples at level 0.
 template <class F>

@@ -211,6 +211,10 @@ struct FragmentBatch {
     // ∂u/∂x, ∂v/∂x, ∂u/∂y, ∂v/∂y of the shader's texture coordinates (its kDerivativeVarying pair, per
     // pixel), filled only in a draw whose shader asks for them (shader.h); otherwise not written.
     Float8 uvDerivatives[4];
+    // λ1, λ2 of each lane's pixel in its window triangle (λ0 = 1 − λ1 − λ2), in the setup's vertex order
+    // (FragmentEvent::barycentrics'), filled only in a draw whose shader asks (shader.h's
+    // wantsBarycentrics); otherwise not written.
+    Float8 barycentrics[2];
     std::uint32_t mask = 0;  // bit i: lane i is a live fragment (others hold meaningless values)
 };
 
@@ -297,8 +301,9 @@ inline float sqrt(float x) {
 inline float abs(float x) {
     return std::fabs(x);
 }
+// The sign bit cleared, as fabs does (max(x, −x) would give −0 for +0 and −NaN for a NaN).
 inline Float8 abs(Float8 x) {
-    return max(x, -x);
+    return std::bit_cast<Float8>(std::bit_cast<Int8>(x) & 0x7fffffff);
 }
 
 // ---- Double: one lane in double precision, the exact reference renderer's -------------------------

@@ -198,8 +198,17 @@ struct DerivativesOf<Body> {
     static constexpr int kDerivativeVarying = Body::kDerivativeVarying;
 };
 
+// kBarycentrics, likewise (pipeline/shader.h's wantsBarycentrics).
 template <class Body>
-struct Adapter : DerivativesOf<Body> {
+struct BarycentricsOf {};
+template <class Body>
+    requires requires { Body::kBarycentrics; }
+struct BarycentricsOf<Body> {
+    static constexpr bool kBarycentrics = Body::kBarycentrics;
+};
+
+template <class Body>
+struct Adapter : DerivativesOf<Body>, BarycentricsOf<Body> {
     using Attributes = MeshVertex;
     using Uniforms = user_shader::Uniforms<Body>;
     using Varyings = user_shader::Varyings<Body>;
@@ -207,6 +216,9 @@ struct Adapter : DerivativesOf<Body> {
 
     static VertexOut<Varyings> vertex(const Attributes& in, const Uniforms& u) { return Body::vertex(in, u); }
 
+    // The pipeline's one-lane entry: it has no barycentrics to give, so gl.barycentric stays (⅓, ⅓, ⅓)
+    // here; the pipeline shades a module's fragments eight at a time (fragmentBatch, with them), and the
+    // step mode's one fragment goes through shadeFragment (FragmentInput::barycentric).
     static auto fragment(const Varyings& in, const Uniforms& u) {
         Fragment<float> gl;
         if constexpr (discards<Body>()) {
@@ -222,6 +234,11 @@ struct Adapter : DerivativesOf<Body> {
         gl.liveLanes = in.mask;
         if constexpr (kHasDerivatives)
             std::memcpy(&gl.uvDerivatives, in.uvDerivatives, sizeof in.uvDerivatives);
+        if constexpr (wantsBarycentrics<Body>()) {
+            // λ0 as describeInterpolation computes it for the FragmentEvent: (1 − λ1) − λ2.
+            const Float8 b1 = in.barycentrics[0], b2 = in.barycentrics[1];
+            gl.barycentric = Vec3x8(1.0f - b1 - b2, b1, b2);
+        }
         return gl;
     }
     static Vec4x8 fragmentBatch(const FragmentBatch& in, const Uniforms& u) requires(!discards<Body>()) {
@@ -237,6 +254,15 @@ struct Adapter : DerivativesOf<Body> {
         return out.color;
     }
 };
+
+// A shader's kUniforms, or none when it has no uniforms of its own.
+template <class Body>
+constexpr auto uniformFields() {
+    if constexpr (requires { Body::kUniforms; })
+        return Body::kUniforms;
+    else
+        return std::tuple<>{};
+}
 
 // The uniforms of a call: the defaults, the scene's part, then the settings.
 template <class Body>
@@ -261,7 +287,7 @@ Uniforms<Body> uniformsOf(const ShaderCall& call) {
                     }(),
                     ...);
             },
-            Body::kUniforms);
+            uniformFields<Body>());
     }
     return u;
 }
@@ -337,6 +363,7 @@ bool shadeFragment(const FragmentInput& fragment, const ShaderCall& call, vec4& 
     std::memcpy(&in, fragment.varyings, sizeof in);
     Fragment<float> gl;
     gl.uvDerivatives = fragment.uvDerivatives;
+    gl.barycentric = fragment.barycentric;
     gl.trace = trace;
     if constexpr (discards<Body>()) {
         const FragmentOut<float> out = Body::template fragment<float>(in, u, gl);

@@ -42,6 +42,11 @@
 #include "shading/gamma.h"
 #include "shading/lighting.h"
 
+// The built-in formulas by term, and GLSL's functions over lanes (their one-lane versions in namespace
+// facet::glsl, which a shader's file brings in: `using namespace facet::glsl;`).
+#include "shaders/formulas.h"
+#include "shaders/lane_glsl.h"
+
 namespace facet {
 
 // The scene's uniforms, which a user shader's Uniforms derive from: clipFromObject, viewFromObject,
@@ -137,12 +142,18 @@ struct ShaderTrace {
 };
 
 // What the fragment part has besides its varyings and uniforms, GLSL's built-ins among them: the live
-// lanes, the texture coordinate derivatives (when the shader declares kDerivativeVarying), texture
-// lookups with the scene's filter, and record() for the step mode.
+// lanes, the texture coordinate derivatives (when the shader declares kDerivativeVarying), the
+// barycentrics (when it declares kBarycentrics), texture lookups with the scene's filter, and record()
+// for the step mode.
 template <class F>
 struct Fragment {
     unsigned liveLanes = 1;  // bit i: lane i holds a fragment
     TexCoordDerivativesT<F> uvDerivatives{};
+    // GLSL's gl_BaryCoordEXT, for a shader that declares `static constexpr bool kBarycentrics = true;`:
+    // λ0, λ1, λ2 of the pixel in its window triangle (the triangle as clipped and set up, its vertices in
+    // the setup's order; affine in screen space, not perspective-corrected), summing to 1. Without the
+    // declaration it stays (⅓, ⅓, ⅓).
+    LaneVec3<F> barycentric = LaneVec3<F>(vec3(1.0f / 3.0f));
     ShaderTrace* trace = nullptr;  // set by the step mode for the one fragment it traces
 
     // Shows `value` (a float, int, bool or vec2/3/4) under `name` (a string literal) on the step mode's

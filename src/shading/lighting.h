@@ -233,6 +233,49 @@ struct SpecularFormula {
     }
 };
 
+// The standard equation's terms for one light, each the one place its formula is written
+// (standardLighting below adds them up; shaders of one's own call them through shaders/formulas.h).
+// `reach` is att·spot, `lit` the reach times the share of the light that reaches the point (shadows).
+
+// The light's ambient term: (l_a ⊗ m_ambient)·reach.
+template <class F>
+[[gnu::always_inline]] inline auto ambientTerm(const vec3& lightAmbient, const vec3& materialAmbient,
+                                               F reach) {
+    return (lightAmbient * materialAmbient) * reach;
+}
+
+// Lambert's cosine law: m_diffuse ⊗ l_d · lit · max(N·L, 0), nothing from a light behind the surface.
+template <class F, class V3>
+[[gnu::always_inline]] inline V3 lambertTerm(const V3& diffuseColor, const vec3& lightDiffuse, F lit,
+                                             F NdotL) {
+    return diffuseColor * lightDiffuse * (lit * max(NdotL, 0.0f));
+}
+
+// Phong's reflected light vector R = 2(N·L)N − L (N, L unit).
+template <class F, class V3>
+[[gnu::always_inline]] inline V3 phongReflected(const V3& N, const V3& L, F NdotL) {
+    return N * (2.0f * NdotL) - L;
+}
+
+// Blinn's halfway vector H = normalize(L + V).
+template <class F, class V3, Normalization kNormalization = Normalization::Exact>
+[[gnu::always_inline]] inline V3 blinnHalfway(const V3& L, const V3& V) {
+    return safeNormalize<F, V3, kNormalization>(L + V);
+}
+
+// The specular power spec = max(cosine, 0)^exponent (cosine = R·V or N·H), 0 where N·L ≤ kGrazingCosine.
+template <class F, MathPrecision P = MathPrecision::Exact>
+[[gnu::always_inline]] inline F specularPower(F NdotL, F cosine, float exponent) {
+    return select(NdotL > kGrazingCosine, Maths<P>::pow(max(cosine, 0.0f), exponent), lanes<F>(0.0f));
+}
+
+// The light's specular term: (l_s ⊗ m_specular)·(lit·spec).
+template <class F>
+[[gnu::always_inline]] inline auto specularTerm(const vec3& lightSpecular, const vec3& materialSpecular,
+                                                F lit, F spec) {
+    return (lightSpecular * materialSpecular) * (lit * spec);
+}
+
 // The equation's four terms apart, so each can be drawn as its own image; sum() is the colour.
 template <class V3>
 struct LightingTerms {
@@ -293,33 +336,31 @@ template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exac
         // Ambient and Lambert diffuse.
         const F NdotL = dot(N, L);
         if (light.ambient != vec3(0.0f)) {
-            const V3 ambient = (light.ambient * m.ambient) * reach;
+            const V3 ambient = ambientTerm(light.ambient, m.ambient, reach);
             terms.ambient += ambient;
             if constexpr (Record::enabled)
                 recordOf(recording...)->lights[&light - lights.data()].ambient = ambient;
         }
         const F lit = visibility ? reach * visibility[&light - lights.data()] : reach;
-        const V3 diffuse = diffuseColor * light.diffuse * (lit * max(NdotL, 0.0f));
+        const V3 diffuse = lambertTerm(diffuseColor, light.diffuse, lit, NdotL);
         terms.diffuse += diffuse;
 
         // Specular, only where the light is in front of the surface.
         F cosine;
         if (specular.model == SpecularModel::Phong) {
-            const V3 R = N * (2.0f * NdotL) - L;
+            const V3 R = phongReflected(N, L, NdotL);
             cosine = dot(R, V);
             if constexpr (Record::enabled)
                 recordOf(recording...)->lights[&light - lights.data()].reflected = R;
         } else {
-            const V3 H = safeNormalize<F, V3, kNormalization>(L + V);
+            const V3 H = blinnHalfway<F, V3, kNormalization>(L, V);
             cosine = dot(N, H);
             if constexpr (Record::enabled)
                 recordOf(recording...)->lights[&light - lights.data()].reflected = H;
         }
-        const F spec =
-            select(NdotL > kGrazingCosine, Maths<P>::pow(max(cosine, 0.0f), specular.exponent(m.shininess)),
-                   lanes<F>(0.0f));
-        const V3 specularTerm = (light.specular * m.specular) * (lit * spec);
-        terms.specular += specularTerm;
+        const F spec = specularPower<F, P>(NdotL, cosine, specular.exponent(m.shininess));
+        const V3 specularLight = specularTerm(light.specular, m.specular, lit, spec);
+        terms.specular += specularLight;
 
         if constexpr (Record::enabled) {
             auto& r = recordOf(recording...)->lights[&light - lights.data()];
@@ -335,7 +376,7 @@ template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exac
             r.grazing = !(NdotL > kGrazingCosine);
             r.spec = spec;
             r.diffuse = diffuse;
-            r.specular = specularTerm;
+            r.specular = specularLight;
         }
     }
     if constexpr (Record::enabled) recordOf(recording...)->terms = terms;

@@ -1,0 +1,105 @@
+// phong_assignment.cpp: an assignment: the Phong reflection model, term by term. The ambient and diffuse
+// terms are written; the specular term is yours (look for TODO). Until it is written the surface is
+// matte: no highlights. When it is right the image is exactly what `facet render` draws with
+// "reflection": "phong" (compare with phong_solution.cpp only once yours works).
+//
+//   facet render MODEL --shader examples/shaders/phong_assignment.cpp
+//   facet step MODEL --shader examples/shaders/phong_assignment.cpp   (a pixel's numbers, step by step)
+//
+// The lighting equation, in the lecture notes' notation (lights j; unit vectors n to the viewer's side,
+// l_j towards light j, v towards the eye; ⊗ multiplies colours channel by channel):
+//   i = i_em + m_amb ⊗ a_global + Σ_j att_j · spot_j · (i_amb,j + i_diff,j + i_spec,j)
+//   i_amb,j  = m_amb ⊗ s_amb,j                       (ambient: light from everywhere)
+//   i_diff,j = m_diff ⊗ s_diff,j · max(n·l_j, 0)      (Lambert's cosine law)
+//   i_spec,j = m_spec ⊗ s_spec,j · max(r_j·v, 0)^m_shi,  r_j = 2(n·l_j)n − l_j   (Phong)
+// and no specular light from a light behind the surface (n·l_j ≤ 0). att_j = 1/(c0 + c1·d + c2·d²) with
+// d the distance to a point or spot light, spot_j the spot light's cone; both 1 for a directional light.
+//
+// The functions you may call (shaders/formulas.h, shading/lighting.h) are the renderer's own formulas:
+//   phongReflected(n, l, n·l)                  r = 2(n·l)n − l
+//   dot(a, b), max(x, 0.0f)                    as in GLSL
+//   specularPowerOf<F>(n·l, cosine, m_shi, u)  max(cosine, 0)^m_shi, 0 where n·l ≤ 0, with the scene's pow
+//   specularTerm(s_spec, m_spec, lit, spec)    (s_spec ⊗ m_spec) · lit · spec
+// F is the lane type: the same code runs for one pixel (F = float) and eight at once (F = Float8), so
+// write F, LaneVec3<F> (here V3) and lanes<F>(0.0f) rather than float, vec3 and 0.0f.
+#include "shaders/shader_module.h"
+
+using namespace facet;
+using namespace facet::glsl;  // GLSL's functions for one lane (float, vec3), beside the eight-lane ones
+
+struct PhongAssignment {
+    struct Uniforms : SceneUniforms {};  // the material and lights come from the scene
+
+    template <class F>
+    struct VaryingsT {
+        LaneVec3<F> position;  // eye space: the eye at the origin
+        LaneVec3<F> normal;    // eye space, interpolated (Phong shading: renormalised per pixel)
+        LaneVec2<F> uv;        // for the material's textures
+    };
+    static constexpr VaryingName kVaryings[] = {{"P_eye", 3}, {"N_eye", 3}, {"uv", 2}};
+    static constexpr int kDerivativeVarying = 6;  // uv's screen derivatives, for trilinear filtering
+
+    static VertexOut<VaryingsT<float>> vertex(const MeshVertex& in, const Uniforms& u) {
+        return {u.clipFromObject * vec4(in.position, 1.0f),
+                {vec3(u.viewFromObject * vec4(in.position, 1.0f)), u.normalFromObject * in.normal, in.uv}};
+    }
+
+    template <class F>
+    static LaneVec4<F> fragment(const VaryingsT<F>& in, const Uniforms& u, Fragment<F>& gl) {
+        using V3 = LaneVec3<F>;
+        const V3 P = in.position;
+
+        // The material's colours; a diffuse texture tints m_diff and its alpha the opacity (without a
+        // texture, texture() gives white and changes nothing).
+        const LaneVec4<F> texel = gl.texture(u.diffuseMap, in.uv, u);
+        const V3 mDiff = V3(u.material.diffuse) * rgb(texel);
+        const F alpha = lanes<F>(u.opacity) * texel.w;
+
+        // n turned towards the viewer (two-sided lighting), then n and v made unit length.
+        const V3 N = unitVector<F>(facingNormal<F>(in.normal, P, u), u);
+        const V3 V = viewVector<F>(P, u);
+        gl.record("n", N);
+        gl.record("v", V);
+
+        // Shadows, when the scene casts them: per light, the share of it that reaches P.
+        F visibility[kMaxLights];
+        if (u.shadows)
+            lightVisibilities<F, V3>(*u.shadows, u.activeLights(), P, facingNormal<F>(in.normal, P, u),
+                                     visibility);
+
+        V3 ambient = globalAmbientTerm<F>(u);  // m_amb ⊗ a_global
+        V3 diffuse(vec3(0.0f)), specular(vec3(0.0f));
+        int j = 0;
+        for (const LightParams& light : u.activeLights()) {
+            const LightVector<F, V3> toLight = lightVectorAt<F>(light, P, u);  // l_j and d
+            const V3& L = toLight.L;
+            const F reach = lightReach<F>(light, toLight, u);  // att_j · spot_j
+            const F lit = u.shadows ? reach * visibility[j] : reach;
+            const F NdotL = dot(N, L);
+            gl.record("n.l", NdotL);
+
+            if (light.ambient != vec3(0.0f)) ambient += ambientTerm(light.ambient, u.material.ambient, reach);
+            diffuse += lambertTerm(mDiff, light.diffuse, lit, NdotL);
+
+            // TODO: Phong's specular term. Compute the reflected light vector r = 2(n·l)n − l, the cosine
+            // r·v, and spec = max(r·v, 0)^m_shi (the material's shininess, u.material.shininess), which
+            // must be 0 where the light is behind the surface (n·l ≤ 0). Record r·v and spec with
+            // gl.record so the step mode shows them. Until then, spec is 0: no highlight.
+            const F spec = lanes<F>(0.0f);
+            specular += specularTerm(light.specular, u.material.specular, lit, spec);
+            ++j;
+        }
+
+        // i_em (an emission texture tints it), then the sum in the built-in order.
+        const V3 emission = V3(u.emissionTerm()) * rgb(gl.texture(u.emissionMap, in.uv, u));
+        V3 color = emission + ambient + diffuse + specular;
+        if (u.clampColor) color = V3(saturate(color.x), saturate(color.y), saturate(color.z));  // OpenGL 1.x
+        gl.record("ambient", ambient);
+        gl.record("diffuse", diffuse);
+        gl.record("specular", specular);
+        gl.record("i", color);
+        return builtinOutput<F>(color, alpha, P, u);  // the scene's fog, then its blend's form
+    }
+};
+
+FACET_SHADER(PhongAssignment)
