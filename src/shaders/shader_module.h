@@ -196,13 +196,23 @@ requires requires {
 }
 struct DerivativesOf<Body> {
     static constexpr int kDerivativeVarying = Body::kDerivativeVarying;
+    // Asked once per draw: the shader's own usesDerivatives(u) when it has one (e.g. only for trilinear
+    // filtering), else every draw gets them.
+    static bool usesDerivatives(const typename Body::Uniforms& u) {
+        if constexpr (requires { Body::usesDerivatives(u); })
+            return Body::usesDerivatives(u);
+        else
+            return true;
+    }
 };
 
 // kBarycentrics, likewise (pipeline/shader.h's wantsBarycentrics).
 template <class Body>
 struct BarycentricsOf {};
 template <class Body>
-    requires requires { Body::kBarycentrics; }
+requires requires {
+    Body::kBarycentrics;
+}
 struct BarycentricsOf<Body> {
     static constexpr bool kBarycentrics = Body::kBarycentrics;
 };
