@@ -32,12 +32,13 @@ struct Toon {
     struct VaryingsT {
         LaneVec3<F> position;  // eye space: the eye at the origin, looking down −z
         LaneVec3<F> normal;    // eye space
+        LaneVec2<F> uv;        // texture coordinates, for the material's diffuse map
     };
-    static constexpr VaryingName kVaryings[] = {{"P_eye", 3}, {"N_eye", 3}};
+    static constexpr VaryingName kVaryings[] = {{"P_eye", 3}, {"N_eye", 3}, {"uv", 2}};
 
     static VertexOut<VaryingsT<float>> vertex(const MeshVertex& in, const Uniforms& u) {
         return {u.clipFromObject * vec4(in.position, 1.0f),
-                {vec3(u.viewFromObject * vec4(in.position, 1.0f)), u.normalFromObject * in.normal}};
+                {vec3(u.viewFromObject * vec4(in.position, 1.0f)), u.normalFromObject * in.normal, in.uv}};
     }
 
     template <class F>
@@ -63,9 +64,10 @@ struct Toon {
         const F level = band * (1.0f / (bands - 1.0f));
         gl.record("band", band);
 
-        // The flat colour: the ambient term m_amb ⊗ a_global, plus the material's diffuse colour at the
-        // band's level.
-        const V3 shade = globalAmbientTerm<F>(u) + V3(u.material.diffuse) * level;
+        // The flat colour: the ambient term m_amb ⊗ a_global, plus the material's diffuse colour (times
+        // its texture, white without one) at the band's level.
+        const V3 albedo = V3(u.material.diffuse) * rgb(gl.texture(u.diffuseMap, in.uv, u));
+        const V3 shade = globalAmbientTerm<F>(u) + albedo * level;
 
         // The outline: n·v is near 0 where the surface turns away from the eye.
         const F NdotV = dot(N, V);

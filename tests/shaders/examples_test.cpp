@@ -90,7 +90,7 @@ SceneUniforms headLight() {
 TEST(ExampleShaders, EveryExampleLoads) {
     const std::map<std::string, std::tuple<std::string_view, std::size_t, bool>> expected = {
         {"normals", {"Normals", 3, false}},
-        {"toon", {"Toon", 6, false}},
+        {"toon", {"Toon", 8, false}},
         {"checker", {"Checker", 11, false}},
         {"wireframe", {"Wireframe", 6, true}},
         {"displace", {"Displace", 7, false}},
@@ -128,7 +128,7 @@ TEST(ExampleShaders, ToonHasBandsLevelsAndInkedSilhouettes) {
         for (int step = 0; step <= 90; ++step) {
             const float angle = glm::radians(static_cast<float>(step));
             u.lights[0].direction = vec3(std::sin(angle), 0.0f, -std::cos(angle));  // N·L = cos(angle)
-            const auto c = shade(*module, u, {0.0f, 0.0f, -3.0f, 0.0f, 0.0f, 1.0f},
+            const auto c = shade(*module, u, {0.0f, 0.0f, -3.0f, 0.0f, 0.0f, 1.0f, 0.5f, 0.5f},
                                  {setting(*module, "bands", {static_cast<float>(bands)})});
             ASSERT_TRUE(c);
             levels.insert(c->r);
@@ -138,7 +138,7 @@ TEST(ExampleShaders, ToonHasBandsLevelsAndInkedSilhouettes) {
         EXPECT_EQ(*levels.rbegin(), 1.0f);
     }
     // A normal nearly at right angles to V: N·V ≈ 0.1 < 0.25, the ink; then outline 0 turns it off.
-    const std::vector<float> grazing = {0.0f, 0.0f, -3.0f, 1.0f, 0.0f, 0.1f};
+    const std::vector<float> grazing = {0.0f, 0.0f, -3.0f, 1.0f, 0.0f, 0.1f, 0.5f, 0.5f};
     EXPECT_EQ(shade(*module, headLight(), grazing), vec4(0.02f, 0.02f, 0.05f, 1.0f));
     EXPECT_NE(shade(*module, headLight(), grazing, {setting(*module, "outline", {0.0f})}),
               vec4(0.02f, 0.02f, 0.05f, 1.0f));
