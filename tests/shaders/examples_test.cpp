@@ -3,6 +3,7 @@
 // vertex and fragment parts are run on chosen inputs (ShaderModule::shadeVertex, shadeFragment) and
 // the Phong solution's draw is compared with the built-in shader's, pixel for pixel.
 #include "shaders/shader_module.h"
+#include "three_lights.h"
 
 #include <dlfcn.h>
 
@@ -220,28 +221,8 @@ TEST(ExampleShaders, DisplaceMovesVerticesAlongTheNormal) {
 // ---- The Phong solution is the built-in Phong -----------------------------------------------------------
 
 SurfaceUniforms threeLights() {
-    SurfaceUniforms u;
+    SurfaceUniforms u = testing_shaders::threeLights();
     u.reflection = ReflectionModel::Phong;
-    u.globalAmbient = vec3(0.1f, 0.12f, 0.08f);
-    u.lightCount = 3;
-    u.lights[0].kind = LightKind::Directional;
-    u.lights[0].direction = normalize(vec3(-0.3f, -1.0f, -0.5f));
-    u.lights[0].diffuse = vec3(1.0f, 0.9f, 0.8f);
-    u.lights[1].kind = LightKind::Point;
-    u.lights[1].position = vec3(2.0f, 1.0f, 1.5f);
-    u.lights[1].diffuse = u.lights[1].specular = vec3(0.4f, 0.5f, 1.2f);
-    u.lights[1].c1 = 0.3f;
-    u.lights[2].kind = LightKind::Spot;
-    u.lights[2].position = vec3(-2.0f, -1.0f, 0.5f);
-    u.lights[2].spotDirection = normalize(vec3(1.0f, 0.5f, -1.0f));
-    u.lights[2].spotCutoffDegrees = 50.0f;
-    u.lights[2].spotExponent = 4.0f;
-    u.lights[2].ambient = vec3(0.05f);
-    u.lights[2].diffuse = vec3(0.7f, 0.2f, 0.1f);
-    u.material.ambient = vec3(0.3f);
-    u.material.diffuse = vec3(0.6f, 0.4f, 0.2f);
-    u.material.specular = vec3(0.5f);
-    u.material.emission = vec3(0.01f, 0.02f, 0.0f);
     u.material.shininess = 20.0f;
     return u;
 }
