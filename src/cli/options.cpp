@@ -207,6 +207,12 @@ void applyLightingOptions(const SceneArgs& args, facet::Scene& scene) {
             throw facet::InputError(*problem);
         knob.set(scene, given->second);
     }
+    const facet::FogSpec& fog = scene.fog;
+    if ((args.knobs.count("fog-start") || args.knobs.count("fog-end")) && fog.start && fog.end &&
+        !(*fog.end > *fog.start))
+        throw facet::InputError("the fog's end (" + facet::knobNumberText(*fog.end) +
+                                ") must be greater than its start (" + facet::knobNumberText(*fog.start) +
+                                "): give --fog-start and --fog-end in that order of distance");
     if (args.shader) scene.shader = facet::ShaderSpec{*args.shader, {}};
     for (const std::string& uniform : args.uniforms)
         scene.uniforms.push_back(parseUniform(uniform));

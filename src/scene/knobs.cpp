@@ -132,6 +132,52 @@ SceneKnob shadowsKnob() {
     return knob;
 }
 
+// --shininess sets every object's material shininess, over its MTL's Ns and its scene file's
+// "material.shininess" (the one value a lecture's exercise varies); the command line only.
+SceneKnob shininessKnob() {
+    SceneKnob knob =
+        named("shininess", "--shininess", "Shininess (the specular exponent n) of every object's material");
+    knob.kind = KnobKind::Number;
+    knob.lowest = 0;
+    knob.highest = 10000;
+    knob.defaultNote = "(default: each object's material, its MTL's Ns or the scene's \"shininess\")";
+    knob.get = [](const Scene& scene) {
+        std::string common;
+        for (const ObjectSpec& object : scene.objects) {
+            if (!object.material.shininess) return std::string();
+            const std::string value = knobNumberText(*object.material.shininess);
+            if (!common.empty() && common != value) return std::string();
+            common = value;
+        }
+        return common;
+    };
+    knob.set = [](Scene& scene, const std::string& value) {
+        const float shininess = std::strtof(value.c_str(), nullptr);
+        for (ObjectSpec& object : scene.objects)
+            object.material.shininess = shininess;
+    };
+    return knob;
+}
+
+// Linear fog's start or end ("fog.start", "fog.end"), absent unless given: then from the scene's
+// bounding sphere.
+SceneKnob fogRangeKnob(std::string name, std::string flag, std::string help, std::string key,
+                       std::optional<float> FogSpec::*field) {
+    SceneKnob knob = named(std::move(name), std::move(flag), std::move(help), "fog", std::move(key));
+    knob.kind = KnobKind::Number;
+    knob.lowest = 0;
+    knob.highest = 1e6;
+    knob.defaultNote = "(default: from the scene's bounding sphere)";
+    knob.get = [field](const Scene& scene) {
+        const std::optional<float>& value = scene.fog.*field;
+        return value ? knobNumberText(*value) : std::string();
+    };
+    knob.set = [field](Scene& scene, const std::string& value) {
+        scene.fog.*field = std::strtof(value.c_str(), nullptr);
+    };
+    return knob;
+}
+
 // The table. Notes on the trade's values:
 //   cull: front-face culling draws the wrong side, not a trade; culling back faces is the fast choice (the
 //     same image for closed models); no best value, the reference culls as the scene does.
@@ -273,6 +319,22 @@ std::vector<SceneKnob> makeTable() {
                    "Cook-Torrance's Fresnel term: Schlick's approximation or the exact dielectric one",
                    "lighting", "fresnel", [](auto& s) -> auto& { return s.lighting.brdf.fresnel; }),
                {}, "schlick", "exact"),
+        // The material's shininess and the fog: what a lecture's exercises vary. The fog's keys are read
+        // by the scene file's "fog" section (scene_sections.cpp), which checks them against each other
+        // (start and end for linear fog only); the command line accepts each with every mode, as
+        // --sort-key with every transparency mode.
+        shininessKnob(),
+        choice<FogMode>(
+            "fog", "--fog",
+            "Fog: none, linear (from --fog-start to --fog-end), exp or exp2 (with --fog-density)", "fog",
+            "mode", [](auto& s) -> auto& { return s.fog.mode; }),
+        number<float>(
+            "fog-density", "--fog-density", "Exponential fog's density, per unit of length", "fog", "density",
+            0, 1e6, "", [](auto& s) -> auto& { return s.fog.density; }),
+        fogRangeKnob("fog-start", "--fog-start", "Linear fog: the distance where it begins", "start",
+                     &FogSpec::start),
+        fogRangeKnob("fog-end", "--fog-end", "Linear fog: the distance where it is complete", "end",
+                     &FogSpec::end),
         // Cook-Torrance's other terms: scene file keys only.
         choice<NormalDistribution>(
             "distribution", "", "", "lighting", "distribution",

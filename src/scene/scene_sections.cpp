@@ -432,6 +432,15 @@ ObjectSpec readObject(const SceneReader& reader, const Json& object, const std::
 
 namespace {
 
+// A number knob's value in a scene file, checked against its entry's range.
+float knobNumber(const SceneReader& reader, const SceneKnob& knob, const Json& value) {
+    const std::string path = knob.scenePath();
+    const float number = reader.number(value, path);
+    if (!knob.allows(number))
+        reader.fail(inQuotes(path) + " must be " + knob.allowed() + " (got " + describe(value) + ")");
+    return number;
+}
+
 // One knob's value in a scene file, checked by its entry: a name of its table, or a number in its range.
 std::string knobValue(const SceneReader& reader, const SceneKnob& knob, const Json& value) {
     const std::string path = knob.scenePath();
@@ -449,12 +458,8 @@ std::string knobValue(const SceneReader& reader, const SceneKnob& knob, const Js
                             knob.allowed() + " (got " + describe(value) + ")");
             return std::to_string(static_cast<int>(number));
         }
-        case KnobKind::Number: {
-            const float number = reader.number(value, path);
-            if (!knob.allows(number))
-                reader.fail(inQuotes(path) + " must be " + knob.allowed() + " (got " + describe(value) + ")");
-            return knobNumberText(number);
-        }
+        case KnobKind::Number:
+            return knobNumberText(knobNumber(reader, knob, value));
     }
     return {};
 }
@@ -510,13 +515,17 @@ FogSpec readFog(const SceneReader& reader, const Json& fog) {
     }
 
     if (const Json* v = reader.find(fog, "color")) spec.color = reader.color(*v, "fog.color");
-    if (const Json* v = reader.find(fog, "start")) spec.start = reader.nonNegative(*v, "fog.start");
-    if (const Json* v = reader.find(fog, "end")) spec.end = reader.nonNegative(*v, "fog.end");
+    // The numbers in the ranges of their knobs (knobs.cpp: --fog-start, --fog-end, --fog-density).
+    const auto number = [&](const char* knob, const Json& value) {
+        return knobNumber(reader, *sceneKnobNamed(knob), value);
+    };
+    if (const Json* v = reader.find(fog, "start")) spec.start = number("fog-start", *v);
+    if (const Json* v = reader.find(fog, "end")) spec.end = number("fog-end", *v);
     if (spec.start && spec.end && !(*spec.end > *spec.start)) {
         reader.fail("\"fog.end\" (" + formatNumber(*spec.end) + ") must be greater than \"fog.start\" (" +
                     formatNumber(*spec.start) + ")");
     }
-    if (const Json* v = reader.find(fog, "density")) spec.density = reader.nonNegative(*v, "fog.density");
+    if (const Json* v = reader.find(fog, "density")) spec.density = number("fog-density", *v);
     if (const Json* v = reader.find(fog, "distance"))
         spec.distance = reader.enumChoice<FogDistance>(*v, "fog.distance");
     return spec;

@@ -97,11 +97,15 @@ TEST(Knobs, CompareAndBenchTakeTheirKnobsFromTheTable) {
 
 class KnobKeysTest : public testing_support::TempFolderTest {
   protected:
-    // A scene of one model with `section`: {`key`: `value`} (JSON text).
+    // A scene of one model with `section`: {`key`: `value`} (JSON text). The fog's numbers come with
+    // the mode that uses them (the file refuses a fog without a mode, or a key its mode ignores).
     Scene sceneWith(const SceneKnob& knob, const std::string& value) const {
         touch("m.obj");
-        return loadScene(write("scene.json", R"({"model": "m.obj", ")" + knob.section + R"(": {")" +
-                                                 knob.key + R"(": )" + value + "}}"));
+        std::string context;
+        if (knob.section == "fog" && knob.key != "mode")
+            context = knob.key == "density" ? R"("mode": "exp", )" : R"("mode": "linear", )";
+        return loadScene(write("scene.json", R"({"model": "m.obj", ")" + knob.section + R"(": {)" + context +
+                                                 '"' + knob.key + R"(": )" + value + "}}"));
     }
     static std::string json(const SceneKnob& knob, const std::string& value) {
         return knob.kind == KnobKind::Names ? '"' + value + '"' : value;
@@ -208,6 +212,87 @@ TEST(BlinnExponent, MatchedRendersAsFourTimesTheShininess) {
         testing_support::runFacet("step --print '" + n + "' --versus '--blinn-exponent matched'", dir);
     ASSERT_EQ(step.status, 0) << step.err;
     EXPECT_NE(step.out.find("e′ = 4n = 40"), std::string::npos) << step.out;
+}
+
+}  // namespace
+}  // namespace facet::cli
+
+namespace facet::cli {
+namespace {
+
+// The image `facet render` writes for `input` (a path under models/) with `options`, 64 × 48, as bytes.
+std::string renderedBytes(const testing_support::TempFolder& dir, const std::string& input,
+                          const std::string& options) {
+    static int images = 0;
+    const std::string image = (dir.path() / ("lecture" + std::to_string(++images) + ".png")).string();
+    const testing_support::RunResult run =
+        testing_support::runFacet("render -q '" + std::string(FACET_SOURCE_DIR) + "/models/" + input +
+                                      "' -o '" + image + "' --width 64 --height 48 " + options,
+                                  dir);
+    EXPECT_EQ(run.status, 0) << options << ": " << run.err;
+    return testing_support::readText(image);
+}
+
+// --shininess reaches the image: the red sphere's highlight narrows from the file's hardness 1 to 128,
+// and the flag at the file's own value 1 gives the file's image. Catches a flag that does not reach
+// the objects' materials, or reaches one object's only.
+TEST(LectureFlags, ShininessChangesTheHighlight) {
+    const testing_support::TempFolder dir;
+    const std::string given = renderedBytes(dir, "red-sphere.json", "");
+    const std::string sharp = renderedBytes(dir, "red-sphere.json", "--shininess 128");
+    EXPECT_NE(given, sharp);
+    EXPECT_EQ(renderedBytes(dir, "red-sphere.json", "--shininess 1"), given);
+    // Every object takes it, whatever its own was.
+    Scene scene = sceneForModel("model.obj");
+    scene.objects.resize(2);
+    scene.objects[1].material.shininess = 7.0f;
+    const SceneKnob& knob = *sceneKnobNamed("shininess");
+    EXPECT_EQ(knob.get(scene), "");  // the objects disagree
+    knob.set(scene, "64");
+    EXPECT_EQ(knob.get(scene), "64");
+    EXPECT_EQ(*scene.objects[0].material.shininess, 64.0f);
+    EXPECT_EQ(*scene.objects[1].material.shininess, 64.0f);
+}
+
+// The fog flags reach the image, over the scene's own "fog": each mode gives another image, the file's
+// own mode and density give the file's image, density moves exp fog and start/end move linear fog.
+// Catches a flag that the scene's "fog" section overrides, or one that sets another field.
+TEST(LectureFlags, FogFlagsChangeTheImage) {
+    const testing_support::TempFolder dir;
+    const std::string scene = "fog-and-glass.json";  // its own fog: exp2, density 0.1
+    const std::string own = renderedBytes(dir, scene, "");
+    EXPECT_EQ(renderedBytes(dir, scene, "--fog exp2 --fog-density 0.1"), own);
+    const std::string none = renderedBytes(dir, scene, "--fog none");
+    const std::string exp = renderedBytes(dir, scene, "--fog exp");
+    const std::string linear = renderedBytes(dir, scene, "--fog linear --fog-start 4 --fog-end 14");
+    EXPECT_NE(none, own);
+    EXPECT_NE(exp, own);
+    EXPECT_NE(exp, none);
+    EXPECT_NE(linear, own);
+    EXPECT_NE(renderedBytes(dir, scene, "--fog exp2 --fog-density 0.2"), own);
+    EXPECT_NE(renderedBytes(dir, scene, "--fog linear --fog-start 4 --fog-end 20"), linear);
+    EXPECT_NE(renderedBytes(dir, scene, "--fog linear --fog-start 8 --fog-end 14"), linear);
+}
+
+// Bad values of the new flags: one line, naming the flag and what it must be.
+TEST(LectureFlags, BadValuesGiveOneLine) {
+    const testing_support::TempFolder dir;
+    const std::string input = "render -q '" + std::string(FACET_SOURCE_DIR) +
+                              "/models/red-sphere.json' -o '" + (dir.path() / "x.png").string() + "' ";
+    for (const auto& [options, message] : std::vector<std::pair<std::string, std::string>>{
+             {"--shininess -1", "--shininess must be from 0 to 10000 (got -1)"},
+             {"--shininess many", "--shininess: expects a finite number (got \"many\")"},
+             {"--fog fog", "--fog: fog not in {none,linear,exp,exp2}"},
+             {"--fog-density -2", "--fog-density must be from 0 to 1e6 (got -2)"},
+             {"--fog-start -1", "--fog-start must be from 0 to 1e6 (got -1)"},
+             {"--fog linear --fog-start 10 --fog-end 2",
+              "the fog's end (2) must be greater than its start (10)"}}) {
+        SCOPED_TRACE(options);
+        const testing_support::RunResult run = testing_support::runFacet(input + options, dir);
+        EXPECT_NE(run.status, 0);
+        EXPECT_NE(run.err.find(message), std::string::npos) << run.err;
+        EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+    }
 }
 
 }  // namespace
