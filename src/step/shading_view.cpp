@@ -121,7 +121,10 @@ std::string num(float v) {
     return buffer;
 }
 std::string vec(const vec3& v) {
-    return "(" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + ")";
+    // Appended piece by piece: GCC 12 warns (-Wrestrict, a false positive) on "(" + std::string.
+    std::string text(1, '(');
+    text.append(num(v.x)).append(", ").append(num(v.y)).append(", ").append(num(v.z)).append(")");
+    return text;
 }
 std::string rgb(const vec3& c) {
     return "RGB" + vec(c);
@@ -235,11 +238,13 @@ void writeMaterial(Lines& out, const LightingRecord& r) {
     if (r.physicallyBased) {
         out.add("  c_base = " + rgb(r.materialDiffuse) + ", metalness = " + num(r.pbr.metalness) +
                 ", roughness = " + num(r.pbr.roughness));
-        if (r.pbr.ior > 0.0f)
-            out.add("  η = " + num(r.pbr.ior) + ": F0_dielectric = ((n1 − n2)/(n1 + n2))² = ((1 − " +
-                    num(r.pbr.ior) + ")/(1 + " + num(r.pbr.ior) + "))² = " + num(r.pbr.f0.x));
-        else
+        if (r.pbr.ior > 0.0f) {
+            out.add("  η = n2/n1 = " + num(r.pbr.ior) + " (n1 = 1, air)");
+            out.add("  F0_dielectric = ((n1 − n2)/(n1 + n2))² = ((1 − " + num(r.pbr.ior) + ")/(1 + " +
+                    num(r.pbr.ior) + "))² = " + num(r.pbr.f0.x));
+        } else {
             out.add("  F0_dielectric = " + rgb(r.pbr.f0));
+        }
     } else {
         out.add("  m_ambient = " + rgb(r.materialAmbient));
         out.add("  m_diffuse = " + rgb(r.materialDiffuse));
@@ -613,8 +618,8 @@ Screen lightingScreen(const ShadingTrace& t) {
         // No lighting equation: the colour the flat shader's vertex stage hands on (surfaceTerms, unlit).
         const SurfaceUniforms& u = t.uniforms;
         const bool pbr = u.reflection == ReflectionModel::CookTorrance;
-        out.add("Constant shading: no lighting equation runs, no light, no normal. Every pixel of the");
-        out.add("object takes one unlit colour (lighting-deck-A.txt, \"constant shading\"):");
+        out.add("Constant shading: no lighting equation runs (no light, no normal). Every pixel");
+        out.add("of the object takes one unlit colour (lighting-deck-A.txt):");
         out.add(std::string("  c = ") + (pbr ? "c_base" : "m_diffuse") + " ⊗ texel + m_emission");
         out.blank();
         out.add(std::string("  ") + (pbr ? "c_base" : "m_diffuse") + " = " + rgb(u.albedo()) +

@@ -373,29 +373,35 @@ TEST_F(SceneRenderTest, ConstantShadingIgnoresTheLights) {
 // "ior" reaches the material (F0 from it) and the image; an MTL's Ni above 1 does too, Ni 1 does not.
 TEST_F(SceneRenderTest, IndexOfRefractionReachesTheMaterialAndTheImage) {
     const fs::path path = folder_ / "scene.json";
-    const auto cube = [&](const std::string& material) {
-        return renderCube(path, R"({"lighting": {"model": "cook-torrance", "fresnel": "exact"},
-                                    "material": )" +
-                                    material + "}");
+    const auto objects = [&](const std::string& model, const std::string& material) {
+        return nlohmann::json::parse(R"({"width": 48, "height": 36,
+                                         "lighting": {"model": "cook-torrance", "fresnel": "exact"},
+                                         "objects": [{"model": ")" +
+                                     model + R"(", "material": )" + material + "}]}");
     };
-    EXPECT_NE(cube(R"({"ior": 1.2})").pixels, cube(R"({"ior": 2.4})").pixels);
-    nlohmann::json document = {{"model", FACET_SOURCE_DIR "/models/cube/cube.obj"},
-                               {"material", {{"ior", 2.0}}}};
-    std::ofstream(path) << document.dump();
-    const PreparedScene prepared = prepareScene(loadScene(path));
-    EXPECT_EQ(prepared.draws[0].uniforms.reflection, ReflectionModel::CookTorrance);
-    EXPECT_FLOAT_EQ(prepared.draws[0].uniforms.pbr.ior, 2.0f);
-    EXPECT_FLOAT_EQ(prepared.draws[0].uniforms.pbr.f0.x, 1.0f / 9.0f);  // ((1 − 2)/(1 + 2))²
+    const auto draw = [&](const nlohmann::json& document) {
+        std::ofstream(path) << document.dump();
+        const PreparedScene prepared = prepareScene(loadScene(path));
+        Framebuffer framebuffer(48, 36);
+        DrawContext context(1);
+        renderFrame(prepared, framebuffer, context);
+        return std::pair{toImage(framebuffer).pixels, prepared.draws[0].uniforms};
+    };
+    const std::string cube = FACET_SOURCE_DIR "/models/cube/cube.obj";
+    const auto [low, lowUniforms] = draw(objects(cube, R"({"ior": 1.2})"));
+    const auto [high, highUniforms] = draw(objects(cube, R"({"ior": 2.0})"));
+    EXPECT_NE(low, high);
+    EXPECT_FLOAT_EQ(highUniforms.pbr.ior, 2.0f);
+    EXPECT_FLOAT_EQ(highUniforms.pbr.f0.x, 1.0f / 9.0f);  // ((1 − 2)/(1 + 2))²
 
+    // The MTL's Ni: used above 1 (Cook-Torrance), not at 1.
     for (const auto& [ni, ior] : {std::pair{"2.0", 2.0f}, std::pair{"1.0", 0.0f}}) {
         std::ofstream(folder_ / "m.mtl") << "newmtl glassy\nKd 0.5 0.5 0.5\nNi " << ni << "\n";
         std::ofstream(folder_ / "m.obj")
             << "mtllib m.mtl\nusemtl glassy\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
-        std::ofstream(path)
-            << nlohmann::json{{"model", "m.obj"}, {"lighting", {{"model", "cook-torrance"}}}}.dump();
-        const PreparedScene fromMtl = prepareScene(loadScene(path));
-        EXPECT_FLOAT_EQ(fromMtl.draws[0].uniforms.pbr.ior, ior) << "Ni " << ni;
-        EXPECT_FLOAT_EQ(fromMtl.draws[0].uniforms.pbr.f0.x, ior > 0 ? 1.0f / 9.0f : 0.04f) << "Ni " << ni;
+        const SurfaceUniforms u = draw(objects((folder_ / "m.obj").string(), "{}")).second;
+        EXPECT_FLOAT_EQ(u.pbr.ior, ior) << "Ni " << ni;
+        EXPECT_FLOAT_EQ(u.pbr.f0.x, ior > 0 ? 1.0f / 9.0f : 0.04f) << "Ni " << ni;
     }
 }
 

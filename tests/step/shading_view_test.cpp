@@ -361,7 +361,7 @@ TEST(ShadingView, GaussianDistributionAndPolarisedFresnelOnTheScreen) {
     EXPECT_NE(lighting.find("(Gaussian)"), std::string::npos) << lighting;
     const BrdfRecord& b = trace.fragment.lighting.lighting.lights[0].brdf;
     EXPECT_NEAR(b.gaussianC, gaussianNormalizationExact(0.25), 1e-3);
-    EXPECT_NE(lighting.find("η = n2/n1 = 1.5"), std::string::npos) << lighting;
+    EXPECT_NE(lighting.find("η = n2/n1 = 1.5 (n1 = 1, air)"), std::string::npos) << lighting;
     EXPECT_NE(lighting.find("F0_dielectric = ((n1 − n2)/(n1 + n2))² = ((1 − 1.5)/(1 + 1.5))² = 0.04"),
               std::string::npos)
         << lighting;
