@@ -317,6 +317,7 @@ Material convertMaterial(const tinyobj::material_t& source, std::vector<std::str
     m.emission = colour(source.emission, defaults.emission);
     m.shininess = scalar(source.shininess, defaults.shininess);
     m.opacity = std::clamp(scalar(source.dissolve, defaults.opacity), 0.0f, 1.0f);
+    m.ior = scalar(source.ior, defaults.ior);
     if (replaced) {
         warnings.push_back(
             located(libraryFile, kNoLine,

@@ -173,6 +173,7 @@ void BM_VertexStage(benchmark::State& state) {
     uniforms.reflection = static_cast<ReflectionModel>(state.range(1));
     switch (frequency) {
         case ShadingFrequency::Flat:
+        case ShadingFrequency::Constant:  // the flat shader, unlit (never benchmarked)
             shadeAllVertices<ShadingFrequency::Flat>(state, mesh, uniforms);
             break;
         case ShadingFrequency::Gouraud:

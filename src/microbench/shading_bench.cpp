@@ -93,6 +93,7 @@ void BM_FragmentShader(benchmark::State& state) {
     uniforms.brdf.fresnel = static_cast<FresnelModel>(state.range(4));
     switch (frequency) {
         case ShadingFrequency::Flat:
+        case ShadingFrequency::Constant:  // the flat shader, unlit (never benchmarked)
             shadeAll<ShadingFrequency::Flat>(state, uniforms);
             break;
         case ShadingFrequency::Gouraud:

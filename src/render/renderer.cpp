@@ -65,15 +65,21 @@ PhongMaterial phongMaterial(const Material& file, const MaterialOverride& overri
 
 // Cook-Torrance's material. From the MTL: the diffuse colour as base colour, a dielectric (F0 = 0.04),
 // and the roughness whose Beckmann lobe matches the Phong exponent Ns: α = √(2/(Ns + 2)) (Walter et al.
-// 2007, eq. 8 inverted), roughness = √α. Then the preset, then the scene's explicit keys.
+// 2007, eq. 8 inverted), roughness = √α, and the index of refraction Ni when it is above 1 (F0 from
+// it; exporters write Ni 1 for "none"). Then the preset, then the scene's explicit keys: f0 replaces
+// the IOR's F0 and drops the IOR, ior replaces both.
 template <class Decode>
-PbrMaterial pbrMaterial(const PhongMaterial& phong, const MaterialOverride& override, Decode decode,
-                        const std::filesystem::path& source) {
+PbrMaterial pbrMaterial(const Material& file, const PhongMaterial& phong, const MaterialOverride& override,
+                        Decode decode, const std::filesystem::path& source) {
     PbrMaterial m;
     m.baseColor = phong.diffuse;
     m.metalness = 0.0f;
     m.roughness = std::sqrt(std::sqrt(2.0f / (std::max(phong.shininess, 0.0f) + 2.0f)));
     m.f0 = vec3(0.04f);
+    if (file.ior > 1.0f) {
+        m.ior = file.ior;
+        m.f0 = vec3(f0FromEta(file.ior));
+    }
     if (override.preset) {
         const std::optional<MaterialPreset> preset = findMaterialPreset(*override.preset);
         if (!preset)
@@ -83,12 +89,21 @@ PbrMaterial pbrMaterial(const PhongMaterial& phong, const MaterialOverride& over
             m.metalness = 1.0f;
         } else {
             m.f0 = preset->f0;
+            m.ior = 0.0f;
         }
     }
     if (override.baseColor) m.baseColor = decode(*override.baseColor);
     if (override.metalness) m.metalness = *override.metalness;
     if (override.roughness) m.roughness = *override.roughness;
-    if (override.f0) m.f0 = *override.f0;
+    if (override.f0) {
+        m.f0 = *override.f0;
+        m.ior = 0.0f;
+    }
+    if (override.ior) {
+        m.ior = *override.ior;
+        m.f0 = vec3(f0FromEta(*override.ior));
+    }
+    if (override.anisotropy) m.anisotropy = *override.anisotropy;
     return m;
 }
 
@@ -319,7 +334,8 @@ PreparedDraw partDraw(const ObjectDraws& o, const Camera& camera, const Mesh& me
     if (o.glPreset && material.fallback) material = glDefaultMaterial();
     draw.uniforms.material = phongMaterial(material, o.object.material, o.decode);
     if (o.glPreset) draw.uniforms.material.shininess = std::min(draw.uniforms.material.shininess, 128.0f);
-    draw.uniforms.pbr = pbrMaterial(draw.uniforms.material, o.object.material, o.decode, o.scene.source);
+    draw.uniforms.pbr =
+        pbrMaterial(material, draw.uniforms.material, o.object.material, o.decode, o.scene.source);
     draw.uniforms.opacity = o.object.material.opacity.value_or(material.opacity);
     const LoadedTexture* diffuse =
         material.diffuseTexture.empty() ? nullptr : o.assets.texture(material.diffuseTexture);
@@ -386,6 +402,7 @@ void addDraws(PreparedScene& frame, const SceneAssets& assets, const SurfaceUnif
         placeDraw(o.uniforms, frame.camera, glm::dmat4(object.worldFromObject));
         o.uniforms.reflection = object.reflection.value_or(
             object.material.physicallyBased() ? ReflectionModel::CookTorrance : scene.lighting.model);
+        o.uniforms.unlit = o.frequency == ShadingFrequency::Constant;
         for (const MeshPart& part : mesh.parts) {
             if (part.indexCount == 0) continue;
             frame.draws.push_back(partDraw(o, frame.camera, mesh, part, triangles.emplace_back()));

@@ -419,6 +419,7 @@ template <class Body>
 decltype(auto) withShadingFrequency(ShadingFrequency frequency, Body&& body) {
     switch (frequency) {
         case ShadingFrequency::Flat:
+        case ShadingFrequency::Constant:  // the flat shader with SurfaceUniforms::unlit
             return body.template operator()<ShadingFrequency::Flat>();
         case ShadingFrequency::Gouraud:
             return body.template operator()<ShadingFrequency::Gouraud>();

@@ -178,6 +178,40 @@ SceneKnob fogRangeKnob(std::string name, std::string flag, std::string help, std
     return knob;
 }
 
+// --ior and --f0 set every object's material key of that name ("ior", "f0" in an object's "material"),
+// as exercises vary them; like those keys they make an object physically based (Cook-Torrance unless
+// its "lighting" or --reflection says otherwise). --f0 takes one number for all three channels.
+template <class Field>
+SceneKnob materialNumberKnob(std::string name, std::string help, double lowest, double highest, Field field) {
+    SceneKnob knob = named(name, "--" + name, std::move(help));
+    knob.kind = KnobKind::Number;
+    knob.lowest = lowest;
+    knob.highest = highest;
+    knob.defaultNote = "(default: each object's material \"" + name + "\", else its MTL file's)";
+    knob.get = [field](const Scene& scene) {
+        std::string common;
+        for (const ObjectSpec& object : scene.objects) {
+            const auto& value = field(object.material);
+            std::string text;
+            if (value) {
+                if constexpr (std::is_same_v<std::decay_t<decltype(*value)>, glm::vec3>)
+                    text = value->x == value->y && value->y == value->z ? knobNumberText(value->x) : "";
+                else
+                    text = knobNumberText(static_cast<double>(*value));
+            }
+            if (&object != &scene.objects.front() && text != common) return std::string();
+            common = text;
+        }
+        return common;
+    };
+    knob.set = [field](Scene& scene, const std::string& value) {
+        const float number = static_cast<float>(std::strtod(value.c_str(), nullptr));
+        for (ObjectSpec& object : scene.objects)
+            field(object.material) = std::decay_t<decltype(*field(object.material))>(number);
+    };
+    return knob;
+}
+
 // The table. Notes on the trade's values:
 //   cull: front-face culling draws the wrong side, not a trade; culling back faces is the fast choice (the
 //     same image for closed models); no best value, the reference culls as the scene does.
@@ -335,10 +369,17 @@ std::vector<SceneKnob> makeTable() {
                      &FogSpec::start),
         fogRangeKnob("fog-end", "--fog-end", "Linear fog: the distance where it is complete", "end",
                      &FogSpec::end),
-        // Cook-Torrance's other terms: scene file keys only.
         choice<NormalDistribution>(
-            "distribution", "", "", "lighting", "distribution",
-            [](auto& s) -> auto& { return s.lighting.brdf.distribution; }),
+            "distribution", "--distribution",
+            "Cook-Torrance's microfacet distribution D: GGX, Beckmann or Torrance-Sparrow's Gaussian",
+            "lighting", "distribution", [](auto& s) -> auto& { return s.lighting.brdf.distribution; }),
+        materialNumberKnob(
+            "ior", "Index of refraction η of every object (F0 = ((1 − η)/(1 + η))²)", 1, 10,
+            [](auto& material) -> auto& { return material.ior; }),
+        materialNumberKnob(
+            "f0", "Reflectance at normal incidence F0 of every object (a dielectric's)", 0, 1,
+            [](auto& material) -> auto& { return material.f0; }),
+        // Cook-Torrance's other term: a scene file key only.
         choice<GeometryTerm>(
             "geometry", "", "", "lighting", "geometry",
             [](auto& s) -> auto& { return s.lighting.brdf.geometry; }),

@@ -45,6 +45,7 @@ struct Material {
     float shininess = 32.0f;   // Ns, the Phong exponent
     glm::vec3 emission{0.0f};  // Ke
     float opacity = 1.0f;      // d, or 1 - Tr
+    float ior = 1.0f;          // Ni, the optical density (index of refraction); 1 when not given
     std::filesystem::path
         diffuseTexture;  // map_Kd, resolved against the MTL's folder; empty if none or missing
     std::filesystem::path emissionTexture;  // map_Ke, the same way

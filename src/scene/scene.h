@@ -68,9 +68,13 @@ struct MaterialOverride {
     std::optional<float> roughness;      // 0..1, perceptual (α = roughness²)
     std::optional<glm::vec3>
         f0;  // linear reflectance at normal incidence, 0..1 (a number in the file sets all three)
+    std::optional<float> ior;         // index of refraction η, 1..10: F0 = ((1 − η)/(1 + η))²
+    std::optional<float> anisotropy;  // −1..1: α_x = α(1 + a), α_y = α(1 − a)
 
     // Whether any physically based key (or a preset) is given.
-    bool physicallyBased() const { return preset || baseColor || metalness || roughness || f0; }
+    bool physicallyBased() const {
+        return preset || baseColor || metalness || roughness || f0 || ior || anisotropy;
+    }
 };
 
 // A value for a uniform of a shader of one's own ("shader": {"uniforms": {...}} in a scene file,

@@ -27,9 +27,9 @@ constexpr std::string_view kSpotOnlyKeys[] = {"cutoff", "exponent", "inner", "ou
 constexpr std::string_view kObjectKeys[] = {"model",    "translate", "rotate", "scale",
                                             "material", "lighting",  "blend",  "shader"};
 constexpr std::string_view kShaderKeys[] = {"source", "uniforms"};
-constexpr std::string_view kMaterialKeys[] = {"ambient",   "diffuse",   "specular", "emission",
-                                              "shininess", "opacity",   "preset",   "base_color",
-                                              "metalness", "roughness", "f0"};
+constexpr std::string_view kMaterialKeys[] = {"ambient", "diffuse", "specular",   "emission",  "shininess",
+                                              "opacity", "preset",  "base_color", "metalness", "roughness",
+                                              "f0",      "ior",     "anisotropy"};
 constexpr std::string_view kObjectLightingKeys[] = {"model", "shading"};
 constexpr std::string_view kLightSpaces[] = {"world", "camera"};
 constexpr std::string_view kFogKeys[] = {"mode", "color", "start", "end", "density", "distance"};
@@ -292,6 +292,10 @@ MaterialOverride readMaterial(const SceneReader& reader, const Json& material, c
     if (const Json* v = reader.find(material, "roughness"))
         spec.roughness = reader.numberFromTo(*v, childPath(path, "roughness"), 0.0f, 1.0f);
     if (const Json* v = reader.find(material, "f0")) spec.f0 = readF0(reader, *v, childPath(path, "f0"));
+    if (const Json* v = reader.find(material, "ior"))
+        spec.ior = reader.numberFromTo(*v, childPath(path, "ior"), 1.0f, 10.0f);
+    if (const Json* v = reader.find(material, "anisotropy"))
+        spec.anisotropy = reader.numberFromTo(*v, childPath(path, "anisotropy"), -1.0f, 1.0f);
     return spec;
 }
 

@@ -74,6 +74,10 @@ struct SurfaceUniforms {
     // for the samples' spacing (λ lowered by ½·log2 N), as a frame drawn at √N times the size would;
     // with the level for a whole pixel, the average of the passes would filter the texture twice.
     float textureFootprint = 1.0f;
+    // Constant shading (ShadingFrequency::Constant, drawn by the flat shader): no lighting; surfaceTerms
+    // gives the diffuse colour (m_diffuse or c_base, textured as the diffuse term is) as the diffuse term
+    // and m_emission as the emission, nothing else.
+    bool unlit = false;
     bool twoSidedFlip = true;  // light the side of a surface that faces the viewer (N·V < 0: N = −N)
     bool clampColor = false;   // clamp lit colours to [0, 1] (per vertex before interpolation), as OpenGL 1.x
     std::uint8_t terms = kAllTerms;        // LightingTerm bits: which terms reach the image
@@ -107,6 +111,7 @@ struct SurfaceTermsRecord {
     vec3 position{0.0f};   // P, eye space
     vec3 normal{0.0f};     // N as it came (interpolated, or the vertex's), not unit length
     bool flipped = false;  // the two-sided flip turned it: N·V < 0, so N = −N
+    bool unlit = false;    // constant shading: no lighting, terms = (m_emission, 0, albedo, 0)
     ReflectionModel reflection = ReflectionModel::BlinnPhong;
     LightingRecord lighting{};
     std::uint8_t selectedTerms = kAllTerms;  // LightingTerm bits; the others were set to 0
@@ -180,6 +185,15 @@ template <class F, class V3, MathPrecision kPrecision, Normalization kNormalizat
     if constexpr (Record::enabled)
         *recordOf(recording...) = {
             .position = P, .normal = normal, .reflection = u.reflection, .selectedTerms = u.terms};
+    if (u.unlit) {  // constant shading: the unlit colour, albedo + emission
+        const V3 zero(vec3(0.0f));
+        const LightingTerms<V3> t{V3(u.emissionTerm()), zero, (u.terms & kDiffuseTerm) ? albedo : zero, zero};
+        if constexpr (Record::enabled) {
+            recordOf(recording...)->unlit = true;
+            recordOf(recording...)->terms = t;
+        }
+        return t;
+    }
     V3 N = normal;
     if (u.twoSidedFlip) {
         const auto facingAway = dot(N, -P) < 0.0f;
@@ -566,6 +580,7 @@ static_assert(PerVertexSurface<ShadingFrequency::Gouraud>::kVaryingNames.size() 
 inline std::span<const std::string_view> varyingNamesOf(ShadingFrequency frequency) {
     switch (frequency) {
         case ShadingFrequency::Flat:
+        case ShadingFrequency::Constant:
             return PerVertexSurface<ShadingFrequency::Flat>::kVaryingNames;
         case ShadingFrequency::Gouraud:
             return PerVertexSurface<ShadingFrequency::Gouraud>::kVaryingNames;

@@ -45,8 +45,12 @@ enum class ShadingFrequency {
     Flat,     // once per face: every pixel of a triangle gets its provoking vertex's colour
     Gouraud,  // once per vertex, the colours interpolated across the triangle
     Phong,    // once per pixel, with the interpolated normal renormalised
+    // never: one unlit colour, the material's diffuse colour (its texture's texel) plus its emission
+    // (lighting-deck-A.txt's "constant shading"); drawn by the flat shader, SurfaceUniforms::unlit
+    Constant,
 };
 inline constexpr EnumName<ShadingFrequency> kShadingFrequencyNames[] = {
+    {ShadingFrequency::Constant, "constant"},
     {ShadingFrequency::Flat, "flat"},
     {ShadingFrequency::Gouraud, "gouraud"},
     {ShadingFrequency::Phong, "phong"}};
@@ -402,13 +406,22 @@ struct PbrMaterial {
     float metalness = 0;     // 0 dielectric, 1 metal; blends F0 and removes the diffuse term
     float roughness = 0.5f;  // perceptual, α = roughness²
     vec3 f0{0.04f};          // dielectric reflectance at normal incidence (linear)
+    // The index of refraction η = n2/n1 (n1 = 1, air) of a dielectric; 0: none given, F0 alone. When
+    // given, f0 is ((1 − η)/(1 + η))² and the exact Fresnel term of a dielectric (metalness 0) uses η
+    // itself rather than the η recovered from F0.
+    float ior = 0;
+    // Anisotropy a in [−1, 1] (0: isotropic) of the GGX lobe along the surface's tangent frame:
+    // α_x = α(1 + a), α_y = α(1 − a) (Kulla & Conty 2017), each at least 1e−3.
+    float anisotropy = 0;
 };
 
-enum class NormalDistribution { Beckmann, GGX };
+enum class NormalDistribution { Beckmann, GGX, Gaussian };
 enum class FresnelModel { Schlick, Exact };
 enum class GeometryTerm { CookTorrance, SmithGGX };
 inline constexpr EnumName<NormalDistribution> kNormalDistributionNames[] = {
-    {NormalDistribution::GGX, "ggx"}, {NormalDistribution::Beckmann, "beckmann"}};
+    {NormalDistribution::GGX, "ggx"},
+    {NormalDistribution::Beckmann, "beckmann"},
+    {NormalDistribution::Gaussian, "gaussian"}};
 constexpr std::span<const EnumName<NormalDistribution>> enumNames(NormalDistribution) {
     return kNormalDistributionNames;
 }
@@ -450,6 +463,58 @@ F distributionBeckmann(F NdotH, float alpha) {
     return select(NdotH > 0.0f, d, lanes<F>(0.0f));
 }
 
+// The angle θ = acos(c) of a cosine c in [−1, 1], as atan2(√((1 − c)(1 + c)), c): exact near c = 1,
+// where acos of a rounded c loses the small angles a smooth surface's highlight lives on.
+template <class F>
+F angleFromCosine(F c) {
+    if constexpr (std::is_floating_point_v<F>) {
+        return std::atan2(std::sqrt(std::max((1 - c) * (1 + c), F(0))), c);
+    } else {
+        F theta = c;
+        for (int i = 0; i < 8; ++i)
+            theta[i] = angleFromCosine(c[i]);
+        return theta;
+    }
+}
+
+// The Gaussian's normalisation constant c(m): 1/(2π ∫₀^{π/2} exp(−(θ/m)²) cos θ sin θ dθ), so that
+// ∫ D(h) (n·h) dω_h = 1 over the hemisphere. With θ = m·t the integral is
+// (m/2) ∫₀^{π/(2m)} exp(−t²) sin(2mt) dt, a smooth integrand, summed here by Simpson's rule in double
+// (t beyond 6.5 adds less than e^−42); for small m, c → 1/(π m²). A teaching model, so one m is
+// remembered per thread: a draw computes it once.
+inline double gaussianNormalizationExact(double m) {
+    const double upper = std::min(std::numbers::pi / (2.0 * m), 6.5);
+    constexpr int kIntervals = 512;  // even
+    const double h = upper / kIntervals;
+    double sum = 0.0;
+    for (int i = 0; i <= kIntervals; ++i) {
+        const double t = i * h;
+        const double f = std::exp(-t * t) * std::sin(2.0 * m * t);
+        sum += f * (i == 0 || i == kIntervals ? 1.0 : (i % 2 ? 4.0 : 2.0));
+    }
+    const double integral = 0.5 * m * sum * h / 3.0;
+    return 1.0 / (2.0 * std::numbers::pi * integral);
+}
+inline float gaussianNormalization(float m) {
+    thread_local float lastM = -1.0f, lastC = 0.0f;
+    if (m != lastM) {
+        lastC = static_cast<float>(gaussianNormalizationExact(m));
+        lastM = m;
+    }
+    return lastC;
+}
+
+// The Gaussian distribution of Torrance & Sparrow 1967 (lighting-deck-A.txt, "possible terms D"):
+// D(h) = c·exp(−(θ_h/m)²), θ_h the angle between n and h, for n·h > 0, else 0; c = c(m) above, and
+// m = α (= roughness²): for small angles tan θ_h ≈ θ_h, so the lobe is Beckmann's of the same α near
+// its peak, and c → 1/(π α²) as Beckmann's constant.
+template <class F, MathPrecision P = MathPrecision::Exact>
+F distributionGaussian(F NdotH, float alpha) {
+    const F theta = angleFromCosine(saturate(NdotH)) * (1.0f / alpha);
+    const F d = gaussianNormalization(alpha) * Maths<P>::exp(-(theta * theta));
+    return select(NdotH > 0.0f, d, lanes<F>(0.0f));
+}
+
 // GGX / Trowbridge-Reitz (Walter et al. 2007): D(h) = α² / (π ((n·h)²(α² − 1) + 1)²) for n·h > 0, else 0.
 // The bracket is computed as (n·h)²α² + (1 − n·h)(1 + n·h), the same value without the cancellation of
 // 1 − (n·h)² that costs a smooth surface's peak several percent in float (see distributionBeckmann).
@@ -483,6 +548,34 @@ inline float etaFromF0(float f0) {
     return (1.0f + s) / (1.0f - s);
 }
 
+// The reflectance at normal incidence of an interface from n1 = 1 (air) into n2 = η:
+// F0 = ((n1 − n2)/(n1 + n2))² (Schlick 1994; lighting-deck-A.txt), in double, rounded once.
+inline float f0FromEta(float eta) {
+    const double r = (1.0 - double(eta)) / (1.0 + double(eta));
+    return static_cast<float>(r * r);
+}
+
+// Fresnel's equations for the two polarisations (Hecht, Optics, 5th ed., §4.6.2; lighting-deck-A.txt),
+// light arriving from n1 = 1 at cos θ_i onto n2 = η, Snell's law sin θ_t = sin θ_i/η:
+//   R_s = ((n1 cos θ_i − n2 cos θ_t)/(n1 cos θ_i + n2 cos θ_t))²   (perpendicular)
+//   R_p = ((n1 cos θ_t − n2 cos θ_i)/(n1 cos θ_t + n2 cos θ_i))²   (parallel)
+// and unpolarised light reflects F = (R_s + R_p)/2 (fresnelExact below, in Cook & Torrance's form). Total
+// internal reflection (sin θ_t > 1, η < 1) reflects all of both.
+template <class F>
+struct FresnelPolarized {
+    F s, p;
+};
+template <class F>
+FresnelPolarized<F> fresnelPolarized(F cosTheta, float eta) {
+    const F ci = saturate(cosTheta);
+    const F sinT2 = (1.0f - ci * ci) * (1.0f / (eta * eta));
+    const F ct = sqrt(max(1.0f - sinT2, 0.0f));
+    const F rs = (ci - eta * ct) / max(ci + eta * ct, 1e-7f);
+    const F rp = (ct - eta * ci) / max(ct + eta * ci, 1e-7f);
+    const F one = lanes<F>(1.0f);
+    return {select(sinT2 > 1.0f, one, rs * rs), select(sinT2 > 1.0f, one, rp * rp)};
+}
+
 // Exact Fresnel reflectance of unpolarised light at a dielectric interface (Cook & Torrance 1982):
 //   g = √(η² − 1 + c²), F = ½ ((g − c)/(g + c))² (1 + ((c(g + c) − 1)/(c(g − c) + 1))²), c = cos θ,
 // and total internal reflection (η² − 1 + c² < 0) reflects everything: F = 1.
@@ -499,6 +592,46 @@ template <class F, class V3 = LaneVec3<F>>
 V3 fresnelExact(const vec3& f0, F cosTheta) {
     return V3(fresnelExact(cosTheta, etaFromF0(f0.x)), fresnelExact(cosTheta, etaFromF0(f0.y)),
               fresnelExact(cosTheta, etaFromF0(f0.z)));
+}
+
+// Anisotropic GGX (Walter et al. 2007 §5.2 as Burley 2012 app. B.2 writes it; RTR4 eq. 9.47), with t, b
+// the unit tangent and bitangent of the surface's frame and α_x, α_y the roughnesses along them:
+//   D(h) = 1/(π α_x α_y ((h·t/α_x)² + (h·b/α_y)² + (h·n)²)²) for n·h > 0, else 0.
+// With α_x = α_y = α it is distributionGGX above.
+template <class F>
+F distributionGGXAnisotropic(F HdotT, F HdotB, F NdotH, float alphaX, float alphaY) {
+    const F x = HdotT * (1.0f / alphaX);
+    const F y = HdotB * (1.0f / alphaY);
+    const F c = max(NdotH, 0.0f);
+    const F denominator = x * x + y * y + c * c;
+    const F d = 1.0f / (std::numbers::pi_v<float> * alphaX * alphaY * denominator * denominator);
+    return select(NdotH > 0.0f, d, lanes<F>(0.0f));
+}
+
+// The roughnesses along the tangent and bitangent for anisotropy a (PbrMaterial::anisotropy):
+// α_x = α(1 + a), α_y = α(1 − a) (Kulla & Conty 2017), each at least 1e−3 as alphaFromRoughness.
+struct AnisotropicAlpha {
+    float x, y;
+};
+inline AnisotropicAlpha anisotropicAlpha(float alpha, float anisotropy) {
+    return {std::max(alpha * (1.0f + anisotropy), 1e-3f), std::max(alpha * (1.0f - anisotropy), 1e-3f)};
+}
+
+// Smith's masking for anisotropic GGX (Heitz 2014, eqs. 72 and 86): G1(ω) = 1/(1 + Λ(ω)),
+//   Λ(ω) = (−1 + √(1 + (α_x² (ω·t)² + α_y² (ω·b)²)/(ω·n)²))/2,
+// the separable G = G1(l)·G1(v). With α_x = α_y it is smithG1GGX below.
+template <class F>
+F smithG1GGXAnisotropic(F XdotT, F XdotB, F NdotX, float alphaX, float alphaY) {
+    const F c = max(NdotX, 1e-7f);
+    const F a2tan2 = (alphaX * alphaX * XdotT * XdotT + alphaY * alphaY * XdotB * XdotB) / (c * c);
+    return 2.0f / (1.0f + sqrt(1.0f + a2tan2));
+}
+
+// The same for all three channels: a dielectric of index η.
+template <class F, class V3 = LaneVec3<F>>
+V3 fresnelExactOneEta(F cosTheta, float eta) {
+    const F f = fresnelExact(cosTheta, eta);
+    return V3(f, f, f);
 }
 
 // Cook-Torrance 1982: G = min(1, 2(n·h)(n·v)/(v·h), 2(n·h)(n·l)/(v·h)).
@@ -543,7 +676,12 @@ struct BrdfRecord {
     vec3 f0{0.0f};                            // mix(F0_dielectric, c_base, metalness)
     BrdfModel model{};
     float D = 0;
+    float gaussianC = 0;  // the Gaussian distribution's normalisation c(m), m = α
+    float thetaH = 0;     // the Gaussian distribution's θ_h = acos(N·H), radians
     vec3 F{0.0f};
+    // Exact Fresnel: η per channel (the material's IOR, or recovered from F0) and the reflectances of
+    // the two polarisations, F = (R_s + R_p)/2.
+    vec3 eta{0.0f}, Rs{0.0f}, Rp{0.0f};
     float G = 0;
     float specularScale = 0;  // D·G/(4 (N·L)(N·V))
     float diffuseScale = 0;   // (1 − metalness)/π
@@ -573,8 +711,13 @@ BrdfLobes<V3> brdfLobes(const V3& n, const V3& l, const V3& v, const PbrMaterial
 
     // D, F, G.
     const F D = model.distribution == NormalDistribution::GGX ? distributionGGX(NdotH, alpha)
-                                                              : distributionBeckmann<F, P>(NdotH, alpha);
+                : model.distribution == NormalDistribution::Beckmann
+                    ? distributionBeckmann<F, P>(NdotH, alpha)
+                    : distributionGaussian<F, P>(NdotH, alpha);
+    // A dielectric given its IOR: the exact term with η itself, else η recovered from F0 per channel.
+    const bool exactWithIor = m.ior > 0.0f && m.metalness == 0.0f;
     const V3 fresnel = model.fresnel == FresnelModel::Schlick ? fresnelSchlick<F, V3>(f0, VdotH)
+                       : exactWithIor                         ? fresnelExactOneEta<F, V3>(VdotH, m.ior)
                                                               : fresnelExact<F, V3>(f0, VdotH);
     const F G = model.geometry == GeometryTerm::SmithGGX ? geometrySmithGGX(NdotV, NdotL, alpha)
                                                          : geometryCookTorrance(NdotH, NdotV, NdotL, VdotH);
@@ -605,6 +748,21 @@ BrdfLobes<V3> brdfLobes(const V3& n, const V3& l, const V3& v, const PbrMaterial
                                    .diffuseScale = diffuseScale,
                                    .grazing = !(NdotLRaw > kGrazingCosine),
                                    .lobes = brdfLobes<F, V3, P, kNormalization>(n, l, v, m, albedo, model)};
+    if constexpr (Record::enabled) {
+        BrdfRecord& r = *recordOf(recording...);
+        if (model.distribution == NormalDistribution::Gaussian) {
+            r.gaussianC = gaussianNormalization(alpha);
+            r.thetaH = angleFromCosine(std::clamp(float(NdotH), 0.0f, 1.0f));
+        }
+        if (model.fresnel == FresnelModel::Exact) {
+            r.eta = exactWithIor ? vec3(m.ior) : vec3(etaFromF0(f0.x), etaFromF0(f0.y), etaFromF0(f0.z));
+            for (int i = 0; i < 3; ++i) {
+                const FresnelPolarized<float> p = fresnelPolarized(float(VdotH), r.eta[i]);
+                r.Rs[i] = p.s;
+                r.Rp[i] = p.p;
+            }
+        }
+    }
     return {select(NdotLRaw > kGrazingCosine, diffuse, zero),
             select(NdotLRaw > kGrazingCosine, specular, zero)};
 }
@@ -757,14 +915,27 @@ struct MaterialPreset {
     std::string_view name;
     vec3 f0;     // reflectance at normal incidence, linear RGB
     bool metal;  // true: use as base colour with metalness 1; false: a dielectric's F0
+    // A dielectric the table gives as a range: its ends (f0 is their midpoint); 0, 0 for one value.
+    float low = 0, high = 0;
 };
 
 // F0 values from Real-Time Rendering, 4th ed. (Akenine-Möller et al. 2018): dielectrics from table 9.1,
-// metals (linear RGB) from table 9.2.
-inline const std::array<MaterialPreset, 16> kMaterialPresets{{
+// metals (linear RGB) from table 9.2 (lighting-deck-C.txt shows both). A row the table gives as a range
+// takes its midpoint; "plastic" and "glass" are the one row "plastics, glass", "eyes" the dry cornea.
+inline const std::array<MaterialPreset, 26> kMaterialPresets{{
     {"water", vec3(0.02f), false},
+    {"living-tissue", vec3(0.03f), false, 0.02f, 0.04f},
     {"skin", vec3(0.028f), false},
+    {"eyes", vec3(0.025f), false},
     {"hair", vec3(0.046f), false},
+    {"teeth", vec3(0.058f), false},
+    {"fabric", vec3(0.048f), false, 0.04f, 0.056f},
+    {"stone", vec3(0.0455f), false, 0.035f, 0.056f},
+    {"plastic", vec3(0.045f), false, 0.04f, 0.05f},
+    {"glass", vec3(0.045f), false, 0.04f, 0.05f},
+    {"crystal-glass", vec3(0.06f), false, 0.05f, 0.07f},
+    {"gems", vec3(0.065f), false, 0.05f, 0.08f},
+    {"diamond", vec3(0.165f), false, 0.13f, 0.2f},
     {"titanium", vec3(0.542f, 0.497f, 0.449f), true},
     {"chromium", vec3(0.549f, 0.556f, 0.554f), true},
     {"iron", vec3(0.562f, 0.565f, 0.578f), true},

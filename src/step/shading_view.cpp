@@ -121,7 +121,10 @@ std::string num(float v) {
     return buffer;
 }
 std::string vec(const vec3& v) {
-    return "(" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + ")";
+    // Appended piece by piece: GCC 12 warns (-Wrestrict, a false positive) on "(" + std::string.
+    std::string text(1, '(');
+    text.append(num(v.x)).append(", ").append(num(v.y)).append(", ").append(num(v.z)).append(")");
+    return text;
 }
 std::string rgb(const vec3& c) {
     return "RGB" + vec(c);
@@ -235,7 +238,13 @@ void writeMaterial(Lines& out, const LightingRecord& r) {
     if (r.physicallyBased) {
         out.add("  c_base = " + rgb(r.materialDiffuse) + ", metalness = " + num(r.pbr.metalness) +
                 ", roughness = " + num(r.pbr.roughness));
-        out.add("  F0_dielectric = " + rgb(r.pbr.f0));
+        if (r.pbr.ior > 0.0f) {
+            out.add("  η = n2/n1 = " + num(r.pbr.ior) + " (n1 = 1, air)");
+            out.add("  F0_dielectric = ((n1 − n2)/(n1 + n2))² = ((1 − " + num(r.pbr.ior) + ")/(1 + " +
+                    num(r.pbr.ior) + "))² = " + num(r.pbr.f0.x));
+        } else {
+            out.add("  F0_dielectric = " + rgb(r.pbr.f0));
+        }
     } else {
         out.add("  m_ambient = " + rgb(r.materialAmbient));
         out.add("  m_diffuse = " + rgb(r.materialDiffuse));
@@ -366,18 +375,28 @@ void writeBrdf(Lines& out, const LightingRecord& lighting, const BrdfRecord& b) 
         out.add("  D = α²/(π((N·H)²(α² − 1) + 1)²)   (GGX)");
         out.add("    = " + num(b.alpha) + "²/(π(" + num(b.NdotH) + "²(" + num(b.alpha) +
                 "² − 1) + 1)²) = " + num(b.D));
-    } else {
+    } else if (b.model.distribution == NormalDistribution::Beckmann) {
         out.add("  D = exp(((N·H)² − 1)/(α²(N·H)²))/(π·α²·(N·H)⁴)   (Beckmann)");
         out.add("    with N·H = " + num(b.NdotH) + ", α = " + num(b.alpha) + ": D = " + num(b.D));
+    } else {
+        out.add("  D = c·exp(−(θ_h/m)²), θ_h = acos(N·H), m = α   (Gaussian)");
+        out.add("    c = 1/(2π∫exp(−(θ/m)²)cosθ sinθ dθ) = " + num(b.gaussianC) + " (∫D(N·H)dω = 1)");
+        out.add("    = " + num(b.gaussianC) + "·exp(−(" + num(b.thetaH) + "/" + num(b.alpha) +
+                ")²) = " + num(b.D));
     }
     out.add("  F0 = mix(F0_dielectric, c_base, metalness) = " + rgb(b.f0));
     if (b.model.fresnel == FresnelModel::Schlick) {
         out.add("  F = F0 + (1 − F0)(1 − V·H)^5   (Schlick)");
         out.add("    = " + rgb(b.f0) + " + (1 − F0)(1 − " + num(b.VdotH) + ")^5");
     } else {
-        out.add("  F: the exact Fresnel reflectance (Cook & Torrance 1982) at cos θ = V·H = " + num(b.VdotH));
-        out.add("    and η = (1 + √F0)/(1 − √F0) = " +
-                vec(vec3(etaFromF0(b.f0.x), etaFromF0(b.f0.y), etaFromF0(b.f0.z))) + " per channel");
+        out.add("  F = (R_s + R_p)/2, the exact Fresnel reflectance at cos θ_i = V·H = " + num(b.VdotH));
+        if (lighting.pbr.ior > 0.0f && lighting.pbr.metalness == 0.0f)
+            out.add("    η = n2/n1 = " + num(lighting.pbr.ior) + " (the material's index of refraction)");
+        else
+            out.add("    η = (1 + √F0)/(1 − √F0) = " + vec(b.eta) + " per channel");
+        out.add("    sin θ_t = sin θ_i/η;  R_s = ((cos θ_i − η cos θ_t)/(cos θ_i + η cos θ_t))²");
+        out.add("                          R_p = ((cos θ_t − η cos θ_i)/(cos θ_t + η cos θ_i))²");
+        out.add("    R_s = " + vec(b.Rs) + ", R_p = " + vec(b.Rp));
     }
     out.add("    = " + rgb(b.F));
     if (b.model.geometry == GeometryTerm::SmithGGX) {
@@ -474,6 +493,8 @@ std::string frequencyTitle(const ShadingTrace& t) {
             return "per vertex (Gouraud shading)";
         case ShadingFrequency::Flat:
             return "once per triangle (flat shading)";
+        case ShadingFrequency::Constant:
+            return "never (constant shading)";
     }
     return "";
 }
@@ -593,8 +614,32 @@ Screen lightingScreen(const ShadingTrace& t) {
     const FragmentRecord& f = t.fragment;
     const LightingRecord& model =
         t.corners.empty() ? f.lighting.lighting : t.corners[0].lighting.lighting.lighting;
+    if (t.frequency == ShadingFrequency::Constant) {
+        // No lighting equation: the colour the flat shader's vertex stage hands on (surfaceTerms, unlit).
+        const SurfaceUniforms& u = t.uniforms;
+        const bool pbr = u.reflection == ReflectionModel::CookTorrance;
+        out.add("Constant shading: no lighting equation runs (no light, no normal). Every pixel");
+        out.add("of the object takes one unlit colour (lighting-deck-A.txt):");
+        out.add(std::string("  c = ") + (pbr ? "c_base" : "m_diffuse") + " ⊗ texel + m_emission");
+        out.blank();
+        out.add(std::string("  ") + (pbr ? "c_base" : "m_diffuse") + " = " + rgb(u.albedo()) +
+                (u.terms & kDiffuseTerm ? "" : " (not selected: 0)"));
+        out.add("  m_emission = " + rgb(u.material.emission) +
+                (u.terms & kEmissionTerm ? "" : " (not selected: 0)"));
+        if (f.diffuseMapped)
+            out.add("  texel = " + rgb(vec3(f.diffuseTexel)) + " (the diffuse map at uv " + uvText(f.uv) +
+                    ")");
+        if (f.emissionMapped)
+            out.add("  m_emission ⊗ emission texel " + rgb(vec3(f.emissionTexel)) + " = " + rgb(f.emission));
+        out.add("  c = " + rgb(f.modulated) + " + " + rgb(f.added) + " = " + rgb(f.color));
+        out.blank();
+        writeFragmentPart(out, t);
+        return {"lighting", "Lighting " + frequencyTitle(t) + ": the unlit colour", out.text()};
+    }
     std::string title = "Lighting " + frequencyTitle(t) + ": " + std::string(modelName(model));
     switch (t.frequency) {
+        case ShadingFrequency::Constant:  // above
+            break;
         case ShadingFrequency::Phong:
             out.add("Phong shading: the lighting equation runs at this pixel, on the position and the");
             out.add("normal interpolated from the triangle's corners.");
@@ -800,6 +845,9 @@ nlohmann::json toJson(const LightRecord& r, bool physicallyBased) {
                      {"fresnel", nameOf(b.model.fresnel)},
                      {"F0", json3(b.f0)},
                      {"F", json3(b.F)},
+                     {"eta", json3(b.eta)},
+                     {"Rs", json3(b.Rs)},
+                     {"Rp", json3(b.Rp)},
                      {"geometry", nameOf(b.model.geometry)},
                      {"G", b.G},
                      {"grazing", b.grazing},

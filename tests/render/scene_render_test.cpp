@@ -351,5 +351,59 @@ TEST_F(SceneRenderTest, ScaledScenesLookAsAtUnitScale) {
     }
 }
 
+// ---- Surfaces: constant shading, the index of refraction --------------------------------------------
+
+// Constant shading lights nothing: turning the light leaves the image as it is, while the flat shading
+// of the same scene changes. Catches SurfaceUniforms::unlit not reaching the flat shader.
+TEST_F(SceneRenderTest, ConstantShadingIgnoresTheLights) {
+    const auto scene = [](const std::string& shading, const std::string& direction) {
+        return R"({"lighting": {"shading": ")" + shading +
+               R"("}, "lights": [{"type": "directional", "direction": )" + direction + "}]}";
+    };
+    const fs::path path = folder_ / "scene.json";
+    const LinearImage constantA = renderCube(path, scene("constant", "[-1, -1, -1]"));
+    const LinearImage constantB = renderCube(path, scene("constant", "[1, -0.2, -1]"));
+    const LinearImage flatA = renderCube(path, scene("flat", "[-1, -1, -1]"));
+    const LinearImage flatB = renderCube(path, scene("flat", "[1, -0.2, -1]"));
+    EXPECT_EQ(constantA.pixels, constantB.pixels);
+    EXPECT_NE(flatA.pixels, flatB.pixels);
+    EXPECT_NE(constantA.pixels, flatA.pixels);
+}
+
+// "ior" reaches the material (F0 from it) and the image; an MTL's Ni above 1 does too, Ni 1 does not.
+TEST_F(SceneRenderTest, IndexOfRefractionReachesTheMaterialAndTheImage) {
+    const fs::path path = folder_ / "scene.json";
+    const auto objects = [&](const std::string& model, const std::string& material) {
+        return nlohmann::json::parse(R"({"width": 48, "height": 36,
+                                         "lighting": {"model": "cook-torrance", "fresnel": "exact"},
+                                         "objects": [{"model": ")" +
+                                     model + R"(", "material": )" + material + "}]}");
+    };
+    const auto draw = [&](const nlohmann::json& document) {
+        std::ofstream(path) << document.dump();
+        const PreparedScene prepared = prepareScene(loadScene(path));
+        Framebuffer framebuffer(48, 36);
+        DrawContext context(1);
+        renderFrame(prepared, framebuffer, context);
+        return std::pair{toImage(framebuffer).pixels, prepared.draws[0].uniforms};
+    };
+    const std::string cube = FACET_SOURCE_DIR "/models/cube/cube.obj";
+    const auto [low, lowUniforms] = draw(objects(cube, R"({"ior": 1.2})"));
+    const auto [high, highUniforms] = draw(objects(cube, R"({"ior": 2.0})"));
+    EXPECT_NE(low, high);
+    EXPECT_FLOAT_EQ(highUniforms.pbr.ior, 2.0f);
+    EXPECT_FLOAT_EQ(highUniforms.pbr.f0.x, 1.0f / 9.0f);  // ((1 − 2)/(1 + 2))²
+
+    // The MTL's Ni: used above 1 (Cook-Torrance), not at 1.
+    for (const auto& [ni, ior] : {std::pair{"2.0", 2.0f}, std::pair{"1.0", 0.0f}}) {
+        std::ofstream(folder_ / "m.mtl") << "newmtl glassy\nKd 0.5 0.5 0.5\nNi " << ni << "\n";
+        std::ofstream(folder_ / "m.obj")
+            << "mtllib m.mtl\nusemtl glassy\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+        const SurfaceUniforms u = draw(objects((folder_ / "m.obj").string(), "{}")).second;
+        EXPECT_FLOAT_EQ(u.pbr.ior, ior) << "Ni " << ni;
+        EXPECT_FLOAT_EQ(u.pbr.f0.x, ior > 0 ? 1.0f / 9.0f : 0.04f) << "Ni " << ni;
+    }
+}
+
 }  // namespace
 }  // namespace facet

@@ -345,5 +345,33 @@ TEST(ShadingView, PhongReflectionAndSpotConeOnTheScreen) {
     EXPECT_NE(screenText(shadingScreens(trace), "fog").find("Fog is off"), std::string::npos);
 }
 
+// Cook-Torrance with the Gaussian D and the exact Fresnel of an IOR: the lighting screen shows c, θ_h,
+// η, R_s and R_p with their numbers, and they are the formulas' (checked against the record's own).
+TEST(ShadingView, GaussianDistributionAndPolarisedFresnelOnTheScreen) {
+    SurfaceUniforms u = handBuiltUniforms();
+    u.reflection = ReflectionModel::CookTorrance;
+    u.brdf.distribution = NormalDistribution::Gaussian;
+    u.brdf.fresnel = FresnelModel::Exact;
+    u.pbr.ior = 1.5f;
+    u.pbr.f0 = vec3(f0FromEta(1.5f));
+    u.pbr.roughness = 0.5f;
+    const ShadingTrace trace = traceShading(u, ShadingFrequency::Phong, handBuiltFragment(u), {}, 2);
+    EXPECT_TRUE(trace.matchesPipeline);
+    const std::string lighting = screenText(shadingScreens(trace), "lighting");
+    EXPECT_NE(lighting.find("(Gaussian)"), std::string::npos) << lighting;
+    const BrdfRecord& b = trace.fragment.lighting.lighting.lights[0].brdf;
+    EXPECT_NEAR(b.gaussianC, gaussianNormalizationExact(0.25), 1e-3);
+    EXPECT_NE(lighting.find("η = n2/n1 = 1.5 (n1 = 1, air)"), std::string::npos) << lighting;
+    EXPECT_NE(lighting.find("F0_dielectric = ((n1 − n2)/(n1 + n2))² = ((1 − 1.5)/(1 + 1.5))² = 0.04"),
+              std::string::npos)
+        << lighting;
+    EXPECT_NE(lighting.find("R_s = ("), std::string::npos) << lighting;
+    EXPECT_NEAR((b.Rs.x + b.Rp.x) / 2, b.F.x, 1e-6f);
+    EXPECT_GT(b.Rs.x, b.Rp.x);
+    std::istringstream text(lighting);
+    for (std::string line; std::getline(text, line);)
+        EXPECT_LE(columns(line), 80u) << line;
+}
+
 }  // namespace
 }  // namespace facet::step
