@@ -18,6 +18,19 @@ std::vector<std::string> linesOf(const std::string& text) {
     return lines;
 }
 
+// Columns a line takes on a terminal: UTF-8 continuation bytes take none.
+std::size_t columns(const std::string& s) {
+    std::size_t n = 0;
+    for (unsigned char c : s)
+        n += (c & 0xC0) != 0x80;
+    return n;
+}
+
+// `text` as it is when it fits `width` columns (its spacing kept), else wrapped with `indent`.
+std::string fitted(const std::string& text, std::size_t width, std::size_t indent) {
+    return columns(text) <= width ? text + "\n" : wrapText(text, width, indent);
+}
+
 struct Row {
     std::optional<std::string> left, right;
 };
@@ -114,7 +127,7 @@ std::string sideBySide(const Walk& a, const std::string& nameA, const Walk& b, c
     std::ostringstream out;
     const auto emit = [&out](std::string_view gutter, const std::string& text) {
         const std::size_t indent = std::min<std::size_t>(text.find_first_not_of(' '), 40);
-        const std::vector<std::string> wrapped = linesOf(wrapText(text, kWidth - kGutter, indent + 4));
+        const std::vector<std::string> wrapped = linesOf(fitted(text, kWidth - kGutter, indent + 4));
         for (const std::string& line : wrapped.empty() ? std::vector<std::string>{""} : wrapped)
             out << gutter << line << "\n";
     };
@@ -122,23 +135,22 @@ std::string sideBySide(const Walk& a, const std::string& nameA, const Walk& b, c
     heading << "Pixel (" << a.x << ", " << a.y << ")";
     if (a.triangle) heading << ", triangle " << a.triangle->number;
     heading << ", under two settings. Left (<): " << nameA << ". Right (>): " << nameB << ".";
-    out << wrapText(heading.str(), kWidth, 2);
+    out << fitted(heading.str(), kWidth, 2);
     if (!first) {
         out << "The two traces are the same, line for line.\n";
     } else {
         const Block& block = blocks[first->first];
         const Row& row = block.rows[first->second];
-        out << wrapText("They first differ in \"" + block.titleA + "\":", kWidth, 2);
+        out << fitted("They first differ in \"" + block.titleA + "\":", kWidth, 2);
         if (row.left && row.right)
-            out << wrapText("  left:  " + *row.left, kWidth, 9)
-                << wrapText("  right: " + *row.right, kWidth, 9);
+            out << fitted("  left:  " + *row.left, kWidth, 9) << fitted("  right: " + *row.right, kWidth, 9);
         else if (row.left)
-            out << wrapText("  a line only the left has: " + *row.left, kWidth, 4);
+            out << fitted("  a line only the left has: " + *row.left, kWidth, 4);
         else
-            out << wrapText("  a line only the right has: " + *row.right, kWidth, 4);
+            out << fitted("  a line only the right has: " + *row.right, kWidth, 4);
     }
-    out << "Gutter: blank, the same line on both sides; < the left's line; > the right's (a changed\n"
-           "line shows both, the left's first); * the first difference.\n";
+    out << "Gutter: blank, the same line on both sides; < the left's line; > the right's\n"
+           "(a changed line shows both, the left's first); * the first difference.\n";
     for (std::size_t k = 0; k < blocks.size(); ++k) {
         const Block& block = blocks[k];
         out << "\n" << std::string(kWidth, '=') << "\n";

@@ -272,8 +272,8 @@ struct HandBrdf {
     glm::dvec3 c{0.8, 0.5, 0.2};                      // c_base
     double metalness = 0.3, f0 = 0.04, alpha = 0.25;  // roughness 0.5
     glm::dvec3 N{0.0, 0.0, 1.0};
-    glm::dvec3 L = glm::normalize(glm::dvec3(0.3, 0.2, 1.0));
-    glm::dvec3 V = glm::normalize(glm::dvec3(-0.5, 0.1, 1.0));
+    glm::dvec3 L = glm::normalize(glm::dvec3(0.9, 0.2, 0.6));
+    glm::dvec3 V = glm::normalize(glm::dvec3(-0.3, 0.1, 1.0));
     glm::dvec3 H = glm::normalize(L + V);
     double nl = glm::dot(N, L), nv = glm::dot(N, V), nh = glm::dot(N, H), vh = glm::dot(V, H);
     double D() const {
