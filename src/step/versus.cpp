@@ -134,8 +134,9 @@ std::string sideBySide(const Walk& a, const std::string& nameA, const Walk& b, c
     std::ostringstream heading;
     heading << "Pixel (" << a.x << ", " << a.y << ")";
     if (a.triangle) heading << ", triangle " << a.triangle->number;
-    heading << ", under two settings. Left (<): " << nameA << ". Right (>): " << nameB << ".";
-    out << fitted(heading.str(), kWidth, 2);
+    heading << ", under two settings:";
+    out << heading.str() << "\n"
+        << fitted("  left (<):  " + nameA, kWidth, 14) << fitted("  right (>): " + nameB, kWidth, 14);
     if (!first) {
         out << "The two traces are the same, line for line.\n";
     } else {
