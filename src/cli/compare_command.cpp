@@ -77,7 +77,7 @@ CLI::App* addCompareCommand(CLI::App& app, CompareArgs& args) {
         *command, "--against", args.against,
         "With --shader: render the scene with your shader and with this built-in reflection model (both "
         "per pixel; your shader sees the model in its uniforms), count the pixels whose 8-bit codes differ, "
-        "and trace the first one in both side by side (as facet step --versus does); no OpenGL");
+        "and trace the first one in both one above the other (as facet step --versus does); no OpenGL");
     against->excludes(reference);
     for (const char* mesaOnly : {"--driver", "--mesa", "--diff"})
         against->excludes(command->get_option(mesaOnly));
@@ -222,7 +222,7 @@ int compareAgainstBuiltIn(const CompareArgs& args, const facet::Scene& scene) {
         command += " --uniform " + shellWord(uniform);
     std::cout << "trace it: " << command << " --print\n";
     if (args.noTrace) return kShaderDiffers;
-    // Both traces of that pixel, side by side (facet step --versus's layout), the built-in following
+    // Both traces of that pixel, one above the other (facet step --versus's layout), the built-in following
     // the triangle that gave the pixel its colour in the shader's frame.
     facet::DrawContext context(args.scene.threads);
     facet::step::StepRequest request;

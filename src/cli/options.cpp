@@ -224,6 +224,10 @@ void applyLightingOptions(const SceneArgs& args, facet::Scene& scene) {
         throw facet::InputError(
             "the " + std::string(nameOf(LightingPreset::GL)) +
             " preset writes colours as OpenGL 1.x does, unencoded: --encode and --gamma do not apply");
+    if ((args.encode || args.gamma) && scene.lighting.preset == facet::LightingPreset::Lecture)
+        throw facet::InputError("the " + std::string(nameOf(LightingPreset::Lecture)) +
+                                " preset encodes with the lecture notes' pure 2.2 power: --encode and "
+                                "--gamma do not apply");
     if (args.encode) scene.gamma.encode = *args.encode;
     if (args.gamma) {
         if (!(*args.gamma > 0.0f && *args.gamma <= 10.0f))

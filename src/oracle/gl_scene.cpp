@@ -17,6 +17,8 @@ GlScene toGlScene(const PreparedScene& prepared) {
     gl.textureFilter = prepared.scene.textures.filter;
     if (prepared.state.raster.cull == CullMode::Front)
         throw std::invalid_argument("OpenGL comparison: front-face culling is not mirrored");
+    if (prepared.scene.lighting.preset == LightingPreset::Lecture)
+        throw std::invalid_argument("OpenGL comparison: the lecture preset's formulas are not mirrored");
     const bool glPreset = prepared.scene.lighting.preset == LightingPreset::GL;
     if (!prepared.draws.empty()) {
         const SurfaceUniforms& u = prepared.draws.front().uniforms;

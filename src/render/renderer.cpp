@@ -288,6 +288,15 @@ SurfaceUniforms commonUniforms(const Scene& scene, std::span<const LightSpec> li
     common.normalization = scene.lighting.normalize;
     common.twoSidedFlip = !glPreset;
     common.clampColor = glPreset;
+    if (scene.lighting.preset == LightingPreset::Lecture) {
+        // The lecture notes' conventions (docs/lighting.md, "Facet's form and the notes'").
+        common.twoSidedFlip = false;
+        common.clampNdotV = true;
+        common.clampColor = true;
+        common.brdf.fresnelCosine = FresnelCosine::NdotL;
+        common.brdf.denominator = MicrofacetDenominator::Pi;
+        common.brdf.metal = MetalBlend::TintedLobe;
+    }
     common.fog = fogParams(scene, bounds, camera, decode);
     common.textureFilter = scene.textures.filter;
     if (!isMultisampled(scene.pipeline.antialiasing))  // ssaaN: each pass samples 1/N of the pixel
@@ -485,7 +494,10 @@ PreparedScene prepareFrame(const Scene& scene, std::shared_ptr<const SceneAssets
 
     frame.state = pipelineState(scene);
     frame.clearColor = vec4(decode(vec3(scene.background)), scene.background.a);
-    frame.encoding = glPreset ? kGlEncoding : ColorEncoding{scene.gamma.encode, scene.gamma.exponent};
+    frame.encoding = glPreset ? kGlEncoding
+                     : scene.lighting.preset == LightingPreset::Lecture
+                         ? kLectureEncoding
+                         : ColorEncoding{scene.gamma.encode, scene.gamma.exponent};
     // Shadows: each light's method (the command line's for all of them, when given).
     for (std::size_t i = 0; i < lights.size(); ++i)
         frame.shadowMethods[i] = scene.shadows.value_or(lights[i].shadows);

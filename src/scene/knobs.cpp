@@ -235,7 +235,8 @@ std::vector<SceneKnob> makeTable() {
     return {
         choice<LightingPreset>(
             "lighting", "--lighting",
-            "Conventions: linear light and sRGB output, or OpenGL 1.x fixed function (docs/lighting.md)",
+            "Conventions: linear light and sRGB output, OpenGL 1.x fixed function, or the lecture "
+            "notes' formulas and 2.2 gamma (docs/lighting.md)",
             "lighting", "preset", [](auto& s) -> auto& { return s.lighting.preset; }),
         traded(shadingKnob(), {}, "flat", "phong"),
         traded(choice<Interpolation>(

@@ -60,6 +60,12 @@ Scene loadScene(const fs::path& path) {
                 "OpenGL "
                 "1.x does, without decoding or encoding; remove \"gamma\"");
         }
+        // The lecture preset fixes the output curve (a pure 2.2 power); only the inputs' decoding is open.
+        if (scene.lighting.preset == LightingPreset::Lecture &&
+            (v->contains("encode") || v->contains("exponent")))
+            reader.fail(
+                "\"gamma.encode\" and \"gamma.exponent\" cannot be used with the lecture lighting preset: it "
+                "encodes with the pure 2.2 power of the lecture notes; remove them");
         scene.gamma = readGamma(reader, *v);
     }
 

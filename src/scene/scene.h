@@ -115,9 +115,12 @@ struct ObjectSpec {
 enum class LightingPreset {
     Facet,  // linear-light rendering: colours decoded from sRGB, output encoded, per-pixel by default
     GL,     // OpenGL 1.x fixed function: colours as given, no gamma, Gouraud by default (docs/lighting.md)
+    // The lecture notes' forms: Cook-Torrance with π(N·V)(N·L), F at N·L and the tinted metal lobe; N·V
+    // clamped instead of the flip; lit colours clamped; output encoded with a pure 2.2 power.
+    Lecture,
 };
-inline constexpr EnumName<LightingPreset> kLightingPresetNames[] = {{LightingPreset::Facet, "facet"},
-                                                                    {LightingPreset::GL, "gl"}};
+inline constexpr EnumName<LightingPreset> kLightingPresetNames[] = {
+    {LightingPreset::Facet, "facet"}, {LightingPreset::GL, "gl"}, {LightingPreset::Lecture, "lecture"}};
 constexpr std::span<const EnumName<LightingPreset>> enumNames(LightingPreset) {
     return kLightingPresetNames;
 }

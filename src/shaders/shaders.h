@@ -79,7 +79,10 @@ struct SurfaceUniforms {
     // and m_emission as the emission, nothing else.
     bool unlit = false;
     bool twoSidedFlip = true;  // light the side of a surface that faces the viewer (N·V < 0: N = −N)
-    bool clampColor = false;   // clamp lit colours to [0, 1] (per vertex before interpolation), as OpenGL 1.x
+    // Instead of the flip: where N·V < 0 the viewer sees the surface's underside and N·V is clamped to 0,
+    // so no light of the lights reaches the viewer: diffuse and specular 0 (lighting-deck-A.txt).
+    bool clampNdotV = false;
+    bool clampColor = false;  // clamp lit colours to [0, 1] (per vertex before interpolation), as OpenGL 1.x
     std::uint8_t terms = kAllTerms;        // LightingTerm bits: which terms reach the image
     float opacity = 1.0f;                  // α, times the diffuse map's alpha when there is one
     FogParams fog;                         // applied to the lit colour, before the blend's output form
@@ -108,10 +111,11 @@ struct SurfaceUniforms {
 // surfaceTerms at one point: the normal and its two-sided flip, the lighting, the terms selected.
 struct SurfaceTermsRecord {
     static constexpr bool enabled = true;
-    vec3 position{0.0f};   // P, eye space
-    vec3 normal{0.0f};     // N as it came (interpolated, or the vertex's), not unit length
-    bool flipped = false;  // the two-sided flip turned it: N·V < 0, so N = −N
-    bool unlit = false;    // constant shading: no lighting, terms = (m_emission, 0, albedo, 0)
+    vec3 position{0.0f};     // P, eye space
+    vec3 normal{0.0f};       // N as it came (interpolated, or the vertex's), not unit length
+    bool flipped = false;    // the two-sided flip turned it: N·V < 0, so N = −N
+    bool underside = false;  // clampNdotV: N·V < 0, so the diffuse and specular terms are 0
+    bool unlit = false;      // constant shading: no lighting, terms = (m_emission, 0, albedo, 0)
     ReflectionModel reflection = ReflectionModel::BlinnPhong;
     LightingRecord lighting{};
     std::uint8_t selectedTerms = kAllTerms;  // LightingTerm bits; the others were set to 0
@@ -226,6 +230,14 @@ template <class F, class V3, MathPrecision kPrecision, Normalization kNormalizat
                 P, N, eye, u.pbr, albedo, u.material.emission, u.globalAmbient, u.activeLights(), u.brdf,
                 visibility, &recording->lighting...);
             break;
+    }
+    if (u.clampNdotV) {
+        // N·V clamped to 0: the lights' terms vanish where the viewer sees the underside.
+        const auto underside = dot(N, -P) < 0.0f;
+        const V3 zero(vec3(0.0f));
+        t.diffuse = select(underside, zero, t.diffuse);
+        t.specular = select(underside, zero, t.specular);
+        if constexpr (Record::enabled) recordOf(recording...)->underside = underside;
     }
     if (u.terms != kAllTerms) {
         const V3 zero(vec3(0.0f));

@@ -42,6 +42,8 @@ inline constexpr ColorEncoding kSrgbEncoding{TransferCurve::Srgb};
 inline constexpr ColorEncoding kLinearEncoding{TransferCurve::Linear};
 // The gl preset's: unencoded, rounded as Mesa rounds a float colour into an 8-bit framebuffer.
 inline constexpr ColorEncoding kGlEncoding{TransferCurve::Linear, 2.2f, Rounding::HalfToEven};
+// The lecture preset's: c^(1/2.2), the pure power of lighting-deck-C.txt's gamma correction.
+inline constexpr ColorEncoding kLectureEncoding{TransferCurve::Power, 2.2f};
 
 // An 8-bit code for a value already in [0,1] (encoded colour, or alpha), rounded to nearest, ties as
 // `rounding` says.

@@ -436,12 +436,38 @@ constexpr std::span<const EnumName<GeometryTerm>> enumNames(GeometryTerm) {
     return kGeometryTermNames;
 }
 
-// The reflection models' formulas: Cook-Torrance's D, F and G, and Blinn-Phong's exponent.
+// The cosine the Fresnel term is evaluated at.
+enum class FresnelCosine : std::uint8_t {
+    VdotH,  // cos θ = V·H, the angle at the microfacet that reflects L into V (Walter et al. 2007)
+    NdotL,  // cos θ = N·L, at the macroscopic normal (lighting-deck-A.txt, lighting-deck-C.txt)
+};
+// The constant of the microfacet specular lobe's denominator: D·F·G / (k (N·L)(N·V)).
+enum class MicrofacetDenominator : std::uint8_t {
+    Four,  // k = 4, from the Jacobian of the half vector (Walter et al. 2007; Karis 2013; RTR4 eq. 9.34)
+    Pi,    // k = π, as Cook & Torrance 1982 and lighting-deck-A.txt write it
+};
+// How metalness enters the BRDF.
+enum class MetalBlend : std::uint8_t {
+    // F0 = mix(F0_dielectric, c_base, metalness): a metal's Fresnel reflectance is its colour (Karis 2013).
+    F0,
+    // lighting-deck-C.txt's "putting it together": F from F0_dielectric for both, the metal's specular
+    // lobe tinted by c_base: brdf = metalness·spec·c_base + (1 − metalness)·(spec + (1 − F)·c_base/π).
+    TintedLobe,
+};
+inline constexpr float microfacetConstant(MicrofacetDenominator d) {
+    return d == MicrofacetDenominator::Four ? 4.0f : std::numbers::pi_v<float>;
+}
+
+// The reflection models' formulas: Cook-Torrance's D, F and G, and Blinn-Phong's exponent. The last
+// three are the conventions the lecture preset changes (docs/lighting.md, "Facet's form and the notes'").
 struct BrdfModel {
     NormalDistribution distribution = NormalDistribution::GGX;
     FresnelModel fresnel = FresnelModel::Schlick;
     GeometryTerm geometry = GeometryTerm::SmithGGX;
     BlinnExponent blinnExponent = BlinnExponent::Given;
+    FresnelCosine fresnelCosine = FresnelCosine::VdotH;
+    MicrofacetDenominator denominator = MicrofacetDenominator::Four;
+    MetalBlend metal = MetalBlend::F0;
 };
 
 // α = roughness² (Burley 2012), kept ≥ 1e−3 so D stays finite for a mirror.
@@ -657,6 +683,8 @@ F geometrySmithGGX(F NdotV, F NdotL, float alpha) {
 // The BRDF (Cook & Torrance 1982; Karis 2013):
 //   f(l, v) = (1 − F)(1 − metalness) · c_base/π + D·F·G / (4 (n·l)(n·v)),
 // F0 = mix(F0_dielectric, c_base, metalness) (metals reflect their colour), and f = 0 where n·l ≤ 0.
+// The model's fresnelCosine, denominator and metal choose the lecture notes' variants instead: F at n·l,
+// π (n·l)(n·v), and F0 = F0_dielectric with the specular lobe times mix(1, c_base, metalness).
 // n, l, v need not be unit; zero vectors give 0, never NaN.
 // The two lobes of the BRDF apart: diffuse (1 − F)(1 − metalness)·albedo/π and specular D·F·G/(4 (n·l)(n·v)).
 template <class V3>
@@ -683,8 +711,10 @@ struct BrdfRecord {
     // the two polarisations, F = (R_s + R_p)/2.
     vec3 eta{0.0f}, Rs{0.0f}, Rp{0.0f};
     float G = 0;
-    float specularScale = 0;  // D·G/(4 (N·L)(N·V))
+    float specularScale = 0;  // D·G/(k (N·L)(N·V)), k = 4 or π (model.denominator)
     float diffuseScale = 0;   // (1 − metalness)/π
+    float fresnelCosine = 0;  // the cosine F was evaluated at: V·H or N·L (model.fresnelCosine)
+    vec3 metalTint{1.0f};     // MetalBlend::TintedLobe: mix(1, c_base, metalness), times the specular lobe
     bool grazing = false;     // N·L ≤ kGrazingCosine: both lobes 0
     BrdfLobes<vec3> lobes{vec3(0.0f), vec3(0.0f)};
 };
@@ -707,24 +737,30 @@ BrdfLobes<V3> brdfLobes(const V3& n, const V3& l, const V3& v, const PbrMaterial
     const F NdotH = dot(N, H);
     const F VdotH = saturate(dot(V, H));
     const float alpha = alphaFromRoughness(m.roughness);
-    const vec3 f0 = mix(m.f0, m.baseColor, m.metalness);
+    const vec3 f0 = model.metal == MetalBlend::F0 ? mix(m.f0, m.baseColor, m.metalness) : m.f0;
 
     // D, F, G.
     const F D = model.distribution == NormalDistribution::GGX ? distributionGGX(NdotH, alpha)
                 : model.distribution == NormalDistribution::Beckmann
                     ? distributionBeckmann<F, P>(NdotH, alpha)
                     : distributionGaussian<F, P>(NdotH, alpha);
+    // F at V·H (the microfacet form) or at N·L (the lecture notes'), model.fresnelCosine.
+    const F cosTheta = model.fresnelCosine == FresnelCosine::VdotH ? VdotH : NdotL;
     // A dielectric given its IOR: the exact term with η itself, else η recovered from F0 per channel.
     const bool exactWithIor = m.ior > 0.0f && m.metalness == 0.0f;
-    const V3 fresnel = model.fresnel == FresnelModel::Schlick ? fresnelSchlick<F, V3>(f0, VdotH)
-                       : exactWithIor                         ? fresnelExactOneEta<F, V3>(VdotH, m.ior)
-                                                              : fresnelExact<F, V3>(f0, VdotH);
+    const V3 fresnel = model.fresnel == FresnelModel::Schlick ? fresnelSchlick<F, V3>(f0, cosTheta)
+                       : exactWithIor                         ? fresnelExactOneEta<F, V3>(cosTheta, m.ior)
+                                                              : fresnelExact<F, V3>(f0, cosTheta);
     const F G = model.geometry == GeometryTerm::SmithGGX ? geometrySmithGGX(NdotV, NdotL, alpha)
                                                          : geometryCookTorrance(NdotH, NdotV, NdotL, VdotH);
 
     // Diffuse and specular lobes, nothing where the light is behind the surface.
-    const F specularScale = D * G / (4.0f * NdotL * NdotV);
-    const V3 specular = fresnel * specularScale;
+    const F specularScale = D * G / (microfacetConstant(model.denominator) * NdotL * NdotV);
+    V3 specular = fresnel * specularScale;
+    // lighting-deck-C.txt: metalness·(spec ⊗ c_base) + (1 − metalness)·spec = spec ⊗ mix(1, c_base,
+    // metalness).
+    if (model.metal == MetalBlend::TintedLobe)
+        specular = specular * (V3(vec3(1.0f)) + (albedo - V3(vec3(1.0f))) * m.metalness);
     const float diffuseScale = (1.0f - m.metalness) / std::numbers::pi_v<float>;
     const V3 diffuse = (V3(vec3(1.0f)) - fresnel) * albedo * diffuseScale;
     const V3 zero(vec3(0.0f));
@@ -746,6 +782,10 @@ BrdfLobes<V3> brdfLobes(const V3& n, const V3& l, const V3& v, const PbrMaterial
                                    .G = G,
                                    .specularScale = specularScale,
                                    .diffuseScale = diffuseScale,
+                                   .fresnelCosine = cosTheta,
+                                   .metalTint = model.metal == MetalBlend::TintedLobe
+                                                    ? vec3(1.0f) + (vec3(albedo) - vec3(1.0f)) * m.metalness
+                                                    : vec3(1.0f),
                                    .grazing = !(NdotLRaw > kGrazingCosine),
                                    .lobes = brdfLobes<F, V3, P, kNormalization>(n, l, v, m, albedo, model)};
     if constexpr (Record::enabled) {
@@ -757,7 +797,7 @@ BrdfLobes<V3> brdfLobes(const V3& n, const V3& l, const V3& v, const PbrMaterial
         if (model.fresnel == FresnelModel::Exact) {
             r.eta = exactWithIor ? vec3(m.ior) : vec3(etaFromF0(f0.x), etaFromF0(f0.y), etaFromF0(f0.z));
             for (int i = 0; i < 3; ++i) {
-                const FresnelPolarized<float> p = fresnelPolarized(float(VdotH), r.eta[i]);
+                const FresnelPolarized<float> p = fresnelPolarized(float(cosTheta), r.eta[i]);
                 r.Rs[i] = p.s;
                 r.Rp[i] = p.p;
             }

@@ -195,6 +195,14 @@ std::string_view distributionName(NormalDistribution d) {
     return d == NormalDistribution::GGX ? "GGX (Trowbridge-Reitz)" : "Beckmann";
 }
 
+// The microfacet lobe's denominator and Fresnel's cosine in symbols (BrdfModel's choices).
+std::string denominatorText(MicrofacetDenominator d) {
+    return d == MicrofacetDenominator::Four ? "4(N·L)(N·V)" : "π(N·V)(N·L)";
+}
+std::string fresnelCosineText(FresnelCosine c) {
+    return c == FresnelCosine::VdotH ? "V·H" : "N·L";
+}
+
 // The equation in symbols, once per screen.
 void writeEquation(Lines& out, const LightingRecord& r) {
     if (r.physicallyBased) {
@@ -202,11 +210,20 @@ void writeEquation(Lines& out, const LightingRecord& r) {
         out.add("(Cook & Torrance 1982; Karis 2013):");
         out.add("  c = m_emission + a_global ⊗ c_base");
         out.add("      + Σ f ⊗ π·c_light·falloff·spot·max(N·L,0)");
-        out.add("  f = (1 − F)(1 − metalness)·c_base/π + D·F·G/(4(N·L)(N·V))");
+        const std::string spec = "D·F·G/(" + denominatorText(r.brdf.denominator) + ")";
+        if (r.brdf.metal == MetalBlend::TintedLobe) {
+            // lighting-deck-C.txt's "putting it together", term by term.
+            out.add("  f = metalness·" + spec + "·c_base");
+            out.add("      + (1 − metalness)·(" + spec + " + (1 − F)·c_base/π)");
+            out.add("  F0 = F0_dielectric (the metal lobe is tinted by c_base instead)");
+        } else {
+            out.add("  f = (1 − F)(1 − metalness)·c_base/π + " + spec);
+        }
         out.add("  falloff = 1/d² (point and spot lights), 1 (directional)");
         out.add("  H = normalize(L + V); D: " + std::string(distributionName(r.brdf.distribution)) +
                 " distribution; F: " +
-                (r.brdf.fresnel == FresnelModel::Schlick ? "Schlick's Fresnel" : "exact Fresnel") + "; G: " +
+                (r.brdf.fresnel == FresnelModel::Schlick ? "Schlick's Fresnel" : "exact Fresnel") + " at " +
+                fresnelCosineText(r.brdf.fresnelCosine) + "; G: " +
                 (r.brdf.geometry == GeometryTerm::SmithGGX ? "Smith GGX" : "Cook-Torrance") + " shadowing.");
     } else {
         const bool phong = r.specularModel == SpecularModel::Phong;
@@ -230,6 +247,10 @@ void writePoint(Lines& out, const SurfaceTermsRecord& s) {
     out.add("  N = " + vec(s.normal) + " as it comes, length " + num(glm::length(s.normal)));
     if (s.flipped)
         out.add("  N·V < 0: the surface is seen from behind, so the two-sided flip turns N round: N = −N");
+    if (s.underside)
+        out.add(
+            "  N·V < 0: the viewer sees the underside; N·V is clamped to 0, so the lights' diffuse and "
+            "specular terms are 0");
     out.add("  N = normalize(N) = " + vec(r.N));
     out.add("  V = normalize(eye − P) = " + vec(r.V));
 }
@@ -384,12 +405,17 @@ void writeBrdf(Lines& out, const LightingRecord& lighting, const BrdfRecord& b) 
         out.add("    = " + num(b.gaussianC) + "·exp(−(" + num(b.thetaH) + "/" + num(b.alpha) +
                 ")²) = " + num(b.D));
     }
-    out.add("  F0 = mix(F0_dielectric, c_base, metalness) = " + rgb(b.f0));
+    if (b.model.metal == MetalBlend::F0)
+        out.add("  F0 = mix(F0_dielectric, c_base, metalness) = " + rgb(b.f0));
+    else
+        out.add("  F0 = F0_dielectric = " + rgb(b.f0));
+    const std::string cosine = fresnelCosineText(b.model.fresnelCosine);
     if (b.model.fresnel == FresnelModel::Schlick) {
-        out.add("  F = F0 + (1 − F0)(1 − V·H)^5   (Schlick)");
-        out.add("    = " + rgb(b.f0) + " + (1 − F0)(1 − " + num(b.VdotH) + ")^5");
+        out.add("  F = F0 + (1 − F0)(1 − " + cosine + ")^5   (Schlick)");
+        out.add("    = " + rgb(b.f0) + " + (1 − F0)(1 − " + num(b.fresnelCosine) + ")^5");
     } else {
-        out.add("  F = (R_s + R_p)/2, the exact Fresnel reflectance at cos θ_i = V·H = " + num(b.VdotH));
+        out.add("  F = (R_s + R_p)/2, the exact Fresnel reflectance at cos θ_i = " + cosine + " = " +
+                num(b.fresnelCosine));
         if (lighting.pbr.ior > 0.0f && lighting.pbr.metalness == 0.0f)
             out.add("    η = n2/n1 = " + num(lighting.pbr.ior) + " (the material's index of refraction)");
         else
@@ -412,10 +438,21 @@ void writeBrdf(Lines& out, const LightingRecord& lighting, const BrdfRecord& b) 
                 ": the light grazes the surface or is behind it: both lobes are 0");
         return;
     }
-    out.add("  D·G/(4(N·L)(N·V)) = " + num(b.D) + "·" + num(b.G) + "/(4·" + num(b.NdotL) + "·" +
-            num(b.NdotV) + ") = " + num(b.specularScale));
-    writeTerm(out, "specular lobe", "D·F·G/(4(N·L)(N·V))", num(b.specularScale) + "·" + rgb(b.F),
-              b.lobes.specular);
+    const std::string denominator = denominatorText(b.model.denominator);
+    if (b.model.denominator == MicrofacetDenominator::Four)
+        out.add("  D·G/(" + denominator + ") = " + num(b.D) + "·" + num(b.G) + "/(4·" + num(b.NdotL) + "·" +
+                num(b.NdotV) + ") = " + num(b.specularScale));
+    else
+        out.add("  D·G/(" + denominator + ") = " + num(b.D) + "·" + num(b.G) + "/(π·" + num(b.NdotV) + "·" +
+                num(b.NdotL) + ") = " + num(b.specularScale));
+    if (b.model.metal == MetalBlend::TintedLobe) {
+        out.add("  tint = mix(1, c_base, metalness) = " + rgb(b.metalTint));
+        writeTerm(out, "specular lobe", "D·F·G/(" + denominator + ")·tint",
+                  num(b.specularScale) + "·" + rgb(b.F) + "⊗" + rgb(b.metalTint), b.lobes.specular);
+    } else {
+        writeTerm(out, "specular lobe", "D·F·G/(" + denominator + ")", num(b.specularScale) + "·" + rgb(b.F),
+                  b.lobes.specular);
+    }
     writeTerm(out, "diffuse lobe", "(1 − F)(1 − metalness)·c_base/π",
               "(1 − " + rgb(b.F) + ")·" + rgb(lighting.materialDiffuse) + "·" + num(b.diffuseScale),
               b.lobes.diffuse);
@@ -509,7 +546,7 @@ void writeCorner(Lines& out, const CornerShading& c) {
         out.add("  The emission is left out here: the pixel adds it with its emission texture.");
     if (v.clamped) {
         out.add("  c = emission + ambient + diffuse + specular = " + rgb(v.sum));
-        out.add("  clamped to [0, 1] (OpenGL 1.x), all of it tinted by a diffuse map:");
+        out.add("  clamped to [0, 1] (OpenGL 1.x; the notes), all of it tinted by a diffuse map:");
         out.add("  modulated = clamp(c, 0, 1) = " + rgb(v.modulated) + ", added = " + rgb(v.added));
     } else {
         out.add("  The vertex hands on two colours, so that a diffuse map tints the diffuse light only:");
@@ -589,7 +626,7 @@ void writeFragmentPart(Lines& out, const ShadingTrace& t) {
     out.add("The fragment shader at pixel (" + std::to_string(t.x) + ", " + std::to_string(t.y) + "):");
     if (f.perPixel) {
         out.add("  c = emission + ambient + diffuse + specular = " + rgb(f.sum));
-        if (f.clamped) out.add("  clamped to [0, 1] (OpenGL 1.x): c = " + rgb(f.color));
+        if (f.clamped) out.add("  clamped to [0, 1] (OpenGL 1.x; the lecture notes): c = " + rgb(f.color));
     } else {
         if (f.diffuseMapped)
             out.add("  modulated = " + rgb(f.modulatedIn) + " ⊗ " + rgb(vec3(f.diffuseTexel)) + " = " +
@@ -848,6 +885,9 @@ nlohmann::json toJson(const LightRecord& r, bool physicallyBased) {
                      {"eta", json3(b.eta)},
                      {"Rs", json3(b.Rs)},
                      {"Rp", json3(b.Rp)},
+                     {"fresnelCosine", b.fresnelCosine},
+                     {"denominator", microfacetConstant(b.model.denominator)},
+                     {"metalTint", json3(b.metalTint)},
                      {"geometry", nameOf(b.model.geometry)},
                      {"G", b.G},
                      {"grazing", b.grazing},
@@ -872,6 +912,7 @@ nlohmann::json toJson(const SurfaceTermsRecord& s) {
                         {"P", json3(s.position)},
                         {"normalGiven", json3(s.normal)},
                         {"flipped", s.flipped},
+                        {"underside", s.underside},
                         {"N", json3(r.N)},
                         {"V", json3(r.V)},
                         {"globalAmbient", json3(r.globalAmbient)},

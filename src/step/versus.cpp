@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <optional>
 #include <sstream>
+#include <string_view>
 #include <vector>
 
 namespace facet::step {
@@ -25,8 +26,9 @@ std::size_t columns(const std::string& s) {
     return n;
 }
 
-std::string padded(const std::string& s, std::size_t width) {
-    return s + std::string(width > columns(s) ? width - columns(s) : 0, ' ');
+// `text` as it is when it fits `width` columns (its spacing kept), else wrapped with `indent`.
+std::string fitted(const std::string& text, std::size_t width, std::size_t indent) {
+    return columns(text) <= width ? text + "\n" : wrapText(text, width, indent);
 }
 
 struct Row {
@@ -98,7 +100,6 @@ std::string sideBySide(const Walk& a, const std::string& nameA, const Walk& b, c
         std::vector<Row> rows;
     };
     std::vector<Block> blocks;
-    std::size_t width = columns(nameA);
     std::optional<std::pair<std::size_t, std::size_t>> first;  // block, row
     {
         Block verdict{"Verdict", "Verdict",
@@ -115,50 +116,60 @@ std::string sideBySide(const Walk& a, const std::string& nameA, const Walk& b, c
                           sb ? linesOf(sb->text) : std::vector<std::string>{})};
         for (std::size_t r = 0; r < block.rows.size(); ++r) {
             const Row& row = block.rows[r];
-            if (row.left) width = std::max(width, columns(*row.left));
             if (!first && row.left != row.right) first = std::pair(blocks.size(), r);
         }
-        width = std::max(width, columns(block.titleA));
         blocks.push_back(std::move(block));
     }
 
+    // Stacked rather than side by side, so that every line fits 80 columns: each line under a
+    // two-column gutter, its text wrapped to the rest.
+    constexpr std::size_t kWidth = 80, kGutter = 3;
     std::ostringstream out;
-    out << "Pixel (" << a.x << ", " << a.y << ")";
-    if (a.triangle) out << ", triangle " << a.triangle->number;
-    out << ", under two settings. Left: " << nameA << ". Right: " << nameB << ".\n";
+    const auto emit = [&out](std::string_view gutter, const std::string& text) {
+        const std::size_t indent = std::min<std::size_t>(text.find_first_not_of(' '), 40);
+        const std::vector<std::string> wrapped = linesOf(fitted(text, kWidth - kGutter, indent + 4));
+        for (const std::string& line : wrapped.empty() ? std::vector<std::string>{""} : wrapped)
+            out << gutter << line << "\n";
+    };
+    std::ostringstream heading;
+    heading << "Pixel (" << a.x << ", " << a.y << ")";
+    if (a.triangle) heading << ", triangle " << a.triangle->number;
+    heading << ", under two settings:";
+    out << heading.str() << "\n"
+        << fitted("  left (<):  " + nameA, kWidth, 14) << fitted("  right (>): " + nameB, kWidth, 14);
     if (!first) {
         out << "The two traces are the same, line for line.\n";
     } else {
         const Block& block = blocks[first->first];
         const Row& row = block.rows[first->second];
-        out << "They first differ in \"" << block.titleA << "\":\n";
+        out << fitted("They first differ in \"" + block.titleA + "\":", kWidth, 2);
         if (row.left && row.right)
-            out << "  left:  " << *row.left << "\n  right: " << *row.right << "\n";
+            out << fitted("  left:  " + *row.left, kWidth, 9) << fitted("  right: " + *row.right, kWidth, 9);
         else if (row.left)
-            out << "  a line only the left has: " << *row.left << "\n";
+            out << fitted("  a line only the left has: " + *row.left, kWidth, 4);
         else
-            out << "  a line only the right has: " << *row.right << "\n";
+            out << fitted("  a line only the right has: " + *row.right, kWidth, 4);
     }
-    out << "Gutter: | changed, < left only, > right only, * the first difference.\n\n";
-    out << padded(nameA, width) << "   " << nameB << "\n";
+    out << "Gutter: blank, the same line on both sides; < the left's line; > the right's\n"
+           "(a changed line shows both, the left's first); * the first difference.\n";
     for (std::size_t k = 0; k < blocks.size(); ++k) {
         const Block& block = blocks[k];
-        out << std::string(width, '=') << "   " << std::string(width, '=') << "\n"
-            << padded(block.titleA, width) << (block.titleA == block.titleB ? "   " : " | ") << block.titleB
-            << "\n";
+        out << "\n" << std::string(kWidth, '=') << "\n";
+        if (block.titleA == block.titleB) {
+            emit("   ", block.titleA);
+        } else {
+            emit(" < ", block.titleA);
+            emit(" > ", block.titleB);
+        }
         for (std::size_t r = 0; r < block.rows.size(); ++r) {
             const Row& row = block.rows[r];
-            char mark = ' ';
-            if (first && first->first == k && first->second == r)
-                mark = '*';
-            else if (!row.left)
-                mark = '>';
-            else if (!row.right)
-                mark = '<';
-            else if (*row.left != *row.right)
-                mark = '|';
-            out << padded(row.left.value_or(""), width) << " " << mark << " " << row.right.value_or("")
-                << "\n";
+            const bool firstDifference = first && first->first == k && first->second == r;
+            if (row.left && row.right && *row.left == *row.right) {
+                emit("   ", *row.left);
+                continue;
+            }
+            if (row.left) emit(firstDifference ? "*< " : " < ", *row.left);
+            if (row.right) emit(firstDifference ? "*> " : " > ", *row.right);
         }
     }
     return out.str();

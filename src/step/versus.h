@@ -8,9 +8,9 @@
 
 namespace facet::step {
 
-// Two columns, `nameA` on the left and `nameB` on the right, each as wide as its longest line. The
-// gutter between them: ' ' the same line, '|' a changed line, '<' a line only on the left, '>' only on
-// the right; the first difference is marked '*' and named in the heading.
+// The two walks, `nameA` the left and `nameB` the right, stacked within 80 columns: each screen's lines
+// under a gutter, blank for a line both have, '<' for the left's and '>' for the right's (a changed line
+// shows both, the left's first); the first difference is marked '*' and named in the heading.
 std::string sideBySide(const Walk& a, const std::string& nameA, const Walk& b, const std::string& nameB);
 
 }  // namespace facet::step

@@ -815,9 +815,12 @@ std::vector<Screen> outputScreens(const PreparedScene& prepared, const PixelTrac
         static const char* const kChannel[] = {"R", "G", "B", "A"};
         for (int c = 0; c < 4; ++c) {
             const double linear = p.finalColor[c];
-            const double encoded = c < 3 ? linearToSrgb(float(linear)) : linear;
+            const bool power = e.curve == TransferCurve::Power;
+            const double encoded = c >= 3  ? linear
+                                   : power ? std::pow(std::clamp(linear, 0.0, 1.0), 1.0 / e.gamma)
+                                           : linearToSrgb(float(linear));
             out << "  " << kChannel[c] << ": " << number(linear);
-            if (c < 3 && e.curve == TransferCurve::Srgb) out << " → " << number(encoded);
+            if (c < 3 && (e.curve == TransferCurve::Srgb || power)) out << " → " << number(encoded);
             out << " → " << int(p.finalBytes[c]) << "\n";
         }
         char hex[16];

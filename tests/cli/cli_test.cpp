@@ -579,8 +579,9 @@ TEST(CompareAgainst, AShaderIsComparedWithTheBuiltInModel) {
     EXPECT_NE(differ.out.find("differ: "), std::string::npos) << differ.out;
     EXPECT_NE(differ.out.find("first differing pixel (reading order): "), std::string::npos) << differ.out;
     EXPECT_NE(differ.out.find("trace it: facet step "), std::string::npos) << differ.out;
-    EXPECT_NE(differ.out.find("under two settings. Left: own_phong.cpp. Right: built-in phong."),
-              std::string::npos)
+    EXPECT_NE(
+        differ.out.find("under two settings:\n  left (<):  own_phong.cpp\n  right (>): built-in phong\n"),
+        std::string::npos)
         << differ.out;
 }
 

@@ -94,11 +94,35 @@ TEST(StepCli, VersusMarksWhereAffineInterpolationFirstDiffers) {
     EXPECT_NE(run.out.find("right:   λ' = λ: affine interpolation"), std::string::npos)
         << run.out.substr(0, 400);
     // And the interpolation screen says the same.
-    EXPECT_NE(run.out.find("| Affine interpolation (no perspective correction)"), std::string::npos);
+    EXPECT_NE(run.out.find(" > Affine interpolation (no perspective correction)"), std::string::npos);
     const RunResult same =
         runFacet("step " + kSpot + " --pixel 48,30 --versus '--interpolation perspective'", dir);
     ASSERT_EQ(same.status, 0) << same.err;
     EXPECT_NE(same.out.find("The two traces are the same"), std::string::npos) << same.out.substr(0, 400);
+}
+
+// --lighting lecture reaches the step screens, and --versus '--lighting lecture' names where Facet's
+// Cook-Torrance form and the notes' part: the denominator 4(N·L)(N·V) on the left, π(N·V)(N·L) on the
+// right, F at V·H against F at N·L, and the output curve; every line within 80 columns. Catches: the
+// preset not reaching the step mode, the versus view not showing both forms, or its lines too wide.
+TEST(StepCli, VersusLecturePresetNamesTheDifferingForms) {
+    TempFolder dir;
+    const std::string cookTorrance = kSpot + " --pixel 48,30 --reflection cook-torrance";
+    const RunResult lecture = runFacet("step " + cookTorrance + " --lighting lecture --print", dir);
+    ASSERT_EQ(lecture.status, 0) << lecture.err;
+    EXPECT_NE(lecture.out.find("f = metalness·D·F·G/(π(N·V)(N·L))·c_base"), std::string::npos)
+        << lecture.out.substr(0, 2000);
+    const RunResult run = runFacet("step " + cookTorrance + " --versus '--lighting lecture'", dir);
+    ASSERT_EQ(run.status, 0) << run.err;
+    EXPECT_NE(run.out.find("They first differ in"), std::string::npos) << run.out.substr(0, 600);
+    for (const char* shown :
+         {"<   f = (1 − F)(1 − metalness)·c_base/π + D·F·G/(4(N·L)(N·V))",
+          ">   f = metalness·D·F·G/(π(N·V)(N·L))·c_base", "<   F = F0 + (1 − F0)(1 − V·H)^5",
+          ">   F = F0 + (1 − F0)(1 − N·L)^5", "c' = c^(1/γ), γ = 2.2"})
+        EXPECT_NE(run.out.find(shown), std::string::npos) << shown;
+    std::istringstream lines(run.out);
+    for (std::string line; std::getline(lines, line);)
+        EXPECT_LE(columns(line), 80u) << line;
 }
 
 // Catches: a pixel outside the image, a triangle the scene lacks, a malformed --pixel or --versus

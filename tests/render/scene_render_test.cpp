@@ -149,11 +149,14 @@ TEST_F(SceneRenderTest, LightingChoicesReachTheUniforms) {
     expectEveryNameReaches<GeometryTerm>(
         folder_, [](const std::string& n) { return R"("lighting": {"geometry": ")" + n + R"("})"; },
         [](const PreparedScene& p) { return p.draws[0].uniforms.brdf.geometry; });
-    // The gl preset clamps lit colours as OpenGL 1.x does; the facet preset does not.
+    // The gl preset clamps lit colours as OpenGL 1.x does; the facet preset does not; the lecture preset
+    // clamps N·V instead of flipping N.
     expectEveryNameReaches<LightingPreset>(
         folder_, [](const std::string& n) { return R"("lighting": {"preset": ")" + n + R"("})"; },
         [](const PreparedScene& p) {
-            return p.draws[0].uniforms.clampColor ? LightingPreset::GL : LightingPreset::Facet;
+            return p.draws[0].uniforms.clampNdotV   ? LightingPreset::Lecture
+                   : p.draws[0].uniforms.clampColor ? LightingPreset::GL
+                                                    : LightingPreset::Facet;
         });
 }
 
@@ -209,6 +212,40 @@ TEST_F(SceneRenderTest, FormulaChoicesReachTheUniforms) {
     expectEveryNameReaches<Normalization>(
         folder_, [](const std::string& n) { return R"("lighting": {"normalize": ")" + n + R"("})"; },
         [](const PreparedScene& p) { return p.draws[0].uniforms.normalization; });
+}
+
+// The lecture preset reaches every draw (the notes' BRDF fields, N·V clamped instead of the flip, the
+// colour clamped), the output curve (a pure 2.2 power: 0.5 is code round(255·0.5^(1/2.2)) = 186 where
+// sRGB's 1.055·0.5^(1/2.4) − 0.055 gives 188) and the image. Catches: the preset read but not applied to
+// the uniforms or the encoding, or applied to the facet preset too.
+TEST_F(SceneRenderTest, LecturePresetReachesTheUniformsTheEncodingAndTheImage) {
+    const std::string lectureScene = R"("lighting": {"preset": "lecture", "model": "cook-torrance"})";
+    const std::string facetScene = R"("lighting": {"model": "cook-torrance"})";
+    const PreparedScene lecture = prepareCube(folder_ / "lecture.json", lectureScene);
+    const PreparedScene facet = prepareCube(folder_ / "facet.json", facetScene);
+    const SurfaceUniforms& u = lecture.draws[0].uniforms;
+    EXPECT_EQ(u.brdf.fresnelCosine, FresnelCosine::NdotL);
+    EXPECT_EQ(u.brdf.denominator, MicrofacetDenominator::Pi);
+    EXPECT_EQ(u.brdf.metal, MetalBlend::TintedLobe);
+    EXPECT_TRUE(u.clampNdotV && !u.twoSidedFlip && u.clampColor);
+    const SurfaceUniforms& f = facet.draws[0].uniforms;
+    EXPECT_EQ(f.brdf.fresnelCosine, FresnelCosine::VdotH);
+    EXPECT_EQ(f.brdf.denominator, MicrofacetDenominator::Four);
+    EXPECT_EQ(f.brdf.metal, MetalBlend::F0);
+    EXPECT_TRUE(!f.clampNdotV && f.twoSidedFlip && !f.clampColor);
+
+    EXPECT_EQ(encodeChannel(0.5f, lecture.encoding), std::lround(255.0 * std::pow(0.5, 1.0 / 2.2)));
+    EXPECT_EQ(encodeChannel(0.5f, lecture.encoding), 186);
+    EXPECT_EQ(encodeChannel(0.5f, facet.encoding),
+              std::lround(255.0 * (1.055 * std::pow(0.5, 1.0 / 2.4) - 0.055)));
+    EXPECT_EQ(encodeChannel(0.5f, facet.encoding), 188);
+
+    const LinearImage lectureImage = renderCube(folder_ / "lecture.json", "{" + lectureScene + "}");
+    const LinearImage facetImage = renderCube(folder_ / "facet.json", "{" + facetScene + "}");
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < facetImage.pixels.size(); ++i)
+        differing += lectureImage.pixels[i] != facetImage.pixels[i];
+    EXPECT_GT(differing, 100u);
 }
 
 // The gl preset lights faces without a material with OpenGL 1.x's default glMaterial (ambient 0.2,

@@ -80,7 +80,7 @@ TEST(NameTables, FogGammaAndSceneEnums) {
         {FogMode::None, FogMode::Linear, FogMode::Exponential, FogMode::ExponentialSquared});
     expectOneNameEach<FogDistance>({FogDistance::EyeDepth, FogDistance::Radial});
     expectOneNameEach<TransferCurve>({TransferCurve::Srgb, TransferCurve::Power, TransferCurve::Linear});
-    expectOneNameEach<LightingPreset>({LightingPreset::Facet, LightingPreset::GL});
+    expectOneNameEach<LightingPreset>({LightingPreset::Facet, LightingPreset::GL, LightingPreset::Lecture});
     expectOneNameEach<TransparencyMode>(
         {TransparencyMode::Sorted, TransparencyMode::Unsorted, TransparencyMode::Exact});
     expectOneNameEach<SortKey>({SortKey::Centroid, SortKey::FarthestVertex});

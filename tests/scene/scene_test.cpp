@@ -310,6 +310,8 @@ TEST_F(SceneTest, LightingChoicesMapToTheirEnums) {
     EXPECT_EQ(lighting(R"({"shading": "phong"})").shading, ShadingFrequency::Phong);
     EXPECT_EQ(lighting(R"({"preset": "gl"})").preset, LightingPreset::GL);
     EXPECT_EQ(lighting(R"({"preset": "facet"})").preset, LightingPreset::Facet);
+    EXPECT_EQ(lighting(R"({"preset": "lecture"})").preset, LightingPreset::Lecture);
+    EXPECT_EQ(lighting(R"("lecture")").preset, LightingPreset::Lecture);
     EXPECT_EQ(lighting(R"({"distribution": "ggx"})").brdf.distribution, NormalDistribution::GGX);
     EXPECT_EQ(lighting(R"({"distribution": "beckmann"})").brdf.distribution, NormalDistribution::Beckmann);
     EXPECT_EQ(lighting(R"({"fresnel": "schlick"})").brdf.fresnel, FresnelModel::Schlick);
@@ -1041,16 +1043,16 @@ const ErrorCase kErrorCases[] = {
     // Scene-wide "lighting".
     {"LightingUnknownPreset",
      R"({"model": "m.obj", "lighting": "opengl"})",
-     {R"("lighting" must be one of "facet", "gl" (got "opengl"))"}},
+     {R"("lighting" must be one of "facet", "gl", "lecture" (got "opengl"))"}},
     {"LightingNotAnObject",
      R"({"model": "m.obj", "lighting": 1})",
-     {R"("lighting" must be "facet", "gl" or an object like {"model": "cook-torrance"} (got 1))"}},
+     {R"("lighting" must be "facet", "gl", "lecture" or an object like {"model": "cook-torrance"} (got 1))"}},
     {"LightingUnknownKey",
      R"({"model": "m.obj", "lighting": {"shadding": "flat"}})",
      {R"(unknown key "lighting.shadding" (did you mean "shading"?))"}},
     {"LightingPresetUnknown",
      R"({"model": "m.obj", "lighting": {"preset": "GL"}})",
-     {R"("lighting.preset" must be one of "facet", "gl" (got "GL"))"}},
+     {R"("lighting.preset" must be one of "facet", "gl", "lecture" (got "GL"))"}},
     {"LightingModelUnknown",
      R"({"model": "m.obj", "lighting": {"model": "blinn"}})",
      {R"("lighting.model" must be one of "phong", "blinn-phong", "cook-torrance" (got "blinn"))"}},
@@ -1329,6 +1331,10 @@ const ErrorCase kErrorCases[] = {
     {"GammaWithGlPreset",
      R"({"model": "m.obj", "lighting": "gl", "gamma": {"encode": "srgb"}})",
      {R"("gamma" cannot be used with the gl lighting preset)", R"(remove "gamma")"}},
+    // The lecture preset fixes the output curve; the inputs' decoding stays open.
+    {"GammaEncodeWithLecturePreset",
+     R"({"model": "m.obj", "lighting": "lecture", "gamma": {"encode": "srgb"}})",
+     {R"("gamma.encode" and "gamma.exponent" cannot be used with the lecture lighting preset)"}},
     {"GammaWithGlPresetObject",
      R"({"model": "m.obj", "lighting": {"preset": "gl"}, "gamma": {}})",
      {R"("gamma" cannot be used with the gl lighting preset)"}},

@@ -399,6 +399,47 @@ TEST(SurfaceShader, TwoSidedFlipAtEveryFrequencyAndLaneWidth) {
     expectTwoSidedFlip<ShadingFrequency::Flat>("flat");
 }
 
+// lighting-deck-A.txt clamps N·V to 0 where the viewer sees the underside, where Facet flips N and the gl
+// preset leaves it: with a normal facing away, a light on the viewer's side lights it under the flip
+// only, a light behind it under "as given" only, and clamping gives 0 for both; a normal facing the viewer
+// is lit as before. At every frequency and lane width. Catches: the clamp not applied (lit), applied to
+// front faces, or applied before the flip's test in one path only.
+template <ShadingFrequency kFrequency>
+void expectClampNdotV(const char* what) {
+    SurfaceUniforms u;
+    u.lightCount = 1;
+    u.lights[0].kind = LightKind::Directional;
+    u.material.diffuse = vec3(0.5f);
+    u.material.specular = vec3(0.0f);
+    const MeshVertex away{vec3(0.0f, 0.0f, -5.0f), vec3(0.0f, 0.0f, -1.0f), vec2(0.0f)};
+    const MeshVertex facing{vec3(0.0f, 0.0f, -5.0f), vec3(0.0f, 0.0f, 1.0f), vec2(0.0f)};
+    const vec3 fromViewerSide(0.0f, 0.0f, -1.0f), fromBehind(0.0f, 0.0f, 1.0f);  // the way the light travels
+    struct Case {
+        bool flip, clamp;
+        vec3 direction;
+        const MeshVertex* vertex;
+        float expected;
+    };
+    for (const Case& c :
+         {Case{true, false, fromViewerSide, &away, 0.5f}, Case{false, true, fromViewerSide, &away, 0.0f},
+          Case{false, false, fromBehind, &away, 0.5f}, Case{false, true, fromBehind, &away, 0.0f},
+          Case{false, true, fromViewerSide, &facing, 0.5f}}) {
+        u.twoSidedFlip = c.flip;
+        u.clampNdotV = c.clamp;
+        u.lights[0].direction = c.direction;
+        for (bool batch : {false, true})
+            EXPECT_FLOAT_EQ(shadeOnce<kFrequency>(*c.vertex, u, batch).r, c.expected)
+                << what << (batch ? ", eight lanes" : "") << ", flip " << c.flip << ", clamp " << c.clamp
+                << ", facing " << (c.vertex == &facing);
+    }
+}
+
+TEST(SurfaceShader, ClampNdotVDarkensTheUndersideAtEveryFrequencyAndLaneWidth) {
+    expectClampNdotV<ShadingFrequency::Phong>("per pixel");
+    expectClampNdotV<ShadingFrequency::Gouraud>("per vertex");
+    expectClampNdotV<ShadingFrequency::Flat>("flat");
+}
+
 // OpenGL 1.x clamps each vertex's colour to [0, 1] before interpolating it.
 TEST(SurfaceShader, ClampColorClampsPerVertexBeforeInterpolation) {
     SurfaceUniforms u;

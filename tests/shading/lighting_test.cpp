@@ -264,6 +264,133 @@ TEST(BrdfMicrofacet, MetalsReflectTheirBaseColour) {
     expectVec3Near(f, gold.baseColor * expected, 1e-5f * expected);
 }
 
+// ---- The lecture notes' Cook-Torrance form (the lecture preset's BrdfModel fields) ------------------
+
+// One point computed in double from the formulas as the decks write them, not by the code under test:
+// GGX D, Smith-GGX G and Schlick's F (at V·H or N·L, from F0 mixed or not), and both forms of the BRDF.
+struct HandBrdf {
+    glm::dvec3 c{0.8, 0.5, 0.2};                      // c_base
+    double metalness = 0.3, f0 = 0.04, alpha = 0.25;  // roughness 0.5
+    glm::dvec3 N{0.0, 0.0, 1.0};
+    glm::dvec3 L = glm::normalize(glm::dvec3(0.9, 0.2, 0.6));
+    glm::dvec3 V = glm::normalize(glm::dvec3(-0.3, 0.1, 1.0));
+    glm::dvec3 H = glm::normalize(L + V);
+    double nl = glm::dot(N, L), nv = glm::dot(N, V), nh = glm::dot(N, H), vh = glm::dot(V, H);
+    double D() const {
+        const double a2 = alpha * alpha, b = nh * nh * (a2 - 1.0) + 1.0;
+        return a2 / (std::numbers::pi * b * b);
+    }
+    double G1(double x) const {
+        return 2.0 * x / (x + std::sqrt(alpha * alpha + (1.0 - alpha * alpha) * x * x));
+    }
+    double G() const { return G1(nl) * G1(nv); }
+    static double schlick(double r0, double cosine) { return r0 + (1.0 - r0) * std::pow(1.0 - cosine, 5.0); }
+    // Facet's: F0 = mix(f0, c, metalness), F at V·H, D·F·G/(4 (N·L)(N·V)).
+    glm::dvec3 facetSpecular() const {
+        glm::dvec3 out;
+        for (int i = 0; i < 3; ++i)
+            out[i] = D() * schlick(f0 + (c[i] - f0) * metalness, vh) * G() / (4.0 * nl * nv);
+        return out;
+    }
+    // lighting-deck-C.txt's "putting it together", with lighting-deck-A.txt's π(n·v)(n·l) and F at n·l:
+    // metal = D·F·G/(π(n·v)(n·l))·c, dielectric = D·F·G/(π(n·v)(n·l)) + (1 − F)·c/π,
+    // brdf = metalness·metal + (1 − metalness)·dielectric.
+    glm::dvec3 deckBrdf() const {
+        const double F = schlick(f0, nl), spec = D() * F * G() / (std::numbers::pi * nv * nl);
+        const glm::dvec3 metal = spec * c, dielectric = glm::dvec3(spec) + (1.0 - F) * c / std::numbers::pi;
+        return metalness * metal + (1.0 - metalness) * dielectric;
+    }
+};
+
+PbrMaterial handMaterial(const HandBrdf& h) {
+    PbrMaterial m;
+    m.baseColor = vec3(h.c);
+    m.metalness = float(h.metalness);
+    m.roughness = 0.5f;
+    m.f0 = vec3(float(h.f0));
+    return m;
+}
+
+BrdfRecord recordAt(const HandBrdf& h, const BrdfModel& model) {
+    BrdfRecord record;
+    const PbrMaterial m = handMaterial(h);
+    brdfLobes<float>(vec3(h.N), vec3(h.L), vec3(h.V), m, m.baseColor, model, &record);
+    return record;
+}
+
+void expectNearDouble(const vec3& actual, const glm::dvec3& expected, double relative) {
+    for (int i = 0; i < 3; ++i)
+        EXPECT_NEAR(actual[i], expected[i], relative * std::abs(expected[i])) << "channel " << i;
+}
+
+// The denominator alone: π(N·V)(N·L) instead of 4(N·L)(N·V) scales the specular lobe by 4/π and
+// nothing else. Catches: the field ignored (ratio 1), or the constant applied to the diffuse lobe.
+TEST(BrdfLectureForm, PiDenominatorScalesTheSpecularLobeByFourOverPi) {
+    const HandBrdf h;
+    BrdfModel pi;
+    pi.denominator = MicrofacetDenominator::Pi;
+    const BrdfRecord four = recordAt(h, {}), lecture = recordAt(h, pi);
+    expectNearDouble(four.lobes.specular, h.facetSpecular(), 1e-5);
+    for (int i = 0; i < 3; ++i)
+        EXPECT_NEAR(lecture.lobes.specular[i] / four.lobes.specular[i], 4.0 / std::numbers::pi, 1e-5);
+    expectVec3Near(lecture.lobes.diffuse, four.lobes.diffuse, 0.0f);
+}
+
+// F at N·L (the decks' F(l∘n), F(n, l)) instead of at V·H: F = F0 + (1 − F0)(1 − N·L)^5.
+// Catches: the cosine field ignored (F still at V·H), or N·V taken for N·L.
+TEST(BrdfLectureForm, FresnelAtNdotLDiffersFromFresnelAtVdotH) {
+    const HandBrdf h;
+    BrdfModel atNdotL;
+    atNdotL.fresnelCosine = FresnelCosine::NdotL;
+    const BrdfRecord facet = recordAt(h, {}), lecture = recordAt(h, atNdotL);
+    for (int i = 0; i < 3; ++i) {
+        const double f0 = h.f0 + (h.c[i] - h.f0) * h.metalness;
+        EXPECT_NEAR(facet.F[i], HandBrdf::schlick(f0, h.vh), 1e-6);
+        EXPECT_NEAR(lecture.F[i], HandBrdf::schlick(f0, h.nl), 1e-6);
+        EXPECT_GT(std::abs(lecture.F[i] - facet.F[i]), 1e-4);
+    }
+    EXPECT_FLOAT_EQ(lecture.fresnelCosine, float(h.nl));
+}
+
+// lighting-deck-C.txt's metalness blend: F from F0_dielectric, the specular lobe tinted by
+// mix(1, c_base, metalness); a pure metal reflects f0 ⊗ c_base head-on, not c_base. Catches: F0 still
+// mixed towards c_base, the tint missing, or the tint applied to the diffuse lobe.
+TEST(BrdfLectureForm, TintedMetalLobeAsDeckCWritesIt) {
+    const HandBrdf h;
+    BrdfModel tinted;
+    tinted.metal = MetalBlend::TintedLobe;
+    const BrdfRecord lecture = recordAt(h, tinted);
+    expectVec3Near(lecture.f0, vec3(float(h.f0)), 0.0f);
+    const double F = HandBrdf::schlick(h.f0, h.vh), spec = h.D() * F * h.G() / (4.0 * h.nl * h.nv);
+    expectNearDouble(lecture.lobes.specular, spec * (glm::dvec3(1.0) + (h.c - 1.0) * h.metalness), 1e-5);
+    expectNearDouble(lecture.lobes.diffuse, (1.0 - F) * (1.0 - h.metalness) * h.c / std::numbers::pi, 1e-5);
+    const BrdfRecord facet = recordAt(h, {});
+    EXPECT_GT(std::abs(lecture.lobes.specular.r - facet.lobes.specular.r), 1e-3f * facet.lobes.specular.r);
+}
+
+// All three together are deck C's "putting it together" with deck A's denominator, term by term, in one
+// lane and in eight. Catches: any of the three not applied, or applied differently in the wide code.
+TEST(BrdfLectureForm, TheWholeFormEqualsTheDecksBrdfInOneLaneAndEight) {
+    const HandBrdf h;
+    BrdfModel lecture;
+    lecture.fresnelCosine = FresnelCosine::NdotL;
+    lecture.denominator = MicrofacetDenominator::Pi;
+    lecture.metal = MetalBlend::TintedLobe;
+    const PbrMaterial m = handMaterial(h);
+    const vec3 one = brdf<float>(vec3(h.N), vec3(h.L), vec3(h.V), m, lecture);
+    expectNearDouble(one, h.deckBrdf(), 1e-5);
+    const Vec3x8 eight =
+        brdf<Float8, Vec3x8>(Vec3x8(vec3(h.N)), Vec3x8(vec3(h.L)), Vec3x8(vec3(h.V)), m, lecture);
+    for (int lane = 0; lane < 8; ++lane) {
+        EXPECT_EQ(eight.x[lane], one.x);
+        EXPECT_EQ(eight.y[lane], one.y);
+        EXPECT_EQ(eight.z[lane], one.z);
+    }
+    // And Facet's form is not the decks' at this point.
+    const vec3 facet = brdf<float>(vec3(h.N), vec3(h.L), vec3(h.V), m);
+    EXPECT_GT(std::abs(facet.r - one.r), 1e-3f * one.r);
+}
+
 TEST(BrdfMicrofacet, ZeroVectorsGiveNoNaN) {
     const PbrMaterial m;
     const vec3 zero(0.0f), up(0.0f, 0.0f, 1.0f), side = normalize(vec3(1.0f, 0.0f, 0.2f));

@@ -161,6 +161,8 @@ TEST(ShadingView, RecomputedShadingIsThePipelinesOutputBitForBit) {
                 }
                 if (model == ReflectionModel::Phong && frequency == ShadingFrequency::Gouraud)
                     scene.lighting.preset = LightingPreset::GL;  // clamped colours
+                if (model == ReflectionModel::CookTorrance && frequency == ShadingFrequency::Gouraud)
+                    scene.lighting.preset = LightingPreset::Lecture;  // the notes' BRDF, N·V clamped
                 const std::string what =
                     name + ", " + std::string(nameOf(model)) + ", " + std::string(nameOf(frequency));
                 ShadingChecker checker;
@@ -287,6 +289,51 @@ TEST(ShadingView, ScreensShowTheNumbersSubstituted) {
     EXPECT_FLOAT_EQ(json["lighting"]["lights"][0]["attenuation"].get<float>(), 1.0f / 3.0f);
     EXPECT_FLOAT_EQ(json["fog"]["f"].get<float>(), 0.75f);
     EXPECT_EQ(json["output"]["matchesPipeline"], true);
+}
+
+// The lecture preset's Cook-Torrance on the lighting screen: the form in the notes' symbols, then the
+// numbers (F at N·L = 0.8, the denominator π·N·V·N·L = π·1·0.8, the metal tint), and a back-facing point
+// says N·V is clamped. Catches: the screen still writing Facet's 4(N·L)(N·V) or V·H under the lecture
+// fields, the tint or the clamp left off the screen, or the lecture screens breaking the 80 columns.
+TEST(ShadingView, LectureFormOnTheLightingScreen) {
+    SurfaceUniforms u = handBuiltUniforms();
+    u.reflection = ReflectionModel::CookTorrance;
+    u.pbr.baseColor = vec3(0.5f, 0.25f, 1.0f);
+    u.pbr.metalness = 0.5f;
+    u.pbr.roughness = 0.5f;
+    u.brdf.fresnelCosine = FresnelCosine::NdotL;
+    u.brdf.denominator = MicrofacetDenominator::Pi;
+    u.brdf.metal = MetalBlend::TintedLobe;
+    u.twoSidedFlip = false;
+    u.clampNdotV = true;
+    u.clampColor = true;
+    const ShadingTrace trace = traceShading(u, ShadingFrequency::Phong, handBuiltFragment(u), {}, 2);
+    EXPECT_TRUE(trace.matchesPipeline);
+    const std::string lighting = screenText(shadingScreens(trace), "lighting");
+    for (const char* shown :
+         {"f = metalness·D·F·G/(π(N·V)(N·L))·c_base",
+          "+ (1 − metalness)·(D·F·G/(π(N·V)(N·L)) + (1 − F)·c_base/π)", "F = F0 + (1 − F0)(1 − N·L)^5",
+          "(1 − F0)(1 − 0.8)^5", "F0 = F0_dielectric = RGB(0.04, 0.04, 0.04)",
+          "/(π·1·0.8) = ", "tint = mix(1, c_base, metalness) = RGB(0.75, 0.625, 1)"})
+        EXPECT_NE(lighting.find(shown), std::string::npos) << shown << " missing from:\n" << lighting;
+    EXPECT_EQ(lighting.find("4(N·L)(N·V)"), std::string::npos) << lighting;
+    std::istringstream lines(lighting);
+    for (std::string line; std::getline(lines, line);)
+        EXPECT_LE(columns(line), 80u) << line;
+
+    // The same point seen from below: N·V < 0, clamped, no diffuse or specular light.
+    const PerPixelSurface::VaryingsT<float> below{vec3(0.0f, 0.0f, -2.0f), vec3(0.0f, 0.0f, -1.0f),
+                                                  vec2(0.0f)};
+    FragmentEvent f = handBuiltFragment(u);
+    std::memcpy(f.varyings.data(), &below, sizeof below);
+    f.shaded = SurfaceShader<ShadingFrequency::Phong>::fragment(below, u);
+    const ShadingTrace under = traceShading(u, ShadingFrequency::Phong, f, {}, 2);
+    EXPECT_TRUE(under.matchesPipeline);
+    const std::string underside = screenText(shadingScreens(under), "lighting");
+    EXPECT_NE(underside.find("N·V < 0: the viewer sees the underside; N·V is clamped to 0"),
+              std::string::npos)
+        << underside;
+    EXPECT_EQ(toJson(under)["lighting"]["underside"], true);
 }
 
 // A triangle between the point and the light: the lighting screen says the ray to the light is blocked,

@@ -73,16 +73,6 @@ void expectWithin80Columns(const Walk& walk) {
     }
 }
 
-// Whether a line of `text` holds `first` and after it `second`.
-bool aLineHasBoth(const std::string& text, const std::string& first, const std::string& second) {
-    std::istringstream lines(text);
-    for (std::string line; std::getline(lines, line);) {
-        const std::size_t at = line.find(first);
-        if (at != std::string::npos && line.find(second, at + first.size()) != std::string::npos) return true;
-    }
-    return false;
-}
-
 std::array<std::uint8_t, 4> bytesOf(const vec4& c, const ColorEncoding& e) {
     return {encodeChannel(c.r, e), encodeChannel(c.g, e), encodeChannel(c.b, e), toByte(c.a, e.rounding)};
 }
@@ -267,9 +257,11 @@ TEST_F(UserShaderStep, VersusPrintsTheUserShaderBesideTheBuiltInOne) {
         const testing_support::RunResult run = testing_support::runFacet(
             "step " + model.str() + " --shader " + shader.str() + " --versus '' --stats", dir);
         ASSERT_EQ(run.status, 0) << run.err;
-        EXPECT_NE(run.out.find("Right: with the built-in shaders."), std::string::npos) << run.out;
-        // The user's shader screen on the left faces the built-in lighting on the right.
-        EXPECT_TRUE(aLineHasBoth(run.out, "Your shader: ToonStep's fragment part", "| Lighting"))
+        EXPECT_NE(run.out.find("right (>): with the built-in shaders"), std::string::npos) << run.out;
+        // The user's shader screen on the left faces the built-in lighting on the right: the two titles
+        // one under the other.
+        EXPECT_NE(run.out.find(" < Your shader: ToonStep's fragment part and its output\n > Lighting"),
+                  std::string::npos)
             << run.out.substr(0, 4000);
         EXPECT_NE(run.out.find("N.V = "), std::string::npos);
         EXPECT_NE(run.err.find("non-finite shader values (NaN or infinite): 0"), std::string::npos)
@@ -279,7 +271,8 @@ TEST_F(UserShaderStep, VersusPrintsTheUserShaderBesideTheBuiltInOne) {
         const testing_support::RunResult run = testing_support::runFacet(
             "step " + model.str() + " --versus \"--shader " + shader.str() + "\"", dir);
         ASSERT_EQ(run.status, 0) << run.err;
-        EXPECT_TRUE(aLineHasBoth(run.out, "Lighting", "| Your shader: ToonStep's fragment part"))
+        EXPECT_NE(run.out.find(" < Lighting"), std::string::npos) << run.out.substr(0, 4000);
+        EXPECT_NE(run.out.find("\n > Your shader: ToonStep's fragment part"), std::string::npos)
             << run.out.substr(0, 4000);
     }
 }
