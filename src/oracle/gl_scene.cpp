@@ -17,6 +17,10 @@ GlScene toGlScene(const PreparedScene& prepared) {
     gl.textureFilter = prepared.scene.textures.filter;
     if (prepared.state.raster.cull == CullMode::Front)
         throw std::invalid_argument("OpenGL comparison: front-face culling is not mirrored");
+    if (prepared.environment.map)
+        throw std::invalid_argument("OpenGL comparison: environment maps are not mirrored");
+    if (prepared.scene.fog.mode == FogMode::Height)
+        throw std::invalid_argument("OpenGL comparison: height fog is not mirrored");
     const bool glPreset = prepared.scene.lighting.preset == LightingPreset::GL;
     if (!prepared.draws.empty()) {
         const SurfaceUniforms& u = prepared.draws.front().uniforms;
