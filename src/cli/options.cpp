@@ -116,6 +116,11 @@ void addSceneOptions(CLI::App& command, SceneArgs& args) {
         if (!knob.flag.empty()) addKnobOption(command, knob.name, args);
     addInfiniteFarOption(command, args);
     addShaderOptions(command, args);
+    command
+        .add_option("--environment", args.environment,
+                    "An equirectangular environment map (PNG, JPEG: sRGB; EXR, HDR: linear): the background "
+                    "and the surfaces' mirror reflection (docs/lighting.md)")
+        ->type_name("FILE");
     addChoice(command, "--only", args.only, "Render one term of the lighting equation alone");
     addChoice(command, "--encode", args.encode,
               "8-bit output encoding: the exact sRGB curve, a power 1/gamma, or none" +
@@ -214,6 +219,14 @@ void applyLightingOptions(const SceneArgs& args, facet::Scene& scene) {
                                 ") must be greater than its start (" + facet::knobNumberText(*fog.start) +
                                 "): give --fog-start and --fog-end in that order of distance");
     if (args.shader) scene.shader = facet::ShaderSpec{*args.shader, {}};
+    if (args.environment) {
+        // The file's own settings (encoding, intensity, rotation) stay when the scene has an environment.
+        facet::EnvironmentSpec environment = scene.environment.value_or(facet::EnvironmentSpec{});
+        environment.image = *args.environment;
+        environment.origin = "--environment";
+        if (args.environment->empty()) throw facet::InputError("--environment must name an image file");
+        scene.environment = environment;
+    }
     for (const std::string& uniform : args.uniforms)
         scene.uniforms.push_back(parseUniform(uniform));
     if (args.infiniteFar) {

@@ -74,8 +74,9 @@ struct SceneArgs {
     std::optional<float> gamma;
     bool infiniteFar = false;
     KnobChoices knobs;
-    std::optional<std::string> shader;  // --shader FILE: a shader of one's own for the scene
-    std::vector<std::string> uniforms;  // --uniform NAME=VALUE, as typed
+    std::optional<std::string> shader;       // --shader FILE: a shader of one's own for the scene
+    std::vector<std::string> uniforms;       // --uniform NAME=VALUE, as typed
+    std::optional<std::string> environment;  // --environment FILE: an equirectangular environment map
 };
 
 // The knob's option, as every command shows it: its flag, its one help text and its default, the

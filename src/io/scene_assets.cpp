@@ -6,6 +6,7 @@
 #include <optional>
 #include <sstream>
 
+#include "base/errors.h"
 #include "base/quote.h"
 
 namespace facet {
@@ -86,6 +87,23 @@ void loadTextures(SceneAssets& assets) {
     }
 }
 
+// The environment map: a file that cannot be read is an error naming it and the key (or flag) that
+// named it. "linear" 8-bit codes are code/255 as they are; float data is linear either way.
+void loadEnvironment(SceneAssets& assets) {
+    const AssetOptions& options = assets.options;
+    TextureRead read = readTexture(options.environment, true, options.limits,
+                                   options.limits.maxTotalBytes - assets.textureBytes);
+    if (read.texture.empty())
+        throw InputError(options.environment.string() + ": " + read.problem + " (the environment map, " +
+                         options.environmentOrigin + ")");
+    auto texture = std::make_unique<Texture>(std::move(read.texture));
+    if (options.environmentEncoding == EnvironmentEncoding::Linear)
+        for (int c = 0; c < 256; ++c)
+            texture->colorFromCode[c] = static_cast<float>(c) * (1.0f / 255.0f);
+    assets.textureBytes += texture->bytes();
+    assets.environment = std::move(texture);
+}
+
 }  // namespace
 
 AssetOptions assetOptionsFor(const Scene& scene, const TextureLimits& limits) {
@@ -99,6 +117,11 @@ AssetOptions assetOptionsFor(const Scene& scene, const TextureLimits& limits) {
     // as given (OpenGL 1.x knows no gamma).
     options.decodeTextures = scene.lighting.preset != LightingPreset::GL && scene.gamma.decodeInputs;
     options.mipChains = scene.textures.filter == TextureFilter::Trilinear;
+    if (scene.environment) {
+        options.environment = scene.environment->image;
+        options.environmentEncoding = scene.environment->encoding;
+        options.environmentOrigin = scene.environment->origin;
+    }
     options.limits = limits;
     return options;
 }
@@ -113,6 +136,7 @@ SceneAssets loadSceneAssets(const AssetOptions& options) {
     assets.options = options;
     loadModels(assets);
     if (options.textured) loadTextures(assets);
+    if (!options.environment.empty()) loadEnvironment(assets);
     return assets;
 }
 

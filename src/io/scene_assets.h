@@ -27,6 +27,11 @@ struct AssetOptions {
     bool textured = true;                             // the materials' texture maps are read at all
     bool decodeTextures = true;                       // 8- and 16-bit texels are sRGB codes, decoded
     bool mipChains = false;                           // trilinear filtering: each texture's mip chain built
+    // The environment map ("environment", --environment): its file (empty: none), how its 8-bit codes
+    // are read, and the key or flag that named it (for messages).
+    std::filesystem::path environment;
+    EnvironmentEncoding environmentEncoding = EnvironmentEncoding::Srgb;
+    std::string environmentOrigin;
     TextureLimits limits;
 
     // Defaulted: an option added later is compared without anyone remembering to.
@@ -52,8 +57,9 @@ struct SceneAssets {
     // One line each: the importer's and coordinate precision's, per model in first use; then the
     // unreadable textures', in the order the parts name them.
     std::vector<std::string> modelWarnings, textureWarnings;
-    std::size_t degenerateSkipped = 0;  // over every model file, each counted once
-    std::size_t textureBytes = 0;       // every texture held, mip chains included
+    std::size_t degenerateSkipped = 0;           // over every model file, each counted once
+    std::size_t textureBytes = 0;                // every texture held, mip chains included
+    std::unique_ptr<const Texture> environment;  // the environment map; null: none
 
     // The mesh of `file`, which options.objectModels names. Throws std::out_of_range otherwise.
     const Mesh& model(const std::filesystem::path& file) const { return models.at(file); }
@@ -63,8 +69,9 @@ struct SceneAssets {
 
 // Reads every model and texture `options` names: the models in the order of the objects, then, when
 // textured, each non-empty part's emission and diffuse maps in object and part order (the order in which
-// the total of options.limits is spent). Throws InputError for a model that cannot be used or textures
-// beyond the limits; an unreadable texture is a warning and is left out.
+// the total of options.limits is spent), then the environment map. Throws InputError for a model that
+// cannot be used or textures beyond the limits, and for an environment map that cannot be read; an
+// unreadable material texture is a warning and is left out.
 SceneAssets loadSceneAssets(const AssetOptions& options);
 
 // The shared assets `scene` draws from.

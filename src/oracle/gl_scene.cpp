@@ -19,6 +19,10 @@ GlScene toGlScene(const PreparedScene& prepared) {
         throw std::invalid_argument("OpenGL comparison: front-face culling is not mirrored");
     if (prepared.scene.lighting.preset == LightingPreset::Lecture)
         throw std::invalid_argument("OpenGL comparison: the lecture preset's formulas are not mirrored");
+    if (prepared.environment.map)
+        throw std::invalid_argument("OpenGL comparison: environment maps are not mirrored");
+    if (prepared.scene.fog.mode == FogMode::Height)
+        throw std::invalid_argument("OpenGL comparison: height fog is not mirrored");
     const bool glPreset = prepared.scene.lighting.preset == LightingPreset::GL;
     if (!prepared.draws.empty()) {
         const SurfaceUniforms& u = prepared.draws.front().uniforms;

@@ -376,6 +376,8 @@ int fogModeCode(FogMode mode) {
             return 2;
         case FogMode::ExponentialSquared:
             return 3;
+        case FogMode::Height:
+            break;  // refused by toGlScene
     }
     return 0;
 }

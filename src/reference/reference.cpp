@@ -286,7 +286,11 @@ LinearImage renderReference(const PreparedScene& prepared, const ReferenceOption
             for (std::size_t s = 0; s < samplesPerPixel; ++s) {
                 const std::size_t k = static_cast<std::size_t>(x) * samplesPerPixel + s;
                 const Ray& ray = rowRays[k];
-                dvec4 color = background;
+                // A ray that meets nothing shows the background: the environment map along it, or the colour.
+                dvec4 color =
+                    prepared.environmentBackground
+                        ? dvec4(dvec3(environmentColor(prepared.environment, ray.direction)), background.a)
+                        : background;
                 RayHit& front = opaque[k];  // the opaque surface the sample shows
                 std::optional<dvec4> frontColor;
                 if (front.hit()) frontColor = shadeHit(ray, front);  // never discarded: see above

@@ -134,7 +134,28 @@ FogParams fogParams(const Scene& scene, const Bounds& bounds, const Camera& came
     fog.start = float(start * camera.viewScale);
     fog.end = float(end * camera.viewScale);
     fog.density = float(fog.density / camera.viewScale);
+    // Height fog: heights along the world's up, measured in eye-space units from the world's origin.
+    const glm::dvec3 up = glm::normalize(glm::dvec3(scene.fog.up));
+    fog.falloff = float(scene.fog.falloff / camera.viewScale);
+    fog.baseHeight = float(scene.fog.baseHeight * camera.viewScale);
+    fog.up = vec3(glm::normalize(glm::dmat3(camera.viewFromWorldExact) * up));
+    fog.eyeHeight = float(glm::dot(glm::dvec3(camera.eye), up) * camera.viewScale);
     return fog;
+}
+
+// The environment map as the shaders read it: eye-space directions turned to world space (the view's
+// rotation undone), then by the map's rotation about +y.
+EnvironmentParams environmentParams(const Scene& scene, const SceneAssets& assets, const Camera& camera) {
+    EnvironmentParams env;
+    if (!scene.environment || !assets.environment) return env;
+    env.map = assets.environment.get();
+    env.intensity = scene.environment->intensity;
+    const glm::dmat3 worldFromEye = glm::inverse(glm::dmat3(camera.viewFromWorldExact)) * camera.viewScale;
+    const glm::dmat3 turn(glm::rotate(glm::dmat4(1.0),
+                                      glm::radians(-double(scene.environment->rotationDegrees)),
+                                      glm::dvec3(0.0, 1.0, 0.0)));
+    env.mapFromEye = mat3(turn * worldFromEye);
+    return env;
 }
 
 // The draw's matrices for an object placed by `worldFromObject`: composed in double with the camera's
@@ -489,7 +510,11 @@ PreparedScene prepareFrame(const Scene& scene, std::shared_ptr<const SceneAssets
     const ColourDecoding decode{!glPreset && scene.gamma.decodeInputs};
     const std::vector<LightSpec> lights = sceneLights(scene);
     std::vector<DrawTriangles> triangles;
-    addDraws(frame, *assets, commonUniforms(scene, lights, bounds, frame.camera, decode), decode, triangles);
+    SurfaceUniforms common = commonUniforms(scene, lights, bounds, frame.camera, decode);
+    common.environment = environmentParams(scene, *assets, frame.camera);
+    frame.environment = common.environment;
+    frame.environmentBackground = common.environment.map && scene.environment->background;
+    addDraws(frame, *assets, common, decode, triangles);
     setTriangles(frame, std::move(triangles));
 
     frame.state = pipelineState(scene);
@@ -781,7 +806,39 @@ glm::dmat4 clipFromViewAtSample(const Camera& camera, SampleOffset offset, int w
     return glm::translate(glm::dmat4(1.0), shift) * drawnClipFromView(camera);
 }
 
+glm::dvec3 environmentViewRay(const glm::dmat4& viewFromClip, glm::dvec2 window, int width, int height) {
+    const double ndcX = 2.0 * window.x / width - 1.0, ndcY = 1.0 - 2.0 * window.y / height;
+    const glm::dvec4 p = viewFromClip * glm::dvec4(ndcX, ndcY, 0.5, 1.0);
+    return glm::dvec3(p) / p.w;
+}
+
 namespace detail {
+
+void fillEnvironmentBackground(const PreparedScene& prepared, Framebuffer& target,
+                               const glm::dmat4* clipFromView, ThreadPool& pool) {
+    const glm::dmat4 viewFromClip =
+        glm::inverse(clipFromView ? *clipFromView : drawnClipFromView(prepared.camera));
+    const int width = target.width(), height = target.height();
+    const std::size_t samples = static_cast<std::size_t>(target.samples());
+    // Taken here, once, on the calling thread (they settle the clear): the rows are then written apart.
+    vec4* const colors = target.colorSpanToWrite().data();
+    vec4* const sampleColors = samples > 1 ? target.sampleColors(0, 0) : nullptr;
+    const float alpha = prepared.clearColor.a;
+    const ColorBufferFormat format = prepared.state.colorBuffer;
+    pool.parallelFor(static_cast<std::size_t>(height), [&](std::size_t row, int) {
+        for (int x = 0; x < width; ++x) {
+            const glm::dvec3 ray =
+                environmentViewRay(viewFromClip, glm::dvec2(x + 0.5, double(row) + 0.5), width, height);
+            const vec4 c =
+                roundToColorBuffer(format, vec4(environmentColor(prepared.environment, ray), alpha));
+            const std::size_t i = row * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
+            colors[i] = c;
+            if (sampleColors)
+                for (std::size_t s = 0; s < samples; ++s)
+                    sampleColors[i * samples + s] = c;
+        }
+    });
+}
 
 void accumulateSamplePass(Framebuffer& target, std::vector<vec4>& sum, std::size_t pass, std::size_t passes,
                           ColorBufferFormat format, ThreadPool& pool) {

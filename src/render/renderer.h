@@ -86,7 +86,11 @@ struct PreparedScene {
     Scene scene;
     Camera camera;
     DrawState state;
-    vec4 clearColor{0.0f};                   // linear (Facet preset) or as given (GL preset)
+    vec4 clearColor{0.0f};  // linear (Facet preset) or as given (GL preset)
+    // The environment map as the draws' uniforms have it, and whether it is the background: then every
+    // pass fills the colour buffer with the map along each pixel's view ray before drawing.
+    EnvironmentParams environment;
+    bool environmentBackground = false;
     ColorEncoding encoding = kSrgbEncoding;  // how 8-bit image files encode the colour buffer
     std::shared_ptr<const SceneAssets> assets;
     std::vector<PreparedDraw> draws;
@@ -265,7 +269,18 @@ inline ImageView viewOf(const Framebuffer& framebuffer) {
 // x += t_x·w, y += t_y·w.
 glm::dmat4 clipFromViewAtSample(const Camera& camera, SampleOffset offset, int width, int height);
 
+// A point on the view ray through window position `window` (pixels, y down) of a projection whose inverse
+// is `viewFromClip`: the direction from the eye (eye space) the environment map is read along.
+glm::dvec3 environmentViewRay(const glm::dmat4& viewFromClip, glm::dvec2 window, int width, int height);
+
 namespace detail {
+
+// The environment as the background: every pixel (every sample, multisampled) gets the map's colour along
+// its view ray through the pixel centre of the pass (`clipFromView`: the sample pass's projection; null:
+// the camera's), rounded as the colour buffer stores it. Rows spread over the pool: the same bytes for
+// any thread count. Draws then cover it as they cover the clear colour.
+void fillEnvironmentBackground(const PreparedScene& prepared, Framebuffer& target,
+                               const glm::dmat4* clipFromView, ThreadPool& pool);
 
 // Supersampling: adds the colour of sample pass `pass` of `passes` into `sum` (pass 0 starts it),
 // rows spread over the pool; after the last pass writes the average (the box filter's resolve, in
@@ -438,6 +453,8 @@ void drawFramePass(const PreparedScene& prepared, std::span<const PlannedDraw> p
     // The background and the far plane, as the buffers' formats store them.
     target.clear(roundToColorBuffer(prepared.state.colorBuffer, prepared.clearColor),
                  depthClearValue(prepared.state.depth.format), context.pool);
+    if (prepared.environmentBackground)
+        fillEnvironmentBackground(prepared, target, clipFromView, context.pool);
     for (std::size_t k = 0; k < plan.size();) {
         const PlannedDraw& call = plan[k];
         const PreparedDraw& d = prepared.draws[call.draw];

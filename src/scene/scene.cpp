@@ -48,6 +48,8 @@ Scene loadScene(const fs::path& path) {
     if (const Json* v = reader.find(document, "transparency"))
         readKnobSection(reader, *v, "transparency", "an object like {\"mode\": \"exact\"}", scene);
     if (const Json* v = reader.find(document, "fog")) scene.fog = readFog(reader, *v);
+    if (const Json* v = reader.find(document, "environment"))
+        scene.environment = readEnvironment(reader, *v, path.parent_path());
     if (const Json* v = reader.find(document, "shadow_map"))
         readKnobSection(reader, *v, "shadow_map",
                         "an object like {\"size\": 2048, \"bias\": 1, \"slope_bias\": 1.5, \"filter\": 4}",

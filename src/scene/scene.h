@@ -239,8 +239,32 @@ struct FogSpec {
     // Linear fog's range along the fog distance; absent: from the scene's bounding sphere, start at its
     // nearest point to the eye and end at its farthest.
     std::optional<float> start, end;
-    float density = 1.0f;  // exp and exp²: per unit of length
+    float density = 1.0f;  // exp and exp²: per unit of length; height: a, at the base height
     FogDistance distance = FogDistance::EyeDepth;
+    // Height fog: ρ(h) = density·e^(−falloff·(h − base_height)), h measured along `up` (world space).
+    float falloff = 1.0f;
+    float baseHeight = 0.0f;
+    glm::vec3 up{0.0f, 1.0f, 0.0f};
+};
+
+// How an environment map's file holds its colours ("environment.encoding").
+enum class EnvironmentEncoding { Srgb, Linear };
+inline constexpr EnumName<EnvironmentEncoding> kEnvironmentEncodingNames[] = {
+    {EnvironmentEncoding::Srgb, "srgb"}, {EnvironmentEncoding::Linear, "linear"}};
+constexpr std::span<const EnumName<EnvironmentEncoding>> enumNames(EnvironmentEncoding) {
+    return kEnvironmentEncodingNames;
+}
+
+// An equirectangular environment map ("environment", --environment; shading/environment.h): the
+// background where no surface is, and the surfaces' mirror reflection.
+struct EnvironmentSpec {
+    std::filesystem::path image;  // resolved against the scene file's folder
+    // 8-bit files: sRGB codes (decoded) or linear values (code/255). Float files (EXR, HDR) are linear.
+    EnvironmentEncoding encoding = EnvironmentEncoding::Srgb;
+    float intensity = 1.0f;
+    float rotationDegrees = 0.0f;  // the map turned about the world's up (+y), counter-clockwise from above
+    bool background = true;        // the map is the background too (else the "background" colour is)
+    std::string origin = "environment.image";  // the key or flag that named it, for messages
 };
 
 // Colour encoding of inputs and outputs ("gamma"). The gl preset ignores it: no decoding, no encoding.
@@ -264,6 +288,7 @@ struct Scene {
     LightingOptions lighting;
     TransparencyOptions transparency;
     FogSpec fog;
+    std::optional<EnvironmentSpec> environment;  // none: no map, no reflections
     GammaOptions gamma;
     ShadowMapOptions shadowMap;  // "shadow_map": how every light with map shadows draws and reads its map
     // The command line's --shadows: every light's method, the default light's too (absent: each light's).

@@ -32,7 +32,10 @@ constexpr std::string_view kMaterialKeys[] = {"ambient", "diffuse", "specular", 
                                               "f0",      "ior",     "anisotropy"};
 constexpr std::string_view kObjectLightingKeys[] = {"model", "shading"};
 constexpr std::string_view kLightSpaces[] = {"world", "camera"};
-constexpr std::string_view kFogKeys[] = {"mode", "color", "start", "end", "density", "distance"};
+constexpr std::string_view kFogKeys[] = {"mode",    "color",       "start", "end",     "density",
+                                         "falloff", "base_height", "up",    "distance"};
+constexpr std::string_view kHeightFogKeys[] = {"falloff", "base_height", "up"};
+constexpr std::string_view kEnvironmentKeys[] = {"image", "encoding", "intensity", "rotation", "background"};
 constexpr std::string_view kGammaKeys[] = {"encode", "exponent", "decode_inputs"};
 
 }  // namespace
@@ -529,9 +532,46 @@ FogSpec readFog(const SceneReader& reader, const Json& fog) {
         reader.fail("\"fog.end\" (" + formatNumber(*spec.end) + ") must be greater than \"fog.start\" (" +
                     formatNumber(*spec.start) + ")");
     }
+    for (std::string_view name : kHeightFogKeys) {
+        if (spec.mode != FogMode::Height && fog.contains(name)) {
+            reader.fail(inQuotes(childPath(path, name)) + " is for height fog (the mode is " +
+                        inQuotes(modeName) + ")");
+        }
+    }
+    if (spec.mode == FogMode::Height && fog.contains("distance"))
+        reader.fail(
+            "\"fog.distance\": height fog integrates along the ray from the eye, it takes no distance");
     if (const Json* v = reader.find(fog, "density")) spec.density = number("fog-density", *v);
+    if (const Json* v = reader.find(fog, "falloff")) spec.falloff = reader.nonNegative(*v, "fog.falloff");
+    if (const Json* v = reader.find(fog, "base_height"))
+        spec.baseHeight = reader.number(*v, "fog.base_height");
+    if (const Json* v = reader.find(fog, "up")) spec.up = glm::normalize(reader.nonZeroVector(*v, "fog.up"));
     if (const Json* v = reader.find(fog, "distance"))
         spec.distance = reader.enumChoice<FogDistance>(*v, "fog.distance");
+    return spec;
+}
+
+EnvironmentSpec readEnvironment(const SceneReader& reader, const Json& environment, const fs::path& folder) {
+    const std::string path = "environment";
+    reader.requireObject(environment, path, "an object like {\"image\": \"sky.png\"}");
+    reader.checkKeys(environment, path, kEnvironmentKeys);
+    EnvironmentSpec spec;
+    const Json* image = reader.find(environment, "image");
+    if (image == nullptr) reader.fail("\"environment.image\" is missing: name an equirectangular image file");
+    const std::string written = reader.string(*image, "environment.image");
+    if (written.empty()) reader.fail("\"environment.image\" must name an image file (got an empty string)");
+    spec.image = folder / fs::path(written);
+    std::error_code error;
+    if (!fs::is_regular_file(spec.image, error))
+        reader.fail("\"environment.image\": " + spec.image.string() + ": file not found");
+    if (const Json* v = reader.find(environment, "encoding"))
+        spec.encoding = reader.enumChoice<EnvironmentEncoding>(*v, "environment.encoding");
+    if (const Json* v = reader.find(environment, "intensity"))
+        spec.intensity = reader.brightness(*v, "environment.intensity");
+    if (const Json* v = reader.find(environment, "rotation"))
+        spec.rotationDegrees = reader.numberFromTo(*v, "environment.rotation", -360.0f, 360.0f, " degrees");
+    if (const Json* v = reader.find(environment, "background"))
+        spec.background = reader.boolean(*v, "environment.background");
     return spec;
 }
 

@@ -12,8 +12,9 @@
 namespace facet::scene_file {
 
 inline constexpr std::string_view kTopLevelKeys[] = {
-    "shader", "width",    "height",   "background",   "ambient", "camera", "lights",     "objects",
-    "model",  "pipeline", "lighting", "transparency", "fog",     "gamma",  "shadow_map", "textures"};
+    "shader", "width",   "height",     "background", "ambient",    "camera",
+    "lights", "objects", "model",      "pipeline",   "lighting",   "transparency",
+    "fog",    "gamma",   "shadow_map", "textures",   "environment"};
 
 glm::vec4 readBackground(const SceneReader& reader, const Json& value);
 CameraSpec readCamera(const SceneReader& reader, const Json& camera);
@@ -37,6 +38,9 @@ void readKnobSection(const SceneReader& reader, const Json& object, const std::s
 // The scene's "lighting": a preset name alone, or a section of knobs.
 void readLighting(const SceneReader& reader, const Json& lighting, Scene& scene);
 FogSpec readFog(const SceneReader& reader, const Json& fog);
+// "environment": the image (resolved against `folder`, which must hold it), its encoding, intensity,
+// rotation and whether it is the background.
+EnvironmentSpec readEnvironment(const SceneReader& reader, const Json& environment, const fs::path& folder);
 GammaOptions readGamma(const SceneReader& reader, const Json& gamma);
 
 }  // namespace facet::scene_file

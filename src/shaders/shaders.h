@@ -25,6 +25,7 @@
 #include "pipeline/wide.h"
 #include "scene/mesh.h"
 #include "shaders/shadowing.h"
+#include "shading/environment.h"
 #include "shading/fog.h"
 #include "shading/lighting.h"
 
@@ -95,6 +96,9 @@ struct SurfaceUniforms {
     Normalization normalization = Normalization::Exact;
     // Which lights cast shadows and how (shadowing.h); null: none does, and the lighting skips the test.
     const SceneShadows* shadows = nullptr;
+    // The environment map's mirror reflection (shading/environment.h), added to the lit colour with the
+    // specular term's selection; environment.map null: none (one branch per batch).
+    EnvironmentParams environment;
 
     std::span<const LightParams> activeLights() const {
         return {lights.data(), static_cast<std::size_t>(lightCount)};
@@ -104,7 +108,24 @@ struct SurfaceUniforms {
     }
     // The emission term as the selected terms have it, before its texture.
     vec3 emissionTerm() const { return (terms & kEmissionTerm) ? material.emission : vec3(0.0f); }
+    // Whether the environment's reflection is added (a map, and the specular term selected).
+    bool reflectsEnvironment() const { return environment.map && (terms & kSpecularTerm); }
 };
+
+// The environment's reflection at eye-space P with normal N (environment.h): Cook-Torrance surfaces
+// weighted by Schlick's Fresnel with the material's F0 = mix(F0, c_base, metalness), the standard
+// equation's by m_specular.
+template <class F, class V3 = LaneVec3<F>, class... Recording>
+V3 environmentTerm(const SurfaceUniforms& u, const V3& P, const V3& N, unsigned liveLanes,
+                   Recording*... recording) {
+    if (u.reflection == ReflectionModel::CookTorrance) {
+        const vec3 f0 = mix(u.pbr.f0, u.pbr.baseColor, u.pbr.metalness);
+        return environmentReflection<F, V3>(u.environment, P, N, u.twoSidedFlip, &f0, vec3(0.0f), liveLanes,
+                                            recording...);
+    }
+    return environmentReflection<F, V3>(u.environment, P, N, u.twoSidedFlip, nullptr, u.material.specular,
+                                        liveLanes, recording...);
+}
 
 // ---- Records of one fragment's shading (shading/record.h), for the step mode ------------------------
 
@@ -149,6 +170,7 @@ struct FragmentRecord {
     vec3 albedo{0.0f};
     SurfaceTermsRecord lighting{};
     vec3 emission{0.0f};
+    EnvironmentRecord environment{};  // the environment's reflection (used: a map), in the sum
     vec3 sum{0.0f};
     bool clamped = false;
     // Lit per vertex: the interpolated (or flat) parts, then with the texels: modulated ⊗ texel and
@@ -169,10 +191,11 @@ struct VertexLightingRecord {
     vec3 normal{0.0f};
     vec2 uv{0.0f};
     SurfaceTermsRecord lighting{};
-    bool emissionDeferred = false;  // an emission map: the emission is added per fragment instead
-    bool clamped = false;           // clampColor: the sum clamped to [0, 1], all of it modulated
-    vec3 sum{0.0f};                 // the terms' sum
-    vec3 modulated{0.0f};           // the varyings it hands on, recorded by the caller
+    bool emissionDeferred = false;    // an emission map: the emission is added per fragment instead
+    bool clamped = false;             // clampColor: the sum clamped to [0, 1], all of it modulated
+    EnvironmentRecord environment{};  // the environment's reflection (used: a map), in the sum
+    vec3 sum{0.0f};                   // the terms' sum
+    vec3 modulated{0.0f};             // the varyings it hands on, recorded by the caller
     vec3 added{0.0f};
 };
 
@@ -440,6 +463,8 @@ struct PerPixelSurface {
             }
         }
         V3 c = t.sum();
+        if (u.reflectsEnvironment())
+            c = c + environmentTerm<F>(u, in.position, in.normal, liveLanes, &recording->environment...);
         if constexpr (Record::enabled) recordOf(recording...)->sum = c;
         if (u.clampColor) c = detail::clamp01(c);
         if constexpr (Record::enabled) {
@@ -508,6 +533,10 @@ struct PerVertexSurface {
         LightingTerms<V3> t =
             surfaceTerms<F>(in.position, in.normal, V3(u.albedo()), u, &recording->lighting...);
         if (u.emissionMap) t.emission = V3(vec3(0.0f));  // added, textured, per fragment
+        // The environment's reflection per vertex, with the specular term (interpolated as it is).
+        if (u.reflectsEnvironment())
+            t.specular =
+                t.specular + environmentTerm<F>(u, in.position, in.normal, ~0u, &recording->environment...);
         if constexpr (Record::enabled) {
             auto& record = *recordOf(recording...);
             record.position = in.position;

@@ -515,6 +515,34 @@ void writeSum(Lines& out, const SurfaceTermsRecord& s, const vec3& emission) {
     out.add("  specular = " + rgb(t.specular));
 }
 
+// The environment map's mirror reflection (shading/environment.h), with every number.
+void writeEnvironment(Lines& out, const EnvironmentRecord& e) {
+    if (!e.used) return;
+    // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on long chains of string +.
+    const auto line = [&out](std::initializer_list<std::string_view> pieces) {
+        std::string text;
+        for (const std::string_view piece : pieces)
+            text += piece;
+        out.add(std::move(text));
+    };
+    out.add("The environment map's mirror reflection (equirectangular, RTR4 §10.4.1):");
+    line({"  R = 2(N·V)N − V, N = ", vec(e.N), ", V = ", vec(e.V)});
+    line({"    = ", vec(e.R), " (eye space)"});
+    line({"  R in the map's frame (eye to world, the map's turn) = ", vec(e.direction)});
+    line({"  u = ½ + atan2(x, −z)/(2π), v = ½ + asin(y)/π: uv = ", uvText(e.uv)});
+    line({"  texel (", std::to_string(e.texel.x), ", ", std::to_string(e.texel.y),
+          ") from the top left, bilinear × intensity:"});
+    line({"  E(R) = ", rgb(e.color)});
+    if (e.fresnel) {
+        line({"  F = F0 + (1 − F0)(1 − N·V)^5 (Schlick), F0 = ", rgb(e.f0), ", N·V = ", num(e.NdotV)});
+        line({"    = ", rgb(e.weight)});
+        line({"  reflection = F ⊗ E(R) = ", rgb(e.term)});
+    } else {
+        line({"  weight w = m_specular = ", rgb(e.weight)});
+        line({"  reflection = w ⊗ E(R) = ", rgb(e.term)});
+    }
+}
+
 void writeLighting(Lines& out, const SurfaceTermsRecord& s) {
     writePoint(out, s);
     writeMaterial(out, s.lighting);
@@ -542,6 +570,10 @@ void writeCorner(Lines& out, const CornerShading& c) {
             " (object space) ----");
     writeLighting(out, v.lighting);
     writeSum(out, v.lighting, v.lighting.terms.emission);
+    if (v.environment.used) {
+        writeEnvironment(out, v.environment);
+        out.add("  (the reflection is part of the specular term above)");
+    }
     if (v.emissionDeferred)
         out.add("  The emission is left out here: the pixel adds it with its emission texture.");
     if (v.clamped) {
@@ -625,7 +657,10 @@ void writeFragmentPart(Lines& out, const ShadingTrace& t) {
     const FragmentRecord& f = t.fragment;
     out.add("The fragment shader at pixel (" + std::to_string(t.x) + ", " + std::to_string(t.y) + "):");
     if (f.perPixel) {
-        out.add("  c = emission + ambient + diffuse + specular = " + rgb(f.sum));
+        if (f.environment.used)
+            out.add("  c = emission + ambient + diffuse + specular + reflection = " + rgb(f.sum));
+        else
+            out.add("  c = emission + ambient + diffuse + specular = " + rgb(f.sum));
         if (f.clamped) out.add("  clamped to [0, 1] (OpenGL 1.x; the lecture notes): c = " + rgb(f.color));
     } else {
         if (f.diffuseMapped)
@@ -703,6 +738,7 @@ Screen lightingScreen(const ShadingTrace& t) {
         writeTextureFilter(out, t);
         writeLighting(out, f.lighting);
         writeSum(out, f.lighting, f.emission);
+        writeEnvironment(out, f.environment);
         if (f.emissionMapped)
             out.add("  (emission = m_emission ⊗ the emission map's texel " + rgb(vec3(f.emissionTexel)) +
                     " at uv " + uvText(f.uv) + ")");
@@ -722,6 +758,41 @@ Screen lightingScreen(const ShadingTrace& t) {
     return {"lighting", title, out.text()};
 }
 
+// Height fog's screen: the closed form, then the numbers.
+Screen heightFogScreen(const FogRecord& r) {
+    const FogParams& fog = r.fog;
+    Lines out;
+    // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on long chains of string +.
+    const auto line = [&out](std::initializer_list<std::string_view> pieces) {
+        std::string text;
+        for (const std::string_view piece : pieces)
+            text += piece;
+        out.add(std::move(text));
+    };
+    out.add("Height fog: the density falls exponentially with the height h above h0,");
+    out.add("  ρ(h) = a·e^(−b·(h − h0)), integrated along the ray from the eye to the point:");
+    out.add("  τ = a·e^(−b·(y_e − h0))·d·g(b·Δy),  g(x) = (1 − e^(−x))/x,  g(0) = 1");
+    out.add("  (d: the distance to the point, Δy: its height above the eye's)");
+    out.add("  f = e^(−τ), c_p = f·c_s + (1 − f)·c_fog");
+    out.blank();
+    line({"  a = ", num(fog.density), ", b = ", num(fog.falloff), ", h0 = ", num(fog.baseHeight),
+          " (eye-space units)"});
+    line({"  y_e = ", num(fog.eyeHeight), " (the eye's height), up (eye space) = ", vec(fog.up)});
+    line({"  d = |P_eye| = |", vec(r.eyePosition), "| = ", num(r.z)});
+    line({"  Δy = P_eye·up = ", num(r.rise)});
+    line({"  τ = ", num(fog.density), "·e^(−", num(fog.falloff), "·(", num(fog.eyeHeight), " − ",
+          num(fog.baseHeight), "))·", num(r.z), "·g(", num(fog.falloff * r.rise), ")"});
+    line({"    = ", num(r.tau)});
+    line({"  f = e^(−τ) = ", num(r.f)});
+    line({"  c_fog = ", rgb(fog.color)});
+    line({"  c_p = f·c_s + (1 − f)·c_fog = ", num(r.f), "·", rgb(r.color), " + ", num(1.0f - r.f), "·",
+          rgb(fog.color)});
+    line({"      = ", rgb(r.fogged)});
+    std::string title = "Fog: height, f = ";
+    title += num(r.f);
+    return {"fog", std::move(title), out.text()};
+}
+
 Screen fogScreen(const ShadingTrace& t) {
     Lines out;
     const FogRecord& r = t.fragment.output.fog;
@@ -730,6 +801,7 @@ Screen fogScreen(const ShadingTrace& t) {
         out.add("Fog is off: the lit colour passes unchanged, c_p = c_s = " + rgb(r.color) + ".");
         return {"fog", "Fog: off", out.text()};
     }
+    if (fog.mode == FogMode::Height) return heightFogScreen(r);
     out.add("Fog (OpenGL 2.1 §3.10) blends the colour towards the fog colour with distance:");
     out.add("  c_p = f·c_s + (1 − f)·c_fog, f clamped to [0, 1] (1: no fog, 0: only fog)");
     out.blank();
@@ -739,6 +811,7 @@ Screen fogScreen(const ShadingTrace& t) {
         out.add("  z = |z_eye| (the eye-space depth) = |" + num(r.eyePosition.z) + "| = " + num(r.z));
     switch (fog.mode) {
         case FogMode::None:
+        case FogMode::Height:
             break;
         case FogMode::Linear:
             out.add("  linear fog from start " + num(fog.start) + " to end " + num(fog.end) + ":");

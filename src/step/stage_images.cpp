@@ -185,9 +185,9 @@ vec3 normalColour(const vec3& normal) {
 // The fog factor f the surface shader computes at an eye-space position (surfaceOutput: the draw's
 // own precision for exp).
 float fogFactorAt(const SurfaceUniforms& u, const vec3& eyePosition) {
-    const float z = fogDistance<float>(u.fog, eyePosition);
-    return u.precision == MathPrecision::Exact ? fogFactor<float, MathPrecision::Exact>(u.fog, z)
-                                               : fogFactor<float, MathPrecision::Fast>(u.fog, z);
+    return u.precision == MathPrecision::Exact
+               ? facet::fogFactorAt<float, vec3, MathPrecision::Exact>(u.fog, eyePosition)
+               : facet::fogFactorAt<float, vec3, MathPrecision::Fast>(u.fog, eyePosition);
 }
 
 // Watches one frame drawn with per-pixel shading and keeps, per pixel, what the data images show.
@@ -375,6 +375,10 @@ Stage StageRecorder::fogFactor(const FogParams& fog, double viewScale) const {
             break;
         case FogMode::Exponential:
             formula = "f = e^(−density·z) with density " + number(fog.density * viewScale);
+            break;
+        case FogMode::Height:
+            formula = "f = e^(−τ), τ the height fog's optical depth with density " +
+                      number(fog.density * viewScale) + " and falloff " + number(fog.falloff * viewScale);
             break;
         case FogMode::ExponentialSquared:
             formula = "f = e^(−(density·z)²) with density " + number(fog.density * viewScale);

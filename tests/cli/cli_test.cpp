@@ -585,5 +585,37 @@ TEST(CompareAgainst, AShaderIsComparedWithTheBuiltInModel) {
         << differ.out;
 }
 
+// --environment reaches the image (the background becomes the map) and the step mode's lighting
+// screen (the reflection's numbers); a file that cannot be read is one line naming it and the flag.
+TEST(Cli, EnvironmentFlagReachesTheImageAndTheStepScreen) {
+    TempFolder dir;
+    const std::filesystem::path root(FACET_SOURCE_DIR);
+    const std::string model = quoted(root / "models/spot/spot_triangulated.obj");
+    const std::string sky = quoted(root / "models/environment/sky.png");
+    const auto plain = dir.path() / "plain.png", mapped = dir.path() / "mapped.png";
+    ASSERT_EQ(runFacet("render " + model + " -o " + quoted(plain) + " --width 48 --height 36", dir).status, 0);
+    const RunResult run = runFacet(
+        "render " + model + " -o " + quoted(mapped) + " --width 48 --height 36 --environment " + sky, dir);
+    ASSERT_EQ(run.status, 0) << run.err;
+    // The top-left corner looks up-left into the sky: blue above red, not the dark clear colour.
+    const glm::vec4 before = readImage(plain).at(0, 0), after = readImage(mapped).at(0, 0);
+    EXPECT_LT(before.b, 0.05f);
+    EXPECT_GT(after.b, 0.3f);
+    EXPECT_GT(after.b, after.r);
+
+    const RunResult step =
+        runFacet("step " + model + " --width 48 --height 36 --pixel 24,18 --environment " + sky, dir);
+    ASSERT_EQ(step.status, 0) << step.err;
+    EXPECT_NE(step.out.find("R = 2(N·V)N − V"), std::string::npos) << step.out;
+    EXPECT_NE(step.out.find("reflection = w ⊗ E(R) = RGB("), std::string::npos) << step.out;
+
+    const RunResult missing = runFacet("render " + model + " -o " + quoted(mapped) +
+                                           " --width 48 --height 36 --environment nowhere/sky.png",
+                                       dir);
+    EXPECT_NE(missing.status, 0);
+    EXPECT_NE(missing.err.find("nowhere/sky.png"), std::string::npos) << missing.err;
+    EXPECT_NE(missing.err.find("--environment"), std::string::npos) << missing.err;
+}
+
 }  // namespace
 }  // namespace facet

@@ -77,7 +77,7 @@ TEST(NameTables, LightingEnums) {
 
 TEST(NameTables, FogGammaAndSceneEnums) {
     expectOneNameEach<FogMode>(
-        {FogMode::None, FogMode::Linear, FogMode::Exponential, FogMode::ExponentialSquared});
+        {FogMode::None, FogMode::Linear, FogMode::Exponential, FogMode::ExponentialSquared, FogMode::Height});
     expectOneNameEach<FogDistance>({FogDistance::EyeDepth, FogDistance::Radial});
     expectOneNameEach<TransferCurve>({TransferCurve::Srgb, TransferCurve::Power, TransferCurve::Linear});
     expectOneNameEach<LightingPreset>({LightingPreset::Facet, LightingPreset::GL, LightingPreset::Lecture});

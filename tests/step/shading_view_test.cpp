@@ -420,5 +420,66 @@ TEST(ShadingView, GaussianDistributionAndPolarisedFresnelOnTheScreen) {
         EXPECT_LE(columns(line), 80u) << line;
 }
 
+// The environment's reflection on the lighting screen: R, (u, v), the texel, the weight and the term,
+// with the numbers; the recomputed output is still the pipeline's.
+TEST(ShadingView, EnvironmentReflectionOnTheScreen) {
+    Texture map;  // 4×2: the lower row dark, the upper row (v > ½) by column
+    map.width = 4;
+    map.height = 2;
+    map.texels = {vec4(0.1f, 0.2f, 0.3f, 1),
+                  vec4(0.2f, 0.2f, 0.3f, 1),
+                  vec4(0.3f, 0.2f, 0.3f, 1),
+                  vec4(0.4f, 0.2f, 0.3f, 1),
+                  vec4(0.0f),
+                  vec4(0.0f),
+                  vec4(0.0f),
+                  vec4(0.0f)};
+    SurfaceUniforms u = handBuiltUniforms();
+    u.fog.mode = FogMode::None;
+    u.environment.map = &map;
+    const ShadingTrace trace = traceShading(u, ShadingFrequency::Phong, handBuiltFragment(u), {}, 2);
+    EXPECT_TRUE(trace.matchesPipeline);
+    const std::string lighting = screenText(shadingScreens(trace), "lighting");
+    // Head-on at P = (0, 0, −2), N = V = +z: R = +z, behind the eye, at the seam (u = 0 or 1), v = ½.
+    EXPECT_NE(lighting.find("R = 2(N·V)N − V, N = (0, 0, 1), V = ("), std::string::npos) << lighting;
+    EXPECT_NE(lighting.find("    = (0, 0, 1) (eye space)"), std::string::npos) << lighting;
+    EXPECT_NE(lighting.find("weight w = m_specular = RGB(0.5, 0.5, 0.5)"), std::string::npos) << lighting;
+    EXPECT_NE(lighting.find("specular + reflection ="), std::string::npos) << lighting;
+    const EnvironmentRecord& e = trace.fragment.environment;
+    EXPECT_TRUE(e.used);
+    EXPECT_NEAR(e.uv.x, 1.0f, 1e-6f);
+    EXPECT_NEAR(e.uv.y, 0.5f, 1e-6f);  // halfway between the two rows' centres
+    // The seam: columns 3 and 0 (0.4 and 0.1), half each, and half of the dark lower row: 0.125.
+    EXPECT_NEAR(e.color.r, 0.125f, 1e-6f);
+    EXPECT_NEAR(e.term.r, 0.0625f, 1e-6f);
+    for (const Screen& screen : shadingScreens(trace)) {
+        std::size_t start = 0;
+        while (start <= screen.text.size()) {
+            const std::size_t end = std::min(screen.text.find('\n', start), screen.text.size());
+            EXPECT_LE(columns(screen.text.substr(start, end - start)), 80u)
+                << screen.text.substr(start, end - start);
+            start = end + 1;
+        }
+    }
+}
+
+// Height fog's screen: the formula, then τ and f with the numbers.
+TEST(ShadingView, HeightFogOnTheScreen) {
+    SurfaceUniforms u = handBuiltUniforms();
+    u.fog.mode = FogMode::Height;
+    u.fog.density = 0.5f;
+    u.fog.falloff = 0.0f;  // uniform density: τ = a·d = 0.5·2 = 1
+    u.fog.eyeHeight = 1.0f;
+    const ShadingTrace trace = traceShading(u, ShadingFrequency::Phong, handBuiltFragment(u), {}, 2);
+    EXPECT_TRUE(trace.matchesPipeline);
+    const std::string fog = screenText(shadingScreens(trace), "fog");
+    EXPECT_NE(fog.find("ρ(h) = a·e^(−b·(h − h0))"), std::string::npos) << fog;
+    EXPECT_NE(fog.find("a = 0.5, b = 0, h0 = 0"), std::string::npos) << fog;
+    EXPECT_NE(fog.find("d = |P_eye| = |(0, 0, -2)| = 2"), std::string::npos) << fog;
+    EXPECT_NE(fog.find("    = 1\n"), std::string::npos) << fog;
+    EXPECT_NE(fog.find("f = e^(−τ) = 0.3679"), std::string::npos) << fog;
+    EXPECT_NEAR(trace.fragment.output.fog.f, std::exp(-1.0f), 1e-6f);
+}
+
 }  // namespace
 }  // namespace facet::step
