@@ -4,6 +4,7 @@
 // dense grid in double sees past the square: fully lit and fully shadowed pixels are exactly 1 and 0,
 // the penumbra between; the image is the same at one thread and at two.
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <iterator>
 #include <optional>
@@ -65,9 +66,9 @@ bool blocked(const AnalyticShadowScene& scene, glm::dvec3 g, glm::dvec3 l) {
 }
 
 // The fraction of the rectangle light (horizontal, centred at scene.light) that ground point g sees,
-// on a 48×48 grid of cell centres.
+// on a 32×32 grid of cell centres.
 double visibleFraction(const AnalyticShadowScene& scene, glm::dvec3 g) {
-    constexpr int m = 48;
+    constexpr int m = 32;
     int seen = 0;
     for (int j = 0; j < m; ++j)
         for (int i = 0; i < m; ++i) {
@@ -141,7 +142,7 @@ TEST_F(AreaLightTest, SoftShadowMatchesTheFractionOfTheLightSeen) {
     EXPECT_GT(c.penumbra, 300u);
     EXPECT_LE(c.umbraWrong, c.umbra / 50);
     EXPECT_LE(c.litWrong, c.lit / 50);
-    EXPECT_GT(c.fractional, c.penumbra * 9 / 10);
+    EXPECT_GT(c.fractional, c.penumbra * 2 / 3);  // the rest see < 1/16 or > 15/16 of it
     EXPECT_LT(c.meanError, 0.06) << "16 samples";
     // More samples come closer to the truth: --area-samples reaches every area light.
     Scene many = loadScene(writeAreaScene(scene, "\"ray\""));
@@ -151,6 +152,8 @@ TEST_F(AreaLightTest, SoftShadowMatchesTheFractionOfTheLightSeen) {
         checkPenumbra(scene, fine, render(fine, kDiffuseTerm), render(unshadowed, kDiffuseTerm), pixels);
     EXPECT_LT(f.meanError, c.meanError);
     EXPECT_LT(f.meanError, 0.02) << "256 samples";
+    std::printf("penumbra pixels %zu: mean |v - fraction| %.4f at 16 samples, %.4f at 256\n", c.penumbra,
+                c.meanError, f.meanError);
 }
 
 // The same bytes at one thread and at two. Breaks if the samples depend on the thread or the tile.
