@@ -177,7 +177,7 @@ F attenuation(const LightParams& light, F distance) {
 template <class F>
 F rangeWindow(const LightParams& light, F distance) {
     if (light.kind == LightKind::Directional || !(light.range > 0.0f)) return lanes<F>(1.0f);
-    const F x = distance * (1.0f / light.range);
+    const F x = distance / light.range;
     const F x2 = x * x;
     const F t = max(1.0f - (light.window == RangeWindow::Ue4 ? x2 * x2 : x2), 0.0f);
     return t * t;
