@@ -132,11 +132,12 @@ SceneKnob shadowsKnob() {
     return knob;
 }
 
-// --area-samples sets every area light's shadow samples; a scene file sets each light's own
-// ("lights[i].samples").
+// --area-samples ("lighting": {"area_samples"}) sets every area light's shadow samples; a scene file
+// also sets each light's own ("lights[i].samples"), which this overrides.
 SceneKnob areaSamplesKnob() {
-    SceneKnob knob = named("area-samples", "--area-samples",
-                           "Area lights: shadow rays per point, a square (4, 16, 64, 256)");
+    SceneKnob knob =
+        named("area-samples", "--area-samples",
+              "Area lights: shadow rays per point, a square (4, 16, 64, 256)", "lighting", "area_samples");
     knob.kind = KnobKind::WholeNumber;
     knob.lowest = 1;
     knob.highest = kMaxAreaSamples;
