@@ -32,6 +32,13 @@ GlScene toGlScene(const PreparedScene& prepared) {
         gl.twoSidedFlip = u.twoSidedFlip;
         gl.fog = u.fog;
     }
+    for (const LightParams& l : gl.lights) {
+        if (isAreaLight(l.kind))
+            throw std::invalid_argument("OpenGL comparison: area lights (rect, disk) are not mirrored");
+        if (l.range > 0.0f)
+            throw std::invalid_argument(
+                "OpenGL comparison: a light's range (windowed falloff) is not mirrored");
+    }
     const bool smoothSpot = std::any_of(gl.lights.begin(), gl.lights.end(), [](const LightParams& l) {
         return l.kind == LightKind::Spot && l.spotProfile == SpotProfile::Smooth;
     });
@@ -50,6 +57,11 @@ GlScene toGlScene(const PreparedScene& prepared) {
         out.viewFromObject = d.uniforms.viewFromObject;
         out.normalFromObject = d.uniforms.normalFromObject;
         out.reflection = d.uniforms.reflection;
+        if (out.reflection == ReflectionModel::CookTorrance)
+            for (const LightParams& l : gl.lights)
+                if (l.attenuationGiven)
+                    throw std::invalid_argument(
+                        "OpenGL comparison: Cook-Torrance with a light's \"attenuation\" is not mirrored");
         out.frequency = d.frequency;
         out.material = d.uniforms.material;
         // OpenGL raises N·H to the shininess as given: give it the exponent Facet uses (e′ when matched).

@@ -361,6 +361,9 @@ int lightKindCode(const LightParams& light) {
         case LightKind::Spot:
             if (light.spotProfile == SpotProfile::Smooth) return 3;
             return light.spotCutoffDegrees >= 180.0f ? 1 : 2;
+        case LightKind::Rect:
+        case LightKind::Disk:
+            break;  // not mirrored: refused by gl_scene.cpp
     }
     return 1;
 }

@@ -198,8 +198,11 @@ LinearImage renderReference(const PreparedScene& prepared, const ReferenceOption
     }
     std::vector<ReferenceDraw> draws;
     draws.reserve(prepared.draws.size());
-    for (const PreparedDraw& d : prepared.draws)
+    for (const PreparedDraw& d : prepared.draws) {
         draws.push_back(referenceDraw(prepared, d, anyShadows ? &shadows : nullptr, options.terms));
+        for (LightParams& light : draws.back().uniforms.lights)
+            if (isAreaLight(light.kind)) light.areaSamples = std::max(options.areaSamples, 1);
+    }
 
     // Camera rays: from the eye through the near plane's point of each sample, t from near to far.
     const ReferenceCamera camera(prepared);

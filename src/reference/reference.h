@@ -47,6 +47,9 @@ struct ReferenceOptions {
     // (RayHit::mesh is the draw's index in PreparedScene::draws; no hit: RayHit{}), for comparing which
     // surface each pixel shows with the rasterizer's.
     std::vector<RayHit>* nearestSurfaces = nullptr;
+    // Shadow rays per point of every area light (a square), whatever the scene's count: many, so that
+    // the reference's own error in a soft shadow is small.
+    int areaSamples = kReferenceAreaSamples;
 };
 inline constexpr int kMaxReferenceSamples = 16;  // 256 rays per pixel
 

@@ -287,6 +287,25 @@ LightParams eyeSpaceLight(const LightSpec& l, const Camera& camera, ColourDecodi
     out.c0 = l.attenuation.x;
     out.c1 = float(l.attenuation.y / s);
     out.c2 = float(l.attenuation.z / (s * s));
+    out.attenuationGiven = l.attenuationGiven;
+    // The range in eye units, as d is measured there.
+    if (l.range) {
+        out.range = float(double(*l.range) * s);
+        out.window = l.window;
+    }
+    if (isAreaLight(out.kind)) {
+        // The emitter's frame in world units: n the way it faces, v̂ along `up` in its plane, û across.
+        const glm::dvec3 n = glm::normalize(glm::dvec3(l.direction));
+        const glm::dvec3 up = glm::dvec3(l.up.value_or(areaUp(l.direction)));
+        const glm::dvec3 v = glm::normalize(up - n * glm::dot(up, n));
+        const glm::dvec3 u = glm::cross(v, n);
+        const double halfU = out.kind == LightKind::Rect ? 0.5 * l.width : l.radius;
+        const double halfV = out.kind == LightKind::Rect ? 0.5 * l.height : l.radius;
+        out.areaNormal = normalize(toView(vec3(n), 0.0f));
+        out.areaU = toView(vec3(u * halfU), 0.0f);
+        out.areaV = toView(vec3(v * halfV), 0.0f);
+        out.areaSamples = l.samples;
+    }
     out.spotCutoffDegrees = out.kind == LightKind::Spot ? l.spotCutoffDegrees : 180.0f;
     out.spotExponent = l.spotExponent;
     if (l.spotInnerDegrees && l.spotOuterDegrees) {
@@ -323,8 +342,11 @@ SurfaceUniforms commonUniforms(const Scene& scene, std::span<const LightSpec> li
     if (!isMultisampled(scene.pipeline.antialiasing))  // ssaaN: each pass samples 1/N of the pixel
         common.textureFootprint =
             1.0f / std::sqrt(static_cast<float>(samplesPerPixel(scene.pipeline.antialiasing)));
-    for (std::size_t i = 0; i < lights.size(); ++i)
+    for (std::size_t i = 0; i < lights.size(); ++i) {
         common.lights[i] = eyeSpaceLight(lights[i], camera, decode);
+        if (scene.areaSamples && isAreaLight(lights[i].type))
+            common.lights[i].areaSamples = *scene.areaSamples;
+    }
     return common;
 }
 
@@ -524,8 +546,16 @@ PreparedScene prepareFrame(const Scene& scene, std::shared_ptr<const SceneAssets
                          ? kLectureEncoding
                          : ColorEncoding{scene.gamma.encode, scene.gamma.exponent};
     // Shadows: each light's method (the command line's for all of them, when given).
-    for (std::size_t i = 0; i < lights.size(); ++i)
+    for (std::size_t i = 0; i < lights.size(); ++i) {
         frame.shadowMethods[i] = scene.shadows.value_or(lights[i].shadows);
+        // An area light's soft shadows are ray-cast: a shadow map (--shadows map) falls back to rays.
+        if (isAreaLight(lights[i].type) && frame.shadowMethods[i] == ShadowMethod::Map) {
+            frame.shadowMethods[i] = ShadowMethod::Ray;
+            frame.warnings.push_back("light " + std::to_string(i) + " is an area light (\"" +
+                                     std::string(nameOf(lights[i].type)) +
+                                     "\"): its shadows are ray-cast, not from a shadow map");
+        }
+    }
     frame.shadowMapOptions = scene.shadowMap;
     frame.sceneExtent = sceneExtent(bounds, frame.camera);
     prepareShadows(frame);

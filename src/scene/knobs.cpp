@@ -212,6 +212,36 @@ SceneKnob materialNumberKnob(std::string name, std::string help, double lowest, 
     return knob;
 }
 
+// --area-samples ("lighting": {"area_samples"}) sets every area light's shadow samples; a scene file
+// also sets each light's own ("lights[i].samples"), which this overrides.
+SceneKnob areaSamplesKnob() {
+    SceneKnob knob =
+        named("area-samples", "--area-samples",
+              "Area lights: shadow rays per point, a square (4, 16, 64, 256)", "lighting", "area_samples");
+    knob.kind = KnobKind::WholeNumber;
+    knob.lowest = 1;
+    knob.highest = kMaxAreaSamples;
+    knob.unit = " shadow rays per point";
+    for (int m = 1; m * m <= kMaxAreaSamples; ++m)
+        knob.only.push_back(m * m);
+    knob.defaultNote = "(default: each area light's \"samples\" in the scene file, else 16)";
+    knob.get = [](const Scene& scene) {
+        if (scene.areaSamples) return knobNumberText(*scene.areaSamples);
+        std::string common;
+        for (const LightSpec& light : scene.lights) {
+            if (!isAreaLight(light.type)) continue;
+            const std::string text = knobNumberText(light.samples);
+            if (!common.empty() && common != text) return std::string();
+            common = text;
+        }
+        return common.empty() ? knobNumberText(kDefaultAreaSamples) : common;
+    };
+    knob.set = [](Scene& scene, const std::string& value) {
+        scene.areaSamples = static_cast<int>(std::strtod(value.c_str(), nullptr));
+    };
+    return knob;
+}
+
 // The table. Notes on the trade's values:
 //   cull: front-face culling draws the wrong side, not a trade; culling back faces is the fast choice (the
 //     same image for closed models); no best value, the reference culls as the scene does.
@@ -252,6 +282,7 @@ std::vector<SceneKnob> makeTable() {
                    kMaxShadowMapSize, " texels", [](auto& s) -> auto& { return s.shadowMap.size; }),
                {"256", "512", "1024", "2048", "4096"}, "512", "4096", "shadows", "map"),
         traded(shadowFilter, {"1", "4", "16"}, "1", "16", "shadows", "map"),
+        traded(areaSamplesKnob(), {"4", "16", "64", "256"}, "4", std::to_string(kReferenceAreaSamples)),
         traded(number<float>(
                    "shadow-bias", "--shadow-bias",
                    "Shadow maps: constant depth offset, in units of the map's depth resolution", "shadow_map",

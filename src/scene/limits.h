@@ -25,5 +25,7 @@ inline constexpr std::size_t kMaxSceneTriangles = 50'000'000;  // ~3-5 GB of dra
 // pixel); at 180° the projection is infinite.
 inline constexpr double kMinFovyDegrees = 0.01;
 inline constexpr double kMaxFovyDegrees = 179.0;
+// An area light's shadow samples ("samples", --area-samples): at most 32×32 rays per point and light.
+inline constexpr int kMaxAreaSamples = 1024;
 
 }  // namespace facet

@@ -3,6 +3,7 @@
 // Loaded from a JSON scene file (docs/scene-format.md) or built with defaults around one OBJ model.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -46,14 +47,31 @@ struct LightSpec {
     // l_d and l_s (absent: color). The physically based model uses l_d as c_light.
     std::optional<glm::vec3> ambient, diffuse, specular;
     glm::vec3 attenuation{1.0f, 0.0f, 0.0f};  // c0, c1, c2 of 1/(c0 + c1·d + c2·d²); point and spot
-    float spotCutoffDegrees = 30.0f;          // spot, OpenGL profile: half-angle of the cone, 0..90
-    float spotExponent = 0.0f;                // spot, OpenGL profile: cos^exponent falloff, 0..128
+    // "attenuation" was given: Cook-Torrance then uses it in place of its physical default 1/d².
+    bool attenuationGiven = false;
+    // "range": r_max, where the windowed falloff reaches 0 (world units); absent: no window.
+    std::optional<float> range;
+    RangeWindow window = RangeWindow::Ue4;  // "window": the windowing function
+    // Area lights ("rect", "disk"): `position` is the centre, `direction` the way the emitting side faces.
+    float width = 1.0f, height = 1.0f;  // rect: the sides, world units (height along `up`)
+    float radius = 0.5f;                // disk
+    std::optional<glm::vec3> up;        // rect: where its height side points (absent: see areaUp)
+    int samples = kDefaultAreaSamples;  // shadow rays per point, a square
+    float spotCutoffDegrees = 30.0f;    // spot, OpenGL profile: half-angle of the cone, 0..90
+    float spotExponent = 0.0f;          // spot, OpenGL profile: cos^exponent falloff, 0..128
     // Spot, smooth profile (used when both are given): full intensity inside `inner`, none outside
     // `outer`, smoothstep between. 0 ≤ inner < outer ≤ 90.
     std::optional<float> spotInnerDegrees, spotOuterDegrees;
     bool cameraRelative = false;                // direction/position given in the camera's view space
     ShadowMethod shadows = ShadowMethod::None;  // "shadows": none, ray or map (true means ray)
 };
+
+// A rectangle light's default "up" (where its height side points): the world's +y, or −z for a light
+// facing straight up or down (+y would be parallel to its normal).
+inline glm::vec3 areaUp(const glm::vec3& direction) {
+    const glm::vec3 n = glm::normalize(direction);
+    return std::abs(n.y) > 0.999f ? glm::vec3(0.0f, 0.0f, -1.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
+}
 
 // Optional per-object material override; each field overrides the MTL value when present.
 struct MaterialOverride {
@@ -293,6 +311,8 @@ struct Scene {
     ShadowMapOptions shadowMap;  // "shadow_map": how every light with map shadows draws and reads its map
     // The command line's --shadows: every light's method, the default light's too (absent: each light's).
     std::optional<ShadowMethod> shadows;
+    // --area-samples: every area light's shadow samples (absent: each light's "samples").
+    std::optional<int> areaSamples;
     // "shader" (--shader): the shader of every object that names none; absent: the built-in ones.
     std::optional<ShaderSpec> shader;
     // --uniform NAME=VALUE: set in every shader of one's own that declares NAME (at least one must).

@@ -20,9 +20,11 @@ namespace facet::scene_file {
 namespace {
 
 constexpr std::string_view kCameraKeys[] = {"eye", "target", "up", "fovy", "near", "far"};
-constexpr std::string_view kLightKeys[] = {"type",     "direction", "position", "color",       "intensity",
-                                           "ambient",  "diffuse",   "specular", "attenuation", "cutoff",
-                                           "exponent", "inner",     "outer",    "space",       "shadows"};
+constexpr std::string_view kLightKeys[] = {
+    "type",        "direction", "position", "color",  "intensity", "ambient", "diffuse", "specular",
+    "attenuation", "cutoff",    "exponent", "inner",  "outer",     "space",   "shadows", "range",
+    "window",      "width",     "height",   "radius", "up",        "samples"};
+constexpr std::string_view kAreaOnlyKeys[] = {"width", "height", "radius", "up", "samples"};
 constexpr std::string_view kSpotOnlyKeys[] = {"cutoff", "exponent", "inner", "outer"};
 constexpr std::string_view kObjectKeys[] = {"model",    "translate", "rotate", "scale",
                                             "material", "lighting",  "blend",  "shader"};
@@ -137,6 +139,26 @@ LightSpec readLight(const SceneReader& reader, const Json& light, const std::str
                     " is only for directional and spot lights: a point light shines every way (add "
                     "\"type\": \"spot\" for a cone)");
     }
+    const bool area = isAreaLight(spec.type);
+    if (!area) {
+        for (std::string_view name : kAreaOnlyKeys) {
+            if (light.contains(name))
+                reader.fail(key(name) + " is only for area lights (add \"type\": \"rect\" or \"disk\")");
+        }
+    }
+    for (std::string_view name : {"width", "height", "up"}) {
+        if (spec.type == LightKind::Disk && light.contains(name))
+            reader.fail(key(name) + " is only for \"rect\" lights: a disk has a \"radius\"");
+    }
+    if (spec.type == LightKind::Rect && light.contains("radius"))
+        reader.fail(key("radius") + " is only for \"disk\" lights: a rectangle has \"width\" and \"height\"");
+    if (spec.type == LightKind::Directional && light.contains("range")) {
+        reader.fail(key("range") +
+                    " is only for point, spot and area lights: a directional light is infinitely far (add "
+                    "\"type\": \"point\")");
+    }
+    if (light.contains("window") && !light.contains("range"))
+        reader.fail(key("window") + " needs " + key("range") + ": the window brings the light to 0 there");
     if (spec.type != LightKind::Spot) {
         for (std::string_view name : kSpotOnlyKeys) {
             if (light.contains(name))
@@ -146,7 +168,7 @@ LightSpec readLight(const SceneReader& reader, const Json& light, const std::str
 
     if (const Json* v = reader.find(light, "direction")) {
         spec.direction = reader.nonZeroVector(*v, childPath(path, "direction"));
-    } else if (spec.type == LightKind::Spot) {
+    } else if (spec.type == LightKind::Spot || area) {
         spec.direction = glm::vec3(0.0f, -1.0f, 0.0f);
     }
     if (const Json* v = reader.find(light, "position"))
@@ -161,11 +183,48 @@ LightSpec readLight(const SceneReader& reader, const Json& light, const std::str
     if (const Json* v = reader.find(light, "specular"))
         spec.specular = reader.color(*v, childPath(path, "specular"));
     if (const Json* v = reader.find(light, "attenuation")) {
+        spec.attenuationGiven = true;
         spec.attenuation = reader.nonNegativeVector(*v, childPath(path, "attenuation"), "[1, 0.1, 0.01]");
         if (spec.attenuation == glm::vec3(0.0f)) {
             reader.fail(key("attenuation") +
                         " must not be all zero: 1/(c0 + c1*d + c2*d^2) would divide by zero (got [0, 0, 0])");
         }
+    }
+
+    // The windowed falloff's range and function.
+    if (const Json* v = reader.find(light, "range")) {
+        const float range = reader.number(*v, childPath(path, "range"));
+        if (!(range > 0.0f)) reader.fail(key("range") + " must be greater than 0 (got " + describe(*v) + ")");
+        spec.range = range;
+    }
+    if (const Json* v = reader.find(light, "window"))
+        spec.window = reader.enumChoice<RangeWindow>(*v, childPath(path, "window"));
+
+    // An area light's size, orientation and shadow samples.
+    const auto positiveSize = [&](std::string_view name, float& field) {
+        if (const Json* v = reader.find(light, name)) {
+            field = reader.number(*v, childPath(path, name));
+            if (!(field > 0.0f))
+                reader.fail(key(name) + " must be greater than 0 (got " + describe(*v) + ")");
+        }
+    };
+    positiveSize("width", spec.width);
+    positiveSize("height", spec.height);
+    positiveSize("radius", spec.radius);
+    if (const Json* v = reader.find(light, "up")) {
+        spec.up = reader.nonZeroVector(*v, childPath(path, "up"));
+        const glm::dvec3 n = glm::normalize(glm::dvec3(spec.direction));
+        if (glm::length(glm::cross(n, glm::normalize(glm::dvec3(*spec.up)))) < 1e-6)
+            reader.fail(key("up") + " is parallel to " + key("direction") +
+                        ": give an \"up\" across it, in the rectangle's plane");
+    }
+    if (const Json* v = reader.find(light, "samples")) {
+        spec.samples = reader.wholeNumber(*v, childPath(path, "samples"), 1, kMaxAreaSamples);
+        const int m = static_cast<int>(std::lround(std::sqrt(double(spec.samples))));
+        if (m * m != spec.samples)
+            reader.fail(key("samples") +
+                        " must be a square number (4, 9, 16, 64, ...) for an m×m grid (got " + describe(*v) +
+                        ")");
     }
 
     // The spot's profile: "cutoff" and "exponent" (OpenGL's) or "inner" and "outer" (smooth), not a mix.
@@ -228,6 +287,9 @@ LightSpec readLight(const SceneReader& reader, const Json& light, const std::str
             reader.fail(message);
         }
         spec.shadows = *method;
+        if (area && spec.shadows == ShadowMethod::Map)
+            reader.fail(key("shadows") +
+                        " cannot be \"map\" for an area light: its soft shadows are ray-cast (use \"ray\")");
     }
     return spec;
 }

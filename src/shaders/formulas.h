@@ -64,10 +64,11 @@ F spotFactorAt(const LightParams& light, const V3& L, const SurfaceUniforms& u) 
                                                : spotFactor<F, V3, MathPrecision::Fast>(light, L);
 }
 
-// att · spot: what the standard equation scales a light's three terms by.
+// att · f_win · spot: what the standard equation scales a light's three terms by (f_win, the range's
+// window, only for a light with a range: standardFalloff, lighting.h).
 template <class F, class V3 = LaneVec3<F>>
 F lightReach(const LightParams& light, const LightVector<F, V3>& toLight, const SurfaceUniforms& u) {
-    return attenuation(light, toLight.distance) * spotFactorAt<F, V3>(light, toLight.L, u);
+    return standardFalloff(light, toLight.distance) * spotFactorAt<F, V3>(light, toLight.L, u);
 }
 
 // ---- The standard equation's terms -----------------------------------------------------------------

@@ -4,6 +4,7 @@
 // and pays nothing.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -73,6 +74,45 @@ F rayVisibility(const SceneShadows& shadows, const LightParams& light, const V3&
     }
 }
 
+// An area light's visibility at P: the fraction of its n samples (areaLightSample, lighting.h) whose
+// shadow ray reaches them. A sample counts where it lies in front of the surface (N·ω > 0), the point
+// lies on its emitting side, and no opaque triangle blocks the segment from P + ε·N to ε short of it.
+template <class F, class V3 = LaneVec3<F>>
+F areaVisibility(const SceneShadows& shadows, const LightParams& light, const V3& P, const V3& N) {
+    const int n = std::max(light.areaSamples, 1);
+    const V3 origin = P + N * lanes<F>(shadows.rayOffset);
+    if constexpr (LaneTraits<F>::kCount == 8) {
+        Float8 visible = splat(0.0f);
+        for (int k = 0; k < n; ++k) {
+            const vec3 sample = areaLightSample(light, k, n);
+            const Vec3x8 toSample = Vec3x8(sample) - origin;
+            const Float8 distance = sqrt(dot(toSample, toSample));
+            const Vec3x8 direction = toSample * (1.0f / max(distance, 1e-15f));
+            const Float8 reach = distance - 2.0f * shadows.rayOffset;
+            const unsigned traced = signMask(dot(N, direction) > 0.0f) &
+                                    signMask(dot(direction, Vec3x8(light.areaNormal)) < 0.0f) &
+                                    signMask(reach > 0.0f);
+            const unsigned blocked = shadows.rays->occluded8(origin, direction, splat(0.0f), reach, traced);
+            for (int i = 0; i < 8; ++i)
+                if (((traced & ~blocked) >> i) & 1) visible[i] += 1.0f;
+        }
+        return visible * (1.0f / float(n));
+    } else {
+        int visible = 0;
+        const vec3 o(origin), normal(N);
+        for (int k = 0; k < n; ++k) {
+            const vec3 toSample = areaLightSample(light, k, n) - o;
+            const float distance = length(toSample);
+            const float reach = distance - 2.0f * shadows.rayOffset;
+            if (!(reach > 0.0f)) continue;
+            const vec3 direction = toSample / distance;
+            if (!(dot(normal, direction) > 0.0f) || !(dot(direction, light.areaNormal) < 0.0f)) continue;
+            if (!shadows.rays->occluded(o, direction, 0.0f, reach)) ++visible;
+        }
+        return lanes<F>(float(visible) / float(n));
+    }
+}
+
 // Each light's visibility at P (N the normal the lighting uses, turned towards the viewer).
 template <class F, class V3 = LaneVec3<F>>
 void lightVisibilities(const SceneShadows& shadows, std::span<const LightParams> lights, const V3& P,
@@ -83,7 +123,8 @@ void lightVisibilities(const SceneShadows& shadows, std::span<const LightParams>
                 visibility[i] = lanes<F>(1.0f);
                 break;
             case ShadowMethod::Ray:
-                visibility[i] = rayVisibility<F, V3>(shadows, lights[i], P, N);
+                visibility[i] = isAreaLight(lights[i].kind) ? areaVisibility<F, V3>(shadows, lights[i], P, N)
+                                                            : rayVisibility<F, V3>(shadows, lights[i], P, N);
                 break;
             case ShadowMethod::Map:
                 visibility[i] = shadowMapVisibility<F, V3>(*shadows.lights[i].map, lights[i], P, N);

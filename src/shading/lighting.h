@@ -10,6 +10,7 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <optional>
 #include <span>
@@ -58,9 +59,15 @@ constexpr std::span<const EnumName<ShadingFrequency>> enumNames(ShadingFrequency
     return kShadingFrequencyNames;
 }
 
-enum class LightKind { Directional, Point, Spot };
-inline constexpr EnumName<LightKind> kLightKindNames[] = {
-    {LightKind::Directional, "directional"}, {LightKind::Point, "point"}, {LightKind::Spot, "spot"}};
+// Rect and Disk are area lights: a one-sided emitting rectangle or disk. They light a point as a point
+// light at their centre whose intensity falls off with the emitter's cosine (a Lambertian emitter), and
+// their shadows are the fraction of their samples a point sees (shaders/shadowing.h): soft shadows.
+enum class LightKind { Directional, Point, Spot, Rect, Disk };
+inline constexpr EnumName<LightKind> kLightKindNames[] = {{LightKind::Directional, "directional"},
+                                                          {LightKind::Point, "point"},
+                                                          {LightKind::Spot, "spot"},
+                                                          {LightKind::Rect, "rect"},
+                                                          {LightKind::Disk, "disk"}};
 constexpr std::span<const EnumName<LightKind>> enumNames(LightKind) {
     return kLightKindNames;
 }
@@ -76,6 +83,25 @@ constexpr std::span<const EnumName<SpotProfile>> enumNames(SpotProfile) {
     return kSpotProfileNames;
 }
 
+constexpr bool isAreaLight(LightKind kind) {
+    return kind == LightKind::Rect || kind == LightKind::Disk;
+}
+
+// Which windowing function brings a light with a range to zero there (Real-Time Rendering, 4th ed.,
+// §5.2.2), x = d/r_max:
+enum class RangeWindow {
+    Ue4,  // f_win = (1 − x⁴)²₊, Karis 2013 (Unreal Engine 4): nearly 1 up close, the falloff kept
+    Jc2,  // f_win = (1 − x²)²₊, Just Cause 2 (there the whole distance falloff): a softer, earlier fade
+};
+inline constexpr EnumName<RangeWindow> kRangeWindowNames[] = {{RangeWindow::Ue4, "ue4"},
+                                                              {RangeWindow::Jc2, "jc2"}};
+constexpr std::span<const EnumName<RangeWindow>> enumNames(RangeWindow) {
+    return kRangeWindowNames;
+}
+
+inline constexpr int kDefaultAreaSamples = 16;     // an area light's shadow samples, 4×4
+inline constexpr int kReferenceAreaSamples = 256;  // the exact reference's, 16×16
+
 struct LightParams {
     LightKind kind = LightKind::Point;
     vec3 position{0.0f};                    // world space; point and spot lights
@@ -87,6 +113,17 @@ struct LightParams {
     float spotInnerDegrees = 20.0f;         // Smooth profile: full intensity inside this half-angle
     float spotOuterDegrees = 30.0f;         // Smooth profile: none outside this half-angle
     float c0 = 1.0f, c1 = 0.0f, c2 = 0.0f;  // attenuation 1/(c0 + c1·d + c2·d²); point and spot
+    // The scene gave c0 c1 c2: Cook-Torrance then uses 1/(c0 + c1·d + c2·d²) in place of 1/d².
+    bool attenuationGiven = false;
+    float range = 0.0f;                     // r_max of the windowed falloff; 0: no window
+    RangeWindow window = RangeWindow::Ue4;  // the window's formula, when range > 0
+    // Area lights (Rect, Disk): `position` is the centre, `areaNormal` the unit normal of the emitting
+    // side; the emitter spans centre + a·areaU + b·areaV, (a, b) in [−1, 1]² for a rectangle (areaU and
+    // areaV are its half width and half height) and in the unit disk for a disk (both of length radius).
+    vec3 areaNormal{0.0f, -1.0f, 0.0f};
+    vec3 areaU{0.5f, 0.0f, 0.0f};
+    vec3 areaV{0.0f, 0.0f, 0.5f};
+    int areaSamples = kDefaultAreaSamples;  // shadow rays per point, a square m×m
     vec3 ambient{0.0f};                     // l_a, linear RGB
     vec3 diffuse{1.0f};                     // l_d, linear RGB (c_light in the physically based model)
     vec3 specular{1.0f};                    // l_s, linear RGB
@@ -137,13 +174,82 @@ F attenuation(const LightParams& light, F distance) {
     return 1.0f / (light.c0 + distance * (light.c1 + distance * light.c2));
 }
 
+// The windowed falloff's window (Real-Time Rendering, 4th ed., §5.2.2), x = d/r_max:
+//   f_win(d) = (1 − x⁴)²₊  (Karis 2013, Unreal Engine 4)   or   (1 − x²)²₊  (Just Cause 2),
+// (·)₊ = max(·, 0): 1 at the light, 0 at and beyond r_max. It multiplies the distance falloff (the
+// attenuation, or 1/d²). 1 for a light without a range and for a directional light.
+template <class F>
+F rangeWindow(const LightParams& light, F distance) {
+    if (light.kind == LightKind::Directional || !(light.range > 0.0f)) return lanes<F>(1.0f);
+    const F x = distance / light.range;
+    const F x2 = x * x;
+    const F t = max(1.0f - (light.window == RangeWindow::Ue4 ? x2 * x2 : x2), 0.0f);
+    return t * t;
+}
+
+// The standard equation's distance falloff: att(d)·f_win(d) (the window only for a light with a range).
+template <class F>
+F standardFalloff(const LightParams& light, F distance) {
+    const F att = attenuation(light, distance);
+    if (!(light.range > 0.0f)) return att;
+    return att * rangeWindow(light, distance);
+}
+
+// The physically based model's distance falloff: 1/d² (the physical default), or 1/(c0 + c1·d + c2·d²)
+// where the scene gave the light an attenuation; times f_win(d) for a light with a range. 1 for a
+// directional light.
+template <class F>
+F physicalFalloff(const LightParams& light, F distance) {
+    if (light.kind == LightKind::Directional) return lanes<F>(1.0f);
+    const F falloff =
+        light.attenuationGiven ? attenuation(light, distance) : 1.0f / max(distance * distance, 1e-8f);
+    if (!(light.range > 0.0f)) return falloff;
+    return falloff * rangeWindow(light, distance);
+}
+
+// Sample k (0 ≤ k < n) of an area light's n = m×m shadow samples, eye space: stratified, one per cell of
+// an m×m grid over the emitter's square [−1, 1]², at a position within its cell from a hash of (i, j, m)
+// (the same for every point and every thread: the shadows are deterministic, and the rasterizer and the
+// reference share them at the same n). A disk maps the square onto itself by Shirley and Chiu's
+// concentric map (1997), which keeps the strata's areas equal. One sample (n = 1) is the centre.
+inline vec3 areaLightSample(const LightParams& light, int k, int n) {
+    if (n <= 1) return light.position;
+    const int m = std::max(1, static_cast<int>(std::lround(std::sqrt(static_cast<double>(n)))));
+    const int i = k % m, j = k / m;
+    const auto mix = [](std::uint64_t z) {  // splitmix64's finaliser
+        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+        return z ^ (z >> 31);
+    };
+    const std::uint64_t h = (std::uint64_t(i) << 40) ^ (std::uint64_t(j) << 20) ^ std::uint64_t(m);
+    const float jitterX = float(mix(h) >> 40) * 0x1.0p-24f;
+    const float jitterY = float(mix(h + 0x632be59bd9b4e019ull) >> 40) * 0x1.0p-24f;
+    float a = 2.0f * (float(i) + jitterX) / float(m) - 1.0f;
+    float b = 2.0f * (float(j) + jitterY) / float(m) - 1.0f;
+    if (light.kind == LightKind::Disk && (a != 0.0f || b != 0.0f)) {
+        constexpr float kQuarterPi = std::numbers::pi_v<float> / 4.0f;
+        float r, phi;
+        if (std::abs(a) > std::abs(b)) {
+            r = a;
+            phi = kQuarterPi * (b / a);
+        } else {
+            r = b;
+            phi = 2.0f * kQuarterPi - kQuarterPi * (a / b);
+        }
+        a = r * std::cos(phi);
+        b = r * std::sin(phi);
+    }
+    return light.position + light.areaU * a + light.areaV * b;
+}
+
 // The record of a spot factor (record.h): its inputs and result at one point.
 struct SpotRecord {
     static constexpr bool enabled = true;
-    bool cone = false;    // the light is a spot with a cone; else the factor is 1
-    float cosAngle = 0;   // −L·s, the cosine of the angle between the spot's axis and the point
-    float cosCutoff = 0;  // OpenGL profile: cos(cutoff)
-    float cosInner = 0;   // smooth profile: cos(inner), cos(outer)
+    bool emitter = false;  // an area light: the factor is the emitter's cosine max(−L·n_light, 0)
+    bool cone = false;     // the light is a spot with a cone; else the factor is 1
+    float cosAngle = 0;    // −L·s, the cosine of the angle between the spot's axis and the point
+    float cosCutoff = 0;   // OpenGL profile: cos(cutoff)
+    float cosInner = 0;    // smooth profile: cos(inner), cos(outer)
     float cosOuter = 0;
     float factor = 1;
 };
@@ -184,11 +290,28 @@ F spotFactorSmooth(const LightParams& light, const V3& L, Recording*... recordin
     return smoothstep(cosOuter, cosInner, cosAngle);
 }
 
-// The light's spot factor under its own profile. Inlined so that a point or directional light (1, no
-// record) costs a compare per batch, not a call that spills every live vector register.
+// An area light's emitter cosine max(−L·n_light, 0): a one-sided Lambertian emitter's intensity
+// towards the point, 0 behind it. 1 for other lights.
+template <class F, class V3 = LaneVec3<F>, class... Recording>
+F emitterCosine(const LightParams& light, const V3& L, Recording*... recording) {
+    using Record = RecordOf<Recording...>;
+    if (!isAreaLight(light.kind)) return lanes<F>(1.0f);
+    const F cosAngle = dot(-L, light.areaNormal);
+    const F factor = max(cosAngle, 0.0f);
+    if constexpr (Record::enabled)
+        *recordOf(recording...) = {.emitter = true, .cosAngle = cosAngle, .factor = factor};
+    return factor;
+}
+
+// The light's spot factor under its own profile, and an area light's emitter cosine. Inlined so that
+// a point or directional light (1, no record) costs a compare per batch, not a call that spills every
+// live vector register.
 template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact, class... Recording>
 [[gnu::always_inline]] inline F spotFactor(const LightParams& light, const V3& L, Recording*... recording) {
-    if (light.kind != LightKind::Spot) return lanes<F>(1.0f);
+    if (light.kind != LightKind::Spot) {
+        if (isAreaLight(light.kind)) return emitterCosine<F, V3>(light, L, recording...);
+        return lanes<F>(1.0f);
+    }
     return light.spotProfile == SpotProfile::Smooth ? spotFactorSmooth<F, V3>(light, L, recording...)
                                                     : spotFactorOpenGL<F, V3, P>(light, L, recording...);
 }
@@ -334,7 +457,7 @@ template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exac
         // Where the light is and how much of it arrives.
         const LightVector<F, V3> toLight = lightVector<F, V3, kNormalization>(light, position);
         const V3& L = toLight.L;
-        const F reach = attenuation(light, toLight.distance) *
+        const F reach = standardFalloff(light, toLight.distance) *
                         spotFactor<F, V3, P>(light, L, &recording->lights[&light - lights.data()].spot...);
 
         // Ambient and Lambert diffuse.
@@ -372,6 +495,7 @@ template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exac
             r.L = L;
             r.distance = toLight.distance;
             r.attenuation = attenuation(light, toLight.distance);
+            r.window = rangeWindow(light, toLight.distance);
             r.reach = reach;
             r.visibility = visibility ? visibility[&light - lights.data()] : 1.0f;
             r.shadowTested = visibility != nullptr;
@@ -816,7 +940,9 @@ V3 brdf(const V3& n, const V3& l, const V3& v, const PbrMaterial& m, const BrdfM
 
 // Outgoing radiance from punctual lights: L_o = Σ f(l, v) ⊗ (π c_light) · falloff · spot · max(n·l, 0),
 // c_light = the light's l_d, π c_light the incoming radiance scaled so that a white Lambertian surface
-// lit head-on shows c_light (Hoffman 2013), falloff = 1/r² for point and spot lights, 1 for directional.
+// lit head-on shows c_light (Hoffman 2013), falloff = physicalFalloff: 1/r² for point and spot lights
+// (1/(c0 + c1·r + c2·r²) where the scene gave an attenuation), times the range's window, 1 for
+// directional ones.
 //
 // As terms for the component images: the diffuse and specular lobes summed over the lights, plus
 //   emission = m_emission and ambient = a_global ⊗ albedo
@@ -853,9 +979,7 @@ LightingTerms<V3> physicallyBasedTerms(const V3& position, const V3& normal, con
                                    .lightCount = static_cast<int>(lights.size())};
     for (const LightParams& light : lights) {
         const LightVector<F, V3> toLight = lightVector<F, V3, kNormalization>(light, position);
-        const F falloff = light.kind == LightKind::Directional
-                              ? lanes<F>(1.0f)
-                              : 1.0f / max(toLight.distance * toLight.distance, 1e-8f);
+        const F falloff = physicalFalloff(light, toLight.distance);
         F irradiance =
             falloff *
             spotFactor<F, V3, P>(light, toLight.L, &recording->lights[&light - lights.data()].spot...) *
@@ -873,7 +997,10 @@ LightingTerms<V3> physicallyBasedTerms(const V3& position, const V3& normal, con
             r.light = light;
             r.L = toLight.L;
             r.distance = toLight.distance;
-            r.attenuation = falloff;
+            LightParams unwindowed = light;
+            unwindowed.range = 0.0f;
+            r.attenuation = physicalFalloff(unwindowed, toLight.distance);
+            r.window = rangeWindow(light, toLight.distance);
             r.reach = irradiance;
             r.visibility = visibility ? visibility[&light - lights.data()] : 1.0f;
             r.shadowTested = visibility != nullptr;
@@ -897,6 +1024,8 @@ struct LightRecord {
     float distance = 0;
     // Standard equation: att = 1/(c0 + c1·d + c2·d²). Cook-Torrance: the falloff 1/d² (1: directional).
     float attenuation = 1;
+    // f_win(d): the range's window, which multiplies the attenuation (1: no range).
+    float window = 1;
     SpotRecord spot{};
     // Standard equation: att·spot. Cook-Torrance: the irradiance factor falloff·spot·max(N·L, 0)·v.
     float reach = 1;

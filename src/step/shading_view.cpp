@@ -1,5 +1,6 @@
 #include "step/shading_view.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -285,12 +286,46 @@ std::string lightTitle(int index, const LightParams& light) {
             return number + "point light at " + vec(light.position);
         case LightKind::Spot:
             return number + "spot light at " + vec(light.position) + ", axis " + vec(light.spotDirection);
+        case LightKind::Rect:
+            return number + "rectangle light centred at " + vec(light.position);
+        case LightKind::Disk:
+            return number + "disk light centred at " + vec(light.position);
     }
     return number;
 }
 
+// An area light's shape: its facing, size and shadow samples.
+void writeAreaShape(Lines& out, const LightParams& light) {
+    if (!isAreaLight(light.kind)) return;
+    out.add("  facing n_light = " + vec(light.areaNormal));
+    if (light.kind == LightKind::Rect)
+        out.add("  " + num(2.0f * length(light.areaU)) + " × " + num(2.0f * length(light.areaV)) +
+                " (eye units), " + std::to_string(light.areaSamples) + " shadow samples");
+    else
+        out.add("  radius " + num(length(light.areaU)) + " (eye units), " +
+                std::to_string(light.areaSamples) + " shadow samples");
+    out.add("  lit as from its centre, times the emitter's cosine and the visible fraction v");
+}
+
+// The range's window (lighting.h's rangeWindow), in symbols and with the numbers.
+void writeWindow(Lines& out, const LightRecord& r) {
+    const LightParams& light = r.light;
+    if (light.kind == LightKind::Directional || !(light.range > 0.0f)) return;
+    const bool ue4 = light.window == RangeWindow::Ue4;
+    const std::string power = ue4 ? "⁴" : "²";
+    out.add("  f_win = (1 − (d/r_max)" + power + ")²₊   (" + (ue4 ? "Karis 2013, UE4" : "Just Cause 2") +
+            "; 0 from d = r_max on)");
+    out.add("        = (1 − (" + num(r.distance) + "/" + num(light.range) + ")" + power +
+            ")²₊ = " + num(r.window));
+}
+
 void writeSpot(Lines& out, const LightRecord& r) {
     const LightParams& light = r.light;
+    if (r.spot.emitter) {
+        out.add("  spot = max(−L·n_light, 0) = max(" + num(r.spot.cosAngle) + ", 0) = " + num(r.spot.factor) +
+                " (one-sided emitter)");
+        return;
+    }
     if (!r.spot.cone) {
         out.add(light.kind == LightKind::Spot ? "  spot = 1 (a cutoff of 180°: no cone)"
                                               : "  spot = 1 (not a spot light)");
@@ -333,6 +368,14 @@ void writeTerm(Lines& out, const std::string& name, const std::string& symbols, 
 // The shadow test's verdict for one light (shaders/shadowing.h): a ray from the point towards the light,
 // or a shadow map's share of lit taps.
 void writeShadow(Lines& out, const LightRecord& r) {
+    if (isAreaLight(r.light.kind)) {
+        const int n = std::max(r.light.areaSamples, 1);
+        const int visible = static_cast<int>(std::lround(r.visibility * float(n)));
+        out.add("  shadow: " + std::to_string(visible) + " of the " + std::to_string(n) + " samples of the " +
+                (r.light.kind == LightKind::Rect ? "rectangle" : "disk") + " reach P:");
+        out.add("  v = " + std::to_string(visible) + "/" + std::to_string(n) + " = " + num(r.visibility));
+        return;
+    }
     if (r.visibility == 1.0f)
         out.add("  shadow: nothing blocks the light from P (or it casts none): v = 1");
     else if (r.visibility == 0.0f)
@@ -344,6 +387,7 @@ void writeShadow(Lines& out, const LightRecord& r) {
 
 void writeStandardLight(Lines& out, const LightingRecord& lighting, const LightRecord& r) {
     const LightParams& light = r.light;
+    writeAreaShape(out, light);
     writeLightPosition(out, r);
     if (light.kind == LightKind::Directional)
         out.add("  att = 1 (a directional light is not attenuated)");
@@ -351,6 +395,7 @@ void writeStandardLight(Lines& out, const LightingRecord& lighting, const LightR
         out.add("  att = 1/(c0 + c1·d + c2·d²) = 1/(" + num(light.c0) + " + " + num(light.c1) + "·" +
                 num(r.distance) + " + " + num(light.c2) + "·" + num(r.distance) +
                 "²) = " + num(r.attenuation));
+    writeWindow(out, r);
     writeSpot(out, r);
     out.add("  N·L = " + num(r.NdotL));
     const bool phong = lighting.specularModel == SpecularModel::Phong;
@@ -370,18 +415,22 @@ void writeStandardLight(Lines& out, const LightingRecord& lighting, const LightR
     else
         out.add(std::string("  spec = max(") + (phong ? "R·V" : "N·H") + ", 0)^n = max(" + num(r.cosine) +
                 ", 0)^" + num(lighting.shininess) + " = " + num(r.spec));
-    const std::string reach = num(r.attenuation) + "·" + num(r.spot.factor);
-    writeTerm(out, "ambient", "att·spot·l_a⊗m_a",
+    // With a range, its window f_win multiplies att.
+    const bool windowed = light.kind != LightKind::Directional && light.range > 0.0f;
+    const std::string att = windowed ? "att·f_win" : "att";
+    const std::string reach =
+        num(r.attenuation) + (windowed ? "·" + num(r.window) : std::string()) + "·" + num(r.spot.factor);
+    writeTerm(out, "ambient", att + "·spot·l_a⊗m_a",
               reach + "·" + rgb(light.ambient) + "⊗" + rgb(lighting.materialAmbient), r.ambient);
     // With shadows, v (the share of the light that reaches P) scales the diffuse and specular terms.
     const std::string v = r.shadowTested ? "·v" : "";
     const std::string lit = r.shadowTested ? reach + "·" + num(r.visibility) : reach;
     if (r.shadowTested) writeShadow(out, r);
     writeTerm(
-        out, "diffuse", "att·spot" + v + "·max(N·L,0)·l_d⊗m_d",
+        out, "diffuse", att + "·spot" + v + "·max(N·L,0)·l_d⊗m_d",
         lit + "·max(" + num(r.NdotL) + ", 0)·" + rgb(light.diffuse) + "⊗" + rgb(lighting.materialDiffuse),
         r.diffuse);
-    writeTerm(out, "specular", "att·spot" + v + "·spec·l_s⊗m_s",
+    writeTerm(out, "specular", att + "·spot" + v + "·spec·l_s⊗m_s",
               lit + "·" + num(r.spec) + "·" + rgb(light.specular) + "⊗" + rgb(lighting.materialSpecular),
               r.specular);
 }
@@ -460,20 +509,34 @@ void writeBrdf(Lines& out, const LightingRecord& lighting, const BrdfRecord& b) 
 
 void writePhysicallyBasedLight(Lines& out, const LightingRecord& lighting, const LightRecord& r) {
     const LightParams& light = r.light;
+    writeAreaShape(out, light);
     writeLightPosition(out, r);
     if (light.kind == LightKind::Directional)
         out.add("  falloff = 1 (a directional light)");
+    else if (light.attenuationGiven)
+        out.add("  falloff = 1/(c0 + c1·d + c2·d²) = 1/(" + num(light.c0) + " + " + num(light.c1) + "·" +
+                num(r.distance) + " + " + num(light.c2) + "·" + num(r.distance) +
+                "²) = " + num(r.attenuation) + " (the light's attenuation)");
     else
         out.add("  falloff = 1/d² = 1/" + num(r.distance) + "² = " + num(r.attenuation));
+    writeWindow(out, r);
     writeSpot(out, r);
     out.add("  N·L = " + num(r.NdotL));
-    if (r.shadowTested) {
+    const bool windowed = light.kind != LightKind::Directional && light.range > 0.0f;
+    const std::string falloff = windowed ? "falloff·f_win" : "falloff";
+    const std::string falloffValue = num(r.attenuation) + (windowed ? "·" + num(r.window) : std::string());
+    if (r.shadowTested && windowed) {
+        writeShadow(out, r);
+        out.add("  irradiance factor = " + falloff + "·spot·max(N·L,0)·v");
+        out.add("    = " + falloffValue + "·" + num(r.spot.factor) + "·max(" + num(r.NdotL) + ", 0)·" +
+                num(r.visibility) + " = " + num(r.reach));
+    } else if (r.shadowTested) {
         writeShadow(out, r);
         out.add("  irradiance factor = falloff·spot·max(N·L,0)·v = " + num(r.attenuation) + "·" +
                 num(r.spot.factor) + "·max(" + num(r.NdotL) + ", 0)·" + num(r.visibility) + " = " +
                 num(r.reach));
     } else {
-        out.add("  irradiance factor = falloff·spot·max(N·L,0) = " + num(r.attenuation) + "·" +
+        out.add("  irradiance factor = " + falloff + "·spot·max(N·L,0) = " + falloffValue + "·" +
                 num(r.spot.factor) + "·max(" + num(r.NdotL) + ", 0) = " + num(r.reach));
     }
     writeBrdf(out, lighting, r.brdf);
@@ -940,6 +1003,14 @@ nlohmann::json toJson(const LightRecord& r, bool physicallyBased) {
                         {"ambient", json3(r.ambient)},
                         {"diffuse", json3(r.diffuse)},
                         {"specular", json3(r.specular)}};
+    // Only for the lights that have them: a scene without ranges or area lights keeps its JSON.
+    if (r.light.kind != LightKind::Directional && r.light.range > 0.0f)
+        j["window"] = {{"function", nameOf(r.light.window)}, {"range", r.light.range}, {"value", r.window}};
+    if (isAreaLight(r.light.kind)) {
+        j["area"] = {{"normal", json3(r.light.areaNormal)},
+                     {"samples", r.light.areaSamples},
+                     {"emitterCosine", r.spot.factor}};
+    }
     if (physicallyBased) {
         const BrdfRecord& b = r.brdf;
         j["irradianceFactor"] = r.reach;

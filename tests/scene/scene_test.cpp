@@ -915,7 +915,7 @@ const ErrorCase kErrorCases[] = {
      {R"("pipeline.cull" must be one of "back", "front", "none" (got "bakc") (did you mean "back"?))"}},
     {"LightTypeUnknown",
      R"({"model": "m.obj", "lights": [{"type": "sopt"}]})",
-     {R"("lights[0].type" must be one of "directional", "point", "spot" (got "sopt") (did you mean "spot"?))"}},
+     {R"("lights[0].type" must be one of "directional", "point", "spot", "rect", "disk" (got "sopt") (did you mean "spot"?))"}},
     {"LightSpaceUnknown",
      R"({"model": "m.obj", "lights": [{"space": "view"}]})",
      {R"("lights[0].space" must be one of "world", "camera")"}},
