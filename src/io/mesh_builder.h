@@ -444,6 +444,7 @@ class MeshBuilder {
 
     // Whether position p is one trace_ asks for.
     bool traced(std::size_t p) const {
+        if (trace_->all) return true;
         const glm::vec3 at(position(p));
         return std::find(trace_->positions.begin(), trace_->positions.end(), at) != trace_->positions.end();
     }

@@ -61,6 +61,7 @@ struct ObjOptions {
 // when given one, from the very sums it computes (nothing is recorded, and nothing costs, without it).
 struct VertexNormalTrace {
     std::vector<glm::vec3> positions;  // the positions to record (object space, as the vertices hold them)
+    bool all = false;                  // or every position with a computed normal
     // One face around a position: the file's polygon `face` (counted from 0 over the file's faces kept),
     // its unit normal, its weight at the position (see ObjOptions::normals), the cosine between its
     // normal and the group's own face's, and whether the crease rule smoothed it into the group.

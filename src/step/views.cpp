@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <memory>
+#include <mutex>
 #include <sstream>
 
 #include "pipeline/clip.h"
@@ -195,19 +197,62 @@ std::string weightName(VertexNormals w) {
     return "?";
 }
 
+// The record of how a model's computed normals were made (loadObj read again with a
+// VertexNormalTrace): of every position for a model of up to kEveryPosition triangles, kept for the
+// next triangle of the same model (the web page's walks ask for many), else of the triangle's corners.
+// None when the file cannot be read again.
+std::shared_ptr<const VertexNormalTrace> normalTraceOf(const std::filesystem::path& model,
+                                                       const ObjOptions& options, const Mesh& mesh,
+                                                       const TriangleTrace& t) {
+    constexpr std::size_t kEveryPosition = 200000;
+    static std::mutex mutex;
+    static std::filesystem::path cachedModel;
+    static ObjOptions cachedOptions;
+    static std::filesystem::file_time_type cachedTime;
+    static std::shared_ptr<const VertexNormalTrace> cached;
+    const bool every = mesh.stats.trianglesKept <= kEveryPosition;
+    std::error_code unknown;  // then no time: compared as such
+    const std::filesystem::file_time_type time = std::filesystem::last_write_time(model, unknown);
+    if (every) {
+        const std::lock_guard lock(mutex);
+        if (cached && cachedModel == model && cachedOptions == options && cachedTime == time) return cached;
+    }
+    auto trace = std::make_shared<VertexNormalTrace>();
+    trace->all = every;
+    if (!every) trace->positions.assign(t.objectPositions.begin(), t.objectPositions.end());
+    try {
+        loadObj(model, options, trace.get());
+    } catch (const std::exception&) {
+        return nullptr;  // the file changed since: nothing to show
+    }
+    if (every) {
+        const std::lock_guard lock(mutex);
+        cachedModel = model;
+        cachedOptions = options;
+        cachedTime = time;
+        cached = trace;
+    }
+    return trace;
+}
+
 // How the computed normals of the triangle's corners were made: the model read again with
 // loadObj's VertexNormalTrace (the very sums the import computes), the groups whose normal is the
 // vertex's. Nothing for corners whose normals the file gives.
 std::string vertexNormalText(const PreparedScene& prepared, const TriangleTrace& t) {
     const ObjectSpec* object = objectOfDraw(prepared, t.ref.draw);
     if (!object || prepared.assets->model(object->model).stats.normalsComputed == 0) return "";
+    const std::shared_ptr<const VertexNormalTrace> traced =
+        normalTraceOf(object->model, prepared.assets->options.obj, prepared.assets->model(object->model), t);
+    if (!traced) return "";
+    // The groups at the corners' positions.
     VertexNormalTrace trace;
-    trace.positions.assign(t.objectPositions.begin(), t.objectPositions.end());
-    try {
-        loadObj(object->model, prepared.assets->options.obj, &trace);
-    } catch (const std::exception&) {
-        return "";  // the file changed since: nothing to show
-    }
+    trace.weighting = traced->weighting;
+    trace.creaseCosine = traced->creaseCosine;
+    trace.smoothAll = traced->smoothAll;
+    for (const VertexNormalTrace::Group& g : traced->groups)
+        if (std::find(t.objectPositions.begin(), t.objectPositions.end(), g.position) !=
+            t.objectPositions.end())
+            trace.groups.push_back(g);
     constexpr std::size_t kShown = 6;
     std::ostringstream out;
     out << "\nThe model gives no normals here: Facet computed them when it read the file,\n"
@@ -312,7 +357,9 @@ void matrixLines(std::ostringstream& out, const std::string& name, const glm::dm
 
 // The normals through the vertex shader: the normal matrix (renderer.h's normalMatrix, as placeDraw
 // made the draw's uniform) and each corner's n_eye = N·n_obj, computed by the surface shader's vertex().
-void normalLines(std::ostringstream& out, const PreparedDraw& draw, const TriangleTrace& t) {
+// `faceNormals`: flat shading gave the corners the face normal (not under the gl preset).
+void normalLines(std::ostringstream& out, const PreparedDraw& draw, const TriangleTrace& t,
+                 bool faceNormals) {
     const NormalMatrix n = normalMatrix(draw.viewFromObjectExact);
     out << "\nNormals: n_eye = N·n_obj, N = ((V·M)⁻¹)ᵀ of the upper-left 3×3 of V·M (lecture\n"
            "deck A's vertex shader, n = normalize(N·nrm)): it keeps normals perpendicular\n"
@@ -336,7 +383,7 @@ void normalLines(std::ostringstream& out, const PreparedDraw& draw, const Triang
     }
     out << (perPixel ? "Phong shading interpolates n_eye and normalises it at the pixel (lighting).\n"
                      : "The lighting at each vertex uses n_eye/|n_eye| (lighting).\n");
-    if (draw.frequency == ShadingFrequency::Flat)
+    if (draw.frequency == ShadingFrequency::Flat && faceNormals)
         out << "Flat shading: n_obj is the face normal at every corner (see the input screen).\n";
 }
 
@@ -359,7 +406,8 @@ Screen transformScreen(const PreparedScene& prepared, const TriangleTrace& t) {
             << "      clip   " << vectorText(t.clipPositions[k]) << "\n";
     }
     out << "\n(clip is the vertex shader's gl_Position as the pipeline computed it.)\n";
-    if (t.ref.draw < prepared.draws.size()) normalLines(out, prepared.draws[t.ref.draw], t);
+    if (t.ref.draw < prepared.draws.size())
+        normalLines(out, prepared.draws[t.ref.draw], t, prepared.scene.lighting.preset != LightingPreset::GL);
     return {"transform", "Vertex shader: object → world → eye → clip space", out.str()};
 }
 
@@ -932,8 +980,9 @@ std::string sortKeyText(const PreparedScene& prepared, const TriangleRef& ref) {
         << (key == SortKey::Centroid ? "centroid" : "farthest corner") << ", from the corners' eye-space z:\n"
         << "  z0 = " << number(z[0]) << ", z1 = " << number(z[1]) << ", z2 = " << number(z[2]) << "\n";
     if (key == SortKey::Centroid)
-        out << "  z_key = −(z0 + z1 + z2)/3 = −(" << number(z[0]) << " + " << bracketedIfNegative(z[1])
-            << " + " << bracketedIfNegative(z[2]) << ")/3 = " << number(value) << "\n";
+        out << "  z_key = −(z0 + z1 + z2)/3 = −(" << bracketedIfNegative(z[0]) << " + "
+            << bracketedIfNegative(z[1]) << " + " << bracketedIfNegative(z[2]) << ")/3 = " << number(value)
+            << "\n";
     else
         out << "  z_key = −min(z0, z1, z2) = −min(" << number(z[0]) << ", " << number(z[1]) << ", "
             << number(z[2]) << ") = " << number(value) << "\n";
