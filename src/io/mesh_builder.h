@@ -15,6 +15,7 @@
 #include <tiny_obj_loader.h>
 #include <glm/glm.hpp>
 
+#include "io/obj_import.h"
 #include "scene/mesh.h"
 
 namespace facet::obj {
@@ -198,6 +199,14 @@ class MeshBuilder {
         }
     }
 
+    // Records how the normals at trace->positions are made (finishNormals fills trace->groups).
+    void trace(VertexNormalTrace* trace) {
+        trace_ = trace;
+        trace->weighting = weighting_;
+        trace->creaseCosine = creaseCos_;
+        trace->smoothAll = smoothAll_;
+    }
+
     // The vertex of a corner id that addPolygon put in `out`; valid after finishNormals.
     std::uint32_t vertexOf(std::uint32_t corner) const { return cornerVertex_[corner]; }
     std::vector<MeshVertex> takeVertices() { return std::move(vertices_); }
@@ -209,6 +218,10 @@ class MeshBuilder {
     static constexpr double kCosTolerance = 1e-12;
     static constexpr std::size_t kExactFaces = 64;  // the faces a 64-bit mask holds
     static constexpr std::uint32_t kNoGroup = std::numeric_limits<std::uint32_t>::max();
+
+    VertexNormalTrace* trace_ = nullptr;   // the step mode's record, usually none
+    bool recording_ = false;               // the position being grouped is one trace_ asks for
+    std::vector<std::size_t> recordedAt_;  // groupExactly, recording: face j's group in trace_->groups
 
     // The weights of the polygon just added at its positions (its incidences, the last added), under
     // the triangle-area and angle rules (polygon-area needs none: it is the face's area).
@@ -296,6 +309,7 @@ class MeshBuilder {
             const std::uint32_t* incidences = byPosition.data() + start[p];
             const std::size_t k = start[p + 1] - start[p];
             if (k == 0) continue;
+            recording_ = trace_ && traced(p);
             if (smoothAll_) {
                 smoothTogether(incidences, k, groupOf);
                 continue;
@@ -320,6 +334,13 @@ class MeshBuilder {
         groupNormals_.push_back(normalOfSum(sum));
         for (std::size_t j = 0; j < k; ++j)
             groupOf[incidences[j]] = group;
+        if (recording_) {
+            units_.resize(k);
+            for (std::size_t j = 0; j < k; ++j)
+                units_[j] = unitNormal(faceAreas_[incidenceFace_[incidences[j]]]);
+            record(
+                incidences, k, 0, [](std::size_t) { return true; }, sum, groupNormals_.back(), false);
+        }
     }
 
     // The exact rule for k <= 64 faces at a position: one group per distinct set of faces summed.
@@ -340,6 +361,11 @@ class MeshBuilder {
                 ++same;
             if (same < j) {
                 groupOf[incidences[j]] = groupOf[incidences[same]];
+                // Recorded again from face j's side: the same faces and sum, j's cosines.
+                if (recording_)
+                    record(
+                        incidences, k, j, [&](std::size_t l) { return ((masks_[j] >> l) & 1) != 0; },
+                        trace_->groups[recordedAt_[same]].sum, groupNormals_[groupOf[incidences[j]]], false);
                 continue;
             }
             glm::dvec3 sum(0.0);  // in file order, the order the faces were added in
@@ -348,6 +374,13 @@ class MeshBuilder {
             }
             groupOf[incidences[j]] = static_cast<std::uint32_t>(groupNormals_.size());
             groupNormals_.push_back(normalOfSum(sum));
+            if (recording_) {
+                recordedAt_.resize(k);
+                recordedAt_[j] = trace_->groups.size();
+                record(
+                    incidences, k, j, [&](std::size_t l) { return ((masks_[j] >> l) & 1) != 0; }, sum,
+                    groupNormals_.back(), false);
+            }
         }
     }
 
@@ -396,8 +429,41 @@ class MeshBuilder {
         const auto firstGroup = static_cast<std::uint32_t>(groupNormals_.size());
         for (const Cluster& cluster : clusters)
             groupNormals_.push_back(normalOfSum(cluster.sum));
+        if (recording_) {
+            for (std::uint32_t c = 0; c < clusters.size(); ++c) {
+                const auto own = static_cast<std::size_t>(std::find(clusterOf.begin(), clusterOf.end(), c) -
+                                                          clusterOf.begin());
+                record(
+                    incidences, k, own, [&](std::size_t l) { return clusterOf[l] == c; }, clusters[c].sum,
+                    groupNormals_[firstGroup + c], true);
+            }
+        }
         for (std::size_t j = 0; j < k; ++j)
             groupOf[incidences[j]] = firstGroup + clusterOf[j];
+    }
+
+    // Whether position p is one trace_ asks for.
+    bool traced(std::size_t p) const {
+        if (trace_->all) return true;
+        const glm::vec3 at(position(p));
+        return std::find(trace_->positions.begin(), trace_->positions.end(), at) != trace_->positions.end();
+    }
+
+    // Records a group at a traced position: the k faces there (units_ holds their unit normals), `own`
+    // the one whose neighbourhood it is, `in(l)` whether face l is summed, the sum and normal as computed.
+    template <class In>
+    void record(const std::uint32_t* incidences, std::size_t k, std::size_t own, In in, const glm::dvec3& sum,
+                const glm::vec3& normal, bool clustered) {
+        VertexNormalTrace::Group group;
+        group.position = glm::vec3(position(incidencePosition_[incidences[own]]));
+        group.ownFace = incidenceFace_[incidences[own]];
+        group.sum = sum;
+        group.normal = normal;
+        group.clustered = clustered;
+        for (std::size_t l = 0; l < k; ++l)
+            group.faces.push_back({incidenceFace_[incidences[l]], units_[l], weightOf(incidences[l]),
+                                   glm::dot(units_[own], units_[l]), in(l)});
+        trace_->groups.push_back(std::move(group));
     }
 
     // A group's normal: its normalised sum, or zero when the faces cancel.

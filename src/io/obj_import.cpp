@@ -59,7 +59,7 @@ class TextStreamBuffer : public std::streambuf {
 
 }  // namespace
 
-Mesh loadObj(const std::filesystem::path& path, const ObjOptions& options) {
+Mesh loadObj(const std::filesystem::path& path, const ObjOptions& options, VertexNormalTrace* normalTrace) {
     const float crease = options.creaseAngleDegrees;
     if (!(crease >= 0.0f && crease <= 180.0f)) {  // NaN fails both
         throw std::invalid_argument("loadObj: creaseAngleDegrees must be within [0, 180], not " +
@@ -177,6 +177,7 @@ Mesh loadObj(const std::filesystem::path& path, const ObjOptions& options) {
 
     // 5. Triangulate, weld and bucket the triangles by material, in first-use order.
     MeshBuilder builder(attrib, cornerCount, crease, options.normals);
+    if (normalTrace) builder.trace(normalTrace);
     std::vector<int> meshMaterialOf(tinyMaterials.size() + 1, -1);  // [0]: no material; [i + 1]: material i
     std::vector<int> tinyMaterialOf;  // mesh material → tinyobjloader's, or -1
     std::vector<std::vector<std::uint32_t>> buckets;

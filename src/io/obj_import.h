@@ -2,6 +2,9 @@
 #pragma once
 
 #include <filesystem>
+#include <vector>
+
+#include <glm/glm.hpp>
 
 #include "scene/mesh.h"
 
@@ -54,6 +57,39 @@ struct ObjOptions {
 
     bool operator==(const ObjOptions&) const = default;
 };
-Mesh loadObj(const std::filesystem::path& path, const ObjOptions& options = {});
+// How the computed normals at some positions were made, for the step mode's screen: loadObj fills it
+// when given one, from the very sums it computes (nothing is recorded, and nothing costs, without it).
+struct VertexNormalTrace {
+    std::vector<glm::vec3> positions;  // the positions to record (object space, as the vertices hold them)
+    bool all = false;                  // or every position with a computed normal
+    // One face around a position: the file's polygon `face` (counted from 0 over the file's faces kept),
+    // its unit normal, its weight at the position (see ObjOptions::normals), the cosine between its
+    // normal and the group's own face's, and whether the crease rule smoothed it into the group.
+    struct Face {
+        std::uint32_t face = 0;
+        glm::dvec3 unit{0.0}, weight{0.0};
+        double cosine = 1.0;
+        bool smoothed = true;
+    };
+    // One computed normal seen from one face at `position`, `ownFace`: the faces there its sum includes
+    // or leaves out (in file order) by their angle to ownFace's, the weighted sum and the normal (the sum
+    // normalised; zero when the faces cancel). Faces whose sums hold the same faces share one normal and
+    // each has its own group here; a crowded position's greedy clusters are seen from their first face.
+    struct Group {
+        glm::vec3 position{0.0f};
+        std::uint32_t ownFace = 0;
+        std::vector<Face> faces;
+        glm::dvec3 sum{0.0};
+        glm::vec3 normal{0.0f};
+        bool clustered = false;  // more than 64 faces: greedy clusters (see MeshBuilder)
+    };
+    std::vector<Group> groups;
+    VertexNormals weighting = VertexNormals::PolygonArea;
+    double creaseCosine = 0.5;  // faces with a cosine at least this are smoothed together
+    bool smoothAll = false;     // crease angle 180
+};
+
+Mesh loadObj(const std::filesystem::path& path, const ObjOptions& options = {},
+             VertexNormalTrace* normalTrace = nullptr);
 
 }  // namespace facet

@@ -18,6 +18,16 @@
 
 namespace facet {
 
+// The normal matrix of an object placed at viewFromObject: see renderer.h.
+NormalMatrix normalMatrix(const glm::dmat4& viewFromObject) {
+    NormalMatrix n;
+    n.inverseTranspose = glm::transpose(glm::inverse(glm::dmat3(viewFromObject)));
+    n.determinant = glm::determinant(n.inverseTranspose);
+    n.scaled = n.inverseTranspose;
+    if (n.determinant != 0.0 && std::isfinite(n.determinant)) n.scaled /= std::cbrt(std::abs(n.determinant));
+    return n;
+}
+
 namespace {
 
 vec3 decodeSrgb(vec3 encoded) {
@@ -166,11 +176,7 @@ void placeDraw(SurfaceUniforms& u, const Camera& camera, const glm::dmat4& world
     const glm::dmat4 viewFromObject = camera.viewFromWorldExact * worldFromObject;
     u.viewFromObject = mat4(viewFromObject);
     u.clipFromObject = mat4(drawnClipFromView(camera) * viewFromObject);
-    glm::dmat3 normalFromObject = glm::transpose(glm::inverse(glm::dmat3(viewFromObject)));
-    const double determinant = glm::determinant(normalFromObject);
-    if (determinant != 0.0 && std::isfinite(determinant))
-        normalFromObject /= std::cbrt(std::abs(determinant));
-    u.normalFromObject = mat3(normalFromObject);
+    u.normalFromObject = mat3(normalMatrix(viewFromObject).scaled);
 }
 
 // One vertex per triangle corner, each with its face's normal: flat shading's input. The face normal
@@ -183,10 +189,7 @@ void unweldWithFaceNormals(DrawTriangles& draw) {
         const MeshVertex& a = draw.vertices[draw.indices[t]];
         const MeshVertex& b = draw.vertices[draw.indices[t + 1]];
         const MeshVertex& c = draw.vertices[draw.indices[t + 2]];
-        vec3 n = cross(b.position - a.position, c.position - a.position);
-        if (dot(n, a.normal + b.normal + c.normal) < 0.0f) n = -n;
-        const float length = glm::length(n);
-        n = length > 0.0f && std::isfinite(length) ? n / length : normalize(a.normal + b.normal + c.normal);
+        const vec3 n = flatFaceNormal(a, b, c);
         for (const MeshVertex* v : {&a, &b, &c})
             corners.push_back({v->position, n, v->uv});
     }
@@ -670,17 +673,14 @@ void depthKeys(const PreparedScene& prepared, SortKey key, FrameMemory& memory) 
         const PreparedDraw& d = prepared.draws[triangles[t].draw];
         if (triangles[t].draw != current) {
             current = triangles[t].draw;
-            const mat4& m = d.uniforms.viewFromObject;
-            const vec3 row(m[0][2], m[1][2], m[2][2]);  // z_eye = row · p + m[3][2]
+            const mat4 m = d.uniforms.viewFromObject;  // a copy: the stores below cannot alias it
             memory.vertexDepths.resize(d.vertices.size());
             for (std::size_t v = 0; v < d.vertices.size(); ++v)
-                memory.vertexDepths[v] = dot(row, d.vertices[v].position) + m[3][2];
+                memory.vertexDepths[v] = eyeDepthOf(m, d.vertices[v].position);
         }
         const std::uint32_t* corner = &d.indices[3 * triangles[t].triangle];
-        const float z0 = memory.vertexDepths[corner[0]], z1 = memory.vertexDepths[corner[1]],
-                    z2 = memory.vertexDepths[corner[2]];
-        memory.keys[t] =
-            key == SortKey::FarthestVertex ? -std::min({z0, z1, z2}) : -(z0 + z1 + z2) * (1.0f / 3.0f);
+        memory.keys[t] = sortKeyOf(key, memory.vertexDepths[corner[0]], memory.vertexDepths[corner[1]],
+                                   memory.vertexDepths[corner[2]]);
     }
 }
 

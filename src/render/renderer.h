@@ -3,6 +3,7 @@
 // (shaders.h), one draw per object part (material).
 #pragma once
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <memory>
@@ -129,6 +130,53 @@ void prepareShadows(PreparedScene& prepared);
 // Refuses a scene no frame can be made of (InputError): an image size out of range, no objects, exact
 // transparency multisampled.
 void checkFrameSettings(const Scene& scene);
+
+// The normal matrix of an object placed at viewFromObject (lecture deck A's vertex shader: n =
+// normalize(N·nrm)): N = ((V·M)⁻¹)ᵀ of the upper-left 3×3, then divided by ∛|det| so that its determinant
+// is 1 (the shaders renormalise normals; a scaled view would otherwise shrink them). The draws' uniforms
+// hold `scaled` rounded to float.
+struct NormalMatrix {
+    glm::dmat3 inverseTranspose{1.0};  // ((V·M)⁻¹)ᵀ
+    double determinant = 1.0;          // det(((V·M)⁻¹)ᵀ)
+    glm::dmat3 scaled{1.0};  // inverseTranspose / ∛|determinant| (as it is when that is 0 or not finite)
+};
+NormalMatrix normalMatrix(const glm::dmat4& viewFromObject);
+
+// Flat shading's face normal of the triangle a, b, c: (b − a) × (c − a), turned to agree with the sum
+// of the corners' normals (so a model whose winding disagrees with its normals still lights the side
+// its normals show), normalised; that sum normalised when the cross product has no length. A
+// FaceNormalRecord, when given, receives the numbers.
+struct FaceNormalRecord {
+    vec3 cross{0.0f};       // (b − a) × (c − a)
+    bool turned = false;    // it pointed against the corners' normals and was negated
+    float length = 0.0f;    // |cross|
+    bool fallback = false;  // no length: the corners' normals' sum instead
+    vec3 normal{0.0f};
+};
+inline vec3 flatFaceNormal(const MeshVertex& a, const MeshVertex& b, const MeshVertex& c,
+                           FaceNormalRecord* record = nullptr) {
+    vec3 n = cross(b.position - a.position, c.position - a.position);
+    if (record) record->cross = n;
+    const bool turned = dot(n, a.normal + b.normal + c.normal) < 0.0f;
+    if (turned) n = -n;
+    const float length = glm::length(n);
+    const bool usable = length > 0.0f && std::isfinite(length);
+    n = usable ? n / length : normalize(a.normal + b.normal + c.normal);
+    if (record) *record = {record->cross, turned, length, !usable, n};
+    return n;
+}
+
+// The transparent pass's sort key of a triangle from its corners' eye-space depths z0, z1, z2 (each
+// eyeDepthOf its object position): the distance along the view direction, −z, of its centroid,
+// −(z0 + z1 + z2)/3, or of its farthest corner, −min(z0, z1, z2). Larger is farther.
+inline float eyeDepthOf(const mat4& viewFromObject, const vec3& position) {
+    const mat4& m = viewFromObject;
+    const vec3 row(m[0][2], m[1][2], m[2][2]);  // z_eye = row · p + m[3][2]
+    return dot(row, position) + m[3][2];
+}
+inline float sortKeyOf(SortKey key, float z0, float z1, float z2) {
+    return key == SortKey::FarthestVertex ? -std::min({z0, z1, z2}) : -(z0 + z1 + z2) * (1.0f / 3.0f);
+}
 
 // The frame of `scene` drawn from `assets` (loaded for it: assetOptionsFor(scene)): camera, lights,
 // materials, draws, shadows.

@@ -55,19 +55,24 @@ inline std::uint8_t toByte(float unit, Rounding rounding = Rounding::HalfAwayFro
                                                                       : std::lround(unit * 255.0f));
 }
 
-// The 8-bit code of one channel value: clamped to [0, 1], encoded, rounded to nearest.
-inline std::uint8_t encodeChannel(float value, ColorEncoding encoding) {
+// The encoded value c' of one channel, before toByte rounds 255·c' (the step mode's encoding screen
+// shows it): sRGB's curve, c^(1/γ) of the value clamped to at most 1, or the value itself.
+inline float encodedUnit(float value, ColorEncoding encoding) {
     switch (encoding.curve) {
         case TransferCurve::Srgb:
-            return toByte(linearToSrgb(value), encoding.rounding);
+            return linearToSrgb(value);
         case TransferCurve::Power:
             // c^(1/γ) on [0, 1]; below 0 (and NaN) toByte gives 0.
-            return toByte(value > 0.0f ? std::pow(std::min(value, 1.0f), 1.0f / encoding.gamma) : 0.0f,
-                          encoding.rounding);
+            return value > 0.0f ? std::pow(std::min(value, 1.0f), 1.0f / encoding.gamma) : 0.0f;
         case TransferCurve::Linear:
-            return toByte(value, encoding.rounding);
+            return value;
     }
-    return 0;
+    return 0.0f;
+}
+
+// The 8-bit code of one channel value: clamped to [0, 1], encoded, rounded to nearest.
+inline std::uint8_t encodeChannel(float value, ColorEncoding encoding) {
+    return toByte(encodedUnit(value, encoding), encoding.rounding);
 }
 
 // encodeChannel through tables, for whole images: the same code for every float, without a pow per

@@ -447,7 +447,9 @@ void writeBrdf(Lines& out, const LightingRecord& lighting, const BrdfRecord& b) 
                 "² − 1) + 1)²) = " + num(b.D));
     } else if (b.model.distribution == NormalDistribution::Beckmann) {
         out.add("  D = exp(((N·H)² − 1)/(α²(N·H)²))/(π·α²·(N·H)⁴)   (Beckmann)");
-        out.add("    with N·H = " + num(b.NdotH) + ", α = " + num(b.alpha) + ": D = " + num(b.D));
+        const std::string nh = num(b.NdotH), a = num(b.alpha);
+        out.add("    = exp((" + nh + "² − 1)/(" + a + "²·" + nh + "²))/(π·" + a + "²·" + nh +
+                "⁴) = " + num(b.D));
     } else {
         out.add("  D = c·exp(−(θ_h/m)²), θ_h = acos(N·H), m = α   (Gaussian)");
         out.add("    c = 1/(2π∫exp(−(θ/m)²)cosθ sinθ dθ) = " + num(b.gaussianC) + " (∫D(N·H)dω = 1)");
@@ -627,10 +629,11 @@ std::string frequencyTitle(const ShadingTrace& t) {
     return "";
 }
 
-void writeCorner(Lines& out, const CornerShading& c) {
+void writeCorner(Lines& out, const CornerShading& c, const std::array<int, 3>& vertexOfCorner) {
     const VertexLightingRecord& v = c.lighting;
-    out.add("---- Corner " + std::to_string(c.corner) + ": vertex at " + vec(c.vertex.position) +
-            " (object space) ----");
+    out.add("---- Corner " + std::to_string(c.corner) + " (v" +
+            std::to_string(vertexOfCorner[static_cast<std::size_t>(c.corner) % 3]) + "): vertex at " +
+            vec(c.vertex.position) + " (object space) ----");
     writeLighting(out, v.lighting);
     writeSum(out, v.lighting, v.lighting.terms.emission);
     if (v.environment.used) {
@@ -783,11 +786,28 @@ Screen lightingScreen(const ShadingTrace& t) {
             out.add("Gouraud shading: the lighting equation runs at the triangle's three corners");
             out.add("(in the vertex shader); their colours are interpolated across the triangle.");
             break;
-        case ShadingFrequency::Flat:
-            out.add("Flat shading: the lighting equation runs at the triangle's provoking corner");
-            out.add("(corner " + std::to_string(t.provokingCorner) +
-                    "); its colour fills the whole triangle.");
+        case ShadingFrequency::Flat: {
+            const int v = t.vertexOfCorner[static_cast<std::size_t>(t.provokingCorner & 3) % 3];
+            const std::string name = "v" + std::to_string(v);
+            const std::string text = wrapText(
+                "Flat shading: the lighting equation runs once, at the triangle's provoking vertex, " + name +
+                    (v == 2 ? ", the last of its three (OpenGL's convention" : " (") +
+                    (t.provokingCorner != v
+                         ? std::string(v == 2 ? "; " : "") + "corner " + std::to_string(t.provokingCorner) +
+                               " in the setup's order, which exchanged v1 and v2)"
+                         : std::string(v == 2 ? ")" : "the first)")) +
+                    "; its colour fills the whole triangle. " +
+                    (t.faceNormal ? "Its normal is the face normal (v1 − v0) × (v2 − v0), normalised, that "
+                                    "every corner of the triangle carries (see the input screen)."
+                                  : "Its normal is " + name + "'s own (the gl preset: no face normal)."),
+                80, 0);
+            for (std::size_t at = 0; at < text.size();) {
+                const std::size_t end = text.find('\n', at);
+                out.add(text.substr(at, end == std::string::npos ? std::string::npos : end - at));
+                at = end == std::string::npos ? text.size() : end + 1;
+            }
             break;
+        }
     }
     out.blank();
     writeEquation(out, model);
@@ -808,7 +828,7 @@ Screen lightingScreen(const ShadingTrace& t) {
         out.blank();
     } else {
         for (const CornerShading& c : t.corners)
-            writeCorner(out, c);
+            writeCorner(out, c, t.vertexOfCorner);
         if (t.frequency == ShadingFrequency::Gouraud) {
             writeInterpolation(out, t);
         } else {

@@ -37,6 +37,11 @@ struct ShadingTrace {
     // Gouraud: the three corners; flat: the provoking corner alone; Phong shading: none.
     std::vector<CornerShading> corners;
     int provokingCorner = 0;
+    // The triangle's own vertex number (v0, v1, v2) of each corner: 0, 1, 2, or 0, 2, 1 when setup
+    // exchanged v1 and v2. Flat shading: whether the corners carry the face normal (the facet preset)
+    // or their own (the gl preset's rule).
+    std::array<int, 3> vertexOfCorner{0, 1, 2};
+    bool faceNormal = true;
     // Gouraud: the perspective-correct weights μi = λi·(1/wi)/(1/w) of the corners and the corners'
     // colour parts mixed with them. Valid when Σ λi·(1/wi) is the pixel's 1/w, which fails when the
     // corners are not the window triangle's (clipping cut the triangle: the λ are its piece's).

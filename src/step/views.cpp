@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <memory>
+#include <mutex>
 #include <sstream>
 
 #include "pipeline/clip.h"
@@ -146,6 +148,176 @@ std::vector<std::string> varyingNames(const PreparedScene* prepared, std::uint32
     return names;
 }
 
+// Flat shading's face normal, as renderer.h's flatFaceNormal made it for every corner of the triangle.
+std::string faceNormalText(const TriangleTrace& t) {
+    std::array<MeshVertex, 3> v;
+    for (int k = 0; k < 3; ++k)
+        v[k] = {t.objectPositions[k], t.objectNormals[k], vec2(0.0f)};
+    FaceNormalRecord r;
+    flatFaceNormal(v[0], v[1], v[2], &r);
+    std::ostringstream out;
+    out << "\nFlat shading: every corner carries the face normal, from two edges:\n"
+        << "  v1 − v0 = " << vectorText(v[1].position - v[0].position)
+        << "\n  v2 − v0 = " << vectorText(v[2].position - v[0].position) << "\n"
+        << "  (v1 − v0) × (v2 − v0) = " << vectorText(r.cross) << "\n";
+    if (r.turned)
+        out << "  it points against the model's vertex normals, so it is turned: " << vectorText(-r.cross)
+            << "\n";
+    if (r.fallback)
+        out << "  it has no length: the corners' normals' sum, normalised, instead = " << vectorText(r.normal)
+            << "\n";
+    else
+        out << "  |(v1 − v0) × (v2 − v0)| = " << number(r.length) << " (twice the triangle's area)\n"
+            << "  n = " << (r.turned ? "−" : "") << "(v1 − v0) × (v2 − v0) / " << number(r.length) << " = "
+            << vectorText(r.normal) << "\n";
+    return out.str();
+}
+
+// The model file of a draw: the object whose parts gave it (renderer.cpp's addDraws makes one draw per
+// object and part with triangles, in order).
+const ObjectSpec* objectOfDraw(const PreparedScene& prepared, std::uint32_t draw) {
+    if (!prepared.assets) return nullptr;
+    std::uint32_t k = 0;
+    for (const ObjectSpec& object : prepared.scene.objects) {
+        for (const MeshPart& part : prepared.assets->model(object.model).parts)
+            if (part.indexCount != 0 && k++ == draw) return &object;
+    }
+    return nullptr;
+}
+
+std::string weightName(VertexNormals w) {
+    switch (w) {
+        case VertexNormals::PolygonArea:
+            return "its polygon's vector area ×2 (the sum of its fan triangles' cross\n  products)";
+        case VertexNormals::TriangleArea:
+            return "the cross products (twice the areas) of its fan triangles that hold\n  the vertex";
+        case VertexNormals::Angle:
+            return "its unit normal n̂ times its interior angle θ at the vertex (|w| = θ,\n  in radians)";
+    }
+    return "?";
+}
+
+// The record of how a model's computed normals were made (loadObj read again with a
+// VertexNormalTrace): of every position for a model of up to kEveryPosition triangles, kept for the
+// next triangle of the same model (the web page's walks ask for many), else of the triangle's corners.
+// None when the file cannot be read again.
+std::shared_ptr<const VertexNormalTrace> normalTraceOf(const std::filesystem::path& model,
+                                                       const ObjOptions& options, const Mesh& mesh,
+                                                       const TriangleTrace& t) {
+    constexpr std::size_t kEveryPosition = 200000;
+    static std::mutex mutex;
+    static std::filesystem::path cachedModel;
+    static ObjOptions cachedOptions;
+    static std::filesystem::file_time_type cachedTime;
+    static std::shared_ptr<const VertexNormalTrace> cached;
+    const bool every = mesh.stats.trianglesKept <= kEveryPosition;
+    std::error_code unknown;  // then no time: compared as such
+    const std::filesystem::file_time_type time = std::filesystem::last_write_time(model, unknown);
+    if (every) {
+        const std::lock_guard lock(mutex);
+        if (cached && cachedModel == model && cachedOptions == options && cachedTime == time) return cached;
+    }
+    auto trace = std::make_shared<VertexNormalTrace>();
+    trace->all = every;
+    if (!every) trace->positions.assign(t.objectPositions.begin(), t.objectPositions.end());
+    try {
+        loadObj(model, options, trace.get());
+    } catch (const std::exception&) {
+        return nullptr;  // the file changed since: nothing to show
+    }
+    if (every) {
+        const std::lock_guard lock(mutex);
+        cachedModel = model;
+        cachedOptions = options;
+        cachedTime = time;
+        cached = trace;
+    }
+    return trace;
+}
+
+// How the computed normals of the triangle's corners were made: the model read again with
+// loadObj's VertexNormalTrace (the very sums the import computes), the groups whose normal is the
+// vertex's. Nothing for corners whose normals the file gives.
+std::string vertexNormalText(const PreparedScene& prepared, const TriangleTrace& t) {
+    const ObjectSpec* object = objectOfDraw(prepared, t.ref.draw);
+    if (!object || prepared.assets->model(object->model).stats.normalsComputed == 0) return "";
+    const std::shared_ptr<const VertexNormalTrace> traced =
+        normalTraceOf(object->model, prepared.assets->options.obj, prepared.assets->model(object->model), t);
+    if (!traced) return "";
+    // The groups at the corners' positions.
+    VertexNormalTrace trace;
+    trace.weighting = traced->weighting;
+    trace.creaseCosine = traced->creaseCosine;
+    trace.smoothAll = traced->smoothAll;
+    for (const VertexNormalTrace::Group& g : traced->groups)
+        if (std::find(t.objectPositions.begin(), t.objectPositions.end(), g.position) !=
+            t.objectPositions.end())
+            trace.groups.push_back(g);
+    constexpr std::size_t kShown = 6;
+    std::ostringstream out;
+    out << "\nThe model gives no normals here: Facet computed them when it read the file,\n"
+           "n = normalize(Σ w_f) over the faces f at the vertex's position (lecture deck A:\n"
+           "a vertex normal averaged from its faces).\nw_f, by lighting.normals ("
+        << nameOf(trace.weighting) << "):\n  " << weightName(trace.weighting) << ".\n";
+    if (trace.smoothAll)
+        out << "Crease angle 180°: every face at the position is summed.\n";
+    else
+        out << "Crease angle: a face counts when n̂_f·n̂_own ≥ cos(angle) = " << number(trace.creaseCosine)
+            << ",\nn̂_own the unit normal of the corner's own face.\n";
+    // The groups of each corner (its position and normal), seen from the triangle's own face: the
+    // face all three corners' groups are seen from (else the first group of the corner).
+    const auto corner = [&](int k, const VertexNormalTrace::Group& g) {
+        return g.position == t.objectPositions[k] && g.normal == t.objectNormals[k];
+    };
+    std::optional<std::uint32_t> ownFace;
+    for (const VertexNormalTrace::Group& g : trace.groups) {
+        if (!corner(0, g)) continue;
+        const auto seen = [&](int k) {
+            return std::any_of(trace.groups.begin(), trace.groups.end(),
+                               [&](const auto& h) { return corner(k, h) && h.ownFace == g.ownFace; });
+        };
+        if (seen(1) && seen(2)) {
+            ownFace = g.ownFace;
+            break;
+        }
+    }
+    for (int k = 0; k < 3; ++k) {
+        auto match = std::find_if(trace.groups.begin(), trace.groups.end(), [&](const auto& g) {
+            return corner(k, g) && (!ownFace || g.ownFace == *ownFace);
+        });
+        if (match == trace.groups.end())
+            match = std::find_if(trace.groups.begin(), trace.groups.end(),
+                                 [&](const auto& g) { return corner(k, g); });
+        out << "\n  v" << k;
+        if (match == trace.groups.end()) {
+            out << ": the model file gives its normal " << vectorText(t.objectNormals[k]) << "\n";
+            continue;
+        }
+        const VertexNormalTrace::Group& g = *match;
+        out << ": " << g.faces.size() << " face" << (g.faces.size() == 1 ? "" : "s")
+            << " at its position, own face " << g.ownFace << (g.clustered ? " (greedy cluster)" : "") << "\n";
+        std::size_t shown = 0;
+        for (const VertexNormalTrace::Face& f : g.faces) {
+            if (shown++ == kShown) {
+                out << "    and " << g.faces.size() - kShown << " more\n";
+                break;
+            }
+            out << "    face " << f.face << ": n̂ = " << vectorText(vec3(f.unit))
+                << "\n      w = " << vectorText(vec3(f.weight))
+                << ", |w| = " << number(glm::length(f.weight));
+            if (trace.smoothAll)
+                out << "\n";
+            else
+                out << "\n      n̂·n̂_own = " << number(f.cosine)
+                    << (f.smoothed ? " ≥ cos: summed\n" : " < cos: left out (crease)\n");
+        }
+        const double length = glm::length(g.sum);
+        out << "    Σ w = " << vectorText(vec3(g.sum)) << ", |Σ w| = " << number(length) << "\n"
+            << "    n = Σ w / |Σ w| = " << vectorText(g.normal) << "\n";
+    }
+    return out.str();
+}
+
 Screen inputScreen(const PreparedScene& prepared, const TriangleTrace& t) {
     std::ostringstream out;
     out << "Triangle " << t.ref.number << " of the scene" << drawPlace(prepared, t.ref)
@@ -154,12 +326,68 @@ Screen inputScreen(const PreparedScene& prepared, const TriangleTrace& t) {
     for (int k = 0; k < 3; ++k)
         out << "  v" << k << "  position " << vectorText(t.objectPositions[k]) << "\n      normal   "
             << vectorText(t.objectNormals[k]) << "\n";
+    if (t.ref.draw < prepared.draws.size() &&
+        prepared.draws[t.ref.draw].frequency == ShadingFrequency::Flat &&
+        prepared.scene.lighting.preset != LightingPreset::GL)
+        out << faceNormalText(t);
+    else
+        out << vertexNormalText(prepared, t);
     out << "\nThe vertex shader runs once per vertex; the triangle is then assembled from\n"
            "its three outputs (primitive assembly) in this order, v0 v1 v2.\n";
     return {"input", "Input: triangle " + std::to_string(t.ref.number) + " and its vertices", out.str()};
 }
 
-Screen transformScreen(const TriangleTrace& t) {
+// The columns a UTF-8 text takes: its code points.
+std::size_t textColumns(const std::string& s) {
+    return static_cast<std::size_t>(std::count_if(
+        s.begin(), s.end(), [](char c) { return (static_cast<unsigned char>(c) & 0xc0) != 0x80; }));
+}
+
+void matrixLines(std::ostringstream& out, const std::string& name, const glm::dmat3& m) {
+    for (int row = 0; row < 3; ++row) {
+        out << (row == 0 ? "  " + name + " = [" : std::string(textColumns(name) + 5, ' ') + " ");
+        for (int column = 0; column < 3; ++column) {
+            char cell[16];
+            std::snprintf(cell, sizeof cell, " %12.6g", m[column][row] == 0.0 ? 0.0 : m[column][row]);
+            out << cell;
+        }
+        out << (row == 2 ? " ]\n" : "\n");
+    }
+}
+
+// The normals through the vertex shader: the normal matrix (renderer.h's normalMatrix, as placeDraw
+// made the draw's uniform) and each corner's n_eye = N·n_obj, computed by the surface shader's vertex().
+// `faceNormals`: flat shading gave the corners the face normal (not under the gl preset).
+void normalLines(std::ostringstream& out, const PreparedDraw& draw, const TriangleTrace& t,
+                 bool faceNormals) {
+    const NormalMatrix n = normalMatrix(draw.viewFromObjectExact);
+    out << "\nNormals: n_eye = N·n_obj, N = ((V·M)⁻¹)ᵀ of the upper-left 3×3 of V·M (lecture\n"
+           "deck A's vertex shader, n = normalize(N·nrm)): it keeps normals perpendicular\n"
+           "to the surface when M scales unevenly.\n";
+    matrixLines(out, "((V·M)⁻¹)ᵀ", n.inverseTranspose);
+    const double scale = std::cbrt(std::abs(n.determinant));
+    out << "  det = " << number(n.determinant) << ", N = ((V·M)⁻¹)ᵀ / ∛|det| = ((V·M)⁻¹)ᵀ / " << number(scale)
+        << "\n  (Facet scales N to determinant 1: the lighting normalises n, so its length\n"
+           "  is free), in float:\n";
+    matrixLines(out, "N", glm::dmat3(draw.uniforms.normalFromObject));
+    const bool perPixel = draw.frequency == ShadingFrequency::Phong;
+    for (int k = 0; k < 3; ++k) {
+        const MeshVertex vertex{t.objectPositions[k], t.objectNormals[k], vec2(0.0f)};
+        const vec3 eye = PerPixelSurface::vertex(vertex, draw.uniforms).varyings.normal;
+        const float length = glm::length(eye);
+        out << "  v" << k << "  n_obj = " << vectorText(t.objectNormals[k]) << "\n"
+            << "      n_eye = N·n_obj = " << vectorText(eye) << "\n"
+            << "      |n_eye| = " << number(length);
+        if (length > 0.0f) out << ", n_eye/|n_eye| = " << vectorText(eye / length);
+        out << "\n";
+    }
+    out << (perPixel ? "Phong shading interpolates n_eye and normalises it at the pixel (lighting).\n"
+                     : "The lighting at each vertex uses n_eye/|n_eye| (lighting).\n");
+    if (draw.frequency == ShadingFrequency::Flat && faceNormals)
+        out << "Flat shading: n_obj is the face normal at every corner (see the input screen).\n";
+}
+
+Screen transformScreen(const PreparedScene& prepared, const TriangleTrace& t) {
     std::ostringstream out;
     out << "The vertex shader maps each corner from object space to clip space:\n"
            "  world = M·object   M: the object's placement in the scene\n"
@@ -178,6 +406,8 @@ Screen transformScreen(const TriangleTrace& t) {
             << "      clip   " << vectorText(t.clipPositions[k]) << "\n";
     }
     out << "\n(clip is the vertex shader's gl_Position as the pipeline computed it.)\n";
+    if (t.ref.draw < prepared.draws.size())
+        normalLines(out, prepared.draws[t.ref.draw], t, prepared.scene.lighting.preset != LightingPreset::GL);
     return {"transform", "Vertex shader: object → world → eye → clip space", out.str()};
 }
 
@@ -531,7 +761,7 @@ std::vector<Screen> triangleScreens(const PreparedScene& prepared, const Triangl
     const bool user =
         triangle.ref.draw < prepared.draws.size() && prepared.draws[triangle.ref.draw].userShader.module;
     return {inputScreen(prepared, triangle),
-            user ? userVertexScreen(prepared, triangle) : transformScreen(triangle),
+            user ? userVertexScreen(prepared, triangle) : transformScreen(prepared, triangle),
             clipScreen(triangle),
             windowScreen(triangle),
             setupScreen(triangle),
@@ -733,6 +963,32 @@ std::vector<Screen> fragmentScreens(const PreparedScene* prepared, const PixelTr
     return screens;
 }
 
+// The sort key that placed a transparent triangle in the back-to-front order (renderer.h's eyeDepthOf
+// and sortKeyOf, as the frame's plan computed it).
+std::string sortKeyText(const PreparedScene& prepared, const TriangleRef& ref) {
+    if (ref.draw >= prepared.draws.size()) return "";
+    const PreparedDraw& d = prepared.draws[ref.draw];
+    const std::size_t first = 3 * std::size_t{ref.triangle};
+    if (first + 2 >= d.indices.size()) return "";
+    float z[3];
+    for (int c = 0; c < 3; ++c)
+        z[c] = eyeDepthOf(d.uniforms.viewFromObject, d.vertices[d.indices[first + c]].position);
+    const SortKey key = prepared.scene.transparency.key;
+    const float value = sortKeyOf(key, z[0], z[1], z[2]);
+    std::ostringstream out;
+    out << "Its sort key, the distance along the view direction (larger is farther, drawn\nearlier), of its "
+        << (key == SortKey::Centroid ? "centroid" : "farthest corner") << ", from the corners' eye-space z:\n"
+        << "  z0 = " << number(z[0]) << ", z1 = " << number(z[1]) << ", z2 = " << number(z[2]) << "\n";
+    if (key == SortKey::Centroid)
+        out << "  z_key = −(z0 + z1 + z2)/3 = −(" << bracketedIfNegative(z[0]) << " + "
+            << bracketedIfNegative(z[1]) << " + " << bracketedIfNegative(z[2]) << ")/3 = " << number(value)
+            << "\n";
+    else
+        out << "  z_key = −min(z0, z1, z2) = −min(" << number(z[0]) << ", " << number(z[1]) << ", "
+            << number(z[2]) << ") = " << number(value) << "\n";
+    return out.str();
+}
+
 std::vector<Screen> outputScreens(const PreparedScene& prepared, const PixelTrace& p,
                                   const TriangleAtPixel* entry) {
     std::vector<Screen> screens;
@@ -781,6 +1037,9 @@ std::vector<Screen> outputScreens(const PreparedScene& prepared, const PixelTrac
                 out << "\nThis transparent triangle was drawn " << *entry->sortPlace + 1 << ". of "
                     << "the frame's transparent triangles\n(" << nameOf(prepared.scene.transparency.mode)
                     << " order).\n";
+            if (entry->transparent && entry->sortPlace &&
+                prepared.scene.transparency.mode == TransparencyMode::Sorted)
+                out << sortKeyText(prepared, entry->ref);
             if (entry->overwrittenBy)
                 out << "\nLater " << triangleName(*entry->overwrittenBy) << " wrote this pixel again.\n";
         } else if (f && f->fate == FragmentFate::Stored) {
@@ -815,12 +1074,17 @@ std::vector<Screen> outputScreens(const PreparedScene& prepared, const PixelTrac
         static const char* const kChannel[] = {"R", "G", "B", "A"};
         for (int c = 0; c < 4; ++c) {
             const double linear = p.finalColor[c];
-            const bool power = e.curve == TransferCurve::Power;
-            const double encoded = c >= 3  ? linear
-                                   : power ? std::pow(std::clamp(linear, 0.0, 1.0), 1.0 / e.gamma)
-                                           : linearToSrgb(float(linear));
+            const double encoded = c < 3 ? encodedUnit(float(linear), e) : linear;
             out << "  " << kChannel[c] << ": " << number(linear);
-            if (c < 3 && (e.curve == TransferCurve::Srgb || power)) out << " → " << number(encoded);
+            if (c < 3 && e.curve == TransferCurve::Srgb) out << " → " << number(encoded);
+            if (c < 3 && e.curve == TransferCurve::Power) {
+                // c' = c^(1/γ) (of c clamped to at most 1; c ≤ 0 gives 0), then 255·c' rounded.
+                if (linear > 0.0)
+                    out << "^(1/" << number(e.gamma) << ")" << (linear > 1.0 ? " (clamped to 1)" : "")
+                        << " = " << number(encoded) << ", 255·c' = " << number(float(encoded) * 255.0f);
+                else
+                    out << " ≤ 0: c' = 0";
+            }
             out << " → " << int(p.finalBytes[c]) << "\n";
         }
         char hex[16];

@@ -51,7 +51,10 @@ std::optional<ShadingTrace> shadingOf(const PreparedScene& prepared, const Pixel
     }
     SurfaceUniforms uniforms = draw.uniforms;
     uniforms.terms = terms;  // as renderFrame draws it
-    return traceShading(uniforms, draw.frequency, *entry->fragment, corners, provoking);
+    ShadingTrace trace = traceShading(uniforms, draw.frequency, *entry->fragment, corners, provoking);
+    if (exchanged) trace.vertexOfCorner = {0, 2, 1};
+    trace.faceNormal = prepared.scene.lighting.preset != LightingPreset::GL;
+    return trace;
 }
 
 std::optional<UserShaderTrace> userShaderOf(const PreparedScene& prepared, const PixelTrace& pixel,
