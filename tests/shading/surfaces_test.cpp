@@ -191,7 +191,7 @@ TEST(FresnelPolarized, BrdfUsesTheIorAndRecordsBothPolarisations) {
     const BrdfModel model{NormalDistribution::GGX, FresnelModel::Exact, GeometryTerm::SmithGGX};
     const vec3 n(0, 0, 1), l = glm::normalize(vec3(0.9f, 0, 0.4f)), v = glm::normalize(vec3(-0.9f, 0, 0.4f));
     BrdfRecord record;
-    brdfLobes<float>(n, l, v, glass, glass.baseColor, model, &record);
+    brdfLobes<float>(n, l, v, glass, glass.baseColor, model, nullptr, &record);
     const double thetaI = std::acos(double(record.VdotH));
     const Polarized expected = fresnelReference(thetaI, 1.7);
     EXPECT_NEAR(record.F.x, (expected.s + expected.p) / 2, 1e-5);
