@@ -255,15 +255,15 @@ template <class F, class V3 = LaneVec3<F>, class... Recording>
                                                              Recording*... recording) {
     if (u.normalization == Normalization::Fast)
         return u.precision == MathPrecision::Exact
-                   ? surfaceTermsWith<F, V3, MathPrecision::Exact, Normalization::Fast>(P, normal, albedo, u, tangent,
-                                                                                        recording...)
-                   : surfaceTermsWith<F, V3, MathPrecision::Fast, Normalization::Fast>(P, normal, albedo, u, tangent,
-                                                                                       recording...);
+                   ? surfaceTermsWith<F, V3, MathPrecision::Exact, Normalization::Fast>(P, normal, albedo, u,
+                                                                                        tangent, recording...)
+                   : surfaceTermsWith<F, V3, MathPrecision::Fast, Normalization::Fast>(P, normal, albedo, u,
+                                                                                       tangent, recording...);
     return u.precision == MathPrecision::Exact
-               ? surfaceTermsWith<F, V3, MathPrecision::Exact, Normalization::Exact>(P, normal, albedo, u, tangent,
-                                                                                     recording...)
-               : surfaceTermsWith<F, V3, MathPrecision::Fast, Normalization::Exact>(P, normal, albedo, u, tangent,
-                                                                                    recording...);
+               ? surfaceTermsWith<F, V3, MathPrecision::Exact, Normalization::Exact>(P, normal, albedo, u,
+                                                                                     tangent, recording...)
+               : surfaceTermsWith<F, V3, MathPrecision::Fast, Normalization::Exact>(P, normal, albedo, u,
+                                                                                    tangent, recording...);
 }
 
 // What a surface shader writes, from the lit colour c and its alpha α at eye-space point P: fog first,
@@ -537,9 +537,8 @@ struct PerVertexSurface {
     static VaryingsT<F> lightVertex(const VertexInputsT<F>& in, const Uniforms& u, Recording*... recording) {
         using Record = RecordOf<Recording...>;
         using V3 = LaneVec3<F>;
-        LightingTerms<V3> t =
-            surfaceTerms<F>(in.position, in.normal, V3(u.albedo()), u, static_cast<const V3*>(nullptr),
-                            &recording->lighting...);
+        LightingTerms<V3> t = surfaceTerms<F>(in.position, in.normal, V3(u.albedo()), u,
+                                              static_cast<const V3*>(nullptr), &recording->lighting...);
         if (u.emissionMap) t.emission = V3(vec3(0.0f));  // added, textured, per fragment
         if constexpr (Record::enabled) {
             auto& record = *recordOf(recording...);

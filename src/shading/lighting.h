@@ -702,7 +702,8 @@ struct BrdfRecord {
 template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact,
           Normalization kNormalization = Normalization::Exact, class... Recording>
 BrdfLobes<V3> brdfLobes(const V3& n, const V3& l, const V3& v, const PbrMaterial& m, const V3& albedo,
-                        const BrdfModel& model = {}, const TangentFrame<std::type_identity_t<V3>>* frame = nullptr,
+                        const BrdfModel& model = {},
+                        const TangentFrame<std::type_identity_t<V3>>* frame = nullptr,
                         Recording*... recording) {
     using Record = RecordOf<Recording...>;
     // The cosines, clamped away from the divisions' zeros.
@@ -720,8 +721,7 @@ BrdfLobes<V3> brdfLobes(const V3& n, const V3& l, const V3& v, const PbrMaterial
 
     // D, F, G. Anisotropic GGX where a tangent frame is given and the material asks for it (GGX only:
     // the other distributions stay isotropic).
-    const bool anisotropic =
-        frame && m.anisotropy != 0.0f && model.distribution == NormalDistribution::GGX;
+    const bool anisotropic = frame && m.anisotropy != 0.0f && model.distribution == NormalDistribution::GGX;
     const AnisotropicAlpha alphas = anisotropicAlpha(alpha, m.anisotropy);
     const F HdotT = anisotropic ? dot(H, frame->T) : lanes<F>(0.0f);
     const F HdotB = anisotropic ? dot(H, frame->B) : lanes<F>(0.0f);
@@ -748,26 +748,26 @@ BrdfLobes<V3> brdfLobes(const V3& n, const V3& l, const V3& v, const PbrMaterial
     const V3 diffuse = (V3(vec3(1.0f)) - fresnel) * albedo * diffuseScale;
     const V3 zero(vec3(0.0f));
     if constexpr (Record::enabled)
-        *recordOf(recording...) = {.N = N,
-                                   .L = L,
-                                   .V = V,
-                                   .H = H,
-                                   .NdotLRaw = NdotLRaw,
-                                   .NdotL = NdotL,
-                                   .NdotV = NdotV,
-                                   .NdotH = NdotH,
-                                   .VdotH = VdotH,
-                                   .alpha = alpha,
-                                   .f0 = f0,
-                                   .model = model,
-                                   .D = D,
-                                   .F = fresnel,
-                                   .G = G,
-                                   .specularScale = specularScale,
-                                   .diffuseScale = diffuseScale,
-                                   .grazing = !(NdotLRaw > kGrazingCosine),
-                                   .lobes = brdfLobes<F, V3, P, kNormalization>(n, l, v, m, albedo, model,
-                                                                                frame)};
+        *recordOf(recording...) = {
+            .N = N,
+            .L = L,
+            .V = V,
+            .H = H,
+            .NdotLRaw = NdotLRaw,
+            .NdotL = NdotL,
+            .NdotV = NdotV,
+            .NdotH = NdotH,
+            .VdotH = VdotH,
+            .alpha = alpha,
+            .f0 = f0,
+            .model = model,
+            .D = D,
+            .F = fresnel,
+            .G = G,
+            .specularScale = specularScale,
+            .diffuseScale = diffuseScale,
+            .grazing = !(NdotLRaw > kGrazingCosine),
+            .lobes = brdfLobes<F, V3, P, kNormalization>(n, l, v, m, albedo, model, frame)};
     if constexpr (Record::enabled) {
         BrdfRecord& r = *recordOf(recording...);
         if (anisotropic) {
@@ -821,7 +821,8 @@ LightingTerms<V3> physicallyBasedTerms(const V3& position, const V3& normal, con
                                        const PbrMaterial& m, const V3& albedo, const vec3& emission,
                                        const vec3& globalAmbient, std::span<const LightParams> lights,
                                        const BrdfModel& model = {}, const F* visibility = nullptr,
-                                       const std::type_identity_t<V3>* tangent = nullptr, Recording*... recording) {
+                                       const std::type_identity_t<V3>* tangent = nullptr,
+                                       Recording*... recording) {
     using Record = RecordOf<Recording...>;
     static_assert(!Record::enabled || std::is_same_v<F, float>, "records hold one lane");
     const V3 N = safeNormalize<F, V3, kNormalization>(normal);

@@ -376,8 +376,8 @@ void writeBrdf(Lines& out, const LightingRecord& lighting, const BrdfRecord& b) 
         out.add("  T = ∂P/∂u made ⊥ N, unit = " + vec(b.T));
         out.add("  B = N × T = " + vec(b.B));
         const float a = lighting.pbr.anisotropy;
-        out.add("  a = " + num(a) + ": α_x = α(1 + a) = " + num(b.alphaX) + ", α_y = α(1 − a) = " +
-                num(b.alphaY));
+        out.add("  a = " + num(a) + ": α_x = α(1 + a) = " + num(b.alphaX) +
+                ", α_y = α(1 − a) = " + num(b.alphaY));
         out.add("  H·T = " + num(b.HdotT) + ", H·B = " + num(b.HdotB) + ", N·H = " + num(b.NdotH));
         out.add("  D = 1/(π α_x α_y ((H·T/α_x)² + (H·B/α_y)² + (N·H)²)²)   (anisotropic GGX)");
         out.add("    = 1/(π·" + num(b.alphaX) + "·" + num(b.alphaY) + "·((" + num(b.HdotT) + "/" +
@@ -871,9 +871,8 @@ nlohmann::json toJson(const LightRecord& r, bool physicallyBased) {
                      {"diffuseLobe", json3(b.lobes.diffuse)},
                      {"specularLobe", json3(b.lobes.specular)}};
         if (b.anisotropic)
-            j["brdf"]["anisotropic"] = {{"T", json3(b.T)},         {"B", json3(b.B)},
-                                        {"alphaX", b.alphaX},      {"alphaY", b.alphaY},
-                                        {"HdotT", b.HdotT},        {"HdotB", b.HdotB}};
+            j["brdf"]["anisotropic"] = {{"T", json3(b.T)},    {"B", json3(b.B)},  {"alphaX", b.alphaX},
+                                        {"alphaY", b.alphaY}, {"HdotT", b.HdotT}, {"HdotB", b.HdotB}};
     } else {
         j["attTimesSpot"] = r.reach;
         j["reflected"] = json3(r.reflected);

@@ -188,7 +188,8 @@ TEST(LightingRecord, CookTorranceDFGEqualTheHandComputedOnes) {
     BrdfRecord other;
     brdfLobes<float>(
         kNormal, r.L, vec3(0.0f, 0.0f, 1.0f), m, m.baseColor,
-        BrdfModel{NormalDistribution::Beckmann, FresnelModel::Schlick, GeometryTerm::CookTorrance}, nullptr, &other);
+        BrdfModel{NormalDistribution::Beckmann, FresnelModel::Schlick, GeometryTerm::CookTorrance}, nullptr,
+        &other);
     // D = exp((c² − 1)/(α² c²))/(π α² c⁴), c² = 0.9.
     EXPECT_NEAR(other.D, std::exp((0.9 - 1) / (a2 * 0.9)) / (std::numbers::pi * a2 * 0.81), 1e-5);
     // G = min(1, 2(N·H)(N·V)/(V·H), 2(N·H)(N·L)/(V·H)) = min(1, 2, 1.6) = 1.
@@ -258,8 +259,8 @@ TEST(LightingRecord, RecordingChangesNoBitOfTheResult) {
         const LightingTerms<vec3> plain = physicallyBasedTerms<float, vec3, MathPrecision::Exact>(
             position, normal, kEye, pbr, pbr.baseColor, vec3(0.0f), kGlobalAmbient, lights, model);
         const LightingTerms<vec3> recorded = physicallyBasedTerms<float, vec3, MathPrecision::Exact>(
-            position, normal, kEye, pbr, pbr.baseColor, vec3(0.0f), kGlobalAmbient, lights, model, nullptr, nullptr,
-            &record);
+            position, normal, kEye, pbr, pbr.baseColor, vec3(0.0f), kGlobalAmbient, lights, model, nullptr,
+            nullptr, &record);
         EXPECT_TRUE(sameBits(plain.sum(), recorded.sum()));
         EXPECT_TRUE(
             sameBits(record.lights[0].specular + record.lights[1].specular + record.lights[2].specular,

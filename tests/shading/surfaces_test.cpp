@@ -257,7 +257,6 @@ TEST(F0Table, EveryRowMatchesRealTimeRenderingTables91And92) {
     EXPECT_EQ(std::size(kTable), kMaterialPresets.size());  // and no row Facet has that the tables lack
 }
 
-
 // ---- The tangent frame (tangent.h) ---------------------------------------------------------------
 
 namespace tangent_test {
@@ -304,8 +303,8 @@ TEST(TangentFrame, ScreenDerivativesGiveTheTrianglesLengyelTangent) {
     EXPECT_NEAR(frame.T.z, expected.z, 1e-3);
     EXPECT_NEAR(glm::dot(frame.B, vec3(glm::cross(n, expected))), 1.0f, 1e-3f);
     // The same formula on the edges (the reference's use) gives Lengyel's tangent itself.
-    const vec3 edges = tangentFromDifferentials<float>(vec3(e1), vec3(e2), float(d1.x), float(d1.y), float(d2.x),
-                                                       float(d2.y), vec3(0.0f));
+    const vec3 edges = tangentFromDifferentials<float>(vec3(e1), vec3(e2), float(d1.x), float(d1.y),
+                                                       float(d2.x), float(d2.y), vec3(0.0f));
     EXPECT_NEAR(glm::length(edges - vec3(lengyel)), 0.0f, 1e-5f);
     // No uv (all derivatives 0): the eye-space x axis projected.
     const vec3 none = tangentFromDifferentials<float>(dP.dPdx, dP.dPdy, 0.0f, 0.0f, 0.0f, 0.0f,
