@@ -243,7 +243,16 @@ LinearImage renderReference(const PreparedScene& prepared, const ReferenceOption
                     b.weights.z * draw.normals[corner[2]];
         in.uv = b.weights.x * draw.uvs[corner[0]] + b.weights.y * draw.uvs[corner[1]] +
                 b.weights.z * draw.uvs[corner[2]];
-        return PerPixelSurface::shade<double>(in, draw.uniforms, 1u);
+        if (!draw.uniforms.anisotropic()) return PerPixelSurface::shade<double>(in, draw.uniforms, 1u);
+        // Anisotropic GGX: the triangle's exact tangent ∂P/∂u from its corners' positions and uvs
+        // (Lengyel 2001, tangent.h), made a frame about the interpolated normal by the lighting.
+        const dvec3 a = draw.positions[corner[0]], b1 = draw.positions[corner[1]],
+                    c = draw.positions[corner[2]];
+        const dvec2 ta = draw.uvs[corner[0]], tb = draw.uvs[corner[1]], tc = draw.uvs[corner[2]];
+        const dvec3 tangent =
+            tangentFromDifferentials<double, dvec3>(b1 - a, c - a, tb.x - ta.x, tb.y - ta.y, tc.x - ta.x,
+                                                    tc.y - ta.y, fallbackTangent<double, dvec3>(in.normal));
+        return PerPixelSurface::shadeWithTangent<double>(in, draw.uniforms, 1u, {}, &tangent);
     };
 
     const auto start = std::chrono::steady_clock::now();

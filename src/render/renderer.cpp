@@ -350,6 +350,11 @@ SurfaceUniforms commonUniforms(const Scene& scene, std::span<const LightSpec> li
         if (scene.areaSamples && isAreaLight(lights[i].type))
             common.lights[i].areaSamples = *scene.areaSamples;
     }
+    // A pixel's size in eye space (per unit of depth under perspective), for anisotropic draws' tangents.
+    const glm::dmat4& projection = camera.clipFromViewExact;
+    common.perspective = projection[3][3] == 0.0;
+    common.pixelSpread =
+        vec2(float(2.0 / (projection[0][0] * scene.width)), float(2.0 / (projection[1][1] * scene.height)));
     return common;
 }
 

@@ -121,7 +121,7 @@ F blinnPhongSpecular(const V3& N, const V3& L, const V3& V, const SurfaceUniform
 // diffuse, specular; sum() adds them).
 template <class F, class V3 = LaneVec3<F>>
 LightingTerms<V3> builtinTerms(const V3& P, const V3& normal, const V3& albedo, const SurfaceUniforms& u) {
-    return surfaceTerms<F, V3>(P, normal, albedo, u);
+    return surfaceTerms<F, V3>(P, normal, albedo, u, static_cast<const V3*>(nullptr));
 }
 
 // ---- Cook-Torrance's D, F and G ----------------------------------------------------------------------

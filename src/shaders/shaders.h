@@ -67,6 +67,11 @@ struct SurfaceUniforms {
     // every shading frequency: per vertex, the emission is left out of the vertex colours and added
     // in the fragment, textured.
     const Texture* emissionMap = nullptr;
+    // The size of a pixel in eye space (x rightwards, y down the rows), per unit of depth when
+    // `perspective`, else the size itself: (2/(P₀₀·width), 2/(P₁₁·height)) of the projection P. An
+    // anisotropic draw finds its tangent from the uv derivatives and these (tangent.h).
+    vec2 pixelSpread{0.0f};
+    bool perspective = true;
     // How both maps are filtered. Trilinear reads the fragment's uv derivatives (the back end computes
     // them for such a draw only: usesDerivatives) and the maps' mip chains (built by prepareScene).
     TextureFilter textureFilter = TextureFilter::Bilinear;
@@ -105,6 +110,10 @@ struct SurfaceUniforms {
     }
     vec3 albedo() const {
         return reflection == ReflectionModel::CookTorrance ? pbr.baseColor : material.diffuse;
+    }
+    // Anisotropic GGX: Cook-Torrance with anisotropy ≠ 0 (lit per pixel: it needs a tangent frame).
+    bool anisotropic() const {
+        return reflection == ReflectionModel::CookTorrance && pbr.anisotropy != 0.0f && !unlit;
     }
     // The emission term as the selected terms have it, before its texture.
     vec3 emissionTerm() const { return (terms & kEmissionTerm) ? material.emission : vec3(0.0f); }
@@ -207,7 +216,7 @@ struct VertexLightingRecord {
 template <class F, class V3, MathPrecision kPrecision, Normalization kNormalization, class... Recording>
 [[gnu::always_inline]] inline LightingTerms<V3> surfaceTermsWith(const V3& P, const V3& normal,
                                                                  const V3& albedo, const SurfaceUniforms& u,
-                                                                 Recording*... recording) {
+                                                                 const V3* tangent, Recording*... recording) {
     using Record = RecordOf<Recording...>;
     if constexpr (Record::enabled)
         *recordOf(recording...) = {
@@ -251,7 +260,7 @@ template <class F, class V3, MathPrecision kPrecision, Normalization kNormalizat
         case ReflectionModel::CookTorrance:
             t = physicallyBasedTerms<F, V3, kPrecision, kNormalization>(
                 P, N, eye, u.pbr, albedo, u.material.emission, u.globalAmbient, u.activeLights(), u.brdf,
-                visibility, &recording->lighting...);
+                visibility, tangent, &recording->lighting...);
             break;
     }
     if (u.clampNdotV) {
@@ -277,19 +286,19 @@ template <class F, class V3, MathPrecision kPrecision, Normalization kNormalizat
 // vectors. Both are the draw's, so the branch goes the same way for every fragment of it.
 template <class F, class V3 = LaneVec3<F>, class... Recording>
 [[gnu::always_inline]] inline LightingTerms<V3> surfaceTerms(const V3& P, const V3& normal, const V3& albedo,
-                                                             const SurfaceUniforms& u,
+                                                             const SurfaceUniforms& u, const V3* tangent,
                                                              Recording*... recording) {
     if (u.normalization == Normalization::Fast)
         return u.precision == MathPrecision::Exact
                    ? surfaceTermsWith<F, V3, MathPrecision::Exact, Normalization::Fast>(P, normal, albedo, u,
-                                                                                        recording...)
+                                                                                        tangent, recording...)
                    : surfaceTermsWith<F, V3, MathPrecision::Fast, Normalization::Fast>(P, normal, albedo, u,
-                                                                                       recording...);
+                                                                                       tangent, recording...);
     return u.precision == MathPrecision::Exact
                ? surfaceTermsWith<F, V3, MathPrecision::Exact, Normalization::Exact>(P, normal, albedo, u,
-                                                                                     recording...)
+                                                                                     tangent, recording...)
                : surfaceTermsWith<F, V3, MathPrecision::Fast, Normalization::Exact>(P, normal, albedo, u,
-                                                                                    recording...);
+                                                                                    tangent, recording...);
 }
 
 // What a surface shader writes, from the lit colour c and its alpha α at eye-space point P: fog first,
@@ -391,13 +400,30 @@ struct PerPixelSurface {
     // The varyings' floats by name, in VaryingsT's order (the step mode's screens show them).
     static constexpr std::array<std::string_view, 8> kVaryingNames = {
         "P_eye.x", "P_eye.y", "P_eye.z", "N_eye.x", "N_eye.y", "N_eye.z", "u", "v"};
-    // uv's derivatives, for trilinear filtering (pipeline/shader.h).
+    // uv's derivatives (pipeline/shader.h), for trilinear filtering and for an anisotropic draw's
+    // tangent frame (surfaceTangent).
     static constexpr int kDerivativeVarying = 6;
-    static bool usesDerivatives(const Uniforms& u) { return u.textureFilter == TextureFilter::Trilinear; }
+    static bool usesDerivatives(const Uniforms& u) {
+        return u.textureFilter == TextureFilter::Trilinear || u.anisotropic();
+    }
 
     static VertexOut<VaryingsT<float>> vertex(const Attributes& in, const Uniforms& u) {
         return {u.clipFromObject * vec4(in.position, 1.0f),
                 {vec3(u.viewFromObject * vec4(in.position, 1.0f)), u.normalFromObject * in.normal, in.uv}};
+    }
+
+    // An anisotropic draw's tangent at the fragment, along ∂P/∂u (tangent.h): ∂P/∂x, ∂P/∂y from the
+    // pixel's neighbours' view rays met with the plane normal to N, ∂(u, v)/∂x, ∂(u, v)/∂y from the
+    // back end (exact, perspective-correct), t = (∂P/∂x·∂v/∂y − ∂P/∂y·∂v/∂x)/(∂u/∂x·∂v/∂y − ∂u/∂y·∂v/∂x),
+    // the eye-space x axis projected where the texture coordinates give no tangent.
+    template <class F>
+    static LaneVec3<F> surfaceTangent(const VaryingsT<F>& in, const Uniforms& u,
+                                      const TexCoordDerivativesT<F>& d) {
+        using V3 = LaneVec3<F>;
+        const ScreenDifferentials<V3> dP =
+            screenDifferentials<F, V3>(in.position, in.normal, u.pixelSpread, u.perspective);
+        return tangentFromDifferentials<F, V3>(dP.dPdx, dP.dPdy, d.dx.x, d.dx.y, d.dy.x, d.dy.y,
+                                               fallbackTangent<F, V3>(in.normal));
     }
 
     // vertex() for eight vertices at once (the vertex stage's groups): each matrix row applied to eight
@@ -435,6 +461,15 @@ struct PerPixelSurface {
     template <class F, class... Recording>
     static LaneVec4<F> shade(const VaryingsT<F>& in, const Uniforms& u, unsigned liveLanes,
                              const TexCoordDerivativesT<F>& uvDerivatives = {}, Recording*... recording) {
+        return shadeWithTangent<F>(in, u, liveLanes, uvDerivatives, nullptr, recording...);
+    }
+
+    // shade with the tangent given (the reference's exact one, from the triangle's corners); null:
+    // surfaceTangent's, for an anisotropic draw.
+    template <class F, class... Recording>
+    static LaneVec4<F> shadeWithTangent(const VaryingsT<F>& in, const Uniforms& u, unsigned liveLanes,
+                                        const TexCoordDerivativesT<F>& uvDerivatives,
+                                        const LaneVec3<F>* givenTangent, Recording*... recording) {
         using Record = RecordOf<Recording...>;
         using V3 = LaneVec3<F>;
         V3 albedo(u.albedo());
@@ -452,7 +487,14 @@ struct PerPixelSurface {
                 recordOf(recording...)->diffuseTexel = texel;
             }
         }
-        LightingTerms<V3> t = surfaceTerms<F>(in.position, in.normal, albedo, u, &recording->lighting...);
+        V3 tangent;
+        const V3* tangentUsed = givenTangent;
+        if (u.anisotropic() && !givenTangent) {
+            tangent = surfaceTangent<F>(in, u, uvDerivatives);
+            tangentUsed = &tangent;
+        }
+        LightingTerms<V3> t =
+            surfaceTerms<F>(in.position, in.normal, albedo, u, tangentUsed, &recording->lighting...);
         if (u.emissionMap) {
             const LaneVec4<F> texel = detail::texels<F>(*u.emissionMap, in.uv, liveLanes, u.textureFilter,
                                                         u.textureFootprint, uvDerivatives);
@@ -524,14 +566,16 @@ struct PerVertexSurface {
                 {vec3(u.viewFromObject * vec4(in.position, 1.0f)), u.normalFromObject * in.normal, in.uv}};
     }
 
-    // The lighting of one vertex or eight. A VertexLightingRecord, when given (F = float), receives
+    // The lighting of one vertex or eight: isotropic always, anisotropy has no tangent frame here (a
+    // vertex has its normal and uv but no derivatives of them; anisotropic GGX is lit per pixel). A
+    // VertexLightingRecord, when given (F = float), receives
     // every number of it.
     template <class F, class... Recording>
     static VaryingsT<F> lightVertex(const VertexInputsT<F>& in, const Uniforms& u, Recording*... recording) {
         using Record = RecordOf<Recording...>;
         using V3 = LaneVec3<F>;
-        LightingTerms<V3> t =
-            surfaceTerms<F>(in.position, in.normal, V3(u.albedo()), u, &recording->lighting...);
+        LightingTerms<V3> t = surfaceTerms<F>(in.position, in.normal, V3(u.albedo()), u,
+                                              static_cast<const V3*>(nullptr), &recording->lighting...);
         if (u.emissionMap) t.emission = V3(vec3(0.0f));  // added, textured, per fragment
         // The environment's reflection per vertex, with the specular term (interpolated as it is).
         if (u.reflectsEnvironment())

@@ -15,11 +15,13 @@
 #include <optional>
 #include <span>
 #include <string_view>
+#include <type_traits>
 
 #include "pipeline/glsl.h"
 #include "pipeline/names.h"
 #include "pipeline/wide.h"
 #include "shading/record.h"
+#include "shading/tangent.h"
 
 namespace facet {
 
@@ -835,6 +837,12 @@ struct BrdfRecord {
     // the two polarisations, F = (R_s + R_p)/2.
     vec3 eta{0.0f}, Rs{0.0f}, Rp{0.0f};
     float G = 0;
+    // Anisotropic GGX (a tangent frame given and anisotropy ≠ 0): the frame, the roughnesses along T
+    // and B, and the cosines D and Smith's G read.
+    bool anisotropic = false;
+    vec3 T{0.0f}, B{0.0f};
+    float alphaX = 0, alphaY = 0;
+    float HdotT = 0, HdotB = 0;
     float specularScale = 0;  // D·G/(k (N·L)(N·V)), k = 4 or π (model.denominator)
     float diffuseScale = 0;   // (1 − metalness)/π
     float fresnelCosine = 0;  // the cosine F was evaluated at: V·H or N·L (model.fresnelCosine)
@@ -848,7 +856,9 @@ struct BrdfRecord {
 template <class F, class V3 = LaneVec3<F>, MathPrecision P = MathPrecision::Exact,
           Normalization kNormalization = Normalization::Exact, class... Recording>
 BrdfLobes<V3> brdfLobes(const V3& n, const V3& l, const V3& v, const PbrMaterial& m, const V3& albedo,
-                        const BrdfModel& model = {}, Recording*... recording) {
+                        const BrdfModel& model = {},
+                        const TangentFrame<std::type_identity_t<V3>>* frame = nullptr,
+                        Recording*... recording) {
     using Record = RecordOf<Recording...>;
     // The cosines, clamped away from the divisions' zeros.
     const V3 N = safeNormalize<F, V3, kNormalization>(n);
@@ -863,8 +873,14 @@ BrdfLobes<V3> brdfLobes(const V3& n, const V3& l, const V3& v, const PbrMaterial
     const float alpha = alphaFromRoughness(m.roughness);
     const vec3 f0 = model.metal == MetalBlend::F0 ? mix(m.f0, m.baseColor, m.metalness) : m.f0;
 
-    // D, F, G.
-    const F D = model.distribution == NormalDistribution::GGX ? distributionGGX(NdotH, alpha)
+    // D, F, G. Anisotropic GGX where a tangent frame is given and the material asks for it (GGX only:
+    // the other distributions stay isotropic).
+    const bool anisotropic = frame && m.anisotropy != 0.0f && model.distribution == NormalDistribution::GGX;
+    const AnisotropicAlpha alphas = anisotropicAlpha(alpha, m.anisotropy);
+    const F HdotT = anisotropic ? dot(H, frame->T) : lanes<F>(0.0f);
+    const F HdotB = anisotropic ? dot(H, frame->B) : lanes<F>(0.0f);
+    const F D = anisotropic ? distributionGGXAnisotropic(HdotT, HdotB, NdotH, alphas.x, alphas.y)
+                : model.distribution == NormalDistribution::GGX ? distributionGGX(NdotH, alpha)
                 : model.distribution == NormalDistribution::Beckmann
                     ? distributionBeckmann<F, P>(NdotH, alpha)
                     : distributionGaussian<F, P>(NdotH, alpha);
@@ -875,8 +891,11 @@ BrdfLobes<V3> brdfLobes(const V3& n, const V3& l, const V3& v, const PbrMaterial
     const V3 fresnel = model.fresnel == FresnelModel::Schlick ? fresnelSchlick<F, V3>(f0, cosTheta)
                        : exactWithIor                         ? fresnelExactOneEta<F, V3>(cosTheta, m.ior)
                                                               : fresnelExact<F, V3>(f0, cosTheta);
-    const F G = model.geometry == GeometryTerm::SmithGGX ? geometrySmithGGX(NdotV, NdotL, alpha)
-                                                         : geometryCookTorrance(NdotH, NdotV, NdotL, VdotH);
+    const F G = model.geometry != GeometryTerm::SmithGGX ? geometryCookTorrance(NdotH, NdotV, NdotL, VdotH)
+                : anisotropic
+                    ? smithG1GGXAnisotropic(dot(L, frame->T), dot(L, frame->B), NdotL, alphas.x, alphas.y) *
+                          smithG1GGXAnisotropic(dot(V, frame->T), dot(V, frame->B), NdotV, alphas.x, alphas.y)
+                    : geometrySmithGGX(NdotV, NdotL, alpha);
 
     // Diffuse and specular lobes, nothing where the light is behind the surface.
     const F specularScale = D * G / (microfacetConstant(model.denominator) * NdotL * NdotV);
@@ -911,9 +930,18 @@ BrdfLobes<V3> brdfLobes(const V3& n, const V3& l, const V3& v, const PbrMaterial
                                                     ? vec3(1.0f) + (vec3(albedo) - vec3(1.0f)) * m.metalness
                                                     : vec3(1.0f),
                                    .grazing = !(NdotLRaw > kGrazingCosine),
-                                   .lobes = brdfLobes<F, V3, P, kNormalization>(n, l, v, m, albedo, model)};
+                                   .lobes = brdfLobes<F, V3, P, kNormalization>(n, l, v, m, albedo, model, frame)};
     if constexpr (Record::enabled) {
         BrdfRecord& r = *recordOf(recording...);
+        if (anisotropic) {
+            r.anisotropic = true;
+            r.T = frame->T;
+            r.B = frame->B;
+            r.alphaX = alphas.x;
+            r.alphaY = alphas.y;
+            r.HdotT = HdotT;
+            r.HdotB = HdotB;
+        }
         if (model.distribution == NormalDistribution::Gaussian) {
             r.gaussianC = gaussianNormalization(alpha);
             r.thetaH = angleFromCosine(std::clamp(float(NdotH), 0.0f, 1.0f));
@@ -958,11 +986,16 @@ LightingTerms<V3> physicallyBasedTerms(const V3& position, const V3& normal, con
                                        const PbrMaterial& m, const V3& albedo, const vec3& emission,
                                        const vec3& globalAmbient, std::span<const LightParams> lights,
                                        const BrdfModel& model = {}, const F* visibility = nullptr,
+                                       const std::type_identity_t<V3>* tangent = nullptr,
                                        Recording*... recording) {
     using Record = RecordOf<Recording...>;
     static_assert(!Record::enabled || std::is_same_v<F, float>, "records hold one lane");
     const V3 N = safeNormalize<F, V3, kNormalization>(normal);
     const V3 V = safeNormalize<F, V3, kNormalization>(eye - position);
+    // Anisotropic GGX: the tangent (along ∂P/∂u, tangent.h) made an orthonormal frame about N.
+    TangentFrame<V3> frame;
+    const bool anisotropic = tangent && m.anisotropy != 0.0f;
+    if (anisotropic) frame = orthonormalTangentFrame<F, V3>(N, *tangent);
     LightingTerms<V3> terms{V3(emission), albedo * globalAmbient, V3(vec3(0.0f)), V3(vec3(0.0f))};
     if constexpr (Record::enabled)
         *recordOf(recording...) = {.physicallyBased = true,
@@ -986,7 +1019,8 @@ LightingTerms<V3> physicallyBasedTerms(const V3& position, const V3& normal, con
             max(dot(N, toLight.L), 0.0f);
         if (visibility) irradiance = irradiance * visibility[&light - lights.data()];
         const BrdfLobes<V3> lobes = brdfLobes<F, V3, P, kNormalization>(
-            N, toLight.L, V, m, albedo, model, &recording->lights[&light - lights.data()].brdf...);
+            N, toLight.L, V, m, albedo, model, anisotropic ? &frame : nullptr,
+            &recording->lights[&light - lights.data()].brdf...);
         const V3 incoming = V3(light.diffuse * std::numbers::pi_v<float>) * irradiance;
         const V3 diffuse = lobes.diffuse * incoming;
         terms.diffuse += diffuse;

@@ -441,7 +441,20 @@ void writeBrdf(Lines& out, const LightingRecord& lighting, const BrdfRecord& b) 
             " (N·L, N·V at least 0.0001)");
     out.add("  α = roughness² = " + num(lighting.pbr.roughness) + "² = " + num(b.alpha) +
             " (at least 0.001)");
-    if (b.model.distribution == NormalDistribution::GGX) {
+    if (b.anisotropic) {
+        // Anisotropic GGX (tangent.h, lighting.h): the frame, the two roughnesses, then D.
+        out.add("  T = ∂P/∂u made ⊥ N, unit = " + vec(b.T));
+        out.add("  B = N × T = " + vec(b.B));
+        const float a = lighting.pbr.anisotropy;
+        out.add("  a = " + num(a) + ": α_x = α(1 + a) = " + num(b.alphaX) +
+                ", α_y = α(1 − a) = " + num(b.alphaY));
+        out.add("  H·T = " + num(b.HdotT) + ", H·B = " + num(b.HdotB) + ", N·H = " + num(b.NdotH));
+        out.add("  D = 1/(π α_x α_y ((H·T/α_x)² + (H·B/α_y)² + (N·H)²)²)   (anisotropic GGX)");
+        out.add("    = 1/(π·" + num(b.alphaX) + "·" + num(b.alphaY) + "·((" + num(b.HdotT) + "/" +
+                num(b.alphaX) + ")² + (" + num(b.HdotB) + "/" + num(b.alphaY) + ")² + " + num(b.NdotH) +
+                "²)²)");
+        out.add("    = " + num(b.D));
+    } else if (b.model.distribution == NormalDistribution::GGX) {
         out.add("  D = α²/(π((N·H)²(α² − 1) + 1)²)   (GGX)");
         out.add("    = " + num(b.alpha) + "²/(π(" + num(b.NdotH) + "²(" + num(b.alpha) +
                 "² − 1) + 1)²) = " + num(b.D));
@@ -476,7 +489,11 @@ void writeBrdf(Lines& out, const LightingRecord& lighting, const BrdfRecord& b) 
         out.add("    R_s = " + vec(b.Rs) + ", R_p = " + vec(b.Rp));
     }
     out.add("    = " + rgb(b.F));
-    if (b.model.geometry == GeometryTerm::SmithGGX) {
+    if (b.model.geometry == GeometryTerm::SmithGGX && b.anisotropic) {
+        out.add("  G = G1(L)·G1(V), G1(ω) = 2/(1 + √(1 + (α_x²(ω·T)² + α_y²(ω·B)²)/(N·ω)²))");
+        out.add("    (Smith, anisotropic GGX) with N·L = " + num(b.NdotL) + ", N·V = " + num(b.NdotV) +
+                ": G = " + num(b.G));
+    } else if (b.model.geometry == GeometryTerm::SmithGGX) {
         out.add("  G = G1(N·L)·G1(N·V), G1(x) = 2x/(x + √(α² + (1 − α²)x²))   (Smith GGX)");
         out.add("    with N·L = " + num(b.NdotL) + ", N·V = " + num(b.NdotV) + ": G = " + num(b.G));
     } else {
@@ -1057,6 +1074,9 @@ nlohmann::json toJson(const LightRecord& r, bool physicallyBased) {
                      {"grazing", b.grazing},
                      {"diffuseLobe", json3(b.lobes.diffuse)},
                      {"specularLobe", json3(b.lobes.specular)}};
+        if (b.anisotropic)
+            j["brdf"]["anisotropic"] = {{"T", json3(b.T)},    {"B", json3(b.B)},  {"alphaX", b.alphaX},
+                                        {"alphaY", b.alphaY}, {"HdotT", b.HdotT}, {"HdotB", b.HdotB}};
     } else {
         j["attTimesSpot"] = r.reach;
         j["reflected"] = json3(r.reflected);

@@ -156,7 +156,7 @@ TEST(LightingRecord, CookTorranceDFGEqualTheHandComputedOnes) {
     const LightParams lights[] = {light};
     LightingRecord record;
     physicallyBasedTerms<float>(kPosition, kNormal, kEye, m, m.baseColor, vec3(0.0f), kGlobalAmbient, lights,
-                                BrdfModel{}, nullptr, &record);
+                                BrdfModel{}, nullptr, nullptr, &record);
     ASSERT_TRUE(record.physicallyBased);
     const LightRecord& r = record.lights[0];
     const BrdfRecord& b = r.brdf;
@@ -188,7 +188,8 @@ TEST(LightingRecord, CookTorranceDFGEqualTheHandComputedOnes) {
     BrdfRecord other;
     brdfLobes<float>(
         kNormal, r.L, vec3(0.0f, 0.0f, 1.0f), m, m.baseColor,
-        BrdfModel{NormalDistribution::Beckmann, FresnelModel::Schlick, GeometryTerm::CookTorrance}, &other);
+        BrdfModel{NormalDistribution::Beckmann, FresnelModel::Schlick, GeometryTerm::CookTorrance}, nullptr,
+        &other);
     // D = exp((c² − 1)/(α² c²))/(π α² c⁴), c² = 0.9.
     EXPECT_NEAR(other.D, std::exp((0.9 - 1) / (a2 * 0.9)) / (std::numbers::pi * a2 * 0.81), 1e-5);
     // G = min(1, 2(N·H)(N·V)/(V·H), 2(N·H)(N·L)/(V·H)) = min(1, 2, 1.6) = 1.
@@ -259,7 +260,7 @@ TEST(LightingRecord, RecordingChangesNoBitOfTheResult) {
             position, normal, kEye, pbr, pbr.baseColor, vec3(0.0f), kGlobalAmbient, lights, model);
         const LightingTerms<vec3> recorded = physicallyBasedTerms<float, vec3, MathPrecision::Exact>(
             position, normal, kEye, pbr, pbr.baseColor, vec3(0.0f), kGlobalAmbient, lights, model, nullptr,
-            &record);
+            nullptr, &record);
         EXPECT_TRUE(sameBits(plain.sum(), recorded.sum()));
         EXPECT_TRUE(
             sameBits(record.lights[0].specular + record.lights[1].specular + record.lights[2].specular,

@@ -191,7 +191,7 @@ TEST(FresnelPolarized, BrdfUsesTheIorAndRecordsBothPolarisations) {
     const BrdfModel model{NormalDistribution::GGX, FresnelModel::Exact, GeometryTerm::SmithGGX};
     const vec3 n(0, 0, 1), l = glm::normalize(vec3(0.9f, 0, 0.4f)), v = glm::normalize(vec3(-0.9f, 0, 0.4f));
     BrdfRecord record;
-    brdfLobes<float>(n, l, v, glass, glass.baseColor, model, &record);
+    brdfLobes<float>(n, l, v, glass, glass.baseColor, model, nullptr, &record);
     const double thetaI = std::acos(double(record.VdotH));
     const Polarized expected = fresnelReference(thetaI, 1.7);
     EXPECT_NEAR(record.F.x, (expected.s + expected.p) / 2, 1e-5);
@@ -256,6 +256,62 @@ TEST(F0Table, EveryRowMatchesRealTimeRenderingTables91And92) {
     }
     EXPECT_EQ(std::size(kTable), kMaterialPresets.size());  // and no row Facet has that the tables lack
 }
+
+// ---- The tangent frame (tangent.h) ---------------------------------------------------------------
+
+namespace tangent_test {
+using glm::dvec2;
+using glm::dvec3;
+
+// A planar triangle with affine uv seen through a perspective camera: the tangent the rasterizer finds
+// from one pixel's screen-space derivatives (the neighbours' rays met with the plane, the uv
+// derivatives taken here by central differences of the exact uv along the rays) points where the
+// triangle's Lengyel tangent (written here in double: T = (e1·Δv2 − e2·Δv1)/(Δu1·Δv2 − Δu2·Δv1))
+// does.
+TEST(TangentFrame, ScreenDerivativesGiveTheTrianglesLengyelTangent) {
+    const dvec3 p[3] = {{-1.0, -0.5, -4.0}, {1.5, -0.2, -5.0}, {0.2, 1.3, -4.5}};
+    const dvec2 t[3] = {{0.1, 0.2}, {0.9, 0.35}, {0.3, 0.8}};
+    const dvec3 e1 = p[1] - p[0], e2 = p[2] - p[0];
+    const dvec2 d1 = t[1] - t[0], d2 = t[2] - t[0];
+    const dvec3 lengyel = (e1 * d2.y - e2 * d1.y) / (d1.x * d2.y - d2.x * d1.y);
+    const dvec3 n = glm::normalize(glm::cross(e1, e2));
+    const dvec3 expected = glm::normalize(lengyel - n * glm::dot(n, lengyel));
+
+    const double k = 0.002;  // a pixel's size per unit depth
+    // The uv seen at window position (x, y) (y down): the ray (x·k, −y·k, −1)·s met with the plane.
+    const auto uvAt = [&](double x, double y) {
+        const dvec3 d(x * k, -y * k, -1.0);
+        const dvec3 q = d * (glm::dot(p[0], n) / glm::dot(d, n));
+        const dvec3 c = glm::cross(e1, e2);
+        const double b1 = glm::dot(glm::cross(q - p[0], e2), c) / glm::dot(c, c);
+        const double b2 = glm::dot(glm::cross(e1, q - p[0]), c) / glm::dot(c, c);
+        return t[0] + b1 * d1 + b2 * d2;
+    };
+    const dvec3 P = (p[0] + p[1] + p[2]) / 3.0;
+    const double x = P.x / (-P.z) / k, y = -P.y / (-P.z) / k;
+    const double h = 1e-3;
+    const dvec2 ddx = (uvAt(x + h, y) - uvAt(x - h, y)) / (2 * h);
+    const dvec2 ddy = (uvAt(x, y + h) - uvAt(x, y - h)) / (2 * h);
+
+    const vec3 Pf(P), nf(n);
+    const ScreenDifferentials<vec3> dP = screenDifferentials<float>(Pf, nf, vec2(float(k)), true);
+    const vec3 T = tangentFromDifferentials<float>(dP.dPdx, dP.dPdy, float(ddx.x), float(ddx.y), float(ddy.x),
+                                                   float(ddy.y), fallbackTangent<float>(nf));
+    const TangentFrame<vec3> frame = orthonormalTangentFrame<float>(nf, T);
+    EXPECT_NEAR(frame.T.x, expected.x, 1e-3);
+    EXPECT_NEAR(frame.T.y, expected.y, 1e-3);
+    EXPECT_NEAR(frame.T.z, expected.z, 1e-3);
+    EXPECT_NEAR(glm::dot(frame.B, vec3(glm::cross(n, expected))), 1.0f, 1e-3f);
+    // The same formula on the edges (the reference's use) gives Lengyel's tangent itself.
+    const vec3 edges = tangentFromDifferentials<float>(vec3(e1), vec3(e2), float(d1.x), float(d1.y),
+                                                       float(d2.x), float(d2.y), vec3(0.0f));
+    EXPECT_NEAR(glm::length(edges - vec3(lengyel)), 0.0f, 1e-5f);
+    // No uv (all derivatives 0): the eye-space x axis projected.
+    const vec3 none = tangentFromDifferentials<float>(dP.dPdx, dP.dPdy, 0.0f, 0.0f, 0.0f, 0.0f,
+                                                      fallbackTangent<float>(vec3(0.0f, 0.0f, 1.0f)));
+    EXPECT_EQ(none, vec3(1.0f, 0.0f, 0.0f));
+}
+}  // namespace tangent_test
 
 }  // namespace
 }  // namespace facet
