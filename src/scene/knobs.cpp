@@ -166,7 +166,7 @@ SceneKnob fogRangeKnob(std::string name, std::string flag, std::string help, std
     SceneKnob knob = named(std::move(name), std::move(flag), std::move(help), "fog", std::move(key));
     knob.kind = KnobKind::Number;
     knob.lowest = 0;
-    knob.highest = 1e6;
+    knob.highest = 1e30;
     knob.defaultNote = "(default: from the scene's bounding sphere)";
     knob.get = [field](const Scene& scene) {
         const std::optional<float>& value = scene.fog.*field;
@@ -243,6 +243,7 @@ SceneKnob areaSamplesKnob() {
 }
 
 // The table. Notes on the trade's values:
+//   shading: constant shading is unlit, another look rather than a cheaper approximation: not traded.
 //   cull: front-face culling draws the wrong side, not a trade; culling back faces is the fast choice (the
 //     same image for closed models); no best value, the reference culls as the scene does.
 //   reflection: a choice of look more than of accuracy: no fast or best value, the reference keeps the
@@ -268,7 +269,7 @@ std::vector<SceneKnob> makeTable() {
             "Conventions: linear light and sRGB output, OpenGL 1.x fixed function, or the lecture "
             "notes' formulas and 2.2 gamma (docs/lighting.md)",
             "lighting", "preset", [](auto& s) -> auto& { return s.lighting.preset; }),
-        traded(shadingKnob(), {}, "flat", "phong"),
+        traded(shadingKnob(), {"flat", "gouraud", "phong"}, "flat", "phong"),
         traded(choice<Interpolation>(
                    "interpolation", "--interpolation",
                    "Varyings across a triangle: perspective-correct, or affine in screen "
@@ -396,7 +397,7 @@ std::vector<SceneKnob> makeTable() {
             "mode", [](auto& s) -> auto& { return s.fog.mode; }),
         number<float>(
             "fog-density", "--fog-density", "Exponential fog's density, per unit of length", "fog", "density",
-            0, 1e6, "", [](auto& s) -> auto& { return s.fog.density; }),
+            0, 1e30, "", [](auto& s) -> auto& { return s.fog.density; }),
         fogRangeKnob("fog-start", "--fog-start", "Linear fog: the distance where it begins", "start",
                      &FogSpec::start),
         fogRangeKnob("fog-end", "--fog-end", "Linear fog: the distance where it is complete", "end",

@@ -301,6 +301,14 @@ template <class F, class V3 = LaneVec3<F>, class... Recording>
                                                                                     tangent, recording...);
 }
 
+// The same without a tangent (every reflection model but anisotropic GGX, which then stays isotropic):
+// what shaders of one's own call.
+template <class F, class V3 = LaneVec3<F>>
+[[gnu::always_inline]] inline LightingTerms<V3> surfaceTerms(const V3& P, const V3& normal, const V3& albedo,
+                                                             const SurfaceUniforms& u) {
+    return surfaceTerms<F, V3>(P, normal, albedo, u, static_cast<const V3*>(nullptr));
+}
+
 // What a surface shader writes, from the lit colour c and its alpha α at eye-space point P: fog first,
 // c = f·c + (1 − f)·c_fog (fog.h), then the form the draw's blend expects:
 //   Replace, Over:               (c, α)            straight alpha

@@ -283,9 +283,9 @@ TEST(LectureFlags, BadValuesGiveOneLine) {
     for (const auto& [options, message] : std::vector<std::pair<std::string, std::string>>{
              {"--shininess -1", "--shininess must be from 0 to 10000 (got -1)"},
              {"--shininess many", "--shininess: expects a finite number (got \"many\")"},
-             {"--fog fog", "--fog: fog not in {none,linear,exp,exp2}"},
-             {"--fog-density -2", "--fog-density must be from 0 to 1e6 (got -2)"},
-             {"--fog-start -1", "--fog-start must be from 0 to 1e6 (got -1)"},
+             {"--fog fog", "--fog: fog not in {none,linear,exp,exp2,height}"},
+             {"--fog-density -2", "--fog-density must be from 0 to 1e30 (got -2)"},
+             {"--fog-start -1", "--fog-start must be from 0 to 1e30 (got -1)"},
              {"--fog linear --fog-start 10 --fog-end 2",
               "the fog's end (2) must be greater than its start (10)"}}) {
         SCOPED_TRACE(options);

@@ -204,7 +204,7 @@ shows "Fog is off" "${fog[@]}" --fog none
 gamma=(models/red-sphere.json --pixel 329,350)
 shows "N·L = 0.04152" "${gamma[@]}" --print
 shows "R: 0.0415217 → 0.225242 → 57" "${gamma[@]}" --versus "--gamma 2.2"
-shows "R: 0.0415217 → 60" "${gamma[@]}" --versus "--gamma 2.2"
+shows "R: 0.0415217^(1/2.2) = 0.235474, 255·c' = 60.0459 → 60" "${gamma[@]}" --versus "--gamma 2.2"
 shows "R: 0.0415217 → 11" "${gamma[@]}" --print --encode linear
 
 # 21. Sorting transparent triangles with coherence (facet render's --stats)

@@ -63,12 +63,13 @@ TEST(NameTables, LightingEnums) {
     expectOneNameEach<ReflectionModel>(
         {ReflectionModel::Phong, ReflectionModel::BlinnPhong, ReflectionModel::CookTorrance});
     expectOneNameEach<ShadingFrequency>(
-        {ShadingFrequency::Flat, ShadingFrequency::Gouraud, ShadingFrequency::Phong});
+        {ShadingFrequency::Constant, ShadingFrequency::Flat, ShadingFrequency::Gouraud, ShadingFrequency::Phong});
     expectOneNameEach<LightKind>(
         {LightKind::Directional, LightKind::Point, LightKind::Spot, LightKind::Rect, LightKind::Disk});
     expectOneNameEach<SpotProfile>({SpotProfile::OpenGL, SpotProfile::Smooth});
     expectOneNameEach<RangeWindow>({RangeWindow::Ue4, RangeWindow::Jc2});
-    expectOneNameEach<NormalDistribution>({NormalDistribution::Beckmann, NormalDistribution::GGX});
+    expectOneNameEach<NormalDistribution>(
+        {NormalDistribution::Beckmann, NormalDistribution::GGX, NormalDistribution::Gaussian});
     expectOneNameEach<FresnelModel>({FresnelModel::Schlick, FresnelModel::Exact});
     expectOneNameEach<GeometryTerm>({GeometryTerm::CookTorrance, GeometryTerm::SmithGGX});
     expectOneNameEach<VertexNormals>(

@@ -490,8 +490,9 @@ TEST_F(SceneTest, UnknownMaterialPresetListsEveryName) {
         errorOf(R"({"objects": [{"model": "m.obj", "material": {"preset": "unobtainium"}}]})");
     EXPECT_EQ(message, (folder_ / "scene.json").string() +
                            R"(: "objects[0].material.preset" must be one of the material presets "water", )"
-                           R"("skin", "hair", "titanium", "chromium", "iron", "nickel", "platinum", )"
-                           R"("copper", "palladium", "mercury", "brass", "zinc", "gold", "aluminium", )"
+                           R"("living-tissue", "skin", "eyes", "hair", "teeth", "fabric", "stone", "plastic", )"
+                           R"("glass", "crystal-glass", "gems", "diamond", "titanium", "chromium", "iron", "nickel", )"
+                           R"("platinum", "copper", "palladium", "mercury", "brass", "zinc", "gold", "aluminium", )"
                            R"("silver" (got "unobtainium"))");
 }
 
@@ -1061,7 +1062,7 @@ const ErrorCase kErrorCases[] = {
      {R"("lighting.model")", R"((did you mean "blinn-phong"?))"}},
     {"LightingShadingUnknown",
      R"({"model": "m.obj", "lighting": {"shading": "smooth"}})",
-     {R"("lighting.shading" must be one of "flat", "gouraud", "phong" (got "smooth"))"}},
+     {R"("lighting.shading" must be one of "constant", "flat", "gouraud", "phong" (got "smooth"))"}},
     {"CreaseAngleAbove180",
      R"({"model": "m.obj", "lighting": {"crease_angle": 181}})",
      {R"("lighting.crease_angle" must be from 0 to 180 degrees (got 181))"}},
@@ -1073,7 +1074,7 @@ const ErrorCase kErrorCases[] = {
      {R"("lighting.crease_angle" must be a number (got the string "sharp"))"}},
     {"DistributionUnknown",
      R"({"model": "m.obj", "lighting": {"distribution": "phong"}})",
-     {R"("lighting.distribution" must be one of "ggx", "beckmann" (got "phong"))"}},
+     {R"("lighting.distribution" must be one of "ggx", "beckmann", "gaussian" (got "phong"))"}},
     {"FresnelUnknown",
      R"({"model": "m.obj", "lighting": {"fresnel": "schlik"}})",
      {R"("lighting.fresnel" must be one of "schlick", "exact" (got "schlik") (did you mean "schlick"?))"}},
@@ -1095,7 +1096,7 @@ const ErrorCase kErrorCases[] = {
      {R"("objects[0].lighting.model" must be one of "phong", "blinn-phong", "cook-torrance" (got "pbr"))"}},
     {"ObjectLightingShadingUnknown",
      R"({"objects": [{"model": "m.obj", "lighting": {"shading": "Flat"}}]})",
-     {R"("objects[0].lighting.shading" must be one of "flat", "gouraud", "phong" (got "Flat"))"}},
+     {R"("objects[0].lighting.shading" must be one of "constant", "flat", "gouraud", "phong" (got "Flat"))"}},
     // Lights: keys the type ignores.
     {"SpotKeyOnPointLight",
      R"({"model": "m.obj", "lights": [{}, {"type": "point", "cutoff": 20}]})",
@@ -1173,7 +1174,7 @@ const ErrorCase kErrorCases[] = {
     // Material: physically based keys.
     {"PresetTypo",
      R"({"objects": [{"model": "m.obj", "material": {"preset": "gld"}}]})",
-     {R"("objects[0].material.preset" must be one of the material presets "water", "skin")",
+     {R"("objects[0].material.preset" must be one of the material presets "water", "living-tissue")",
       R"("aluminium", "silver" (got "gld") (did you mean "gold"?))"}},
     {"PresetTypoIgnoresCase",
      R"({"objects": [{"model": "m.obj", "material": {"preset": "COPER"}}]})",
@@ -1278,16 +1279,16 @@ const ErrorCase kErrorCases[] = {
      {R"("fog.end" (5) must be greater than "fog.start" (5))"}},
     {"FogStartNegative",
      R"({"model": "m.obj", "fog": {"mode": "linear", "start": -1, "end": 5}})",
-     {R"("fog.start" must be from 0 to 1e6 (got -1))"}},
+     {R"("fog.start" must be from 0 to 1e30 (got -1))"}},
     {"FogEndNegative",
      R"({"model": "m.obj", "fog": {"mode": "linear", "end": -5}})",
-     {R"("fog.end" must be from 0 to 1e6 (got -5))"}},
+     {R"("fog.end" must be from 0 to 1e30 (got -5))"}},
     {"FogStartNotANumber",
      R"({"model": "m.obj", "fog": {"mode": "linear", "start": "near"}})",
      {R"("fog.start" must be a number (got the string "near"))"}},
     {"FogDensityNegative",
      R"({"model": "m.obj", "fog": {"mode": "exp", "density": -0.1}})",
-     {R"("fog.density" must be from 0 to 1e6 (got -0.1))"}},
+     {R"("fog.density" must be from 0 to 1e30 (got -0.1))"}},
     {"FogDensityNotANumber",
      R"({"model": "m.obj", "fog": {"mode": "exp2", "density": [1]}})",
      {R"("fog.density" must be a number (got an array of 1))"}},

@@ -133,9 +133,9 @@ TEST(Formulas, CookTorranceTermsAreTheBuiltInOnes) {
                         const BrdfLobes<vec3> lobes =
                             precision == MathPrecision::Exact
                                 ? brdfLobes<float, vec3, MathPrecision::Exact>(
-                                      n, l, v, u.pbr, u.pbr.baseColor, u.brdf, &record)
+                                      n, l, v, u.pbr, u.pbr.baseColor, u.brdf, nullptr, &record)
                                 : brdfLobes<float, vec3, MathPrecision::Fast>(n, l, v, u.pbr, u.pbr.baseColor,
-                                                                              u.brdf, &record);
+                                                                              u.brdf, nullptr, &record);
                         EXPECT_EQ(microfacetDistribution(record.NdotH, record.alpha, u), record.D);
                         EXPECT_EQ(fresnelTerm<float>(record.f0, record.VdotH, u), record.F);
                         EXPECT_EQ(geometryTerm(record.NdotH, record.NdotV, record.NdotL, record.VdotH,

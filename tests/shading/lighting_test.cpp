@@ -314,7 +314,7 @@ PbrMaterial handMaterial(const HandBrdf& h) {
 BrdfRecord recordAt(const HandBrdf& h, const BrdfModel& model) {
     BrdfRecord record;
     const PbrMaterial m = handMaterial(h);
-    brdfLobes<float>(vec3(h.N), vec3(h.L), vec3(h.V), m, m.baseColor, model, &record);
+    brdfLobes<float>(vec3(h.N), vec3(h.L), vec3(h.V), m, m.baseColor, model, nullptr, &record);
     return record;
 }
 
