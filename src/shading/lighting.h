@@ -908,29 +908,30 @@ BrdfLobes<V3> brdfLobes(const V3& n, const V3& l, const V3& v, const PbrMaterial
     const V3 diffuse = (V3(vec3(1.0f)) - fresnel) * albedo * diffuseScale;
     const V3 zero(vec3(0.0f));
     if constexpr (Record::enabled)
-        *recordOf(recording...) = {.N = N,
-                                   .L = L,
-                                   .V = V,
-                                   .H = H,
-                                   .NdotLRaw = NdotLRaw,
-                                   .NdotL = NdotL,
-                                   .NdotV = NdotV,
-                                   .NdotH = NdotH,
-                                   .VdotH = VdotH,
-                                   .alpha = alpha,
-                                   .f0 = f0,
-                                   .model = model,
-                                   .D = D,
-                                   .F = fresnel,
-                                   .G = G,
-                                   .specularScale = specularScale,
-                                   .diffuseScale = diffuseScale,
-                                   .fresnelCosine = cosTheta,
-                                   .metalTint = model.metal == MetalBlend::TintedLobe
-                                                    ? vec3(1.0f) + (vec3(albedo) - vec3(1.0f)) * m.metalness
-                                                    : vec3(1.0f),
-                                   .grazing = !(NdotLRaw > kGrazingCosine),
-                                   .lobes = brdfLobes<F, V3, P, kNormalization>(n, l, v, m, albedo, model, frame)};
+        *recordOf(recording...) = {
+            .N = N,
+            .L = L,
+            .V = V,
+            .H = H,
+            .NdotLRaw = NdotLRaw,
+            .NdotL = NdotL,
+            .NdotV = NdotV,
+            .NdotH = NdotH,
+            .VdotH = VdotH,
+            .alpha = alpha,
+            .f0 = f0,
+            .model = model,
+            .D = D,
+            .F = fresnel,
+            .G = G,
+            .specularScale = specularScale,
+            .diffuseScale = diffuseScale,
+            .fresnelCosine = cosTheta,
+            .metalTint = model.metal == MetalBlend::TintedLobe
+                             ? vec3(1.0f) + (vec3(albedo) - vec3(1.0f)) * m.metalness
+                             : vec3(1.0f),
+            .grazing = !(NdotLRaw > kGrazingCosine),
+            .lobes = brdfLobes<F, V3, P, kNormalization>(n, l, v, m, albedo, model, frame)};
     if constexpr (Record::enabled) {
         BrdfRecord& r = *recordOf(recording...);
         if (anisotropic) {

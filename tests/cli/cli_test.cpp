@@ -593,7 +593,8 @@ TEST(Cli, EnvironmentFlagReachesTheImageAndTheStepScreen) {
     const std::string model = quoted(root / "models/spot/spot_triangulated.obj");
     const std::string sky = quoted(root / "models/environment/sky.png");
     const auto plain = dir.path() / "plain.png", mapped = dir.path() / "mapped.png";
-    ASSERT_EQ(runFacet("render " + model + " -o " + quoted(plain) + " --width 48 --height 36", dir).status, 0);
+    ASSERT_EQ(runFacet("render " + model + " -o " + quoted(plain) + " --width 48 --height 36", dir).status,
+              0);
     const RunResult run = runFacet(
         "render " + model + " -o " + quoted(mapped) + " --width 48 --height 36 --environment " + sky, dir);
     ASSERT_EQ(run.status, 0) << run.err;
@@ -609,9 +610,9 @@ TEST(Cli, EnvironmentFlagReachesTheImageAndTheStepScreen) {
     EXPECT_NE(step.out.find("R = 2(N·V)N − V"), std::string::npos) << step.out;
     EXPECT_NE(step.out.find("reflection = w ⊗ E(R) = RGB("), std::string::npos) << step.out;
 
-    const RunResult missing = runFacet("render " + model + " -o " + quoted(mapped) +
-                                           " --width 48 --height 36 --environment nowhere/sky.png",
-                                       dir);
+    const RunResult missing = runFacet(
+        "render " + model + " -o " + quoted(mapped) + " --width 48 --height 36 --environment nowhere/sky.png",
+        dir);
     EXPECT_NE(missing.status, 0);
     EXPECT_NE(missing.err.find("nowhere/sky.png"), std::string::npos) << missing.err;
     EXPECT_NE(missing.err.find("--environment"), std::string::npos) << missing.err;

@@ -62,8 +62,8 @@ TEST(NameTables, PipelineStateEnums) {
 TEST(NameTables, LightingEnums) {
     expectOneNameEach<ReflectionModel>(
         {ReflectionModel::Phong, ReflectionModel::BlinnPhong, ReflectionModel::CookTorrance});
-    expectOneNameEach<ShadingFrequency>(
-        {ShadingFrequency::Constant, ShadingFrequency::Flat, ShadingFrequency::Gouraud, ShadingFrequency::Phong});
+    expectOneNameEach<ShadingFrequency>({ShadingFrequency::Constant, ShadingFrequency::Flat,
+                                         ShadingFrequency::Gouraud, ShadingFrequency::Phong});
     expectOneNameEach<LightKind>(
         {LightKind::Directional, LightKind::Point, LightKind::Spot, LightKind::Rect, LightKind::Disk});
     expectOneNameEach<SpotProfile>({SpotProfile::OpenGL, SpotProfile::Smooth});

@@ -488,12 +488,13 @@ TEST_F(SceneTest, F0NumberSetsAllThreeChannels) {
 TEST_F(SceneTest, UnknownMaterialPresetListsEveryName) {
     const std::string message =
         errorOf(R"({"objects": [{"model": "m.obj", "material": {"preset": "unobtainium"}}]})");
-    EXPECT_EQ(message, (folder_ / "scene.json").string() +
-                           R"(: "objects[0].material.preset" must be one of the material presets "water", )"
-                           R"("living-tissue", "skin", "eyes", "hair", "teeth", "fabric", "stone", "plastic", )"
-                           R"("glass", "crystal-glass", "gems", "diamond", "titanium", "chromium", "iron", "nickel", )"
-                           R"("platinum", "copper", "palladium", "mercury", "brass", "zinc", "gold", "aluminium", )"
-                           R"("silver" (got "unobtainium"))");
+    EXPECT_EQ(message,
+              (folder_ / "scene.json").string() +
+                  R"(: "objects[0].material.preset" must be one of the material presets "water", )"
+                  R"("living-tissue", "skin", "eyes", "hair", "teeth", "fabric", "stone", "plastic", )"
+                  R"("glass", "crystal-glass", "gems", "diamond", "titanium", "chromium", "iron", "nickel", )"
+                  R"("platinum", "copper", "palladium", "mercury", "brass", "zinc", "gold", "aluminium", )"
+                  R"("silver" (got "unobtainium"))");
 }
 
 // ---- Transparency, blend, fog and gamma ------------------------------------------------------------

@@ -146,7 +146,7 @@ TEST(Environment, FresnelWeightGrowsTowardTheSilhouette) {
     EXPECT_NEAR(environmentReflection<double>(env, glm::dvec3(0, 0, -5), glm::dvec3(0, 0, 1), true, &f0,
                                               vec3(0.0f), 1u)
                     .x,
-                0.04, 1e-6);   // head-on: F0
+                0.04, 1e-6);  // head-on: F0
     // At 80°, Schlick by hand: 0.04 + 0.96·(1 − cos 80°)^5.
     EXPECT_NEAR(previous, 0.04 + 0.96 * std::pow(1.0 - std::cos(kPi * 4.0 / 9.0), 5), 1e-6);
 }

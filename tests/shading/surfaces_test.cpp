@@ -252,7 +252,9 @@ TEST(F0Table, EveryRowMatchesRealTimeRenderingTables91And92) {
         EXPECT_NEAR(preset->f0.z, row.b, 1e-6) << row.name;
         EXPECT_NEAR(preset->low, row.low, 1e-6) << row.name;
         EXPECT_NEAR(preset->high, row.high, 1e-6) << row.name;
-        if (row.high > 0) EXPECT_NEAR(preset->f0.x, (row.low + row.high) / 2, 1e-6) << row.name;
+        if (row.high > 0) {
+            EXPECT_NEAR(preset->f0.x, (row.low + row.high) / 2, 1e-6) << row.name;
+        }
     }
     EXPECT_EQ(std::size(kTable), kMaterialPresets.size());  // and no row Facet has that the tables lack
 }
