@@ -221,6 +221,23 @@ for quote in "frame 0: " "sorted from scratch (radix sort)" \
     fi
 done
 
+# 22. Putting it together: the notes' physically based form (the lecture preset)
+together=(models/red-sphere.json --pixel 360,112 --reflection cook-torrance --versus "--lighting lecture")
+shows "<   F = F0 + (1 − F0)(1 − V·H)^5   (Schlick)" "${together[@]}"
+shows ">   F = F0 + (1 − F0)(1 − N·L)^5   (Schlick)" "${together[@]}"
+shows "<   D·G/(4(N·L)(N·V)) = 0.4021·0.8316/(4·1·0.6374) = 0.1311" "${together[@]}"
+shows ">   D·G/(π(N·V)(N·L)) = 0.4021·0.8316/(π·0.6374·1) = 0.167" "${together[@]}"
+shows "< The image file holds 17, 0, 0" "${together[@]}"
+shows "> The image file holds 24, 4, 4" "${together[@]}"
+
+# 23. A mirror in the sky: the environment map
+mirror=(models/red-sphere.json --pixel 327,200 --reflection cook-torrance --environment models/environment/sky.png)
+shows "    = (0.08214, 0.4326, 0.8978) (eye space)" "${mirror[@]}"
+shows "uv = (0.03669, 0.6424)" "${mirror[@]}"
+shows "texel (9, 45) from the top left" "${mirror[@]}"
+shows "E(R) = RGB(0.3042, 0.4371, 0.7856)" "${mirror[@]}"
+shows "reflection = F ⊗ E(R) = RGB(0.01217, 0.01749, 0.03143)" "${mirror[@]}"
+
 if [ $failures -ne 0 ]; then
     echo "$failures quotes of docs/teaching.md are not in facet step's output"
     exit 1
