@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
+#include <bit>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -633,7 +635,7 @@ F angleFromCosine(F c) {
 // ∫ D(h) (n·h) dω_h = 1 over the hemisphere. With θ = m·t the integral is
 // (m/2) ∫₀^{π/(2m)} exp(−t²) sin(2mt) dt, a smooth integrand, summed here by Simpson's rule in double
 // (t beyond 6.5 adds less than e^−42); for small m, c → 1/(π m²). A teaching model, so one m is
-// remembered per thread: a draw computes it once.
+// remembered: a draw computes it once.
 inline double gaussianNormalizationExact(double m) {
     const double upper = std::min(std::numbers::pi / (2.0 * m), 6.5);
     constexpr int kIntervals = 512;  // even
@@ -647,13 +649,18 @@ inline double gaussianNormalizationExact(double m) {
     const double integral = 0.5 * m * sum * h / 3.0;
     return 1.0 / (2.0 * std::numbers::pi * integral);
 }
+// The last m and its c travel together in one 64-bit atomic word, shared by the threads (a plain
+// static, not thread_local: a shader module loaded with dlopen must hold no thread-local storage,
+// which the leak checker's thread scan trips over once the module is unloaded).
 inline float gaussianNormalization(float m) {
-    thread_local float lastM = -1.0f, lastC = 0.0f;
-    if (m != lastM) {
-        lastC = static_cast<float>(gaussianNormalizationExact(m));
-        lastM = m;
-    }
-    return lastC;
+    static std::atomic<std::uint64_t> last{0};
+    const std::uint64_t word = last.load(std::memory_order_relaxed);
+    if (word != 0 && std::bit_cast<float>(static_cast<std::uint32_t>(word >> 32)) == m)
+        return std::bit_cast<float>(static_cast<std::uint32_t>(word));
+    const float c = static_cast<float>(gaussianNormalizationExact(m));
+    last.store((std::uint64_t{std::bit_cast<std::uint32_t>(m)} << 32) | std::bit_cast<std::uint32_t>(c),
+               std::memory_order_relaxed);
+    return c;
 }
 
 // The Gaussian distribution of Torrance & Sparrow 1967 (lighting-deck-A.txt, "possible terms D"):
