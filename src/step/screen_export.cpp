@@ -252,11 +252,11 @@ class MathWriter {
         return i;
     }
     // A script's argument after _ or ^ or a root sign: a bracketed group or a word.
-    std::pair<std::string, std::size_t> argument(std::size_t i, std::size_t to, bool keepParentheses) {
+    std::pair<std::string, std::size_t> argument(std::size_t i, std::size_t to) {
         if (i < to && (s_[i] == '(' || s_[i] == '|')) {
             const std::size_t close = matching(i, to, s_[i], s_[i] == '(' ? U')' : U'|');
             if (close != std::string::npos) {
-                if (keepParentheses || s_[i] == '|') return {inner(i, close + 1), close + 1};
+                if (s_[i] == '|') return {inner(i, close + 1), close + 1};  // ∛|det| keeps its bars
                 return {inner(i + 1, close), close + 1};
             }
         }
@@ -359,7 +359,7 @@ class MathWriter {
             return digitsAsSubscript(i + 1, to);
         }
         if (c == '_') {
-            auto [content, end] = argument(i + 1, to, false);
+            auto [content, end] = argument(i + 1, to);
             if (content.empty()) {
                 emit("\\_");
                 return i + 1;
@@ -368,7 +368,7 @@ class MathWriter {
             return end;
         }
         if (c == '^') {
-            auto [content, end] = argument(i + 1, to, false);
+            auto [content, end] = argument(i + 1, to);
             if (content.empty()) {
                 emit("\\wedge");
                 return i + 1;
@@ -389,7 +389,7 @@ class MathWriter {
             return end;
         }
         if (c == U'√' || c == U'∛') {
-            auto [content, end] = argument(i + 1, to, false);
+            auto [content, end] = argument(i + 1, to);
             emit(std::string(symbolOf(c)->math) + "{" + content + "}");
             return end;
         }

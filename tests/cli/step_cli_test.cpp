@@ -175,6 +175,24 @@ TEST(StepCli, ScreenPrintsOneScreenInTheFormatAsked) {
     EXPECT_NE(walk.out.find("\\frametitle{Encoding"), std::string::npos);
 }
 
+// Catches: --stage-scale parsed but not handed to the stage images (written at the frame's size).
+TEST(StepCli, StageScaleWritesTheImagesThatManyTimesLarger) {
+    TempFolder dir;
+    const auto stages = dir.path() / "stages";
+    const RunResult run =
+        runFacet("step " + kSpot + " --print --stages '" + stages.string() + "' --stage-scale 2", dir);
+    ASSERT_EQ(run.status, 0) << run.err;
+    // A PNG's size: the IHDR chunk's width and height, big-endian, at bytes 16 and 20.
+    const std::string png = readText(stages / "final.png");
+    ASSERT_GT(png.size(), 24u);
+    auto at = [&](std::size_t k) {
+        return (std::uint32_t(std::uint8_t(png[k])) << 24) | (std::uint32_t(std::uint8_t(png[k + 1])) << 16) |
+               (std::uint32_t(std::uint8_t(png[k + 2])) << 8) | std::uint32_t(std::uint8_t(png[k + 3]));
+    };
+    EXPECT_EQ(at(16), 2u * 96u);
+    EXPECT_EQ(at(20), 2u * 72u);
+}
+
 // Catches: an unknown screen name, a --format or --stage-scale out of range, or the two asks that
 // cannot be met together accepted silently or with a crash instead of one line and a non-zero status.
 TEST(StepCli, BadScreenOrScaleIsRefusedWithOneLine) {
