@@ -12,6 +12,7 @@
 #include "render/renderer.h"
 #include "scene/limits.h"
 #include "step/html_page.h"
+#include "step/screen_export.h"
 #include "step/stage_images.h"
 #include "step/terminal_walk.h"
 #include "step/versus.h"
@@ -104,6 +105,27 @@ void refuseAntialiasing(const facet::Scene& scene) {
     throw facet::InputError(message);
 }
 
+// The stage images at --stage-scale stay within the largest image facet writes. Throws InputError.
+void checkStageScale(const StepArgs& args, int width, int height) {
+    const long long scale = args.stageScale.value_or(1);
+    if (std::max(width, height) * scale <= facet::kMaxImageSide) return;
+    throw facet::InputError("--stage-scale " + std::to_string(scale) + " would make the " +
+                            std::to_string(width) + "x" + std::to_string(height) + " stage images " +
+                            std::to_string(width * scale) + "x" + std::to_string(height * scale) +
+                            "; at most " + std::to_string(facet::kMaxImageSide) +
+                            " pixels a side (--stage-scale " +
+                            std::to_string(facet::kMaxImageSide / std::max(width, height)) + " or less)");
+}
+
+// What --screen and --format print: one screen or the whole walk. Throws InputError for a screen the
+// walk does not have, naming those it has.
+std::string formatted(const StepArgs& args, const facet::step::Walk& walk) {
+    const facet::step::ScreenFormat format = facet::step::screenFormatNamed(args.format.value_or("text"))
+                                                 .value_or(facet::step::ScreenFormat::Text);
+    if (!args.screen) return facet::step::formatWalk(walk, format);
+    return facet::step::formatScreen(walk, facet::step::screenIndex(walk, *args.screen), format);
+}
+
 }  // namespace
 
 SceneArgs versusArgs(const SceneArgs& base, const std::string& options) {
@@ -143,9 +165,15 @@ CLI::App* addStepCommand(CLI::App& app, StepArgs& args) {
     command->add_flag("--print", args.print,
                       "Write every screen to standard output instead of the interactive walk");
     command->add_option("--json", args.json, "Also write the whole trace as data (JSON) to this file");
-    command->add_option(
+    CLI::Option* stagesOption = command->add_option(
         "--stages", args.stages,
         "Also write images of the whole frame after each stage to this folder (made if missing)");
+    command
+        ->add_option("--stage-scale", args.stageScale,
+                     "Write the --stages images N times larger, each pixel an NxN block (nearest "
+                     "neighbour), for slides (default 1)")
+        ->check(wholeNumber(1, facet::kMaxImageSide))
+        ->needs(stagesOption);
     command->add_option("--html", args.html,
                         "Also write a web page to this folder: the stage images, and the history of any "
                         "pixel clicked (offline: open DIR/index.html)");
@@ -159,6 +187,16 @@ CLI::App* addStepCommand(CLI::App& app, StepArgs& args) {
         "Trace the pixel again with these options over the others (like \"--shading gouraud\", or "
         "\"--shader mine.cpp\"; \"--shader builtin\", or \"\" after --shader, for the built-in shaders) "
         "and print both side by side, marking where they first differ");
+    command->add_option("--screen", args.screen,
+                        "Print only this screen, by the short name the walk gives it (like clip or "
+                        "lighting); an unknown name lists the walk's screens");
+    command
+        ->add_option("--format", args.format,
+                     "Print the screens (or the --screen) as text (as --print shows them), markdown (a "
+                     "heading, prose and fenced formula blocks) or latex (a Beamer frame's body, the "
+                     "formulas in math mode); default text")
+        ->check(CLI::IsMember(std::vector<std::string>(facet::step::kScreenFormatNames.begin(),
+                                                       facet::step::kScreenFormatNames.end())));
     command->add_flag("--stats", args.stats,
                       "Print a few numbers on the trace to standard error (with a shader of your own: its "
                       "recorded values, and how many were NaN or infinite)");
@@ -180,6 +218,10 @@ int step(const StepArgs& args) {
     refuseAntialiasing(scene);
     if (args.json) facet::checkTextDestination(*args.json);
     if (args.html) htmlGridStep(args, scene.width, scene.height);  // a step too fine refused before any work
+    checkStageScale(args, scene.width, scene.height);
+    if (args.versus && (args.screen || args.format))
+        throw facet::InputError(std::string(args.screen ? "--screen" : "--format") +
+                                " prints one walk; --versus prints two side by side: give one of them");
 
     const facet::PreparedScene prepared = facet::prepareScene(scene);
     for (const std::string& warning : prepared.warnings)
@@ -198,6 +240,7 @@ int step(const StepArgs& args) {
         facet::step::StageImageOptions options;
         options.terms = request.terms;
         options.threads = args.threads;
+        options.scale = args.stageScale.value_or(1);
         const auto images = facet::step::writeStageImages(prepared, *args.stages, options);
         std::cerr << "facet: wrote " << images.size() << " stage images to " << *args.stages << "\n";
     }
@@ -226,6 +269,10 @@ int step(const StepArgs& args) {
                 ? "with the built-in shaders"
                 : "with " + *args.versus;
         std::cout << facet::step::sideBySide(trace.walk, "as given", otherTrace.walk, otherName);
+        return 0;
+    }
+    if (args.screen || args.format) {
+        std::cout << formatted(args, trace.walk);
         return 0;
     }
     if (!args.print && facet::step::isInteractive()) {

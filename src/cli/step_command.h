@@ -17,11 +17,14 @@ struct StepArgs : SceneArgs {
     bool print = false;
     std::optional<std::string> json;
     std::optional<std::string> stages;
+    std::optional<int> stageScale;  // --stage-scale N: the --stages images N times larger
     std::optional<std::string> html;
     std::optional<int> htmlStep;
     std::optional<std::string> versus;
     bool stats = false;
-    std::string commandLine;  // as typed, for the web page to show
+    std::optional<std::string> screen;  // --screen ID: print only this screen
+    std::optional<std::string> format;  // --format text|markdown|latex
+    std::string commandLine;            // as typed, for the web page to show
 };
 
 // The options of --versus (`options`, as typed) parsed as the command's own and applied over `base`:

@@ -35,15 +35,15 @@ std::string printWalk(const Walk& walk) {
     out << "Pixel (" << walk.x << ", " << walk.y << ")";
     if (walk.triangle) out << ", triangle " << walk.triangle->number;
     out << "\n" << wrapText("Verdict: " + walk.verdict, 80, 2);
-    for (std::size_t k = 0; k < walk.screens.size(); ++k) {
-        const Screen& screen = walk.screens[k];
-        out << "\n"
-            << std::string(80, '=') << "\n"
-            << k + 1 << ". " << screen.title << "\n"
-            << std::string(80, '=') << "\n"
-            << screen.text;
-    }
+    for (std::size_t k = 0; k < walk.screens.size(); ++k)
+        out << "\n" << printScreen(walk, k);
     return out.str();
+}
+
+std::string printScreen(const Walk& walk, std::size_t index) {
+    const Screen& screen = walk.screens.at(index);
+    const std::string rule(80, '=');
+    return rule + "\n" + std::to_string(index + 1) + ". " + screen.title + "\n" + rule + "\n" + screen.text;
 }
 
 }  // namespace facet::step

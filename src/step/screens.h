@@ -47,6 +47,9 @@ struct StageImage {
 // keeps `text`'s leading spaces, the others start with `indent` spaces.
 std::string wrapText(const std::string& text, std::size_t width, std::size_t indent);
 
+// Screen `index` of `walk` under its number, its title and a rule: its block of printWalk.
+std::string printScreen(const Walk& walk, std::size_t index);
+
 // The screens one after another, each under a numbered title and a rule: what --print writes.
 std::string printWalk(const Walk& walk);
 

@@ -617,6 +617,17 @@ void renderStageImages(const PreparedScene& prepared, const StageImageOptions& o
     }
 }
 
+LinearImage magnified(const LinearImage& image, int scale) {
+    LinearImage out;
+    out.width = image.width * scale;
+    out.height = image.height * scale;
+    out.pixels.resize(static_cast<std::size_t>(out.width) * out.height);
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < out.width; ++x)
+            out.at(x, y) = image.at(x / scale, y / scale);
+    return out;
+}
+
 std::vector<StageImage> writeStageImages(const PreparedScene& prepared, const std::filesystem::path& dir,
                                          const StageImageOptions& options) {
     std::error_code error;
@@ -625,7 +636,10 @@ std::vector<StageImage> writeStageImages(const PreparedScene& prepared, const st
     std::vector<StageImage> written;
     renderStageImages(prepared, options,
                       [&](const StageImage& image, const LinearImage& pixels, ColorEncoding encoding) {
-                          writeImage(dir / image.file, pixels, encoding);
+                          if (options.scale == 1)
+                              writeImage(dir / image.file, pixels, encoding);
+                          else
+                              writeImage(dir / image.file, magnified(pixels, options.scale), encoding);
                           written.push_back(image);
                       });
     return written;

@@ -25,6 +25,9 @@ struct StageImageOptions {
     // Threads of the renders no observer watches (0: one per hardware thread). The images are the same
     // bytes with any count: observed frames run on the calling thread, the others are deterministic.
     int threads = 0;
+    // writeStageImages writes each image this many times larger, every pixel a scale × scale block
+    // (nearest neighbour), for slides: the pixels stay sharp squares. renderStageImages ignores it.
+    int scale = 1;
 };
 
 // Receives each stage image in pipeline order: what it is (`image.file` its file name), its pixels, and
@@ -41,10 +44,13 @@ void renderStageImages(const PreparedScene& prepared, const StageImageOptions& o
                        const StageImageSink& sink);
 
 // Writes the stage images as PNG files into `dir` (created if missing; each file written to a temporary
-// name and renamed into place by writeImage) and returns them in pipeline order. Throws InputError when
-// the folder or a file cannot be written.
+// name and renamed into place by writeImage), options.scale times larger, and returns them in pipeline
+// order. Throws InputError when the folder or a file cannot be written.
 std::vector<StageImage> writeStageImages(const PreparedScene& prepared, const std::filesystem::path& dir,
                                          const StageImageOptions& options);
+
+// `image` with every pixel repeated as a `scale` × `scale` block (scale ≥ 1).
+LinearImage magnified(const LinearImage& image, int scale);
 
 // The colour scales the images use (for legends and tests).
 // A triangle's colour in the id image: a hash of its draw and its number in the draw, each channel in

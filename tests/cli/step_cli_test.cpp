@@ -156,5 +156,68 @@ TEST(StepCli, HtmlStepTooFineIsRefusedBeforeAnythingIsWritten) {
     EXPECT_FALSE(std::filesystem::exists(page));
 }
 
+// --screen prints one screen: in text the very block --print shows, in markdown under a heading, in
+// latex a frame's body. Catches: --screen ignored (the whole walk printed), the text export drifting
+// from --print, a format name not reaching its writer.
+TEST(StepCli, ScreenPrintsOneScreenInTheFormatAsked) {
+    TempFolder dir;
+    const std::string all = runFacet("step " + kSpot + " --print", dir).out;
+    const RunResult text = runFacet("step " + kSpot + " --screen clip", dir);
+    ASSERT_EQ(text.status, 0) << text.err;
+    EXPECT_NE(all.find("\n" + text.out), std::string::npos) << text.out;
+    EXPECT_EQ(text.out.find("Pixel history"), std::string::npos);
+    const RunResult markdown = runFacet("step " + kSpot + " --screen clip --format markdown", dir);
+    EXPECT_EQ(markdown.out.rfind("## Clipping", 0), 0u) << markdown.out;
+    const RunResult latex = runFacet("step " + kSpot + " --screen clip --format latex", dir);
+    EXPECT_EQ(latex.out.rfind("\\frametitle{Clipping", 0), 0u) << latex.out;
+    const RunResult walk = runFacet("step " + kSpot + " --format latex", dir);
+    EXPECT_NE(walk.out.find("\\begin{frame}\n\\frametitle{Pixel history"), std::string::npos);
+    EXPECT_NE(walk.out.find("\\frametitle{Encoding"), std::string::npos);
+}
+
+// Catches: --stage-scale parsed but not handed to the stage images (written at the frame's size).
+TEST(StepCli, StageScaleWritesTheImagesThatManyTimesLarger) {
+    TempFolder dir;
+    const auto stages = dir.path() / "stages";
+    const RunResult run =
+        runFacet("step " + kSpot + " --print --stages '" + stages.string() + "' --stage-scale 2", dir);
+    ASSERT_EQ(run.status, 0) << run.err;
+    // A PNG's size: the IHDR chunk's width and height, big-endian, at bytes 16 and 20.
+    const std::string png = readText(stages / "final.png");
+    ASSERT_GT(png.size(), 24u);
+    auto at = [&](std::size_t k) {
+        return (std::uint32_t(std::uint8_t(png[k])) << 24) | (std::uint32_t(std::uint8_t(png[k + 1])) << 16) |
+               (std::uint32_t(std::uint8_t(png[k + 2])) << 8) | std::uint32_t(std::uint8_t(png[k + 3]));
+    };
+    EXPECT_EQ(at(16), 2u * 96u);
+    EXPECT_EQ(at(20), 2u * 72u);
+}
+
+// Catches: an unknown screen name, a --format or --stage-scale out of range, or the two asks that
+// cannot be met together accepted silently or with a crash instead of one line and a non-zero status.
+TEST(StepCli, BadScreenOrScaleIsRefusedWithOneLine) {
+    TempFolder dir;
+    const std::string stages = " --stages '" + (dir.path() / "stages").string() + "'";
+    struct Bad {
+        std::string options;
+        int status;
+        std::string says;
+    };
+    for (const Bad& bad :
+         {Bad{" --screen clipping", 1, "its screens are history, input, transform, clip"},
+          Bad{" --format html", 2, "--format"}, Bad{" --stage-scale 0" + stages, 2, "--stage-scale"},
+          Bad{" --stage-scale 2", 2, "--stages"},
+          Bad{" --stage-scale 200" + stages, 1, "at most 16384 pixels a side (--stage-scale 170"},
+          Bad{" --screen clip --versus '--shading flat'", 1, "--versus"}}) {
+        SCOPED_TRACE(bad.options);
+        const RunResult run = runFacet("step " + kSpot + bad.options, dir);
+        EXPECT_EQ(run.status, bad.status);
+        EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+        EXPECT_NE(run.err.find(bad.says), std::string::npos) << run.err;
+        EXPECT_TRUE(run.out.empty()) << run.out.substr(0, 200);
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / "stages"));
+}
+
 }  // namespace
 }  // namespace facet

@@ -238,6 +238,23 @@ shows "texel (9, 45) from the top left" "${mirror[@]}"
 shows "E(R) = RGB(0.3042, 0.4371, 0.7856)" "${mirror[@]}"
 shows "reflection = F ⊗ E(R) = RGB(0.01217, 0.01749, 0.03143)" "${mirror[@]}"
 
+# Screens for slides: the LaTeX the page shows is, line for line, what its command prints.
+slide=(models/fog-and-glass.json --width 400 --height 300 --pixel 296,96 --fog exp2 --fog-density 0.1
+       --screen fog --format latex)
+shown=$(awk '/^## Screens for slides/ { section = 1 } section && /^```latex$/ { inside = 1; next }
+             inside && /^```$/ { exit } inside' docs/teaching.md)
+printed=$("$facet" step "${slide[@]}" 2>&1)
+if [ -z "$shown" ] || [ "$shown" != "$printed" ]; then
+    echo "docs/teaching.md's exported screen is not what facet step ${slide[*]} prints:"
+    diff <(echo "$shown") <(echo "$printed") | head -20
+    failures=$((failures + 1))
+fi
+joined=$(sed -e ':a' -e '/\\$/{N;s/\\\n *//;ba' -e '}' docs/teaching.md)  # its continued lines joined
+if ! grep -q -F -- "facet step ${slide[*]}" <<< "$joined"; then
+    echo "docs/teaching.md does not show the command of its exported screen: facet step ${slide[*]}"
+    failures=$((failures + 1))
+fi
+
 if [ $failures -ne 0 ]; then
     echo "$failures quotes of docs/teaching.md are not in facet step's output"
     exit 1

@@ -347,5 +347,30 @@ TEST_F(StageImagesTest, FinalImageIsFacetRendersFileByteForByte) {
         EXPECT_TRUE(fs::exists(folder_ / "stages" / image.file)) << image.file;
 }
 
+// The images for slides: at scale 3 every file holds the scale-1 file's pixels, each repeated as a 3×3
+// block, in every stage image (colour and data). Catches: a magnification that blurs or shifts pixels
+// (filtering, an off-by-one block), or one image left at the frame's size.
+TEST_F(StageImagesTest, ScaleRepeatsEveryPixelOfEveryImageAsABlock) {
+    const PreparedScene prepared = prepareScene(sceneOf(kSideBySide));
+    const std::vector<StageImage> plain =
+        writeStageImages(prepared, folder_ / "x1", {.buildFrames = 2, .threads = 1});
+    const std::vector<StageImage> large =
+        writeStageImages(prepared, folder_ / "x3", {.buildFrames = 2, .threads = 1, .scale = 3});
+    ASSERT_EQ(plain.size(), large.size());
+    for (std::size_t k = 0; k < plain.size(); ++k) {
+        ASSERT_EQ(plain[k].file, large[k].file);
+        const LinearImage one = readImage(folder_ / "x1" / plain[k].file);
+        const LinearImage three = readImage(folder_ / "x3" / large[k].file);
+        ASSERT_EQ(one.width, 40);
+        ASSERT_EQ(three.width, 3 * one.width) << plain[k].file;
+        ASSERT_EQ(three.height, 3 * one.height) << plain[k].file;
+        std::size_t differing = 0;
+        for (int y = 0; y < three.height; ++y)
+            for (int x = 0; x < three.width; ++x)
+                differing += three.at(x, y) != one.at(x / 3, y / 3);
+        EXPECT_EQ(differing, 0u) << plain[k].file;
+    }
+}
+
 }  // namespace
 }  // namespace facet::step
