@@ -19,6 +19,7 @@ struct StepArgs : SceneArgs {
     std::optional<std::string> stages;
     std::optional<std::string> html;
     std::optional<int> htmlStep;
+    std::optional<std::string> htmlRegion;  // "X,Y,W,H"
     std::optional<std::string> versus;
     bool stats = false;
     std::string commandLine;  // as typed, for the web page to show
