@@ -41,9 +41,9 @@ struct HtmlPlan {
     std::optional<facet::step::PixelRect> region;
 };
 
-// The most pixels a page traces: every pixel of a 400x250 image. Each traced pixel adds about 2 kB to
-// the page's folder (320x240 of spot_triangulated.obj: 76800 pixels, 150 MB in 80 tiles of 1 to 3 MB),
-// and facet step holds their text compactly while it writes.
+// The most pixels a page traces: every pixel of a 400x250 image. A traced pixel adds about 0.6 kB (a
+// model alone) to 2 kB (several objects and shadows) to the page's folder, in tiles of a few megabytes
+// of which a click loads one; facet step holds the walks' text compactly while it writes.
 constexpr long long kMostTracedPixels = 100000;
 
 // "X,Y,W,H": the region, inside the image. Throws InputError naming the option.

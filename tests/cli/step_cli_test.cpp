@@ -163,7 +163,8 @@ std::set<std::pair<int, int>> tracedPixels(const std::filesystem::path& page) {
     for (const auto& entry : std::filesystem::directory_iterator(page / "trace-tiles")) {
         const std::string script = readText(entry.path());
         const std::size_t begin = script.find('{'), end = script.rfind(')');
-        for (const nlohmann::json& walk : nlohmann::json::parse(script.substr(begin, end - begin))["walks"])
+        const nlohmann::json tile = nlohmann::json::parse(script.substr(begin, end - begin));
+        for (const nlohmann::json& walk : tile["walks"])
             pixels.emplace(walk.at(0).get<int>(), walk.at(1).get<int>());
     }
     return pixels;
