@@ -35,24 +35,71 @@ std::pair<int, int> parsePixel(const std::string& text) {
     return {static_cast<int>(x), static_cast<int>(y)};
 }
 
-// The web page's grid: every gridStep-th pixel of every gridStep-th row is traced. By default about 2000
-// pixels, so that the data file stays a few megabytes for any image size; each traced pixel adds a few
-// kilobytes, and a bound keeps the page loadable. Throws InputError for a step beyond the bound.
-int htmlGridStep(const StepArgs& args, int width, int height) {
-    const double pixels = double(width) * height;
-    const int step = args.htmlStep.value_or(std::max(4, int(std::ceil(std::sqrt(pixels / 2000.0)))));
-    constexpr double kMostTracedPixels = 20000;
-    const double traced = std::ceil(double(width) / step) * std::ceil(double(height) / step);
-    if (traced > kMostTracedPixels)
+// The pixels the web page traces: every gridStep-th pixel of every gridStep-th row, from gridStep/2, and
+// every pixel of the region.
+struct HtmlPlan {
+    int gridStep = 1;
+    std::optional<facet::step::PixelRect> region;
+};
+
+// The most pixels a page traces: every pixel of a 400x250 image. A traced pixel adds about 0.6 kB (a
+// model alone) to 2 kB (several objects and shadows) to the page's folder, in tiles of a few megabytes
+// of which a click loads one; facet step holds the walks' text compactly while it writes.
+constexpr long long kMostTracedPixels = 100000;
+
+// "X,Y,W,H": the region, inside the image. Throws InputError naming the option.
+facet::step::PixelRect parseRegion(const std::string& text, int width, int height) {
+    std::istringstream in(text);
+    long long x = -1, y = -1, w = 0, h = 0;
+    char c1 = 0, c2 = 0, c3 = 0;
+    if (!(in >> x >> c1 >> y >> c2 >> w >> c3 >> h) || c1 != ',' || c2 != ',' || c3 != ',' ||
+        !(in >> std::ws).eof() || x < 0 || y < 0 || w < 1 || h < 1)
         throw facet::InputError(
-            "--html-step " + std::to_string(step) + " would trace " +
-            std::to_string(static_cast<long long>(traced)) + " pixels of this " + std::to_string(width) +
-            "x" + std::to_string(height) + " image; the page takes at most 20000 (--html-step " +
-            std::to_string(int(std::ceil(std::sqrt(pixels / kMostTracedPixels)))) + " or more)");
-    return step;
+            "--html-region expects X,Y,W,H: the top-left pixel and the width and height in pixels, like "
+            "100,80,120,90 (got " +
+            facet::inQuotes(text) + ")");
+    if (x + w > width || y + h > height)
+        throw facet::InputError("--html-region " + text + " reaches outside the image, which is " +
+                                std::to_string(width) + "x" + std::to_string(height));
+    return {int(x), int(y), int(w), int(h)};
 }
 
-// The web page: the stage images, and the walks of a grid of pixels (and of the traced one, shown first).
+// How many of `from`..`to` - 1 lie on the grid: start + k·step.
+long long onGrid(int from, int to, int start, int step) {
+    const auto firstAtOrAfter = [&](long long v) { return v <= start ? 0 : (v - start + step - 1) / step; };
+    return std::max(0LL, firstAtOrAfter(to) - firstAtOrAfter(from));
+}
+
+// The page's pixels. By default every pixel of an image of at most kMostTracedPixels, else (or with a
+// region) a grid of about 2000. Throws InputError for more than kMostTracedPixels, naming the ways out.
+HtmlPlan planHtml(const StepArgs& args, int width, int height) {
+    HtmlPlan plan;
+    if (args.htmlRegion) plan.region = parseRegion(*args.htmlRegion, width, height);
+    const long long pixels = (long long)width * height;
+    const int sparse = std::max(4, int(std::ceil(std::sqrt(pixels / 2000.0))));
+    plan.gridStep = args.htmlStep.value_or(pixels <= kMostTracedPixels && !plan.region ? 1 : sparse);
+    const int start = plan.gridStep / 2;
+    long long traced = onGrid(0, width, start, plan.gridStep) * onGrid(0, height, start, plan.gridStep);
+    if (plan.region) {
+        const facet::step::PixelRect& r = *plan.region;
+        traced += (long long)r.width * r.height - onGrid(r.x, r.x + r.width, start, plan.gridStep) *
+                                                      onGrid(r.y, r.y + r.height, start, plan.gridStep);
+    }
+    if (traced > kMostTracedPixels) {
+        const int fewest = int(std::ceil(std::sqrt(pixels / double(kMostTracedPixels))));
+        throw facet::InputError(
+            "--html-step " + std::to_string(plan.gridStep) +
+            (plan.region ? " and --html-region " + *args.htmlRegion : std::string()) + " would trace " +
+            std::to_string(traced) + " pixels of this " + std::to_string(width) + "x" +
+            std::to_string(height) + " image; the page takes at most " + std::to_string(kMostTracedPixels) +
+            ": trace a part in full with --html-region X,Y,W,H, or every N-th pixel with --html-step " +
+            std::to_string(std::max(fewest, 2)) + " or more");
+    }
+    return plan;
+}
+
+// The web page: the stage images, and the walks of the planned pixels (and of the traced one, shown
+// first), traced a batch at a time so that only the compact page holds them all.
 void writeHtml(const StepArgs& args, const facet::PreparedScene& prepared, facet::DrawContext& context,
                const facet::step::StepRequest& request, const facet::step::StepTrace& trace) {
     const std::filesystem::path dir = *args.html;
@@ -65,25 +112,47 @@ void writeHtml(const StepArgs& args, const facet::PreparedScene& prepared, facet
     page.height = prepared.scene.height;
     page.title = std::filesystem::path(args.input).filename().string();
     page.commandLine = args.commandLine;
-    page.gridStep = htmlGridStep(args, page.width, page.height);
-    std::vector<std::pair<int, int>> grid;
-    for (int y = page.gridStep / 2; y < page.height; y += page.gridStep)
-        for (int x = page.gridStep / 2; x < page.width; x += page.gridStep)
-            grid.emplace_back(x, y);
-    page.walks = facet::step::traceWalks(prepared, context, grid, request.terms);
-    const auto same = std::find_if(page.walks.begin(), page.walks.end(), [&](const facet::step::Walk& w) {
-        return w.x == trace.walk.x && w.y == trace.walk.y;
-    });
-    if (same != page.walks.end() && !request.triangle) {
-        page.firstWalk = static_cast<std::size_t>(same - page.walks.begin());
-    } else {
-        page.firstWalk = page.walks.size();
-        page.walks.push_back(trace.walk);
+    const HtmlPlan plan = planHtml(args, page.width, page.height);
+    page.gridStep = plan.gridStep;
+    page.region = plan.region;
+    // The grid in row order, then the region's other pixels in row order (the page's order on a tie).
+    std::vector<std::pair<int, int>> pixels;
+    const int start = page.gridStep / 2;
+    const auto isOnGrid = [&](int x, int y) {
+        return x >= start && y >= start && (x - start) % page.gridStep == 0 &&
+               (y - start) % page.gridStep == 0;
+    };
+    for (int y = start; y < page.height; y += page.gridStep)
+        for (int x = start; x < page.width; x += page.gridStep)
+            pixels.emplace_back(x, y);
+    if (const auto& r = page.region)
+        for (int y = r->y; y < r->y + r->height; ++y)
+            for (int x = r->x; x < r->x + r->width; ++x)
+                if (!isOnGrid(x, y)) pixels.emplace_back(x, y);
+
+    facet::step::PageWalks walks(page.width);
+    constexpr std::size_t kBatch = 4096;  // pixels traced at once: two frames per batch, their text in memory
+    for (std::size_t first = 0; first < pixels.size(); first += kBatch) {
+        const std::vector<std::pair<int, int>> batch(
+            pixels.begin() + first, pixels.begin() + std::min(pixels.size(), first + kBatch));
+        for (const facet::step::Walk& walk : facet::step::traceWalks(prepared, context, batch, request.terms))
+            walks.add(walk);
     }
-    facet::step::writeHtmlPage(dir, page);
-    std::cerr << "facet: wrote " << (dir / facet::step::kHtmlPageFile).string() << " (" << page.walks.size()
-              << " pixels traced, every " << page.gridStep << "th of every " << page.gridStep
-              << "th row, and " << page.stages.size() << " stage images)\n";
+    const auto same = std::find(pixels.begin(), pixels.end(), std::pair(trace.walk.x, trace.walk.y));
+    if (same != pixels.end() && !request.triangle) {
+        page.firstWalk = static_cast<std::size_t>(same - pixels.begin());
+    } else {
+        page.firstWalk = walks.size();
+        walks.add(trace.walk);
+    }
+    facet::step::writeHtmlPage(dir, page, walks);
+    std::cerr << "facet: wrote " << (dir / facet::step::kHtmlPageFile).string() << " (" << walks.size()
+              << " pixels traced: "
+              << (page.gridStep == 1 ? std::string("every pixel")
+                                     : "every " + std::to_string(page.gridStep) + "th of every " +
+                                           std::to_string(page.gridStep) + "th row")
+              << (page.region ? ", and the region " + *args.htmlRegion : std::string()) << "; "
+              << page.stages.size() << " stage images)\n";
 }
 
 // The step mode follows one pixel's centre through one drawing of the frame. Supersampling draws the
@@ -180,8 +249,12 @@ CLI::App* addStepCommand(CLI::App& app, StepArgs& args) {
     command
         ->add_option("--html-step", args.htmlStep,
                      "The page traces every N-th pixel of every N-th row; a click shows the nearest traced "
-                     "one (default: N for about 2000 pixels, at least 4)")
+                     "one (default: 1, every pixel, up to 100000 pixels; beyond, or with --html-region, N "
+                     "for about 2000 pixels, at least 4)")
         ->check(wholeNumber(1, 1024));
+    command->add_option("--html-region", args.htmlRegion,
+                        "The page also traces every pixel of this part of the image, X,Y,W,H (top-left "
+                        "pixel, width, height; for images over 100000 pixels)");
     command->add_option(
         "--versus", args.versus,
         "Trace the pixel again with these options over the others (like \"--shading gouraud\", or "
@@ -217,7 +290,8 @@ int step(const StepArgs& args) {
     const facet::Scene scene = sceneFromArgs(args);
     refuseAntialiasing(scene);
     if (args.json) facet::checkTextDestination(*args.json);
-    if (args.html) htmlGridStep(args, scene.width, scene.height);  // a step too fine refused before any work
+    if (args.html) planHtml(args, scene.width, scene.height);  // too many pixels refused before any work
+    if (args.htmlRegion && !args.html) throw facet::InputError("--html-region needs --html DIR");
     checkStageScale(args, scene.width, scene.height);
     if (args.versus && (args.screen || args.format))
         throw facet::InputError(std::string(args.screen ? "--screen" : "--format") +

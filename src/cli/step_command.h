@@ -20,6 +20,7 @@ struct StepArgs : SceneArgs {
     std::optional<int> stageScale;  // --stage-scale N: the --stages images N times larger
     std::optional<std::string> html;
     std::optional<int> htmlStep;
+    std::optional<std::string> htmlRegion;  // "X,Y,W,H"
     std::optional<std::string> versus;
     bool stats = false;
     std::optional<std::string> screen;  // --screen ID: print only this screen

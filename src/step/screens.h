@@ -3,6 +3,7 @@
 // beside the stage images; all three show the same text.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -33,6 +34,11 @@ struct Walk {
     std::optional<TriangleRef> triangle;  // the traced triangle; none when nothing covers the pixel
     std::string verdict;                  // one line: what happened at the pixel
     std::vector<Screen> screens;          // in pipeline order
+    // The traced triangle where the rasterizer met it: after clipping, each piece's three corners in
+    // window coordinates (pixels, y down, pixel (x, y) covering x..x+1, y..y+1), snapped as its edge
+    // functions used them. Empty when the triangle never reached the rasterizer. The web page outlines
+    // the triangle with these edges.
+    std::vector<std::array<std::array<double, 2>, 3>> windowPieces;
 };
 
 // An image of the whole frame after one stage (facet step --stages DIR), as the web page lists it.

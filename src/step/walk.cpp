@@ -95,7 +95,15 @@ Walk walkOf(const PreparedScene& prepared, const PixelTrace& pixel, const Triang
     Walk walk;
     walk.x = pixel.x;
     walk.y = pixel.y;
-    if (triangle) walk.triangle = triangle->ref;
+    if (triangle) {
+        walk.triangle = triangle->ref;
+        for (const WindowPiece& piece : triangle->pieces) {
+            std::array<std::array<double, 2>, 3>& corners = walk.windowPieces.emplace_back();
+            for (int k = 0; k < 3; ++k)  // the fixed-point grid of pipeline/types.h, as pixels
+                corners[k] = {double(piece.vertices[k].xFixed) / (1 << kFixedFractionBits),
+                              double(piece.vertices[k].yFixed) / (1 << kFixedFractionBits)};
+        }
+    }
     walk.verdict = verdictOf(pixel);
     walk.screens.push_back(historyScreen(pixel, &prepared));
     if (triangle)

@@ -2,6 +2,7 @@
 // requests refused with one line. Each test names the one-line break it catches.
 #include <algorithm>
 #include <filesystem>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -217,6 +218,79 @@ TEST(StepCli, BadScreenOrScaleIsRefusedWithOneLine) {
         EXPECT_TRUE(run.out.empty()) << run.out.substr(0, 200);
     }
     EXPECT_FALSE(std::filesystem::exists(dir.path() / "stages"));
+}
+
+// The pixels the page's tiles hold walks for (trace-tiles/*.js, each calling facetStepTile).
+std::set<std::pair<int, int>> tracedPixels(const std::filesystem::path& page) {
+    std::set<std::pair<int, int>> pixels;
+    for (const auto& entry : std::filesystem::directory_iterator(page / "trace-tiles")) {
+        const std::string script = readText(entry.path());
+        const std::size_t begin = script.find('{'), end = script.rfind(')');
+        const nlohmann::json tile = nlohmann::json::parse(script.substr(begin, end - begin));
+        for (const nlohmann::json& walk : tile["walks"])
+            pixels.emplace(walk.at(0).get<int>(), walk.at(1).get<int>());
+    }
+    return pixels;
+}
+
+// A small image is traced in full by default; with a step and a region, the grid from step/2 and every
+// pixel of the region. Catches: a default that still leaves pixels untraced (a click on the neighbour of
+// a shared-edge tie saying "not traced"), or a region or grid pixel missing from the tiles.
+TEST(StepCli, HtmlTracesEveryPixelOfASmallImageAndTheRegion) {
+    TempFolder dir;
+    const auto page = dir.path() / "page";
+    const std::string spot = std::string("step '") + FACET_SOURCE_DIR + "/models/spot/spot_triangulated.obj'";
+    RunResult run = runFacet(spot + " --width 21 --height 15 --html '" + page.string() + "'", dir);
+    ASSERT_EQ(run.status, 0) << run.err;
+    std::set<std::pair<int, int>> every;
+    for (int y = 0; y < 15; ++y)
+        for (int x = 0; x < 21; ++x)
+            every.emplace(x, y);
+    EXPECT_EQ(tracedPixels(page), every);
+
+    std::filesystem::remove_all(page);
+    run = runFacet(spot + " --width 21 --height 15 --html-step 4 --html-region 3,4,2,3 --pixel 2,2 --html '" +
+                       page.string() + "'",
+                   dir);
+    ASSERT_EQ(run.status, 0) << run.err;
+    std::set<std::pair<int, int>> expected;
+    for (int y = 2; y < 15; y += 4)  // the grid: from 4/2 = 2, every 4th
+        for (int x = 2; x < 21; x += 4)
+            expected.emplace(x, y);
+    for (int y = 4; y < 7; ++y)
+        for (int x = 3; x < 5; ++x)
+            expected.emplace(x, y);
+    EXPECT_EQ(tracedPixels(page), expected);
+}
+
+// Catches: a malformed or outside --html-region, or one without --html, accepted (or a crash) instead of
+// one line and exit status 1; a page of too many pixels refused without naming the ways out.
+TEST(StepCli, BadHtmlRegionsAreRefusedWithOneLine) {
+    TempFolder dir;
+    const std::string page = " --html '" + (dir.path() / "page").string() + "'";
+    for (const std::string& bad :
+         {" --html-region 1,2,3" + page, " --html-region 0,0,0,5" + page, " --html-region 90,0,10,10" + page,
+          " --html-region a,b,c,d" + page, std::string(" --html-region 0,0,5,5")}) {
+        SCOPED_TRACE(bad);
+        const RunResult run = runFacet("step " + kSpot + bad, dir);
+        EXPECT_EQ(run.status, 1);
+        EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+        EXPECT_NE(run.err.find("--html-region"), std::string::npos) << run.err;
+        EXPECT_FALSE(std::filesystem::exists(dir.path() / "page"));
+    }
+    const RunResult big = runFacet(std::string("step '") + FACET_SOURCE_DIR +
+                                       "/models/spot/spot_triangulated.obj' --width 800 --height 600 "
+                                       "--html-region 0,0,400,300" +
+                                       page,
+                                   dir);
+    EXPECT_EQ(big.status, 1);
+    // The default grid of 800x600, every 16th pixel from 8 (ceil(sqrt(480000 / 2000)) = 16): 50 × 37
+    // pixels, 25 × 19 of them in the region, which adds its 400 × 300: 1850 + 120000 − 475 = 121375.
+    // Every 3rd pixel (ceil(sqrt(480000 / 100000)) = 3) would do.
+    for (const char* named :
+         {"would trace 121375 pixels", "at most 100000", "--html-region X,Y,W,H", "--html-step 3"})
+        EXPECT_NE(big.err.find(named), std::string::npos) << named << " in " << big.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / "page"));
 }
 
 }  // namespace
