@@ -358,7 +358,7 @@ json traceData(const HtmlPage& page) {
         const json triangle = walk.triangle ? json(walk.triangle->number) : json(nullptr);
         // The lines printWalk writes above the screens, from printWalk itself: the page shows them as is.
         const std::string& heading =
-            headings.emplace_back(printWalk({walk.x, walk.y, walk.triangle, walk.verdict, {}}));
+            headings.emplace_back(printWalk({walk.x, walk.y, walk.triangle, walk.verdict, {}, {}}));
         walks.push_back({walk.x, walk.y, triangle, strings.number(heading), std::move(walkScreens)});
     }
     return {{"width", page.width},           {"height", page.height},
