@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace facet::step {
@@ -39,6 +40,9 @@ struct Walk {
     // functions used them. Empty when the triangle never reached the rasterizer. The web page outlines
     // the triangle with these edges.
     std::vector<std::array<std::array<double, 2>, 3>> windowPieces;
+    // The lines fitToColumns had to wrap, as the screens made them: each a screen's fault (tests
+    // expect none), wrapped only so that a user never sees a line over 80 columns.
+    std::vector<std::string> linesWrappedToFit;
 };
 
 // An image of the whole frame after one stage (facet step --stages DIR), as the web page lists it.
@@ -55,6 +59,23 @@ std::string wrapText(const std::string& text, std::size_t width, std::size_t ind
 
 // Screen `index` of `walk` under its number, its title and a rule: its block of printWalk.
 std::string printScreen(const Walk& walk, std::size_t index);
+// The columns a screen's line may take: the README promises 80 (a terminal, a handout, a slide).
+inline constexpr std::size_t kScreenColumns = 80;
+// A title's: --print writes it after its number ("12. ").
+inline constexpr std::size_t kTitleColumns = kScreenColumns - 4;
+
+// The columns a UTF-8 text takes on a terminal: one per code point (the screens' symbols, like · and
+// ≤, are one column wide), i.e. every byte that is not a continuation byte 10xxxxxx.
+std::size_t columnsOf(std::string_view text);
+
+// The lines of the walk's screens wider than their columns (texts kScreenColumns, titles
+// kTitleColumns), each as "id: line": what the screens made, before any fitting.
+std::vector<std::string> linesTooWide(const Walk& walk);
+
+// The walk's safety net: every text line wider than kScreenColumns wrapped (words kept whole, the
+// rest indented two more than the line), every title wider than kTitleColumns cut at a word with
+// "…"; each such line kept in linesWrappedToFit. A screen should need none of it.
+void fitToColumns(Walk& walk);
 
 // The screens one after another, each under a numbered title and a rule: what --print writes.
 std::string printWalk(const Walk& walk);

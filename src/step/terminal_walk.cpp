@@ -20,15 +20,10 @@ constexpr std::string_view bold = "\x1b[1m";
 constexpr std::string_view reverseVideo = "\x1b[7m";
 constexpr std::string_view plain = "\x1b[0m";
 
-// The frame around the text: two header lines and a rule above it; the status line, the keys and the
-// prompt below it.
-constexpr int headerRows = 3;
-constexpr int footerRows = 3;
+// The frame around the text: the title (a line, or more when it is long), the pixel line and a rule
+// above it; the status (a line or more: a message is wrapped, never cut), the keys and the prompt
+// below it.
 constexpr int fewestTextRows = 3;
-
-int textRows(TerminalSize size) {
-    return std::max(fewestTextRows, size.rows - headerRows - footerRows);
-}
 
 // Columns a line takes on the terminal: one per UTF-8 code point (the screens use symbols like · and
 // ≤, each one column wide), i.e. every byte that is not a continuation byte 10xxxxxx.
@@ -40,6 +35,31 @@ int displayWidth(std::string_view line) {
 // Terminal rows a line fills: a line wider than the terminal wraps onto the next row.
 int rowsOf(std::string_view line, int columns) {
     return std::max(1, (displayWidth(line) + columns - 1) / std::max(1, columns));
+}
+
+// A message as lines of at most `columns` code points, words kept whole (a word wider than the
+// terminal split across lines): nothing of it is cut.
+std::vector<std::string> wrappedLines(const std::string& message, int columns) {
+    const std::size_t width = static_cast<std::size_t>(std::max(1, columns));
+    std::vector<std::string> lines;
+    const std::string wrapped = wrapText(message, width, 0);
+    std::string_view rest = wrapped;
+    while (!rest.empty()) {
+        const std::size_t end = rest.find('\n');
+        std::string_view line = rest.substr(0, end);
+        rest = end == std::string_view::npos ? std::string_view() : rest.substr(end + 1);
+        do {  // a word wider than the terminal: its pieces one after another
+            std::size_t cut = line.size(), seen = 0;
+            for (std::size_t i = 0; i < line.size(); ++i)
+                if ((static_cast<unsigned char>(line[i]) & 0xC0) != 0x80 && seen++ == width) {
+                    cut = i;
+                    break;
+                }
+            lines.emplace_back(line.substr(0, cut));
+            line.remove_prefix(cut);
+        } while (!line.empty());
+    }
+    return lines;
 }
 
 // The line cut to at most `columns` code points, for the lines the walk writes itself.
@@ -65,8 +85,7 @@ std::vector<std::string_view> linesOf(std::string_view text) {
 
 // The text cut into pages of whole lines that each fit in `rows` terminal rows (a single line taller
 // than that is a page of its own). Always at least one page, empty for an empty text.
-std::vector<std::vector<std::string_view>> pagesOf(std::string_view text, TerminalSize size) {
-    const int rows = textRows(size);
+std::vector<std::vector<std::string_view>> pagesOf(std::string_view text, TerminalSize size, int rows) {
     std::vector<std::vector<std::string_view>> pages(1);
     int used = 0;
     for (std::string_view line : linesOf(text)) {
@@ -128,9 +147,24 @@ std::string shownText(const WalkState& state) {
     return state.walk.screens[state.stage].text;
 }
 
+std::string titleLine(const WalkState& state);
+
+// The status bar's message: the last key's, else the verdict.
+std::string statusMessage(const WalkState& state) {
+    return state.status.empty() ? state.walk.verdict : state.status;
+}
+
+// The rows of text a page has: the terminal's, less the title's lines, the pixel line, the rule, the
+// status's lines, the keys and the prompt.
+int textRows(const WalkState& state, TerminalSize size) {
+    const int title = static_cast<int>(wrappedLines(titleLine(state), size.columns).size());
+    const int status = static_cast<int>(wrappedLines(statusMessage(state), size.columns).size());
+    return std::max(fewestTextRows, size.rows - title - 2 - status - 2);
+}
+
 int pageCount(const WalkState& state, TerminalSize size) {
     const std::string text = shownText(state);
-    return static_cast<int>(pagesOf(text, size).size());
+    return static_cast<int>(pagesOf(text, size, textRows(state, size)).size());
 }
 
 int shownPage(const WalkState& state) {
@@ -341,12 +375,14 @@ void applyKeys(WalkState& state, std::string_view line, const Retrace& retrace, 
 
 std::string drawFrame(const WalkState& state, TerminalSize size) {
     const std::string text = shownText(state);
-    const auto pages = pagesOf(text, size);
+    const int rows = textRows(state, size);
+    const auto pages = pagesOf(text, size, rows);
     const int page = std::min(shownPage(state), static_cast<int>(pages.size()) - 1);
     const int pageTotal = static_cast<int>(pages.size());
 
     std::string frame(clearAndHome);
-    frame += std::string(bold) + fitted(titleLine(state), size.columns) + std::string(plain) + "\n";
+    for (const std::string& line : wrappedLines(titleLine(state), size.columns))
+        frame += std::string(bold) + line + std::string(plain) + "\n";
     frame += fitted(pixelLine(state, page, pageTotal), size.columns) + "\n";
     frame += std::string(static_cast<std::size_t>(std::min(size.columns, 80)), '-') + "\n";
     int used = 0;
@@ -355,11 +391,13 @@ std::string drawFrame(const WalkState& state, TerminalSize size) {
         used += rowsOf(line, size.columns);
     }
     // Blank rows down to the status line, so that it and the keys stay at the bottom of the terminal.
-    for (; used < textRows(size); ++used)
+    for (; used < rows; ++used)
         frame += "\n";
-    std::string status = fitted(state.status.empty() ? state.walk.verdict : state.status, size.columns);
-    status += std::string(static_cast<std::size_t>(std::max(0, size.columns - displayWidth(status))), ' ');
-    frame += std::string(reverseVideo) + status + std::string(plain) + "\n";
+    for (std::string status : wrappedLines(statusMessage(state), size.columns)) {
+        status +=
+            std::string(static_cast<std::size_t>(std::max(0, size.columns - displayWidth(status))), ' ');
+        frame += std::string(reverseVideo) + status + std::string(plain) + "\n";
+    }
     frame += keysLine(state, page + 1 < pageTotal, size) + "\n";
     frame += "> ";
     return frame;

@@ -45,6 +45,13 @@ std::string bracketedIfNegative(double value) {
     return text;
 }
 
+// `first` and `second` on one line when it fits the screen, else `second` on the next line after
+// `indent` spaces: for a line whose numbers may be long. Ends in '\n'.
+std::string oneLineOrTwo(const std::string& first, const std::string& second, std::size_t indent) {
+    if (columnsOf(first) + 1 + columnsOf(second) <= kScreenColumns) return first + " " + second + "\n";
+    return first + "\n" + std::string(indent, ' ') + second + "\n";
+}
+
 std::string integer(std::int64_t value) {
     return std::to_string(value);
 }
@@ -320,9 +327,12 @@ std::string vertexNormalText(const PreparedScene& prepared, const TriangleTrace&
 
 Screen inputScreen(const PreparedScene& prepared, const TriangleTrace& t) {
     std::ostringstream out;
-    out << "Triangle " << t.ref.number << " of the scene" << drawPlace(prepared, t.ref)
-        << ": three corners of its draw's\nvertex array, numbers " << t.indices[0] << ", " << t.indices[1]
-        << ", " << t.indices[2] << ", in object space (as the model file\ngives them):\n\n";
+    out << wrapText("Triangle " + std::to_string(t.ref.number) + " of the scene" +
+                        drawPlace(prepared, t.ref) + ": three corners of its draw's vertex array, numbers " +
+                        std::to_string(t.indices[0]) + ", " + std::to_string(t.indices[1]) + ", " +
+                        std::to_string(t.indices[2]) + ", in object space (as the model file gives them):",
+                    kScreenColumns, 0)
+        << "\n";
     for (int k = 0; k < 3; ++k)
         out << "  v" << k << "  position " << vectorText(t.objectPositions[k]) << "\n      normal   "
             << vectorText(t.objectNormals[k]) << "\n";
@@ -458,15 +468,15 @@ Screen clipScreen(const TriangleTrace& t) {
     const ClipDepthRange range = clipDepthRange(t.state.depth.format);
     if (range == ClipDepthRange::ReversedZeroToW)
         out << "A clip-space point is inside the view volume when −w ≤ x, y ≤ w and 0 ≤ z ≤ w\n"
-               "(reversed Z: the projection puts the near plane at z = w and the far plane at z = 0).\n";
+               "(reversed Z: the projection puts the near plane at z = w, the far one at z = 0).\n";
     else
         out << "A clip-space point is inside the view volume when −w ≤ x, y, z ≤ w.\n";
     out << "Outcode: the planes a vertex lies outside of.\n\n";
     std::uint8_t orCode = 0, andCode = 0xff;
     for (int k = 0; k < 3; ++k) {
         const vec4& p = t.clipPositions[k];
-        out << "  v" << k << " " << vectorText(p) << ": "
-            << (t.outcodes[k] == 0 ? "inside" : "outside " + clipPlaneNames(t.outcodes[k])) << "\n";
+        out << oneLineOrTwo("  v" + std::to_string(k) + " " + vectorText(p) + ":",
+                            t.outcodes[k] == 0 ? "inside" : "outside " + clipPlaneNames(t.outcodes[k]), 5);
         orCode |= t.outcodes[k];
         andCode &= t.outcodes[k];
     }
@@ -476,18 +486,21 @@ Screen clipScreen(const TriangleTrace& t) {
         return {"clip", "Clipping: dropped (not a finite number)", out.str()};
     }
     if (t.rejected == TriangleFate::OutsideFrustum) {
-        out << "All three vertices lie outside the same plane (" << clipPlaneNames(andCode & kAllClipPlanes)
-            << "): the whole\ntriangle is outside the view and is rejected without clipping.\n";
+        out << wrapText("All three vertices lie outside the same plane (" +
+                            clipPlaneNames(andCode & kAllClipPlanes) +
+                            "): the whole triangle is outside the view and is rejected without clipping.",
+                        kScreenColumns, 0);
         return {"clip", "Clipping: rejected, wholly outside the view", out.str()};
     }
     if (orCode == 0) {
         out << "All three vertices are inside every plane: nothing to clip.\n";
         return {"clip", "Clipping: inside the view, nothing to clip", out.str()};
     }
-    out << "The triangle crosses " << clipPlaneNames(orCode)
-        << ": it is clipped plane by plane (Sutherland-Hodgman),\n"
-           "in homogeneous coordinates before any division. A new vertex lies where an\n"
-           "edge crosses the plane: P = P_in + t·(P_out − P_in), t = d_in / (d_in − d_out),\n"
+    out << wrapText("The triangle crosses " + clipPlaneNames(orCode) +
+                        ": it is clipped plane by plane (Sutherland-Hodgman), in homogeneous coordinates "
+                        "before any division. A new vertex lies where an edge crosses the plane:",
+                    kScreenColumns, 0)
+        << "  P = P_in + t·(P_out − P_in), t = d_in / (d_in − d_out),\n"
            "d being the signed distance to the plane (≥ 0 inside).\n";
     std::vector<vec4> polygon(t.clipPositions.begin(), t.clipPositions.end());
     for (const ClipStep& step : t.clipSteps) {
@@ -589,8 +602,7 @@ Screen setupScreen(const TriangleTrace& t) {
                 out << "  " << (piece.setup.frontFacing ? "Front" : "Back")
                     << "-facing, and that side is culled: the triangle is dropped.\n";
                 if (piece.setup.boxEmpty()) {
-                    out << "  (Kept, it would have covered no pixel: its bounding box holds no pixel "
-                           "centre.)\n";
+                    out << "  (Kept, it would have covered no pixel: its box holds no pixel centre.)\n";
                     continue;
                 }
                 out << "  (Below: the setup it would have had.)\n";
@@ -859,8 +871,8 @@ Screen historyScreen(const PixelTrace& p, const PreparedScene* prepared) {
             const std::string name = f.submission < p.resolve->submitted.size()
                                          ? triangleName(p.resolve->submitted[f.submission])
                                          : "fragment " + std::to_string(f.submission);
-            out << "  depth " << number(f.depth) << "  " << name << "  colour after "
-                << vectorText(vec3(f.colorAfter)) << "\n";
+            out << oneLineOrTwo("  depth " + number(f.depth) + "  " + name,
+                                " colour after " + vectorText(vec3(f.colorAfter)), 3);
         }
     }
     return {"history", "Pixel history of (" + std::to_string(p.x) + ", " + std::to_string(p.y) + ")",
@@ -873,8 +885,9 @@ std::vector<Screen> fragmentScreens(const PreparedScene* prepared, const PixelTr
     const std::string at = "(" + std::to_string(p.x) + ", " + std::to_string(p.y) + ")";
     if (!entry || !entry->fragment) {
         std::ostringstream out;
-        out << "The traced triangle made no fragment at pixel " << at << ": "
-            << (entry ? fateText(*entry) : "its bounding box does not hold the pixel") << ".\n"
+        out << wrapText("The traced triangle made no fragment at pixel " + at + ": " +
+                            (entry ? fateText(*entry) : "its bounding box does not hold the pixel") + ".",
+                        kScreenColumns, 0)
             << "Pick a triangle that covers the pixel (t N) or another pixel (p X,Y).\n";
         screens.push_back({"interpolate", "Interpolation: no fragment of this triangle here", out.str()});
         return screens;
@@ -979,13 +992,14 @@ std::string sortKeyText(const PreparedScene& prepared, const TriangleRef& ref) {
     out << "Its sort key, the distance along the view direction (larger is farther, drawn\nearlier), of its "
         << (key == SortKey::Centroid ? "centroid" : "farthest corner") << ", from the corners' eye-space z:\n"
         << "  z0 = " << number(z[0]) << ", z1 = " << number(z[1]) << ", z2 = " << number(z[2]) << "\n";
+    // The rule, the corners' numbers in it, the key: one line each, so that long numbers fit.
     if (key == SortKey::Centroid)
-        out << "  z_key = −(z0 + z1 + z2)/3 = −(" << bracketedIfNegative(z[0]) << " + "
-            << bracketedIfNegative(z[1]) << " + " << bracketedIfNegative(z[2]) << ")/3 = " << number(value)
-            << "\n";
+        out << "  z_key = −(z0 + z1 + z2)/3\n        = −(" << bracketedIfNegative(z[0]) << " + "
+            << bracketedIfNegative(z[1]) << " + " << bracketedIfNegative(z[2]) << ")/3\n";
     else
-        out << "  z_key = −min(z0, z1, z2) = −min(" << number(z[0]) << ", " << number(z[1]) << ", "
-            << number(z[2]) << ") = " << number(value) << "\n";
+        out << "  z_key = −min(z0, z1, z2)\n        = −min(" << number(z[0]) << ", " << number(z[1]) << ", "
+            << number(z[2]) << ")\n";
+    out << "        = " << number(value) << "\n";
     return out.str();
 }
 
@@ -999,8 +1013,9 @@ std::vector<Screen> outputScreens(const PreparedScene& prepared, const PixelTrac
         if (f && (f->fate == FragmentFate::Written)) {
             const vec4& s = f->shaded;
             const vec4& d = f->colorBefore;
-            out << "Source c_s (the shader's output) = " << vectorText(vec3(s)) << ", α_s = " << number(s.a)
-                << "\nDestination c_d (the colour buffer) = " << vectorText(vec3(d)) << "\n";
+            out << "Source, the shader's output:\n  c_s = " << vectorText(vec3(s))
+                << ", α_s = " << number(s.a)
+                << "\nDestination, the colour buffer:\n  c_d = " << vectorText(vec3(d)) << "\n";
             switch (entry->blend) {
                 case BlendMode::Replace:
                     out << "No blending (opaque): c_o = c_s\n";
@@ -1043,10 +1058,11 @@ std::vector<Screen> outputScreens(const PreparedScene& prepared, const PixelTrac
             if (entry->overwrittenBy)
                 out << "\nLater " << triangleName(*entry->overwrittenBy) << " wrote this pixel again.\n";
         } else if (f && f->fate == FragmentFate::Stored) {
-            out << "Exact transparency: the fragment's colour " << vectorText(f->shaded)
-                << " went into the pixel's\nfragment list; after the frame the list is sorted far to near "
-                   "and "
-                   "composited\nwith the over operator, c_o = α·c_s + (1 − α)·c_d (see the history).\n";
+            out << wrapText("Exact transparency: the fragment's colour " + vectorText(f->shaded) +
+                                " went into the pixel's fragment list; after the frame the list is sorted "
+                                "far to near and composited with the over operator,",
+                            kScreenColumns, 0)
+                << "  c_o = α·c_s + (1 − α)·c_d (see the history).\n";
             title = "Blending: stored in the pixel's fragment list";
         } else {
             out << "The traced triangle wrote nothing here.\n";
@@ -1056,7 +1072,7 @@ std::vector<Screen> outputScreens(const PreparedScene& prepared, const PixelTrac
     }
     {
         std::ostringstream out;
-        out << "The colour buffer holds linear light: c = " << vectorText(p.finalColor) << "\n";
+        out << "The colour buffer holds linear light:\n  c = " << vectorText(p.finalColor) << "\n";
         const ColorEncoding& e = p.encoding;
         switch (e.curve) {
             case TransferCurve::Srgb:
@@ -1075,17 +1091,21 @@ std::vector<Screen> outputScreens(const PreparedScene& prepared, const PixelTrac
         for (int c = 0; c < 4; ++c) {
             const double linear = p.finalColor[c];
             const double encoded = c < 3 ? encodedUnit(float(linear), e) : linear;
-            out << "  " << kChannel[c] << ": " << number(linear);
-            if (c < 3 && e.curve == TransferCurve::Srgb) out << " → " << number(encoded);
+            std::string line = "  " + std::string(kChannel[c]) + ": " + number(linear);
+            std::string rest;  // the byte, and 255·c' before it: on a line of its own when too long
+            if (c < 3 && e.curve == TransferCurve::Srgb) line += " → " + number(encoded);
             if (c < 3 && e.curve == TransferCurve::Power) {
                 // c' = c^(1/γ) (of c clamped to at most 1; c ≤ 0 gives 0), then 255·c' rounded.
-                if (linear > 0.0)
-                    out << "^(1/" << number(e.gamma) << ")" << (linear > 1.0 ? " (clamped to 1)" : "")
-                        << " = " << number(encoded) << ", 255·c' = " << number(float(encoded) * 255.0f);
-                else
-                    out << " ≤ 0: c' = 0";
+                if (linear > 0.0) {
+                    line += "^(1/" + number(e.gamma) + ")" + (linear > 1.0 ? " (clamped to 1)" : "") + " = " +
+                            number(encoded) + ",";
+                    rest = "255·c' = " + number(float(encoded) * 255.0f) + " ";
+                } else {
+                    line += " ≤ 0: c' = 0";
+                }
             }
-            out << " → " << int(p.finalBytes[c]) << "\n";
+            rest += "→ " + std::to_string(int(p.finalBytes[c]));
+            out << oneLineOrTwo(line, rest, 5);
         }
         char hex[16];
         std::snprintf(hex, sizeof hex, "#%02x%02x%02x", p.finalBytes[0], p.finalBytes[1], p.finalBytes[2]);

@@ -121,6 +121,7 @@ Walk walkOf(const PreparedScene& prepared, const PixelTrace& pixel, const Triang
             walk.screens.push_back(std::move(screen));
     for (Screen& screen : outputScreens(prepared, pixel, entry))
         walk.screens.push_back(std::move(screen));
+    fitToColumns(walk);  // the safety net: a line a screen made too wide is wrapped, and recorded
     return walk;
 }
 

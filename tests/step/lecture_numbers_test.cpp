@@ -318,10 +318,14 @@ TEST_F(LectureNumbersTest, BlendScreenShowsTheSortKeyOfATransparentTriangle) {
         const double z[3] = {0 - 5.0, 0.6 - 5.0, 0.3 - 5.0};
         const double want =
             key == SortKey::Centroid ? -(z[0] + z[1] + z[2]) / 3 : -std::min({z[0], z[1], z[2]});
-        const std::string label = key == SortKey::Centroid ? "z_key = −(z0 + z1 + z2)/3 = " : "z_key = −min(";
+        // The rule, its numbers, then the key: "= value" on the last line of the three.
+        const std::string label =
+            key == SortKey::Centroid ? "z_key = −(z0 + z1 + z2)/3\n" : "z_key = −min(z0";
         const std::size_t at = text.find(label);
         ASSERT_NE(at, std::string::npos) << text;
-        const std::size_t line = text.find('\n', at);
+        std::size_t line = at;
+        for (int k = 0; k < 3; ++k)
+            line = text.find('\n', line + 1);
         const double shown = std::strtod(text.substr(text.rfind("= ", line) + 2).c_str(), nullptr);
         EXPECT_NEAR(shown, want, 1e-5) << text;
         EXPECT_NE(text.find("drawn 2. of"), std::string::npos) << text;

@@ -243,6 +243,76 @@ TEST(TerminalWalk, EveryFrameFillsTheTerminalExactly) {
     }
 }
 
+// The frame's lines without the colour codes, and the status bar's (reverse video) joined by spaces.
+struct FrameLines {
+    std::vector<std::string> lines;
+    std::string status;
+};
+
+FrameLines frameLines(const std::string& frame) {
+    FrameLines result;
+    std::string_view rest(frame);
+    rest.remove_prefix(clearAndHome.size());
+    while (!rest.empty()) {
+        const std::size_t end = rest.find('\n');
+        std::string line(rest.substr(0, end));
+        rest = end == std::string_view::npos ? std::string_view() : rest.substr(end + 1);
+        const bool status = line.starts_with("\x1b[7m");
+        for (const auto code : {"\x1b[1m", "\x1b[7m", "\x1b[0m"})
+            for (std::size_t at; (at = line.find(code)) != std::string::npos;)
+                line.erase(at, 4);
+        if (status) {
+            const std::size_t last = line.find_last_not_of(' ');
+            result.status += (result.status.empty() ? "" : " ") + line.substr(0, last + 1);
+        }
+        result.lines.push_back(line);
+    }
+    return result;
+}
+
+// A refusal longer than the terminal is wide, in the status bar: wrapped over as many lines as it
+// needs, each within the width, the page shorter by as many, the frame still the terminal's height.
+// Catches: the bar cutting its message ("… y from 0 t"), a wrapped bar pushing the frame past the
+// terminal's last row.
+TEST(TerminalWalk, ALongMessageWrapsInTheStatusBarWithoutBeingCut) {
+    // The refusal traceStep (step/walk.h) gives for a pixel outside a 160x120 image.
+    const std::string refusal =
+        "pixel 99999,5 is outside the image, which is 160x120 (x from 0 to 159, y from 0 to 119, y down)";
+    const Retrace refuse = [&](const WalkRequest&) -> Walk { throw InputError(refusal); };
+    for (const TerminalSize size : {TerminalSize{80, 24}, TerminalSize{40, 24}, TerminalSize{24, 24}}) {
+        SCOPED_TRACE(size.columns);
+        const Session session = run(withLongFirstScreen(40), "p 99999,5\n", refuse, size);
+        const FrameLines frame = frameLines(session.last());
+        EXPECT_EQ(frame.status, refusal);
+        for (const std::string& line : frame.lines)
+            EXPECT_LE(line.size(), static_cast<std::size_t>(size.columns)) << line;
+        EXPECT_EQ(static_cast<int>(frame.lines.size()), size.rows);  // the prompt's row last
+        EXPECT_TRUE(frame.lines.back().starts_with("> "));
+        // The page gave the status its rows: fewer lines of the stage than under a one-line verdict.
+        const FrameLines before = frameLines(session.frames.front());
+        const auto stageLines = [](const FrameLines& f) {
+            return std::count_if(f.lines.begin(), f.lines.end(),
+                                 [](const std::string& l) { return l.starts_with("line "); });
+        };
+        EXPECT_LT(stageLines(frame), stageLines(before));
+    }
+}
+
+// A stage's title longer than the terminal is wide is wrapped in the header, not cut. Catches: the
+// header cutting the title at the terminal's width.
+TEST(TerminalWalk, ALongTitleWrapsInTheHeader) {
+    Walk walk = threeStages();
+    walk.screens[0].title = "Clipping: left+right+bottom+top+near+w cut the triangle into five pieces";
+    const Retrace none = [](const WalkRequest&) -> Walk { throw std::logic_error("no retrace"); };
+    const Session session = run(walk, "", none, {.columns = 40, .rows = 24});
+    const FrameLines frame = frameLines(session.last());
+    std::string header;
+    for (std::size_t k = 0; k < frame.lines.size() && !frame.lines[k].starts_with("Pixel ("); ++k)
+        header += (header.empty() ? "" : " ") + frame.lines[k];
+    EXPECT_EQ(header, "Stage 1 of 3: " + walk.screens[0].title);
+    EXPECT_EQ(static_cast<int>(frame.lines.size()), 24);
+}
+
 TEST(TerminalWalk, TheListShowsEveryStageAndEnterReturnsToTheSameStage) {
     const Session session = run("2\nl\n\n");
     const std::string& list = session.frames[2];
