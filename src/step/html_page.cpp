@@ -10,6 +10,7 @@
 
 #include "base/errors.h"
 #include "io/text_file.h"
+#include "step/notation.h"
 
 namespace facet::step {
 namespace {
@@ -38,6 +39,7 @@ constexpr std::string_view kIndexHtml = R"html(<!DOCTYPE html>
     walks               one per traced pixel: [x, y, triangle (null: none), heading, [screen numbers]];
                         the heading is the lines facet step --print writes above the screens (the
                         pixel, its triangle, the verdict), a number into strings
+    notation            [[symbol, meaning, where]]: the symbols the screens print, for the legend
   Walks share screens (the triangle's views, background pixels), so a screen costs its size once.
   Size: the Stanford bunny at 800x600 with every 8th pixel traced (7500 walks, 1459 on the bunny) gives a
   trace-data.js of 13.8 MB, where the walks' printed text is 22.5 MB (the background pixels share all
@@ -91,6 +93,11 @@ constexpr std::string_view kIndexHtml = R"html(<!DOCTYPE html>
   #history pre { font: clamp(16px, 1.05vw, 26px)/1.35 monospace; width: 80ch; max-width: 100%;
                  margin: 0; padding: 0.5em; background: var(--panel); overflow-x: auto; }
   #load-error { margin: 1em; font-weight: bold; }
+  #notation { margin: 0 1em 1em; }
+  #notation summary { cursor: pointer; font-weight: bold; }
+  #notation td { padding: 0.1em 0.6em; vertical-align: top; }
+  #notation td:first-child { font-family: monospace; white-space: nowrap; }
+  #notation td:last-child { color: var(--muted); }
 </style>
 </head>
 <body>
@@ -112,7 +119,7 @@ constexpr std::string_view kIndexHtml = R"html(<!DOCTYPE html>
     <p id="stage-description"></p>
     <div id="image-frame"><img id="stage-image" alt=""><div id="marker"></div></div>
     <p class="hint">Click a pixel to see its history. Keys: &larr; &rarr; (or b, n) previous and next
-      stage; 1 to 9 jump to that stage, 0 to the final image.</p>
+      stage; 1 to 9 jump to that stage, 0 to the final image; ? the notation.</p>
     <ol id="stage-list"></ol>
   </section>
   <section id="pixel-panel">
@@ -122,6 +129,11 @@ constexpr std::string_view kIndexHtml = R"html(<!DOCTYPE html>
     <div id="history"></div>
   </section>
 </main>
+<details id="notation" hidden>
+  <summary>Notation: the symbols the screens print (key ?)</summary>
+  <table><thead><tr><th>Symbol</th><th>Meaning</th><th>Screens</th></tr></thead>
+    <tbody id="notation-rows"></tbody></table>
+</details>
 <script src="trace-data.js"></script>
 <script>
 "use strict";
@@ -309,6 +321,27 @@ constexpr std::string_view kIndexHtml = R"html(<!DOCTYPE html>
   layoutImage();
 })();
 </script>
+<script>
+"use strict";
+// The notation legend, from trace.notation ([symbol, meaning, where]); ? opens or closes it.
+(function () {
+  const trace = window.facetStepTrace;
+  const legend = document.getElementById("notation");
+  if (!trace || !Array.isArray(trace.notation)) return;
+  const rows = document.getElementById("notation-rows");
+  trace.notation.forEach((entry) => {
+    const row = rows.insertRow();
+    entry.forEach((field) => { row.insertCell().textContent = field; });
+  });
+  legend.hidden = false;
+  document.addEventListener("keydown", (event) => {
+    if (event.key !== "?" || event.ctrlKey || event.altKey || event.metaKey) return;
+    legend.open = !legend.open;
+    if (legend.open) legend.scrollIntoView({block: "start"});
+    event.preventDefault();
+  });
+})();
+</script>
 </body>
 </html>
 )html";
@@ -361,11 +394,20 @@ json traceData(const HtmlPage& page) {
             headings.emplace_back(printWalk({walk.x, walk.y, walk.triangle, walk.verdict, {}}));
         walks.push_back({walk.x, walk.y, triangle, strings.number(heading), std::move(walkScreens)});
     }
-    return {{"width", page.width},           {"height", page.height},
-            {"title", page.title},           {"commandLine", page.commandLine},
-            {"gridStep", page.gridStep},     {"firstWalk", page.firstWalk},
-            {"stages", std::move(stages)},   {"strings", strings.toJson()},
-            {"screens", std::move(screens)}, {"walks", std::move(walks)}};
+    json notationRows = json::array();
+    for (const Symbol& s : notation())
+        notationRows.push_back({std::string(s.symbol), std::string(s.meaning), std::string(s.where)});
+    return {{"width", page.width},
+            {"height", page.height},
+            {"title", page.title},
+            {"commandLine", page.commandLine},
+            {"gridStep", page.gridStep},
+            {"firstWalk", page.firstWalk},
+            {"stages", std::move(stages)},
+            {"strings", strings.toJson()},
+            {"screens", std::move(screens)},
+            {"walks", std::move(walks)},
+            {"notation", std::move(notationRows)}};
 }
 
 }  // namespace

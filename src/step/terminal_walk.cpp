@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "base/errors.h"
+#include "step/notation.h"
 
 namespace facet::step {
 namespace {
@@ -108,7 +109,8 @@ constexpr std::string_view helpText =
     "  p X,Y        trace another pixel, e.g. p 120,84: X counts columns from the\n"
     "               left, Y rows from the top; the triangle in front there is traced\n"
     "  t N          trace triangle N (numbered across the whole scene) at this pixel\n"
-    "  ?            this help\n"
+    "  ?            this help, then the notation: the symbols the screens print\n"
+    "  notation     the notation alone\n"
     "  q            quit (so does Ctrl-D)\n"
     "\n"
     "The walk was recorded once, so going back and forth costs nothing; another\n"
@@ -120,7 +122,9 @@ std::string shownText(const WalkState& state) {
         case Overlay::stageList:
             return stageListText(state);
         case Overlay::help:
-            return std::string(helpText);
+            return std::string(helpText) + "\nNotation\n\n" + notationText();
+        case Overlay::notation:
+            return notationText();
         case Overlay::none:
             break;
     }
@@ -249,7 +253,9 @@ std::string titleLine(const WalkState& state) {
         case Overlay::stageList:
             return "The stages";
         case Overlay::help:
-            return "Keys";
+            return "Keys, then the notation";
+        case Overlay::notation:
+            return "Notation: the symbols the screens print";
         case Overlay::none:
             break;
     }
@@ -276,7 +282,7 @@ std::string keysLine(const WalkState& state, bool morePages, TerminalSize size) 
     keys.push_back({7, "q quit"});
     if (state.overlay == Overlay::none) keys.push_back({1, "b back"});
     keys.push_back({2, stageRange(state.walk) + " stage"});
-    keys.push_back({6, "? help"});
+    keys.push_back({6, "? help, symbols"});
     keys.push_back({3, "p X,Y pixel"});
     keys.push_back({4, "t N triangle"});
     if (state.overlay != Overlay::stageList) keys.push_back({5, "l list"});
@@ -312,6 +318,9 @@ void applyKeys(WalkState& state, std::string_view line, const Retrace& retrace, 
         state.overlayPage = 0;
     } else if (line == "?" || line == "h") {
         state.overlay = Overlay::help;
+        state.overlayPage = 0;
+    } else if (line == "notation" || line == "??") {
+        state.overlay = Overlay::notation;
         state.overlayPage = 0;
     } else if (const auto number = wholeNumber<std::size_t>(line)) {
         jump(state, *number);
