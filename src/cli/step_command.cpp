@@ -174,7 +174,7 @@ CLI::App* addStepCommand(CLI::App& app, StepArgs& args) {
     command->footer(
         "On a terminal, the walk shows one stage at a time: Enter or n next, b back, a number jumps to a "
         "stage, "
-        "p X,Y another pixel, t N another triangle, ? help and notation, q quit. Without a terminal (or with "
+        "p X,Y another pixel, t N another triangle, ? help, ?? notation, q quit. Without a terminal (or with "
         "--print) "
         "every "
         "screen is printed. docs/teaching.md has exercises.");

@@ -109,8 +109,9 @@ constexpr std::string_view helpText =
     "  p X,Y        trace another pixel, e.g. p 120,84: X counts columns from the\n"
     "               left, Y rows from the top; the triangle in front there is traced\n"
     "  t N          trace triangle N (numbered across the whole scene) at this pixel\n"
-    "  ?            this help, then the notation: the symbols the screens print\n"
-    "  notation     the notation alone\n"
+    "  ?            this help\n"
+    "  ??           the notation: every symbol the screens print, what it means\n"
+    "               and which screens print it (so does typing notation)\n"
     "  q            quit (so does Ctrl-D)\n"
     "\n"
     "The walk was recorded once, so going back and forth costs nothing; another\n"
@@ -122,7 +123,7 @@ std::string shownText(const WalkState& state) {
         case Overlay::stageList:
             return stageListText(state);
         case Overlay::help:
-            return std::string(helpText) + "\nNotation\n\n" + notationText();
+            return std::string(helpText);
         case Overlay::notation:
             return notationText();
         case Overlay::none:
@@ -253,7 +254,7 @@ std::string titleLine(const WalkState& state) {
         case Overlay::stageList:
             return "The stages";
         case Overlay::help:
-            return "Keys, then the notation";
+            return "Keys";
         case Overlay::notation:
             return "Notation: the symbols the screens print";
         case Overlay::none:
@@ -279,13 +280,15 @@ std::string keysLine(const WalkState& state, bool morePages, TerminalSize size) 
     } else if (!onLastStage(state)) {
         keys.push_back({0, "Enter next"});
     }
-    keys.push_back({7, "q quit"});
+    keys.push_back({8, "q quit"});
     if (state.overlay == Overlay::none) keys.push_back({1, "b back"});
     keys.push_back({2, stageRange(state.walk) + " stage"});
-    keys.push_back({6, "? help, symbols"});
+    keys.push_back({6, "? help"});
     keys.push_back({3, "p X,Y pixel"});
     keys.push_back({4, "t N triangle"});
     if (state.overlay != Overlay::stageList) keys.push_back({5, "l list"});
+    // The notation is the least needed (the help names it too): shown where the line has room.
+    if (state.overlay != Overlay::notation) keys.push_back({7, "?? symbols"});
     std::vector<Key> shown;
     int width = -2;
     for (const Key& key : keys) {
