@@ -1,5 +1,5 @@
 // The step mode's notation: every symbol its screens print, once, with what it means and where it
-// appears. The notation screen of the terminal walk (? and notation), facet step --notation, the web
+// appears. The notation screen of the terminal walk (?? or notation), facet step --notation, the web
 // page's "Notation" legend and the table in docs/teaching.md all come from this one list (the docs'
 // copy is checked against it by a test).
 //

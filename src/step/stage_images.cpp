@@ -388,7 +388,7 @@ Stage StageRecorder::fogFactor(const FogParams& fog, double viewScale) const {
                      "The fog factor of the fragment that wrote each pixel last, as grey: " + formula + ", " +
                          distance +
                          ", clamped to [0, 1]. The fog then mixes the colour c_s with "
-                         "the fog colour c_f: c_p = f·c_s + (1 − f)·c_f. Dark blue: no surface.",
+                         "the fog colour c_fog: c_p = f·c_s + (1 − f)·c_fog. Dark blue: no surface.",
                      fogFactors_, kLinearEncoding);
 }
 
@@ -567,10 +567,11 @@ void renderStageImages(const PreparedScene& prepared, const StageImageOptions& o
     if (fog) {
         const PreparedScene clear =
             copyWithDraws(prepared, [](PreparedDraw& d) { d.uniforms.fog.mode = FogMode::None; });
-        emit(makeStage("before-fog", "Before fog: the lit colour c_s",
-                       "The frame with fog turned off: the colour c_s each surface has before the fog "
-                       "mixes it with the fog colour c_f, c_p = f·c_s + (1 − f)·c_f (f in the next image).",
-                       renderColour(clear, options.terms), prepared.encoding));
+        emit(makeStage(
+            "before-fog", "Before fog: the lit colour c_s",
+            "The frame with fog turned off: the colour c_s each surface has before the fog "
+            "mixes it with the fog colour c_fog, c_p = f·c_s + (1 − f)·c_fog (f in the next image).",
+            renderColour(clear, options.terms), prepared.encoding));
         emit(*fogFactor);
     }
     if (layers) emit(*layers);
