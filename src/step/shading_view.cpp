@@ -870,7 +870,7 @@ Screen heightFogScreen(const FogRecord& r) {
         out.add(std::move(text));
     };
     out.add("Height fog: the density falls exponentially with the height h above h0,");
-    out.add("  density(h) = a·e^(−b·(h − h0)), integrated along the ray from the eye to the point:");
+    out.add("  density(h) = a·e^(−b·(h − h0)), integrated along the ray from eye to point:");
     out.add("  τ = a·e^(−b·(y_e − h0))·d·g(b·Δy),  g(x) = (1 − e^(−x))/x,  g(0) = 1");
     out.add("  (d: the distance to the point, Δy: its height above the eye's)");
     out.add("  f = e^(−τ), c_p = f·c_s + (1 − f)·c_fog");
