@@ -12,6 +12,7 @@
 #include "render/renderer.h"
 #include "scene/limits.h"
 #include "step/html_page.h"
+#include "step/notation.h"
 #include "step/screen_export.h"
 #include "step/stage_images.h"
 #include "step/terminal_walk.h"
@@ -233,6 +234,14 @@ CLI::App* addStepCommand(CLI::App& app, StepArgs& args) {
         ->check(wholeNumber(0, 4'000'000'000));
     command->add_flag("--print", args.print,
                       "Write every screen to standard output instead of the interactive walk");
+    command->add_flag("--notation", args.notation,
+                      "Print the notation instead: every symbol the screens print, what it means and which "
+                      "screens print it (no input needed)");
+    // The notation is the same for every scene: the input is required only without --notation.
+    command->get_option("input")->required(false);
+    command->parse_complete_callback([&args] {
+        if (args.input.empty() && !args.notation) throw CLI::RequiredError("input");
+    });
     command->add_option("--json", args.json, "Also write the whole trace as data (JSON) to this file");
     CLI::Option* stagesOption = command->add_option(
         "--stages", args.stages,
@@ -276,13 +285,18 @@ CLI::App* addStepCommand(CLI::App& app, StepArgs& args) {
     command->footer(
         "On a terminal, the walk shows one stage at a time: Enter or n next, b back, a number jumps to a "
         "stage, "
-        "p X,Y another pixel, t N another triangle, ? help, q quit. Without a terminal (or with --print) "
+        "p X,Y another pixel, t N another triangle, ? help, ?? notation, q quit. Without a terminal (or with "
+        "--print) "
         "every "
         "screen is printed. docs/teaching.md has exercises.");
     return command;
 }
 
 int step(const StepArgs& args) {
+    if (args.notation) {  // the same for every scene: nothing is loaded or traced
+        std::cout << facet::step::notationText();
+        return 0;
+    }
     const std::optional<std::pair<int, int>> pixel =
         args.pixel ? std::optional(parsePixel(*args.pixel)) : std::nullopt;
     const std::optional<SceneArgs> other =

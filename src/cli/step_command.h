@@ -15,6 +15,7 @@ struct StepArgs : SceneArgs {
     std::optional<std::string> pixel;  // "X,Y"
     std::optional<long long> triangle;
     bool print = false;
+    bool notation = false;  // print the notation table instead of the walk
     std::optional<std::string> json;
     std::optional<std::string> stages;
     std::optional<int> stageScale;  // --stage-scale N: the --stages images N times larger

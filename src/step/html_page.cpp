@@ -6,6 +6,7 @@
 
 #include "base/errors.h"
 #include "io/text_file.h"
+#include "step/notation.h"
 
 namespace facet::step {
 namespace {
@@ -46,6 +47,7 @@ constexpr std::string_view kIndexHtml = R"html(<!DOCTYPE html>
   of tiles (one file of all the text, numbered per screen, took 32 MB); at 320x240 (76800 walks), 1.5 MB
   and 48 MB in 80 tiles of at most 4.2 MB. shadows.json (about 9000 triangles in three draws, shadows
   traced with rays) at 320x240: 7.9 MB and 149 MB, tiles of at most 5.6 MB. A click loads one tile.
+    notation            [[symbol, meaning, where]]: the symbols the screens print, for the legend
 -->
 <html lang="en">
 <head>
@@ -104,6 +106,11 @@ constexpr std::string_view kIndexHtml = R"html(<!DOCTYPE html>
   #history pre { font: var(--screen-font)/1.35 monospace; max-width: 100%; margin: 0; padding: 0.4em;
                  background: var(--panel); overflow-x: auto; }
   #data-error, #load-error { margin: 1em; font-weight: bold; }
+  #notation { margin: 0 1em 1em; }
+  #notation summary { cursor: pointer; font-weight: bold; }
+  #notation td { padding: 0.1em 0.6em; vertical-align: top; }
+  #notation td:first-child { font-family: monospace; white-space: nowrap; }
+  #notation td:last-child { color: var(--muted); }
 </style>
 </head>
 <body>
@@ -130,13 +137,17 @@ constexpr std::string_view kIndexHtml = R"html(<!DOCTYPE html>
       <button id="zoom-fit" type="button" title="The whole image (key f)">Fit</button>
       <span id="key-hint" class="hint">Click a pixel for its history; drag to move, wheel to zoom.
         Keys: <kbd>&larr;</kbd> <kbd>&rarr;</kbd> stages, the key beside each stage jumps to it,
-        <kbd>0</kbd> final image, <kbd>+</kbd> <kbd>&minus;</kbd> <kbd>f</kbd> zoom.</span>
+        <kbd>0</kbd> final image, <kbd>+</kbd> <kbd>&minus;</kbd> <kbd>f</kbd> zoom, <kbd>?</kbd> notation.</span>
     </div>
   </section>
   <section id="side-panel">
     <p id="stage-description"></p>
     <details id="stages" open><summary>Stages and their keys</summary><ol id="stage-list" class="entries"></ol></details>
-    <div id="notation-slot"></div>
+    <details id="notation" hidden>
+      <summary>Notation: the symbols the screens print (key ?)</summary>
+      <table><thead><tr><th>Symbol</th><th>Meaning</th><th>Screens</th></tr></thead>
+        <tbody id="notation-rows"></tbody></table>
+    </details>
     <section id="pixel-panel">
       <h2>Pixel <span id="pixel"></span> <span id="pixel-triangle"></span></h2>
       <p id="notice" hidden></p>
@@ -514,6 +525,27 @@ constexpr std::string_view kIndexHtml = R"html(<!DOCTYPE html>
     showTraced(trace.opening[0], trace.opening[1], "", trace.opening[2]);
 })();
 </script>
+<script>
+"use strict";
+// The notation legend, from trace.notation ([symbol, meaning, where]); ? opens or closes it.
+(function () {
+  const trace = window.facetStepTrace;
+  const legend = document.getElementById("notation");
+  if (!trace || !Array.isArray(trace.notation)) return;
+  const rows = document.getElementById("notation-rows");
+  trace.notation.forEach((entry) => {
+    const row = rows.insertRow();
+    entry.forEach((field) => { row.insertCell().textContent = field; });
+  });
+  legend.hidden = false;
+  document.addEventListener("keydown", (event) => {
+    if (event.key !== "?" || event.ctrlKey || event.altKey || event.metaKey) return;
+    legend.open = !legend.open;
+    if (legend.open) legend.scrollIntoView({block: "start"});
+    event.preventDefault();
+  });
+})();
+</script>
 </body>
 </html>
 )html";
@@ -712,6 +744,9 @@ void writeHtmlPage(const fs::path& dir, const HtmlPage& page, const PageWalks& w
         const PageWalks::CompactWalk& walk = walks.tiles_.at(tile)[index];
         opening = {walk.x, walk.y, index};
     }
+    json notationRows = json::array();
+    for (const Symbol& s : notation())
+        notationRows.push_back({std::string(s.symbol), std::string(s.meaning), std::string(s.where)});
     const json region =
         page.region ? json::array({page.region->x, page.region->y, page.region->width, page.region->height})
                     : json(nullptr);
@@ -727,7 +762,8 @@ void writeHtmlPage(const fs::path& dir, const HtmlPage& page, const PageWalks& w
                        {"stages", std::move(stages)},
                        {"outlines", std::move(outlines)},
                        {"lines", writer.sharedLines()},
-                       {"screens", writer.sharedScreens()}};
+                       {"screens", writer.sharedScreens()},
+                       {"notation", std::move(notationRows)}};
     writeTextFile(dir / kHtmlDataFile,
                   "// facet step --html: the index of the trace index.html shows (index.html describes the "
                   "format).\nwindow.facetStepTrace = " +

@@ -61,7 +61,7 @@ ShadingTrace traceShading(const SurfaceUniforms& u, ShadingFrequency frequency, 
     trace.shaderRan = f.fate != FragmentFate::DepthFailed && f.fate != FragmentFate::Discarded;
     if (const Texture* map = u.diffuseMap ? u.diffuseMap : u.emissionMap) {
         const TexCoordDerivativesT<float> d = uvDerivativesOf(f);
-        const float lod = textureLod(*map, d.dx, d.dy);  // λ = log2 ρ, so ρ = 2^λ
+        const float lod = textureLod(*map, d.dx, d.dy);  // lod = log2 ρ, so ρ = 2^lod
         trace.texture = {.mapped = true,
                          .filter = u.textureFilter,
                          .width = map->width,
@@ -210,15 +210,15 @@ void writeEquation(Lines& out, const LightingRecord& r) {
         out.add("Physically based lighting: Lambert diffuse + Cook-Torrance specular");
         out.add("(Cook & Torrance 1982; Karis 2013):");
         out.add("  c = m_emission + a_global ⊗ c_base");
-        out.add("      + Σ f ⊗ π·c_light·falloff·spot·max(N·L,0)");
+        out.add("      + Σ f_r ⊗ π·c_light·falloff·spot·max(N·L,0)");
         const std::string spec = "D·F·G/(" + denominatorText(r.brdf.denominator) + ")";
         if (r.brdf.metal == MetalBlend::TintedLobe) {
             // lighting-deck-C.txt's "putting it together", term by term.
-            out.add("  f = metalness·" + spec + "·c_base");
-            out.add("      + (1 − metalness)·(" + spec + " + (1 − F)·c_base/π)");
+            out.add("  f_r = metalness·" + spec + "·c_base");
+            out.add("        + (1 − metalness)·(" + spec + " + (1 − F)·c_base/π)");
             out.add("  F0 = F0_dielectric (the metal lobe is tinted by c_base instead)");
         } else {
-            out.add("  f = (1 − F)(1 − metalness)·c_base/π + " + spec);
+            out.add("  f_r = (1 − F)(1 − metalness)·c_base/π + " + spec);
         }
         out.add("  falloff = 1/d² (point and spot lights), 1 (directional)");
         out.add("  H = normalize(L + V); D: " + std::string(distributionName(r.brdf.distribution)) +
@@ -230,9 +230,9 @@ void writeEquation(Lines& out, const LightingRecord& r) {
         const bool phong = r.specularModel == SpecularModel::Phong;
         out.add(std::string("The standard lighting equation (OpenGL 2.1 §2.14.1), ") +
                 (phong ? "Phong" : "Blinn-Phong") + " specular:");
-        out.add("  c = m_emission + a_global ⊗ m_ambient");
+        out.add("  c = m_emission + a_global ⊗ m_a");
         out.add(std::string("      + Σ att·spot·(l_a⊗m_a + max(N·L,0)·l_d⊗m_d + ") +
-                (phong ? "max(R·V,0)^n" : "max(N·H,0)^n") + "·l_s⊗m_s)");
+                (phong ? "max(R·V,0)^e" : "max(N·H,0)^e") + "·l_s⊗m_s)");
         out.add(std::string("  ") + (phong ? "R = 2(N·L)N − L" : "H = normalize(L + V)") +
                 "; att = 1/(c0 + c1·d + c2·d²)");
         out.add("  The specular term is 0 where N·L ≤ " + num(kGrazingCosine) +
@@ -268,11 +268,11 @@ void writeMaterial(Lines& out, const LightingRecord& r) {
             out.add("  F0_dielectric = " + rgb(r.pbr.f0));
         }
     } else {
-        out.add("  m_ambient = " + rgb(r.materialAmbient));
-        out.add("  m_diffuse = " + rgb(r.materialDiffuse));
-        out.add("  m_specular = " + rgb(r.materialSpecular) + ", n = " + num(r.shininess));
+        out.add("  m_a (ambient)  = " + rgb(r.materialAmbient));
+        out.add("  m_d (diffuse)  = " + rgb(r.materialDiffuse));
+        out.add("  m_s (specular) = " + rgb(r.materialSpecular) + ", e = " + num(r.shininess));
     }
-    const std::string symbols = std::string("a_global ⊗ ") + (r.physicallyBased ? "c_base" : "m_ambient");
+    const std::string symbols = std::string("a_global ⊗ ") + (r.physicallyBased ? "c_base" : "m_a");
     out.add("  " + symbols + " = " + rgb(r.globalAmbient) + " ⊗ " + rgb(r.materialAmbient));
     out.add("  " + std::string(columns(symbols), ' ') + " = " + rgb(r.globalAmbientTerm));
 }
@@ -410,10 +410,10 @@ void writeStandardLight(Lines& out, const LightingRecord& lighting, const LightR
         out.add("  N·L ≤ " + num(kGrazingCosine) +
                 ": the light grazes the surface or is behind it: spec = 0");
     else if (lighting.specularExponent != lighting.shininess)  // Blinn-Phong's exponent matched to Phong's
-        out.add("  spec = max(N·H, 0)^e′, e′ = 4n = " + num(lighting.specularExponent) + ": max(" +
+        out.add("  spec = max(N·H, 0)^e′, e′ = 4e = " + num(lighting.specularExponent) + ": max(" +
                 num(r.cosine) + ", 0)^" + num(lighting.specularExponent) + " = " + num(r.spec));
     else
-        out.add(std::string("  spec = max(") + (phong ? "R·V" : "N·H") + ", 0)^n = max(" + num(r.cosine) +
+        out.add(std::string("  spec = max(") + (phong ? "R·V" : "N·H") + ", 0)^e = max(" + num(r.cosine) +
                 ", 0)^" + num(lighting.shininess) + " = " + num(r.spec));
     // With a range, its window f_win multiplies att.
     const bool windowed = light.kind != LightKind::Directional && light.range > 0.0f;
@@ -439,15 +439,15 @@ void writeBrdf(Lines& out, const LightingRecord& lighting, const BrdfRecord& b) 
     out.add("  H = normalize(L + V) = " + vec(b.H));
     out.add("  N·H = " + num(b.NdotH) + ", N·V = " + num(b.NdotV) + ", V·H = " + num(b.VdotH) +
             " (N·L, N·V at least 0.0001)");
-    out.add("  α = roughness² = " + num(lighting.pbr.roughness) + "² = " + num(b.alpha) +
+    out.add("  α_r = roughness² = " + num(lighting.pbr.roughness) + "² = " + num(b.alpha) +
             " (at least 0.001)");
     if (b.anisotropic) {
         // Anisotropic GGX (tangent.h, lighting.h): the frame, the two roughnesses, then D.
         out.add("  T = ∂P/∂u made ⊥ N, unit = " + vec(b.T));
         out.add("  B = N × T = " + vec(b.B));
         const float a = lighting.pbr.anisotropy;
-        out.add("  a = " + num(a) + ": α_x = α(1 + a) = " + num(b.alphaX) +
-                ", α_y = α(1 − a) = " + num(b.alphaY));
+        out.add("  a = " + num(a) + ": α_x = α_r(1 + a) = " + num(b.alphaX) +
+                ", α_y = α_r(1 − a) = " + num(b.alphaY));
         out.add("  H·T = " + num(b.HdotT) + ", H·B = " + num(b.HdotB) + ", N·H = " + num(b.NdotH));
         out.add("  D = 1/(π α_x α_y ((H·T/α_x)² + (H·B/α_y)² + (N·H)²)²)   (anisotropic GGX)");
         out.add("    = 1/(π·" + num(b.alphaX) + "·" + num(b.alphaY) + "·((" + num(b.HdotT) + "/" +
@@ -455,16 +455,16 @@ void writeBrdf(Lines& out, const LightingRecord& lighting, const BrdfRecord& b) 
                 "²)²)");
         out.add("    = " + num(b.D));
     } else if (b.model.distribution == NormalDistribution::GGX) {
-        out.add("  D = α²/(π((N·H)²(α² − 1) + 1)²)   (GGX)");
+        out.add("  D = α_r²/(π((N·H)²(α_r² − 1) + 1)²)   (GGX)");
         out.add("    = " + num(b.alpha) + "²/(π(" + num(b.NdotH) + "²(" + num(b.alpha) +
                 "² − 1) + 1)²) = " + num(b.D));
     } else if (b.model.distribution == NormalDistribution::Beckmann) {
-        out.add("  D = exp(((N·H)² − 1)/(α²(N·H)²))/(π·α²·(N·H)⁴)   (Beckmann)");
+        out.add("  D = exp(((N·H)² − 1)/(α_r²(N·H)²))/(π·α_r²·(N·H)⁴)   (Beckmann)");
         const std::string nh = num(b.NdotH), a = num(b.alpha);
         out.add("    = exp((" + nh + "² − 1)/(" + a + "²·" + nh + "²))/(π·" + a + "²·" + nh +
                 "⁴) = " + num(b.D));
     } else {
-        out.add("  D = c·exp(−(θ_h/m)²), θ_h = acos(N·H), m = α   (Gaussian)");
+        out.add("  D = c·exp(−(θ_h/m)²), θ_h = acos(N·H), m = α_r   (Gaussian)");
         out.add("    c = 1/(2π∫exp(−(θ/m)²)cosθ sinθ dθ) = " + num(b.gaussianC) + " (∫D(N·H)dω = 1)");
         out.add("    = " + num(b.gaussianC) + "·exp(−(" + num(b.thetaH) + "/" + num(b.alpha) +
                 ")²) = " + num(b.D));
@@ -494,7 +494,7 @@ void writeBrdf(Lines& out, const LightingRecord& lighting, const BrdfRecord& b) 
         out.add("    (Smith, anisotropic GGX) with N·L = " + num(b.NdotL) + ", N·V = " + num(b.NdotV) +
                 ": G = " + num(b.G));
     } else if (b.model.geometry == GeometryTerm::SmithGGX) {
-        out.add("  G = G1(N·L)·G1(N·V), G1(x) = 2x/(x + √(α² + (1 − α²)x²))   (Smith GGX)");
+        out.add("  G = G1(N·L)·G1(N·V), G1(x) = 2x/(x + √(α_r² + (1 − α_r²)x²))   (Smith GGX)");
         out.add("    with N·L = " + num(b.NdotL) + ", N·V = " + num(b.NdotV) + ": G = " + num(b.G));
     } else {
         out.add("  G = min(1, 2(N·H)(N·V)/(V·H), 2(N·H)(N·L)/(V·H))   (Cook-Torrance)");
@@ -620,7 +620,7 @@ void writeEnvironment(Lines& out, const EnvironmentRecord& e) {
         line({"    = ", rgb(e.weight)});
         line({"  reflection = F ⊗ E(R) = ", rgb(e.term)});
     } else {
-        line({"  weight w = m_specular = ", rgb(e.weight)});
+        line({"  weight w = m_s = ", rgb(e.weight)});
         line({"  reflection = w ⊗ E(R) = ", rgb(e.term)});
     }
 }
@@ -678,9 +678,9 @@ void writeInterpolation(Lines& out, const ShadingTrace& t) {
     out.add("  1/w at the pixel = λ0/w0 + λ1/w1 + λ2/w2 = " + num(t.invW));
     if (t.weightsMatchCorners) {
         out.add("  1/w0, 1/w1, 1/w2 = " + vec(vec3(t.corners[0].invW, t.corners[1].invW, t.corners[2].invW)));
-        out.add("  μi = (λi/wi)/(1/w): μ = " + vec(t.perspectiveWeights));
-        out.add("  modulated = μ0·c0 + μ1·c1 + μ2·c2 = " + rgb(t.mixedModulated));
-        out.add("  added = μ0·c0 + μ1·c1 + μ2·c2 = " + rgb(t.mixedAdded));
+        out.add("  λ′_i = (λ_i/w_i)/(1/w): λ′ = " + vec(t.perspectiveWeights));
+        out.add("  modulated = λ′0·c0 + λ′1·c1 + λ′2·c2 = " + rgb(t.mixedModulated));
+        out.add("  added = λ′0·c0 + λ′1·c1 + λ′2·c2 = " + rgb(t.mixedAdded));
     } else {
         out.add("  Clipping cut this triangle: the λ are those of the piece the pixel lies in, whose");
         out.add("  corners are themselves mixes of the corners above.");
@@ -723,15 +723,15 @@ void writeTextureFilter(Lines& out, const ShadingTrace& t) {
     const int last = m.levels - 1;
     const std::string lod = num(m.lod);
     if (!(m.lod > 0.0f)) {
-        line({"    λ = log2 ρ = ", lod, " ≤ 0: magnified, level 0 read bilinearly"});
+        line({"    lod = log2 ρ = ", lod, " ≤ 0: magnified, level 0 read bilinearly"});
     } else if (m.lod >= static_cast<float>(last)) {
-        line({"    λ = log2 ρ = ", lod, " ≥ ", std::to_string(last), ", the last level: level ",
+        line({"    lod = log2 ρ = ", lod, " ≥ ", std::to_string(last), ", the last level: level ",
               std::to_string(last), " read bilinearly"});
     } else {
         const int fine = static_cast<int>(m.lod);
         const std::string a = std::to_string(fine), b = std::to_string(fine + 1);
-        line({"    λ = log2 ρ = ", lod, ": levels ", a, " and ", b, " read bilinearly, mixed as (1 − f)·c", a,
-              " + f·c", b, ", f = λ − ⌊λ⌋ = ", num(m.lod - static_cast<float>(fine))});
+        line({"    lod = log2 ρ = ", lod, ": levels ", a, " and ", b, " read bilinearly, mixed as (1 − t)·c",
+              a, " + t·c", b, ", t = lod − ⌊lod⌋ = ", num(m.lod - static_cast<float>(fine))});
     }
 }
 
@@ -775,9 +775,9 @@ Screen lightingScreen(const ShadingTrace& t) {
         const bool pbr = u.reflection == ReflectionModel::CookTorrance;
         out.add("Constant shading: no lighting equation runs (no light, no normal). Every pixel");
         out.add("of the object takes one unlit colour (lighting-deck-A.txt):");
-        out.add(std::string("  c = ") + (pbr ? "c_base" : "m_diffuse") + " ⊗ texel + m_emission");
+        out.add(std::string("  c = ") + (pbr ? "c_base" : "m_d") + " ⊗ texel + m_emission");
         out.blank();
-        out.add(std::string("  ") + (pbr ? "c_base" : "m_diffuse") + " = " + rgb(u.albedo()) +
+        out.add(std::string("  ") + (pbr ? "c_base" : "m_d") + " = " + rgb(u.albedo()) +
                 (u.terms & kDiffuseTerm ? "" : " (not selected: 0)"));
         out.add("  m_emission = " + rgb(u.material.emission) +
                 (u.terms & kEmissionTerm ? "" : " (not selected: 0)"));
@@ -832,7 +832,7 @@ Screen lightingScreen(const ShadingTrace& t) {
     if (t.frequency == ShadingFrequency::Phong) {
         out.add("The point:");
         if (f.diffuseMapped)
-            out.add("  " + std::string(model.physicallyBased ? "c_base" : "m_diffuse") + " = " +
+            out.add("  " + std::string(model.physicallyBased ? "c_base" : "m_d") + " = " +
                     rgb(f.materialAlbedo) + " ⊗ " + rgb(vec3(f.diffuseTexel)) + " = " + rgb(f.albedo) +
                     " (the diffuse map's texel at uv " + uvText(f.uv) + ")");
         writeTextureFilter(out, t);
@@ -870,7 +870,7 @@ Screen heightFogScreen(const FogRecord& r) {
         out.add(std::move(text));
     };
     out.add("Height fog: the density falls exponentially with the height h above h0,");
-    out.add("  ρ(h) = a·e^(−b·(h − h0)), integrated along the ray from the eye to the point:");
+    out.add("  density(h) = a·e^(−b·(h − h0)), integrated along the ray from eye to point:");
     out.add("  τ = a·e^(−b·(y_e − h0))·d·g(b·Δy),  g(x) = (1 − e^(−x))/x,  g(0) = 1");
     out.add("  (d: the distance to the point, Δy: its height above the eye's)");
     out.add("  f = e^(−τ), c_p = f·c_s + (1 − f)·c_fog");
@@ -964,14 +964,14 @@ Screen outputScreen(const ShadingTrace& t) {
             out.add("  The blend replaces the pixel's colour: c_o = c_s.");
             break;
         case BlendMode::Over:
-            out.add("  The blend then computes c_o = α·c_s + (1 − α)·c_d.");
+            out.add("  The blend then computes c_o = α_s·c_s + (1 − α_s)·c_d.");
             break;
         case BlendMode::OverGL:
-            out.add("  The blend then computes c_o = α·c_s + (1 − α)·c_d and, as OpenGL's");
-            out.add("  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA), α_o = α·α + (1 − α)·α_d.");
+            out.add("  The blend then computes c_o = α_s·c_s + (1 − α_s)·c_d and, as OpenGL's");
+            out.add("  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA), α_o = α_s·α_s + (1 − α_s)·α_d.");
             break;
         case BlendMode::PremultipliedOver:
-            out.add("  The blend then computes c_o = c_s + (1 − α)·c_d (c_s already holds α·c).");
+            out.add("  The blend then computes c_o = c_s + (1 − α_s)·c_d (c_s already holds α·c).");
             break;
         case BlendMode::Additive:
             out.add("  The blend then computes c_o = c_d + c_s (c_s already holds α·c).");

@@ -388,7 +388,7 @@ Stage StageRecorder::fogFactor(const FogParams& fog, double viewScale) const {
                      "The fog factor of the fragment that wrote each pixel last, as grey: " + formula + ", " +
                          distance +
                          ", clamped to [0, 1]. The fog then mixes the colour c_s with "
-                         "the fog colour c_f: c_p = f·c_s + (1 − f)·c_f. Dark blue: no surface.",
+                         "the fog colour c_fog: c_p = f·c_s + (1 − f)·c_fog. Dark blue: no surface.",
                      fogFactors_, kLinearEncoding);
 }
 
@@ -461,13 +461,13 @@ std::string termDescription(LightingTerm term) {
             return "Only the emission term m_emission: light the surface gives off itself, the same from "
                    "every direction and under any light.";
         case kAmbientTerm:
-            return "Only the ambient term m_ambient ⊗ (a_global + Σ l_ambient): light that has bounced "
+            return "Only the ambient term m_a ⊗ (a_global + Σ l_a): light that has bounced "
                    "around the scene so often that it has no direction left.";
         case kDiffuseTerm:
-            return "Only the diffuse term m_diffuse ⊗ Σ l_diffuse·max(N·L, 0)·attenuation·spot: Lambert's "
+            return "Only the diffuse term m_d ⊗ Σ l_d·max(N·L, 0)·attenuation·spot: Lambert's "
                    "cosine law, brightest where the surface faces the light, the same from every viewpoint.";
         case kSpecularTerm:
-            return "Only the specular term m_specular ⊗ Σ l_specular·(R·V)^s (Phong) or (N·H)^s "
+            return "Only the specular term m_s ⊗ Σ l_s·(R·V)^e (Phong) or (N·H)^e "
                    "(Blinn-Phong), times attenuation and spot (Cook-Torrance: D·F·G/(4(N·L)(N·V))): the "
                    "highlights, which move when the viewer moves.";
         default:
@@ -567,10 +567,11 @@ void renderStageImages(const PreparedScene& prepared, const StageImageOptions& o
     if (fog) {
         const PreparedScene clear =
             copyWithDraws(prepared, [](PreparedDraw& d) { d.uniforms.fog.mode = FogMode::None; });
-        emit(makeStage("before-fog", "Before fog: the lit colour c_s",
-                       "The frame with fog turned off: the colour c_s each surface has before the fog "
-                       "mixes it with the fog colour c_f, c_p = f·c_s + (1 − f)·c_f (f in the next image).",
-                       renderColour(clear, options.terms), prepared.encoding));
+        emit(makeStage(
+            "before-fog", "Before fog: the lit colour c_s",
+            "The frame with fog turned off: the colour c_s each surface has before the fog "
+            "mixes it with the fog colour c_fog, c_p = f·c_s + (1 − f)·c_fog (f in the next image).",
+            renderColour(clear, options.terms), prepared.encoding));
         emit(*fogFactor);
     }
     if (layers) emit(*layers);

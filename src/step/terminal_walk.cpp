@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "base/errors.h"
+#include "step/notation.h"
 
 namespace facet::step {
 namespace {
@@ -128,6 +129,8 @@ constexpr std::string_view helpText =
     "               left, Y rows from the top; the triangle in front there is traced\n"
     "  t N          trace triangle N (numbered across the whole scene) at this pixel\n"
     "  ?            this help\n"
+    "  ??           the notation: every symbol the screens print, what it means\n"
+    "               and which screens print it (so does typing notation)\n"
     "  q            quit (so does Ctrl-D)\n"
     "\n"
     "The walk was recorded once, so going back and forth costs nothing; another\n"
@@ -140,6 +143,8 @@ std::string shownText(const WalkState& state) {
             return stageListText(state);
         case Overlay::help:
             return std::string(helpText);
+        case Overlay::notation:
+            return notationText();
         case Overlay::none:
             break;
     }
@@ -284,6 +289,8 @@ std::string titleLine(const WalkState& state) {
             return "The stages";
         case Overlay::help:
             return "Keys";
+        case Overlay::notation:
+            return "Notation: the symbols the screens print";
         case Overlay::none:
             break;
     }
@@ -307,13 +314,15 @@ std::string keysLine(const WalkState& state, bool morePages, TerminalSize size) 
     } else if (!onLastStage(state)) {
         keys.push_back({0, "Enter next"});
     }
-    keys.push_back({7, "q quit"});
+    keys.push_back({8, "q quit"});
     if (state.overlay == Overlay::none) keys.push_back({1, "b back"});
     keys.push_back({2, stageRange(state.walk) + " stage"});
     keys.push_back({6, "? help"});
     keys.push_back({3, "p X,Y pixel"});
     keys.push_back({4, "t N triangle"});
     if (state.overlay != Overlay::stageList) keys.push_back({5, "l list"});
+    // The notation is the least needed (the help names it too): shown where the line has room.
+    if (state.overlay != Overlay::notation) keys.push_back({7, "?? symbols"});
     std::vector<Key> shown;
     int width = -2;
     for (const Key& key : keys) {
@@ -346,6 +355,9 @@ void applyKeys(WalkState& state, std::string_view line, const Retrace& retrace, 
         state.overlayPage = 0;
     } else if (line == "?" || line == "h") {
         state.overlay = Overlay::help;
+        state.overlayPage = 0;
+    } else if (line == "notation" || line == "??") {
+        state.overlay = Overlay::notation;
         state.overlayPage = 0;
     } else if (const auto number = wholeNumber<std::size_t>(line)) {
         jump(state, *number);

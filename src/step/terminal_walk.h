@@ -49,7 +49,7 @@ bool isInteractive();
 // ---- The walk's state and its key handling, separate from the terminal so that tests can drive them.
 
 // A view laid over the stage, closed by Enter.
-enum class Overlay { none, stageList, help };
+enum class Overlay { none, stageList, help, notation };
 
 struct WalkState {
     Walk walk;

@@ -366,27 +366,28 @@ void matrixLines(std::ostringstream& out, const std::string& name, const glm::dm
 }
 
 // The normals through the vertex shader: the normal matrix (renderer.h's normalMatrix, as placeDraw
-// made the draw's uniform) and each corner's n_eye = N·n_obj, computed by the surface shader's vertex().
+// made the draw's uniform) and each corner's n_eye = M_n·n_obj, computed by the surface shader's vertex().
 // `faceNormals`: flat shading gave the corners the face normal (not under the gl preset).
 void normalLines(std::ostringstream& out, const PreparedDraw& draw, const TriangleTrace& t,
                  bool faceNormals) {
     const NormalMatrix n = normalMatrix(draw.viewFromObjectExact);
-    out << "\nNormals: n_eye = N·n_obj, N = ((V·M)⁻¹)ᵀ of the upper-left 3×3 of V·M (lecture\n"
-           "deck A's vertex shader, n = normalize(N·nrm)): it keeps normals perpendicular\n"
-           "to the surface when M scales unevenly.\n";
+    out << "\nNormals: n_eye = M_n·n_obj, with the normal matrix M_n = ((V·M)⁻¹)ᵀ of the\n"
+           "upper-left 3×3 of V·M (lecture deck A's vertex shader calls it N): it keeps\n"
+           "normals perpendicular to the surface when M scales unevenly.\n";
     matrixLines(out, "((V·M)⁻¹)ᵀ", n.inverseTranspose);
     const double scale = std::cbrt(std::abs(n.determinant));
-    out << "  det = " << number(n.determinant) << ", N = ((V·M)⁻¹)ᵀ / ∛|det| = ((V·M)⁻¹)ᵀ / " << number(scale)
-        << "\n  (Facet scales N to determinant 1: the lighting normalises n, so its length\n"
-           "  is free), in float:\n";
-    matrixLines(out, "N", glm::dmat3(draw.uniforms.normalFromObject));
+    out << "  det = " << number(n.determinant) << ", M_n = ((V·M)⁻¹)ᵀ / ∛|det| = ((V·M)⁻¹)ᵀ / "
+        << number(scale)
+        << "\n  (Facet scales M_n to determinant 1: the lighting normalises n_eye, so its\n"
+           "  length is free), in float:\n";
+    matrixLines(out, "M_n", glm::dmat3(draw.uniforms.normalFromObject));
     const bool perPixel = draw.frequency == ShadingFrequency::Phong;
     for (int k = 0; k < 3; ++k) {
         const MeshVertex vertex{t.objectPositions[k], t.objectNormals[k], vec2(0.0f)};
         const vec3 eye = PerPixelSurface::vertex(vertex, draw.uniforms).varyings.normal;
         const float length = glm::length(eye);
         out << "  v" << k << "  n_obj = " << vectorText(t.objectNormals[k]) << "\n"
-            << "      n_eye = N·n_obj = " << vectorText(eye) << "\n"
+            << "      n_eye = M_n·n_obj = " << vectorText(eye) << "\n"
             << "      |n_eye| = " << number(length);
         if (length > 0.0f) out << ", n_eye/|n_eye| = " << vectorText(eye / length);
         out << "\n";
@@ -535,13 +536,14 @@ Screen windowScreen(const TriangleTrace& t) {
     std::ostringstream out;
     const Viewport& vp = t.state.viewport;
     out << "Perspective divide: NDC = (x/w, y/w, z/w). Viewport: x0 = " << vp.x << ", y0 = " << vp.y
-        << ",\nW = " << vp.width << ", H = " << vp.height << ", depth range [" << number(vp.minDepth) << ", "
-        << number(vp.maxDepth) << "]:\n"
+        << ",\nW = " << vp.width << ", H = " << vp.height << ", depth range [d_near, d_far] = ["
+        << number(vp.minDepth) << ", " << number(vp.maxDepth) << "]:\n"
         << "  x_w = x0 + (x_ndc + 1)/2·W   y_w = y0 + (1 − y_ndc)/2·H   (y grows down)\n"
         << (clipDepthRange(t.state.depth.format) == ClipDepthRange::ReversedZeroToW
-                ? "  z_w = n + z_ndc·(f − n)\n  (reversed Z: z_ndc is 1 at the near plane, 0 at the far "
+                ? "  z_w = d_near + z_ndc·(d_far − d_near)\n  (reversed Z: z_ndc is 1 at the near plane, 0 "
+                  "at the far "
                   "one)\n"
-                : "  z_w = n + (z_ndc + 1)/2·(f − n)\n")
+                : "  z_w = d_near + (z_ndc + 1)/2·(d_far − d_near)\n")
         << "Window x and y are then snapped to the fixed-point grid of 1/" << kFixedOne << " pixel\n"
         << "(" << t.state.raster.subpixelBits << " subpixel bits): the integers below are in 1/" << kFixedOne
         << " pixels.\n";
@@ -833,15 +835,15 @@ Screen historyScreen(const PixelTrace& p, const PreparedScene* prepared) {
         const FragmentEvent& f = *e.fragment;
         if (!heading)
             out << "\nThe fragments that passed the depth test: λ in screen space (λ_i = E_i / 2A),\n"
-                   "λ' perspective-correct (λ'_i = λ_i·(1/w_i) / (1/w)), the varyings interpolated:\n";
+                   "λ′ perspective-correct (λ′_i = λ_i·(1/w_i) / (1/w)), the varyings interpolated:\n";
         heading = true;
         out << "\n"
             << triangleName(e.ref) << ": z = " << number(f.depth) << ", 1/w = " << number(f.invW) << "\n";
         out << "  λ  = " << vectorText(f.barycentrics) << "\n";
         if (e.cornerInvW)
-            out << "  λ' = " << vectorText(f.barycentrics * *e.cornerInvW / f.invW) << "\n";
+            out << "  λ′ = " << vectorText(f.barycentrics * *e.cornerInvW / f.invW) << "\n";
         else
-            out << "  λ' = λ: affine interpolation, no perspective correction\n";
+            out << "  λ′ = λ: affine interpolation, no perspective correction\n";
         const std::vector<std::string> names = varyingNames(prepared, e.ref.draw, f.varyingCount);
         std::string line(1, ' ');
         for (int k = 0; k < f.varyingCount; ++k) {
@@ -928,10 +930,10 @@ std::vector<Screen> fragmentScreens(const PreparedScene* prepared, const PixelTr
                 << ") = " << number(invW[0]) << ", " << number(invW[1]) << ", " << number(invW[2])
                 << "\n  1/w = " << number(f.invW) << "\n";
             if (setup->perspective) {
-                out << "Perspective-correct weights: λ'_i = (λ_i/w_i) / (1/w)\n  λ' = (";
+                out << "Perspective-correct weights: λ′_i = (λ_i/w_i) / (1/w)\n  λ′ = (";
                 for (int i = 0; i < 3; ++i)
                     out << number(f.barycentrics[i] * invW[i] / f.invW) << (i < 2 ? ", " : ")\n");
-                out << "Each varying a = λ'0·a0 + λ'1·a1 + λ'2·a2 (perspective-correct).\n";
+                out << "Each varying a = λ′0·a0 + λ′1·a1 + λ′2·a2 (perspective-correct).\n";
             } else {
                 out << "Affine interpolation (no perspective correction): a = λ0·a0 + λ1·a1 + λ2·a2.\n";
             }
@@ -1022,19 +1024,19 @@ std::vector<Screen> outputScreens(const PreparedScene& prepared, const PixelTrac
                     title = "Output merge: written, no blending";
                     break;
                 case BlendMode::Over:
-                    out << "The over operator: c_o = α·c_s + (1 − α)·c_d\n  = " << number(s.a) << "·"
+                    out << "The over operator: c_o = α_s·c_s + (1 − α_s)·c_d\n  = " << number(s.a) << "·"
                         << vectorText(vec3(s)) << "\n    + " << number(1.0f - s.a) << "·"
                         << vectorText(vec3(d)) << "\n";
                     title = "Blending: the over operator";
                     break;
                 case BlendMode::OverGL:
-                    out << "OpenGL's over: c_o = α·c_s + (1 − α)·c_d, α_o = α·α + (1 − α)·α_d\n  = "
+                    out << "OpenGL's over: c_o = α_s·c_s + (1 − α_s)·c_d, α_o = α_s·α_s + (1 − α_s)·α_d\n  = "
                         << number(s.a) << "·" << vectorText(vec3(s)) << "\n    + " << number(1.0f - s.a)
                         << "·" << vectorText(vec3(d)) << "\n";
                     title = "Blending: OpenGL's over";
                     break;
                 case BlendMode::PremultipliedOver:
-                    out << "Over, premultiplied: c_o = c_s + (1 − α)·c_d (c_s already holds α·c)\n";
+                    out << "Over, premultiplied: c_o = c_s + (1 − α_s)·c_d (c_s already holds α_s·c)\n";
                     title = "Blending: premultiplied over";
                     break;
                 case BlendMode::Additive:
@@ -1062,7 +1064,7 @@ std::vector<Screen> outputScreens(const PreparedScene& prepared, const PixelTrac
                                 " went into the pixel's fragment list; after the frame the list is sorted "
                                 "far to near and composited with the over operator,",
                             kScreenColumns, 0)
-                << "  c_o = α·c_s + (1 − α)·c_d (see the history).\n";
+                << "  c_o = α_s·c_s + (1 − α_s)·c_d (see the history).\n";
             title = "Blending: stored in the pixel's fragment list";
         } else {
             out << "The traced triangle wrote nothing here.\n";
@@ -1077,16 +1079,16 @@ std::vector<Screen> outputScreens(const PreparedScene& prepared, const PixelTrac
         switch (e.curve) {
             case TransferCurve::Srgb:
                 out << "8-bit files store it sRGB-encoded (the exact sRGB curve):\n"
-                       "  c' = 12.92·c for c ≤ 0.0031308, else 1.055·c^(1/2.4) − 0.055\n";
+                       "  c′ = 12.92·c for c ≤ 0.0031308, else 1.055·c^(1/2.4) − 0.055\n";
                 break;
             case TransferCurve::Power:
-                out << "8-bit files store it gamma-encoded: c' = c^(1/γ), γ = " << number(e.gamma) << "\n";
+                out << "8-bit files store it gamma-encoded: c′ = c^(1/γ), γ = " << number(e.gamma) << "\n";
                 break;
             case TransferCurve::Linear:
-                out << "8-bit files store it as it is (no encoding): c' = c\n";
+                out << "8-bit files store it as it is (no encoding): c′ = c\n";
                 break;
         }
-        out << "then clamped to [0, 1] and rounded: byte = round(255·c'), alpha round(255·α).\n";
+        out << "then clamped to [0, 1] and rounded: byte = round(255·c′), alpha round(255·α_o).\n";
         static const char* const kChannel[] = {"R", "G", "B", "A"};
         for (int c = 0; c < 4; ++c) {
             const double linear = p.finalColor[c];
@@ -1095,13 +1097,13 @@ std::vector<Screen> outputScreens(const PreparedScene& prepared, const PixelTrac
             std::string rest;  // the byte, and 255·c' before it: on a line of its own when too long
             if (c < 3 && e.curve == TransferCurve::Srgb) line += " → " + number(encoded);
             if (c < 3 && e.curve == TransferCurve::Power) {
-                // c' = c^(1/γ) (of c clamped to at most 1; c ≤ 0 gives 0), then 255·c' rounded.
+                // c′ = c^(1/γ) (of c clamped to at most 1; c ≤ 0 gives 0), then 255·c′ rounded.
                 if (linear > 0.0) {
                     line += "^(1/" + number(e.gamma) + ")" + (linear > 1.0 ? " (clamped to 1)" : "") + " = " +
                             number(encoded) + ",";
-                    rest = "255·c' = " + number(float(encoded) * 255.0f) + " ";
+                    rest = "255·c′ = " + number(float(encoded) * 255.0f) + " ";
                 } else {
-                    line += " ≤ 0: c' = 0";
+                    line += " ≤ 0: c′ = 0";
                 }
             }
             rest += "→ " + std::to_string(int(p.finalBytes[c]));

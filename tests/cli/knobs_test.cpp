@@ -212,7 +212,7 @@ TEST(BlinnExponent, MatchedRendersAsFourTimesTheShininess) {
     const testing_support::RunResult step =
         testing_support::runFacet("step --print '" + n + "' --versus '--blinn-exponent matched'", dir);
     ASSERT_EQ(step.status, 0) << step.err;
-    EXPECT_NE(step.out.find("e′ = 4n = 40"), std::string::npos) << step.out;
+    EXPECT_NE(step.out.find("e′ = 4e = 40"), std::string::npos) << step.out;
 }
 
 }  // namespace

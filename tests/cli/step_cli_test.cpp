@@ -92,7 +92,7 @@ TEST(StepCli, VersusMarksWhereAffineInterpolationFirstDiffers) {
     // The pixel history lists what interpolation gave each fragment: the weights part there first.
     EXPECT_NE(run.out.find("They first differ in \"Pixel history of (48, 30)\""), std::string::npos)
         << run.out.substr(0, 400);
-    EXPECT_NE(run.out.find("right:   λ' = λ: affine interpolation"), std::string::npos)
+    EXPECT_NE(run.out.find("right:   λ′ = λ: affine interpolation"), std::string::npos)
         << run.out.substr(0, 400);
     // And the interpolation screen says the same.
     EXPECT_NE(run.out.find(" > Affine interpolation (no perspective correction)"), std::string::npos);
@@ -111,15 +111,15 @@ TEST(StepCli, VersusLecturePresetNamesTheDifferingForms) {
     const std::string cookTorrance = kSpot + " --pixel 48,30 --reflection cook-torrance";
     const RunResult lecture = runFacet("step " + cookTorrance + " --lighting lecture --print", dir);
     ASSERT_EQ(lecture.status, 0) << lecture.err;
-    EXPECT_NE(lecture.out.find("f = metalness·D·F·G/(π(N·V)(N·L))·c_base"), std::string::npos)
+    EXPECT_NE(lecture.out.find("f_r = metalness·D·F·G/(π(N·V)(N·L))·c_base"), std::string::npos)
         << lecture.out.substr(0, 2000);
     const RunResult run = runFacet("step " + cookTorrance + " --versus '--lighting lecture'", dir);
     ASSERT_EQ(run.status, 0) << run.err;
     EXPECT_NE(run.out.find("They first differ in"), std::string::npos) << run.out.substr(0, 600);
     for (const char* shown :
-         {"<   f = (1 − F)(1 − metalness)·c_base/π + D·F·G/(4(N·L)(N·V))",
-          ">   f = metalness·D·F·G/(π(N·V)(N·L))·c_base", "<   F = F0 + (1 − F0)(1 − V·H)^5",
-          ">   F = F0 + (1 − F0)(1 − N·L)^5", "c' = c^(1/γ), γ = 2.2"})
+         {"<   f_r = (1 − F)(1 − metalness)·c_base/π + D·F·G/(4(N·L)(N·V))",
+          ">   f_r = metalness·D·F·G/(π(N·V)(N·L))·c_base", "<   F = F0 + (1 − F0)(1 − V·H)^5",
+          ">   F = F0 + (1 − F0)(1 − N·L)^5", "c′ = c^(1/γ), γ = 2.2"})
         EXPECT_NE(run.out.find(shown), std::string::npos) << shown;
     std::istringstream lines(run.out);
     for (std::string line; std::getline(lines, line);)

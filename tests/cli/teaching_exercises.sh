@@ -61,9 +61,9 @@ shows "Back-facing, and that side is culled" "${black[@]}"
 gouraud=(models/gouraud-highlight.json --pixel 160,128 --versus "--shading gouraud")
 shows 'They first differ in "Pixel history of (160, 128)"' "${gouraud[@]}"
 shows "c_add.r = 4.99927e-11" "${gouraud[@]}"
-shows "spec = max(R·V, 0)^n = max(0.9999, 0)^32 = 0.9976" "${gouraud[@]}"
-shows "spec = max(R·V, 0)^n = max(0.4807, 0)^32 = 6.588e-11" "${gouraud[@]}"
-shows "spec = max(R·V, 0)^n = max(-0.682, 0)^32 = 0" "${gouraud[@]}"
+shows "spec = max(R·V, 0)^e = max(0.9999, 0)^32 = 0.9976" "${gouraud[@]}"
+shows "spec = max(R·V, 0)^e = max(0.4807, 0)^32 = 6.588e-11" "${gouraud[@]}"
+shows "spec = max(R·V, 0)^e = max(-0.682, 0)^32 = 0" "${gouraud[@]}"
 shows "The image file holds 255, 255, 255" "${gouraud[@]}"
 shows "The image file holds 20, 33, 73" "${gouraud[@]}"
 # The premise: a substantial highlight per pixel, next to none per vertex.
@@ -97,7 +97,7 @@ unsorted=(models/intersecting-quads.json --transparency unsorted --pixel 390,264
 shows "* triangle 9 (transparent, drawn 6.): depth 0.978955" "${unsorted[@]}" --print
 shows "triangle 5 (transparent, drawn 2.): depth 0.977708" "${unsorted[@]}" --print
 shows "Blending: the over operator" "${unsorted[@]}" --print
-shows "c_o = α·c_s + (1 − α)·c_d" "${unsorted[@]}" --print
+shows "c_o = α_s·c_s + (1 − α_s)·c_d" "${unsorted[@]}" --print
 shows "mixed triangle 5's colour" "${unsorted[@]}" --versus "--transparency sorted"
 
 # 6. Why is this part of the ground dark?
@@ -110,14 +110,14 @@ shows "att·spot·v·max(N·L,0)·l_d⊗m_d" "${shadow[@]}" --print
 p2=(models/red-sphere.json --pixel 360,112 --print)
 shows "N·L = 1" "${p2[@]}"
 shows "diffuse  = RGB(1, 0, 0)" "${p2[@]}"
-shows "spec = max(R·V, 0)^n = max(0.6411, 0)^1 = 0.6411" "${p2[@]}"
+shows "spec = max(R·V, 0)^e = max(0.6411, 0)^1 = 0.6411" "${p2[@]}"
 holds "x > 0.999" "N·L = " "${p2[@]}"
 
 # 8. And P1, the point facing the camera?
 p1=(models/red-sphere.json --pixel 320,240 --print)
 shows "N·L = 0.6278" "${p1[@]}"
 shows "diffuse  = RGB(0.6278, 0, 0)" "${p1[@]}"
-shows "spec = max(R·V, 0)^n = max(0.6263, 0)^1 = 0.6263" "${p1[@]}"
+shows "spec = max(R·V, 0)^e = max(0.6263, 0)^1 = 0.6263" "${p1[@]}"
 
 # 9. Why is P3 black?
 p3=(models/red-sphere.json --pixel 302,376 --print)
@@ -136,9 +136,9 @@ shows "R = 2(N·L)N − L = (0.3723, -0.1536, 0.9153)" "${r[@]}"
 shows "R·V = 0.91" "${r[@]}"
 
 # 11. The highlight's exponent
-shows "spec = max(R·V, 0)^n = max(0.91, 0)^8 = 0.4703" "${r[@]}" --shininess 8
-shows "spec = max(R·V, 0)^n = max(0.91, 0)^32 = 0.04893" "${r[@]}" --shininess 32
-shows "spec = max(R·V, 0)^n = max(0.91, 0)^128 = 5.73e-06" models/red-sphere.json --pixel 380,180 \
+shows "spec = max(R·V, 0)^e = max(0.91, 0)^8 = 0.4703" "${r[@]}" --shininess 8
+shows "spec = max(R·V, 0)^e = max(0.91, 0)^32 = 0.04893" "${r[@]}" --shininess 32
+shows "spec = max(R·V, 0)^e = max(0.91, 0)^128 = 5.73e-06" models/red-sphere.json --pixel 380,180 \
     --versus "--shininess 128"
 shows "The image file holds 255, 245, 245" models/red-sphere.json --pixel 380,180 --versus "--shininess 128"
 shows "The image file holds 241, 0, 0" models/red-sphere.json --pixel 380,180 --versus "--shininess 128"
@@ -146,8 +146,8 @@ shows "The image file holds 241, 0, 0" models/red-sphere.json --pixel 380,180 --
 # 12. Blinn against Phong: e′ ≈ 4e
 blinn=(models/red-sphere.json --pixel 380,180 --shininess 32 --reflection blinn-phong)
 shows "N·H = 0.972" "${blinn[@]}" --versus "--blinn-exponent matched"
-shows "spec = max(N·H, 0)^n = max(0.972, 0)^32 = 0.4031" "${blinn[@]}" --versus "--blinn-exponent matched"
-shows "e′ = 4n = 128: max(0.972, 0)^128 = 0.0264" "${blinn[@]}" --versus "--blinn-exponent matched"
+shows "spec = max(N·H, 0)^e = max(0.972, 0)^32 = 0.4031" "${blinn[@]}" --versus "--blinn-exponent matched"
+shows "e′ = 4e = 128: max(0.972, 0)^128 = 0.0264" "${blinn[@]}" --versus "--blinn-exponent matched"
 
 # 13. How much does glass reflect at 80°?
 glass=(models/glass-fresnel.json --pixel 160,120)
@@ -160,8 +160,8 @@ shows "= RGB(0.4986, 0.4986, 0.4986)" "${glass[@]}" --print --eye 4.98553,0.3801
 
 # 14. Why is the highlight bigger under Gouraud?
 vertex=(models/gouraud-vertex.json --pixel 190,120)
-shows "spec = max(R·V, 0)^n = max(0.6823, 0)^64 = 2.377e-11" "${vertex[@]}" --versus "--shading gouraud"
-shows "spec = max(R·V, 0)^n = max(1, 0)^64 = 1" "${vertex[@]}" --versus "--shading gouraud"
+shows "spec = max(R·V, 0)^e = max(0.6823, 0)^64 = 2.377e-11" "${vertex[@]}" --versus "--shading gouraud"
+shows "spec = max(R·V, 0)^e = max(1, 0)^64 = 1" "${vertex[@]}" --versus "--shading gouraud"
 shows "c_add.r = 0.584908" "${vertex[@]}" --versus "--shading gouraud"
 shows "The image file holds 24, 73, 24" "${vertex[@]}" --versus "--shading gouraud"
 shows "The image file holds 202, 210, 202" "${vertex[@]}" --versus "--shading gouraud"
@@ -171,7 +171,7 @@ holds "x > 0.3" "c_add.r = " "${vertex[@]}" --print --shading gouraud
 
 # 15. Flat, Gouraud and Phong shading on one model
 shows "Lighting once per triangle (flat shading)" "${vertex[@]}" --print --shading flat
-shows "spec = max(R·V, 0)^n = max(0.1815, 0)^64 = 1.175e-38" "${vertex[@]}" --print --shading flat
+shows "spec = max(R·V, 0)^e = max(0.1815, 0)^64 = 1.175e-38" "${vertex[@]}" --print --shading flat
 shows "The image file holds 21, 67, 21" "${vertex[@]}" --print --shading flat
 shows "The image file holds 202, 210, 202" "${vertex[@]}" --print --shading gouraud
 shows "The image file holds 24, 73, 24" "${vertex[@]}" --print --shading phong
@@ -204,7 +204,7 @@ shows "Fog is off" "${fog[@]}" --fog none
 gamma=(models/red-sphere.json --pixel 329,350)
 shows "N·L = 0.04152" "${gamma[@]}" --print
 shows "R: 0.0415217 → 0.225242 → 57" "${gamma[@]}" --versus "--gamma 2.2"
-shows "R: 0.0415217^(1/2.2) = 0.235474, 255·c' = 60.0459 → 60" "${gamma[@]}" --versus "--gamma 2.2"
+shows "R: 0.0415217^(1/2.2) = 0.235474, 255·c′ = 60.0459 → 60" "${gamma[@]}" --versus "--gamma 2.2"
 shows "R: 0.0415217 → 11" "${gamma[@]}" --print --encode linear
 
 # 21. Sorting transparent triangles with coherence (facet render's --stats)

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "base/errors.h"
+#include "step/notation.h"
 #include "support/temp_folder.h"
 
 namespace facet::step {
@@ -297,6 +298,25 @@ TEST_F(HtmlPageTest, AFolderInTheWayIsAnInputErrorNamingTheFileAndLeavesNoTempor
     for (const fs::directory_entry& entry : fs::directory_iterator(folder_))
         files.insert(entry.path().filename().string());
     EXPECT_EQ(files, (std::set<std::string>{"index.html", "trace-data.js", "trace-tiles"}));
+}
+
+// Catches: the page's notation legend with no rows (the data without the table) or rows out of step
+// with the notation the terminal shows, or the page without the legend's element.
+TEST(HtmlPage, TheLegendListsTheNotation) {
+    testing_support::TempFolder dir;
+    HtmlPage page;
+    page.width = page.height = 1;
+    page.walks = {Walk{}};
+    writeHtmlPage(dir.path(), page);
+    const json data = readTraceData(dir.path());
+    ASSERT_EQ(data["notation"].size(), notation().size());
+    std::size_t row = 0;
+    for (const Symbol& s : notation()) {
+        EXPECT_EQ(data["notation"][row],
+                  json::array({std::string(s.symbol), std::string(s.meaning), std::string(s.where)}));
+        ++row;
+    }
+    EXPECT_NE(readFile(dir.path() / kHtmlPageFile).find("<details id=\"notation\""), std::string::npos);
 }
 
 }  // namespace

@@ -125,9 +125,9 @@ constexpr const char* kFan =
     "f 1 2 3\nf 1 3 4\nf 1 5 2\n";
 const dvec3 kA(0, 0, 0), kB(2, 0, 0), kC(0, 1, 0), kD(-1, 0, 0.5), kH(0, 0, -1);
 
-// The transform screen shows N = ((V·M)⁻¹)ᵀ scaled to determinant 1, and each corner's normal as read,
+// The transform screen shows M_n = ((V·M)⁻¹)ᵀ scaled to determinant 1, and each corner's normal as read,
 // times N, and normalised, for an object scaled unevenly and turned. Catches: N shown as V·M (not its
-// inverse transpose), the wrong scale, n_eye not N·n_obj, the normalisation missing.
+// inverse transpose), the wrong scale, n_eye not M_n·n_obj, the normalisation missing.
 TEST_F(LectureNumbersTest, TransformScreenShowsTheNormalMatrixAndEachNormalThroughIt) {
     Scene scene = sceneOf(
         "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nvn 0.6 0 0.8\nvn 0 0 1\nvn -0.6 0 0.8\n"
@@ -146,8 +146,8 @@ TEST_F(LectureNumbersTest, TransformScreenShowsTheNormalMatrixAndEachNormalThrou
     const double det = glm::determinant(inverseTranspose);
     const dmat3 n = inverseTranspose / std::cbrt(std::abs(det));
     for (int row = 0; row < 3; ++row) {
-        // The matrix's rows, one line each after "N = [".
-        const std::size_t at = text.find("  N = [");
+        // The matrix's rows, one line each after "M_n = [".
+        const std::size_t at = text.find("  M_n = [");
         ASSERT_NE(at, std::string::npos) << text;
         std::size_t line = at;
         for (int r = 0; r < row; ++r)
@@ -172,7 +172,7 @@ TEST_F(LectureNumbersTest, TransformScreenShowsTheNormalMatrixAndEachNormalThrou
         from = text.find(vertex + "  n_obj", from);
         ASSERT_NE(from, std::string::npos) << text;
         const dvec3 eye = n * normals[k];
-        expectVector(numbersAfter(text, "n_eye = N·n_obj = ", from), eye, 1e-5, "n_eye " + vertex);
+        expectVector(numbersAfter(text, "n_eye = M_n·n_obj = ", from), eye, 1e-5, "n_eye " + vertex);
         expectVector(numbersAfter(text, "n_eye/|n_eye| = ", from), glm::normalize(eye), 1e-5,
                      "unit " + vertex);
         EXPECT_NEAR(numbersAfter(text, "|n_eye| = ", from).at(0), glm::length(eye), 1e-5);
@@ -281,7 +281,7 @@ TEST_F(LectureNumbersTest, BeckmannDistributionSubstituted) {
     expectWithin80Columns(trace);
 }
 
-// The power curve's c' = c^(1/γ) before 255·c' is rounded. Catches: the intermediate missing or not
+// The power curve's c′ = c^(1/γ) before 255·c′ is rounded. Catches: the intermediate missing or not
 // the power of the linear value.
 TEST_F(LectureNumbersTest, PowerCurveShowsItsIntermediateValue) {
     Scene scene = sceneOf(kFan);
@@ -297,7 +297,7 @@ TEST_F(LectureNumbersTest, PowerCurveShowsItsIntermediateValue) {
     const double encoded = std::pow(std::min(c, 1.0), 1.0 / 1.8);
     EXPECT_NE(text.find("^(1/1.8) = ", r), std::string::npos) << text;
     EXPECT_NEAR(numbersAfter(text, "^(1/1.8) = ", r).at(0), encoded, 2e-6) << text;
-    EXPECT_NEAR(numbersAfter(text, "255·c' = ", r).at(0), 255.0 * encoded, 1e-3) << text;
+    EXPECT_NEAR(numbersAfter(text, "255·c′ = ", r).at(0), 255.0 * encoded, 1e-3) << text;
     EXPECT_EQ(int(trace.pixel.finalBytes[0]), int(std::lround(255.0 * encoded))) << text;
     expectWithin80Columns(trace);
 }

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "base/errors.h"
+#include "step/notation.h"
 
 namespace facet::step {
 namespace {
@@ -330,6 +331,20 @@ TEST(TerminalWalk, HelpNamesEveryKey) {
         EXPECT_TRUE(shows(session.last(), key)) << key;
     }
     EXPECT_TRUE(shows(run("?\n\n").last(), "Stage 1 of 3: Clipping"));
+}
+
+// Catches: the notation unreachable from the walk (?? or notation ignored, or showing other text), a
+// symbol of the table missing from it, or the help not naming the key.
+TEST(TerminalWalk, DoubleQuestionMarkOrNotationShowsTheNotation) {
+    const TerminalSize tall{.columns = 80, .rows = 400};  // the whole notation on one page
+    for (const char* key : {"??\n", "notation\n"}) {
+        const Session session = run(key, tall);
+        EXPECT_TRUE(shows(session.last(), "Notation: the symbols the screens print")) << key;
+        for (const Symbol& symbol : notation())
+            EXPECT_TRUE(shows(session.last(), "\n  " + std::string(symbol.symbol) + "\n")) << symbol.symbol;
+    }
+    EXPECT_TRUE(shows(run("?\n").last(), "\n  ??  "));
+    EXPECT_TRUE(shows(run("??\n\n", tall).last(), "Stage 1 of 3: Clipping"));
 }
 
 }  // namespace

@@ -363,7 +363,7 @@ TEST_F(StepTraceTest, ReversedZClipsAtTheReversedNearPlane) {
     EXPECT_TRUE(contains(clipScreen->text, "= " + number(step.made[0].t) + "\n")) << clipScreen->text;
     const Screen* window = screenOf(trace.walk, "window");
     ASSERT_NE(window, nullptr);
-    EXPECT_TRUE(contains(window->text, "z_w = n + z_ndc·(f − n)")) << window->text;
+    EXPECT_TRUE(contains(window->text, "z_w = d_near + z_ndc·(d_far − d_near)")) << window->text;
 }
 
 // The three numbers of "(a, b, c)" right after `marker` in `text`; empty when the marker is missing.
@@ -391,8 +391,8 @@ std::optional<double> lineValue(const std::string& text, const std::string& mark
     return std::strtod(line.c_str() + line.rfind("= ") + 2, nullptr);
 }
 
-// A screen's printed λ and λ' (or μ) against the test's own: the corners in the order of the printed λ
-// (the setup may exchange two), then each printed λ'_i within `tolerance` of the lecture's value.
+// A screen's printed λ and λ′ against the test's own: the corners in the order of the printed λ
+// (the setup may exchange two), then each printed λ′_i within `tolerance` of the lecture's value.
 void expectPrintedWeights(const std::vector<double>& printedLambda, const std::vector<double>& printedPrime,
                           const glm::dvec3& lambda, const glm::dvec3& prime, double tolerance) {
     ASSERT_EQ(printedLambda.size(), 3u);
@@ -412,9 +412,9 @@ void expectPrintedWeights(const std::vector<double>& printedLambda, const std::v
 }
 
 // A triangle slanting away from the eye (its corners at w = 2, 5 and 9), Gouraud-shaded: every screen
-// that prints the perspective-correct weights prints the lecture's λ'_i = (λ_i/w_i) / Σ_j (λ_j/w_j),
+// that prints the perspective-correct weights prints the lecture's λ′_i = (λ_i/w_i) / Σ_j (λ_j/w_j),
 // computed here from the corners' window positions (snapped to 1/256 pixel, as the rasterizer does)
-// and their w: the pixel history's λ', the interpolation screen's λ' and the lighting screen's μ. The
+// and their w: the pixel history's λ′, the interpolation screen's λ′ and the lighting screen's λ′. The
 // affine weights λ differ from them by more than 0.05 here. Catches any of the three printing the
 // screen-space λ (or weights from the wrong corners' 1/w) as the perspective-correct ones: views.cpp's
 // history and interpolation screens, shading_view.cpp's Gouraud mix.
@@ -458,14 +458,14 @@ TEST_F(StepTraceTest, PerspectiveWeightsOnEveryScreenAreTheLecturesFromTheCorner
     request.pixel = std::pair(px, py);
     const StepTrace trace = traceStep(prepared, context, request);
     ASSERT_TRUE(trace.shading);
-    ASSERT_TRUE(trace.shading->weightsMatchCorners);  // unclipped: the μ line is printed
+    ASSERT_TRUE(trace.shading->weightsMatchCorners);  // unclipped: the λ′ line is printed
 
     // Printed to 6 significant digits ("%.6g"); the pipeline's float arithmetic adds a little.
     const Screen* history = screenOf(trace.walk, "history");
     ASSERT_NE(history, nullptr);
     {
         SCOPED_TRACE(history->text);
-        expectPrintedWeights(tripleAfter(history->text, "  λ  = "), tripleAfter(history->text, "  λ' = "),
+        expectPrintedWeights(tripleAfter(history->text, "  λ  = "), tripleAfter(history->text, "  λ′ = "),
                              lambda, prime, 2e-5);
     }
     const Screen* interpolate = screenOf(trace.walk, "interpolate");
@@ -476,7 +476,7 @@ TEST_F(StepTraceTest, PerspectiveWeightsOnEveryScreenAreTheLecturesFromTheCorner
         for (const char* marker : {"  λ0 = ", "  λ1 = ", "  λ2 = "})
             if (const std::optional<double> value = lineValue(interpolate->text, marker))
                 printedLambda.push_back(*value);
-        expectPrintedWeights(printedLambda, tripleAfter(interpolate->text, "  λ' = "), lambda, prime, 2e-5);
+        expectPrintedWeights(printedLambda, tripleAfter(interpolate->text, "  λ′ = "), lambda, prime, 2e-5);
     }
     // The lighting screen prints 4 significant digits ("%.4g").
     const Screen* lighting = screenOf(trace.walk, "lighting");
@@ -484,7 +484,8 @@ TEST_F(StepTraceTest, PerspectiveWeightsOnEveryScreenAreTheLecturesFromTheCorner
     {
         SCOPED_TRACE(lighting->text);
         expectPrintedWeights(tripleAfter(lighting->text, "  λ = (λ0, λ1, λ2) = "),
-                             tripleAfter(lighting->text, "  μi = (λi/wi)/(1/w): μ = "), lambda, prime, 2e-4);
+                             tripleAfter(lighting->text, "  λ′_i = (λ_i/w_i)/(1/w): λ′ = "), lambda, prime,
+                             2e-4);
     }
 }
 
