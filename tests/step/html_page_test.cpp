@@ -73,8 +73,10 @@ std::vector<PageWalk> walksFromPage(const fs::path& dir) {
             const json& entry =
                 n < sharedScreens ? index["screens"].at(n) : tile["screens"].at(n - sharedScreens);
             std::string text;
-            for (std::size_t k = 0; k < entry.at(2).size(); ++k)
-                text += (k ? "\n" : "") + line(entry.at(2).at(k));
+            for (std::size_t k = 0; k < entry.at(2).size(); ++k) {
+                if (k) text += '\n';
+                text += line(entry.at(2).at(k));
+            }
             return {line(entry.at(0)), line(entry.at(1)), text};
         };
         for (const json& row : tile["walks"]) {

@@ -264,7 +264,8 @@ FrameLines frameLines(const std::string& frame) {
                 line.erase(at, 4);
         if (status) {
             const std::size_t last = line.find_last_not_of(' ');
-            result.status += (result.status.empty() ? "" : " ") + line.substr(0, last + 1);
+            if (!result.status.empty()) result.status += ' ';
+            result.status.append(line, 0, last + 1);
         }
         result.lines.push_back(line);
     }
