@@ -508,7 +508,7 @@ class MeshBuilder {
             slot = &it->second;
         }
         if (*slot != kNoVertex) return *slot;
-        if (trace_ && traced(positionIndex)) recordFileCorner(corner);
+        if (trace_ && (trace_->fileCornersOfAll || traced(positionIndex))) recordFileCorner(corner);
 
         MeshVertex vertex;
         vertex.position = glm::vec3(position(positionIndex));

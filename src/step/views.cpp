@@ -192,55 +192,65 @@ std::string weightName(VertexNormals w) {
     return "?";
 }
 
-// The record of how a model was read (loadObj read again with a VertexNormalTrace): its computed
-// normals' sums and its vertices as the file gives them, of every position for a model of up to
-// kEveryPosition triangles, kept for the next triangles of the same models (the web page's walks ask
-// for many), else of the triangle's corners. None when the file cannot be read again.
-std::shared_ptr<const VertexNormalTrace> normalTraceOf(const std::filesystem::path& model,
+// What the step mode asks of a model read again (loadObj with a VertexNormalTrace): how its computed
+// normals were made, or its vertices as the file gives them.
+enum class ModelRecord { Normals, FileCorners };
+
+// The record of a model read again: for its computed normals, of every position for a model of up to
+// kEveryPosition triangles (else of the triangle's corners); for the file's values, of every vertex.
+// Whole records are kept for the next triangles of the same models (the web page's walks ask for
+// many). None when the file cannot be read again.
+std::shared_ptr<const VertexNormalTrace> modelRecordOf(const std::filesystem::path& model,
                                                        const ObjOptions& options, const Mesh& mesh,
-                                                       const TriangleTrace& t) {
-    constexpr std::size_t kEveryPosition = 200000, kModelsKept = 8;
+                                                       const TriangleTrace& t, ModelRecord what) {
+    constexpr std::size_t kEveryPosition = 200000, kKept = 8;
     struct Kept {
         std::filesystem::path model;
         ObjOptions options;
         std::filesystem::file_time_type time;
+        ModelRecord what;
         std::shared_ptr<const VertexNormalTrace> trace;
     };
     static std::mutex mutex;
     static std::vector<Kept> kept;  // the most recently used last
-    const bool every = mesh.stats.trianglesKept <= kEveryPosition;
+    const bool whole = what == ModelRecord::FileCorners || mesh.stats.trianglesKept <= kEveryPosition;
     std::error_code unknown;  // then no time: compared as such
     const std::filesystem::file_time_type time = std::filesystem::last_write_time(model, unknown);
-    if (every) {
+    if (whole) {
         const std::lock_guard lock(mutex);
         for (auto it = kept.begin(); it != kept.end(); ++it)
-            if (it->model == model && it->options == options && it->time == time) {
+            if (it->model == model && it->options == options && it->time == time && it->what == what) {
                 std::rotate(it, it + 1, kept.end());
                 return kept.back().trace;
             }
     }
     auto trace = std::make_shared<VertexNormalTrace>();
-    trace->all = every;
-    if (!every) trace->positions.assign(t.objectPositions.begin(), t.objectPositions.end());
+    if (what == ModelRecord::FileCorners)
+        trace->fileCornersOfAll = true;
+    else if (whole)
+        trace->all = true;
+    else
+        trace->positions.assign(t.objectPositions.begin(), t.objectPositions.end());
     try {
         loadObj(model, options, trace.get());
     } catch (const std::exception&) {
         return nullptr;  // the file changed since: nothing to show
     }
-    if (every) {
+    if (whole) {
         const std::lock_guard lock(mutex);
-        if (kept.size() == kModelsKept) kept.erase(kept.begin());
-        kept.push_back({model, options, time, trace});
+        if (kept.size() == kKept) kept.erase(kept.begin());
+        kept.push_back({model, options, time, what, trace});
     }
     return trace;
 }
 
-// The record of the triangle's model (normalTraceOf), when its draw is an object's.
-std::shared_ptr<const VertexNormalTrace> modelTraceOf(const PreparedScene& prepared, const TriangleTrace& t) {
+// The record of the triangle's model (modelRecordOf), when its draw is an object's.
+std::shared_ptr<const VertexNormalTrace> modelRecordOf(const PreparedScene& prepared, const TriangleTrace& t,
+                                                       ModelRecord what) {
     const ObjectSpec* object = objectOfDraw(prepared, t.ref.draw);
     if (!object) return nullptr;
-    return normalTraceOf(object->model, prepared.assets->options.obj, prepared.assets->model(object->model),
-                         t);
+    return modelRecordOf(object->model, prepared.assets->options.obj, prepared.assets->model(object->model),
+                         t, what);
 }
 
 // How the computed normals of the triangle's corners were made: the model read again with
@@ -249,7 +259,7 @@ std::shared_ptr<const VertexNormalTrace> modelTraceOf(const PreparedScene& prepa
 std::string vertexNormalText(const PreparedScene& prepared, const TriangleTrace& t) {
     const ObjectSpec* object = objectOfDraw(prepared, t.ref.draw);
     if (!object || prepared.assets->model(object->model).stats.normalsComputed == 0) return "";
-    const std::shared_ptr<const VertexNormalTrace> traced = modelTraceOf(prepared, t);
+    const std::shared_ptr<const VertexNormalTrace> traced = modelRecordOf(prepared, t, ModelRecord::Normals);
     if (!traced) return "";
     // The groups at the corners' positions.
     VertexNormalTrace trace;
@@ -349,7 +359,8 @@ Screen inputScreen(const PreparedScene& prepared, const TriangleTrace& t) {
         << ", " << t.indices[2] << ".\n";
     // The file's values: positions, texture coordinates and normals as written (numbered as the
     // file's v, vt and vn lines, from 1).
-    const std::shared_ptr<const VertexNormalTrace> file = modelTraceOf(prepared, t);
+    const std::shared_ptr<const VertexNormalTrace> file =
+        modelRecordOf(prepared, t, ModelRecord::FileCorners);
     std::array<const VertexNormalTrace::FileCorner*, 3> corners{};
     bool fromFile = file != nullptr;
     for (int k = 0; k < 3 && fromFile; ++k) {
