@@ -354,9 +354,11 @@ Screen inputScreen(const PreparedScene& prepared, const TriangleTrace& t) {
     const bool flat = t.ref.draw < prepared.draws.size() &&
                       prepared.draws[t.ref.draw].frequency == ShadingFrequency::Flat &&
                       prepared.scene.lighting.preset != LightingPreset::GL;
-    out << "Triangle " << t.ref.number << " of the scene" << drawPlace(prepared, t.ref)
-        << ": three corners of its draw's\nvertex array, numbers " << t.indices[0] << ", " << t.indices[1]
-        << ", " << t.indices[2] << ".\n";
+    out << wrapText("Triangle " + std::to_string(t.ref.number) + " of the scene" +
+                        drawPlace(prepared, t.ref) + ": three corners of its draw's vertex array, numbers " +
+                        std::to_string(t.indices[0]) + ", " + std::to_string(t.indices[1]) + ", " +
+                        std::to_string(t.indices[2]) + ".",
+                    80, 0);
     // The file's values: positions, texture coordinates and normals as written (numbered as the
     // file's v, vt and vn lines, from 1).
     const std::shared_ptr<const VertexNormalTrace> file =
