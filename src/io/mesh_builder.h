@@ -442,6 +442,26 @@ class MeshBuilder {
             groupOf[incidences[j]] = firstGroup + clusterOf[j];
     }
 
+    // The step mode's record of a corner's file values (VertexNormalTrace::FileCorner).
+    void recordFileCorner(const tinyobj::index_t& corner) const {
+        VertexNormalTrace::FileCorner c;
+        c.positionIndex = corner.vertex_index;
+        c.position = glm::vec3(position(static_cast<std::size_t>(corner.vertex_index)));
+        if (corner.texcoord_index >= 0) {
+            const std::size_t t = static_cast<std::size_t>(corner.texcoord_index) * 2;
+            c.texcoordIndex = corner.texcoord_index;
+            c.uv = glm::vec2(attrib_.texcoords[t], attrib_.texcoords[t + 1]);
+        }
+        if (corner.normal_index >= 0) {
+            const std::size_t n = static_cast<std::size_t>(corner.normal_index);
+            c.normalIndex = corner.normal_index;
+            c.normal =
+                glm::vec3(attrib_.normals[3 * n], attrib_.normals[3 * n + 1], attrib_.normals[3 * n + 2]);
+            c.unitNormal = usableNormal_[n] ? fileNormals_[n] : glm::vec3(0.0f);
+        }
+        trace_->fileCorners.push_back(c);
+    }
+
     // Whether position p is one trace_ asks for.
     bool traced(std::size_t p) const {
         if (trace_->all) return true;
@@ -488,6 +508,7 @@ class MeshBuilder {
             slot = &it->second;
         }
         if (*slot != kNoVertex) return *slot;
+        if (trace_ && (trace_->fileCornersOfAll || traced(positionIndex))) recordFileCorner(corner);
 
         MeshVertex vertex;
         vertex.position = glm::vec3(position(positionIndex));

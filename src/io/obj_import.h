@@ -1,6 +1,7 @@
 // OBJ import: reads a Wavefront OBJ (and its MTL files) into a welded, triangulated Mesh.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <vector>
 
@@ -84,6 +85,18 @@ struct VertexNormalTrace {
         bool clustered = false;  // more than 64 faces: greedy clusters (see MeshBuilder)
     };
     std::vector<Group> groups;
+    // A vertex as the file gives it, at a recorded position (or at every one, fileCornersOfAll): its
+    // `v`, `vt` and `vn` (counted from 0, −1 where the corner has none) and their values as read,
+    // before the normal is normalised. One for each distinct (v, vt, vn) of the corners, in file order.
+    struct FileCorner {
+        std::int64_t positionIndex = 0, texcoordIndex = -1, normalIndex = -1;
+        glm::vec3 position{0.0f};
+        glm::vec2 uv{0.0f};
+        glm::vec3 normal{0.0f};      // as read (any length)
+        glm::vec3 unitNormal{0.0f};  // normalised, as the mesh's vertex holds it (zero: unusable)
+    };
+    std::vector<FileCorner> fileCorners;
+    bool fileCornersOfAll = false;
     VertexNormals weighting = VertexNormals::PolygonArea;
     double creaseCosine = 0.5;  // faces with a cosine at least this are smoothed together
     bool smoothAll = false;     // crease angle 180

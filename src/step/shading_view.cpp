@@ -187,6 +187,16 @@ class Lines {
     std::string text_;
 };
 
+// A paragraph, wrapped to 80 columns, its lines indented as its first.
+void addWrapped(Lines& out, const std::string& paragraph) {
+    const std::string text = wrapText(paragraph, kColumns, paragraph.find_first_not_of(' '));
+    for (std::size_t at = 0; at < text.size();) {
+        const std::size_t end = text.find('\n', at);
+        out.add(text.substr(at, end == std::string::npos ? std::string::npos : end - at));
+        at = end == std::string::npos ? text.size() : end + 1;
+    }
+}
+
 std::string_view modelName(const LightingRecord& r) {
     if (r.physicallyBased) return "Cook-Torrance";
     return r.specularModel == SpecularModel::Phong ? "Phong" : "Blinn-Phong";
@@ -367,7 +377,7 @@ void writeTerm(Lines& out, const std::string& name, const std::string& symbols, 
 
 // The shadow test's verdict for one light (shaders/shadowing.h): a ray from the point towards the light,
 // or a shadow map's share of lit taps.
-void writeShadow(Lines& out, const LightRecord& r) {
+void writeShadow(Lines& out, const LightRecord& r, const ShadowBlocker* blocker) {
     if (isAreaLight(r.light.kind)) {
         const int n = std::max(r.light.areaSamples, 1);
         const int visible = static_cast<int>(std::lround(r.visibility * float(n)));
@@ -383,9 +393,24 @@ void writeShadow(Lines& out, const LightRecord& r) {
     else
         out.add("  shadow: the shadow map's filter finds " + num(r.visibility) +
                 " of its taps lit: v = " + num(r.visibility));
+    if (r.visibility == 1.0f || !blocker) return;
+    if (!blocker->found) {
+        if (!blocker->byMap) return;
+        out.add("  (the shadow map decided; a ray from P towards the light meets no triangle)");
+        return;
+    }
+    const std::string what = "triangle " + std::to_string(blocker->triangle) + " of " + blocker->object;
+    if (blocker->byMap) {
+        out.add("  the shadow map decided; a ray from P towards the light only names a blocker:");
+        out.add("  " + what + ", at distance " + num(blocker->distance) + " along the ray");
+    } else {
+        out.add("  the nearest blocker on the shadow ray from P + ε·N towards the light:");
+        out.add("  " + what + ", at distance " + num(blocker->distance));
+    }
 }
 
-void writeStandardLight(Lines& out, const LightingRecord& lighting, const LightRecord& r) {
+void writeStandardLight(Lines& out, const LightingRecord& lighting, const LightRecord& r,
+                        const ShadowBlocker* blocker) {
     const LightParams& light = r.light;
     writeAreaShape(out, light);
     writeLightPosition(out, r);
@@ -425,7 +450,7 @@ void writeStandardLight(Lines& out, const LightingRecord& lighting, const LightR
     // With shadows, v (the share of the light that reaches P) scales the diffuse and specular terms.
     const std::string v = r.shadowTested ? "·v" : "";
     const std::string lit = r.shadowTested ? reach + "·" + num(r.visibility) : reach;
-    if (r.shadowTested) writeShadow(out, r);
+    if (r.shadowTested) writeShadow(out, r, blocker);
     writeTerm(
         out, "diffuse", att + "·spot" + v + "·max(N·L,0)·l_d⊗m_d",
         lit + "·max(" + num(r.NdotL) + ", 0)·" + rgb(light.diffuse) + "⊗" + rgb(lighting.materialDiffuse),
@@ -526,7 +551,8 @@ void writeBrdf(Lines& out, const LightingRecord& lighting, const BrdfRecord& b) 
               b.lobes.diffuse);
 }
 
-void writePhysicallyBasedLight(Lines& out, const LightingRecord& lighting, const LightRecord& r) {
+void writePhysicallyBasedLight(Lines& out, const LightingRecord& lighting, const LightRecord& r,
+                               const ShadowBlocker* blocker) {
     const LightParams& light = r.light;
     writeAreaShape(out, light);
     writeLightPosition(out, r);
@@ -545,12 +571,12 @@ void writePhysicallyBasedLight(Lines& out, const LightingRecord& lighting, const
     const std::string falloff = windowed ? "falloff·f_win" : "falloff";
     const std::string falloffValue = num(r.attenuation) + (windowed ? "·" + num(r.window) : std::string());
     if (r.shadowTested && windowed) {
-        writeShadow(out, r);
+        writeShadow(out, r, blocker);
         out.add("  irradiance factor = " + falloff + "·spot·max(N·L,0)·v");
         out.add("    = " + falloffValue + "·" + num(r.spot.factor) + "·max(" + num(r.NdotL) + ", 0)·" +
                 num(r.visibility) + " = " + num(r.reach));
     } else if (r.shadowTested) {
-        writeShadow(out, r);
+        writeShadow(out, r, blocker);
         out.add("  irradiance factor = falloff·spot·max(N·L,0)·v = " + num(r.attenuation) + "·" +
                 num(r.spot.factor) + "·max(" + num(r.NdotL) + ", 0)·" + num(r.visibility) + " = " +
                 num(r.reach));
@@ -567,16 +593,17 @@ void writePhysicallyBasedLight(Lines& out, const LightingRecord& lighting, const
               r.specular);
 }
 
-void writeLights(Lines& out, const LightingRecord& lighting) {
+void writeLights(Lines& out, const LightingRecord& lighting, const ShadowBlockers* blockers) {
     if (lighting.lightCount == 0) out.add("  No lights: only emission and ambient light.");
     for (int k = 0; k < lighting.lightCount; ++k) {
         const LightRecord& r = lighting.lights[static_cast<std::size_t>(k)];
         out.blank();
         out.add(lightTitle(k, r.light) + " (eye space)");
+        const ShadowBlocker* blocker = blockers ? &(*blockers)[static_cast<std::size_t>(k)] : nullptr;
         if (lighting.physicallyBased)
-            writePhysicallyBasedLight(out, lighting, r);
+            writePhysicallyBasedLight(out, lighting, r, blocker);
         else
-            writeStandardLight(out, lighting, r);
+            writeStandardLight(out, lighting, r, blocker);
     }
 }
 
@@ -625,10 +652,10 @@ void writeEnvironment(Lines& out, const EnvironmentRecord& e) {
     }
 }
 
-void writeLighting(Lines& out, const SurfaceTermsRecord& s) {
+void writeLighting(Lines& out, const SurfaceTermsRecord& s, const ShadowBlockers* blockers) {
     writePoint(out, s);
     writeMaterial(out, s.lighting);
-    writeLights(out, s.lighting);
+    writeLights(out, s.lighting, blockers);
     out.blank();
 }
 
@@ -648,10 +675,9 @@ std::string frequencyTitle(const ShadingTrace& t) {
 
 void writeCorner(Lines& out, const CornerShading& c, const std::array<int, 3>& vertexOfCorner) {
     const VertexLightingRecord& v = c.lighting;
-    out.add("---- Corner " + std::to_string(c.corner) + " (v" +
-            std::to_string(vertexOfCorner[static_cast<std::size_t>(c.corner) % 3]) + "): vertex at " +
-            vec(c.vertex.position) + " (object space) ----");
-    writeLighting(out, v.lighting);
+    out.add("---- v" + std::to_string(vertexOfCorner[static_cast<std::size_t>(c.corner) % 3]) +
+            ": the vertex at " + vec(c.vertex.position) + " (object space) ----");
+    writeLighting(out, v.lighting, &c.blockers);
     writeSum(out, v.lighting, v.lighting.terms.emission);
     if (v.environment.used) {
         writeEnvironment(out, v.environment);
@@ -671,16 +697,52 @@ void writeCorner(Lines& out, const CornerShading& c, const std::array<int, 3>& v
     out.blank();
 }
 
+// Gouraud after clipping: the piece's corners' colours, each new vertex mixed from its edge's ends.
+void writeClippedCorners(Lines& out, const ShadingTrace::PieceCorners& p) {
+    const std::string names = p.names[0] + ", " + p.names[1] + ", " + p.names[2];
+    addWrapped(out, "  Clipping cut this triangle: the pixel lies in fan piece " + std::to_string(p.piece) +
+                        ", corners " + names +
+                        " of the clipped polygon (see clipping), and λ are theirs. A new vertex's "
+                        "colours mix its edge's ends with t: c = (1 − t)·c_in + t·c_out.");
+    for (const ShadingTrace::ClipMix& m : p.mixes) {
+        const std::string a = num(1.0f - m.t), b = num(m.t);
+        out.add("  " + m.made + ": made by " + m.plane + " on " + m.from + "→" + m.to + ", t = " + num(m.t));
+        out.add("    modulated = " + a + "·" + rgb(m.modulated[0]) + " + " + b + "·" + rgb(m.modulated[1]));
+        out.add("              = " + rgb(m.modulated[2]));
+        out.add("    added = " + a + "·" + rgb(m.added[0]) + " + " + b + "·" + rgb(m.added[1]));
+        out.add("          = " + rgb(m.added[2]));
+    }
+    for (int i = 0; i < 3; ++i) {
+        const std::size_t k = static_cast<std::size_t>(i);
+        out.add("  c" + std::to_string(i) + " (" + p.names[k] +
+                (p.sources[k] != p.names[k] ? ", that is " + p.sources[k] : std::string()) + "):");
+        out.add("    modulated " + rgb(p.modulated[k]) + ", added " + rgb(p.added[k]));
+    }
+    out.add("  λ′_i = (λ_i/w_i)/(1/w) for " + names + ": λ′ = " + vec(p.weights));
+    out.add("  modulated = λ′0·c0 + λ′1·c1 + λ′2·c2 = " + rgb(p.mixedModulated));
+    out.add("  added = λ′0·c0 + λ′1·c1 + λ′2·c2 = " + rgb(p.mixedAdded));
+}
+
 void writeInterpolation(Lines& out, const ShadingTrace& t) {
     const FragmentRecord& f = t.fragment;
+    // The weights of v0, v1, v2 as drawn: the setup's corner c is vertex vertexOfCorner[c].
+    const auto drawn = [&t](const vec3& setupOrder) {
+        vec3 byVertex(0.0f);
+        for (int c = 0; c < 3; ++c)
+            byVertex[t.vertexOfCorner[static_cast<std::size_t>(c)] % 3] = setupOrder[c];
+        return byVertex;
+    };
     out.add("Interpolation to the pixel (perspective-correct, OpenGL 2.1 §3.5.1):");
-    out.add("  λ = (λ0, λ1, λ2) = " + vec(t.barycentrics) + " from the edge functions");
+    out.add("  λ = (λ0, λ1, λ2) = " + vec(drawn(t.barycentrics)) + " from the edge functions");
     out.add("  1/w at the pixel = λ0/w0 + λ1/w1 + λ2/w2 = " + num(t.invW));
     if (t.weightsMatchCorners) {
-        out.add("  1/w0, 1/w1, 1/w2 = " + vec(vec3(t.corners[0].invW, t.corners[1].invW, t.corners[2].invW)));
-        out.add("  λ′_i = (λ_i/w_i)/(1/w): λ′ = " + vec(t.perspectiveWeights));
+        const vec3 invW(t.corners[0].invW, t.corners[1].invW, t.corners[2].invW);
+        out.add("  1/w0, 1/w1, 1/w2 = " + vec(drawn(invW)));
+        out.add("  λ′_i = (λ_i/w_i)/(1/w): λ′ = " + vec(drawn(t.perspectiveWeights)));
         out.add("  modulated = λ′0·c0 + λ′1·c1 + λ′2·c2 = " + rgb(t.mixedModulated));
         out.add("  added = λ′0·c0 + λ′1·c1 + λ′2·c2 = " + rgb(t.mixedAdded));
+    } else if (t.piece.present) {
+        writeClippedCorners(out, t.piece);
     } else {
         out.add("  Clipping cut this triangle: the λ are those of the piece the pixel lies in, whose");
         out.add("  corners are themselves mixes of the corners above.");
@@ -764,6 +826,31 @@ void writeFragmentPart(Lines& out, const ShadingTrace& t) {
         out.add("  α = opacity = " + num(f.alpha));
 }
 
+// Flat shading's normal: the face normal of v0, v1, v2 as drawn, from two edges (renderer.h's
+// flatFaceNormal, in object space, whose record the trace holds).
+void writeFaceNormal(Lines& out, const ShadingTrace& t) {
+    const FaceNormalRecord& r = t.faceNormalRecord;
+    const std::array<vec3, 3>& v = t.facePositions;
+    out.add("Its normal is the face normal, the same at every corner, from two edges of");
+    out.add("the triangle (object space, the positions v0, v1, v2 the pipeline used):");
+    for (int k = 0; k < 3; ++k)
+        out.add("  v" + std::to_string(k) + " = " + vec(v[static_cast<std::size_t>(k)]));
+    out.add("  v1 − v0 = " + vec(v[1] - v[0]) + ", v2 − v0 = " + vec(v[2] - v[0]));
+    out.add("  (v1 − v0) × (v2 − v0) = " + vec(r.cross));
+    if (r.turned)
+        out.add("  it points against the model's vertex normals, so it is turned: " + vec(-r.cross));
+    if (r.fallback) {
+        out.add("  it has no length: the corners' normals' sum, normalised, instead:");
+        out.add("  n = " + vec(r.normal));
+    } else {
+        out.add("  n = normalize(" + std::string(r.turned ? "−" : "") + "(v1 − v0) × (v2 − v0)) = " +
+                vec(r.cross * (r.turned ? -1.0f : 1.0f)) + " / " + num(r.length));
+        out.add("    = " + vec(r.normal) + ", the face normal (object space)");
+    }
+    out.add("The vertex shader turns it into eye space, n_eye = N·n with the normal");
+    out.add("matrix N (see the vertex shader screen): the lighting's N below is n_eye.");
+}
+
 Screen lightingScreen(const ShadingTrace& t) {
     Lines out;
     const FragmentRecord& f = t.fragment;
@@ -804,25 +891,15 @@ Screen lightingScreen(const ShadingTrace& t) {
             out.add("(in the vertex shader); their colours are interpolated across the triangle.");
             break;
         case ShadingFrequency::Flat: {
-            const int v = t.vertexOfCorner[static_cast<std::size_t>(t.provokingCorner & 3) % 3];
+            const int v = t.vertexOfCorner[static_cast<std::size_t>(t.provokingCorner) % 3];
             const std::string name = "v" + std::to_string(v);
-            const std::string text = wrapText(
-                "Flat shading: the lighting equation runs once, at the triangle's provoking vertex, " + name +
-                    (v == 2 ? ", the last of its three (OpenGL's convention" : " (") +
-                    (t.provokingCorner != v
-                         ? std::string(v == 2 ? "; " : "") + "corner " + std::to_string(t.provokingCorner) +
-                               " in the setup's order, which exchanged v1 and v2)"
-                         : std::string(v == 2 ? ")" : "the first)")) +
-                    "; its colour fills the whole triangle. " +
-                    (t.faceNormal ? "Its normal is the face normal (v1 − v0) × (v2 − v0), normalised, that "
-                                    "every corner of the triangle carries (see the input screen)."
-                                  : "Its normal is " + name + "'s own (the gl preset: no face normal)."),
-                80, 0);
-            for (std::size_t at = 0; at < text.size();) {
-                const std::size_t end = text.find('\n', at);
-                out.add(text.substr(at, end == std::string::npos ? std::string::npos : end - at));
-                at = end == std::string::npos ? text.size() : end + 1;
-            }
+            addWrapped(out, "Flat shading: the lighting equation runs once, at " + name +
+                                ", the provoking vertex (" + (v == 2 ? "the last, as OpenGL" : "the first") +
+                                "); its colour fills the whole triangle.");
+            if (t.faceNormal)
+                writeFaceNormal(out, t);
+            else
+                addWrapped(out, "Its normal is " + name + "'s own (the gl preset: no face normal).");
             break;
         }
     }
@@ -836,7 +913,7 @@ Screen lightingScreen(const ShadingTrace& t) {
                     rgb(f.materialAlbedo) + " ⊗ " + rgb(vec3(f.diffuseTexel)) + " = " + rgb(f.albedo) +
                     " (the diffuse map's texel at uv " + uvText(f.uv) + ")");
         writeTextureFilter(out, t);
-        writeLighting(out, f.lighting);
+        writeLighting(out, f.lighting, &t.blockers);
         writeSum(out, f.lighting, f.emission);
         writeEnvironment(out, f.environment);
         if (f.emissionMapped)
@@ -844,8 +921,11 @@ Screen lightingScreen(const ShadingTrace& t) {
                     " at uv " + uvText(f.uv) + ")");
         out.blank();
     } else {
-        for (const CornerShading& c : t.corners)
-            writeCorner(out, c, t.vertexOfCorner);
+        // The corners as v0, v1, v2 of the triangle as drawn (the setup may have exchanged two).
+        for (int v = 0; v < 3; ++v)
+            for (const CornerShading& c : t.corners)
+                if (t.vertexOfCorner[static_cast<std::size_t>(c.corner) % 3] == v)
+                    writeCorner(out, c, t.vertexOfCorner);
         if (t.frequency == ShadingFrequency::Gouraud) {
             writeInterpolation(out, t);
         } else {

@@ -152,8 +152,21 @@ void TraceRecorder::recordClipping(TriangleTrace& view, std::uint32_t triangle,
                             made.t * (before.vertices[to].position - before.vertices[from].position);
             step.made.push_back(made);
         }
-        for (int i = 0; i < polygon.count; ++i)
+        // The clipper's output order (clip.cpp's clipAgainstPlane): walking the edges i → i + 1, an
+        // inside vertex is kept, then the vertex made where the edge crosses the plane.
+        for (int i = 0, made = 0; i < before.count; ++i) {
+            const int j = (i + 1) % before.count;
+            const bool inside = planeDistance(before.vertices[i].position, plane, range) >= 0.0f;
+            if (inside) step.origin.push_back(i);
+            if (inside != (planeDistance(before.vertices[j].position, plane, range) >= 0.0f))
+                step.origin.push_back(-1 - made++);
+        }
+        for (int i = 0; i < polygon.count; ++i) {
             step.polygon.push_back(polygon.vertices[i].position);
+            step.varyings.emplace_back(polygon.vertices[i].varyings.begin(),
+                                       polygon.vertices[i].varyings.begin() + polygon.varyingCount);
+        }
+        if (step.origin.size() != step.polygon.size()) step.origin.clear();  // emptied (non-finite)
         view.clipSteps.push_back(std::move(step));
     }
 }

@@ -118,6 +118,12 @@ struct ClipStep {
     };
     std::vector<NewVertex> made;
     std::vector<vec4> polygon;  // clip positions after this plane
+    // Where each vertex of `polygon` came from: k ≥ 0 is vertex k of the polygon before this plane,
+    // kept; −1 − k is made[k].
+    std::vector<int> origin;
+    // The varyings of each vertex of `polygon`, as the clipper interpolated them (with t, in clip
+    // space): what the fan pieces' corners carry to the rasterizer.
+    std::vector<std::vector<float>> varyings;
 };
 
 // The traced triangle through the front end.

@@ -66,11 +66,6 @@ std::string signedTerm(std::int64_t value) {
     return (value < 0 ? "− " : "+ ") + std::to_string(value < 0 ? -value : value);
 }
 
-// The vertex names in the setup's order: setup makes the area positive by exchanging v1 and v2.
-std::string setupOrder(std::int64_t signedDoubleArea) {
-    return signedDoubleArea < 0 ? "v0, v2, v1" : "v0, v1, v2";
-}
-
 std::string triangleName(const TriangleRef& ref) {
     return "triangle " + std::to_string(ref.number);
 }
@@ -204,42 +199,65 @@ std::string weightName(VertexNormals w) {
     return "?";
 }
 
-// The record of how a model's computed normals were made (loadObj read again with a
-// VertexNormalTrace): of every position for a model of up to kEveryPosition triangles, kept for the
-// next triangle of the same model (the web page's walks ask for many), else of the triangle's corners.
-// None when the file cannot be read again.
-std::shared_ptr<const VertexNormalTrace> normalTraceOf(const std::filesystem::path& model,
+// What the step mode asks of a model read again (loadObj with a VertexNormalTrace): how its computed
+// normals were made, or its vertices as the file gives them.
+enum class ModelRecord { Normals, FileCorners };
+
+// The record of a model read again: for its computed normals, of every position for a model of up to
+// kEveryPosition triangles (else of the triangle's corners); for the file's values, of every vertex.
+// Whole records are kept for the next triangles of the same models (the web page's walks ask for
+// many). None when the file cannot be read again.
+std::shared_ptr<const VertexNormalTrace> modelRecordOf(const std::filesystem::path& model,
                                                        const ObjOptions& options, const Mesh& mesh,
-                                                       const TriangleTrace& t) {
-    constexpr std::size_t kEveryPosition = 200000;
+                                                       const TriangleTrace& t, ModelRecord what) {
+    constexpr std::size_t kEveryPosition = 200000, kKept = 8;
+    struct Kept {
+        std::filesystem::path model;
+        ObjOptions options;
+        std::filesystem::file_time_type time;
+        ModelRecord what;
+        std::shared_ptr<const VertexNormalTrace> trace;
+    };
     static std::mutex mutex;
-    static std::filesystem::path cachedModel;
-    static ObjOptions cachedOptions;
-    static std::filesystem::file_time_type cachedTime;
-    static std::shared_ptr<const VertexNormalTrace> cached;
-    const bool every = mesh.stats.trianglesKept <= kEveryPosition;
+    static std::vector<Kept> kept;  // the most recently used last
+    const bool whole = what == ModelRecord::FileCorners || mesh.stats.trianglesKept <= kEveryPosition;
     std::error_code unknown;  // then no time: compared as such
     const std::filesystem::file_time_type time = std::filesystem::last_write_time(model, unknown);
-    if (every) {
+    if (whole) {
         const std::lock_guard lock(mutex);
-        if (cached && cachedModel == model && cachedOptions == options && cachedTime == time) return cached;
+        for (auto it = kept.begin(); it != kept.end(); ++it)
+            if (it->model == model && it->options == options && it->time == time && it->what == what) {
+                std::rotate(it, it + 1, kept.end());
+                return kept.back().trace;
+            }
     }
     auto trace = std::make_shared<VertexNormalTrace>();
-    trace->all = every;
-    if (!every) trace->positions.assign(t.objectPositions.begin(), t.objectPositions.end());
+    if (what == ModelRecord::FileCorners)
+        trace->fileCornersOfAll = true;
+    else if (whole)
+        trace->all = true;
+    else
+        trace->positions.assign(t.objectPositions.begin(), t.objectPositions.end());
     try {
         loadObj(model, options, trace.get());
     } catch (const std::exception&) {
         return nullptr;  // the file changed since: nothing to show
     }
-    if (every) {
+    if (whole) {
         const std::lock_guard lock(mutex);
-        cachedModel = model;
-        cachedOptions = options;
-        cachedTime = time;
-        cached = trace;
+        if (kept.size() == kKept) kept.erase(kept.begin());
+        kept.push_back({model, options, time, what, trace});
     }
     return trace;
+}
+
+// The record of the triangle's model (modelRecordOf), when its draw is an object's.
+std::shared_ptr<const VertexNormalTrace> modelRecordOf(const PreparedScene& prepared, const TriangleTrace& t,
+                                                       ModelRecord what) {
+    const ObjectSpec* object = objectOfDraw(prepared, t.ref.draw);
+    if (!object) return nullptr;
+    return modelRecordOf(object->model, prepared.assets->options.obj, prepared.assets->model(object->model),
+                         t, what);
 }
 
 // How the computed normals of the triangle's corners were made: the model read again with
@@ -248,8 +266,7 @@ std::shared_ptr<const VertexNormalTrace> normalTraceOf(const std::filesystem::pa
 std::string vertexNormalText(const PreparedScene& prepared, const TriangleTrace& t) {
     const ObjectSpec* object = objectOfDraw(prepared, t.ref.draw);
     if (!object || prepared.assets->model(object->model).stats.normalsComputed == 0) return "";
-    const std::shared_ptr<const VertexNormalTrace> traced =
-        normalTraceOf(object->model, prepared.assets->options.obj, prepared.assets->model(object->model), t);
+    const std::shared_ptr<const VertexNormalTrace> traced = modelRecordOf(prepared, t, ModelRecord::Normals);
     if (!traced) return "";
     // The groups at the corners' positions.
     VertexNormalTrace trace;
@@ -325,20 +342,72 @@ std::string vertexNormalText(const PreparedScene& prepared, const TriangleTrace&
     return out.str();
 }
 
+// The file's vertex of corner k of the triangle: the recorded corner at its position with its
+// texture coordinates, and its normal where the file gives one (flat shading's corners carry the face
+// normal instead: any normal then); none when the record has none.
+const VertexNormalTrace::FileCorner* fileCornerOf(const VertexNormalTrace& trace, const vec3& position,
+                                                  const vec2& uv, const vec3& normal, bool anyNormal) {
+    const VertexNormalTrace::FileCorner* found = nullptr;
+    for (const VertexNormalTrace::FileCorner& c : trace.fileCorners) {
+        if (c.position != position || c.uv != uv) continue;
+        if (anyNormal || (c.normalIndex >= 0 && c.unitNormal == normal)) return &c;
+        if (!found && (c.normalIndex < 0 || c.unitNormal == vec3(0.0f))) found = &c;  // a computed normal
+    }
+    return found;
+}
+
 Screen inputScreen(const PreparedScene& prepared, const TriangleTrace& t) {
     std::ostringstream out;
+    const bool flat = t.ref.draw < prepared.draws.size() &&
+                      prepared.draws[t.ref.draw].frequency == ShadingFrequency::Flat &&
+                      prepared.scene.lighting.preset != LightingPreset::GL;
     out << wrapText("Triangle " + std::to_string(t.ref.number) + " of the scene" +
                         drawPlace(prepared, t.ref) + ": three corners of its draw's vertex array, numbers " +
                         std::to_string(t.indices[0]) + ", " + std::to_string(t.indices[1]) + ", " +
-                        std::to_string(t.indices[2]) + ", in object space (as the model file gives them):",
-                    kScreenColumns, 0)
-        << "\n";
+                        std::to_string(t.indices[2]) + ".",
+                    kScreenColumns, 0);
+    // The file's values: positions, texture coordinates and normals as written (numbered as the
+    // file's v, vt and vn lines, from 1).
+    const std::shared_ptr<const VertexNormalTrace> file =
+        modelRecordOf(prepared, t, ModelRecord::FileCorners);
+    std::array<const VertexNormalTrace::FileCorner*, 3> corners{};
+    bool fromFile = file != nullptr;
+    for (int k = 0; k < 3 && fromFile; ++k) {
+        const PreparedDraw& draw = prepared.draws[t.ref.draw];
+        const vec2 uv = draw.vertices[t.indices[k]].uv;
+        corners[k] = fileCornerOf(*file, t.objectPositions[k], uv, t.objectNormals[k], flat);
+        fromFile = corners[k] != nullptr;
+    }
+    if (fromFile) {
+        out << "As the model file gives them (its v, vt and vn lines, counted from 1):\n";
+        for (int k = 0; k < 3; ++k) {
+            const VertexNormalTrace::FileCorner& c = *corners[k];
+            out << "  v" << k << "  position  " << vectorText(c.position) << "  (v " << c.positionIndex + 1
+                << ")\n";
+            if (c.texcoordIndex >= 0)
+                out << "      texture   " << vectorText(c.uv) << "  (vt " << c.texcoordIndex + 1 << ")\n";
+            else
+                out << "      texture   none: (0, 0) is used\n";
+            if (c.normalIndex >= 0) {
+                const float length = glm::length(c.normal);
+                out << "      normal    " << vectorText(c.normal) << "  (vn " << c.normalIndex + 1 << ")\n";
+                if (c.unitNormal == vec3(0.0f))
+                    out << "      length 0: no usable normal, one is computed\n";
+                else if (vectorText(c.unitNormal) != vectorText(c.normal))
+                    out << "      length " << number(length) << ", normalised: " << vectorText(c.unitNormal)
+                        << "\n";
+            } else {
+                out << "      normal    none: one is computed\n";
+            }
+        }
+        out << "\n";
+    }
+    out << (fromFile ? "The vertices the pipeline draws (object space, normals of length 1):\n"
+                     : "In object space, as the pipeline draws them (normals of length 1):\n");
     for (int k = 0; k < 3; ++k)
         out << "  v" << k << "  position " << vectorText(t.objectPositions[k]) << "\n      normal   "
-            << vectorText(t.objectNormals[k]) << "\n";
-    if (t.ref.draw < prepared.draws.size() &&
-        prepared.draws[t.ref.draw].frequency == ShadingFrequency::Flat &&
-        prepared.scene.lighting.preset != LightingPreset::GL)
+            << vectorText(t.objectNormals[k]) << (flat ? "  (the face normal)" : "") << "\n";
+    if (flat)
         out << faceNormalText(t);
     else
         out << vertexNormalText(prepared, t);
@@ -497,12 +566,34 @@ Screen clipScreen(const TriangleTrace& t) {
         out << "All three vertices are inside every plane: nothing to clip.\n";
         return {"clip", "Clipping: inside the view, nothing to clip", out.str()};
     }
-    out << wrapText("The triangle crosses " + clipPlaneNames(orCode) +
-                        ": it is clipped plane by plane (Sutherland-Hodgman), in homogeneous coordinates "
-                        "before any division. A new vertex lies where an edge crosses the plane:",
+    // The planes that cut (the recorded steps: the clipper skips a plane no vertex of the polygon
+    // left by the earlier planes is outside of), and the outcodes' other planes.
+    const std::uint8_t named = orCode & kAllClipPlanes;
+    std::uint8_t cut = 0;
+    for (const ClipStep& step : t.clipSteps)
+        cut |= step.plane;
+    // A plane after the one that left nothing is never tried.
+    std::uint8_t tried = named;
+    if (t.rejected == TriangleFate::ClippedAway && !t.clipSteps.empty())
+        tried &= static_cast<std::uint8_t>((t.clipSteps.back().plane << 1) - 1);
+    const std::uint8_t uncut = tried & ~cut, untried = named & ~tried;
+    out << wrapText("The vertices lie outside " + clipPlaneNames(named) +
+                        ". The polygon is clipped plane by plane (Sutherland-Hodgman), in the order "
+                        "left, right, bottom, top, near, far, w, in homogeneous coordinates before "
+                        "any division.",
                     kScreenColumns, 0)
-        << "  P = P_in + t·(P_out − P_in), t = d_in / (d_in − d_out),\n"
-           "d being the signed distance to the plane (≥ 0 inside).\n";
+        << wrapText("Planes that cut it: " + clipPlaneNames(cut) + " (a section each below).", kScreenColumns, 2);
+    if (uncut)
+        out << wrapText("Outside but not cut after the earlier planes: " + clipPlaneNames(uncut) +
+                            " (a vertex lies outside it, but what the earlier cuts left lies "
+                            "inside it).",
+                        kScreenColumns, 2);
+    if (untried)
+        out << wrapText("Not tried: " + clipPlaneNames(untried) + " (nothing was left to clip).", kScreenColumns, 2);
+    out << "A new vertex lies where an edge crosses the plane: P = P_in + t·(P_out − P_in),\n"
+           "t = d_in / (d_in − d_out), d the signed distance to the plane (≥ 0 inside).\n"
+           "Each section numbers the polygon before its plane p0, p1, …; before the first\n"
+           "cut they are v0, v1, v2.\n";
     std::vector<vec4> polygon(t.clipPositions.begin(), t.clipPositions.end());
     for (const ClipStep& step : t.clipSteps) {
         out << "\nPlane " << planeRule(step.plane, range) << ":\n";
@@ -526,10 +617,9 @@ Screen clipScreen(const TriangleTrace& t) {
     }
     out << "\nThe polygon left, p0.." << polygon.size() - 1 << ", is drawn as a fan of " << polygon.size() - 2
         << " triangle" << (polygon.size() > 3 ? "s" : "") << " around p0.\n";
-    return {
-        "clip",
-        "Clipping: " + clipPlaneNames(orCode) + " cut" + (orCode & (orCode - 1) ? "" : "s") + " the triangle",
-        out.str()};
+    return {"clip",
+            "Clipping: " + clipPlaneNames(cut) + " cut" + (cut & (cut - 1) ? "" : "s") + " the triangle",
+            out.str()};
 }
 
 Screen windowScreen(const TriangleTrace& t) {
@@ -881,67 +971,105 @@ Screen historyScreen(const PixelTrace& p, const PreparedScene* prepared) {
             out.str()};
 }
 
-std::vector<Screen> fragmentScreens(const PreparedScene* prepared, const PixelTrace& p,
-                                    const TriangleAtPixel* entry, const TriangleTrace* triangle) {
-    std::vector<Screen> screens;
-    const std::string at = "(" + std::to_string(p.x) + ", " + std::to_string(p.y) + ")";
-    if (!entry || !entry->fragment) {
-        std::ostringstream out;
-        out << wrapText("The traced triangle made no fragment at pixel " + at + ": " +
-                            (entry ? fateText(*entry) : "its bounding box does not hold the pixel") + ".",
-                        kScreenColumns, 0)
-            << "Pick a triangle that covers the pixel (t N) or another pixel (p X,Y).\n";
-        screens.push_back({"interpolate", "Interpolation: no fragment of this triangle here", out.str()});
-        return screens;
+namespace {
+
+// The corners a fragment's weights belong to: v0, v1, v2 of the triangle as drawn, or for a clipped
+// triangle the corners p0, p(k+1), p(k+2) of its fan piece k (the polygon the clip screen lists
+// last), each with its varyings as the rasterizer received them.
+struct WeightedCorners {
+    std::array<std::string, 3> names;
+    std::array<const std::vector<float>*, 3> varyings{};
+    bool clipped = false;
+};
+
+WeightedCorners cornersOf(const TriangleTrace* triangle, const WindowPiece* piece) {
+    WeightedCorners c;
+    c.names = {"v0", "v1", "v2"};
+    if (!triangle) return c;
+    for (int k = 0; k < 3; ++k)
+        c.varyings[k] = &triangle->vertexVaryings[static_cast<std::size_t>(k)];
+    if (triangle->clipSteps.empty() || !piece) return c;
+    c.clipped = true;
+    const ClipStep& last = triangle->clipSteps.back();
+    const auto k = static_cast<std::size_t>(piece - triangle->pieces.data());
+    const std::size_t polygon[3] = {0, k + 1, k + 2};
+    for (int i = 0; i < 3; ++i) {
+        c.names[i] = "p" + std::to_string(polygon[i]);
+        c.varyings[i] = polygon[i] < last.varyings.size() ? &last.varyings[polygon[i]] : nullptr;
     }
-    const FragmentEvent& f = *entry->fragment;
-    // The setup of the piece that covers the pixel, for the vertices' 1/w and depths.
-    const TriangleSetup* setup = nullptr;
-    const WindowPiece* setupPiece = nullptr;
-    if (triangle)
-        for (const WindowPiece& piece : triangle->pieces)
-            if (piece.fate == TriangleFate::Drawn && coverageAt(piece.setup, p.x, p.y).covered) {
-                setup = &piece.setup;
-                setupPiece = &piece;
-            }
-    {
-        std::ostringstream out;
-        const auto& E = entry->coverage->edgeValues;
-        const std::int64_t area = setup ? setup->doubleArea : 0;
-        out << "Barycentric coordinates from the edge functions: λ_i = E_i / 2A\n";
-        if (setupPiece && setupPiece->signedDoubleArea < 0)
-            out << "(i = 0, 1, 2 in the setup's vertex order: " << setupOrder(setupPiece->signedDoubleArea)
-                << " of the window triangle)\n";
-        if (setup)
-            for (int i = 0; i < 3; ++i)
-                out << "  λ" << i << " = " << E[i] << " / " << area << " = " << number(f.barycentrics[i])
-                    << "\n";
-        else
-            out << "  λ = " << vectorText(f.barycentrics) << "\n";
-        out << "\nDepth is affine in screen space: z = λ0·z0 + λ1·z1 + λ2·z2\n";
-        if (setup)
-            out << "  z0, z1, z2 (" << setupOrder(setupPiece->signedDoubleArea) << ") = " << number(setup->z0)
-                << ", " << number(setup->z0 + setup->dz1) << ", " << number(setup->z0 + setup->dz2) << "\n";
-        out << "  z = " << number(f.depth) << "\n";
-        out << "\n1/w is affine in screen space too: 1/w = λ0/w0 + λ1/w1 + λ2/w2\n";
-        if (setup) {
-            const float invW[3] = {setup->invW0, setup->invW0 + setup->dInvW1, setup->invW0 + setup->dInvW2};
-            out << "  1/w0, 1/w1, 1/w2 (" << setupOrder(setupPiece->signedDoubleArea)
-                << ") = " << number(invW[0]) << ", " << number(invW[1]) << ", " << number(invW[2])
-                << "\n  1/w = " << number(f.invW) << "\n";
-            if (setup->perspective) {
-                out << "Perspective-correct weights: λ′_i = (λ_i/w_i) / (1/w)\n  λ′ = (";
-                for (int i = 0; i < 3; ++i)
-                    out << number(f.barycentrics[i] * invW[i] / f.invW) << (i < 2 ? ", " : ")\n");
-                out << "Each varying a = λ′0·a0 + λ′1·a1 + λ′2·a2 (perspective-correct).\n";
-            } else {
-                out << "Affine interpolation (no perspective correction): a = λ0·a0 + λ1·a1 + λ2·a2.\n";
-            }
-        } else {
-            out << "  1/w = " << number(f.invW) << "\n";
+    return c;
+}
+
+// The interpolation screen: λ from the edge functions, depth and 1/w affine, the perspective-correct
+// weights λ′, and every varying at the three corners with the value at the pixel, each named by the
+// corners of the triangle as drawn (setup may have exchanged the last two to make its area positive).
+std::string interpolationText(const PreparedScene* prepared, const TriangleAtPixel& entry,
+                              const TriangleTrace* triangle, const WindowPiece* piece) {
+    const FragmentEvent& f = *entry.fragment;
+    const TriangleSetup* setup = piece ? &piece->setup : nullptr;
+    const WeightedCorners corners = cornersOf(triangle, piece);
+    const std::string& a = corners.names[0];
+    const std::string& b = corners.names[1];
+    const std::string& c = corners.names[2];
+    // setupOf[i]: the setup's corner that is corner i as drawn.
+    const bool exchanged = piece && piece->signedDoubleArea < 0;
+    const int setupOf[3] = {0, exchanged ? 2 : 1, exchanged ? 1 : 2};
+    std::ostringstream out;
+    if (corners.clipped)
+        out << "The pixel lies in fan piece " << piece - triangle->pieces.data()
+            << " of the clipped polygon: its corners " << a << ", " << b << ", " << c
+            << "\n(see clipping) take the places of v0, v1, v2 below.\n";
+    out << "Barycentric coordinates from the edge functions: λ_i = E_i / 2A, E_i the edge\n"
+           "function of the edge opposite corner i.\n";
+    if (exchanged)
+        out << "Setup exchanged " << b << " and " << c << " to make 2A positive: its edge 1 is opposite " << c
+            << ",\nits edge 2 opposite " << b << ". λ1 is " << b << "'s weight, λ2 " << c << "'s.\n";
+    const auto& E = entry.coverage->edgeValues;
+    vec3 lambda(0.0f), invW(0.0f), z(0.0f);
+    for (int i = 0; i < 3; ++i)
+        lambda[i] = f.barycentrics[setupOf[i]];
+    if (setup) {
+        const vec3 bySetupInvW(setup->invW0, setup->invW0 + setup->dInvW1, setup->invW0 + setup->dInvW2);
+        const vec3 bySetupZ(setup->z0, setup->z0 + setup->dz1, setup->z0 + setup->dz2);
+        for (int i = 0; i < 3; ++i) {
+            invW[i] = bySetupInvW[setupOf[i]];
+            z[i] = bySetupZ[setupOf[i]];
+            out << "  λ" << i << " = " << E[setupOf[i]] << " / " << setup->doubleArea << " = "
+                << number(lambda[i])
+                << (setupOf[i] != i ? "   (edge " + std::to_string(setupOf[i]) + ")" : "") << "\n";
         }
+    } else {
+        out << "  λ = " << vectorText(lambda) << "\n";
+    }
+    out << "\nDepth is affine in screen space: z = λ0·z0 + λ1·z1 + λ2·z2\n";
+    if (setup)
+        out << "  z0, z1, z2 (" << a << ", " << b << ", " << c << ") = " << number(z[0]) << ", "
+            << number(z[1]) << ", " << number(z[2]) << "\n";
+    out << "  z = " << number(f.depth) << "\n";
+    out << "\n1/w is affine in screen space too: 1/w = λ0/w0 + λ1/w1 + λ2/w2\n";
+    vec3 weights = lambda;  // λ′
+    if (setup) {
+        out << "  1/w0, 1/w1, 1/w2 (" << a << ", " << b << ", " << c << ") = " << number(invW[0]) << ", "
+            << number(invW[1]) << ", " << number(invW[2]) << "\n  1/w = " << number(f.invW) << "\n";
+        if (setup->perspective) {
+            weights = lambda * invW / f.invW;
+            out << "Perspective-correct weights: λ′_i = (λ_i/w_i) / (1/w)\n  λ′ = (";
+            for (int i = 0; i < 3; ++i)
+                out << number(weights[i]) << (i < 2 ? ", " : ")\n");
+            out << "Each varying a = λ′0·a0 + λ′1·a1 + λ′2·a2 (perspective-correct).\n";
+        } else {
+            out << "Affine interpolation (no perspective correction): a = λ0·a0 + λ1·a1 + λ2·a2.\n";
+        }
+    } else {
+        out << "  1/w = " << number(f.invW) << "\n";
+    }
+    const std::vector<std::string> names = varyingNames(prepared, entry.ref.draw, f.varyingCount);
+    bool atCorners = setup != nullptr;
+    for (const std::vector<float>* v : corners.varyings)
+        atCorners = atCorners && v && static_cast<int>(v->size()) >= f.varyingCount;
+    if (!atCorners) {
+        // Without the corners' values (not recorded): the interpolated values alone.
         out << "\nThe fragment shader's inputs, interpolated:\n";
-        const std::vector<std::string> names = varyingNames(prepared, entry->ref.draw, f.varyingCount);
         std::string line;
         for (int k = 0; k < f.varyingCount; ++k) {
             char cell[48];
@@ -956,6 +1084,65 @@ std::vector<Screen> fragmentScreens(const PreparedScene* prepared, const PixelTr
                 line.clear();
             }
         }
+        return out.str();
+    }
+    // Flat varyings (GLSL flat) take the provoking vertex's value, not the weighted sum.
+    int flat = 0;
+    const PreparedDraw* draw =
+        prepared && entry.ref.draw < prepared->draws.size() ? &prepared->draws[entry.ref.draw] : nullptr;
+    if (draw && !draw->userShader.module && draw->frequency == ShadingFrequency::Flat)
+        flat = PerVertexSurface<ShadingFrequency::Flat>::kFlatVaryingFloats;
+    const std::string provoking =
+        triangle && triangle->state.raster.provokingVertex == ProvokingVertex::First ? "v0" : "v2";
+    out << "\nThe fragment shader's inputs: each varying a at the corners (the vertex shader's\n"
+        << "outputs" << (corners.clipped ? ", mixed by clipping" : "") << ") and at the pixel, "
+        << (setup->perspective ? "a = λ′0·a0 + λ′1·a1 + λ′2·a2" : "a = λ0·a0 + λ1·a1 + λ2·a2") << ":\n";
+    char head[96];
+    std::snprintf(head, sizeof head, "  %-10s %13s %13s %13s   %s", "", a.c_str(), b.c_str(), c.c_str(),
+                  "at the pixel");
+    out << head << "\n";
+    for (int k = 0; k < f.varyingCount; ++k) {
+        std::string name = names[k];
+        if (name.size() > 10) {  // long names of one's own: a line of their own
+            out << "  " << name << "\n";
+            name.clear();
+        }
+        char row[128];
+        std::snprintf(row, sizeof row, "  %-10s %13s %13s %13s = %s", name.c_str(),
+                      number((*corners.varyings[0])[k]).c_str(), number((*corners.varyings[1])[k]).c_str(),
+                      number((*corners.varyings[2])[k]).c_str(), number(f.varyings[k]).c_str());
+        out << row << (k < flat ? " (flat)" : "") << "\n";
+    }
+    if (flat > 0)
+        out << "(flat: the provoking vertex " << provoking << "'s value, the same all over the triangle)\n";
+    return out.str();
+}
+
+}  // namespace
+
+std::vector<Screen> fragmentScreens(const PreparedScene* prepared, const PixelTrace& p,
+                                    const TriangleAtPixel* entry, const TriangleTrace* triangle) {
+    std::vector<Screen> screens;
+    const std::string at = "(" + std::to_string(p.x) + ", " + std::to_string(p.y) + ")";
+    if (!entry || !entry->fragment) {
+        std::ostringstream out;
+        out << wrapText("The traced triangle made no fragment at pixel " + at + ": " +
+                            (entry ? fateText(*entry) : "its bounding box does not hold the pixel") + ".",
+                        80, 0)
+            << "Pick a triangle that covers the pixel (t N) or another pixel (p X,Y).\n";
+        screens.push_back({"interpolate", "Interpolation: no fragment of this triangle here", out.str()});
+        return screens;
+    }
+    const FragmentEvent& f = *entry->fragment;
+    // The piece that covers the pixel, for the corners' 1/w, depths and varyings.
+    const WindowPiece* setupPiece = nullptr;
+    if (triangle)
+        for (const WindowPiece& piece : triangle->pieces)
+            if (piece.fate == TriangleFate::Drawn && coverageAt(piece.setup, p.x, p.y).covered)
+                setupPiece = &piece;
+    {
+        std::ostringstream out;
+        out << interpolationText(prepared, *entry, triangle, setupPiece);
         screens.push_back({"interpolate", "Interpolation: barycentrics, depth, 1/w, varyings", out.str()});
     }
     {
