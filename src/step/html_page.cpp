@@ -606,7 +606,8 @@ void PageWalks::add(const Walk& walk) {
         outlines_.try_emplace(walk.triangle->number, walk.windowPieces);
     }
     // The lines printWalk writes above the screens, from printWalk itself: the page shows them as is.
-    compact.heading = screenNumber("", "", printWalk({walk.x, walk.y, walk.triangle, walk.verdict, {}, {}, {}}));
+    compact.heading =
+        screenNumber("", "", printWalk({walk.x, walk.y, walk.triangle, walk.verdict, {}, {}, {}}));
     useScreen(compact.heading, tile);
     for (const Screen& screen : walk.screens) {
         compact.screens.push_back(screenNumber(screen.id, screen.title, screen.text));

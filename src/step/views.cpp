@@ -582,14 +582,16 @@ Screen clipScreen(const TriangleTrace& t) {
                         "left, right, bottom, top, near, far, w, in homogeneous coordinates before "
                         "any division.",
                     kScreenColumns, 0)
-        << wrapText("Planes that cut it: " + clipPlaneNames(cut) + " (a section each below).", kScreenColumns, 2);
+        << wrapText("Planes that cut it: " + clipPlaneNames(cut) + " (a section each below).", kScreenColumns,
+                    2);
     if (uncut)
         out << wrapText("Outside but not cut after the earlier planes: " + clipPlaneNames(uncut) +
                             " (a vertex lies outside it, but what the earlier cuts left lies "
                             "inside it).",
                         kScreenColumns, 2);
     if (untried)
-        out << wrapText("Not tried: " + clipPlaneNames(untried) + " (nothing was left to clip).", kScreenColumns, 2);
+        out << wrapText("Not tried: " + clipPlaneNames(untried) + " (nothing was left to clip).",
+                        kScreenColumns, 2);
     out << "A new vertex lies where an edge crosses the plane: P = P_in + t·(P_out − P_in),\n"
            "t = d_in / (d_in − d_out), d the signed distance to the plane (≥ 0 inside).\n"
            "Each section numbers the polygon before its plane p0, p1, …; before the first\n"

@@ -304,7 +304,7 @@ TEST_F(RedoScreensTest, FlatShadingDerivesItsFaceNormalOnTheLightingScreen) {
 
 // Gouraud shading: the lighting screen's corners are v0, v1, v2 in that order, each at the face's
 // corner of that number (object space), and the interpolation weights follow the same order: the
-// printed μ times the printed 1/w ratios agree with the printed λ. Catches: the corners in the
+// printed λ′ times the printed 1/w ratios agree with the printed λ. Catches: the corners in the
 // setup's order (v0, v2, v1 here) or named by their place in it.
 TEST_F(RedoScreensTest, GouraudCornersAreTheTrianglesAsDrawn) {
     Scene scene = sceneOf(kTriangle);
@@ -323,7 +323,7 @@ TEST_F(RedoScreensTest, GouraudCornersAreTheTrianglesAsDrawn) {
     }
     const std::vector<double> lambda = numbersAfter(text, "  λ = (λ0, λ1, λ2) = ");
     const std::vector<double> invW = numbersAfter(text, "  1/w0, 1/w1, 1/w2 = ");
-    const std::vector<double> mu = numbersAfter(text, ": μ = ");
+    const std::vector<double> mu = numbersAfter(text, ": λ′ = ");
     const std::vector<double> pixel = numbersAfter(text, "  1/w at the pixel = λ0/w0 + λ1/w1 + λ2/w2 = ");
     ASSERT_EQ(lambda.size(), 3u) << text;
     ASSERT_EQ(invW.size(), 3u) << text;
@@ -341,7 +341,7 @@ TEST_F(RedoScreensTest, GouraudCornersAreTheTrianglesAsDrawn) {
 // The interpolation screen lists every varying at v0, v1, v2 and at the pixel: the eye-space
 // position and normal, u and v of each corner, worked out here from the file (P_eye = V·p, N_eye = the
 // normal matrix times the file's normal, normalised by the importer), and at the pixel the sum with the
-// printed λ' weights. Catches: a varying left out, corner values in the setup's order (v0, v2, v1 for
+// printed λ′ weights. Catches: a varying left out, corner values in the setup's order (v0, v2, v1 for
 // this triangle) against weights in the drawn order, or weights that are not the ones used.
 TEST_F(RedoScreensTest, InterpolationListsEveryVaryingAtTheCorners) {
     const PreparedScene prepared = prepareScene(sceneOf(kTriangle));
@@ -349,7 +349,7 @@ TEST_F(RedoScreensTest, InterpolationListsEveryVaryingAtTheCorners) {
     const Screen* interpolate = screenOf(trace, "interpolate");
     ASSERT_NE(interpolate, nullptr);
     const std::string& text = interpolate->text;
-    const std::vector<double> weights = numbersAfter(text, "  λ' = ");
+    const std::vector<double> weights = numbersAfter(text, "  λ′ = ");
     ASSERT_EQ(weights.size(), 3u) << text;
     const glm::dmat4 view = prepared.camera.viewFromWorldExact;
     const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(view)));
@@ -382,9 +382,9 @@ TEST_F(RedoScreensTest, InterpolationListsEveryVaryingAtTheCorners) {
 // Gouraud after clipping: the near plane cuts the tip C of the triangle off, and the pixel lies in a
 // fan piece with a new corner. The lighting screen shows each new corner's colours as the mix of its
 // edge's ends with t, c = (1 − t)·c_a + t·c_b: worked out here from the corners' colours (the vertex
-// shader's outputs at v0, v1, v2, as traced) and the clip record's t, then the weights μ of the piece's
+// shader's outputs at v0, v1, v2, as traced) and the clip record's t, then the weights λ′ of the piece's
 // corners, whose weighted sum is the colour the pixel received. Catches: the piece's corners' colours
-// missing (only "themselves mixes"), t applied from the wrong end (1 − t), or μ from other corners.
+// missing (only "themselves mixes"), t applied from the wrong end (1 − t), or λ′ from other corners.
 TEST_F(RedoScreensTest, GouraudAfterClippingMixesThePiecesCornersWithT) {
     Scene scene = sceneOf("v -1 -0.5 0\nv 1 -0.5 0\nv 0 -0.1 4.6\nf 2 1 3\n");
     scene.lighting.shading = ShadingFrequency::Gouraud;
@@ -427,8 +427,8 @@ TEST_F(RedoScreensTest, GouraudAfterClippingMixesThePiecesCornersWithT) {
         }
     }
     EXPECT_GE(mixes, 1u) << text;
-    // μ of the piece's corners weight their colours into the pixel's (the interpolator's) colour.
-    const std::vector<double> mu = numbersAfter(text, ": μ = ");
+    // λ′ of the piece's corners weight their colours into the pixel's (the interpolator's) colour.
+    const std::vector<double> mu = numbersAfter(text, ": λ′ = ");
     ASSERT_EQ(mu.size(), 3u) << text;
     EXPECT_NEAR(mu[0] + mu[1] + mu[2], 1.0, 1e-3) << text;
     std::vector<std::vector<double>> corners;
