@@ -178,11 +178,14 @@ void TraceRecorder::onSetup(std::uint32_t triangle, const WindowTriangle& window
         // when its varyings are interpolated perspective-correct.
         const double lo[2] = {setup.minX + 0.5, setup.minY + 0.5},
                      hi[2] = {setup.maxX + 0.5, setup.maxY + 0.5};
+        const bool exchanged = signedDoubleArea(window) < 0;
         forEachTracedPixelIn(lo, hi, [&](std::size_t slot) {
             const PixelTrace& p = trace_.pixels[slot];
-            if (setup.perspective && coverageAt(setup, p.x, p.y).covered)
-                entry(slot, triangle).cornerInvW =
-                    vec3(setup.invW0, setup.invW0 + setup.dInvW1, setup.invW0 + setup.dInvW2);
+            if (!coverageAt(setup, p.x, p.y).covered) return;
+            TriangleAtPixel& at = entry(slot, triangle);
+            at.setupExchanged = exchanged;
+            if (setup.perspective)
+                at.cornerInvW = vec3(setup.invW0, setup.invW0 + setup.dInvW1, setup.invW0 + setup.dInvW2);
         });
     }
     forEachView(triangle, [&](TriangleTrace& view) {

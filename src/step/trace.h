@@ -73,8 +73,11 @@ struct TriangleAtPixel {
     std::optional<TriangleRef> tieOwner;       // LostTie: the triangle that covers the pixel instead
     std::optional<TriangleRef> overwrittenBy;  // Written or Blended: the next triangle that wrote the pixel
     // 1/w at the corners of the setup that covers the pixel, in its vertex order (the perspective
-    // weights λ'ᵢ = λᵢ·(1/wᵢ) / (1/w) of the fragment's varyings).
+    // weights λ′ᵢ = λᵢ·(1/wᵢ) / (1/w) of the fragment's varyings).
     std::optional<vec3> cornerInvW;
+    // Whether the setup that covers the pixel exchanged its last two corners to make its area positive:
+    // the fragment's weights are then in the order v0, v2, v1 of the triangle (or piece) as drawn.
+    bool setupExchanged = false;
 };
 
 // Exact transparency: the pixel's fragment list as stored (submission order) and as composited.

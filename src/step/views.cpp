@@ -927,13 +927,18 @@ Screen historyScreen(const PixelTrace& p, const PreparedScene* prepared) {
         const FragmentEvent& f = *e.fragment;
         if (!heading)
             out << "\nThe fragments that passed the depth test: λ in screen space (λ_i = E_i / 2A),\n"
-                   "λ′ perspective-correct (λ′_i = λ_i·(1/w_i) / (1/w)), the varyings interpolated:\n";
+                   "λ′ perspective-correct (λ′_i = λ_i·(1/w_i) / (1/w)), for v0, v1, v2 as drawn:\n";
         heading = true;
         out << "\n"
             << triangleName(e.ref) << ": z = " << number(f.depth) << ", 1/w = " << number(f.invW) << "\n";
-        out << "  λ  = " << vectorText(f.barycentrics) << "\n";
+        // In the corners' order as drawn (v0, v1, v2), as the interpolation screen names them: setup
+        // may have exchanged the last two.
+        const auto drawn = [&](vec3 bySetup) {
+            return e.setupExchanged ? vec3(bySetup.x, bySetup.z, bySetup.y) : bySetup;
+        };
+        out << "  λ  = " << vectorText(drawn(f.barycentrics)) << "\n";
         if (e.cornerInvW)
-            out << "  λ′ = " << vectorText(f.barycentrics * *e.cornerInvW / f.invW) << "\n";
+            out << "  λ′ = " << vectorText(drawn(f.barycentrics * *e.cornerInvW / f.invW)) << "\n";
         else
             out << "  λ′ = λ: affine interpolation, no perspective correction\n";
         const std::vector<std::string> names = varyingNames(prepared, e.ref.draw, f.varyingCount);

@@ -485,5 +485,37 @@ TEST_F(RedoScreensTest, ShadowScreenNamesTheBlockerAndItsDistance) {
     }
 }
 
+// The pixel history prints the fragment's weights in the same corner order as the interpolation screen
+// (v0, v1, v2 as drawn), on a triangle whose setup exchanged v1 and v2. Catches: the history's λ or λ′
+// left in the setup's order (v0, v2, v1), so that a student comparing the two screens finds λ1 and λ2
+// swapped.
+TEST_F(RedoScreensTest, HistoryWeightsAreInTheDrawnOrderOfTheInterpolationScreen) {
+    const PreparedScene prepared = prepareScene(sceneOf(kTriangle));
+    const StepTrace trace = walkAt(prepared, vec3(0.0f, -0.1f, 0.0f), 0);
+    const Screen* interpolate = screenOf(trace, "interpolate");
+    const Screen* history = screenOf(trace, "history");
+    ASSERT_NE(interpolate, nullptr);
+    ASSERT_NE(history, nullptr);
+    ASSERT_NE(interpolate->text.find("Setup exchanged v1 and v2"), std::string::npos) << interpolate->text;
+    const std::vector<double> weights = numbersAfter(interpolate->text, "  λ′ = ");
+    const std::vector<double> historyWeights = numbersAfter(history->text, "  λ′ = ");
+    std::vector<double> lambda;
+    for (const char* label : {"  λ0 = ", "  λ1 = ", "  λ2 = "}) {
+        // "  λ1 = E / 2A = value": the number after the line's last "= ".
+        const std::size_t at = interpolate->text.find(label);
+        ASSERT_NE(at, std::string::npos) << label << "\n" << interpolate->text;
+        const std::string line = interpolate->text.substr(at, interpolate->text.find('\n', at) - at);
+        lambda.push_back(std::strtod(line.c_str() + line.rfind("= ") + 2, nullptr));
+    }
+    const std::vector<double> historyLambda = numbersAfter(history->text, "  λ  = ");
+    ASSERT_EQ(weights.size(), 3u) << interpolate->text;
+    ASSERT_EQ(historyWeights.size(), 3u) << history->text;
+    ASSERT_EQ(historyLambda.size(), 3u) << history->text;
+    for (int k = 0; k < 3; ++k) {
+        EXPECT_NEAR(historyWeights[k], weights[k], 1e-5) << "λ′" << k;
+        EXPECT_NEAR(historyLambda[k], lambda[k], 1e-5) << "λ" << k;
+    }
+}
+
 }  // namespace
 }  // namespace facet::step
