@@ -32,8 +32,6 @@ std::string wrapText(const std::string& text, std::size_t width, std::size_t ind
     return out + line + "\n";
 }
 
-namespace {
-
 std::vector<std::string_view> linesOf(std::string_view text) {
     std::vector<std::string_view> lines;
     while (!text.empty()) {
@@ -44,7 +42,7 @@ std::vector<std::string_view> linesOf(std::string_view text) {
     return lines;
 }
 
-}  // namespace
+namespace {}  // namespace
 
 std::vector<std::string> linesTooWide(const Walk& walk) {
     std::vector<std::string> wide;

@@ -68,6 +68,9 @@ inline constexpr std::size_t kTitleColumns = kScreenColumns - 4;
 // ≤, are one column wide), i.e. every byte that is not a continuation byte 10xxxxxx.
 std::size_t columnsOf(std::string_view text);
 
+// The lines of a text, without their '\n' (a last line without one counts; none after a final '\n').
+std::vector<std::string_view> linesOf(std::string_view text);
+
 // The lines of the walk's screens wider than their columns (texts kScreenColumns, titles
 // kTitleColumns), each as "id: line": what the screens made, before any fitting.
 std::vector<std::string> linesTooWide(const Walk& walk);

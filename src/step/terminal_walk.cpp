@@ -74,16 +74,6 @@ std::string fitted(std::string_view line, int columns) {
     return std::string(line);
 }
 
-std::vector<std::string_view> linesOf(std::string_view text) {
-    std::vector<std::string_view> lines;
-    while (!text.empty()) {
-        const std::size_t end = text.find('\n');
-        lines.push_back(text.substr(0, end));
-        text = end == std::string_view::npos ? std::string_view() : text.substr(end + 1);
-    }
-    return lines;
-}
-
 // The text cut into pages of whole lines that each fit in `rows` terminal rows (a single line taller
 // than that is a page of its own). Always at least one page, empty for an empty text.
 std::vector<std::vector<std::string_view>> pagesOf(std::string_view text, TerminalSize size, int rows) {
