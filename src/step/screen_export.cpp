@@ -507,12 +507,10 @@ bool isMathTrigger(char32_t c) {
 
 enum class LineKind { Blank, Prose, Formula, Columns };
 
-std::vector<std::string> linesOf(const std::string& text) {
-    std::vector<std::string> lines;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);)
-        lines.push_back(line);
-    return lines;
+// The lines of a text as strings of their own (screens.h's linesOf, copied out of the text).
+std::vector<std::string> lineStrings(const std::string& text) {
+    const std::vector<std::string_view> lines = linesOf(text);
+    return {lines.begin(), lines.end()};
 }
 
 std::size_t indentOf(const std::string& line) {
@@ -561,7 +559,7 @@ std::vector<std::string> numbersOf(const std::string& row) {
 }
 
 std::string latexBody(const std::string& text) {
-    const std::vector<std::string> lines = linesOf(text);
+    const std::vector<std::string> lines = lineStrings(text);
     std::string out;
     bool inParagraph = false;
     auto endParagraph = [&] {
@@ -641,7 +639,7 @@ std::string markdownText(const std::string& prose) {
 }
 
 std::string markdownBody(const std::string& text) {
-    const std::vector<std::string> lines = linesOf(text);
+    const std::vector<std::string> lines = lineStrings(text);
     std::string out, paragraph;
     std::vector<std::string> block;
     auto flushParagraph = [&] {

@@ -10,25 +10,15 @@ namespace facet::step {
 
 namespace {
 
-std::vector<std::string> linesOf(const std::string& text) {
-    std::vector<std::string> lines;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);)
-        lines.push_back(line);
-    return lines;
-}
-
-// Columns a line takes on a terminal: UTF-8 continuation bytes take none.
-std::size_t columns(const std::string& s) {
-    std::size_t n = 0;
-    for (unsigned char c : s)
-        n += (c & 0xC0) != 0x80;
-    return n;
+// The lines of a text as strings of their own (screens.h's linesOf, copied out of the text).
+std::vector<std::string> lineStrings(const std::string& text) {
+    const std::vector<std::string_view> lines = linesOf(text);
+    return {lines.begin(), lines.end()};
 }
 
 // `text` as it is when it fits `width` columns (its spacing kept), else wrapped with `indent`.
 std::string fitted(const std::string& text, std::size_t width, std::size_t indent) {
-    return columns(text) <= width ? text + "\n" : wrapText(text, width, indent);
+    return columnsOf(text) <= width ? text + "\n" : wrapText(text, width, indent);
 }
 
 struct Row {
@@ -102,8 +92,9 @@ std::string sideBySide(const Walk& a, const std::string& nameA, const Walk& b, c
     std::vector<Block> blocks;
     std::optional<std::pair<std::size_t, std::size_t>> first;  // block, row
     {
-        Block verdict{"Verdict", "Verdict",
-                      align(linesOf(wrapText(a.verdict, 80, 2)), linesOf(wrapText(b.verdict, 80, 2)))};
+        Block verdict{
+            "Verdict", "Verdict",
+            align(lineStrings(wrapText(a.verdict, 80, 2)), lineStrings(wrapText(b.verdict, 80, 2)))};
         blocks.push_back(verdict);
         for (std::size_t r = 0; r < verdict.rows.size() && !first; ++r)
             if (verdict.rows[r].left != verdict.rows[r].right) first = std::pair(std::size_t{0}, r);
@@ -112,8 +103,8 @@ std::string sideBySide(const Walk& a, const std::string& nameA, const Walk& b, c
         const Screen* sa = findOrCounterpart(a, b, id);
         const Screen* sb = findOrCounterpart(b, a, id);
         Block block{sa ? sa->title : "(no such screen)", sb ? sb->title : "(no such screen)",
-                    align(sa ? linesOf(sa->text) : std::vector<std::string>{},
-                          sb ? linesOf(sb->text) : std::vector<std::string>{})};
+                    align(sa ? lineStrings(sa->text) : std::vector<std::string>{},
+                          sb ? lineStrings(sb->text) : std::vector<std::string>{})};
         for (std::size_t r = 0; r < block.rows.size(); ++r) {
             const Row& row = block.rows[r];
             if (!first && row.left != row.right) first = std::pair(blocks.size(), r);
@@ -127,7 +118,7 @@ std::string sideBySide(const Walk& a, const std::string& nameA, const Walk& b, c
     std::ostringstream out;
     const auto emit = [&out](std::string_view gutter, const std::string& text) {
         const std::size_t indent = std::min<std::size_t>(text.find_first_not_of(' '), 40);
-        const std::vector<std::string> wrapped = linesOf(fitted(text, kWidth - kGutter, indent + 4));
+        const std::vector<std::string> wrapped = lineStrings(fitted(text, kWidth - kGutter, indent + 4));
         for (const std::string& line : wrapped.empty() ? std::vector<std::string>{""} : wrapped)
             out << gutter << line << "\n";
     };

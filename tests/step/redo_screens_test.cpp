@@ -15,22 +15,15 @@
 
 #include "pipeline/clip.h"
 #include "render/renderer.h"
+#include "small_scene_walk.h"
 #include "step/views.h"
 #include "step/walk.h"
-#include "support/temp_folder.h"
 
 namespace facet::step {
 namespace {
 
 using glm::dvec3;
 using glm::dvec4;
-
-std::size_t columns(const std::string& line) {
-    std::size_t n = 0;
-    for (const char c : line)
-        n += (static_cast<unsigned char>(c) & 0xc0) != 0x80;
-    return n;
-}
 
 const Screen* screenOf(const StepTrace& trace, const std::string& id) {
     for (const Screen& s : trace.walk.screens)
@@ -40,13 +33,7 @@ const Screen* screenOf(const StepTrace& trace, const std::string& id) {
 
 // Every line of the screens these tests are about within 80 columns, the titles too.
 void expectWithin80Columns(const StepTrace& trace) {
-    for (const Screen& s : trace.walk.screens) {
-        if (s.id != "input" && s.id != "clip" && s.id != "interpolate" && s.id != "lighting") continue;
-        EXPECT_LE(columns(s.title), 80u) << s.title;
-        std::istringstream lines(s.text);
-        for (std::string line; std::getline(lines, line);)
-            EXPECT_LE(columns(line), 80u) << s.id << ": " << line;
-    }
+    testing_walk::expectWithin80Columns(trace, {"input", "clip", "interpolate", "lighting"});
 }
 
 // The text with its line breaks and the indentation after them read as one space.
@@ -57,75 +44,10 @@ std::string flat(const std::string& text) {
     return out;
 }
 
-// The numbers after `label` on the first line holding it (from `from`): "(1, 2, 3)", "1.5" or a row
-// of numbers separated by blanks.
-std::vector<double> numbersAfter(const std::string& text, const std::string& label, std::size_t from = 0) {
-    const std::size_t at = text.find(label, from);
-    if (at == std::string::npos) return {};
-    const std::size_t end = text.find('\n', at);
-    const std::string rest = text.substr(at + label.size(), end - at - label.size());
-    std::vector<double> values;
-    const char* p = rest.c_str();
-    while (*p == ' ' || *p == '(' || *p == '=')
-        ++p;
-    while (*p) {
-        char* next = nullptr;
-        const double v = std::strtod(p, &next);
-        if (next == p) break;
-        values.push_back(v);
-        p = next;
-        if (*p == ')') break;
-        while (*p == ',' || *p == ' ' || *p == '=')
-            ++p;
-    }
-    return values;
-}
+using testing_walk::expectVector;
+using testing_walk::numbersAfter;
 
-void expectVector(const std::vector<double>& got, const dvec3& want, double tolerance,
-                  const std::string& what) {
-    ASSERT_EQ(got.size(), 3u) << what;
-    for (int i = 0; i < 3; ++i)
-        EXPECT_NEAR(got[i], want[i], tolerance) << what << " [" << i << "]";
-}
-
-class RedoScreensTest : public ::testing::Test {
-  protected:
-    testing_support::TempFolder folder_;
-
-    // A 64×48 scene of one OBJ, seen from (0, 0, 5) looking down −z, near 1, far 10, fovy 60°, one
-    // point light.
-    Scene sceneOf(const std::string& obj) const {
-        Scene scene;
-        scene.source = folder_.path() / "scene.json";
-        scene.width = 64;
-        scene.height = 48;
-        scene.camera.eye = vec3(0.0f, 0.0f, 5.0f);
-        scene.camera.target = vec3(0.0f, 0.0f, 0.0f);
-        scene.camera.near = 1.0f;
-        scene.camera.far = 10.0f;
-        scene.camera.fovyDegrees = 60.0f;
-        ObjectSpec object;
-        object.model = folder_.write("model.obj", obj);
-        scene.objects.push_back(object);
-        LightSpec light;
-        light.type = LightKind::Point;
-        light.position = vec3(0.5f, 1.0f, 3.0f);
-        scene.lights = {light};
-        return scene;
-    }
-
-    // The walk of `triangle` at the pixel where the world point `at` is seen.
-    static StepTrace walkAt(const PreparedScene& prepared, vec3 at, std::uint32_t triangle) {
-        const vec4 clip = prepared.camera.clipFromView * prepared.camera.viewFromWorld * vec4(at, 1.0f);
-        const int px = int((clip.x / clip.w + 1) * 0.5f * float(prepared.scene.width));
-        const int py = int((1 - clip.y / clip.w) * 0.5f * float(prepared.scene.height));
-        DrawContext context(1);
-        StepRequest request;
-        request.pixel = std::pair(px, py);
-        request.triangle = triangle;
-        return traceStep(prepared, context, request);
-    }
-};
+class RedoScreensTest : public testing_walk::SmallSceneWalkTest {};
 
 // A triangle counter-clockwise on screen (so setup exchanges v1 and v2), corners in face order.
 constexpr const char* kTriangle =
