@@ -40,6 +40,10 @@ inline constexpr int kMaxTradeRounds = 100;
 // command's parser (the cli layer provides it). Throws InputError for words it refuses.
 using SceneWithWords = std::function<Scene(const std::vector<std::string>& words)>;
 
+// How a setting's frame time compares with the baseline's, judged against the run's own measured noise:
+// a difference within the noise is no verdict, and the trade takes no decision from it.
+enum class TimeVerdict { WithinNoise, Faster, Slower };
+
 struct TradeRow {
     TradeSetting setting;
     // Per frame of the scene in motion: its shadows' maps and BVH rebuilt, then clearing, sorting and
@@ -49,6 +53,18 @@ struct TradeRow {
     ImageError error;       // against the reference
     bool noEffect = false;  // the 8-bit image is the baseline's, byte for byte: the knob changed nothing
     bool pareto = false;  // no other row is both faster and more accurate (by 1 − SSIM of the 8-bit image)
+    // CPU time of the process per frame (every render thread), which other processes on a shared machine
+    // disturb far less than wall time: median, fastest and slowest frame.
+    double cpuMsMedian = 0, cpuMsMin = 0, cpuMsMax = 0;
+    TimeVerdict timeVerdict =
+        TimeVerdict::WithinNoise;  // against the baseline; the baseline's own: WithinNoise
+    bool blank =
+        false;  // nothing or nearly nothing drawn where the reference shows the scene: never on the front
+    // The knob changes what the scene shows (textures off, another reflection model, shadows the scene
+    // does not have) rather than how exactly it is drawn: listed apart, never on the front.
+    bool changesContent = false;
+    // Its error differs from the baseline's by less than the reference's own error: no verdict on accuracy.
+    bool withinReferenceFloor = false;
     std::string image, errorImage;  // file names in the output folder
 };
 
@@ -58,6 +74,12 @@ struct TradeResult {
     std::vector<std::string> notes;    // what the run decided from its own measurements (fastPresetKeeps)
     double referenceMs = 0;
     int width = 0, height = 0;
+    int referenceSamples = 0;  // N×N rays per pixel the reference was finally made with
+    double referenceFloor = 0;  // the reference's own estimated error, in the chart's error (1 − SSIM, 8-bit)
+    double timeNoise = 0;       // relative noise of the frame times (0.1: ±10%), from the repeated baseline
+                                // and the rows without effect
+    std::vector<std::string> warnings;         // the machine was busy, a blank image, ...
+    std::vector<std::string> recommendations;  // one line per knob ("--aa msaa2: half the edge error ...")
 };
 
 // Runs the trade of `baseline` (the scene as the user gave it): renders, writes the images, trade.csv
