@@ -37,7 +37,7 @@ V3 unitVector(const V3& v, const SurfaceUniforms& u) {
 template <class F, class V3 = LaneVec3<F>>
 V3 facingNormal(const V3& normal, const V3& P, const SurfaceUniforms& u) {
     if (!u.twoSidedFlip) return normal;
-    return select(dot(normal, -P) < 0.0f, -normal, normal);
+    return select(seesUnderside(normal, P), -normal, normal);
 }
 
 // V, the unit vector from the eye-space point P towards the eye (at the origin).

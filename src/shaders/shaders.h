@@ -28,6 +28,7 @@
 #include "shading/environment.h"
 #include "shading/fog.h"
 #include "shading/lighting.h"
+#include "shading/two_sided.h"
 
 namespace facet {
 
@@ -232,7 +233,7 @@ template <class F, class V3, MathPrecision kPrecision, Normalization kNormalizat
     }
     V3 N = normal;
     if (u.twoSidedFlip) {
-        const auto facingAway = dot(N, -P) < 0.0f;
+        const auto facingAway = seesUnderside(N, P);
         N = select(facingAway, -N, N);
         if constexpr (Record::enabled) recordOf(recording...)->flipped = facingAway;
     }
@@ -265,7 +266,7 @@ template <class F, class V3, MathPrecision kPrecision, Normalization kNormalizat
     }
     if (u.clampNdotV) {
         // N·V clamped to 0: the lights' terms vanish where the viewer sees the underside.
-        const auto underside = dot(N, -P) < 0.0f;
+        const auto underside = seesUnderside(N, P);
         const V3 zero(vec3(0.0f));
         t.diffuse = select(underside, zero, t.diffuse);
         t.specular = select(underside, zero, t.specular);

@@ -22,6 +22,7 @@
 #include "pipeline/texture.h"
 #include "pipeline/wide.h"
 #include "shading/record.h"
+#include "shading/two_sided.h"
 
 namespace facet {
 
@@ -104,7 +105,7 @@ V3 environmentReflection(const EnvironmentParams& env, const V3& P, const V3& no
     static_assert(!Record::enabled || LaneTraits<F>::kCount == 1, "records hold one lane");
     V3 N = safeNormalize<F, V3>(normal);
     const V3 V = safeNormalize<F, V3>(-P);
-    if (twoSided) N = select(dot(N, V) < 0.0f, -N, N);
+    if (twoSided) N = select(seesUnderside(normal, P), -N, N);
     const F NdotV = saturate(dot(N, V));
     const V3 R = N * (2.0f * dot(N, V)) - V;
     V3 w;
