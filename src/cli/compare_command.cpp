@@ -17,6 +17,7 @@
 #include "shading/shadow.h"
 #include "step/versus.h"
 #include "step/walk.h"
+#include "trade/metrics.h"
 
 namespace facet::cli {
 
@@ -46,8 +47,11 @@ CLI::App* addCompareCommand(CLI::App& app, CompareArgs& args) {
     addShaderOptions(*command, args.scene);
     command->add_option("--facet", args.facetImage, "Also write Facet's image here");
     command->add_option("--mesa", args.mesaImage, "Also write OpenGL's image here");
-    command->add_option("--diff", args.diffImage,
-                        "Also write where they differ: grey equal, blue 1/255, yellow 2/255, red more");
+    command->add_option(
+        "--diff", args.diffImage,
+        "Also write where they differ: grey equal, blue 1/255, yellow 2/255, red more; with "
+        "--reference: black equal, through red and yellow to white at 16/255 or more (as facet "
+        "trade's error images), a legend below when 200 px wide or more");
     command
         ->add_option("--threads", args.scene.threads,
                      "Facet's worker threads (default: one per hardware thread)")
@@ -56,8 +60,7 @@ CLI::App* addCompareCommand(CLI::App& app, CompareArgs& args) {
         "--reference", args.reference,
         "Compare with the exact reference renderer (ray casting in double) instead of OpenGL: the surface, "
         "colour and shadows of every pixel, and a table of shadow maps against ray-cast shadows");
-    for (CLI::Option* mesaOnly :
-         {command->get_option("--driver"), command->get_option("--mesa"), command->get_option("--diff")})
+    for (CLI::Option* mesaOnly : {command->get_option("--driver"), command->get_option("--mesa")})
         reference->excludes(mesaOnly);
     // --aa: Facet's image only (OpenGL's is not anti-aliased), and not with --reference, whose per-pixel
     // surface check follows the pixel centre of one drawing. --shadows: with --reference only, a map
@@ -134,7 +137,7 @@ int compareAgainstReference(const CompareArgs& args, const facet::Scene& scene) 
         options.shadowMapSizes = parseShadowMapSizes(*args.shadowMapSizes);
         options.shadowMapTable = !options.shadowMapSizes.empty();
     }
-    for (const auto& path : {args.facetImage, args.referenceImage})
+    for (const auto& path : {args.facetImage, args.referenceImage, args.diffImage})
         if (path) facet::checkImageDestination(*path, scene.width, scene.height);
     std::ofstream csv;  // opened first, so that a bad path is reported before the long comparison
     if (args.csv) {
@@ -145,6 +148,9 @@ int compareAgainstReference(const CompareArgs& args, const facet::Scene& scene) 
     std::cout << "facet compare --reference: " << args.scene.input << "\n" << facet::describe(result);
     if (args.facetImage) facet::writeImage(*args.facetImage, result.rasterized, result.encoding);
     if (args.referenceImage) facet::writeImage(*args.referenceImage, result.reference, result.encoding);
+    if (args.diffImage)
+        facet::writeImage(*args.diffImage,
+                          facet::errorImage(result.rasterized, result.reference, result.encoding));
     if (args.csv) {
         csv << facet::shadowMapCsv(result);
         if (!csv.flush()) throw facet::InputError(*args.csv + ": cannot write the CSV file there");

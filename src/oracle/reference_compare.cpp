@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include "pipeline/observer.h"
@@ -49,6 +50,32 @@ std::array<dvec3, 3> eyeCorners(const PreparedScene& prepared, const RayHit& sur
     for (int k = 0; k < 3; ++k)
         corners[k] = eyePosition(prepared, d, d.indices[3 * std::size_t(surface.triangle) + k]);
     return corners;
+}
+
+// Where the ray through `window` meets the plane of `surface`'s triangle: the barycentric weights of its
+// corners (not clamped: a point outside the triangle gets a negative one) and the point, in eye space,
+// double. Nothing for a ray along the plane.
+struct PlanePoint {
+    dvec3 weights;
+    dvec3 point;
+};
+std::optional<PlanePoint> planePointAt(const PreparedScene& prepared, const RayHit& surface, dvec2 window) {
+    const std::array<dvec3, 3> c = eyeCorners(prepared, surface);
+    const glm::dmat4& clipFromView = prepared.camera.clipFromViewExact;
+    const dvec4 onNear =
+        glm::inverse(clipFromView) * dvec4(2.0 * window.x / prepared.scene.width - 1.0,
+                                           1.0 - 2.0 * window.y / prepared.scene.height, -1.0, 1.0);
+    const dvec3 direction = dvec3(onNear) / onNear.w;
+    const dvec3 normal = glm::cross(c[1] - c[0], c[2] - c[0]);
+    const double along = glm::dot(normal, direction);
+    const double area2 = glm::dot(normal, normal);
+    if (!(std::abs(along) > 0.0) || !(area2 > 0.0)) return std::nullopt;
+    const dvec3 point = (glm::dot(normal, c[0]) / along) * direction;
+    // Each corner's weight: the area of the sub-triangle opposite it over the whole (signed).
+    const dvec3 weights(glm::dot(glm::cross(c[1] - point, c[2] - point), normal) / area2,
+                        glm::dot(glm::cross(c[2] - point, c[0] - point), normal) / area2,
+                        glm::dot(glm::cross(c[0] - point, c[1] - point), normal) / area2);
+    return PlanePoint{weights, point};
 }
 
 double distanceToSegment(dvec2 p, dvec2 a, dvec2 b) {
@@ -263,6 +290,147 @@ SurfaceAgreement compareSurfaces(const PreparedScene& prepared, const std::vecto
     return result;
 }
 
+double normalDotViewAt(const PreparedScene& prepared, const RayHit& surface, dvec2 window) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    if (!surface.hit()) return nan;
+    const PreparedDraw& d = prepared.draws[surface.mesh];
+    if (d.userShader.module) return nan;  // its vertex part makes what it likes of the normals
+    const std::optional<PlanePoint> at = planePointAt(prepared, surface, window);
+    if (!at) return nan;
+    // The normal as the reference interpolates it: each corner's through the inverse transpose.
+    const glm::dmat3 normalFromObject = glm::transpose(glm::inverse(glm::dmat3(d.viewFromObjectExact)));
+    dvec3 normal(0.0);
+    for (int k = 0; k < 3; ++k)
+        normal +=
+            at->weights[k] *
+            (normalFromObject * dvec3(d.vertices[d.indices[3 * std::size_t(surface.triangle) + k]].normal));
+    const double lengths = glm::length(normal) * glm::length(at->point);
+    return lengths > 0.0 ? glm::dot(normal, -at->point) / lengths : nan;
+}
+
+double texelsPerPixelAt(const PreparedScene& prepared, const RayHit& surface, dvec2 window) {
+    if (!surface.hit()) return 0.0;
+    const PreparedDraw& d = prepared.draws[surface.mesh];
+    const Texture* map = d.uniforms.diffuseMap ? d.uniforms.diffuseMap : d.uniforms.emissionMap;
+    if (!map || d.userShader.module) return 0.0;
+    const auto uvAt = [&](dvec2 w) -> std::optional<dvec2> {
+        const std::optional<PlanePoint> at = planePointAt(prepared, surface, w);
+        if (!at) return std::nullopt;
+        dvec2 uv(0.0);
+        for (int k = 0; k < 3; ++k)
+            uv += at->weights[k] * dvec2(d.vertices[d.indices[3 * std::size_t(surface.triangle) + k]].uv);
+        return uv;
+    };
+    const std::optional<dvec2> here = uvAt(window), right = uvAt(window + dvec2(1, 0)),
+                               below = uvAt(window + dvec2(0, 1));
+    if (!here || !right || !below) return 0.0;
+    const dvec2 size(map->width, map->height);
+    return std::max(glm::length((*right - *here) * size), glm::length((*below - *here) * size));
+}
+
+std::vector<DifferenceSpot> findDifferenceSpots(const PreparedScene& prepared, const std::vector<int>& codes,
+                                                const std::vector<RayHit>& rasterized,
+                                                const std::vector<RayHit>& traced,
+                                                const std::vector<ShadowMasks>& shadowMasks) {
+    const int width = prepared.scene.width, height = prepared.scene.height;
+    std::vector<std::size_t> differing;  // more than 1/255 apart: what the colour bar counts
+    for (std::size_t i = 0; i < codes.size(); ++i)
+        if (std::abs(codes[i]) > 1) differing.push_back(i);
+    std::stable_sort(differing.begin(), differing.end(),
+                     [&](std::size_t a, std::size_t b) { return std::abs(codes[a]) > std::abs(codes[b]); });
+    const auto close = [](int ax, int ay, int bx, int by) {
+        return std::abs(ax - bx) < kSpotRadius && std::abs(ay - by) < kSpotRadius;
+    };
+    std::vector<DifferenceSpot> spots;
+    for (const std::size_t i : differing) {
+        if (spots.size() == kSpots) break;
+        const int x = int(i % std::size_t(width)), y = int(i / std::size_t(width));
+        if (std::any_of(spots.begin(), spots.end(),
+                        [&](const DifferenceSpot& s) { return close(s.x, s.y, x, y); }))
+            continue;
+        DifferenceSpot spot;
+        spot.x = x;
+        spot.y = y;
+        spot.codes = codes[i];
+        spot.rasterized = rasterized[i];
+        spot.traced = traced[i];
+        const dvec2 centre(x + 0.5, y + 0.5);
+        spot.normalDotView = normalDotViewAt(prepared, traced[i], centre);
+        spot.texelsPerPixel = texelsPerPixelAt(prepared, traced[i], centre);
+        spot.edgeDistance = distanceToEdge(prepared, traced[i], centre);
+        const bool sameSurface = rasterized[i].mesh == traced[i].mesh &&
+                                 rasterized[i].triangle == traced[i].triangle &&
+                                 rasterized[i].hit() == traced[i].hit();
+        const auto shadowDiffers =
+            std::find_if(shadowMasks.begin(), shadowMasks.end(),
+                         [&](const ShadowMasks& m) { return m.rasterized[i] != m.traced[i]; });
+        if (!sameSurface) {
+            spot.reason = DifferenceReason::OtherSurface;
+            spot.surfaces = classifyDisagreement(prepared, x, y, rasterized[i], traced[i]);
+        } else if (shadowDiffers != shadowMasks.end()) {
+            spot.reason = DifferenceReason::ShadowOneOnly;
+            spot.light = shadowDiffers->light;
+            spot.shadowedInReference = shadowDiffers->traced[i];
+        } else if (std::abs(spot.normalDotView) < kEdgeOnNdotV) {
+            spot.reason = DifferenceReason::EdgeOn;
+        } else if (spot.texelsPerPixel > kMinifiedTexels) {
+            spot.reason = DifferenceReason::TextureMinified;
+        } else if (spot.edgeDistance < kNearEdgePixels) {
+            spot.reason = DifferenceReason::NearEdge;
+        }
+        spots.push_back(spot);
+    }
+    for (DifferenceSpot& spot : spots)
+        for (int y = std::max(0, spot.y - kSpotRadius + 1); y < std::min(height, spot.y + kSpotRadius); ++y)
+            for (int x = std::max(0, spot.x - kSpotRadius + 1); x < std::min(width, spot.x + kSpotRadius);
+                 ++x)
+                spot.nearby += (x != spot.x || y != spot.y) &&
+                               std::abs(codes[static_cast<std::size_t>(y) * width + x]) > 1;
+    return spots;
+}
+
+std::string describeReason(const DifferenceSpot& spot) {
+    char text[160];
+    switch (spot.reason) {
+        case DifferenceReason::OtherSurface: {
+            const SurfaceDisagreement& d = spot.surfaces;
+            std::string where;
+            if (d.atEdge()) {
+                std::snprintf(text, sizeof text, "at an edge (the centre %.4f px from it)", d.edgeDistance);
+                where = text;
+            } else if (d.atEqualDepth()) {
+                where = "at equal depth (coincident or crossing surfaces)";
+            } else {
+                where = "neither at an edge nor at equal depth";
+            }
+            return "another surface in each: rasterizer " + surfaceName(d.rasterized) + ", reference " +
+                   surfaceName(d.traced) + ", " + where;
+        }
+        case DifferenceReason::ShadowOneOnly:
+            std::snprintf(text, sizeof text, "in the shadow of light %d in the %s only", spot.light + 1,
+                          spot.shadowedInReference ? "reference" : "rasterizer");
+            return text;
+        case DifferenceReason::EdgeOn:
+            std::snprintf(text, sizeof text,
+                          "the surface is seen edge-on (N·V = %+.4f): the lighting changes fastest there",
+                          spot.normalDotView);
+            return text;
+        case DifferenceReason::TextureMinified:
+            std::snprintf(text, sizeof text,
+                          "texture minified, %.1f texels per pixel: a fraction of a pixel reads other texels",
+                          spot.texelsPerPixel);
+            return text;
+        case DifferenceReason::NearEdge:
+            std::snprintf(text, sizeof text,
+                          "near the triangle's edge (%.2f px): interpolated from corners snapped to 1/256 px",
+                          spot.edgeDistance);
+            return text;
+        case DifferenceReason::Unexplained:
+            break;
+    }
+    return "unexplained";
+}
+
 ReferenceComparison compareWithReference(const Scene& scene, const ReferenceCompareOptions& options) {
     PreparedScene prepared = prepareForReference(scene);
     DrawContext context(options.threads);
@@ -283,10 +451,12 @@ ReferenceComparison compareWithReference(const Scene& scene, const ReferenceComp
                rasterized[i].triangle == traced[i].triangle;
     };
     std::vector<bool> colorDiffers(pixels, false);
+    std::vector<int> pixelCodes(pixels);  // reference − rasterizer, every pixel (for the spots)
     for (std::size_t i = 0; i < pixels; ++i) {
-        if (!sameSurface(i)) continue;
         const vec4 &a = result.rasterized.pixels[i], &b = result.reference.pixels[i];
-        const int codes = std::abs(codeDifference(a, b, result.encoding));
+        pixelCodes[i] = codeDifference(a, b, result.encoding);
+        if (!sameSurface(i)) continue;
+        const int codes = std::abs(pixelCodes[i]);
         ColorAgreement& c = result.color;
         ++c.compared;
         c.within1 += codes <= 1;
@@ -306,11 +476,11 @@ ReferenceComparison compareWithReference(const Scene& scene, const ReferenceComp
         if (casting[l] != ShadowMethod::None) lights.push_back(int(l));
     ShadowAgreement& s = result.shadows;
     s.lights = int(lights.size());
+    std::vector<ShadowMasks> masks;  // per casting light
     if (!lights.empty()) {
         setShadowMethods(prepared, none);
         const LinearImage rasterLit = rasterize(prepared, context), traceLit = trace(prepared, context);
-        // masks[k][i]: light lights[k] shadows pixel i (rasterizer, reference).
-        std::vector<std::vector<bool>> rasterMasks, traceMasks;
+        // masks[k].rasterized[i], .traced[i]: light lights[k] shadows pixel i.
         for (const int light : lights) {
             std::array<ShadowMethod, kMaxLights> only = none;
             only[light] = ShadowMethod::Ray;
@@ -321,18 +491,17 @@ ReferenceComparison compareWithReference(const Scene& scene, const ReferenceComp
                 rm[i] = darker(r.pixels[i], rasterLit.pixels[i], result.encoding);
                 tm[i] = darker(t.pixels[i], traceLit.pixels[i], result.encoding);
             }
-            rasterMasks.push_back(std::move(rm));
-            traceMasks.push_back(std::move(tm));
+            masks.push_back({light, std::move(rm), std::move(tm)});
         }
         setShadowMethods(prepared, casting);
         const auto atBoundary = [&](int x, int y) {
             const std::size_t i = static_cast<std::size_t>(y) * width + x;
-            for (const std::vector<bool>& mask : traceMasks)
+            for (const ShadowMasks& m : masks)
                 for (int dy = -1; dy <= 1; ++dy)
                     for (int dx = -1; dx <= 1; ++dx) {
                         const int nx = x + dx, ny = y + dy;
                         if (nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
-                        if (mask[static_cast<std::size_t>(ny) * width + nx] != mask[i]) return true;
+                        if (m.traced[static_cast<std::size_t>(ny) * width + nx] != m.traced[i]) return true;
                     }
             return false;
         };
@@ -343,9 +512,9 @@ ReferenceComparison compareWithReference(const Scene& scene, const ReferenceComp
                 bool shadowed = false;
                 std::size_t maskDifferences = 0;
                 for (std::size_t k = 0; k < lights.size(); ++k) {
-                    shadowed = shadowed || traceMasks[k][i];
+                    shadowed = shadowed || masks[k].traced[i];
                     // Only where it shows: a shadow the colours do not tell apart is a rounding tie.
-                    maskDifferences += colorDiffers[i] && rasterMasks[k][i] != traceMasks[k][i];
+                    maskDifferences += colorDiffers[i] && masks[k].rasterized[i] != masks[k].traced[i];
                 }
                 s.inShadow += shadowed;
                 if (!maskDifferences && !colorDiffers[i]) continue;
@@ -360,6 +529,8 @@ ReferenceComparison compareWithReference(const Scene& scene, const ReferenceComp
                 }
             }
     }
+
+    result.spots = findDifferenceSpots(prepared, pixelCodes, rasterized, traced, masks);
 
     // Shadow maps against ray-cast shadows, both in the rasterizer.
     if (options.shadowMapTable && !lights.empty()) {
@@ -486,6 +657,18 @@ std::string describe(const ReferenceComparison& c) {
                           r.bias.c_str(), double(r.constantBias), double(r.slopeBias), r.filterTaps,
                           r.meanError, r.wronglyLit, r.wronglyShadowed);
             out << line;
+        }
+    }
+    if (!c.spots.empty()) {
+        out << "Largest differences (8-bit codes, reference − rasterizer; spots at least " << kSpotRadius
+            << " px apart;\n  \"nearby\": other pixels more than 1/255 apart within " << kSpotRadius - 1
+            << " px):\n";
+        for (const DifferenceSpot& spot : c.spots) {
+            char head[96];
+            std::snprintf(head, sizeof head, "  pixel %d,%d: %+d/255, %s, %zu nearby\n", spot.x, spot.y,
+                          spot.codes, surfaceName(spot.traced.hit() ? spot.traced : spot.rasterized).c_str(),
+                          spot.nearby);
+            out << head << "    " << describeReason(spot) << "\n";
         }
     }
     out << (c.agrees() ? "Agreement: yes\n" : "Agreement: NO\n");

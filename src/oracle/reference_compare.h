@@ -129,6 +129,70 @@ struct ShadowMapRow {
     std::size_t wronglyShadowed = 0;  // darker by more than 2/255
 };
 
+// Why two colours at a pixel differ, as far as the numbers at that pixel tell (the first that holds, in
+// this order; docs/reference.md, "Where the largest differences lie"):
+enum class DifferenceReason {
+    OtherSurface,     // the renderers show different triangles there (at an edge, at equal depth, or not)
+    ShadowOneOnly,    // the same triangle, in a light's ray-cast shadow in one image and lit in the other
+    EdgeOn,           // the surface is seen edge-on: |N·V| < kEdgeOnNdotV at the reference's hit
+    TextureMinified,  // a texture minified: more than kMinifiedTexels texels per pixel
+    NearEdge,         // the centre within kNearEdgePixels of the triangle's edge
+    Unexplained,      // none of these
+};
+
+// |N·V| below this (the interpolated normal at the reference's hit, unit length) is "seen edge-on": the
+// lighting then changes fastest with the point and the normal, and the two-sided flip's sign
+// (twoSidedFlipTurns, shaders.h) turns on rounding. 0.02 is 1.1° from grazing.
+inline constexpr double kEdgeOnNdotV = 0.02;
+// A texture read across more than this many texels per pixel (along the footprint's longer side) is
+// minified: a shift of the sample point by a fraction of a pixel then reads other texels.
+inline constexpr double kMinifiedTexels = 2.0;
+// A centre this close to its own triangle's edge (pixels) may be interpolated from a snapped corner.
+inline constexpr double kNearEdgePixels = 0.5;
+
+// One of the largest colour differences, and what is at its pixel.
+struct DifferenceSpot {
+    int x = 0, y = 0;
+    int codes = 0;  // reference − rasterizer in 8-bit codes, the channel that differs most
+    RayHit rasterized, traced;
+    DifferenceReason reason = DifferenceReason::Unexplained;
+    SurfaceDisagreement surfaces;  // OtherSurface: how the surfaces differ
+    double normalDotView = 0;      // N·V at the reference's hit (NaN: no normal, e.g. a user shader)
+    double texelsPerPixel = 0;     // the diffuse or emission map's texels across one pixel (0: none)
+    double edgeDistance = 0;       // of the centre to its triangle's nearest edge, pixels
+    int light = -1;                // ShadowOneOnly: the light (index in the scene's list)
+    bool shadowedInReference = false;
+    std::size_t nearby = 0;  // other pixels more than 1/255 apart within kSpotRadius of this one
+};
+// The largest differences listed, at least kSpotRadius pixels apart (in x or y) so that one blob is
+// one spot.
+inline constexpr std::size_t kSpots = 5;
+inline constexpr int kSpotRadius = 8;
+
+// The spots: the pixels whose colours differ most (more than 1/255), largest first (ties in reading
+// order), each at least kSpotRadius from those before it. `codes`: reference − rasterizer per pixel
+// (codeDifference); `shadowMasks`: per casting light (its index, then per pixel rasterizer and reference
+// in shadow), empty without shadows.
+struct ShadowMasks {
+    int light = 0;
+    std::vector<bool> rasterized, traced;
+};
+std::vector<DifferenceSpot> findDifferenceSpots(const PreparedScene& prepared, const std::vector<int>& codes,
+                                                const std::vector<RayHit>& rasterized,
+                                                const std::vector<RayHit>& traced,
+                                                const std::vector<ShadowMasks>& shadowMasks);
+
+// N·V (unit vectors) of `surface`'s interpolated normal at the point the ray through `window` meets
+// its triangle's plane, in double; NaN for the background or a draw without normals.
+double normalDotViewAt(const PreparedScene& prepared, const RayHit& surface, glm::dvec2 window);
+
+// Texels of the draw's diffuse (else emission) map across one pixel at `window`: the longer of the
+// texture-coordinate steps to the next pixel right and down, times the map's size; 0 without a map.
+double texelsPerPixelAt(const PreparedScene& prepared, const RayHit& surface, glm::dvec2 window);
+
+// The reason in words for a person, with its number ("the surface is seen edge-on (N·V = +0.0043)").
+std::string describeReason(const DifferenceSpot& spot);
+
 struct ReferenceCompareOptions {
     std::vector<int> shadowMapSizes{256, 512, 1024, 2048, 4096};
     bool shadowMapTable = true;  // false: skip the table (it renders 12 frames per size)
@@ -143,6 +207,7 @@ struct ReferenceComparison {
     ColorAgreement color;
     ShadowAgreement shadows;
     std::vector<ShadowMapRow> shadowMaps;  // empty when no light casts shadows or the table was skipped
+    std::vector<DifferenceSpot> spots;     // where the largest colour differences lie (findDifferenceSpots)
 
     // The bars: something drawn (two empty frames prove nothing), no disagreement away from edges, edge ones
     // under 1% of the covered pixels, 99% of the same-surface pixels within 1/255, shadows equal off
