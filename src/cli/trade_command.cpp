@@ -35,6 +35,9 @@ CLI::App* addTradeCommand(CLI::App& app, TradeArgs& args) {
         ->check(wholeNumber(1, facet::kMaxReferenceSamples));
     command->add_option("-o,--output", args.outputDir,
                         "Folder for trade.csv, chart.png and the images (default out/trade-NAME/)");
+    command->add_flag(
+        "--no-presets", args.noPresets,
+        "Time and score only the baseline and the knobs, not the fast, default and best presets");
     command->add_flag("-q,--quiet", args.quiet, "Print nothing: no progress, no table");
     return command;
 }
@@ -79,6 +82,7 @@ int trade(const TradeArgs& args) {
     options.threads = args.scene.threads;
     options.referenceSamples = args.referenceSamples;
     options.progress = !args.quiet;
+    options.presets = !args.noPresets;
     options.outputDir = args.outputDir
                             ? std::filesystem::path(*args.outputDir)
                             : std::filesystem::path("out") /
@@ -89,6 +93,8 @@ int trade(const TradeArgs& args) {
         [&](const std::vector<std::string>& words) { return sceneWithWords(args.scene, words); }, options,
         std::cerr);
     if (!args.quiet) {
+        for (const std::string& warning : result.warnings)
+            std::cerr << "facet: " << warning << "\n";
         facet::printTradeTable(result, std::cout);
         std::cout << "facet: wrote " << (options.outputDir / "trade.csv").string() << ", "
                   << (options.outputDir / "chart.png").string() << " and " << 2 * result.rows.size() + 1

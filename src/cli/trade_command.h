@@ -21,6 +21,7 @@ struct TradeArgs {
     int referenceSamples = 4;
     std::optional<std::string> outputDir;  // absent: out/trade-<scene name>/
     bool quiet = false;
+    bool noPresets = false;  // --no-presets: only the baseline and the knobs
 };
 
 // Adds the `trade` command and its options to `app`, filling `args` when it is parsed.

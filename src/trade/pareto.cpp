@@ -6,8 +6,16 @@
 namespace facet {
 
 std::vector<std::size_t> paretoFront(const std::vector<glm::dvec2>& points) {
-    auto dominates = [](glm::dvec2 a, glm::dvec2 b) {  // a at least as good in both, better in one
-        return a.x <= b.x && a.y <= b.y && (a.x < b.x || a.y < b.y);
+    return paretoFront(points, 0.0, 0.0);
+}
+
+std::vector<std::size_t> paretoFront(const std::vector<glm::dvec2>& points, double xRelative,
+                                     double yAbsolute) {
+    const double xFactor = 1.0 + xRelative;
+    auto dominates = [&](glm::dvec2 a, glm::dvec2 b) {  // a at least as good in both, better in one
+        const bool asFast = a.x <= b.x * xFactor, asAccurate = a.y <= b.y + yAbsolute;
+        const bool faster = a.x * xFactor < b.x, moreAccurate = a.y + yAbsolute < b.y;
+        return asFast && asAccurate && (faster || moreAccurate);
     };
     std::vector<std::size_t> front;
     for (std::size_t i = 0; i < points.size(); ++i) {

@@ -15,15 +15,18 @@
 #include "reference/reference.h"
 #include "render/renderer.h"
 #include "trade/pareto.h"
+#include "trade/presets.h"
+#include "trade/time_verdicts.h"
 
 namespace facet {
 
 namespace {
 
 // The settings of the trade, in order: the baseline, each selected knob at each of its values, the
-// presets; those the baseline already has are left out (their labels in `skipped`).
+// presets (unless `presets` is false; they set only the selected knobs); those the baseline already has
+// are left out (their labels in `skipped`).
 std::vector<TradeSetting> tradeSettings(const Scene& baseline, const std::vector<const Knob*>& knobs,
-                                        std::vector<std::string>& skipped) {
+                                        bool presets, std::vector<std::string>& skipped) {
     std::vector<TradeSetting> settings = {TradeSetting{"baseline", "", {}}};
     auto add = [&](TradeSetting setting) {
         if (sceneHasSetting(baseline, setting))
@@ -47,8 +50,9 @@ std::vector<TradeSetting> tradeSettings(const Scene& baseline, const std::vector
             }
             add(std::move(setting));
         }
-    for (const std::string& preset : kPresetNames)
-        add(presetSetting(preset));
+    if (presets)
+        for (const std::string& preset : kPresetNames)
+            add(presetSetting(preset, knobsNotTraded(knobs)));
     return settings;
 }
 
@@ -138,7 +142,8 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
     TradeResult result;
     result.width = baseline.width;
     result.height = baseline.height;
-    const std::vector<TradeSetting> settings = tradeSettings(baseline, knobs, result.skipped);
+    const std::vector<TradeSetting> settings =
+        tradeSettings(baseline, knobs, options.presets, result.skipped);
     DrawContext context(options.threads);
     std::filesystem::create_directories(options.outputDir);
 
@@ -150,6 +155,8 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
                    : std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - origin)
                          .count();
     };
+    // CPU milliseconds of the process, or options.cpuClockMs's.
+    const auto cpuNow = [&] { return options.cpuClockMs ? options.cpuClockMs() : processCpuMs(); };
 
     // The reference: the scene as the user wrote it, drawn exactly. The reference renderer ignores the
     // rasterizer's approximations (it has no depth or colour buffer, composites every transparent
@@ -172,13 +179,25 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
     // Timing in rounds: round r times frames/rounds frames of each setting in turn (the first rounds one
     // more while frames is not a multiple). The first round also makes each setting's image and scores
     // it: the image does not depend on the round. Two phases: the baseline and the knobs, then the
-    // presets alongside the baseline again (its frames of both phases pooled), because the fast preset
-    // is chosen from the first phase's times.
+    // presets alongside the baseline again (its frames of both phases pooled), because the presets are
+    // chosen from the first phase's measurements.
+    // Every frame is timed twice: by the wall clock (what a user waits) and by the CPU time of the whole
+    // process, every render thread included, which other work on a shared machine disturbs far less
+    // (the time slices it takes are not counted); the verdicts use the CPU time (time_verdicts.h).
     const int rounds = std::min(options.rounds, options.frames);
-    std::vector<std::vector<double>> frameMs(settings.size()), shadowMs(settings.size());
+    std::vector<std::vector<double>> frameMs(settings.size()), shadowMs(settings.size()),
+        cpuMs(settings.size());
+    // The baseline's CPU median of each round of each phase: the same work timed again, its noise.
+    std::vector<double> baselineRoundCpuMs;
     std::vector<TradeSetting> rendered = settings;
+    result.rows.resize(settings.size());
+    std::vector<bool> scoredYet(settings.size(), false);
     LinearImage baselineImage;
+    // What other processes took from this process's CPUs while the frames were timed (busy warning).
+    double othersCpuMs = 0, timedWallMs = 0;
     auto timeInRounds = [&](const std::vector<std::size_t>& indices, const char* phase) {
+        const auto wallStart = std::chrono::steady_clock::now();
+        const double busyStart = allowedCpusBusyMs(), ownStart = processCpuMs();
         for (int round = 0; round < rounds; ++round) {
             const int framesThisRound = options.frames / rounds + (round < options.frames % rounds ? 1 : 0);
             for (const std::size_t k : indices) {
@@ -194,17 +213,23 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
                 prepareShadows(prepared);  // warm-up: caches, buffers, threads
                 renderFrame(prepared, framebuffer, context, memory);
                 for (int frame = 0; frame < framesThisRound; ++frame) {
-                    const double start = now();
+                    const double start = now(), cpuStart = cpuNow();
                     prepareShadows(prepared);
                     shadowMs[k].push_back(now() - start);
                     renderFrame(prepared, framebuffer, context, memory);
                     frameMs[k].push_back(now() - start);
+                    cpuMs[k].push_back(cpuNow() - cpuStart);
                 }
-                // Rows are made in settings' order: the knobs' in the first phase, the presets' (the
-                // last settings) in the second; a setting already scored (the baseline again) is only timed.
-                const bool scored = k < result.rows.size();
+                if (k == 0 && framesThisRound > 0)
+                    baselineRoundCpuMs.push_back(
+                        median(std::vector<double>(cpuMs[0].end() - framesThisRound, cpuMs[0].end())));
+                // A row per setting, scored the first time it is drawn (the knobs' in the first phase, the
+                // presets' in the second); a setting already scored (the baseline again) is only timed. A
+                // preset no knob went into is never drawn, and keepPresetPromises drops its row.
+                const bool scored = scoredYet[k];
                 if (!scored) {
-                    TradeRow row;
+                    scoredYet[k] = true;
+                    TradeRow& row = result.rows[k];
                     row.setting = rendered[k];
                     const LinearImage image = toImage(framebuffer);
                     row.error = measureError(image, reference, encoding);
@@ -217,7 +242,6 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
                     row.errorImage = stem + "-error.png";
                     writeImage(options.outputDir / row.image, image, encoding);
                     writeImage(options.outputDir / row.errorImage, errorImage(image, reference, encoding));
-                    result.rows.push_back(std::move(row));
                 }
                 TradeRow& row = result.rows[k];
                 row.msMedian = median(frameMs[k]);
@@ -225,6 +249,9 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
                 row.msMax = *std::max_element(frameMs[k].begin(), frameMs[k].end());
                 row.msShadows = median(shadowMs[k]);
                 row.frames = static_cast<int>(frameMs[k].size());
+                row.cpuMsMedian = median(cpuMs[k]);
+                row.cpuMsMin = *std::min_element(cpuMs[k].begin(), cpuMs[k].end());
+                row.cpuMsMax = *std::max_element(cpuMs[k].begin(), cpuMs[k].end());
                 if (options.progress) {
                     log << "[" << phase;
                     if (rounds > 1) log << "round " << round + 1 << "/" << rounds << ", ";
@@ -237,24 +264,45 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
                 }
             }
         }
+        const double busyEnd = allowedCpusBusyMs();
+        if (busyStart >= 0 && busyEnd >= 0) {
+            othersCpuMs += std::max(0.0, (busyEnd - busyStart) - (processCpuMs() - ownStart));
+            timedWallMs +=
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - wallStart)
+                    .count();
+        }
     };
     std::vector<std::size_t> knobRows, presetRows = {0};
     for (std::size_t k = 0; k < settings.size(); ++k)
         (settings[k].knob == "preset" ? presetRows : knobRows).push_back(k);
     timeInRounds(knobRows, "");
     if (presetRows.size() > 1) {
-        // The fast preset is what measured fast here: a knob whose fast value was slower keeps the scene's.
-        for (const std::size_t k : presetRows)
-            if (settings[k].knob == "preset" && settings[k].value == "fast")
-                rendered[k] = presetSetting("fast", fastPresetKeeps(result.rows, result.notes));
-        timeInRounds(presetRows, "presets, ");
+        // The fast and best presets are what measured fast (accurate) here, judged against the noise of
+        // the first phase: a knob goes in only where its own row showed the gain (presets.h).
+        std::vector<TradeRow> measured(result.rows.begin(), result.rows.begin() + presetRows[1]);
+        TradeResult firstPhase;
+        firstPhase.rows = measured;
+        judgeTimes(firstPhase, baselineRoundCpuMs);
+        std::vector<std::size_t> timed = {0};
+        for (const std::size_t k : presetRows) {
+            if (k == 0) continue;
+            if (settings[k].value == "fast" || settings[k].value == "best")
+                rendered[k] = choosePreset(settings[k].value, firstPhase.rows, knobs, result.notes);
+            result.rows[k].setting = rendered[k];
+            if (!rendered[k].words.empty()) timed.push_back(k);  // no knob chosen: it is the baseline
+        }
+        if (timed.size() > 1) timeInRounds(timed, "presets, ");
     }
 
-    std::vector<glm::dvec2> points;
-    for (const TradeRow& row : result.rows)
-        points.push_back({row.msMedian, tradeError(row)});
-    for (const std::size_t i : paretoFront(points))
-        result.rows[i].pareto = true;
+    // Verdicts against the run's own noise, then the presets checked against them, then the front.
+    judgeTimes(result, baselineRoundCpuMs);
+    keepPresetPromises(result);
+    markParetoFront(result.rows, result.timeNoise, result.referenceFloor);
+    if (timedWallMs > 0)
+        if (const std::string warning = busyMachineWarning(othersCpuMs / timedWallMs, allowedCpuCount(),
+                                                           context.pool.threads(), result.timeNoise);
+            !warning.empty())
+            result.warnings.push_back(warning);
 
     {
         std::ofstream csv(options.outputDir / "trade.csv");
@@ -269,34 +317,6 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
     title += std::to_string(baseline.height);
     writeChart(result, title, options.outputDir / "chart.png");
     return result;
-}
-
-std::vector<std::string> fastPresetKeeps(const std::vector<TradeRow>& measured,
-                                         std::vector<std::string>& notes) {
-    constexpr double kSlowerBy = 1.05;  // beyond the medians' own wobble on a quiet machine
-    std::vector<std::string> keep;
-    if (measured.empty() || measured.front().setting.knob != "baseline") return keep;
-    const TradeRow& baseline = measured.front();
-    auto rowOf = [&](const TradeSetting& setting) -> const TradeRow* {
-        for (const TradeRow& row : measured)
-            if (row.setting.words == setting.words) return &row;
-        return nullptr;
-    };
-    for (const Knob& knob : knobTable()) {
-        if (knob.fastValue.empty()) continue;
-        // A knob under another's value the fast preset does not set (the map's size under --shadows
-        // none) is not in the preset: nothing to decide either.
-        if (!knob.needsKnob.empty() && knobNamed(knob.needsKnob).fastValue != knob.needsValue) continue;
-        const TradeRow* fast = rowOf(knobSetting(knob, knob.fastValue));
-        // A fast value that changes nothing costs no accuracy: whatever its time, nothing to decide.
-        if (!fast || fast->noEffect) continue;
-        if (fast->msMedian <= kSlowerBy * baseline.msMedian) continue;
-        keep.push_back(knob.name);
-        notes.push_back("preset fast keeps the scene's " + knob.flag + ": " + fast->setting.label() +
-                        " measured slower (median " + number(fast->msMedian, 2) + " ms, the baseline's " +
-                        number(baseline.msMedian, 2) + " ms)");
-    }
-    return keep;
 }
 
 void writeTradeCsv(const TradeResult& result, std::ostream& out) {

@@ -29,9 +29,14 @@ struct TradeOptions {
     int referenceSamples = 4;
     std::filesystem::path outputDir;
     bool progress = true;  // "[3/17] --shading gouraud: 12.3 ms" lines on `log`
+    bool presets = true;   // false (--no-presets): no preset rows, only the baseline and the knobs
     // The clock the reference and the frames are timed with: milliseconds since any fixed moment. Empty:
     // the steady clock. A test gives each setting known durations through it.
     std::function<double()> clockMs;
+    // The CPU time the frames are also timed with, and the trade's decisions use: milliseconds of CPU
+    // of the whole process (every render thread) since any fixed moment. Empty: processCpuMs(). A test
+    // gives each setting known CPU times through it.
+    std::function<double()> cpuClockMs;
 };
 inline constexpr int kMaxTradeFrames = 1000;
 inline constexpr int kMaxTradeRounds = 100;
@@ -71,7 +76,7 @@ struct TradeRow {
 struct TradeResult {
     std::vector<TradeRow> rows;        // the baseline first
     std::vector<std::string> skipped;  // settings the baseline already has, by label
-    std::vector<std::string> notes;    // what the run decided from its own measurements (fastPresetKeeps)
+    std::vector<std::string> notes;    // what the run decided from its own measurements (the presets)
     double referenceMs = 0;
     int width = 0, height = 0;
     int referenceSamples = 0;  // N×N rays per pixel the reference was finally made with
@@ -90,15 +95,6 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
 // The rows as CSV (a header, then one line per row) and as an aligned table for the terminal.
 void writeTradeCsv(const TradeResult& result, std::ostream& out);
 void printTradeTable(const TradeResult& result, std::ostream& out);
-
-// The knobs whose fast value measured slower than the scene's own in this run: the row of the knob at its
-// fast value changed the image and its median frame was over 5% slower than the baseline's (a knob
-// under another's value the fast preset does not set, such as the shadow map's size under --shadows
-// none, is not considered): flat shading on a dense mesh lights three corners per triangle, more work
-// than lighting its pixels. The fast preset leaves
-// these as the scene has them; `notes` gets a line for each. `measured`: the baseline first.
-std::vector<std::string> fastPresetKeeps(const std::vector<TradeRow>& measured,
-                                         std::vector<std::string>& notes);
 
 // The y of the chart and of the Pareto front: 1 − SSIM of the 8-bit image.
 inline double tradeError(const TradeRow& row) {

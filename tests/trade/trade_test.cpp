@@ -21,6 +21,8 @@
 #include "trade/knobs.h"
 #include "trade/metrics.h"
 #include "trade/pareto.h"
+#include "trade/presets.h"
+#include "trade/time_verdicts.h"
 #include "trade/trade.h"
 
 namespace facet {
@@ -100,13 +102,12 @@ class TradeRun : public ::testing::Test {
 
 // --frames 3 over --rounds 2: every setting is timed in both rounds, in turn (round 1 of every setting
 // before round 2 of any), and gets all three frames (2 + 1); the presets are timed after the knobs
-// (the fast one is chosen from the knobs' times), in rounds of their own alongside the baseline, whose
-// frames of both phases count (6). Breaks if the rounds are ignored (one round), if a later round's
-// frames are not added to the first's (2 frames), if the remainder of frames / rounds is dropped, or
-// if the presets are timed among the knobs.
+// (they are chosen from the knobs' measurements), in rounds of their own alongside the baseline, whose
+// frames of both phases count (6). Which presets are timed depends on the run's own times (a preset no
+// knob went into is not), so the counts follow the progress lines of the presets' phase. Catches: the
+// rounds ignored (one round), a later round's frames not added to the first's (2 frames), the
+// remainder of frames / rounds dropped, or the presets timed among the knobs.
 TEST_F(TradeRun, EverySettingIsTimedInEveryRoundWithAllItsFrames) {
-    for (const auto& r : rows_)
-        EXPECT_EQ(r.at("frames"), r.at("knob") == "baseline" ? "6" : "3") << r.at("flags");
     auto count = [&](const std::string& text) {
         std::size_t n = 0;
         for (std::size_t at = progress_.find(text); at != std::string::npos;
@@ -114,19 +115,28 @@ TEST_F(TradeRun, EverySettingIsTimedInEveryRoundWithAllItsFrames) {
             ++n;
         return n;
     };
-    const std::size_t presets = 2;  // fast and best; default is the baseline's own
-    EXPECT_EQ(count("[round 1/2, "), rows_.size() - presets) << progress_;
-    EXPECT_EQ(count("[round 2/2, "), rows_.size() - presets) << progress_;
-    EXPECT_EQ(count("[presets, round 2/2, "), presets + 1) << progress_;  // and the baseline
+    const std::size_t knobRows = 5;  // the baseline, flat, Gouraud, unsorted, exact
+    EXPECT_EQ(count("[round 1/2, "), knobRows) << progress_;
+    EXPECT_EQ(count("[round 2/2, "), knobRows) << progress_;
+    const std::size_t presetPhase = count("[presets, round 2/2, ");  // the presets timed, and the baseline
+    EXPECT_EQ(count("[presets, round 1/2, "), presetPhase) << progress_;
+    EXPECT_NE(presetPhase, 1u) << progress_;  // never the baseline alone
+    for (const auto& r : rows_)
+        EXPECT_EQ(r.at("frames"), r.at("knob") == "baseline" && presetPhase > 0 ? "6" : "3") << r.at("flags");
     EXPECT_LT(progress_.rfind("[round 1/2, "), progress_.find("[round 2/2, "));
-    EXPECT_LT(progress_.rfind("[round 2/2, "), progress_.find("[presets, round 1/2, "));
+    if (presetPhase > 0) {
+        EXPECT_LT(progress_.rfind("[round 2/2, "), progress_.find("[presets, round 1/2, "));
+    }
 }
 
 TEST_F(TradeRun, CsvHoldsARowPerSettingWithFiniteNumbers) {
-    // The baseline (Phong shading, sorted transparency), flat, Gouraud, unsorted, exact, the fast and best
-    // presets; the default preset, --shading phong and --transparency sorted are the baseline's own
-    // settings, skipped.
-    ASSERT_EQ(rows_.size(), 7u);
+    // The baseline (Phong shading, sorted transparency), flat, Gouraud, unsorted, exact, then the fast
+    // and best presets where a knob went into them (by the run's own numbers); the default preset,
+    // --shading phong and --transparency sorted are the baseline's own settings, skipped.
+    ASSERT_GE(rows_.size(), 5u);
+    ASSERT_LE(rows_.size(), 7u);
+    for (std::size_t k = 5; k < rows_.size(); ++k)
+        EXPECT_EQ(rows_[k].at("knob"), "preset");
     EXPECT_EQ(rows_[0].at("knob"), "baseline");
     EXPECT_NE(row("--shading flat"), nullptr);
     EXPECT_NE(row("--shading gouraud"), nullptr);
@@ -175,8 +185,11 @@ TEST_F(TradeRun, ASettingThatChangesNothingIsFlagged) {
 // Each row's times are its own setting's frames: a clock of the test's (TradeOptions::clockMs) advances
 // by a step of each setting's own at every reading, so a frame of setting k (from before its shadows'
 // rebuild to after the draw: two readings after the start) takes 2·step_k ms and the rebuild step_k,
-// in every round and both phases. Catches every row given the baseline's times (median(frameMs[0])),
-// a row's min, max or shadow time taken from another setting's frames, or the clock option ignored.
+// in every round and both phases; the CPU clock (TradeOptions::cpuClockMs, read at a frame's start and
+// end) advances by a CPU step of each setting's own, so a frame's CPU time is that step. Catches: every
+// row given the baseline's times (median(frameMs[0])), a row's min, max or shadow time taken from
+// another setting's frames, the CPU time read from the wall clock or from another setting, or either
+// clock option ignored.
 TEST(TradeTimes, EachRowReportsItsOwnSettingsFrames) {
     const testing_support::TempFolder folder;
     const std::filesystem::path dir = folder.path() / "trade";
@@ -190,7 +203,10 @@ TEST(TradeTimes, EachRowReportsItsOwnSettingsFrames) {
     auto stepOf = [&](const std::vector<std::string>& words) {
         return steps.emplace(words, 0.5 * double(steps.size() + 1)).first->second;
     };
-    double now = 1000.0;
+    // CPU steps: flat clearly faster than the baseline (so the fast preset is timed), Gouraud slower.
+    const std::map<std::vector<std::string>, double> cpuSteps = {
+        {{}, 10.0}, {{"--shading", "flat"}, 6.0}, {{"--shading", "gouraud"}, 13.0}};
+    double now = 1000.0, cpuNow = 50.0;
     TradeOptions options;
     options.knobs = "shading";
     options.frames = 3;
@@ -204,6 +220,11 @@ TEST(TradeTimes, EachRowReportsItsOwnSettingsFrames) {
         now += stepOf(current);
         return reading;
     };
+    options.cpuClockMs = [&] {
+        const double reading = cpuNow;
+        cpuNow += cpuSteps.at(current);
+        return reading;
+    };
     std::ostringstream log;
     const TradeResult result = runTrade(
         [&](const std::vector<std::string>& words) {
@@ -211,8 +232,9 @@ TEST(TradeTimes, EachRowReportsItsOwnSettingsFrames) {
             return cli::sceneWithWords(args, words);
         },
         options, log);
-    // The baseline, flat, Gouraud, the fast and best presets (phong and the default preset are skipped).
-    ASSERT_EQ(result.rows.size(), 5u);
+    // The baseline, flat, Gouraud and the fast preset, which is --shading flat again (the only knob
+    // traded); phong, and with it the best and default presets, are the baseline's own.
+    ASSERT_EQ(result.rows.size(), 4u);
     std::vector<double> medians;
     for (const TradeRow& row : result.rows) {
         SCOPED_TRACE(row.setting.knob + " " + row.setting.value);
@@ -222,10 +244,15 @@ TEST(TradeTimes, EachRowReportsItsOwnSettingsFrames) {
         EXPECT_DOUBLE_EQ(row.msMin, 2.0 * step);
         EXPECT_DOUBLE_EQ(row.msMax, 2.0 * step);
         EXPECT_DOUBLE_EQ(row.msShadows, step);
-        medians.push_back(row.msMedian);
+        EXPECT_DOUBLE_EQ(row.cpuMsMedian, cpuSteps.at(row.setting.words));
+        EXPECT_DOUBLE_EQ(row.cpuMsMin, cpuSteps.at(row.setting.words));
+        EXPECT_DOUBLE_EQ(row.cpuMsMax, cpuSteps.at(row.setting.words));
+        if (row.setting.knob != "preset") medians.push_back(row.msMedian);
     }
     std::sort(medians.begin(), medians.end());
-    EXPECT_EQ(std::unique(medians.begin(), medians.end()), medians.end());  // five different times
+    EXPECT_EQ(std::unique(medians.begin(), medians.end()), medians.end());  // three different times
+    EXPECT_EQ(result.rows[3].setting.knob, "preset");
+    EXPECT_EQ(result.rows[3].frames, 3);                 // the fast preset was timed in its own phase
     EXPECT_DOUBLE_EQ(result.referenceMs, steps.at({}));  // the reference: one reading, the baseline's step
 }
 
@@ -255,54 +282,312 @@ TEST(TradeKnobs, EverySettingIsAcceptedByTheRenderParserAndReachesTheScene) {
     }
 }
 
-// The fast preset keeps the scene's value of a knob whose fast value changed the image and measured
-// slower than the baseline (its median over 5% slower than the baseline's) and names it in a note; a knob
-// whose fast value measured faster, changed nothing, or was not measured, keeps its fast value. Catches: the
-// comparison reversed or dropped (flat shading back in the preset, or normalize fast left out), a knob
-// without effect kept for noise, a note for a knob the preset does not set (the map's size), a kept knob's
-// dependants (the map's size under --shadows none) still set, and the note missing.
-TEST(TradePresets, TheFastPresetKeepsTheScenesValueWhereTheFastOneMeasuredSlower) {
-    auto row = [](const std::string& knob, const std::string& value, double msMin, double msMedian,
-                  bool noEffect = false) {
-        TradeRow r;
-        r.setting =
-            knob == "baseline" ? TradeSetting{"baseline", "", {}} : knobSetting(knobNamed(knob), value);
-        r.msMin = msMin;
-        r.msMedian = msMedian;
-        r.noEffect = noEffect;
-        return r;
-    };
+// A row of a knob at a value (or the baseline) with a CPU median, a time verdict and an error (1 − SSIM).
+TradeRow measuredRow(const std::string& knob, const std::string& value, double cpuMs, TimeVerdict verdict,
+                     double error) {
+    TradeRow row;
+    row.setting = knob == "baseline" ? TradeSetting{"baseline", "", {}} : knobSetting(knobNamed(knob), value);
+    row.cpuMsMedian = cpuMs;
+    row.timeVerdict = verdict;
+    row.error.encoded.ssim = 1.0 - error;
+    return row;
+}
+
+bool hasWords(const TradeSetting& setting, const std::string& flag, const std::string& value) {
+    for (std::size_t k = 0; k + 1 < setting.words.size(); ++k)
+        if (setting.words[k] == flag && setting.words[k + 1] == value) return true;
+    return false;
+}
+
+bool mentions(const std::vector<std::string>& notes, const std::string& text) {
+    return std::any_of(notes.begin(), notes.end(),
+                       [&](const std::string& note) { return note.find(text) != std::string::npos; });
+}
+
+// The fast preset takes a traded knob's fast value only where its row measured Faster: never a Slower
+// row, one within the noise, one without effect, a blank one or one that changes the scene's content,
+// each left out with a note; and never a knob not traded (--knobs aa: no flat shading, never timed).
+// Catches: the presets built from every knob of the table (flat shading in a --knobs aa run), a Slower
+// or WithinNoise fast value kept, a blank or content-changing row trusted for its time, a left-out knob
+// without its note.
+TEST(TradePresets, TheFastPresetTakesOnlyKnobsMeasuredFasterAmongThoseTraded) {
+    const std::vector<const Knob*> traded =
+        selectKnobs("shading,normalize,transparency,aa,interpolation,fresnel");
     const std::vector<TradeRow> measured = {
-        row("baseline", "", 9.0, 10.0),
-        row("shading", "flat", 15.0, 16.0),                 // slower: the preset keeps the scene's shading
-        row("normalize", "fast", 8.5, 10.4),                // within 5%: --normalize fast stays
-        row("shadows", "none", 10.5, 11.0),                 // slower (noise, but the rule is the rule)
-        row("aa", "msaa4", 40.0, 41.0),                     // not the knob's fast value: not a reason
-        row("transparency", "unsorted", 12.0, 13.0, true),  // slower but no effect: stays
-        row("shadows", "map", 30.0, 31.0),
-        row("shadow-map-size", "512", 25.0, 26.0),  // slower than the baseline, but not in the preset
+        measuredRow("baseline", "", 10.0, TimeVerdict::WithinNoise, 0.02),
+        measuredRow("shading", "flat", 16.0, TimeVerdict::Slower, 0.05),
+        measuredRow("normalize", "fast", 9.9, TimeVerdict::WithinNoise, 0.02),
+        [] {
+            TradeRow r = measuredRow("transparency", "unsorted", 10.0, TimeVerdict::WithinNoise, 0.02);
+            r.noEffect = true;
+            return r;
+        }(),
+        [] {
+            TradeRow r = measuredRow("interpolation", "affine", 2.0, TimeVerdict::Faster, 0.9);
+            r.blank = true;
+            return r;
+        }(),
+        [] {
+            TradeRow r = measuredRow("fresnel", "schlick", 7.0, TimeVerdict::Faster, 0.3);
+            r.changesContent = true;
+            return r;
+        }(),
+        measuredRow("aa", "msaa4", 20.0, TimeVerdict::Slower, 0.01),  // not aa's fast value: not a reason
     };
     std::vector<std::string> notes;
-    const std::vector<std::string> keep = fastPresetKeeps(measured, notes);
-    EXPECT_EQ(keep, (std::vector<std::string>{"shading", "shadows"}));
-    ASSERT_EQ(notes.size(), 2u);
-    EXPECT_NE(notes[0].find("preset fast keeps the scene's --shading: --shading flat measured slower"),
-              std::string::npos)
-        << notes[0];
-    const std::vector<std::string> words = presetSetting("fast", keep).words;
-    auto has = [&](const std::string& flag) {
-        return std::find(words.begin(), words.end(), flag) != words.end();
+    TradeSetting fast = choosePreset("fast", measured, traded, notes);
+    EXPECT_TRUE(fast.words.empty()) << fast.label();  // nothing measured faster; aa's fast is the scene's
+    EXPECT_EQ(notes.size(), 5u);
+    for (const char* flag : {"--shading", "--normalize", "--transparency", "--interpolation", "--fresnel"})
+        EXPECT_TRUE(mentions(notes, std::string("leaves ") + flag)) << flag;
+    EXPECT_TRUE(mentions(notes, "--shading flat: it measured slower"));
+    EXPECT_TRUE(mentions(notes, "--normalize fast: it was not measurably faster"));
+
+    // Normalize measured Faster: it goes in, and only it (interpolation, never traded, stays out).
+    std::vector<TradeRow> faster = measured;
+    faster[2].timeVerdict = TimeVerdict::Faster;
+    notes.clear();
+    fast = choosePreset("fast", faster, traded, notes);
+    EXPECT_EQ(fast.words, (std::vector<std::string>{"--normalize", "fast"}));
+    EXPECT_EQ(notes.size(), 4u);
+
+    // --knobs aa alone: the preset holds no other knob, whatever the table's fast values.
+    notes.clear();
+    const TradeSetting aaOnly = choosePreset("fast", {measured[0]}, selectKnobs("aa"), notes);
+    EXPECT_FALSE(hasWords(aaOnly, "--shading", "flat")) << aaOnly.label();
+    EXPECT_TRUE(aaOnly.words.empty() || aaOnly.words.front() == "--aa") << aaOnly.label();
+}
+
+// The best preset takes a traded knob's best value only where its row scored more accurate than the
+// baseline beyond the reference's own error. Catches: a best value taken on the table's word alone (one
+// that scored worse), a difference within the reference's floor taken as a gain, a note missing.
+TEST(TradePresets, TheBestPresetTakesOnlyKnobsMeasuredMoreAccurate) {
+    const std::vector<const Knob*> traded = selectKnobs("aa,depth,normalize");
+    std::vector<TradeRow> measured = {
+        measuredRow("baseline", "", 10.0, TimeVerdict::WithinNoise, 0.02),
+        measuredRow("aa", "ssaa16", 90.0, TimeVerdict::Slower, 0.01),  // more accurate: in
+        measuredRow("depth", "reversed-float", 10.0, TimeVerdict::WithinNoise, 0.0199999),  // floor
+        measuredRow("normalize", "exact", 11.0, TimeVerdict::Slower, 0.021),  // less accurate: out
     };
-    EXPECT_FALSE(has("--shading"));
-    EXPECT_FALSE(has("--shadows"));
-    EXPECT_FALSE(has("--shadow-map-size"));  // needs --shadows map, which the preset no longer sets
-    EXPECT_TRUE(has("--normalize"));
-    EXPECT_TRUE(has("--transparency"));
-    // The map's size is not in the fast preset (its shadows are none): never a note, however slow.
-    EXPECT_EQ(fastPresetKeeps({measured[0], measured[6], row("shadow-map-size", "512", 32.0, 33.0)}, notes),
-              std::vector<std::string>{});
-    EXPECT_TRUE(has("--interpolation"));  // not measured: its fast value stays
-    EXPECT_TRUE(presetSetting("fast").words.size() > words.size());
+    measured[2].withinReferenceFloor = true;
+    std::vector<std::string> notes;
+    const TradeSetting best = choosePreset("best", measured, traded, notes);
+    EXPECT_EQ(best.words, (std::vector<std::string>{"--aa", "ssaa16"}));
+    EXPECT_EQ(notes.size(), 2u);
+    EXPECT_TRUE(mentions(notes, "leaves --depth as the scene has it"));
+    EXPECT_TRUE(mentions(notes, "--normalize exact: it was not more accurate"));
+}
+
+// After the presets are timed and scored: fast that did not measure Faster than the baseline becomes
+// the fastest single setting measured Faster (its numbers; a note says so), or goes when there is none;
+// best that scored worse than the most accurate single setting becomes it, or goes when that is the
+// baseline; a preset no knob went into goes. Catches: a slower fast preset reported as it is, the
+// fallback chosen by wall time or from a Slower row, best left worse than a single knob, a missing note.
+TEST(TradePresets, FastIsNeverSlowerThanTheBaselineAndBestNeverWorseThanASingleKnob) {
+    auto preset = [](const std::string& name, std::vector<std::string> words, double cpuMs,
+                     TimeVerdict verdict, double error) {
+        TradeRow row = measuredRow("baseline", "", cpuMs, verdict, error);
+        row.setting = TradeSetting{"preset", name, std::move(words)};
+        return row;
+    };
+    TradeResult result;
+    result.rows = {
+        measuredRow("baseline", "", 10.0, TimeVerdict::WithinNoise, 0.02),
+        measuredRow("shading", "flat", 7.0, TimeVerdict::Faster, 0.05),
+        measuredRow("shading", "gouraud", 8.0, TimeVerdict::Faster, 0.03),
+        measuredRow("aa", "ssaa16", 90.0, TimeVerdict::Slower, 0.010),
+        measuredRow("aa", "msaa8", 40.0, TimeVerdict::Slower, 0.012),
+        preset("fast", {"--shading", "flat", "--aa", "none"}, 10.5, TimeVerdict::WithinNoise, 0.05),
+        preset("best", {"--shading", "phong", "--aa", "ssaa16"}, 95.0, TimeVerdict::Slower, 0.0132),
+    };
+    result.rows[1].msMedian = 30.0;  // its wall time is not what decides
+    keepPresetPromises(result);
+    ASSERT_EQ(result.rows.size(), 7u);
+    const TradeRow& fast = result.rows[5];
+    EXPECT_EQ(fast.setting.knob, "preset");
+    EXPECT_EQ(fast.setting.value, "fast");
+    EXPECT_EQ(fast.setting.words, (std::vector<std::string>{"--shading", "flat"}));
+    EXPECT_EQ(fast.cpuMsMedian, 7.0);
+    EXPECT_EQ(fast.timeVerdict, TimeVerdict::Faster);
+    const TradeRow& best = result.rows[6];
+    EXPECT_EQ(best.setting.words, (std::vector<std::string>{"--aa", "ssaa16"}));
+    EXPECT_NEAR(tradeError(best), 0.010, 1e-12);
+    EXPECT_EQ(result.notes.size(), 2u);
+    EXPECT_TRUE(mentions(result.notes, "fast is --shading flat alone"));
+    EXPECT_TRUE(mentions(result.notes, "best is that setting"));
+
+    // Nothing measured faster, nothing more accurate than the baseline: both presets go, with notes;
+    // a preset that kept its promise stays as measured.
+    TradeResult none;
+    none.rows = {measuredRow("baseline", "", 10.0, TimeVerdict::WithinNoise, 0.02),
+                 measuredRow("aa", "msaa8", 40.0, TimeVerdict::Slower, 0.025),
+                 preset("fast", {"--aa", "msaa8"}, 12.0, TimeVerdict::Slower, 0.02),
+                 preset("best", {"--aa", "msaa8"}, 40.0, TimeVerdict::Slower, 0.025),
+                 preset("default", {"--aa", "none"}, 10.0, TimeVerdict::WithinNoise, 0.02)};
+    keepPresetPromises(none);
+    ASSERT_EQ(none.rows.size(), 3u);
+    EXPECT_EQ(none.rows[2].setting.value, "default");
+    EXPECT_EQ(none.notes.size(), 2u);
+    TradeResult kept;
+    kept.rows = {measuredRow("baseline", "", 10.0, TimeVerdict::WithinNoise, 0.02),
+                 measuredRow("shading", "flat", 7.0, TimeVerdict::Faster, 0.05),
+                 preset("fast", {"--shading", "flat", "--normalize", "fast"}, 6.0, TimeVerdict::Faster, 0.05),
+                 preset("best", {}, 0.0, TimeVerdict::Faster, 0.0)};  // no knob went in: never timed
+    keepPresetPromises(kept);
+    ASSERT_EQ(kept.rows.size(), 3u);
+    EXPECT_EQ(kept.rows[2].cpuMsMedian, 6.0);
+    EXPECT_EQ(kept.notes.size(), 1u);  // best, untimed, is the scene as given
+}
+
+// The noise is the largest relative distance from the baseline's median of the baseline's own round
+// medians and of the rows without effect, never below the floor; a verdict needs a
+// difference beyond twice the noise. Catches: one row without effect that does more work swamping the
+// estimate, the noise taken from rows that change the image (real differences read as noise), the floor
+// dropped (a 1% difference judged on a quiet run), the factor of two dropped or the comparison reversed, a
+// row without effect given a verdict.
+TEST(TradeVerdicts, DifferencesWithinTwiceTheNoiseDecideNothing) {
+    TradeRow same = measuredRow("transparency", "unsorted", 11.0, TimeVerdict::Faster, 0.02);
+    same.noEffect = true;
+    const TradeRow flat = measuredRow("shading", "flat", 5.0, TimeVerdict::WithinNoise, 0.05);
+    EXPECT_DOUBLE_EQ(estimateTimeNoise(10.0, {10.0, 10.2, 9.9}, {flat}), kTimeNoiseFloor);
+    EXPECT_NEAR(estimateTimeNoise(10.0, {10.0, 9.5}, {flat}), 0.05, 1e-12);
+    EXPECT_NEAR(estimateTimeNoise(10.0, {10.0, 9.5}, {flat, same}), 0.10, 1e-12);
+
+    EXPECT_EQ(judgeTime(10.5, 10.0, 0.03), TimeVerdict::WithinNoise);
+    EXPECT_EQ(judgeTime(10.7, 10.0, 0.03), TimeVerdict::Slower);
+    EXPECT_EQ(judgeTime(9.5, 10.0, 0.03), TimeVerdict::WithinNoise);
+    EXPECT_EQ(judgeTime(9.3, 10.0, 0.03), TimeVerdict::Faster);  // 9.3 · 1.06 < 10
+    EXPECT_EQ(judgeTime(8.5, 10.0, 0.10), TimeVerdict::WithinNoise);
+
+    TradeResult result;
+    result.rows = {measuredRow("baseline", "", 10.0, TimeVerdict::Slower, 0.02), same, flat,
+                   measuredRow("shading", "gouraud", 10.9, TimeVerdict::Faster, 0.03)};
+    judgeTimes(result, {10.0, 9.8});
+    EXPECT_NEAR(result.timeNoise, 0.10, 1e-12);  // the row without effect read 10% slower
+    EXPECT_EQ(result.rows[0].timeVerdict, TimeVerdict::WithinNoise);
+    EXPECT_EQ(result.rows[1].timeVerdict, TimeVerdict::WithinNoise);
+    EXPECT_EQ(result.rows[2].timeVerdict, TimeVerdict::Faster);
+    EXPECT_EQ(result.rows[3].timeVerdict, TimeVerdict::WithinNoise);
+}
+
+// The front takes no decision from noise: a row without effect never pushes the baseline off however
+// fast it timed, a row within the noise counts at the baseline's time, a row within the reference's
+// floor at the baseline's error; blank and content-changing rows are never on it. Catches: the front
+// built on raw times or on wall times, a NO EFFECT, blank or content-changing row on it, a difference
+// within the reference's floor pushing a row off, a setting timed twice pushing its twin off.
+TEST(TradePareto, TheFrontTakesNoDecisionFromNoise) {
+    std::vector<TradeRow> rows = {
+        measuredRow("baseline", "", 10.0, TimeVerdict::WithinNoise, 0.02),
+        measuredRow("transparency", "unsorted", 6.0, TimeVerdict::WithinNoise, 0.02),  // 0-1: no effect
+        measuredRow("normalize", "fast", 9.0, TimeVerdict::WithinNoise, 0.02),  // 2: the baseline's time
+        measuredRow("depth", "unorm16", 2.0, TimeVerdict::Faster, 0.5),         // 3: blank
+        measuredRow("textures", "off", 3.0, TimeVerdict::Faster, 0.001),        // 4: other content
+        measuredRow("shading", "flat", 5.0, TimeVerdict::Faster, 0.05),         // 5: on the front
+        measuredRow("color-buffer", "float", 10.4, TimeVerdict::WithinNoise,
+                    0.0199999),                                        // 6: within the floor
+        measuredRow("aa", "ssaa16", 90.0, TimeVerdict::Slower, 0.01),  // 7: on the front
+        measuredRow("aa", "ssaa16", 92.0, TimeVerdict::Slower, 0.01),  // 8: its twin (a preset) timed again
+    };
+    rows[1].noEffect = true;
+    rows[3].blank = true;
+    rows[4].changesContent = true;
+    rows[6].withinReferenceFloor = true;
+    rows[0].msMedian = 50.0;  // wall time: not the front's
+    markParetoFront(rows, 0.03, 0.0);
+    std::vector<bool> front;
+    for (const TradeRow& row : rows)
+        front.push_back(row.pareto);
+    EXPECT_EQ(front, (std::vector<bool>{true, false, true, false, false, true, true, true, true}));
+}
+
+// What a trade decided: each row's time verdict and front membership, and the presets' settings.
+std::vector<std::string> decisionsOf(const TradeResult& result) {
+    auto verdict = [](TimeVerdict v) {
+        return v == TimeVerdict::Faster ? "faster" : v == TimeVerdict::Slower ? "slower" : "within noise";
+    };
+    std::vector<std::string> decisions;
+    for (const TradeRow& row : result.rows)
+        decisions.push_back(row.setting.knob + " " + row.setting.value + " [" + row.setting.label() +
+                            "]: " + verdict(row.timeVerdict) + (row.pareto ? ", front" : "") +
+                            (row.noEffect ? ", no effect" : ""));
+    return decisions;
+}
+
+// The same small trade run twice in one test agrees on every decision: the time verdicts, the front and
+// the presets' knobs. Its knobs cost the baseline's time or nearly (no transparency mode, depth format
+// or half colour buffer changes the opaque cow; an 8-bit colour buffer changes it for about the same
+// work), so that on a loaded machine any raw difference between their times is noise: with CPU time
+// and the noise margin no verdict comes from it. (Anti-aliasing is left out: settings such as ssaa2 and
+// msaa2 cost within a few per cent of each other, and which of the two a front keeps then depends on
+// the margin of that run.) Catches: verdicts, front or presets taken from the raw times (the rows
+// without effect then read faster or slower by chance and push the baseline off the front), a row
+// without effect given a verdict.
+TEST(TradeRepeat, TheSameTradeTwiceAgreesOnEveryVerdict) {
+    const testing_support::TempFolder folder;
+    cli::SceneArgs args;
+    args.input = kModel;
+    args.width = 160;
+    args.height = 120;
+    auto run = [&](const std::string& name) {
+        TradeOptions options;
+        options.knobs = "transparency,depth,color-buffer";
+        options.frames = 9;
+        options.rounds = 3;
+        options.threads = 1;
+        options.referenceSamples = 2;
+        options.outputDir = folder.path() / name;
+        options.progress = false;
+        std::ostringstream log;
+        return runTrade(
+            [&](const std::vector<std::string>& words) { return cli::sceneWithWords(args, words); }, options,
+            log);
+    };
+    const TradeResult first = run("first"), second = run("second");
+    EXPECT_EQ(decisionsOf(first), decisionsOf(second))
+        << "noise " << first.timeNoise << " and " << second.timeNoise;
+    for (const TradeRow& row : first.rows)
+        if (row.noEffect) {
+            EXPECT_EQ(row.timeVerdict, TimeVerdict::WithinNoise) << row.setting.label();
+        }
+}
+
+// --no-presets: the baseline and the knobs only. Catches: the flag not parsed, or parsed and not passed
+// to the run (the fast, default and best rows back in the CSV).
+TEST(TradeCommand, NoPresetsLeavesThePresetsOut) {
+    const testing_support::TempFolder folder;
+    CLI::App app;
+    cli::TradeArgs args;
+    cli::addTradeCommand(app, args);
+    // clang-format off
+    const std::vector<std::string> words = {"trade", kModel, "--knobs", "shading", "--no-presets", "--frames", "1",
+                                            "--rounds", "1", "--reference-samples", "1", "--width", "32",
+                                            "--height", "24", "--threads", "1", "-q",
+                                            "-o", (folder.path() / "trade").string()};
+    // clang-format on
+    app.parse(std::vector<std::string>(words.rbegin(), words.rend()));
+    ASSERT_EQ(cli::trade(args), 0);
+    std::ifstream csv(folder.path() / "trade" / "trade.csv");
+    std::string line;
+    std::size_t rows = 0;
+    std::getline(csv, line);
+    while (std::getline(csv, line)) {
+        ++rows;
+        EXPECT_NE(line.rfind("preset,", 0), 0u) << line;
+    }
+    EXPECT_EQ(rows, 3u);  // the baseline, flat, Gouraud
+}
+
+// The busy warning: other processes left fewer free CPUs than the render threads, or the repeats
+// spread by more than 10%. Catches: a warning on a quiet machine, none when the other processes took
+// the CPUs the threads needed, the noise criterion dropped.
+TEST(TradeVerdicts, TheBusyWarningSaysWhatWasSeen) {
+    EXPECT_EQ(busyMachineWarning(0.1, 2, 2, 0.03), "");
+    EXPECT_EQ(busyMachineWarning(1.5, 8, 2, 0.03), "");  // six CPUs left for two threads
+    const std::string others = busyMachineWarning(1.4, 2, 2, 0.03);
+    EXPECT_NE(others.find("other processes kept 1.4 of the 2 CPUs"), std::string::npos) << others;
+    EXPECT_EQ(others.find('\n'), std::string::npos);
+    const std::string noise = busyMachineWarning(0.0, 2, 1, 0.15);
+    EXPECT_NE(noise.find("up to 15%"), std::string::npos) << noise;
 }
 
 TEST(TradeKnobs, AnUnknownNameIsOneLineListingTheValidOnes) {
@@ -332,6 +617,19 @@ TEST(TradePareto, TheFrontIsThePointsNoneBeatsOnBothCounts) {
     };
     EXPECT_EQ(paretoFront(points), (std::vector<std::size_t>{0, 1, 5, 3}));
     EXPECT_EQ(paretoFront({{1, std::nan("")}, {2, 1}}), (std::vector<std::size_t>{1}));
+}
+
+// With margins, differences too small to measure decide nothing: times within a factor 1.06 and errors
+// within 0.001 count as equal. Catches: the margins ignored (a twin timed 4% slower pushed off, a
+// 1e-4 better error taking the front), or applied the wrong way (a point measurably faster and as
+// accurate within the margin left beside the point it beats).
+TEST(TradePareto, DifferencesWithinTheMarginsCountAsEqual) {
+    EXPECT_EQ(paretoFront({{10, 0.5}, {10.4, 0.5}}), (std::vector<std::size_t>{0}));
+    EXPECT_EQ(paretoFront({{10, 0.5}, {10.4, 0.5}}, 0.06, 0.001), (std::vector<std::size_t>{0, 1}));
+    EXPECT_EQ(paretoFront({{10, 0.5}, {10, 0.4999}}), (std::vector<std::size_t>{1}));
+    EXPECT_EQ(paretoFront({{10, 0.5}, {10, 0.4999}}, 0.06, 0.001), (std::vector<std::size_t>{1, 0}));
+    EXPECT_EQ(paretoFront({{10, 0.5}, {12, 0.4999}}), (std::vector<std::size_t>{0, 1}));
+    EXPECT_EQ(paretoFront({{10, 0.5}, {12, 0.4999}}, 0.06, 0.001), (std::vector<std::size_t>{0}));
 }
 
 TEST(TradeMetrics, IdenticalImagesHaveTheCappedPsnrAndAnSsimOfOne) {
