@@ -15,6 +15,7 @@
 #include "reference/reference.h"
 #include "render/renderer.h"
 #include "trade/pareto.h"
+#include "trade/reference_floor.h"
 
 namespace facet {
 
@@ -160,14 +161,24 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
     const PreparedScene referenceScene = prepareScene(baseline);
     ReferenceOptions referenceOptions;
     referenceOptions.samples = options.referenceSamples;
-    const LinearImage reference = renderReference(referenceScene, referenceOptions, context.pool);
+    std::vector<float> raySpread;  // where the reference's rays disagree: where its own error lies
+    referenceOptions.raySpread = &raySpread;
+    LinearImage reference = renderReference(referenceScene, referenceOptions, context.pool);
     result.referenceMs = now() - referenceStart;
     const ColorEncoding encoding = referenceScene.encoding;
-    writeImage(options.outputDir / "reference.png", reference, encoding);
     if (options.progress)
         log << "[0/" << settings.size() << "] reference (" << options.referenceSamples << "x"
             << options.referenceSamples << " rays per pixel): " << number(result.referenceMs, 0) << " ms\n"
             << std::flush;
+    // Its own error estimated, and more rays while that is not small beside the baseline's error.
+    settleReference(
+        sceneWithWords, referenceScene, referenceOptions, reference, raySpread, result.referenceMs, context,
+        now,
+        [&](const std::string& line) {
+            if (options.progress) log << "[0/" << settings.size() << "] " << line << "\n" << std::flush;
+        },
+        result);
+    writeImage(options.outputDir / "reference.png", reference, encoding);
 
     // Timing in rounds: round r times frames/rounds frames of each setting in turn (the first rounds one
     // more while frames is not a multiple). The first round also makes each setting's image and scores
@@ -250,6 +261,7 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
         timeInRounds(presetRows, "presets, ");
     }
 
+    markWithinReferenceFloor(result.rows, result.referenceFloor);
     std::vector<glm::dvec2> points;
     for (const TradeRow& row : result.rows)
         points.push_back({row.msMedian, tradeError(row)});
