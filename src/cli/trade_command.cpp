@@ -31,7 +31,8 @@ CLI::App* addTradeCommand(CLI::App& app, TradeArgs& args) {
         ->check(wholeNumber(1, facet::kMaxTradeRounds));
     command
         ->add_option("--reference-samples", args.referenceSamples,
-                     "N×N rays per pixel of the reference image (default 4)")
+                     "N×N rays per pixel of the reference image to start with (default 4); doubled, up to 16, "
+                     "while the reference's own estimated error is above a tenth of the baseline's")
         ->check(wholeNumber(1, facet::kMaxReferenceSamples));
     command->add_option("-o,--output", args.outputDir,
                         "Folder for trade.csv, chart.png and the images (default out/trade-NAME/)");

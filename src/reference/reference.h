@@ -21,6 +21,8 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
+#include <vector>
 
 #include "io/image_io.h"
 #include "pipeline/names.h"
@@ -47,11 +49,17 @@ struct ReferenceOptions {
     // (RayHit::mesh is the draw's index in PreparedScene::draws; no hit: RayHit{}), for comparing which
     // surface each pixel shows with the rasterizer's.
     std::vector<RayHit>* nearestSurfaces = nullptr;
+    // When set: per pixel (row by row; renderReferencePixels: per pixel asked for), the largest difference
+    // between two of its N×N rays' colours in any of R, G, B, linear: where the pixel is not one colour
+    // (an edge, a shadow's border, texture detail), which is where N×N rays leave an error.
+    std::vector<float>* raySpread = nullptr;
     // Shadow rays per point of every area light (a square), whatever the scene's count: many, so that
     // the reference's own error in a soft shadow is small.
     int areaSamples = kReferenceAreaSamples;
 };
 inline constexpr int kMaxReferenceSamples = 16;  // 256 rays per pixel
+// A chosen set of pixels may take twice as many (32×32 rays): enough to check a 16×16 image's own error.
+inline constexpr int kMaxReferencePixelSamples = 2 * kMaxReferenceSamples;
 
 // A camera ray of the reference: from the eye (eye space's origin) through a point of the near plane,
 // the direction scaled so that its z is −1 (t is then the eye-space depth), t limited to [near, far] as
@@ -94,5 +102,12 @@ struct ReferenceStats {
 // same for any thread count.
 LinearImage renderReference(const PreparedScene& prepared, const ReferenceOptions& options, ThreadPool& pool,
                             ReferenceStats* stats = nullptr);
+
+// Only the given pixels (x, y) of the same image: their colours, in the order given, each exactly the
+// colour renderReference gives that pixel with the same options (the same rays, jitter and packets).
+// N up to kMaxReferencePixelSamples. Throws std::invalid_argument for a pixel outside the image.
+std::vector<vec4> renderReferencePixels(const PreparedScene& prepared, const ReferenceOptions& options,
+                                        std::span<const glm::ivec2> pixels, ThreadPool& pool,
+                                        ReferenceStats* stats = nullptr);
 
 }  // namespace facet

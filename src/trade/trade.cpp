@@ -17,6 +17,7 @@
 #include "trade/pareto.h"
 #include "trade/presets.h"
 #include "trade/time_verdicts.h"
+#include "trade/reference_floor.h"
 
 namespace facet {
 
@@ -167,14 +168,24 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
     const PreparedScene referenceScene = prepareScene(baseline);
     ReferenceOptions referenceOptions;
     referenceOptions.samples = options.referenceSamples;
-    const LinearImage reference = renderReference(referenceScene, referenceOptions, context.pool);
+    std::vector<float> raySpread;  // where the reference's rays disagree: where its own error lies
+    referenceOptions.raySpread = &raySpread;
+    LinearImage reference = renderReference(referenceScene, referenceOptions, context.pool);
     result.referenceMs = now() - referenceStart;
     const ColorEncoding encoding = referenceScene.encoding;
-    writeImage(options.outputDir / "reference.png", reference, encoding);
     if (options.progress)
         log << "[0/" << settings.size() << "] reference (" << options.referenceSamples << "x"
             << options.referenceSamples << " rays per pixel): " << number(result.referenceMs, 0) << " ms\n"
             << std::flush;
+    // Its own error estimated, and more rays while that is not small beside the baseline's error.
+    settleReference(
+        sceneWithWords, referenceScene, referenceOptions, reference, raySpread, result.referenceMs, context,
+        now,
+        [&](const std::string& line) {
+            if (options.progress) log << "[0/" << settings.size() << "] " << line << "\n" << std::flush;
+        },
+        result);
+    writeImage(options.outputDir / "reference.png", reference, encoding);
 
     // Timing in rounds: round r times frames/rounds frames of each setting in turn (the first rounds one
     // more while frames is not a multiple). The first round also makes each setting's image and scores
@@ -294,6 +305,7 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
         if (timed.size() > 1) timeInRounds(timed, "presets, ");
     }
 
+    markWithinReferenceFloor(result.rows, result.referenceFloor);
     // Verdicts against the run's own noise, then the presets checked against them, then the front.
     judgeTimes(result, baselineRoundCpuMs);
     keepPresetPromises(result);

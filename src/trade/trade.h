@@ -23,9 +23,10 @@ struct TradeOptions {
     // on every setting alike instead of on the few timed during it. Capped at `frames`.
     int rounds = 3;
     int threads = 0;
-    // N×N rays per pixel of the reference. 4×4 (the reference renderer's default): the silhouettes'
-    // coverage to 1/16 of a pixel, so that the reference shows the edges as they truly are and the
-    // rasterizer's one sample per pixel is charged for its aliasing alike in every setting.
+    // N×N rays per pixel of the reference to start with (the reference renderer's default), so that the
+    // reference shows the edges as they truly are and the rasterizer's one sample per pixel is charged
+    // for its aliasing alike in every setting; doubled while the reference's own estimated error is not
+    // small beside the baseline's (trade/reference_floor.h).
     int referenceSamples = 4;
     std::filesystem::path outputDir;
     bool progress = true;  // "[3/17] --shading gouraud: 12.3 ms" lines on `log`
