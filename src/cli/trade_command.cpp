@@ -90,6 +90,8 @@ int trade(const TradeArgs& args) {
         std::cerr);
     if (!args.quiet) {
         facet::printTradeTable(result, std::cout);
+        for (const std::string& warning : result.warnings)
+            std::cerr << "facet: warning: " << warning << "\n";
         std::cout << "facet: wrote " << (options.outputDir / "trade.csv").string() << ", "
                   << (options.outputDir / "chart.png").string() << " and " << 2 * result.rows.size() + 1
                   << " images (reference " << result.width << "x" << result.height << ", "

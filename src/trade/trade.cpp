@@ -14,6 +14,7 @@
 #include "bench/process_stats.h"
 #include "reference/reference.h"
 #include "render/renderer.h"
+#include "trade/blank.h"
 #include "trade/pareto.h"
 
 namespace facet {
@@ -164,6 +165,18 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
     result.referenceMs = now() - referenceStart;
     const ColorEncoding encoding = referenceScene.encoding;
     writeImage(options.outputDir / "reference.png", reference, encoding);
+    // Where the reference shows the scene, against which each image is judged blank or not; a reference
+    // that shows nothing is refused.
+    const std::vector<bool> referenceSurface =
+        surfacePixels(reference, emptyReference(referenceScene, referenceOptions, context.pool), encoding);
+    requireReferenceShowsScene(referenceSurface, baseline.source.string());
+    const LinearLight linearLight = linearLightFor(reference);
+    if (linearLight == LinearLight::ToneMapped) {
+        result.linearToneMapped = true;
+        result.notes.push_back(
+            "linear columns: the reference is brighter than 2 in places (an emission or a light above 1), "
+            "so both images are compared after the tone map x / (1 + x)");
+    }
     if (options.progress)
         log << "[0/" << settings.size() << "] reference (" << options.referenceSamples << "x"
             << options.referenceSamples << " rays per pixel): " << number(result.referenceMs, 0) << " ms\n"
@@ -207,7 +220,12 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
                     TradeRow row;
                     row.setting = rendered[k];
                     const LinearImage image = toImage(framebuffer);
-                    row.error = measureError(image, reference, encoding);
+                    row.error = measureError(image, reference, encoding, linearLight);
+                    const Coverage coverage = coverageOf(
+                        surfacePixels(image, emptyFrame(prepared, context), encoding), referenceSurface);
+                    row.blank = coverage.blank();
+                    if (row.blank) result.warnings.push_back(blankWarning(row.setting, coverage));
+                    row.changesContent = settingChangesContent(baseline, row.setting);
                     if (k == 0)
                         baselineImage = image;
                     else
@@ -251,8 +269,9 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
     }
 
     std::vector<glm::dvec2> points;
-    for (const TradeRow& row : result.rows)
-        points.push_back({row.msMedian, tradeError(row)});
+    for (const TradeRow& row : result.rows)  // a blank image or another scene is not a trade: off the front
+        points.push_back(row.blank || row.changesContent ? glm::dvec2(std::nan(""))
+                                                         : glm::dvec2(row.msMedian, tradeError(row)));
     for (const std::size_t i : paretoFront(points))
         result.rows[i].pareto = true;
 
