@@ -97,6 +97,8 @@ int trade(const TradeArgs& args) {
         for (const std::string& warning : result.warnings)
             std::cerr << "facet: " << warning << "\n";
         facet::printTradeTable(result, std::cout);
+        for (const std::string& warning : result.warnings)
+            std::cerr << "facet: warning: " << warning << "\n";
         std::cout << "facet: wrote " << (options.outputDir / "trade.csv").string() << ", "
                   << (options.outputDir / "chart.png").string() << " and " << 2 * result.rows.size() + 1
                   << " images (reference " << result.width << "x" << result.height << ", "

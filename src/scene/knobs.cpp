@@ -80,6 +80,13 @@ SceneKnob traded(SceneKnob knob, std::vector<std::string> values, std::string fa
     return knob;
 }
 
+// `knob` as one that changes what the scene shows, whatever its value: no value of it is nearer the
+// scene as the user wrote it than another, so the trade cannot rank it by accuracy.
+SceneKnob changingContent(SceneKnob knob) {
+    knob.changesContent = [](const Scene&, const std::string&) { return true; };
+    return knob;
+}
+
 // --reflection and --shading choose for every object; the scene file's "lighting" keys are the
 // scene's defaults, which an object's own "lighting" overrides (read after them).
 SceneKnob reflectionKnob() {
@@ -129,6 +136,16 @@ SceneKnob shadowsKnob() {
         return commonName<ShadowMethod>(scene.lights, [](const LightSpec& light) { return light.shadows; });
     };
     knob.set = [](Scene& scene, const std::string& value) { scene.shadows = parseName<ShadowMethod>(value); };
+    // Shadows where the scene has a light without them add what the scene does not show; among lights
+    // that all cast shadows, the method (and none, the fast approximation) is a matter of accuracy.
+    knob.changesContent = [](const Scene& baseline, const std::string& value) {
+        if (value == nameOf(ShadowMethod::None)) return false;
+        if (baseline.shadows) return *baseline.shadows == ShadowMethod::None;
+        if (baseline.lights.empty()) return true;  // the default light casts no shadows
+        for (const LightSpec& light : baseline.lights)
+            if (light.shadows == ShadowMethod::None) return true;
+        return false;
+    };
     return knob;
 }
 
@@ -247,11 +264,16 @@ SceneKnob areaSamplesKnob() {
 //   cull: front-face culling draws the wrong side, not a trade; culling back faces is the fast choice (the
 //     same image for closed models); no best value, the reference culls as the scene does.
 //   reflection: a choice of look more than of accuracy: no fast or best value, the reference keeps the
-//     scene's.
+//     scene's; it changes what the scene shows (changingContent), as do the Blinn exponent, the textures
+//     and the normals below: the trade lists them apart from the accuracy knobs.
 //   the shadow map's bias and slope bias: tuning, neither faster nor slower: no fast or best value.
 //   shadows: whether a light casts shadows is the scene's choice; the reference ray-casts the shadows
 //     of the lights that cast them, so the best preset keeps the scene's (adding shadows to a scene
-//     without any would move it away from its reference); the fast preset drops them.
+//     without any would move it away from its reference: a change of content); the fast preset drops
+//     them (an approximation: the image without its shadows).
+//   cull: an accuracy knob. Culling back faces is exact for closed models and its error where a model
+//     is open (a face seen from behind vanishes) is the approximation's price, which the reference
+//     (culling as the scene does) measures.
 //   colour buffer: the narrower formats are emulated by rounding a float buffer (pipeline/blend.h), so
 //     they cost time rather than save it: no fast value.
 //   textures and normals: what the model looks like (its maps; how its smooth normals are made) rather
@@ -312,15 +334,15 @@ std::vector<SceneKnob> makeTable() {
                    "cull", "--cull", "Which faces are not drawn", "pipeline", "cull",
                    [](auto& s) -> auto& { return s.pipeline.cull; }),
                {"back", "none"}, "back", ""),
-        traded(reflectionKnob(), {}, "", ""),
+        traded(changingContent(reflectionKnob()), {}, "", ""),
         // Changes the look (the highlight's size), not how exactly it is drawn: no fast or best value.
-        traded(
-            choice<BlinnExponent>(
-                "blinn-exponent", "--blinn-exponent",
-                "Blinn-Phong's exponent: the material's shininess n, or 4n so that its "
-                "highlight matches Phong's",
-                "lighting", "blinn_exponent", [](auto& s) -> auto& { return s.lighting.brdf.blinnExponent; }),
-            {}, "", ""),
+        traded(changingContent(choice<BlinnExponent>(
+                   "blinn-exponent", "--blinn-exponent",
+                   "Blinn-Phong's exponent: the material's shininess n, or 4n so that its "
+                   "highlight matches Phong's",
+                   "lighting", "blinn_exponent",
+                   [](auto& s) -> auto& { return s.lighting.brdf.blinnExponent; })),
+               {}, "", ""),
         traded(choice<Antialiasing>(
                    "aa", "--aa",
                    "Anti-aliasing: supersampling (ssaaN) draws the frame once per sample (2, 4, 8 or 16, at "
@@ -353,21 +375,21 @@ std::vector<SceneKnob> makeTable() {
                    "(docs/trade.md)",
                    "textures", "filter", [](auto& s) -> auto& { return s.textures.filter; }),
                {}, "nearest", "trilinear"),
-        traded(choice<TextureMaps>(
+        traded(changingContent(choice<TextureMaps>(
                    "textures", "--textures",
                    "The MTL's texture maps: used, or ignored so surfaces take their materials' colours",
-                   "textures", "maps", [](auto& s) -> auto& { return s.textures.maps; }),
+                   "textures", "maps", [](auto& s) -> auto& { return s.textures.maps; })),
                {}, "", ""),
         number<float>(
             "crease-angle", "--crease-angle",
             "Computed normals: faces meeting at a sharper angle (degrees) keep a hard edge", "lighting",
             "crease_angle", 0, 180, " degrees",
             [](auto& s) -> auto& { return s.lighting.creaseAngleDegrees; }),
-        traded(choice<VertexNormals>(
+        traded(changingContent(choice<VertexNormals>(
                    "normals", "--normals",
                    "Computed normals: each face weighted by its triangles' areas, its "
                    "polygon's area, or its angle at the vertex (docs/trade.md)",
-                   "lighting", "normals", [](auto& s) -> auto& { return s.lighting.normals; }),
+                   "lighting", "normals", [](auto& s) -> auto& { return s.lighting.normals; })),
                {}, "", ""),
         traded(choice<MathPrecision>(
                    "powers", "--powers",

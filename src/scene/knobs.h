@@ -45,6 +45,10 @@ struct SceneKnob {
     std::vector<std::string> tradeValues;
     std::string fastValue, bestValue;
     std::string needsKnob, needsValue;
+    // Whether setting the knob to `value` changes what a scene `baseline` shows (its textures, its
+    // reflection model, shadows it does not have) rather than how exactly the scene is drawn: the
+    // trade lists such settings apart from the accuracy knobs and no preset sets them. Empty: never.
+    std::function<bool(const Scene& baseline, const std::string& value)> changesContent;
     // The knob's value in a scene, as the flag takes it; empty when its objects or lights disagree.
     std::function<std::string(const Scene&)> get;
     // Sets the knob's field of `scene` to `value`, which check() allows.

@@ -17,7 +17,7 @@ std::vector<Knob> makeKnobTable() {
     for (const SceneKnob& knob : sceneKnobs())
         if (!knob.tradeValues.empty())
             table.push_back({knob.name, knob.flag, knob.tradeValues, knob.defaultValue(), knob.fastValue,
-                             knob.bestValue, knob.needsKnob, knob.needsValue, knob.get});
+                             knob.bestValue, knob.needsKnob, knob.needsValue, knob.get, knob.changesContent});
     return table;
 }
 
@@ -105,6 +105,11 @@ TradeSetting presetSetting(const std::string& name, const std::vector<std::strin
     for (const Knob& knob : knobTable()) {
         const std::string& value = valueFor(knob);
         if (value.empty()) continue;
+        // A preset draws the scene itself, faster or more exactly: a knob whose preset value changes what
+        // a scene shows (the default preset's textures or reflection model where the scene has others)
+        // is left as the scene has it. The default scene stands for any: only the shadows knob's rule
+        // reads the scene, and its one preset value, none, adds nothing to any scene.
+        if (knob.changesContent && knob.changesContent(defaultKnobScene(), value)) continue;
         if (!knob.needsKnob.empty() && valueFor(knobNamed(knob.needsKnob)) != knob.needsValue) continue;
         setting.words.push_back(knob.flag);
         setting.words.push_back(value);
@@ -120,6 +125,16 @@ bool sceneHasSetting(const Scene& scene, const TradeSetting& setting) {
         if (!knob || knob->valueIn(scene) != setting.words[w + 1]) return false;
     }
     return true;
+}
+
+bool settingChangesContent(const Scene& baseline, const TradeSetting& setting) {
+    for (std::size_t w = 0; w + 1 < setting.words.size(); w += 2)
+        for (const Knob& knob : knobTable())
+            if (knob.flag == setting.words[w] && knob.changesContent &&
+                knob.valueIn(baseline) != setting.words[w + 1] &&  // the baseline's own changes nothing
+                knob.changesContent(baseline, setting.words[w + 1]))
+                return true;
+    return false;
 }
 
 }  // namespace facet

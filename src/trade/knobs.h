@@ -30,6 +30,9 @@ struct Knob {
     // The knob's value in a scene; empty when its objects or lights disagree. A setting whose value the
     // baseline already has is skipped.
     std::function<std::string(const Scene&)> valueIn;
+    // Whether the value changes what the scene `baseline` shows rather than how exactly it is drawn
+    // (scene/knobs.h); empty: never.
+    std::function<bool(const Scene& baseline, const std::string& value)> changesContent;
 };
 
 // Every knob of scene/knobs.h with values to try, in that table's order (the order the trade runs them).
@@ -55,12 +58,20 @@ TradeSetting knobSetting(const Knob& knob, const std::string& value);
 
 // Preset `name` ("fast", "default", "best"): each knob of the table at its value for that preset, a
 // knob whose prerequisite the preset does not set left out, and so are the knobs named in
-// `leftAsTheScene` (with the knobs that need them).
+// `leftAsTheScene` (with the knobs that need them) and the knobs whose value would change what the
+// scene shows (changesContent: the default preset leaves the textures and the reflection model alone).
 TradeSetting presetSetting(const std::string& name, const std::vector<std::string>& leftAsTheScene = {});
 inline const std::vector<std::string> kPresetNames = {"fast", "default", "best"};
 
 // Whether `scene` already has every value `setting` sets (by the knobs' valueIn): rendering it would
 // repeat the baseline.
 bool sceneHasSetting(const Scene& scene, const TradeSetting& setting);
+
+// Whether `setting` changes what `baseline` shows (some knob it sets, its prerequisite's included, at a
+// value other than the baseline's own whose changesContent holds): `--textures off`, `--reflection phong`,
+// `--shadows map
+// --shadow-map-size 512` on a scene without shadows. Such a setting is not an approximation of the
+// reference (the scene as written), so the trade ranks it apart: never on the Pareto front.
+bool settingChangesContent(const Scene& baseline, const TradeSetting& setting);
 
 }  // namespace facet

@@ -22,11 +22,14 @@ namespace facet {
 
 namespace {
 
-std::vector<float> linearPlanes(const LinearImage& image) {
+std::vector<float> linearPlanes(const LinearImage& image, LinearLight linear) {
     std::vector<float> planes;
     planes.reserve(image.pixels.size() * 3);
     for (const glm::vec4& p : image.pixels)
-        planes.insert(planes.end(), {p.r, p.g, p.b});
+        if (linear == LinearLight::ToneMapped)
+            planes.insert(planes.end(), {toneMapped(p.r), toneMapped(p.g), toneMapped(p.b)});
+        else
+            planes.insert(planes.end(), {p.r, p.g, p.b});
     return planes;
 }
 
@@ -89,11 +92,21 @@ std::vector<float> encodedPlanes(const LinearImage& image, ColorEncoding encodin
     return planes;
 }
 
-ImageError measureError(const LinearImage& image, const LinearImage& reference, ColorEncoding encoding) {
+LinearLight linearLightFor(const LinearImage& reference) {
+    for (const glm::vec4& p : reference.pixels)
+        if (p.r > kPlainLinearPeak || p.g > kPlainLinearPeak || p.b > kPlainLinearPeak)
+            return LinearLight::ToneMapped;
+    return LinearLight::AsIs;
+}
+
+ImageError measureError(const LinearImage& image, const LinearImage& reference, ColorEncoding encoding,
+                        LinearLight linear) {
     if (image.width != reference.width || image.height != reference.height)
         throw std::invalid_argument("measureError: the images differ in size");
     ImageError error;
-    error.linear = measurePlanes(linearPlanes(image), linearPlanes(reference), image.width, image.height);
+    error.linear = measurePlanes(linearPlanes(image, linear), linearPlanes(reference, linear), image.width,
+                                 image.height);
+    error.linearToneMapped = linear == LinearLight::ToneMapped;
     error.encoded = measurePlanes(encodedPlanes(image, encoding), encodedPlanes(reference, encoding),
                                   image.width, image.height);
     // The 8-bit shares counted in whole codes (the oracle's comparison), not by float thresholds.

@@ -19,17 +19,43 @@ struct ErrorMetrics {
 // read as this, so that the table and the CSV hold only finite numbers.
 inline constexpr double kMaxPsnr = 100.0;
 
+// How the linear columns see light. Their metrics assume values from 0 to 1: PSNR's peak of 1, SSIM's
+// constants (for 0..255 after scaling), the 1/255 thresholds. A reference far brighter than 1 (an
+// emission or a light well above 1) breaks that: its PSNR goes negative once the differences' RMS
+// passes 1. Such images are then compared after the tone map x / (1 + x) (Reinhard et al. 2002's
+// simplest operator) of each channel, which brings every value into 0..1, keeps their order and
+// compresses the bright ones most.
+enum class LinearLight { AsIs, ToneMapped };
+
+// The brightest value (of any R, G or B of the reference) up to which the plain metrics are kept: a
+// highlight adding its specular to a lit diffuse surface overshoots 1 a little (spot's reaches 1.03),
+// which the plain metrics bear (a negative PSNR would need the RMS difference above 1 where no value
+// exceeds 2), and tone mapping would change every column of such common scenes for a few pixels.
+inline constexpr float kPlainLinearPeak = 2.0f;
+
+// ToneMapped when some R, G or B of `reference` is above kPlainLinearPeak; AsIs otherwise.
+LinearLight linearLightFor(const LinearImage& reference);
+
+// x / (1 + x), with x below 0 taken as 0.
+inline float toneMapped(float x) {
+    x = x > 0 ? x : 0.0f;
+    return x / (1.0f + x);
+}
+
 struct ImageError {
-    // Linear light, the colour buffer's values (SSIM on values × 255, the range its constants assume).
+    // Linear light, the colour buffer's values (SSIM on values × 255, the range its constants assume);
+    // tone mapped first when linearToneMapped.
     ErrorMetrics linear;
+    bool linearToneMapped = false;
     // The 8-bit output as written (`encoding`), codes / 255: what the PNG shows. over1 is then the share
     // of pixels off by 2 or more codes, over2 by 3 or more.
     ErrorMetrics encoded;
 };
 
-// `image` against `reference` (the same size; alpha is not compared). Throws std::invalid_argument when
-// the sizes differ.
-ImageError measureError(const LinearImage& image, const LinearImage& reference, ColorEncoding encoding);
+// `image` against `reference` (the same size; alpha is not compared), the linear metrics as `linear`
+// says. Throws std::invalid_argument when the sizes differ.
+ImageError measureError(const LinearImage& image, const LinearImage& reference, ColorEncoding encoding,
+                        LinearLight linear = LinearLight::AsIs);
 
 // The same over RGB planes given as floats (3 per pixel, row by row), peak value 1.
 ErrorMetrics measurePlanes(const std::vector<float>& a, const std::vector<float>& b, int width, int height);

@@ -14,6 +14,7 @@
 #include "bench/process_stats.h"
 #include "reference/reference.h"
 #include "render/renderer.h"
+#include "trade/blank.h"
 #include "trade/pareto.h"
 #include "trade/presets.h"
 #include "trade/time_verdicts.h"
@@ -186,6 +187,18 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
         },
         result);
     writeImage(options.outputDir / "reference.png", reference, encoding);
+    // Where the reference shows the scene, against which each image is judged blank or not; a reference
+    // that shows nothing is refused.
+    const std::vector<bool> referenceSurface =
+        surfacePixels(reference, emptyReference(referenceScene, referenceOptions, context.pool), encoding);
+    requireReferenceShowsScene(referenceSurface, baseline.source.string());
+    const LinearLight linearLight = linearLightFor(reference);
+    if (linearLight == LinearLight::ToneMapped) {
+        result.linearToneMapped = true;
+        result.notes.push_back(
+            "linear columns: the reference is brighter than 2 in places (an emission or a light above 1), "
+            "so both images are compared after the tone map x / (1 + x)");
+    }
 
     // Timing in rounds: round r times frames/rounds frames of each setting in turn (the first rounds one
     // more while frames is not a multiple). The first round also makes each setting's image and scores
@@ -243,7 +256,12 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
                     TradeRow& row = result.rows[k];
                     row.setting = rendered[k];
                     const LinearImage image = toImage(framebuffer);
-                    row.error = measureError(image, reference, encoding);
+                    row.error = measureError(image, reference, encoding, linearLight);
+                    const Coverage coverage = coverageOf(
+                        surfacePixels(image, emptyFrame(prepared, context), encoding), referenceSurface);
+                    row.blank = coverage.blank();
+                    if (row.blank) result.warnings.push_back(blankWarning(row.setting, coverage));
+                    row.changesContent = settingChangesContent(baseline, row.setting);
                     if (k == 0)
                         baselineImage = image;
                     else

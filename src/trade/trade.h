@@ -84,6 +84,9 @@ struct TradeResult {
     double referenceFloor = 0;  // the reference's own estimated error, in the chart's error (1 − SSIM, 8-bit)
     double timeNoise = 0;       // relative noise of the frame times (0.1: ±10%), from the repeated baseline
                                 // and the rows without effect
+    // The reference is brighter than kPlainLinearPeak (2) somewhere: the linear metrics compare the
+    // images after the tone map x / (1 + x) (trade/metrics.h), and `notes` says so.
+    bool linearToneMapped = false;
     std::vector<std::string> warnings;         // the machine was busy, a blank image, ...
     std::vector<std::string> recommendations;  // one line per knob ("--aa msaa2: half the edge error ...")
 };
