@@ -266,7 +266,9 @@ LinearImage renderReference(const PreparedScene& prepared, const ReferenceOption
 
     if (options.nearestSurfaces && n == 1)
         options.nearestSurfaces->assign(static_cast<std::size_t>(width) * height, RayHit{});
-    pool.parallelFor(static_cast<std::size_t>(height), [&](std::size_t row, int) {
+    std::atomic<int> rowsDone{0};
+    int rowsReported = 0;  // by the calling thread, the only one that reports
+    pool.parallelFor(static_cast<std::size_t>(height), [&](std::size_t row, int thread) {
         const int y = static_cast<int>(row);
         std::vector<Ray> rowRays(static_cast<std::size_t>(width) * samplesPerPixel);
         std::vector<RayHit> opaque(rowRays.size());
@@ -348,7 +350,13 @@ LinearImage renderReference(const PreparedScene& prepared, const ReferenceOption
                       options.nearestSurfaces->begin() + static_cast<std::ptrdiff_t>(row) * width);
         transparentHits += rowTransparentHits;
         surfaceHits += rowSurfaceHits;
+        const int done = ++rowsDone;
+        if (options.onRows && thread == 0) {  // thread 0: the calling thread (ThreadPool::parallelFor)
+            rowsReported = done;
+            options.onRows(done, height);
+        }
     });
+    if (options.onRows && rowsReported < height) options.onRows(height, height);
 
     if (stats) {
         stats->buildMilliseconds = rays.stats().buildMilliseconds;

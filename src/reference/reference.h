@@ -21,6 +21,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 
 #include "io/image_io.h"
 #include "pipeline/names.h"
@@ -50,6 +51,11 @@ struct ReferenceOptions {
     // Shadow rays per point of every area light (a square), whatever the scene's count: many, so that
     // the reference's own error in a soft shadow is small.
     int areaSamples = kReferenceAreaSamples;
+    // Told how far the image is (facet trade's progress): called with the rows traced so far and the
+    // image's rows, from the calling thread only (after each row it traces itself, so never two calls at
+    // once and never more often than rows), with a count that only rises, and a last time with every row
+    // traced. It should be cheap: the rows wait for it.
+    std::function<void(int rowsDone, int rows)> onRows = nullptr;
 };
 inline constexpr int kMaxReferenceSamples = 16;  // 256 rays per pixel
 
