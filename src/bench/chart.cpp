@@ -299,7 +299,7 @@ std::vector<ScatterMark> drawScatter(Canvas& canvas, int left, int top, int widt
     canvas.text(plotLeft + (plotRight - plotLeft - Canvas::textWidth(xTitle, 2)) / 2, plotBottom + 36, xTitle,
                 2, ink);
     canvas.text(left + 4, plotTop - 30, yLabel, 2, ink);
-    canvas.text(left + 4, plotTop - 12, key, 1, ink);
+    canvas.text(plotLeft + 10, plotTop - 12, key, 1, ink);  // under it, clear of the ticks' labels
 
     // The joined points' line, the spread bars, then the points (the first on top), then their labels.
     std::vector<ScatterMark> marks(points.size());
@@ -332,9 +332,14 @@ std::vector<ScatterMark> drawScatter(Canvas& canvas, int left, int top, int widt
         const int x = static_cast<int>(marks[i].centre.x), y = static_cast<int>(marks[i].centre.y);
         return Box{x - kRadius, y - kRadius, x + kRadius + 1, y + kRadius + 1};
     };
-    std::vector<Box> discs, labels;
-    for (std::size_t i = 0; i < points.size(); ++i)
+    std::vector<Box> discs, bars, labels;
+    for (std::size_t i = 0; i < points.size(); ++i) {
         discs.push_back(discBox(i));
+        const int y = static_cast<int>(marks[i].centre.y);
+        if (marks[i].spreadRight - marks[i].spreadLeft >= 1.0f)
+            bars.push_back({static_cast<int>(marks[i].spreadLeft), y - 4,
+                            static_cast<int>(marks[i].spreadRight) + 1, y + 4});
+    }
     const Box plot{plotLeft + 3, plotTop, plotRight, plotBottom};
     for (std::size_t i = 0; i < points.size(); ++i) {
         if (points[i].label.empty()) continue;
@@ -360,9 +365,12 @@ std::vector<ScatterMark> drawScatter(Canvas& canvas, int left, int top, int widt
                             [&](const Box& l) { return padded.overlap(l) > 0; }))
                 continue;
             if (i != 0 && padded.overlap(discs[0]) > 0) continue;
+            // Least over the points, then over the bars (a label across a bar is hard to read).
             long cost = 0;
             for (const Box& d : discs)
-                cost += c.overlap(d);
+                cost += 4 * c.overlap(d);
+            for (const Box& b : bars)
+                cost += c.overlap(b);
             if (cost < bestCost) {
                 bestCost = cost;
                 best = &c;

@@ -85,8 +85,9 @@ struct ScatterMark {
 // the points `joined` (indices, in order) linked by a line, drawn first; then each point's spread bar,
 // then the points as discs (or rings), the first drawn last so that it lies on top; then the labels in
 // the points' order (the most important first), each beside, above or below its point where it covers
-// as little of the points as possible, never another label nor the first point: a label with no such
-// place is left out. `key`: a line of small text under the y axis's title (what the colours mean).
+// as little of the points and then of the bars as possible, never another label nor the first point: a label
+// with no such place is left out. `key`: a line of small text under the y axis's title (what the colours
+// mean).
 std::vector<ScatterMark> drawScatter(Canvas& canvas, int left, int top, int width, int height,
                                      const std::string& title, const std::string& xLabel,
                                      const std::string& yLabel, const std::string& key, bool logY,

@@ -29,8 +29,8 @@ std::string timeLeftText(double seconds) {
 TradeProgress::TradeProgress(std::ostream& log, bool enabled, std::function<double()> clockMs)
     : log_(log), enabled_(enabled), clockMs_(std::move(clockMs)) {}
 
-void TradeProgress::referenceStarted() {
-    referenceStart_ = referencePrinted_ = clockMs_();
+void TradeProgress::referenceStarted(double startMs) {
+    referenceStart_ = referencePrinted_ = startMs;
 }
 
 void TradeProgress::referenceRows(int rowsDone, int rows) {

@@ -23,7 +23,7 @@ class TradeProgress {
 
     // The reference: its rows traced so far (ReferenceOptions::onRows). At most one line a second,
     // "reference: 40%, about 6 s left", the time left the time so far scaled by the rows still to trace.
-    void referenceStarted();
+    void referenceStarted(double startMs);  // when it began, by the clock
     void referenceRows(int rowsDone, int rows);
 
     // The settings' runs in the order they will come (a setting's index once for each round and phase it

@@ -113,7 +113,7 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
     // which lights cast shadows, its materials, maps and normals.
     TradeProgress progress(log, options.progress, now);
     const double referenceStart = now();
-    progress.referenceStarted();
+    progress.referenceStarted(referenceStart);
     const PreparedScene referenceScene = prepareScene(baseline);
     ReferenceOptions referenceOptions;
     referenceOptions.samples = options.referenceSamples;

@@ -306,7 +306,7 @@ TEST(TradeProgressEstimate, TheReferenceAtMostOnceASecond) {
     double now = 0;
     std::ostringstream log;
     TradeProgress progress(log, true, [&] { return now; });
-    progress.referenceStarted();
+    progress.referenceStarted(now);
     for (int row = 1; row <= 100; ++row) {
         now += 50;  // 5 s for 100 rows
         progress.referenceRows(row, 100);
@@ -317,7 +317,7 @@ TEST(TradeProgressEstimate, TheReferenceAtMostOnceASecond) {
               "reference: 60%, about 2 s left\nreference: 80%, about 1 s left\n");
     std::ostringstream quiet;
     TradeProgress silent(quiet, false, [&] { return now; });
-    silent.referenceStarted();
+    silent.referenceStarted(now);
     now += 5000;
     silent.referenceRows(50, 100);
     EXPECT_EQ(quiet.str(), "");
