@@ -202,21 +202,26 @@ struct Box {
 
 }  // namespace
 
-void drawScatter(Canvas& canvas, int left, int top, int width, int height, const std::string& title,
-                 const std::string& xLabel, const std::string& yLabel, bool logY,
-                 const std::vector<LabelledPoint>& points, const std::vector<std::size_t>& joined) {
+std::vector<ScatterMark> drawScatter(Canvas& canvas, int left, int top, int width, int height,
+                                     const std::string& title, const std::string& xLabel,
+                                     const std::string& yLabel, const std::string& key, bool logY,
+                                     const std::vector<LabelledPoint>& points,
+                                     const std::vector<std::size_t>& joined) {
     const vec4 ink = srgb8(20, 20, 20), grid = srgb8(225, 225, 225);
     const int plotLeft = left + 90, plotRight = left + width - 30;
     const int plotTop = top + 70, plotBottom = top + height - 60;
     canvas.text(left + (width - Canvas::textWidth(title, 2)) / 2, top + 8, title, 2, ink);
-    if (points.empty()) return;
+    if (points.empty()) return {};
 
-    // Ranges. x: linear, from a round value below the fastest. y: from 0, or log over the positive values.
+    // Ranges (x over the spread bars too). x: linear, from a round value below the fastest. y: from 0,
+    // or log over the positive values.
     double minX = std::numeric_limits<double>::max(), maxX = 0.0, maxY = 0.0;
     double minPositiveY = std::numeric_limits<double>::max();
     for (const LabelledPoint& p : points) {
         minX = std::min(minX, p.point.x);
         maxX = std::max(maxX, p.point.x);
+        if (!std::isnan(p.spread.x)) minX = std::min(minX, p.spread.x);
+        if (!std::isnan(p.spread.y)) maxX = std::max(maxX, p.spread.y);
         maxY = std::max(maxY, p.point.y);
         if (p.point.y > 0) minPositiveY = std::min(minPositiveY, p.point.y);
     }
@@ -294,28 +299,54 @@ void drawScatter(Canvas& canvas, int left, int top, int width, int height, const
     canvas.text(plotLeft + (plotRight - plotLeft - Canvas::textWidth(xTitle, 2)) / 2, plotBottom + 36, xTitle,
                 2, ink);
     canvas.text(left + 4, plotTop - 30, yLabel, 2, ink);
+    canvas.text(plotLeft + 10, plotTop - 12, key, 1, ink);  // under it, clear of the ticks' labels
 
-    // The joined points' line, then the points, then their labels where they cover the least.
-    std::vector<vec2> pixels;
-    for (const LabelledPoint& p : points)
-        pixels.push_back(toPixel(p.point));
-    for (std::size_t i = 1; i < joined.size(); ++i)
-        canvas.line(pixels[joined[i - 1]], pixels[joined[i]], 2.0f, srgb8(120, 170, 230));
-    std::vector<Box> taken;
-    constexpr int kRadius = 5;
+    // The joined points' line, the spread bars, then the points (the first on top), then their labels.
+    std::vector<ScatterMark> marks(points.size());
     for (std::size_t i = 0; i < points.size(); ++i) {
-        canvas.disc(pixels[i], kRadius, points[i].color);
-        taken.push_back({static_cast<int>(pixels[i].x) - kRadius, static_cast<int>(pixels[i].y) - kRadius,
-                         static_cast<int>(pixels[i].x) + kRadius + 1,
-                         static_cast<int>(pixels[i].y) + kRadius + 1});
+        marks[i].centre = toPixel(points[i].point);
+        marks[i].spreadLeft = marks[i].spreadRight = marks[i].centre.x;
+        if (!std::isnan(points[i].spread.x) && !std::isnan(points[i].spread.y)) {
+            marks[i].spreadLeft = toPixel({points[i].spread.x, points[i].point.y}).x;
+            marks[i].spreadRight = toPixel({points[i].spread.y, points[i].point.y}).x;
+        }
+    }
+    for (std::size_t i = 1; i < joined.size(); ++i)
+        canvas.line(marks[joined[i - 1]].centre, marks[joined[i]].centre, 2.0f, srgb8(120, 170, 230));
+    constexpr int kRadius = 5;
+    for (std::size_t i = points.size(); i-- > 0;) {
+        const ScatterMark& m = marks[i];
+        if (m.spreadRight - m.spreadLeft < 1.0f) continue;
+        const int y = static_cast<int>(m.centre.y);
+        canvas.fillRect(static_cast<int>(m.spreadLeft), y - 1, static_cast<int>(m.spreadRight) + 1, y + 1,
+                        points[i].color);
+        for (const float end : {m.spreadLeft, m.spreadRight})  // the ends: short upright ticks
+            canvas.fillRect(static_cast<int>(end), y - 4, static_cast<int>(end) + 1, y + 4, points[i].color);
+    }
+    const vec4 paper = canvas.image().pixels.empty() ? vec4(1.0f) : canvas.image().at(0, 0);
+    for (std::size_t i = points.size(); i-- > 0;) {
+        canvas.disc(marks[i].centre, kRadius, points[i].color);
+        if (points[i].hollow) canvas.disc(marks[i].centre, kRadius - 2, paper);
+    }
+    auto discBox = [&](std::size_t i) {
+        const int x = static_cast<int>(marks[i].centre.x), y = static_cast<int>(marks[i].centre.y);
+        return Box{x - kRadius, y - kRadius, x + kRadius + 1, y + kRadius + 1};
+    };
+    std::vector<Box> discs, bars, labels;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        discs.push_back(discBox(i));
+        const int y = static_cast<int>(marks[i].centre.y);
+        if (marks[i].spreadRight - marks[i].spreadLeft >= 1.0f)
+            bars.push_back({static_cast<int>(marks[i].spreadLeft), y - 4,
+                            static_cast<int>(marks[i].spreadRight) + 1, y + 4});
     }
     const Box plot{plotLeft + 3, plotTop, plotRight, plotBottom};
     for (std::size_t i = 0; i < points.size(); ++i) {
-        if (points[i].label.empty()) continue;  // unlabelled (the trade's settings without effect)
+        if (points[i].label.empty()) continue;
         const int w = Canvas::textWidth(points[i].label, 1);
-        const int px = static_cast<int>(pixels[i].x), py = static_cast<int>(pixels[i].y);
+        const int px = static_cast<int>(marks[i].centre.x), py = static_cast<int>(marks[i].centre.y);
         std::vector<Box> candidates;
-        for (const int dy : {0, -10, 10, -20, 20, -30, 30}) {
+        for (const int dy : {0, -10, 10, -20, 20, -30, 30, -40, 40}) {
             candidates.push_back({px + 9, py - 3 + dy, px + 9 + w, py + 4 + dy});  // right
             candidates.push_back({px - 9 - w, py - 3 + dy, px - 9, py + 4 + dy});  // left
             if (dy == 0) {
@@ -326,21 +357,36 @@ void drawScatter(Canvas& canvas, int left, int top, int width, int height, const
         const Box* best = nullptr;
         long bestCost = std::numeric_limits<long>::max();
         for (const Box& c : candidates) {
+            // Refused: a label seen in part (outside the plot), over another label, or over the first
+            // point (the one the others are read against: the trade's baseline).
+            const Box padded{c.x0 - 1, c.y0 - 1, c.x1 + 1, c.y1 + 1};
+            if (c.overlap(plot) < (c.x1 - c.x0) * (c.y1 - c.y0)) continue;
+            if (std::any_of(labels.begin(), labels.end(),
+                            [&](const Box& l) { return padded.overlap(l) > 0; }))
+                continue;
+            if (i != 0 && padded.overlap(discs[0]) > 0) continue;
+            // Least over the points, then over the bars (a label across a bar is hard to read).
             long cost = 0;
-            for (const Box& t : taken)
-                cost += c.overlap(t);
-            // Outside the plot costs more than any overlap: a label must be seen whole.
-            const int inside = c.overlap(plot);
-            if (inside < (c.x1 - c.x0) * (c.y1 - c.y0)) cost += 1'000'000;
+            for (const Box& d : discs)
+                cost += 4 * c.overlap(d);
+            for (const Box& b : bars)
+                cost += c.overlap(b);
             if (cost < bestCost) {
                 bestCost = cost;
                 best = &c;
             }
             if (cost == 0) break;
         }
+        if (!best) continue;  // no room: left unlabelled rather than written over another
         canvas.text(best->x0, best->y0, points[i].label, 1, ink);
-        taken.push_back({best->x0 - 1, best->y0 - 1, best->x1 + 1, best->y1 + 1});
+        labels.push_back(*best);
+        marks[i].labelled = true;
+        marks[i].x0 = best->x0;
+        marks[i].y0 = best->y0;
+        marks[i].x1 = best->x1;
+        marks[i].y1 = best->y1;
     }
+    return marks;
 }
 
 }  // namespace facet

@@ -2,6 +2,7 @@
 // of line series with axes, ticks and a legend (facet bench --vs-mesa; any command that charts).
 #pragma once
 
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -61,18 +62,36 @@ void drawPanel(Canvas& canvas, int left, int top, int width, int height, const s
                const std::string& xLabel, bool logX, const std::vector<Series>& series);
 
 struct LabelledPoint {
-    std::string label;
-    glm::dvec2 point;  // data units
+    std::string label;  // empty: unlabelled
+    glm::dvec2 point;   // data units
     vec4 color;
+    // An x range drawn as a horizontal bar through the point (facet trade: its fastest to its slowest
+    // frame); NaN: none.
+    glm::dvec2 spread{std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};
+    bool hollow = false;  // a ring instead of a disc: a point set apart from the others
+};
+
+// Where drawScatter put a point and its label, in pixels.
+struct ScatterMark {
+    vec2 centre;
+    float spreadLeft = 0, spreadRight = 0;  // the spread bar's ends (the centre's x without a bar)
+    bool labelled = false;                  // false: no label, or no room for it clear of the others
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;     // the label's box [x0, x1) × [y0, y1) when labelled
 };
 
 // One scatter panel (facet trade): x linear from a round value below the smallest (logarithmic when
 // the values span more than a decade), y linear from 0 or
 // logarithmic (then values at or below 0 sit on the axis's floor, a decade below the smallest positive);
-// each point a disc and its label, placed beside, above or below it where it covers no other label or
-// point as far as possible; the points `joined` (indices, in order) linked by a line, drawn first.
-void drawScatter(Canvas& canvas, int left, int top, int width, int height, const std::string& title,
-                 const std::string& xLabel, const std::string& yLabel, bool logY,
-                 const std::vector<LabelledPoint>& points, const std::vector<std::size_t>& joined);
+// the points `joined` (indices, in order) linked by a line, drawn first; then each point's spread bar,
+// then the points as discs (or rings), the first drawn last so that it lies on top; then the labels in
+// the points' order (the most important first), each beside, above or below its point where it covers
+// as little of the points and then of the bars as possible, never another label nor the first point: a label
+// with no such place is left out. `key`: a line of small text under the y axis's title (what the colours
+// mean).
+std::vector<ScatterMark> drawScatter(Canvas& canvas, int left, int top, int width, int height,
+                                     const std::string& title, const std::string& xLabel,
+                                     const std::string& yLabel, const std::string& key, bool logY,
+                                     const std::vector<LabelledPoint>& points,
+                                     const std::vector<std::size_t>& joined);
 
 }  // namespace facet

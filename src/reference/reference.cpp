@@ -434,7 +434,9 @@ LinearImage renderReference(const PreparedScene& prepared, const ReferenceOption
     const bool nearest = options.nearestSurfaces && tracer.samples() == 1;
     if (nearest) options.nearestSurfaces->assign(pixels, RayHit{});
     if (options.raySpread) options.raySpread->assign(pixels, 0.0f);
-    pool.parallelFor(static_cast<std::size_t>(height), [&](std::size_t row, int) {
+    std::atomic<int> rowsDone{0};
+    int rowsReported = 0;  // by the calling thread, the only one that reports
+    pool.parallelFor(static_cast<std::size_t>(height), [&](std::size_t row, int thread) {
         Tracer::Scratch scratch;
         Tracer::Counts counts;
         const std::size_t offset = row * static_cast<std::size_t>(width);
@@ -443,7 +445,13 @@ LinearImage renderReference(const PreparedScene& prepared, const ReferenceOption
                          nearest ? options.nearestSurfaces->data() + offset : nullptr);
         transparentHits += counts.transparentHits;
         surfaceHits += counts.surfaceHits;
+        const int done = ++rowsDone;
+        if (options.onRows && thread == 0) {  // thread 0: the calling thread (ThreadPool::parallelFor)
+            rowsReported = done;
+            options.onRows(done, height);
+        }
     });
+    if (options.onRows && rowsReported < height) options.onRows(height, height);
     fillStats(stats, tracer, start, pixels * tracer.samplesPerPixel(), surfaceHits, transparentHits);
     return image;
 }

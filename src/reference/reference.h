@@ -21,6 +21,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -56,6 +57,11 @@ struct ReferenceOptions {
     // Shadow rays per point of every area light (a square), whatever the scene's count: many, so that
     // the reference's own error in a soft shadow is small.
     int areaSamples = kReferenceAreaSamples;
+    // Told how far the image is (facet trade's progress): called with the rows traced so far and the
+    // image's rows, from the calling thread only (after each row it traces itself, so never two calls at
+    // once and never more often than rows), with a count that only rises, and a last time with every row
+    // traced. It should be cheap: the rows wait for it.
+    std::function<void(int rowsDone, int rows)> onRows = nullptr;
 };
 inline constexpr int kMaxReferenceSamples = 16;  // 256 rays per pixel
 // A chosen set of pixels may take twice as many (32×32 rays): enough to check a 16×16 image's own error.

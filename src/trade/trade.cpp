@@ -19,6 +19,8 @@
 #include "trade/presets.h"
 #include "trade/time_verdicts.h"
 #include "trade/reference_floor.h"
+#include "trade/progress.h"
+#include "trade/report.h"
 
 namespace facet {
 
@@ -58,57 +60,10 @@ std::vector<TradeSetting> tradeSettings(const Scene& baseline, const std::vector
     return settings;
 }
 
-// The chart's label of a row: the knob's own words (its prerequisite's are in the CSV), "preset fast".
-std::string chartLabel(const TradeSetting& setting) {
-    if (setting.knob == "baseline") return "baseline";
-    if (setting.knob == "preset") return "preset " + setting.value;
-    return setting.words[setting.words.size() - 2] + " " + setting.words.back();
-}
-
-void writeChart(const TradeResult& result, const std::string& title, const std::filesystem::path& path) {
-    std::vector<LabelledPoint> points;
-    std::vector<glm::dvec2> xy;
-    for (const TradeRow& row : result.rows) {
-        // A setting without effect sits on the baseline's error: pale and unlabelled, so that the cluster
-        // around the baseline does not bury the labels of the settings that matter.
-        const vec4 color = row.pareto                     ? srgb8(30, 100, 200)
-                           : row.setting.knob == "preset" ? srgb8(230, 120, 20)
-                           : row.noEffect                 ? srgb8(205, 205, 205)
-                                                          : srgb8(150, 150, 150);
-        points.push_back({row.noEffect && !row.pareto ? std::string() : chartLabel(row.setting),
-                          {row.msMedian, tradeError(row)},
-                          row.setting.knob == "baseline" ? srgb8(20, 20, 20) : color});
-        xy.push_back(points.back().point);
-    }
-    Canvas canvas(1200, 800, vec4(1.0f));
-    drawScatter(canvas, 0, 0, 1200, 800, title, "MS PER FRAME (MEDIAN)",
-                "1 - SSIM OF THE 8-BIT IMAGE (LOG); BLUE: PARETO FRONT; PALE: NO EFFECT", true, points,
-                paretoFront(xy));
-    writeImage(path, canvas.image());
-}
-
 std::string number(double value, int decimals) {
     char text[32];
     std::snprintf(text, sizeof text, "%.*f", decimals, value);
     return text;
-}
-
-// Enough digits for a CSV: a metric of 0.9999987 keeps its distance from 1.
-std::string csvNumber(double value) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.9g", value);
-    return text;
-}
-
-std::string csvField(const std::string& text) {  // quoted when it holds a comma or a quote
-    if (text.find_first_of(",\"") == std::string::npos) return text;
-    std::string quoted = "\"";
-    for (const char c : text) {
-        if (c == '"') quoted += '"';
-        quoted += c;
-    }
-    quoted += '"';
-    return quoted;
 }
 
 }  // namespace
@@ -165,12 +120,16 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
     // surface in depth order, ray-casts the shadows of every light that casts them, map or ray, and
     // uses exact pow, exp, normalisation and Fresnel), so what remains are the scene's own choices:
     // which lights cast shadows, its materials, maps and normals.
+    TradeProgress progress(log, options.progress, now);
     const double referenceStart = now();
+    progress.referenceStarted(referenceStart);
     const PreparedScene referenceScene = prepareScene(baseline);
     ReferenceOptions referenceOptions;
     referenceOptions.samples = options.referenceSamples;
     std::vector<float> raySpread;  // where the reference's rays disagree: where its own error lies
     referenceOptions.raySpread = &raySpread;
+    if (options.progress)
+        referenceOptions.onRows = [&](int rowsDone, int rows) { progress.referenceRows(rowsDone, rows); };
     LinearImage reference = renderReference(referenceScene, referenceOptions, context.pool);
     result.referenceMs = now() - referenceStart;
     const ColorEncoding encoding = referenceScene.encoding;
@@ -225,6 +184,7 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
         for (int round = 0; round < rounds; ++round) {
             const int framesThisRound = options.frames / rounds + (round < options.frames % rounds ? 1 : 0);
             for (const std::size_t k : indices) {
+                progress.runStarted(k);
                 // The reference's models and textures, unless the setting changes how they load.
                 PreparedScene prepared =
                     prepareScene(sceneWithWords(rendered[k].words), referenceScene.assets);
@@ -244,6 +204,7 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
                     frameMs[k].push_back(now() - start);
                     cpuMs[k].push_back(cpuNow() - cpuStart);
                 }
+                progress.framesTimed(k);
                 if (k == 0 && framesThisRound > 0)
                     baselineRoundCpuMs.push_back(
                         median(std::vector<double>(cpuMs[0].end() - framesThisRound, cpuMs[0].end())));
@@ -281,15 +242,16 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
                 row.cpuMsMedian = median(cpuMs[k]);
                 row.cpuMsMin = *std::min_element(cpuMs[k].begin(), cpuMs[k].end());
                 row.cpuMsMax = *std::max_element(cpuMs[k].begin(), cpuMs[k].end());
+                progress.runFinished(k);
                 if (options.progress) {
                     log << "[" << phase;
                     if (rounds > 1) log << "round " << round + 1 << "/" << rounds << ", ";
-                    log << k + 1 << "/" << settings.size() << "] " << row.setting.label() << ": "
+                    log << k + 1 << "/" << settings.size() << "] " << tradeRowLabel(row.setting) << ": "
                         << number(row.msMedian, 1) << " ms";
                     if (!scored)
                         log << ", 1 - SSIM " << std::setprecision(3) << tradeError(row)
                             << (row.noEffect ? ", no effect" : "");
-                    log << "\n" << std::flush;
+                    log << progress.leftSuffix() << "\n" << std::flush;
                 }
             }
         }
@@ -304,6 +266,13 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
     std::vector<std::size_t> knobRows, presetRows = {0};
     for (std::size_t k = 0; k < settings.size(); ++k)
         (settings[k].knob == "preset" ? presetRows : knobRows).push_back(k);
+    {  // the runs to come, for the estimate of the time left: the phases below, round by round
+        std::vector<std::size_t> runs;
+        for (const std::vector<std::size_t>* phase : {&knobRows, &presetRows})
+            for (int round = 0; round < rounds && (phase == &knobRows || presetRows.size() > 1); ++round)
+                runs.insert(runs.end(), phase->begin(), phase->end());
+        progress.plan(std::move(runs));
+    }
     timeInRounds(knobRows, "");
     if (presetRows.size() > 1) {
         // The fast and best presets are what measured fast (accurate) here, judged against the noise of
@@ -345,63 +314,10 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
     title += std::to_string(baseline.width);
     title += "X";
     title += std::to_string(baseline.height);
-    writeChart(result, title, options.outputDir / "chart.png");
+    writeTradeChart(result, title, options.outputDir / "chart.png");
     return result;
 }
 
-void writeTradeCsv(const TradeResult& result, std::ostream& out) {
-    out << "knob,value,flags,frames,ms_median,ms_min,ms_max,ms_shadow_setup";
-    for (const char* space : {"linear", "output8"})
-        for (const char* metric : {"psnr_db", "ssim", "mean_abs", "max_abs", "over_1_255", "over_2_255"})
-            out << "," << space << "_" << metric;
-    out << ",no_effect,pareto,image,error_image\n";
-    for (const TradeRow& row : result.rows) {
-        out << csvField(row.setting.knob) << "," << csvField(row.setting.value) << ","
-            << csvField(row.setting.words.empty() ? "" : row.setting.label()) << "," << row.frames << ","
-            << csvNumber(row.msMedian) << "," << csvNumber(row.msMin) << "," << csvNumber(row.msMax) << ","
-            << csvNumber(row.msShadows);
-        for (const ErrorMetrics* m : {&row.error.linear, &row.error.encoded})
-            for (const double value : {m->psnr, m->ssim, m->meanAbs, m->maxAbs, m->over1, m->over2})
-                out << "," << csvNumber(value);
-        out << "," << row.noEffect << "," << row.pareto << "," << csvField(row.image) << ","
-            << csvField(row.errorImage) << "\n";
-    }
-}
-
-void printTradeTable(const TradeResult& result, std::ostream& out) {
-    constexpr int kLabel = 26;
-    out << std::string(kLabel, ' ') << "  ms per frame    linear       8-bit output\n";
-    out << std::left << std::setw(kLabel) << "setting" << std::right << std::setw(8) << "median"
-        << std::setw(7) << "spread" << std::setw(7) << "PSNR" << std::setw(7) << "SSIM" << std::setw(7)
-        << "PSNR" << std::setw(7) << "SSIM" << std::setw(6) << "mean" << std::setw(4) << "max" << std::setw(7)
-        << ">1/255" << std::setw(7) << ">2/255"
-        << "\n";
-    for (const TradeRow& row : result.rows) {
-        const std::string label =
-            row.setting.knob == "preset" ? "preset " + row.setting.value : row.setting.label();
-        if (static_cast<int>(label.size()) > kLabel)
-            out << label << "\n" << std::string(kLabel, ' ');
-        else
-            out << std::left << std::setw(kLabel) << label << std::right;
-        const ErrorMetrics& lin = row.error.linear;
-        const ErrorMetrics& enc = row.error.encoded;
-        out << std::setw(8) << number(row.msMedian, 2) << std::setw(7) << number(row.msMax - row.msMin, 2)
-            << std::setw(7) << number(lin.psnr, 1) << std::setw(7) << number(lin.ssim, 4) << std::setw(7)
-            << number(enc.psnr, 1) << std::setw(7) << number(enc.ssim, 4) << std::setw(6)
-            << number(255.0 * enc.meanAbs, 2) << std::setw(4) << std::lround(255.0 * enc.maxAbs)
-            << std::setw(6) << number(100.0 * enc.over1, 1) << "%" << std::setw(6)
-            << number(100.0 * enc.over2, 1) << "%";
-        if (row.pareto) out << " front";
-        if (row.noEffect) out << " NO EFFECT";
-        out << "\n";
-    }
-    out << "spread: slowest minus fastest frame; 8-bit mean and max in code steps; front: on the Pareto "
-           "front\n(none faster and more accurate, by 1 - SSIM of the 8-bit image); NO EFFECT: the same "
-           "8-bit image as the baseline\n";
-    for (const std::string& skipped : result.skipped)
-        out << "skipped: " << skipped << "\n";
-    for (const std::string& note : result.notes)
-        out << note << "\n";
 }
 
 }  // namespace facet

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -129,6 +130,21 @@ TEST_F(TradeRun, EverySettingIsTimedInEveryRoundWithAllItsFrames) {
     }
 }
 
+// Every progress line of a setting but the first (whose scoring loads the comparison) and the last says
+// how long the trade still needs. Catches: the estimate dropped from the lines, or printed after the
+// last run.
+TEST_F(TradeRun, ProgressLinesEstimateTheTimeLeft) {
+    std::vector<std::string> lines;
+    std::istringstream in(progress_);
+    for (std::string line; std::getline(in, line);)
+        if (line.rfind("[", 0) == 0 && line.rfind("[0/", 0) != 0)
+            lines.push_back(line);  // not the reference's
+    ASSERT_GT(lines.size(), 3u) << progress_;
+    const std::regex estimate("; (about [0-9]+ (min( [0-9]+ s)?|s)|under a second) left$");
+    for (std::size_t i = 0; i < lines.size(); ++i)
+        EXPECT_EQ(std::regex_search(lines[i], estimate), i > 0 && i + 1 < lines.size()) << lines[i];
+}
+
 TEST_F(TradeRun, CsvHoldsARowPerSettingWithFiniteNumbers) {
     // The baseline (Phong shading, sorted transparency), flat, Gouraud, unsorted, exact, then the fast
     // and best presets where a knob went into them (by the run's own numbers); the default preset,
@@ -144,15 +160,16 @@ TEST_F(TradeRun, CsvHoldsARowPerSettingWithFiniteNumbers) {
     std::size_t numbers = 0;
     for (const auto& r : rows_)
         for (const std::string& column : header_) {
-            if (column.rfind("ms_", 0) != 0 && column.rfind("linear_", 0) != 0 &&
-                column.rfind("output8_", 0) != 0)
+            if (column.rfind("ms_", 0) != 0 && column.rfind("cpu_ms_", 0) != 0 &&
+                column.rfind("linear_", 0) != 0 && column.rfind("output8_", 0) != 0)
                 continue;
             SCOPED_TRACE(r.at("flags") + " " + column);
             const double value = number(r, column);
             EXPECT_TRUE(std::isfinite(value)) << r.at(column);
             ++numbers;
         }
-    EXPECT_EQ(numbers, rows_.size() * 16);  // 4 times, 6 metrics in linear light and in 8 bits
+    // 4 wall-clock times, 3 CPU times, 6 metrics in linear light and in 8 bits
+    EXPECT_EQ(numbers, rows_.size() * 19);
     for (const auto& r : rows_) {
         EXPECT_TRUE(std::filesystem::exists(dir_ / r.at("image")));
         EXPECT_TRUE(std::filesystem::exists(dir_ / r.at("error_image")));
