@@ -15,6 +15,7 @@
 #include "reference/reference.h"
 #include "render/renderer.h"
 #include "trade/pareto.h"
+#include "trade/recommend.h"
 
 namespace facet {
 
@@ -256,6 +257,7 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
     for (const std::size_t i : paretoFront(points))
         result.rows[i].pareto = true;
 
+    result.recommendations = tradeRecommendations(result);
     {
         std::ofstream csv(options.outputDir / "trade.csv");
         writeTradeCsv(result, csv);
