@@ -62,8 +62,8 @@ double viewScaleFor(double radius) {
 // fragment passes (the test is "nearer"). Solving f(z − n)/(z(f − n)) = 1 − ε: every point farther than
 // zLost = f·n/(n + ε(f − n)) (n/ε with an infinite far plane) is not drawn. The scene reaches
 // zEnd = min(zBack, far), zBack the depth of the bounding box's farthest corner (from inside, the
-// bounding sphere reaches well past the box). Nearer than zLost, one step of the buffer spans 1/(codes·d'(z))
-// in depth, d'(z) = f·n/(z²(f − n)): coarsest at zEnd.
+// bounding sphere reaches well past the box). Nearer than zLost, one step of the buffer spans
+// 1/(codes·d'(z)) in depth, d'(z) = f·n/(z²(f − n)): coarsest at zEnd.
 void checkDepthFromInside(double near, double far, dvec3 eye, dvec3 forward, dvec3 boxMin, dvec3 boxMax,
                           double radius, double codes, const std::string& buffer,
                           std::vector<std::string>& warnings) {
@@ -89,24 +89,15 @@ void checkDepthFromInside(double near, double far, dvec3 eye, dvec3 forward, dve
                               " depth buffer with the camera inside the scene: every depth farther than ",
                               zLost, " from the eye rounds to the far plane, and the scene reaches ", zEnd,
                               ": nothing would be drawn (a near plane of ", enoughNear, " or more works)"));
-    if (zLost < zEnd) {
+    // Nearer than zLost the buffer's steps are finest at the near plane and coarsest at zEnd; a warning
+    // on the far end's steps alone would fire for the default near plane of every interior view under
+    // 16 bits, so only the depths lost outright are said.
+    if (zLost < zEnd)
         warnings.push_back(
             text("the camera's near plane (", near, ") is small for the ", buffer,
                  " depth buffer: every depth farther than ", zLost,
                  " from the eye rounds to the far plane and is not drawn, and the scene reaches ", zEnd,
                  " (a near plane of ", enoughNear, " or more draws all of it)"));
-        return;
-    }
-    const double slope =
-        std::isfinite(far) ? far * near / (zEnd * zEnd * (far - near)) : near / (zEnd * zEnd);
-    const double step = 1.0 / (codes * slope);
-    if (step > 2.0 * radius / 1024.0)
-        warnings.push_back(text("the camera's near and far planes (", near, ", ", far,
-                                ") leave steps of about ", step, " between the depths the ", buffer,
-                                " depth buffer tells apart at ", zEnd,
-                                " from the eye, the far end of the scene: surfaces closer together "
-                                "may show through each other (a near plane of ",
-                                enoughNear, " or more helps)"));
 }
 
 }  // namespace
