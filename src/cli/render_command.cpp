@@ -61,8 +61,16 @@ std::string emptyFrameWarning(const std::string& where, const facet::DrawStats& 
          << stats.trianglesRejected << " lay outside the view (or were cut off by the near and far planes), "
          << stats.trianglesCulled << " were culled as back faces, "
          << stats.trianglesZeroArea + stats.trianglesMissingSamples << " covered no pixel centre, and "
-         << stats.fragmentsDepthFailed << " fragments failed the depth test; the camera may look away from "
-         << "the model";
+         << stats.fragmentsDepthFailed << " fragments failed the depth test";
+    // Nothing was written, so every fragment that failed the depth test failed against the value the
+    // depth buffer is cleared to, the far plane's: its depth rounded to the far plane.
+    if (stats.fragmentsDepthFailed > 0)
+        text
+            << ": their depths all rounded to the far plane, beyond what the depth buffer can tell apart "
+               "at this near plane (a larger near plane, \"camera.near\" in a scene file, or a finer --depth "
+               "draws them)";
+    else
+        text << "; the camera may look away from the model";
     return text.str();
 }
 

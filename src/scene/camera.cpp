@@ -54,6 +54,52 @@ double viewScaleFor(double radius) {
     return std::exp2(-std::round(std::log2(radius)));
 }
 
+// Depth precision for a scene that reaches nearer than the near plane (an eye inside its bounding
+// sphere, or a near plane cutting into it): what is seen can start at the near plane itself, where the
+// window depth f(z − n)/(z(f − n)) is 0, so the nearest depths have codes to spare; the codes run out at
+// the far end, where the window depth crowds towards 1. From half a step below 1 on, 1 − ε with
+// ε = 1/(2·codes), a depth rounds to the far plane, the value the buffer is cleared to, which no
+// fragment passes (the test is "nearer"). Solving f(z − n)/(z(f − n)) = 1 − ε: every point farther than
+// zLost = f·n/(n + ε(f − n)) (n/ε with an infinite far plane) is not drawn. The scene reaches
+// zEnd = min(zBack, far), zBack the depth of the bounding box's farthest corner (from inside, the
+// bounding sphere reaches well past the box). Nearer than zLost, one step of the buffer spans
+// 1/(codes·d'(z)) in depth, d'(z) = f·n/(z²(f − n)): coarsest at zEnd.
+void checkDepthFromInside(double near, double far, dvec3 eye, dvec3 forward, dvec3 boxMin, dvec3 boxMax,
+                          double radius, double codes, const std::string& buffer,
+                          std::vector<std::string>& warnings) {
+    double zBack = 0.0;
+    for (int corner = 0; corner < 8; ++corner) {
+        const dvec3 p((corner & 1) ? boxMax.x : boxMin.x, (corner & 2) ? boxMax.y : boxMin.y,
+                      (corner & 4) ? boxMax.z : boxMin.z);
+        zBack = std::max(zBack, glm::dot(p - eye, forward));
+    }
+    if (!(zBack > near)) return;  // the box lies behind the near plane: the sphere reached past it
+    const double epsilon = 0.5 / codes;
+    const double zLost = std::isfinite(far) ? far * near / (near + epsilon * (far - near)) : near / epsilon;
+    const double zEnd = std::min(zBack, far);
+    // The near plane whose step at zEnd is 1/1024 of the scene's size 2r, as a scene seen from outside
+    // is asked to have 1024 steps across it: step ≈ z²/(n·codes) when f ≫ n, so n = z²·1024/(codes·2r);
+    // and at least the near plane that moves zLost beyond zEnd.
+    const double enoughNear = std::max(zEnd * zEnd * 1024.0 / (codes * 2.0 * radius), zEnd / codes);
+    // Nothing farther than zLost is drawn. Nearer than a thousandth of the scene's radius (the near plane a
+    // camera inside the scene gets when none is given: what is closer is clipped as touching the eye),
+    // nothing that matters is left to draw.
+    if (zLost < 1e-3 * radius)
+        throw InputError(text("the camera's near plane (", near, ") is too small for the ", buffer,
+                              " depth buffer with the camera inside the scene: every depth farther than ",
+                              zLost, " from the eye rounds to the far plane, and the scene reaches ", zEnd,
+                              ": nothing would be drawn (a near plane of ", enoughNear, " or more works)"));
+    // Nearer than zLost the buffer's steps are finest at the near plane and coarsest at zEnd; a warning
+    // on the far end's steps alone would fire for the default near plane of every interior view under
+    // 16 bits, so only the depths lost outright are said.
+    if (zLost < zEnd)
+        warnings.push_back(
+            text("the camera's near plane (", near, ") is small for the ", buffer,
+                 " depth buffer: every depth farther than ", zLost,
+                 " from the eye rounds to the far plane and is not drawn, and the scene reaches ", zEnd,
+                 " (a near plane of ", enoughNear, " or more draws all of it)"));
+}
+
 }  // namespace
 
 glm::dmat4 drawnClipFromView(const Camera& camera) {
@@ -139,22 +185,29 @@ Camera frameCamera(const CameraSpec& spec, const Bounds& bounds, float aspect,
         const auto windowDepth = [&](double z) {
             return std::isfinite(far) ? float(far * (z - near) / (z * (far - near))) : float(1.0 - near / z);
         };
-        const double z0 = std::max(zFront, near), z1 = std::min(zBack, far);
-        const float d0 = windowDepth(z0), d1 = windowDepth(z1);
         const double codes = unormBits ? std::ldexp(1.0, unormBits) - 1.0 : 0x1p24;
         const std::string buffer = unormBits ? text(unormBits, "-bit unorm") : std::string("32-bit");
-        const bool allFar = unormBits ? std::nearbyint(double(d0) * codes) >= codes : d0 >= 1.0f;
-        if (allFar)
-            throw InputError(text("the camera's near plane (", near, ") is too small for a scene ", z0,
-                                  " away: every depth rounds to the far plane in the ", buffer,
-                                  " depth buffer and nothing would be drawn (a near plane of ",
-                                  z0 * (unormBits ? 1024.0 / codes : 1e-3), " or more works)"));
-        const double steps = double(d1 - d0) * codes;
-        if (steps < 1024.0)
-            camera.warnings.push_back(text("the camera's near and far planes (", near, ", ", far,
-                                           ") leave about ", std::floor(steps), " steps of the ", buffer,
-                                           " depth buffer across the scene: surfaces close together may show "
-                                           "through each other (move the near plane towards the scene)"));
+        if (zFront >= near) {
+            // The whole scene in front of the near plane: it spans zFront..zBack.
+            const double z0 = zFront, z1 = std::min(zBack, far);
+            const float d0 = windowDepth(z0), d1 = windowDepth(z1);
+            const bool allFar = unormBits ? std::nearbyint(double(d0) * codes) >= codes : d0 >= 1.0f;
+            if (allFar)
+                throw InputError(text("the camera's near plane (", near, ") is too small for a scene ", z0,
+                                      " away: every depth rounds to the far plane in the ", buffer,
+                                      " depth buffer and nothing would be drawn (a near plane of ",
+                                      z0 * (unormBits ? 1024.0 / codes : 1e-3), " or more works)"));
+            const double steps = double(d1 - d0) * codes;
+            if (steps < 1024.0)
+                camera.warnings.push_back(text("the camera's near and far planes (", near, ", ", far,
+                                               ") leave about ", std::floor(steps), " steps of the ", buffer,
+                                               " depth buffer across the scene: surfaces close together may "
+                                               "show through each other (move the near plane towards the "
+                                               "scene)"));
+        } else {
+            checkDepthFromInside(near, far, eye, forward, boxMin, boxMax, radius, codes, buffer,
+                                 camera.warnings);
+        }
     }
 
     camera.eye = vec3(eye);

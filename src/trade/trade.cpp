@@ -21,6 +21,7 @@
 #include "trade/reference_floor.h"
 #include "trade/progress.h"
 #include "trade/report.h"
+#include "trade/recommend.h"
 
 namespace facet {
 
@@ -303,6 +304,7 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
             !warning.empty())
             result.warnings.push_back(warning);
 
+    result.recommendations = tradeRecommendations(result);
     {
         std::ofstream csv(options.outputDir / "trade.csv");
         writeTradeCsv(result, csv);

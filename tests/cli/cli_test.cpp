@@ -387,6 +387,33 @@ constexpr const char* kCubeObj =
     "v -1 -1 -1\nv 1 -1 -1\nv -1 1 -1\nv 1 1 -1\nv -1 -1 1\nv 1 -1 1\nv -1 1 1\nv 1 1 1\n"
     "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
 
+// Inside the cube (corners ±1), looking at its far wall 1.5 away under a 16-bit depth buffer: with a
+// near plane of 1e-6 every depth past about 0.12 rounds to the far plane (scene/camera.cpp), so the wall
+// fails the depth test and nothing is drawn; the camera warns first, and the empty frame names the depth
+// buffer, not the camera's direction. A near plane of 0.1 draws the wall without a word.
+// Catches: an interior view with a tiny near plane blamed on "the camera may look away", or unwarned.
+TEST(Cli, InteriorViewLostToDepthPrecisionSaysSo) {
+    TempFolder dir;
+    dir.write("cube.obj", kCubeObj);
+    const auto scene = [&](const std::string& near) {
+        return quoted(dir.write("inside-" + near + ".json",
+                                "{\"camera\": {\"eye\": [0, 0, 0.5], \"target\": [0, 0, -1], \"near\": " +
+                                    near + "}, \"objects\": [{\"model\": \"cube.obj\"}]}"));
+    };
+    const std::string options = " --width 32 --height 24 --cull none --depth unorm16 -o ";
+    const RunResult lost =
+        runFacet("render " + scene("1e-6") + options + quoted(dir.path() / "lost.png"), dir);
+    EXPECT_EQ(lost.status, 0) << lost.err;
+    EXPECT_NE(lost.err.find("every depth farther than 0.12"), std::string::npos) << lost.err;
+    EXPECT_NE(lost.err.find("nothing was drawn"), std::string::npos) << lost.err;
+    EXPECT_NE(lost.err.find("their depths all rounded to the far plane"), std::string::npos) << lost.err;
+    EXPECT_EQ(lost.err.find("look away"), std::string::npos) << lost.err;
+    const RunResult seen =
+        runFacet("render " + scene("0.1") + options + quoted(dir.path() / "seen.png"), dir);
+    EXPECT_EQ(seen.status, 0) << seen.err;
+    EXPECT_EQ(seen.err, "");
+}
+
 // The last line of defence: a frame that draws nothing says so, and what became of its triangles.
 TEST(Cli, FrameThatDrawsNothingIsWarnedAbout) {
     TempFolder dir;

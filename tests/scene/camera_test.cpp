@@ -3,6 +3,7 @@
 #include "scene/camera.h"
 
 #include <cmath>
+#include <cstdint>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -120,6 +121,77 @@ TEST(Camera, PoorDepthPrecisionIsWarnedAbout) {
         << camera.warnings[0];
     spec.near = 1.0f;
     EXPECT_TRUE(frameCamera(spec, cube(1.0f), kAspect).warnings.empty());
+}
+
+// The eye inside the unit cube (half size 1, bounding radius √3), 0.5 from its centre, looking down −z:
+// the cube's far wall is 1.5 away. With the far plane the camera chooses, 1.05·(0.5 + √3) ≈ 2.34, a
+// near plane of 1e-5 under a 16-bit unorm buffer sends every depth past about 0.84 to the far plane's
+// code, 65535, which no fragment passes; the cube's near side is behind the eye, so the check from
+// outside (scene front to back) has nothing in front of the near plane to judge.
+CameraSpec insideTheCube(float near) {
+    CameraSpec spec;
+    spec.eye = vec3(0.0f, 0.0f, 0.5f);
+    spec.target = vec3(0.0f, 0.0f, -1.0f);
+    spec.near = near;
+    return spec;
+}
+
+std::uint32_t unorm16Code(const Camera& camera, vec3 world) {
+    return std::uint32_t(std::nearbyint(double(project(camera, world).z) * 65535.0));
+}
+
+// Catches: the depth check skipped (or judging from the sphere's front, behind the eye) when the eye is
+// inside the scene's bounds, so a near plane that loses the far wall goes unsaid.
+TEST(Camera, EyeInsideTheSceneWithATinyNearPlaneIsWarned) {
+    const Camera camera = frameCamera(insideTheCube(1e-5f), cube(1.0f), kAspect, DepthBufferFormat::Unorm16);
+    // What the warning claims, through the camera's own projection: the far wall (z = −1) rounds to the
+    // far plane's code, a point 0.3 from the eye does not.
+    EXPECT_EQ(unorm16Code(camera, vec3(0.0f, 0.0f, -1.0f)), 65535u);
+    EXPECT_LT(unorm16Code(camera, vec3(0.0f, 0.0f, 0.2f)), 65535u);
+    ASSERT_EQ(camera.warnings.size(), 1u);
+    EXPECT_NE(camera.warnings[0].find("near plane (1e-05) is small for the 16-bit unorm depth buffer: every "
+                                      "depth farther than 0.8"),
+              std::string::npos)
+        << camera.warnings[0];
+    EXPECT_NE(camera.warnings[0].find("the scene reaches 1.5 "), std::string::npos) << camera.warnings[0];
+}
+
+// A near plane of 1e-8 leaves 16-bit codes for depths up to about 0.0013 only, less than the
+// thousandth of the radius (0.0017) a camera inside the scene clips anyway: refused. The 32-bit buffer,
+// 256 times finer, still draws to about 0.3: warned, not refused.
+// Catches: an interior view that can draw nothing accepted silently, or refused for every buffer alike.
+TEST(Camera, EyeInsideTheSceneWithANearPlaneFarTooSmallIsRefused) {
+    const std::string error = [] {
+        try {
+            frameCamera(insideTheCube(1e-8f), cube(1.0f), kAspect, DepthBufferFormat::Unorm16);
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    }();
+    EXPECT_NE(error.find("near plane (1e-08) is too small for the 16-bit unorm depth buffer with the camera "
+                         "inside the scene"),
+              std::string::npos)
+        << error;
+    EXPECT_NE(error.find("nothing would be drawn"), std::string::npos) << error;
+    const Camera camera = frameCamera(insideTheCube(1e-8f), cube(1.0f), kAspect);
+    ASSERT_EQ(camera.warnings.size(), 1u);
+    EXPECT_NE(camera.warnings[0].find("rounds to the far plane"), std::string::npos) << camera.warnings[0];
+}
+
+// Inside the cube with the near plane it gets when none is given (a thousandth of the radius, 0.0017)
+// or a sensible one: quiet, in the 32-bit buffer and in the 16-bit one, where the default near plane
+// keeps codes to about 2·0.0017·65535 ≈ 2.1 (less with the far plane at 2.34), past the far wall at 1.5.
+// Catches: false alarms on ordinary interior views (the bundled scenes render inside their bounds).
+TEST(Camera, EyeInsideTheSceneWithASensibleNearPlaneIsQuiet) {
+    CameraSpec spec = insideTheCube(0.0f);
+    spec.near.reset();
+    EXPECT_TRUE(frameCamera(spec, cube(1.0f), kAspect).warnings.empty());
+    EXPECT_TRUE(
+        frameCamera(insideTheCube(0.1f), cube(1.0f), kAspect, DepthBufferFormat::Unorm16).warnings.empty());
+    const Camera coarse = frameCamera(spec, cube(1.0f), kAspect, DepthBufferFormat::Unorm16);
+    EXPECT_TRUE(coarse.warnings.empty()) << coarse.warnings[0];
+    EXPECT_LT(unorm16Code(coarse, vec3(0.0f, 0.0f, -1.0f)), 65535u);  // the far wall is drawn
 }
 
 // The framing is the same at every scale: a box of 1e-7, 1e-30 or 1e30 lands where the unit box does
