@@ -30,9 +30,10 @@ CLI::App* addTradeCommand(CLI::App& app, TradeArgs& args) {
             "a share of the frames, so that a busy spell of the machine is shared (default 3)")
         ->check(wholeNumber(1, facet::kMaxTradeRounds));
     command
-        ->add_option("--reference-samples", args.referenceSamples,
-                     "N×N rays per pixel of the reference image to start with (default 4); doubled, up to 16, "
-                     "while the reference's own estimated error is above a tenth of the baseline's")
+        ->add_option(
+            "--reference-samples", args.referenceSamples,
+            "N×N rays per pixel of the reference image to start with (default 4); doubled, up to 16, "
+            "while the reference's own estimated error is above a tenth of the baseline's")
         ->check(wholeNumber(1, facet::kMaxReferenceSamples));
     command->add_option("-o,--output", args.outputDir,
                         "Folder for trade.csv, chart.png and the images (default out/trade-NAME/)");
@@ -94,15 +95,11 @@ int trade(const TradeArgs& args) {
         [&](const std::vector<std::string>& words) { return sceneWithWords(args.scene, words); }, options,
         std::cerr);
     if (!args.quiet) {
-        for (const std::string& warning : result.warnings)
-            std::cerr << "facet: " << warning << "\n";
-        facet::printTradeTable(result, std::cout);
-        for (const std::string& warning : result.warnings)
-            std::cerr << "facet: warning: " << warning << "\n";
+        facet::printTradeTable(result, std::cout);  // the warnings under it
         std::cout << "facet: wrote " << (options.outputDir / "trade.csv").string() << ", "
                   << (options.outputDir / "chart.png").string() << " and " << 2 * result.rows.size() + 1
                   << " images (reference " << result.width << "x" << result.height << ", "
-                  << args.referenceSamples << "x" << args.referenceSamples << " rays per pixel, "
+                  << result.referenceSamples << "x" << result.referenceSamples << " rays per pixel, "
                   << static_cast<long>(result.referenceMs + 0.5) << " ms)\n";
     }
     return 0;

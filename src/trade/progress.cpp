@@ -49,6 +49,11 @@ void TradeProgress::plan(std::vector<std::size_t> runs) {
     next_ = 0;
 }
 
+void TradeProgress::replanRest(std::vector<std::size_t> runs) {
+    runs_.resize(std::min(next_, runs_.size()));
+    runs_.insert(runs_.end(), runs.begin(), runs.end());
+}
+
 void TradeProgress::runStarted(std::size_t setting) {
     // Where the run is not the one planned (a plan out of step with the loop), the next run of that
     // setting is taken as this one, so that the estimate recovers.

@@ -30,6 +30,9 @@ class TradeProgress {
     // is timed in). Its first run also scores it (its image compared and written): that part is counted
     // once.
     void plan(std::vector<std::size_t> runs);
+    // The runs after those done so far, when the run decides them late (the presets, chosen from the
+    // knobs' numbers: a preset no knob went into is not timed).
+    void replanRest(std::vector<std::size_t> runs);
     // A run of `setting` begins; its frames are timed (what follows is the scoring); it ends.
     void runStarted(std::size_t setting);
     void framesTimed(std::size_t setting);

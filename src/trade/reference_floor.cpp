@@ -183,8 +183,9 @@ void settleReference(const SceneWithWords& sceneWithWords, const PreparedScene& 
 void markWithinReferenceFloor(std::vector<TradeRow>& rows, double floor) {
     if (rows.empty()) return;
     const double baseline = tradeError(rows.front());
+    // A row without effect has the baseline's image: nothing to judge, and its flag says so already.
     for (std::size_t k = 1; k < rows.size(); ++k)
-        rows[k].withinReferenceFloor = std::abs(tradeError(rows[k]) - baseline) < floor;
+        rows[k].withinReferenceFloor = !rows[k].noEffect && std::abs(tradeError(rows[k]) - baseline) < floor;
 }
 
 }  // namespace facet

@@ -79,7 +79,8 @@ void settleReference(const SceneWithWords& sceneWithWords, const PreparedScene& 
                      const std::function<void(const std::string&)>& progress, TradeResult& result,
                      const FloorGoal& goal = {});
 
-// Marks the rows (the baseline first) whose error differs from the baseline's by less than `floor`.
+// Marks the rows (the baseline first) whose error differs from the baseline's by less than `floor`; not
+// the baseline itself, nor a row without effect (the same image: nothing to judge).
 void markWithinReferenceFloor(std::vector<TradeRow>& rows, double floor);
 
 }  // namespace facet

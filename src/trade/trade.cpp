@@ -17,11 +17,11 @@
 #include "trade/blank.h"
 #include "trade/pareto.h"
 #include "trade/presets.h"
-#include "trade/time_verdicts.h"
-#include "trade/reference_floor.h"
 #include "trade/progress.h"
-#include "trade/report.h"
 #include "trade/recommend.h"
+#include "trade/reference_floor.h"
+#include "trade/report.h"
+#include "trade/time_verdicts.h"
 
 namespace facet {
 
@@ -290,6 +290,10 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
             result.rows[k].setting = rendered[k];
             if (!rendered[k].words.empty()) timed.push_back(k);  // no knob chosen: it is the baseline
         }
+        std::vector<std::size_t> presetRuns;
+        for (int round = 0; timed.size() > 1 && round < rounds; ++round)
+            presetRuns.insert(presetRuns.end(), timed.begin(), timed.end());
+        progress.replanRest(std::move(presetRuns));
         if (timed.size() > 1) timeInRounds(timed, "presets, ");
     }
 
@@ -318,8 +322,6 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
     title += std::to_string(baseline.height);
     writeTradeChart(result, title, options.outputDir / "chart.png");
     return result;
-}
-
 }
 
 }  // namespace facet

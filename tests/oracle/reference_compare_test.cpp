@@ -127,38 +127,39 @@ void expectSharedModelAgrees(const std::filesystem::path& model, double minWithi
 // twice (the separation missing), differences of 1/255 listed, the neighbours not counted, or a pixel
 // where the two show different triangles given another reason.
 TEST(ReferenceCompare, SpotsNameThePlantedDifferences) {
-    const PreparedScene prepared = prepareForReference(sceneAt(kModels / "shared-edge.json", 21, 15));
+    const PreparedScene prepared = prepareForReference(sceneAt(kModels / "shared-edge.json", 42, 30));
     DrawContext context(1);
     std::vector<RayHit> surfaces;
     rasterizeSurfaces(prepared, context, surfaces);
-    // A pixel of each triangle (the left one's draw is 0, the right one's 1), on the middle row.
-    const int row = 7;
-    const std::size_t left = std::size_t(row) * 21 + 6, right = std::size_t(row) * 21 + 15;
+    // A pixel of each triangle (the left one's draw is 0, the right one's 1), on the middle row; the
+    // three planted spots at least 8 px apart (a spot's radius), by x or by y.
+    const int row = 14;
+    const std::size_t left = std::size_t(row) * 42 + 12, right = std::size_t(row) * 42 + 30;
     ASSERT_TRUE(surfaces[left].hit() && surfaces[right].hit());
     ASSERT_NE(surfaces[left].mesh, surfaces[right].mesh);
     std::vector<int> codes(surfaces.size(), 0);
     codes[left] = 40;
     codes[left + 1] = 30;  // the same blob: counted as nearby, not listed
     codes[right] = -20;
-    codes[std::size_t(1) * 21 + 1] = 1;  // within 1/255: never listed
+    codes[std::size_t(1) * 42 + 1] = 1;  // within 1/255: never listed
     std::vector<RayHit> traced = surfaces;
-    const std::size_t other = std::size_t(13) * 21 + 10;  // where the reference shows something else
+    const std::size_t other = std::size_t(27) * 42 + 21;  // where the reference shows something else
     traced[other] = surfaces[other].hit() ? RayHit{} : surfaces[left];
     codes[other] = 10;
     const std::vector<DifferenceSpot> spots = findDifferenceSpots(prepared, codes, surfaces, traced, {});
     ASSERT_EQ(spots.size(), 3u);
-    EXPECT_EQ(spots[0].x, 6);
+    EXPECT_EQ(spots[0].x, 12);
     EXPECT_EQ(spots[0].y, row);
     EXPECT_EQ(spots[0].codes, 40);
     EXPECT_EQ(spots[0].traced.mesh, surfaces[left].mesh);
     EXPECT_EQ(spots[0].traced.triangle, surfaces[left].triangle);
     EXPECT_EQ(spots[0].nearby, 1u);
     EXPECT_NE(spots[0].reason, DifferenceReason::OtherSurface);
-    EXPECT_EQ(spots[1].x, 15);
+    EXPECT_EQ(spots[1].x, 30);
     EXPECT_EQ(spots[1].codes, -20);
     EXPECT_EQ(spots[1].traced.mesh, surfaces[right].mesh);
-    EXPECT_EQ(spots[2].x, 10);
-    EXPECT_EQ(spots[2].y, 13);
+    EXPECT_EQ(spots[2].x, 21);
+    EXPECT_EQ(spots[2].y, 27);
     EXPECT_EQ(spots[2].reason, DifferenceReason::OtherSurface);
     EXPECT_NE(describeReason(spots[2]).find("another surface"), std::string::npos);
 }
