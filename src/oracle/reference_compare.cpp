@@ -204,18 +204,10 @@ double distanceToEdge(const PreparedScene& prepared, const RayHit& surface, dvec
 
 double windowDepthAt(const PreparedScene& prepared, const RayHit& surface, dvec2 window) {
     if (!surface.hit()) return std::numeric_limits<double>::quiet_NaN();
-    const std::array<dvec3, 3> c = eyeCorners(prepared, surface);
-    // The ray from the eye (the origin of eye space) through the window point, as the reference casts it.
-    const glm::dmat4& clipFromView = prepared.camera.clipFromViewExact;
-    const dvec4 onNear =
-        glm::inverse(clipFromView) * dvec4(2.0 * window.x / prepared.scene.width - 1.0,
-                                           1.0 - 2.0 * window.y / prepared.scene.height, -1.0, 1.0);
-    const dvec3 direction = dvec3(onNear) / onNear.w;
-    const dvec3 normal = glm::cross(c[1] - c[0], c[2] - c[0]);
-    const double along = glm::dot(normal, direction);
-    if (!(std::abs(along) > 0.0)) return std::numeric_limits<double>::quiet_NaN();
-    const dvec3 point = (glm::dot(normal, c[0]) / along) * direction;
-    const dvec4 clip = clipFromView * dvec4(point, 1.0);
+    // The ray from the eye through the window point, as the reference casts it, met with the plane.
+    const std::optional<PlanePoint> at = planePointAt(prepared, surface, window);
+    if (!at) return std::numeric_limits<double>::quiet_NaN();
+    const dvec4 clip = prepared.camera.clipFromViewExact * dvec4(at->point, 1.0);
     return (clip.z / clip.w + 1.0) * 0.5;
 }
 

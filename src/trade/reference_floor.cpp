@@ -8,16 +8,11 @@
 #include "base/errors.h"
 #include "render/renderer.h"
 #include "trade/metrics.h"
+#include "trade/report.h"
 
 namespace facet {
 
 namespace {
-
-std::string fixed(double value, int decimals) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.*f", decimals, value);
-    return text;
-}
 
 std::string raysWords(int n) {
     return std::to_string(n) + "x" + std::to_string(n) + " rays per pixel";
@@ -145,16 +140,16 @@ void settleReference(const SceneWithWords& sceneWithWords, const PreparedScene& 
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - estimateStart)
                 .count();
         progress("reference's own error at " + std::to_string(floor.samples) + "x" +
-                 std::to_string(floor.samples) + " rays: 1 - SSIM " + fixed(floor.error, 5) + ", aim below " +
-                 fixed(target, 5) + " (" + std::to_string(floor.checked) + " of " +
+                 std::to_string(floor.samples) + " rays: 1 - SSIM " + number(floor.error, 5) +
+                 ", aim below " + number(target, 5) + " (" + std::to_string(floor.checked) + " of " +
                  std::to_string(floor.unsettled) + " pixels whose rays disagree, at " +
                  std::to_string(floor.checkSamples) + "x" + std::to_string(floor.checkSamples) + ", " +
-                 fixed(100.0 * floor.offShare, 0) + "% of them over 1/255 off): " + fixed(estimateMs, 0) +
+                 number(100.0 * floor.offShare, 0) + "% of them over 1/255 off): " + number(estimateMs, 0) +
                  " ms");
         if (floor.error <= target) break;
-        const std::string notBelow = "the reference's own error (1 - SSIM " + fixed(floor.error, 5) + " at " +
-                                     raysWords(floor.samples) + ") is not below " + fixed(target, 5) + " (" +
-                                     fixed(100.0 * goal.shareOfSmallestError, 0) +
+        const std::string notBelow = "the reference's own error (1 - SSIM " + number(floor.error, 5) +
+                                     " at " + raysWords(floor.samples) + ") is not below " +
+                                     number(target, 5) + " (" + number(100.0 * goal.shareOfSmallestError, 0) +
                                      "% of the smallest error to judge)";
         if (floor.samples >= maxSamples) {
             result.warnings.push_back(notBelow + ": " + raysWords(maxSamples) +
@@ -165,7 +160,7 @@ void settleReference(const SceneWithWords& sceneWithWords, const PreparedScene& 
         const double expectedMs = renderMs * double(next * next) / double(floor.samples * floor.samples);
         if (expectedMs > goal.timeBoundMs) {
             result.warnings.push_back(notBelow + ": " + raysWords(next) + " would take about " +
-                                      fixed(expectedMs / 1000.0, 0) +
+                                      number(expectedMs / 1000.0, 0) +
                                       " s; error differences below it are no verdict");
             break;
         }

@@ -10,12 +10,6 @@ namespace facet {
 
 namespace {
 
-std::string number(double value, int decimals) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.*f", decimals, value);
-    return text;
-}
-
 // Enough digits for a CSV: a metric of 0.9999987 keeps its distance from 1.
 std::string csvNumber(double value) {
     char text[32];
@@ -156,6 +150,12 @@ bool measuredCpu(const TradeResult& result) {
 }
 
 }  // namespace
+
+std::string number(double value, int decimals) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.*f", decimals, value);
+    return text;
+}
 
 std::string tradeRowLabel(const TradeSetting& setting) {
     return setting.knob == "preset" ? "preset " + setting.value : setting.label();

@@ -14,6 +14,9 @@ namespace facet {
 // A row's name in the table and the progress: its command-line words, "preset fast", "baseline".
 std::string tradeRowLabel(const TradeSetting& setting);
 
+// `value` with `decimals` digits after the point ("%.*f"): the trade's tables, notes and progress lines.
+std::string number(double value, int decimals);
+
 // The words of a time verdict, as the table and the CSV write them: "faster", "slower", "within noise".
 const char* timeVerdictWords(TimeVerdict verdict);
 

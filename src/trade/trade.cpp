@@ -61,12 +61,6 @@ std::vector<TradeSetting> tradeSettings(const Scene& baseline, const std::vector
     return settings;
 }
 
-std::string number(double value, int decimals) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.*f", decimals, value);
-    return text;
-}
-
 }  // namespace
 
 std::string settingFileStem(int number, const TradeSetting& setting) {
