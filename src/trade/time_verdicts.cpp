@@ -103,7 +103,7 @@ std::string busyMachineWarning(double othersCpus, int allowedCpus, int threads, 
     char text[400];
     if (allowedCpus > 0 && othersCpus > 0.25 && allowedCpus - othersCpus < threads - 0.25) {
         std::snprintf(text, sizeof text,
-                      "warning: the machine was busy: other processes kept %.1f of the %d CPUs this trade "
+                      "the machine was busy: other processes kept %.1f of the %d CPUs this trade "
                       "may use busy while it timed %d render thread%s; wall-clock times are inflated and "
                       "uneven, so decisions use CPU time, and differences within the noise (+-%.0f%%) "
                       "decide nothing",
@@ -112,7 +112,7 @@ std::string busyMachineWarning(double othersCpus, int allowedCpus, int threads, 
     }
     if (noise > kBusyNoise) {
         std::snprintf(text, sizeof text,
-                      "warning: the machine was busy or its speed changed: repeats of the same work (the "
+                      "the machine was busy or its speed changed: repeats of the same work (the "
                       "baseline again, settings that change nothing) differed by up to %.0f%% in CPU time; "
                       "only differences beyond %.0f%% are judged faster or slower",
                       100.0 * noise, 100.0 * kVerdictNoiseFactor * noise);
