@@ -13,18 +13,29 @@
 
 namespace facet {
 
-double estimateTimeNoise(double baselineMs, const std::vector<double>& baselineRoundMs,
-                         const std::vector<TradeRow>& rows) {
-    double noise = kTimeNoiseFloor;
-    if (!(baselineMs > 0)) return noise;
-    for (const double ms : baselineRoundMs)
-        noise = std::max(noise, std::abs(ms / baselineMs - 1.0));
-    // The rows without effect, all of them: a run must not judge a difference its own repeats show.
-    // (The same image is usually the same work; where it is not, as --cull none on a closed model, which
-    // draws the back faces the depth test then hides, the noise reads high and the verdicts are fewer.)
+namespace {
+
+// The q-quantile of `values` by nearest rank (the smallest value with at least q of them at or below);
+// 0 for none.
+double quantile(std::vector<double> values, double q) {
+    if (values.empty()) return 0.0;
+    std::sort(values.begin(), values.end());
+    const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(values.size())));
+    return values[std::clamp<std::size_t>(rank, 1, values.size()) - 1];
+}
+
+}  // namespace
+
+double estimateTimeNoise(const std::vector<TradeRow>& rows, const std::vector<std::vector<double>>& roundMs) {
+    if (rows.empty() || !(rows.front().cpuMsMedian > 0)) return kTimeNoiseFloor;
+    std::vector<double> repeats, withoutEffect;
+    for (std::size_t k = 0; k < rows.size() && k < roundMs.size(); ++k)
+        if (roundMs[k].size() >= 2 && rows[k].cpuMsMedian > 0)
+            for (const double ms : roundMs[k])
+                repeats.push_back(std::abs(ms / rows[k].cpuMsMedian - 1.0));
     for (const TradeRow& row : rows)
-        if (row.noEffect) noise = std::max(noise, std::abs(row.cpuMsMedian / baselineMs - 1.0));
-    return noise;
+        if (row.noEffect) withoutEffect.push_back(std::abs(row.cpuMsMedian / rows.front().cpuMsMedian - 1.0));
+    return std::max({kTimeNoiseFloor, quantile(repeats, kRepeatQuantile), quantile(withoutEffect, 0.5)});
 }
 
 TimeVerdict judgeTime(double ms, double baselineMs, double noise) {
@@ -34,10 +45,10 @@ TimeVerdict judgeTime(double ms, double baselineMs, double noise) {
     return TimeVerdict::WithinNoise;
 }
 
-void judgeTimes(TradeResult& result, const std::vector<double>& baselineRoundMs) {
+void judgeTimes(TradeResult& result, const std::vector<std::vector<double>>& roundMs) {
     if (result.rows.empty()) return;
     const double baselineMs = result.rows.front().cpuMsMedian;
-    result.timeNoise = estimateTimeNoise(baselineMs, baselineRoundMs, result.rows);
+    result.timeNoise = estimateTimeNoise(result.rows, roundMs);
     for (std::size_t k = 0; k < result.rows.size(); ++k) {
         TradeRow& row = result.rows[k];
         row.timeVerdict = k == 0 || row.noEffect ? TimeVerdict::WithinNoise

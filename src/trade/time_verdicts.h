@@ -19,12 +19,18 @@ inline constexpr double kVerdictNoiseFactor = 2.0;
 // The noise above which the run warns that the machine was busy (±10%).
 inline constexpr double kBusyNoise = 0.10;
 
-// The run's relative noise of a median frame time (0.05: ±5%): the largest relative distance from the
-// baseline's median (`baselineMs`) of (a) the baseline's medians of each round of each phase
-// (`baselineRoundMs`: the same setting timed again) and (b) the medians of the rows without effect
-// (the same image, usually the same work); never below kTimeNoiseFloor.
-double estimateTimeNoise(double baselineMs, const std::vector<double>& baselineRoundMs,
-                         const std::vector<TradeRow>& rows);
+// The run's relative noise of a median frame time (0.05: ±5%), from what it repeats; never below
+// kTimeNoiseFloor. The larger of
+//  (a) how far the same setting reads from round to round: for every row (rows[0]: the baseline) its
+//      median of each round (`roundMs[k]`, the baseline's of both phases) against its overall median
+//      (cpuMsMedian), the kRepeatQuantile quantile of all those relative distances: one round that a
+//      busy spell hit counts, a single outlier among a hundred does not;
+//  (b) how far the rows without effect read from the baseline (the same image, usually the same work):
+//      the median of their relative distances. The median, because "usually": --cull none on a closed
+//      model draws back faces the depth test then hides, the same image for twice the work, and one
+//      such row must not make every other difference read as noise.
+double estimateTimeNoise(const std::vector<TradeRow>& rows, const std::vector<std::vector<double>>& roundMs);
+inline constexpr double kRepeatQuantile = 0.9;
 
 // Faster when ms < baselineMs / (1 + 2·noise), Slower when ms > baselineMs · (1 + 2·noise), else
 // WithinNoise (kVerdictNoiseFactor = 2).
@@ -32,7 +38,7 @@ TimeVerdict judgeTime(double ms, double baselineMs, double noise);
 
 // result.timeNoise and every row's timeVerdict from the rows' CPU medians (rows[0]: the baseline).
 // The baseline and the rows without effect are WithinNoise by definition.
-void judgeTimes(TradeResult& result, const std::vector<double>& baselineRoundMs);
+void judgeTimes(TradeResult& result, const std::vector<std::vector<double>>& roundMs);
 
 // Marks the rows on the Pareto front of CPU time against tradeError. No decision comes from noise: a
 // row WithinNoise takes the baseline's time, a row withinReferenceFloor the baseline's error, and

@@ -165,8 +165,9 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
     const int rounds = std::min(options.rounds, options.frames);
     std::vector<std::vector<double>> frameMs(settings.size()), shadowMs(settings.size()),
         cpuMs(settings.size());
-    // The baseline's CPU median of each round of each phase: the same work timed again, its noise.
-    std::vector<double> baselineRoundCpuMs;
+    // Each setting's CPU median of each round (the baseline's of both phases): the same work timed
+    // again, from which the run's noise is measured.
+    std::vector<std::vector<double>> roundCpuMs(settings.size());
     std::vector<TradeSetting> rendered = settings;
     result.rows.resize(settings.size());
     std::vector<bool> scoredYet(settings.size(), false);
@@ -200,9 +201,9 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
                     cpuMs[k].push_back(cpuNow() - cpuStart);
                 }
                 progress.framesTimed(k);
-                if (k == 0 && framesThisRound > 0)
-                    baselineRoundCpuMs.push_back(
-                        median(std::vector<double>(cpuMs[0].end() - framesThisRound, cpuMs[0].end())));
+                if (framesThisRound > 0)
+                    roundCpuMs[k].push_back(
+                        median(std::vector<double>(cpuMs[k].end() - framesThisRound, cpuMs[k].end())));
                 // A row per setting, scored the first time it is drawn (the knobs' in the first phase, the
                 // presets' in the second); a setting already scored (the baseline again) is only timed. A
                 // preset no knob went into is never drawn, and keepPresetPromises drops its row.
@@ -275,7 +276,7 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
         std::vector<TradeRow> measured(result.rows.begin(), result.rows.begin() + presetRows[1]);
         TradeResult firstPhase;
         firstPhase.rows = measured;
-        judgeTimes(firstPhase, baselineRoundCpuMs);
+        judgeTimes(firstPhase, roundCpuMs);
         std::vector<std::size_t> timed = {0};
         for (const std::size_t k : presetRows) {
             if (k == 0) continue;
@@ -293,7 +294,7 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
 
     markWithinReferenceFloor(result.rows, result.referenceFloor);
     // Verdicts against the run's own noise, then the presets checked against them, then the front.
-    judgeTimes(result, baselineRoundCpuMs);
+    judgeTimes(result, roundCpuMs);
     keepPresetPromises(result);
     markParetoFront(result.rows, result.timeNoise, result.referenceFloor);
     if (timedWallMs > 0)

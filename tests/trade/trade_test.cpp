@@ -464,19 +464,28 @@ TEST(TradePresets, FastIsNeverSlowerThanTheBaselineAndBestNeverWorseThanASingleK
     EXPECT_EQ(kept.notes.size(), 1u);  // best, untimed, is the scene as given
 }
 
-// The noise is the largest relative distance from the baseline's median of the baseline's own round
-// medians and of the rows without effect, never below the floor; a verdict needs a
-// difference beyond twice the noise. Catches: one row without effect that does more work swamping the
-// estimate, the noise taken from rows that change the image (real differences read as noise), the floor
-// dropped (a 1% difference judged on a quiet run), the factor of two dropped or the comparison reversed, a
-// row without effect given a verdict.
+// The noise is the larger of how far each setting's round medians read from its own median (their 90th
+// percentile) and the median distance of the rows without effect from the baseline, never below the
+// floor; a verdict needs a difference beyond twice the noise. Catches: one row without effect that does
+// more work (--cull none) swamping the estimate, the noise taken from rows that change the image (real
+// differences read as noise), the rounds' repeats ignored, the floor dropped (a 1% difference judged on a
+// quiet run), the factor of two dropped or the comparison reversed, a row without effect given a verdict.
 TEST(TradeVerdicts, DifferencesWithinTwiceTheNoiseDecideNothing) {
+    const TradeRow baseline = measuredRow("baseline", "", 10.0, TimeVerdict::Slower, 0.02);
     TradeRow same = measuredRow("transparency", "unsorted", 11.0, TimeVerdict::Faster, 0.02);
     same.noEffect = true;
+    TradeRow cullNone = measuredRow("cull", "none", 20.0, TimeVerdict::Faster, 0.02);
+    cullNone.noEffect = true;  // the same image for twice the work
     const TradeRow flat = measuredRow("shading", "flat", 5.0, TimeVerdict::WithinNoise, 0.05);
-    EXPECT_DOUBLE_EQ(estimateTimeNoise(10.0, {10.0, 10.2, 9.9}, {flat}), kTimeNoiseFloor);
-    EXPECT_NEAR(estimateTimeNoise(10.0, {10.0, 9.5}, {flat}), 0.05, 1e-12);
-    EXPECT_NEAR(estimateTimeNoise(10.0, {10.0, 9.5}, {flat, same}), 0.10, 1e-12);
+    EXPECT_DOUBLE_EQ(estimateTimeNoise({baseline, flat}, {{10.0, 10.2, 9.9}, {5.0, 5.0, 5.1}}),
+                     kTimeNoiseFloor);
+    EXPECT_NEAR(estimateTimeNoise({baseline, flat}, {{10.0, 9.5}, {5.0, 5.0}}), 0.05, 1e-12);
+    EXPECT_NEAR(estimateTimeNoise({baseline, flat}, {{10.0, 10.0}, {5.0, 5.4}}), 0.08, 1e-12);  // any row's
+    EXPECT_NEAR(estimateTimeNoise({baseline, flat, same}, {{10.0, 9.5}, {5.0, 5.0}}), 0.10, 1e-12);
+    // The median of the rows without effect (4%, 10% and 100% off): the middle one, not the largest.
+    TradeRow same2 = same;
+    same2.cpuMsMedian = 10.4;
+    EXPECT_NEAR(estimateTimeNoise({baseline, flat, same, same2, cullNone}, {{10.0, 10.0}}), 0.10, 1e-12);
 
     EXPECT_EQ(judgeTime(10.5, 10.0, 0.03), TimeVerdict::WithinNoise);
     EXPECT_EQ(judgeTime(10.7, 10.0, 0.03), TimeVerdict::Slower);
@@ -487,7 +496,7 @@ TEST(TradeVerdicts, DifferencesWithinTwiceTheNoiseDecideNothing) {
     TradeResult result;
     result.rows = {measuredRow("baseline", "", 10.0, TimeVerdict::Slower, 0.02), same, flat,
                    measuredRow("shading", "gouraud", 10.9, TimeVerdict::Faster, 0.03)};
-    judgeTimes(result, {10.0, 9.8});
+    judgeTimes(result, {{10.0, 9.8}});
     EXPECT_NEAR(result.timeNoise, 0.10, 1e-12);  // the row without effect read 10% slower
     EXPECT_EQ(result.rows[0].timeVerdict, TimeVerdict::WithinNoise);
     EXPECT_EQ(result.rows[1].timeVerdict, TimeVerdict::WithinNoise);
