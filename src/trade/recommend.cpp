@@ -20,8 +20,8 @@ std::string times(double ratio) {
     return figures(ratio) + "×";
 }
 
-// The error of a row against the baseline's, as a noun: "half the error", "37% less error", "16× the
-// error". Only for rows whose difference lies outside the reference's own error.
+// The error of a row against the baseline's, as a noun: "half the error", "37% less error", "84% less
+// error", "16× the error". Only for rows whose difference lies outside the reference's own error.
 std::string errorChange(double baselineError, double error) {
     if (!(baselineError > 0.0)) return error > baselineError ? "more error" : "the same error";
     const double ratio = error / baselineError;
@@ -36,7 +36,9 @@ std::string errorChange(double baselineError, double error) {
         const char* fractions[] = {"half the error", "a third of the error", "a quarter of the error"};
         for (int n = 2; n <= 4; ++n)
             if (std::abs(divisor - n) <= 0.05 * n) return fractions[n - 2];
-        return "1/" + figures(divisor) + " of the error";
+        // Otherwise the share taken away: "84% less error" reads at a glance where "1/6.3" does not.
+        const long percent = std::min(99L, std::lround(100.0 * (1.0 - ratio)));
+        return std::to_string(percent) + "% less error";
     }
     if (ratio == 1.0) return "the same error";
     if (ratio < 2.0) {
@@ -124,6 +126,8 @@ std::string knobLine(const TradeResult& result, const std::string& name,
     const std::string flag = knob ? knob->flag : "--" + name;
 
     std::vector<std::string> unchanged, content, blank, clauses;
+    // Of the values with a clause: those on the Pareto front and the others, for a knob of many values.
+    std::vector<std::string> frontClauses, offFront;
     bool allWithinFloor = true;  // every row changed nothing, or nothing beyond the reference's own error
     bool anyWithinFloor = false;
     const TradeRow* use = nullptr;  // the most accurate value that is more accurate and not slower
@@ -145,6 +149,7 @@ std::string knobLine(const TradeResult& result, const std::string& name,
             continue;
         }
         clauses.push_back(valueClause(baseline, *row));
+        (row->pareto ? frontClauses : offFront).push_back(row->pareto ? clauses.back() : value);
         anyFaster = anyFaster || row->timeVerdict == TimeVerdict::Faster;
         if (row->withinReferenceFloor) {
             anyWithinFloor = true;
@@ -166,7 +171,16 @@ std::string knobLine(const TradeResult& result, const std::string& name,
     std::vector<std::string> parts;
     if (!blank.empty())
         parts.push_back(listed(blank) + " drew nothing or nearly nothing of the scene: not a setting to use");
-    parts.insert(parts.end(), clauses.begin(), clauses.end());
+    // One line per knob: a knob of many values (the anti-aliasing modes) names those on the front, and
+    // the rest in a word: another value gives as much for less time, or more for the same.
+    if (clauses.size() > 3 && !frontClauses.empty() && !offFront.empty()) {
+        parts.insert(parts.end(), frontClauses.begin(), frontClauses.end());
+        parts.push_back(listed(offFront) +
+                        ": off the front (another value is faster for the same error, or " +
+                        "more accurate for the same time)");
+    } else {
+        parts.insert(parts.end(), clauses.begin(), clauses.end());
+    }
     if (!content.empty())
         parts.push_back(listed(content) + (content.size() == 1 ? " changes" : " change") +
                         " what the scene shows, not how exactly");

@@ -46,6 +46,21 @@ TEST(TradeRecommend, AntialiasingNamesTheErrorItSavesAndTheTimeItCosts) {
         "the time");
 }
 
+// A knob of many values names those on the Pareto front and the others in one clause; a reduction that
+// is no plain fraction reads as a percentage (0.02 → 0.0032: 84% less). Catches: a line listing every
+// anti-aliasing mode (eight clauses), the off-front values dropped without a word, or "1/6.3 of the error".
+TEST(TradeRecommend, ManyValuesNameTheFrontAndTheRestInAWord) {
+    TradeRow msaa2 = row("aa", "msaa2", 0.01, 17.0, TimeVerdict::Slower);
+    TradeRow ssaa4 = row("aa", "ssaa4", 0.0032, 42.0, TimeVerdict::Slower);
+    msaa2.pareto = ssaa4.pareto = true;
+    const TradeResult result = resultWith({msaa2, row("aa", "ssaa2", 0.01, 22.0, TimeVerdict::Slower),
+                                           row("aa", "msaa4", 0.009, 45.0, TimeVerdict::Slower), ssaa4});
+    EXPECT_EQ(tradeRecommendations(result)[0],
+              "--aa: msaa2 gives half the error for 1.7× the time; ssaa4 gives 84% less error for 4.2× the "
+              "time; ssaa2 and msaa4: off the front (another value is faster for the same error, or more "
+              "accurate for the same time)");
+}
+
 // Without CPU times (cpuMsMedian 0) the wall times decide the ratio: 26/13 = 2.0×.
 // Catches: a zero CPU time divided into a ratio (inf or 0×) instead of falling back to wall time.
 TEST(TradeRecommend, WallTimeWhenThereIsNoCpuTime) {
