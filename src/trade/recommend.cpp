@@ -70,6 +70,8 @@ std::string slower(const TimeWords& time) {
 }
 
 const char* kNoTime = "no measurable difference in time";
+// The most time a value recommended by "use" may take, whatever the noise: 1.15× the baseline's.
+constexpr double kUseAtMostTimes = 1.15;
 
 // One value's clause, for a row that changed the image and drew the scene as it is.
 std::string valueClause(const TradeRow& baseline, const TradeRow& row) {
@@ -158,7 +160,10 @@ std::string knobLine(const TradeResult& result, const std::string& name,
         const bool better = tradeError(*row) < tradeError(baseline);
         anyBetter = anyBetter || better;
         anyWorse = anyWorse || !better;
-        if (better && row->timeVerdict != TimeVerdict::Slower &&
+        // "Use" only what costs no measurable time: not judged slower, and its median within
+        // kUseAtMostTimes of the baseline's, since on a busy run the noise's margin is wide.
+        const TimeWords time = timeWords(baseline, *row);
+        if (better && time.verdict != TimeVerdict::Slower && time.ratio <= kUseAtMostTimes &&
             (!use || tradeError(*row) < tradeError(*use)))
             use = row;
     }

@@ -273,6 +273,9 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
     if (presetRows.size() > 1) {
         // The fast and best presets are what measured fast (accurate) here, judged against the noise of
         // the first phase: a knob goes in only where its own row showed the gain (presets.h).
+        // The knobs' errors judged against the reference's own first: best takes no value whose gain lies
+        // within it.
+        markWithinReferenceFloor(result.rows, result.referenceFloor);
         std::vector<TradeRow> measured(result.rows.begin(), result.rows.begin() + presetRows[1]);
         TradeResult firstPhase;
         firstPhase.rows = measured;

@@ -70,15 +70,20 @@ TEST(TradeRecommend, WallTimeWhenThereIsNoCpuTime) {
     EXPECT_EQ(tradeRecommendations(result)[0], "--aa: msaa4 gives half the error for 2.0× the time");
 }
 
-// Trilinear at 0.0126 is 37% less than 0.02; its CPU time reads 1.5× but the verdict is within the noise.
-// Catches: a time difference claimed from a ratio the noise does not support.
+// Trilinear at 0.0126 is 37% less than 0.02; its CPU time reads 1.1× (then 1.5× on a noisier run) but the
+// verdict is within the noise. Catches: a time difference claimed from a ratio the noise does not
+// support, or "use" given to a value whose median is half again the baseline's because a busy run's
+// noise was wide enough to call it within noise.
 TEST(TradeRecommend, TimeWithinTheNoiseIsNeverCalledFasterOrSlower) {
-    const TradeResult result = resultWith({row("texture-filter", "trilinear", 0.0126, 15.0)});
-    const std::string line = tradeRecommendations(result)[0];
+    const std::string line =
+        tradeRecommendations(resultWith({row("texture-filter", "trilinear", 0.0126, 11.0)}))[0];
     EXPECT_EQ(line,
               "--texture-filter: trilinear gives 37% less error, no measurable difference in time: use "
               "trilinear");
     EXPECT_FALSE(has(line, "×")) << line;
+    const std::string noisy =
+        tradeRecommendations(resultWith({row("texture-filter", "trilinear", 0.0126, 15.0)}))[0];
+    EXPECT_EQ(noisy, "--texture-filter: trilinear gives 37% less error, no measurable difference in time");
 }
 
 // Depth formats whose errors differ from the baseline's by less than the reference's own error.
