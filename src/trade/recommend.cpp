@@ -181,7 +181,7 @@ std::string knobLine(const TradeResult& result, const std::string& name,
     if (clauses.size() > 3 && !frontClauses.empty() && !offFront.empty()) {
         parts.insert(parts.end(), frontClauses.begin(), frontClauses.end());
         parts.push_back(listed(offFront) +
-                        ": off the front (another value is faster for the same error, or " +
+                        ": off the front (another setting is faster for the same error, or " +
                         "more accurate for the same time)");
     } else {
         parts.insert(parts.end(), clauses.begin(), clauses.end());

@@ -116,7 +116,7 @@ std::string busyMachineWarning(double othersCpus, int allowedCpus, int threads, 
         std::snprintf(text, sizeof text,
                       "the machine was busy: other processes kept %.1f of the %d CPUs this trade "
                       "may use busy while it timed %d render thread%s; wall-clock times are inflated and "
-                      "uneven, so decisions use CPU time, and differences within the noise (+-%.0f%%) "
+                      "uneven, so decisions use CPU time, and differences within the noise (±%.1f%%) "
                       "decide nothing",
                       othersCpus, allowedCpus, threads, threads == 1 ? "" : "s", 100.0 * noise);
         return text;

@@ -57,7 +57,7 @@ TEST(TradeRecommend, ManyValuesNameTheFrontAndTheRestInAWord) {
                                            row("aa", "msaa4", 0.009, 45.0, TimeVerdict::Slower), ssaa4});
     EXPECT_EQ(tradeRecommendations(result)[0],
               "--aa: msaa2 gives half the error for 1.7× the time; ssaa4 gives 84% less error for 4.2× the "
-              "time; ssaa2 and msaa4: off the front (another value is faster for the same error, or more "
+              "time; ssaa2 and msaa4: off the front (another setting is faster for the same error, or more "
               "accurate for the same time)");
 }
 
