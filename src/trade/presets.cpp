@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "trade/time_verdicts.h"
+
 namespace facet {
 
 namespace {
@@ -155,6 +157,35 @@ void keepPresetPromises(TradeResult& result) {
             }
             result.notes.push_back(note);
         }
+    }
+    // Neither preset is beaten by a single setting on both counts, by the run's own margins (times
+    // within 1 + 2·noise and errors within the reference's own error are equal): a preset that takes
+    // ssaa16 where ssaa8 scores the same within the floor at half the time, or a fast preset no faster
+    // than flat shading alone and less accurate, would sit off the front the trade draws.
+    const double timeMargin = 1.0 + kVerdictNoiseFactor * result.timeNoise;
+    const double floor = result.referenceFloor;
+    for (const char* name : {"fast", "best"}) {
+        const auto preset = presetRow(rows, name);
+        if (preset == rows.end()) continue;
+        const TradeRow* better = nullptr;
+        for (const TradeRow& row : rows) {
+            if (!isSingleKnob(row) || row.blank || row.changesContent || row.noEffect) continue;
+            const bool asFast = row.cpuMsMedian <= preset->cpuMsMedian * timeMargin;
+            const bool asAccurate = tradeError(row) <= tradeError(*preset) + floor;
+            const bool faster = row.cpuMsMedian * timeMargin < preset->cpuMsMedian;
+            const bool moreAccurate = tradeError(row) + floor < tradeError(*preset);
+            if (!(asFast && asAccurate && (faster || moreAccurate))) continue;
+            // fast: the fastest such setting; best: the most accurate.
+            if (!better || (name == std::string("fast") ? row.cpuMsMedian < better->cpuMsMedian
+                                                        : tradeError(row) < tradeError(*better)))
+                better = &row;
+        }
+        if (!better) continue;
+        result.notes.push_back(std::string("preset ") + name + ": " + better->setting.label() + " alone (" +
+                               ms(better->cpuMsMedian) + ", 1 - SSIM " + errorText(tradeError(*better)) +
+                               ") is as fast and as accurate and better in one, within the run's noise and " +
+                               "the reference's own error: " + name + " is that setting");
+        replaceWith(*preset, *better);
     }
 }
 

@@ -28,7 +28,9 @@ TradeSetting choosePreset(const std::string& name, const std::vector<TradeRow>& 
 // preset not measured Faster than the baseline becomes the fastest single setting measured Faster (its
 // row's numbers), or is dropped when there is none; a best preset less accurate than the most accurate
 // single setting becomes that setting, or is dropped when that is the baseline. A preset row whose
-// setting has no words (no knob chose it) is dropped. Each change gets a note.
+// setting has no words (no knob chose it) is dropped. Last, a preset that a single setting beats on
+// both counts (as fast within 1 + 2·timeNoise, as accurate within referenceFloor, better in one)
+// becomes that setting: fast the fastest such, best the most accurate. Each change gets a note.
 void keepPresetPromises(TradeResult& result);
 
 }  // namespace facet

@@ -464,6 +464,44 @@ TEST(TradePresets, FastIsNeverSlowerThanTheBaselineAndBestNeverWorseThanASingleK
     EXPECT_EQ(kept.notes.size(), 1u);  // best, untimed, is the scene as given
 }
 
+// A preset beaten on both counts by a single setting, within the run's margins, becomes that setting:
+// best = ssaa16 when ssaa8 scores the same within the reference's floor at half the time; fast = flat
+// plus shadows off when flat alone is as fast within the noise and more accurate beyond the floor.
+// Catches: a preset left off the front the trade draws, the margins ignored (ssaa8 is 0.000006 worse:
+// not "less accurate" under a floor of 0.000015; flat alone is 1% slower: not "slower" under ±5% noise),
+// or the replacement taken from a row without effect.
+TEST(TradePresets, NoSingleSettingBeatsAPresetOnBothCounts) {
+    auto preset = [](const std::string& name, std::vector<std::string> words, double cpuMs,
+                     TimeVerdict verdict, double error) {
+        TradeRow row = measuredRow("baseline", "", cpuMs, verdict, error);
+        row.setting = TradeSetting{"preset", name, std::move(words)};
+        return row;
+    };
+    TradeRow sameImage = measuredRow("depth", "unorm24", 0.5, TimeVerdict::WithinNoise, 0.02);
+    sameImage.noEffect = true;  // its time is noise: never a preset
+    TradeResult result;
+    result.timeNoise = 0.05;
+    result.referenceFloor = 0.000015;
+    result.rows = {
+        measuredRow("baseline", "", 6.0, TimeVerdict::WithinNoise, 0.0026),
+        measuredRow("shading", "flat", 0.82, TimeVerdict::Faster, 0.087),
+        measuredRow("aa", "ssaa8", 60.0, TimeVerdict::Slower, 0.000384),
+        measuredRow("aa", "ssaa16", 120.0, TimeVerdict::Slower, 0.000378),
+        sameImage,
+        preset("fast", {"--shading", "flat", "--shadows", "none"}, 0.81, TimeVerdict::Faster, 0.116),
+        preset("best", {"--aa", "ssaa16"}, 121.0, TimeVerdict::Slower, 0.000378),
+    };
+    keepPresetPromises(result);
+    ASSERT_EQ(result.rows.size(), 7u);
+    EXPECT_EQ(result.rows[5].setting.value, "fast");
+    EXPECT_EQ(result.rows[5].setting.words, (std::vector<std::string>{"--shading", "flat"}));
+    EXPECT_EQ(result.rows[6].setting.value, "best");
+    EXPECT_EQ(result.rows[6].setting.words, (std::vector<std::string>{"--aa", "ssaa8"}));
+    EXPECT_EQ(result.rows[6].cpuMsMedian, 60.0);
+    EXPECT_TRUE(mentions(result.notes, "preset fast: --shading flat alone"));
+    EXPECT_TRUE(mentions(result.notes, "preset best: --aa ssaa8 alone"));
+}
+
 // The noise is the larger of how far each setting's round medians read from its own median (their 90th
 // percentile) and the median distance of the rows without effect from the baseline, never below the
 // floor; a verdict needs a difference beyond twice the noise. Catches: one row without effect that does
