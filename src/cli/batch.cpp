@@ -59,6 +59,8 @@ std::string failureMessage(const std::string& input) {
         throw;
     } catch (const facet::InputError& e) {
         return "facet: error: " + naming(e.what());
+    } catch (const facet::ResourceError& e) {
+        return "facet: error: " + naming(e.what());
     } catch (const std::bad_alloc&) {
         return "facet: error: " + naming("out of memory (try a smaller image)");
     } catch (const std::exception& e) {

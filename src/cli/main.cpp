@@ -83,10 +83,13 @@ int main(int argc, char** argv) {
         if (*tradeCommand) return facet::cli::trade(tradeArgs);
     } catch (const facet::InputError& e) {
         std::cerr << "facet: error: " << e.what() << "\n";
-        return 1;
+        return facet::kInputErrorExitStatus;
+    } catch (const facet::ResourceError& e) {
+        std::cerr << "facet: error: " << e.what() << "\n";
+        return facet::kResourceExitStatus;
     } catch (const std::bad_alloc&) {
         std::cerr << "facet: error: out of memory (try a smaller image)\n";
-        return 1;
+        return facet::kResourceExitStatus;
     } catch (const std::exception& e) {
         std::cerr << "facet: internal error: " << e.what() << "\n";
         return 2;
