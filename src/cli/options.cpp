@@ -189,7 +189,7 @@ facet::Scene sceneFromArgs(const SceneArgs& args) {
     if (args.eye) scene.camera.eye = parseVec3("--eye", *args.eye);
     if (args.target) scene.camera.target = parseVec3("--target", *args.target);
     if (args.fovy) {
-        if (!(*args.fovy >= facet::kMinFovyDegrees && *args.fovy <= facet::kMaxFovyDegrees)) {
+        if (!facet::fovyAllowed(*args.fovy)) {
             std::ostringstream message;
             message << "--fovy must be from " << facet::kMinFovyDegrees << " to " << facet::kMaxFovyDegrees
                     << " degrees (got " << *args.fovy << ")";
@@ -197,8 +197,9 @@ facet::Scene sceneFromArgs(const SceneArgs& args) {
         }
         scene.camera.fovyDegrees = *args.fovy;
     }
-    if (scene.camera.eye && scene.camera.target &&
-        glm::length(*scene.camera.eye - *scene.camera.target) == 0.0f)
+    // Compared exactly, not by a length in float: the squared distance between the eye and target of
+    // a model of 1e-30 units underflows to 0 in float, though they are far apart at its scale.
+    if (scene.camera.eye && scene.camera.target && *scene.camera.eye == *scene.camera.target)
         throw facet::InputError("the camera's eye and target are the same point");
     applyLightingOptions(args, scene);
     return scene;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -220,9 +221,47 @@ struct ColourDecoding {
     vec3 operator()(vec3 c) const { return decode ? decodeSrgb(c) : c; }
 };
 
+std::string numberText(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", value);
+    return text;
+}
+
+// An object whose "scale" or "translate" takes its model beyond the largest float (a scale of 1e30 on
+// a model of 1e20 units) has no position the pipeline can draw in: refused here, naming the key the
+// user gave, before the framing meets an infinite box (and would speak of NaN near and far planes).
+// In double, where 1e50 is still a number: the key to blame is the scale when the model's corners
+// overflow before they are moved, else the translation.
+void checkPlacementFits(const Scene& scene, std::size_t index, const Mesh& mesh) {
+    const double largest = std::numeric_limits<float>::max();
+    const glm::dmat4 m(scene.objects[index].worldFromObject);
+    double modelReach = 0.0, scaledReach = 0.0, placedReach = 0.0;  // the largest |coordinate|
+    const auto reach = [](glm::dvec3 p) { return std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}); };
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::dvec3 p((corner & 1) ? mesh.boundsMax.x : mesh.boundsMin.x,
+                           (corner & 2) ? mesh.boundsMax.y : mesh.boundsMin.y,
+                           (corner & 4) ? mesh.boundsMax.z : mesh.boundsMin.z);
+        const glm::dvec3 scaled = glm::dmat3(m) * p;
+        modelReach = std::max(modelReach, reach(p));
+        scaledReach = std::max(scaledReach, reach(scaled));
+        placedReach = std::max(placedReach, reach(scaled + glm::dvec3(m[3])));
+    }
+    if (placedReach <= largest) return;
+    const bool scaleOverflows = scaledReach > largest;
+    const std::string key = scaleOverflows ? "scale" : "translate";
+    throw InputError(scene.source.string() + ": " +
+                     inQuotes("objects[" + std::to_string(index) + "]." + key) +
+                     (scaleOverflows ? " scales the model " : " moves the model ") +
+                     scene.objects[index].model.string() + " (coordinates up to " + numberText(modelReach) +
+                     ") out to " + numberText(placedReach) + ", beyond the largest 32-bit float (" +
+                     numberText(largest) + "): nothing could be drawn; give a smaller " + inQuotes(key));
+}
+
 // The box around every object as placed.
 Bounds sceneBounds(const Scene& scene, const SceneAssets& assets) {
     Bounds bounds{vec3(std::numeric_limits<float>::max()), vec3(std::numeric_limits<float>::lowest())};
+    for (std::size_t i = 0; i < scene.objects.size(); ++i)
+        checkPlacementFits(scene, i, assets.model(scene.objects[i].model));
     for (const ObjectSpec& object : scene.objects) {
         const Bounds b = transformedBounds(assets.model(object.model), object.worldFromObject);
         bounds.min = min(bounds.min, b.min);

@@ -122,9 +122,26 @@ Camera frameCamera(const CameraSpec& spec, const Bounds& bounds, float aspect,
     const dvec3 target = spec.target ? dvec3(*spec.target) : centre;
     dvec3 up(spec.up);
 
+    // Below the smallest normal float a model's coordinates keep fewer digits than the rasterizer
+    // needs, and the power of two that would bring eye space to unit size (viewScaleFor) is beyond
+    // the largest float: every position would be infinite or NaN, and the model reported as outside
+    // the view. Said for what it is.
+    if (radius > 0.0 && radius < double(std::numeric_limits<float>::min()))
+        throw InputError(text("the scene is too small to draw: its size (", 2.0 * radius,
+                              ") is below the smallest normal 32-bit float (",
+                              std::numeric_limits<float>::min(),
+                              "), where coordinates lose their precision; scale it up (a scene file's "
+                              "object \"scale\")"));
+
     dvec3 eye;
     if (spec.eye) {
         eye = dvec3(*spec.eye);
+        // Exactly: a distance in float would underflow to 0 for a model of 1e-30 units.
+        if (eye == target)
+            throw InputError(
+                text("the camera's eye is the point it looks at, ", describe(eye),
+                     spec.target ? "" : " (the centre of the scene, looked at when no target is given)",
+                     ": give another eye or target"));
     } else {
         if (!(radius > 0.0))
             throw InputError(text("the scene has no size to frame (every vertex is at ", describe(centre),
@@ -154,9 +171,14 @@ Camera frameCamera(const CameraSpec& spec, const Bounds& bounds, float aspect,
     up = upAcross(forward, up, camera.warnings);
 
     // Near and far hug the bounding sphere as seen from the eye; an eye inside the sphere keeps a near
-    // plane at a thousandth of the scene's size.
+    // plane at a thousandth of the scene's size, or a hundredth of the distance to the target when that
+    // is nearer: in a huge scene (a ground of a million units) the eye a few units from what it looks at
+    // would otherwise clip it away and draw nothing. A hundredth keeps the target within what every
+    // depth buffer can draw (a 16-bit one draws out to about 1300 times the target's distance, see
+    // checkDepthFromInside).
     const double toCentre = glm::length(centre - eye);
-    const double near = spec.near ? double(*spec.near) : std::max(0.95 * (toCentre - radius), 1e-3 * radius);
+    const double insideNear = std::min(1e-3 * radius, 1e-2 * glm::length(target - eye));
+    const double near = spec.near ? double(*spec.near) : std::max(0.95 * (toCentre - radius), insideNear);
     const double far = spec.infiniteFar ? std::numeric_limits<double>::infinity()
                        : spec.far       ? double(*spec.far)
                                         : std::max(1.05 * (toCentre + radius), near * 2.0);

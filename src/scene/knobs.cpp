@@ -503,7 +503,13 @@ std::string SceneKnob::allowed() const {
 }
 
 bool SceneKnob::allows(double value) const {
-    if (!(value >= lowest && value <= highest)) return false;
+    // A number knob keeps a float, and a scene file's numbers are read as floats: compared as floats,
+    // so that a documented bound is accepted at the bound (a scene file's 1e30 is the float
+    // 1.0000000150e30, above the double 1e30).
+    const bool inRange = kind == KnobKind::Number
+                             ? float(value) >= float(lowest) && float(value) <= float(highest)
+                             : value >= lowest && value <= highest;
+    if (!inRange) return false;
     if (kind == KnobKind::WholeNumber && value != std::floor(value)) return false;
     if (only.empty()) return true;
     for (const int allowedValue : only)

@@ -25,6 +25,12 @@ inline constexpr std::size_t kMaxSceneTriangles = 50'000'000;  // ~3-5 GB of dra
 // pixel); at 180° the projection is infinite.
 inline constexpr double kMinFovyDegrees = 0.01;
 inline constexpr double kMaxFovyDegrees = 179.0;
+// Whether a field of view is within those bounds, as the float the camera keeps: the bounds are
+// compared as floats too, since 0.01 typed by the user becomes the float 0.0099999998, below the
+// double 0.01, and a documented bound must be accepted at the bound.
+constexpr bool fovyAllowed(float degrees) {
+    return degrees >= static_cast<float>(kMinFovyDegrees) && degrees <= static_cast<float>(kMaxFovyDegrees);
+}
 // An area light's shadow samples ("samples", --area-samples): at most 32×32 rays per point and light.
 inline constexpr int kMaxAreaSamples = 1024;
 

@@ -72,7 +72,7 @@ CameraSpec readCamera(const SceneReader& reader, const Json& camera) {
         spec.up = glm::vec3(glm::normalize(glm::dvec3(reader.nonZeroVector(*v, "camera.up"))));
     if (const Json* v = reader.find(camera, "fovy")) {
         spec.fovyDegrees = reader.number(*v, "camera.fovy");
-        if (!(spec.fovyDegrees >= kMinFovyDegrees && spec.fovyDegrees <= kMaxFovyDegrees)) {
+        if (!fovyAllowed(spec.fovyDegrees)) {
             reader.fail("\"camera.fovy\" must be from " + formatNumber(kMinFovyDegrees) + " to " +
                         formatNumber(kMaxFovyDegrees) + " degrees (got " + formatNumber(spec.fovyDegrees) +
                         ")");
