@@ -115,7 +115,8 @@ TEST(CameraExtremes, SceneBelowTheSmallestNormalFloatIsTooSmallToDraw) {
 }
 
 // A camera for a model of 1e-30 units: eye and target 2.4e-30 apart are not the same point.
-// Catches: the "same point" test done on a float length, whose square underflows to 0 at this scale.
+// Catches: the camera comparing eye and target by a float length (its square underflows to 0 at
+// this scale), refusing the view or building it from NaN.
 TEST(CameraExtremes, EyeAndTargetOfATinyModelFrameIt) {
     CameraSpec spec;
     spec.eye = vec3(0.5e-30f, 0.6e-30f, 2.6e-30f);
