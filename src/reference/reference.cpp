@@ -71,8 +71,10 @@ ReferenceDraw referenceDraw(const PreparedScene& prepared, const PreparedDraw& d
         return out;
     }
     const dmat4& viewFromObject = draw.viewFromObjectExact;
-    // Normals transform by the inverse transpose; its scale does not matter (they are normalised).
-    const dmat3 normalFromObject = glm::transpose(glm::inverse(dmat3(viewFromObject)));
+    // Normals transform by the inverse transpose, scaled to determinant 1 as the rasterizer's: the
+    // view's scale (2^60 for a 1e-18 model) would otherwise shrink them below the lighting's smallest
+    // normalisable length (wide.h's safeNormalize), a dim model.
+    const dmat3 normalFromObject = normalMatrix(viewFromObject).scaled;
     out.positions.reserve(draw.vertices.size());
     out.normals.reserve(draw.vertices.size());
     out.uvs.reserve(draw.vertices.size());

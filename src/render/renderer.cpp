@@ -310,17 +310,23 @@ std::vector<LightSpec> sceneLights(const Scene& scene) {
 LightParams eyeSpaceLight(const LightSpec& l, const Camera& camera, ColourDecoding decode) {
     const double s = camera.viewScale;
     // Camera-relative lights are given in world units: eye space is scaled by viewScale.
-    const auto toView = [&](vec3 v, float w) {
-        return l.cameraRelative ? vec3(glm::dvec3(v) * s)
-                                : vec3(camera.viewFromWorldExact * glm::dvec4(glm::dvec3(v), double(w)));
+    const auto toViewExact = [&](glm::dvec3 v, double w) {
+        return l.cameraRelative ? v * s : glm::dvec3(camera.viewFromWorldExact * glm::dvec4(v, w));
+    };
+    const auto toView = [&](vec3 v, float w) { return vec3(toViewExact(glm::dvec3(v), double(w))); };
+    // A direction is made unit length in double after the view's scale (2^-100 for a 1e30 model):
+    // normalising the scaled vector in float would square components of 1e-30 to 0, or of 1e30 to +inf,
+    // and give NaN (an unlit model).
+    const auto directionToView = [&](const glm::dvec3& d) {
+        return vec3(glm::normalize(toViewExact(d, 0.0)));
     };
     LightParams out;
     out.kind = l.type;
     // Made unit length in double first: in float, the squared length of [0, -1e-30, 0] underflows
     // to 0 and that of [-3e38, 0, 0] overflows, and normalize would give NaN (a black image).
-    const vec3 direction = vec3(glm::normalize(glm::dvec3(l.direction)));
-    if (out.kind == LightKind::Directional) out.direction = normalize(toView(direction, 0.0f));
-    if (out.kind == LightKind::Spot) out.spotDirection = normalize(toView(direction, 0.0f));
+    const glm::dvec3 direction = glm::normalize(glm::dvec3(l.direction));
+    if (out.kind == LightKind::Directional) out.direction = directionToView(direction);
+    if (out.kind == LightKind::Spot) out.spotDirection = directionToView(direction);
     if (out.kind != LightKind::Directional) out.position = toView(l.position, 1.0f);
     out.ambient = decode(l.ambient.value_or(vec3(0.0f))) * l.intensity;
     out.diffuse = decode(l.diffuse.value_or(l.color)) * l.intensity;
@@ -343,7 +349,7 @@ LightParams eyeSpaceLight(const LightSpec& l, const Camera& camera, ColourDecodi
         const glm::dvec3 u = glm::cross(v, n);
         const double halfU = out.kind == LightKind::Rect ? 0.5 * l.width : l.radius;
         const double halfV = out.kind == LightKind::Rect ? 0.5 * l.height : l.radius;
-        out.areaNormal = normalize(toView(vec3(n), 0.0f));
+        out.areaNormal = directionToView(n);
         out.areaU = toView(vec3(u * halfU), 0.0f);
         out.areaV = toView(vec3(v * halfV), 0.0f);
         out.areaSamples = l.samples;

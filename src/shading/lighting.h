@@ -144,22 +144,29 @@ struct LightVector {
 };
 
 // At the light's own position there is no direction to it: L = 0 there (no diffuse, no specular
-// light from it), never 0/0. So too where the squared distance underflows float: L is a unit vector
-// or 0, nothing between.
+// light from it), never 0/0. "At the light" means within the rounding of the positions: a vertex placed
+// exactly at the light arrives in eye space a few float steps away from the light's own eye-space
+// position (d = 1.5e-8 for a unit cube's corner), and normalising that rounding error would give a
+// unit L pointing anywhere (N·L = 0.9 lit its faces under flat and Gouraud shading). So L = 0 wherever
+// d ≤ 2^-20·|P| (P in eye space, 16 float steps of its size), or the squared distance is below normal
+// floats: L is a unit vector or 0, nothing between.
 // Under Normalization::Fast, 1/d is fastInverseSqrt(d²) and d = d²·(1/d).
+inline constexpr float kSmallestSquare = 1e-30f;     // normal floats: sqrt and the division stay exact enough
+inline constexpr float kAtLightRelative = 0x1p-20f;  // d/|P| below this: the point is at the light
 template <class F, class V3 = LaneVec3<F>, Normalization kNormalization = Normalization::Exact>
 [[gnu::always_inline]] inline LightVector<F, V3> lightVector(const LightParams& light, const V3& position) {
     if (light.kind == LightKind::Directional) return {V3(-normalize(light.direction)), lanes<F>(0.0f)};
     const V3 toLight = light.position - position;
     const F squared = dot(toLight, toLight);
-    constexpr float kSmallestSquare = 1e-30f;  // normal floats: sqrt and the division stay exact enough
+    const auto awayFromLight = squared >= max(dot(position, position) * (kAtLightRelative * kAtLightRelative),
+                                              lanes<F>(kSmallestSquare));
     if constexpr (kNormalization == Normalization::Fast) {
-        const F inverse = select(squared >= kSmallestSquare,
-                                 inverseSqrt<kNormalization>(max(squared, kSmallestSquare)), lanes<F>(0.0f));
+        const F inverse =
+            select(awayFromLight, inverseSqrt<kNormalization>(max(squared, kSmallestSquare)), lanes<F>(0.0f));
         return {toLight * inverse, squared * inverse};
     }
     const F distance = sqrt(squared);
-    const F inverse = select(squared >= kSmallestSquare, 1.0f / max(distance, 1e-15f), 0.0f);
+    const F inverse = select(awayFromLight, 1.0f / max(distance, 1e-15f), 0.0f);
     return {toLight * inverse, distance};
 }
 
