@@ -134,11 +134,12 @@ TEST_F(MemoryLimitCli, StepPageBeyondTheLimitIsRefusedBeforeTheWork) {
 // first): the headers are read first, so textures whose data is cut short (a decode would only warn)
 // are refused by their total before any is decoded.
 TEST_F(MemoryLimitCli, TexturesAreRefusedByTheirTotalFromTheirHeaders) {
-    // Two 512² RGB PNGs cut after their header: 2 × 1 MiB once decoded.
+    // Two 512² RGB PNGs cut short in their first IDAT chunk: 2 × 1 MiB once decoded.
     for (const char* name : {"a.png", "b.png"}) {
         const unsigned char header[] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0,    0,    0,
                                         13,   'I', 'H', 'D', 'R',  0,    0,    2,    0,    0,    0,
-                                        2,    0,   8,   2,   0,    0,    0,    0x7b, 0x1a, 0x43, 0xad};
+                                        2,    0,   8,   2,   0,    0,    0,    0x7b, 0x1a, 0x43, 0xad,
+                                        0,    0,   16,  0,   'I',  'D',  'A',  'T',  0x78, 0x9c};
         std::ofstream(folder_ / name, std::ios::binary)
             .write(reinterpret_cast<const char*>(header), sizeof header);
     }
