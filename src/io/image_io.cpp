@@ -518,10 +518,10 @@ void checkTextureTotal(const std::vector<fs::path>& files, const TextureLimits& 
     const std::string count = std::to_string(files.size());
     // (One texture too large: readTexture names it and its size.)
     if (files.size() > 1 && total > limits.maxTotalBytes)
-        throw InputError("the " + count + " textures of this render need " + gibibytes(total) +
-                         " together (the largest, " + largestFile.string() + ", " + gibibytes(largest) +
-                         "); the textures of one render may take at most " + gibibytes(limits.maxTotalBytes) +
-                         " together (scale them down)");
+        throw InputError("the " + count + " textures of this render need " + describeBytes(total) +
+                         " together (the largest, " + largestFile.string() + ", " + describeBytes(largest) +
+                         "); the textures of one render may take at most " +
+                         describeBytes(limits.maxTotalBytes) + " together (scale them down)");
     requireMemory(files.size() == 1 ? "loading the texture " + files.front().string()
                                     : "loading the " + count + " textures of this render",
                   total);
