@@ -28,6 +28,10 @@ void FragmentLists::prepare(int width, int height, int tileSize) {
             std::to_string(height_) + " target drawn in tiles of " + std::to_string(tileSize_) +
             " pixels; clear them before drawing into them at " + std::to_string(width) + "x" +
             std::to_string(height) + " in tiles of " + std::to_string(tileSize));
+    if (tileSize != tileSize_ || width != width_ || height != height_) {
+        pools_.clear();  // their tiles change: the next frame grows them anew
+        nodeBytesHeld_ = 0;
+    }
     if (width != width_ || height != height_)
         heads_.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), kEnd);
     width_ = width;
@@ -40,10 +44,29 @@ void FragmentLists::prepare(int width, int height, int tileSize) {
 
 FragmentLists::TileWriter FragmentLists::writer(int x, int y) {
     TileWriter w;
+    w.lists_ = this;
     w.pool_ = &pools_[static_cast<std::size_t>(y / tileSize_) * columns_ + x / tileSize_];
     w.heads_ = heads_.data();
     w.width_ = width_;
     return w;
+}
+
+bool FragmentLists::grow(std::vector<Node>& nodes) {
+    const std::size_t capacity = nodes.capacity(),
+                      next = std::min<std::size_t>(nextCapacity(capacity), kMaxNodesPerTile);
+    const std::uint64_t more = nodeBytes(next) - nodeBytes(capacity);
+    std::atomic_ref<std::uint64_t> heldBytes(nodeBytesHeld_), refusedBytes(refusedBytes_);
+    const std::uint64_t held = heldBytes.fetch_add(more, std::memory_order_relaxed) + more;
+    if (held > byteBudget_) {
+        heldBytes.fetch_sub(more, std::memory_order_relaxed);
+        std::uint64_t refused = refusedBytes.load(std::memory_order_relaxed);
+        while (held > refused &&
+               !refusedBytes.compare_exchange_weak(refused, held, std::memory_order_relaxed)) {
+        }
+        return false;
+    }
+    nodes.reserve(next);
+    return true;
 }
 
 PixelRect FragmentLists::tileRect(int tile) const {
@@ -53,6 +76,7 @@ PixelRect FragmentLists::tileRect(int tile) const {
 }
 
 void FragmentLists::clear(ThreadPool& pool) {
+    refusedBytes_ = 0;
     pool.parallelFor(pools_.size(), [&](std::size_t tile, int) {
         TilePool& tilePool = pools_[tile];
         tilePool.dropped = 0;

@@ -33,6 +33,7 @@
 // and the pools' sizes.
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <iosfwd>
@@ -98,6 +99,10 @@ class FragmentLists {
                 ++pool_->dropped;
                 return false;
             }
+            if (index == nodes.capacity() && !lists_->grow(nodes)) [[unlikely]] {
+                ++pool_->dropped;  // past the memory limit: the renderer refuses the frame after it
+                return false;
+            }
             std::uint32_t& head = heads_[static_cast<std::size_t>(y) * width_ + x];
             nodes.push_back(Node{color, depth, head | (static_cast<std::uint32_t>(mode) << kIndexBits)});
             head = static_cast<std::uint32_t>(index);
@@ -107,6 +112,7 @@ class FragmentLists {
       private:
         friend class FragmentLists;
         TilePool* pool_ = nullptr;
+        FragmentLists* lists_ = nullptr;
         std::uint32_t* heads_ = nullptr;
         int width_ = 0;
     };
@@ -124,6 +130,22 @@ class FragmentLists {
         depthFormat_ = depth;
         colorBuffer_ = color;
     }
+
+    // The memory the node pools may hold together (the memory limit less what the frame's other
+    // buffers take; unlimited unless set): a pool that would grow past it does not, the fragment is
+    // dropped and overBudget() says so, for the renderer to refuse the frame with a message instead of
+    // running out of memory (1,000 layers at 640x480 are 7.4 GB of nodes). Kept until set again.
+    void setByteBudget(std::uint64_t bytes) { byteBudget_ = bytes; }
+    bool overBudget() const { return bytesRefused() != 0; }
+    // The node memory a refused growth would have brought the pools to (0 when none was refused).
+    std::uint64_t bytesRefused() const {
+        return std::atomic_ref<std::uint64_t>(const_cast<std::uint64_t&>(refusedBytes_))
+            .load(std::memory_order_relaxed);
+    }
+    // The bytes of nodes a pool of `capacity` holds, and its next capacity: the one rule grow() and the
+    // estimate in tests use.
+    static std::uint64_t nodeBytes(std::size_t capacity) { return std::uint64_t(capacity) * sizeof(Node); }
+    static std::size_t nextCapacity(std::size_t capacity) { return capacity < 64 ? 64 : 2 * capacity; }
 
     // The writer for the tile holding pixel (x, y): the back end passes its tile's top-left pixel.
     TileWriter writer(int x, int y);
@@ -170,6 +192,13 @@ class FragmentLists {
     template <bool kLessIsNearer, ColorBufferFormat kColor, class Observer>
     void resolveTiles(Framebuffer& target, ThreadPool& pool, Observer& observer);
 
+    // Grows a full pool to nextCapacity() when the budget allows; false (and bytesRefused set) when not.
+    bool grow(std::vector<Node>& nodes);
+
+    std::uint64_t byteBudget_ = ~std::uint64_t{0};
+    // Written by the threads of a draw at once: through std::atomic_ref.
+    std::uint64_t nodeBytesHeld_ = 0;  // the pools' capacity, in bytes
+    std::uint64_t refusedBytes_ = 0;
     int width_ = 0, height_ = 0;
     int tileSize_ = 0;
     int columns_ = 0, rows_ = 0;           // tiles across and down the framebuffer

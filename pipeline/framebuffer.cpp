@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 
 #include "blend.h"
 #include "thread_pool.h"
@@ -52,6 +53,23 @@ Framebuffer::Framebuffer(int width, int height)
       clearedCellsKnown_(true),
       clearedColor_(0.0f),
       clearedDepth_(DepthFormat::kClear) {}
+
+std::uint64_t Framebuffer::bytesFor(int width, int height, int samples) {
+    const std::uint64_t pixels = std::uint64_t(std::max(width, 0)) * std::uint64_t(std::max(height, 0));
+    const std::uint64_t perPixel = sizeof(vec4) + sizeof(DepthFormat::Stored);
+    const std::uint64_t planes = samples > 1 ? 1 + std::uint64_t(samples) : 1;
+    const std::uint64_t cells = std::uint64_t((width + kClearCell - 1) / kClearCell) *
+                                std::uint64_t((height + kClearCell - 1) / kClearCell);
+    const std::uint64_t most = std::numeric_limits<std::uint64_t>::max();
+    if (pixels != 0 && perPixel * planes > most / pixels) return most;
+    return pixels * perPixel * planes + cells;
+}
+
+std::uint64_t Framebuffer::bytesHeld() const {
+    return color_.size() * sizeof(vec4) + depth_.size() * sizeof(DepthFormat::Stored) +
+           sampleColor_.size() * sizeof(vec4) + sampleDepth_.size() * sizeof(DepthFormat::Stored) +
+           cellState_.size();
+}
 
 void Framebuffer::clearColor(vec4 color) {
     settleClear();

@@ -51,6 +51,14 @@ class Framebuffer {
     int width() const { return width_; }
     int height() const { return height_; }
 
+    // The bytes a width x height framebuffer holds with `samples` samples per pixel (useSamples): its
+    // colour and depth planes, the sample planes when samples > 1, and the per-cell clear state. The
+    // renderer's memory estimate (src/render/memory_estimate.h) uses this; bytesHeld() counts the same
+    // planes as allocated, and a test checks that they agree. Not the fragment lists (they grow with
+    // the fragments drawn). Saturates instead of wrapping.
+    static std::uint64_t bytesFor(int width, int height, int samples);
+    std::uint64_t bytesHeld() const;
+
     void clearColor(vec4 color);
     void clearDepth(DepthFormat::Stored depth = DepthFormat::kClear);
     // Colour and depth at once (and every sample's, when multisampled), and the fragment lists emptied

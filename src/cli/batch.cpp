@@ -16,6 +16,7 @@
 #include <unordered_map>
 
 #include "base/errors.h"
+#include "base/memory_limit.h"
 #include "base/quote.h"
 #include "cli/render_command.h"
 
@@ -62,7 +63,7 @@ std::string failureMessage(const std::string& input) {
     } catch (const facet::ResourceError& e) {
         return "facet: error: " + naming(e.what());
     } catch (const std::bad_alloc&) {
-        return "facet: error: " + naming("out of memory (try a smaller image)");
+        return "facet: error: " + naming(facet::outOfMemoryMessage());
     } catch (const std::exception& e) {
         return "facet: internal error: " + naming(e.what());
     } catch (...) {

@@ -56,6 +56,7 @@ CLI::App* addCompareCommand(CLI::App& app, CompareArgs& args) {
         ->add_option("--threads", args.scene.threads,
                      "Facet's worker threads (default: one per hardware thread)")
         ->check(wholeNumber(0, 1024));
+    addMemoryLimitOption(*command);
     CLI::Option* reference = command->add_flag(
         "--reference", args.reference,
         "Compare with the exact reference renderer (ray casting in double) instead of OpenGL: the surface, "

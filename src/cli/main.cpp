@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "base/errors.h"
+#include "base/memory_limit.h"
 #include "cli/bench_command.h"
 #include "cli/compare_command.h"
 #include "cli/render_command.h"
@@ -88,7 +89,7 @@ int main(int argc, char** argv) {
         std::cerr << "facet: error: " << e.what() << "\n";
         return facet::kResourceExitStatus;
     } catch (const std::bad_alloc&) {
-        std::cerr << "facet: error: out of memory (try a smaller image)\n";
+        std::cerr << "facet: error: " << facet::outOfMemoryMessage() << "\n";
         return facet::kResourceExitStatus;
     } catch (const std::exception& e) {
         std::cerr << "facet: internal error: " << e.what() << "\n";

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "base/errors.h"
+#include "base/memory_limit.h"
 #include "base/quote.h"
 #include "scene/limits.h"
 
@@ -101,6 +102,25 @@ CLI::Option* addKnobOption(CLI::App& command, const std::string& name, SceneArgs
                          [&args, name](const std::string& value) { args.knobs[name] = value; });
 }
 
+void addMemoryLimitOption(CLI::App& command) {
+    command
+        .add_option_function<std::string>(
+            "--memory-limit", [](const std::string& text) { facet::setMemoryLimit(text, "--memory-limit"); },
+            "Refuse work whose buffers need more memory than SIZE, like 4G or 512M (default: half the "
+            "machine's memory, less under ulimit -v or a container's limit; or FACET_MEMORY_LIMIT)")
+        ->check(CLI::Validator(
+            [](std::string& text) -> std::string {
+                try {
+                    facet::parseMemorySize(text, "--memory-limit");
+                } catch (const facet::InputError& e) {
+                    const std::string message = e.what();  // CLI11 puts "--memory-limit: " before it
+                    return message.substr(message.find(' ') + 1);
+                }
+                return "";
+            },
+            "SIZE"));
+}
+
 void addSceneOptions(CLI::App& command, SceneArgs& args) {
     command.add_option("input", args.input, "Model (.obj) or scene (.json)")->required();
     command.add_option("--width", args.width, "Image width in pixels (default 1280)")->check(kWholeNumber);
@@ -112,6 +132,7 @@ void addSceneOptions(CLI::App& command, SceneArgs& args) {
         ->check(kFiniteNumber);
     command.add_option("--threads", args.threads, "Worker threads (default: one per hardware thread)")
         ->check(wholeNumber(0, 1024));
+    addMemoryLimitOption(command);
     for (const facet::SceneKnob& knob : facet::sceneKnobs())
         if (!knob.flag.empty()) addKnobOption(command, knob.name, args);
     addInfiniteFarOption(command, args);

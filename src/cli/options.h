@@ -87,6 +87,9 @@ CLI::Option* addKnobOption(CLI::App& command, const facet::SceneKnob& knob,
 // The option of the knob named `name`, into args.knobs.
 CLI::Option* addKnobOption(CLI::App& command, const std::string& name, SceneArgs& args);
 
+// --memory-limit SIZE (base/memory_limit.h): the limit the estimates made before the work are checked
+// against; render, step, trade and compare take it.
+void addMemoryLimitOption(CLI::App& command);
 // Adds SceneArgs's options (and the input) to `command`, as `facet render` describes them: every knob
 // with a flag, in the table's order.
 void addSceneOptions(CLI::App& command, SceneArgs& args);

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "base/errors.h"
+#include "base/memory_limit.h"
 #include "base/quote.h"
 #include "io/text_file.h"
 #include "render/renderer.h"
@@ -307,6 +308,12 @@ int step(const StepArgs& args) {
     if (args.html) planHtml(args, scene.width, scene.height);  // too many pixels refused before any work
     if (args.htmlRegion && !args.html) throw facet::InputError("--html-region needs --html DIR");
     checkStageScale(args, scene.width, scene.height);
+    if (args.html || args.stages)  // the stage images' planes, before the scene is loaded
+        facet::requireMemory(std::string("drawing the stage images of ") +
+                                 (args.html ? "--html" : "--stages") + " for a " +
+                                 std::to_string(scene.width) + "x" + std::to_string(scene.height) + " image",
+                             facet::step::stageImagesBytes(scene.width, scene.height,
+                                                           args.html ? 1 : args.stageScale.value_or(1)));
     if (args.versus && (args.screen || args.format))
         throw facet::InputError(std::string(args.screen ? "--screen" : "--format") +
                                 " prints one walk; --versus prints two side by side: give one of them");

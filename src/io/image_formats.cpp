@@ -74,15 +74,44 @@ class PngReader final : public ImageFileReader {
         if (firstChannel < 0 || endChannel > header_.channels || firstChannel >= endChannel)
             return fail("channels out of range");
         if (!asFloat && !header_.eightBit) return fail("16-bit data cannot be read as 8-bit codes");
-        if (!decoded_ && !decode()) return false;
-        const std::size_t pixels = static_cast<std::size_t>(header_.width) * header_.height;
-        const int channels = header_.channels;
         auto* bytes = static_cast<unsigned char*>(out);
+        const std::size_t rowStride = static_cast<std::size_t>(header_.width) * pixelStride;
+        // A file without interlacing is decoded row by row straight into `out`: a 16384² RGB texture
+        // needs its 1 GiB of texels and one row more, not another 768 MiB for the whole decoded file.
+        if (!decoded_ && passes_ == 1) {
+            if (streamed_) return fail("the PNG's rows were read already");
+            streamed_ = true;
+            std::vector<std::uint8_t> row(rowBytes_);
+            for (int y = 0; y < header_.height; ++y) {
+                if (!decodeRow(row.data())) return fail(sink_.message);
+                convertRow(row.data(), firstChannel, endChannel, asFloat, bytes + y * rowStride, pixelStride);
+            }
+            return finishRows() || fail(sink_.message);
+        }
+        if (!decoded_ && !decode()) return false;
+        for (int y = 0; y < header_.height; ++y)
+            convertRow(pixels_.data() + y * rowBytes_, firstChannel, endChannel, asFloat,
+                       bytes + y * rowStride, pixelStride);
+        return true;
+    }
+
+    std::string error() override { return error_; }
+
+  private:
+    bool fail(std::string what) {
+        error_ = std::move(what);
+        return false;
+    }
+
+    // One decoded row's channels [firstChannel, endChannel) into `bytes`, pixels `pixelStride` apart.
+    void convertRow(const std::uint8_t* row, int firstChannel, int endChannel, bool asFloat,
+                    unsigned char* bytes, std::size_t pixelStride) const {
+        const int channels = header_.channels;
         if (header_.eightBit) {
             // OpenImageIO's conversion of a code to float: code · (1/255).
             constexpr float kScale = 1.0f / 255.0f;
-            for (std::size_t i = 0; i < pixels; ++i, bytes += pixelStride) {
-                const std::uint8_t* from = &pixels_[i * channels];
+            for (int i = 0; i < header_.width; ++i, bytes += pixelStride) {
+                const std::uint8_t* from = &row[static_cast<std::size_t>(i) * channels];
                 for (int c = firstChannel; c < endChannel; ++c) {
                     if (asFloat) {
                         const float value = from[c] * kScale;
@@ -94,24 +123,27 @@ class PngReader final : public ImageFileReader {
             }
         } else {
             constexpr float kScale = 1.0f / 65535.0f;  // as OpenImageIO converts 16-bit samples
-            for (std::size_t i = 0; i < pixels; ++i, bytes += pixelStride) {
+            for (int i = 0; i < header_.width; ++i, bytes += pixelStride) {
                 for (int c = firstChannel; c < endChannel; ++c) {
                     std::uint16_t code;
-                    std::memcpy(&code, &pixels_[(i * channels + c) * 2], sizeof code);
+                    std::memcpy(&code, &row[(static_cast<std::size_t>(i) * channels + c) * 2], sizeof code);
                     const float value = code * kScale;
                     std::memcpy(bytes + (c - firstChannel) * sizeof(float), &value, sizeof value);
                 }
             }
         }
+    }
+
+    bool decodeRow(std::uint8_t* row) {
+        if (setjmp(png_jmpbuf(png_))) return false;
+        png_read_row(png_, row, nullptr);
         return true;
     }
 
-    std::string error() override { return error_; }
-
-  private:
-    bool fail(std::string what) {
-        error_ = std::move(what);
-        return false;
+    bool finishRows() {
+        if (setjmp(png_jmpbuf(png_))) return false;
+        png_read_end(png_, nullptr);
+        return true;
     }
 
     // The signature and the header, with the transforms that give what OpenImageIO reads: palettes
@@ -133,7 +165,7 @@ class PngReader final : public ImageFileReader {
         if (colorType == PNG_COLOR_TYPE_GRAY && bitDepth < 8) png_set_expand_gray_1_2_4_to_8(png_);
         if (png_get_valid(png_, info_, PNG_INFO_tRNS)) png_set_tRNS_to_alpha(png_);
         if (bitDepth == 16) png_set_swap(png_);
-        png_set_interlace_handling(png_);
+        passes_ = png_set_interlace_handling(png_);
         png_read_update_info(png_, info_);
         header_.width = static_cast<int>(png_get_image_width(png_, info_));
         header_.height = static_cast<int>(png_get_image_height(png_, info_));
@@ -169,7 +201,9 @@ class PngReader final : public ImageFileReader {
     std::size_t rowBytes_ = 0;
     std::vector<std::uint8_t> pixels_;
     std::vector<png_bytep> rows_;
-    bool decoded_ = false;
+    int passes_ = 1;         // 7 for an interlaced (Adam7) file: decoded whole, then converted
+    bool decoded_ = false;   // the whole image is in pixels_
+    bool streamed_ = false;  // its rows were decoded straight into a read's `out`
     std::string error_;
 };
 

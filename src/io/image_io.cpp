@@ -23,6 +23,7 @@
 #include <unistd.h>
 
 #include "base/errors.h"
+#include "base/memory_limit.h"
 #include "base/quote.h"
 #include "io/image_file.h"
 #include "pipeline/color.h"
@@ -173,6 +174,12 @@ std::string gibibytes(std::size_t bytes) {
     char text[32];
     std::snprintf(text, sizeof text, "%.2f GiB", static_cast<double>(bytes) / double(std::size_t{1} << 30));
     return text;
+}
+
+// What a texture's texels take in memory (Texture): 8-bit files as codes, others as float.
+std::size_t texelBytes(const ImageHeader& spec) {
+    return static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height) *
+           (spec.eightBit ? sizeof(Texture::Codes) : sizeof(vec4));
 }
 
 // The texture's texels, read into `texture` (its size set): channels 0..3 of each pixel into the four
@@ -439,8 +446,7 @@ TextureRead readTexture(const fs::path& path, bool decodeSrgb, const TextureLimi
                        std::to_string(limits.maxSide) + " pixels on a side (scale it down)");
     }
     const bool eightBit = spec.eightBit;
-    const std::size_t bytes = static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height) *
-                              (eightBit ? sizeof(Texture::Codes) : sizeof(vec4));
+    const std::size_t bytes = texelBytes(spec);
     if (bytes > bytesLeft) {
         libraryOutput.finish();
         const std::size_t used = limits.maxTotalBytes - std::min(bytesLeft, limits.maxTotalBytes);
@@ -483,6 +489,42 @@ TextureRead readTexture(const fs::path& path, bool decodeSrgb, const TextureLimi
     const std::string printed = libraryOutput.finish();
     (void)printed;  // a successful read may have printed warnings; a texture that reads is used as it is
     return result;
+}
+
+std::uint64_t textureBytesFromHeader(const fs::path& path) {
+    std::error_code error;
+    if (!fs::is_regular_file(path, error)) return 0;
+    StderrCapture libraryOutput;  // a file that is no image: readTexture warns of it later
+    std::string problem;
+    const std::unique_ptr<ImageFileReader> input = openImageFile(path, problem);
+    libraryOutput.finish();
+    if (!input) return 0;
+    const ImageHeader& spec = input->header();
+    if (spec.deep || spec.width <= 0 || spec.height <= 0 || spec.depth > 1 || spec.channels <= 0) return 0;
+    return texelBytes(spec);
+}
+
+void checkTextureTotal(const std::vector<fs::path>& files, const TextureLimits& limits) {
+    std::uint64_t total = 0, largest = 0;
+    fs::path largestFile;
+    for (const fs::path& file : files) {
+        const std::uint64_t bytes = textureBytesFromHeader(file);
+        total += bytes;
+        if (bytes > largest) {
+            largest = bytes;
+            largestFile = file;
+        }
+    }
+    const std::string count = std::to_string(files.size());
+    // (One texture too large: readTexture names it and its size.)
+    if (files.size() > 1 && total > limits.maxTotalBytes)
+        throw InputError("the " + count + " textures of this render need " + describeBytes(total) +
+                         " together (the largest, " + largestFile.string() + ", " + describeBytes(largest) +
+                         "); the textures of one render may take at most " +
+                         describeBytes(limits.maxTotalBytes) + " together (scale them down)");
+    requireMemory(files.size() == 1 ? "loading the texture " + files.front().string()
+                                    : "loading the " + count + " textures of this render",
+                  total);
 }
 
 }  // namespace facet

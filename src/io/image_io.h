@@ -81,4 +81,14 @@ struct TextureRead {
 TextureRead readTexture(const std::filesystem::path& path, bool decodeSrgb, const TextureLimits& limits,
                         std::size_t bytesLeft);
 
+// The bytes readTexture will hold for the texels of `path`, from its header alone (nothing is decoded):
+// width × height × 4 for 8-bit files, × 16 for others; 0 when the file is missing or not an image
+// (readTexture then says why).
+std::uint64_t textureBytesFromHeader(const std::filesystem::path& path);
+
+// Refuses, from the files' headers and before any is decoded, textures that together exceed
+// limits.maxTotalBytes (InputError, naming the count, the total and the largest file) or the memory
+// limit (ResourceError, base/memory_limit.h): five 8192² textures are refused before the first is read.
+void checkTextureTotal(const std::vector<std::filesystem::path>& files, const TextureLimits& limits);
+
 }  // namespace facet

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "base/errors.h"
+#include "base/memory_limit.h"
 #include "base/quote.h"
 
 namespace facet {
@@ -73,18 +74,36 @@ void loadTexture(SceneAssets& assets, const std::filesystem::path& file, const s
 }
 
 // The maps of every part with triangles, in the order the draws are made: object by object, part by
-// part, the emission map before the diffuse one.
-void loadTextures(SceneAssets& assets) {
+// part, the emission map before the diffuse one; `visit(file, material name)`.
+template <class Visit>
+void forEachTexture(const SceneAssets& assets, Visit visit) {
     for (const std::filesystem::path& file : assets.options.objectModels) {
         const Mesh& mesh = assets.model(file);
         for (const MeshPart& part : mesh.parts) {
             if (part.indexCount == 0) continue;
             const Material& material = mesh.materials.at(part.material);
-            if (!material.emissionTexture.empty())
-                loadTexture(assets, material.emissionTexture, material.name);
-            if (!material.diffuseTexture.empty()) loadTexture(assets, material.diffuseTexture, material.name);
+            if (!material.emissionTexture.empty()) visit(material.emissionTexture, material.name);
+            if (!material.diffuseTexture.empty()) visit(material.diffuseTexture, material.name);
         }
     }
+}
+
+// Every texture file the render reads (each once) and the environment map, whose total is checked
+// from their headers before any is decoded.
+std::vector<std::filesystem::path> textureFiles(const SceneAssets& assets) {
+    std::vector<std::filesystem::path> files;
+    if (assets.options.textured)
+        forEachTexture(assets, [&](const std::filesystem::path& file, const std::string&) {
+            if (std::find(files.begin(), files.end(), file) == files.end()) files.push_back(file);
+        });
+    if (!assets.options.environment.empty()) files.push_back(assets.options.environment);
+    return files;
+}
+
+void loadTextures(SceneAssets& assets) {
+    forEachTexture(assets, [&](const std::filesystem::path& file, const std::string& material) {
+        loadTexture(assets, file, material);
+    });
 }
 
 // The environment map: a file that cannot be read is an error naming it and the key (or flag) that
@@ -135,6 +154,8 @@ SceneAssets loadSceneAssets(const AssetOptions& options) {
     SceneAssets assets;
     assets.options = options;
     loadModels(assets);
+    checkTextureTotal(textureFiles(assets), options.limits);
+    const MemoryUse use("loading textures");
     if (options.textured) loadTextures(assets);
     if (!options.environment.empty()) loadEnvironment(assets);
     return assets;

@@ -10,6 +10,7 @@
 #include <unordered_map>
 
 #include "base/errors.h"
+#include "base/memory_limit.h"
 #include "base/quote.h"
 #include "pipeline/color.h"
 #include "render/draw_geometry.h"
@@ -565,6 +566,7 @@ void checkFrameSettings(const Scene& scene) {
         message += " or --transparency sorted";
         throw InputError(message);
     }
+    checkFrameMemory(scene);  // before any file is read
 }
 
 PreparedScene prepareFrame(const Scene& scene, std::shared_ptr<const SceneAssets> assets) {
@@ -679,6 +681,8 @@ void prepareShadows(PreparedScene& prepared) {
         shadows->rays = std::make_unique<RayScene>(meshes);
         forShaders.rays = shadows->rays.get();
     }
+    checkShadowMapMemory(prepared);  // before the first map is drawn
+    const MemoryUse use("drawing the shadow maps (--shadow-map-size)");
     for (std::size_t i = 0; i < kMaxLights; ++i) {
         forShaders.lights[i].method = prepared.shadowMethods[i];
         if (prepared.shadowMethods[i] == ShadowMethod::Map) {

@@ -19,6 +19,7 @@
 #include "pipeline/sample_position.h"
 #include "raycast/ray_scene.h"
 #include "render/frame_kernels.h"
+#include "render/memory_estimate.h"
 #include "render/transparency_sort.h"
 #include "render/user_shaders.h"
 #include "scene/camera.h"
@@ -498,6 +499,10 @@ template <class Observer>
 void drawFramePass(const PreparedScene& prepared, std::span<const PlannedDraw> plan, Framebuffer& target,
                    DrawContext& context, Observer& observer, std::uint8_t terms,
                    const glm::dmat4* clipFromView, FrameStats& stats) {
+    // Exact transparency's lists may hold what the memory limit leaves beside the image (memory_estimate.h).
+    const bool exact =
+        prepared.scene.transparency.mode == TransparencyMode::Exact && !prepared.transparentTriangles.empty();
+    if (exact) target.fragmentLists().setByteBudget(fragmentListBudget(prepared.scene));
     // The background and the far plane, as the buffers' formats store them.
     target.clear(roundToColorBuffer(prepared.state.colorBuffer, prepared.clearColor),
                  depthClearValue(prepared.state.depth.format), context.pool);
@@ -534,8 +539,8 @@ void drawFramePass(const PreparedScene& prepared, std::span<const PlannedDraw> p
         });
     }
     // Exact transparency: every pixel's fragments sorted by depth and composited, farthest first.
-    if (prepared.scene.transparency.mode == TransparencyMode::Exact &&
-        !prepared.transparentTriangles.empty()) {
+    if (exact) {
+        checkFragmentListMemory(prepared.scene, target.fragmentLists().bytesRefused());
         const auto start = std::chrono::steady_clock::now();
         if constexpr (Observer::enabled)
             stats.fragmentLists = resolveFragmentLists(target, context.pool, observer);

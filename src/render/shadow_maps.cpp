@@ -6,6 +6,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "base/memory_limit.h"
 #include "pipeline/pipeline.h"
 #include "render/renderer.h"
 
@@ -68,6 +69,19 @@ glm::dmat4 perspectiveFrom(const glm::dvec3& eye, const glm::dvec3& forward, dou
 
 }  // namespace
 
+int shadowMapFaces(const LightParams& light) {
+    if (light.kind == LightKind::Directional) return 1;
+    const float cone =
+        light.spotProfile == SpotProfile::Smooth ? light.spotOuterDegrees : light.spotCutoffDegrees;
+    return light.kind == LightKind::Spot && cone <= kWidestSingleMapSpotDegrees ? 1 : 6;
+}
+
+std::uint64_t shadowMapBytes(std::uint64_t faces, int size) {
+    const std::uint64_t texels = std::uint64_t(size) * std::uint64_t(size);
+    return plusSaturating(timesSaturating(faces, timesSaturating(texels, sizeof(DepthFormat::Stored))),
+                          Framebuffer::bytesFor(size, size, 1));
+}
+
 DrawState shadowMapDrawState(const ShadowMapOptions& options) {
     DrawState state;
     state.viewport = {0, 0, options.size, options.size};
@@ -93,7 +107,8 @@ std::unique_ptr<ShadowMap> drawShadowMap(const PreparedScene& prepared, int ligh
     const glm::dvec3 position(light.position);
     const double cone =
         light.spotProfile == SpotProfile::Smooth ? light.spotOuterDegrees : light.spotCutoffDegrees;
-    if (light.kind == LightKind::Directional) {
+    const int faces = shadowMapFaces(light);
+    if (faces == 1 && light.kind == LightKind::Directional) {
         // Orthographic, along the light, over the scene's bounding sphere: the eye 2r behind the centre,
         // near and far r either side of it (a tenth of r to spare for the depth offset).
         const glm::dvec3 along = glm::normalize(glm::dvec3(light.direction));
@@ -101,7 +116,7 @@ std::unique_ptr<ShadowMap> drawShadowMap(const PreparedScene& prepared, int ligh
         const double r = scene.radius;
         clipFromEye.push_back(glm::ortho(-r, r, -r, r, 0.9 * r, 3.1 * r) *
                               glm::lookAt(eye, scene.centre, upFor(along)));
-    } else if (light.kind == LightKind::Spot && cone <= kWidestSingleMapSpotDegrees) {
+    } else if (faces == 1) {  // a spot light of a narrow cone
         // Perspective over the cone (fovy = 2 × its half-angle, plus the margin).
         const glm::dvec3 axis = glm::normalize(glm::dvec3(light.spotDirection));
         clipFromEye.push_back(
@@ -113,6 +128,7 @@ std::unique_ptr<ShadowMap> drawShadowMap(const PreparedScene& prepared, int ligh
             clipFromEye.push_back(perspectiveFrom(position, axis, 1.0, scene, options.size));
     }
 
+    map->faces.reserve(clipFromEye.size());
     const DrawState state = shadowMapDrawState(options);
     DrawContext context;
     Framebuffer target(options.size, options.size);

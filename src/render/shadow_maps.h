@@ -2,6 +2,7 @@
 // light, into one size × size depth image (directional and spot lights) or six (point lights).
 #pragma once
 
+#include <cstdint>
 #include <memory>
 
 #include "pipeline/state.h"
@@ -27,6 +28,14 @@ inline constexpr int kShadowMapMarginTexels = 3;
 // texels (1, 2 or 4: the taps lie up to that many texels of the surface's slope from the point),
 // units = constantBias.
 DrawState shadowMapDrawState(const ShadowMapOptions& options);
+
+// The faces of a light's shadow map: 1 for a directional light and a spot light of a cone up to
+// kWidestSingleMapSpotDegrees, 6 (a cube map) for a point light and a wider spot. drawShadowMap draws
+// this many; the memory estimate counts them.
+int shadowMapFaces(const LightParams& light);
+// The bytes the shadow maps of lights with `faces` faces in all take at `size` texels a side: each
+// face's depths, and the one size x size framebuffer they are drawn in (Framebuffer::bytesFor).
+std::uint64_t shadowMapBytes(std::uint64_t faces, int size);
 
 // The shadow map of light `light` (its index in the uniforms' lights) for the objects as placed now.
 std::unique_ptr<ShadowMap> drawShadowMap(const PreparedScene& prepared, int light);

@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "base/errors.h"
+#include "base/memory_limit.h"
 #include "pipeline/depth_format.h"
 #include "pipeline/viewport.h"
 #include "shading/fog.h"
@@ -627,6 +628,18 @@ LinearImage magnified(const LinearImage& image, int scale) {
         for (int x = 0; x < out.width; ++x)
             out.at(x, y) = image.at(x / scale, y / scale);
     return out;
+}
+
+std::uint64_t stageImagesBytes(int width, int height, int scale) {
+    const std::uint64_t pixels = std::uint64_t(width) * std::uint64_t(height);
+    // StageRecorder: triangles_, normals_, fogFactors_, fragments_, layers_, wire_.
+    const std::uint64_t recorder = 3 * sizeof(vec4) + 2 * sizeof(std::uint32_t) + sizeof(std::uint8_t);
+    // The stage emitted (a LinearImage), depthStage's distances, renderColour's image.
+    const std::uint64_t stage = sizeof(vec4) + sizeof(double) + sizeof(vec4);
+    const std::uint64_t magnifiedCopy =
+        scale > 1 ? timesSaturating(std::uint64_t(scale) * std::uint64_t(scale), sizeof(vec4)) : 0;
+    return plusSaturating(Framebuffer::bytesFor(width, height, 1),
+                          timesSaturating(pixels, recorder + stage + magnifiedCopy));
 }
 
 std::vector<StageImage> writeStageImages(const PreparedScene& prepared, const std::filesystem::path& dir,

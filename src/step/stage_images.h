@@ -49,6 +49,13 @@ void renderStageImages(const PreparedScene& prepared, const StageImageOptions& o
 std::vector<StageImage> writeStageImages(const PreparedScene& prepared, const std::filesystem::path& dir,
                                          const StageImageOptions& options);
 
+// The memory renderStageImages (and writeStageImages at options.scale) holds at once for a width x
+// height image: the framebuffer (Framebuffer::bytesFor), the recorder's per-pixel planes (its images of
+// triangles, normals and fog factors, its counts and wire bits), the stage being written with its depth
+// distances, a colour render, and the magnified copy. `facet step` checks it against the memory limit
+// before any work (base/memory_limit.h).
+std::uint64_t stageImagesBytes(int width, int height, int scale);
+
 // `image` with every pixel repeated as a `scale` × `scale` block (scale ≥ 1).
 LinearImage magnified(const LinearImage& image, int scale);
 
