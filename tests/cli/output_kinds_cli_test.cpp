@@ -29,10 +29,13 @@ const fs::path kCube = fs::path(FACET_SOURCE_DIR) / "models/cube/cube.obj";
 const std::string kPngSignature = "\x89PNG\r\n\x1a\n";
 
 std::string quoted(const fs::path& path) {
-    return "'" + path.string() + "'";
+    std::string text = "'";  // appended piece by piece: GCC 12 warns falsely on "'" + string (-Wrestrict)
+    text += path.string();
+    text += '\'';
+    return text;
 }
 
-// Reads a FIFO on another thread while facet runs; `release` lets a reader go that facet never wrote to
+// Reads a FIFO on another thread while facet runs; get() lets a reader go that facet never wrote to
 // (a reader waiting to open a FIFO is let go by a writer opening it), so a failing test cannot hang.
 class FifoReader {
   public:
