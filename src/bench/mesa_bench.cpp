@@ -21,6 +21,8 @@
 #include "bench/chart.h"
 #include "bench/process_stats.h"
 #include "io/image_io.h"
+#include "io/output_path.h"
+#include "io/text_file.h"
 #include "oracle/mesa_peer.h"
 #include "render/frame_kernels.h"
 #include "render/renderer.h"
@@ -258,9 +260,21 @@ void measureFacetMemory(BenchScene& bench, int threads) {
     }
 }
 
+// The folder of the images of scenes where Facet and Mesa differ: the CSV's, or the chart's when the CSV
+// goes to a device or standard output (never into /dev); empty when both do (no images then).
+fs::path disagreementFolder(const BenchOptions& options) {
+    for (const fs::path& output : {options.csv, options.chart}) {
+        const OutputTarget target = classifyOutput(output);
+        if (target.kind == OutputKind::AtomicFile)
+            return target.path.has_parent_path() ? target.path.parent_path() : fs::path(".");
+    }
+    return {};
+}
+
 // Where the two images differ, both are written beside the CSV for a look.
 void writeDisagreement(const BenchScene& bench, const LinearImage& facet, const LinearImage& mesa,
                        const fs::path& folder, std::ostream& out) {
+    if (folder.empty()) return;
     const std::string stem =
         "bench-" + bench.name + "-" + std::to_string(bench.width) + "x" + std::to_string(bench.height);
     writeImage(folder / (stem + "-facet.png"), facet);
@@ -369,27 +383,11 @@ void writeCsv(const fs::path& path, const std::vector<BenchScene>& scenes) {
             text << ",";
         text << "\n";
     }
-    // Written beside the destination and renamed into place, like the images.
+    // Written as the images are (io/output_path.h): a file beside the destination, renamed into place.
     const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
     std::error_code error;
-    fs::create_directories(folder, error);
-    std::string tempName = ".";  // hidden, and named by process ("out/.bench-scaling.csv.tmp-1234")
-    tempName += path.filename().string();
-    tempName += ".tmp-" + std::to_string(::getpid());
-    const fs::path temp = folder / tempName;
-    {
-        std::ofstream file(temp, std::ios::binary);
-        file << text.str();
-        if (!file.flush()) {
-            fs::remove(temp, error);
-            throw InputError(path.string() + ": cannot write");
-        }
-    }
-    fs::rename(temp, path, error);
-    if (error) {
-        fs::remove(temp, error);
-        throw InputError(path.string() + ": cannot write");
-    }
+    if (classifyOutput(path).kind == OutputKind::AtomicFile) fs::create_directories(folder, error);
+    writeTextFile(path, text.str());
 }
 
 LinearImage drawScalingChart(const std::vector<BenchScene>& scenes, int threads, bool withMesa,
@@ -427,6 +425,9 @@ void runMesaComparison(const BenchOptions& options, std::ostream& out) {
     if (options.model.extension() != ".obj")
         throw InputError(options.model.string() +
                          ": --vs-mesa takes an OBJ model (it builds the scenes itself)");
+    // Every output checked before the benchmark's minute of work: the CSV (a file, a device, "-") and
+    // the chart.
+    checkOutput(options.csv, true);
     checkImageDestination(options.chart, kChartWidth, kChartHeight);
     if (!fs::is_directory(options.sharedModels))
         throw InputError(options.sharedModels.string() +
@@ -511,7 +512,7 @@ void runMesaComparison(const BenchOptions& options, std::ostream& out) {
 
     // 4. The frames.
     DrawContext context(threads);
-    const fs::path imageFolder = options.csv.has_parent_path() ? options.csv.parent_path() : fs::path(".");
+    const fs::path imageFolder = disagreementFolder(options);
     std::string section = "-";
     int nameWidth = 0;
     for (const BenchScene& bench : scenes)

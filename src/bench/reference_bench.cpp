@@ -17,6 +17,7 @@
 
 #include "bench/bench.h"
 #include "bench/process_stats.h"
+#include "io/output_path.h"
 #include "io/text_file.h"
 #include "raycast/ray_scene.h"
 #include "reference/reference.h"
@@ -88,7 +89,8 @@ void writeCsv(const std::filesystem::path& path, const std::vector<Row>& rows) {
         text += '\n';
     }
     std::error_code error;
-    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), error);
+    if (path.has_parent_path() && classifyOutput(path).kind == OutputKind::AtomicFile)
+        std::filesystem::create_directories(path.parent_path(), error);
     writeTextFile(path, text);  // its message names the file when it cannot
 }
 
@@ -431,6 +433,7 @@ std::vector<Row> benchShadows(const Scene& scene, const PreparedScene& prepared,
 }  // namespace
 
 void runReferenceBench(const BenchOptions& options, std::ostream& out) {
+    checkOutput(options.csv, true);  // before the minutes of measuring
     const Scene scene = benchScene(options);
     const PreparedScene prepared = prepareScene(scene);
     ThreadPool one(kThreadCounts[0]), two(kThreadCounts[1]);

@@ -19,6 +19,7 @@
 #include "base/memory_limit.h"
 #include "base/quote.h"
 #include "cli/render_command.h"
+#include "io/output_path.h"
 
 namespace facet::cli {
 
@@ -135,24 +136,53 @@ Shard parseShard(const std::string& text) {
 }
 
 std::vector<std::string> readInputList(const std::filesystem::path& list) {
-    std::ifstream in(list, std::ios::binary);
+    // A file, a pipe (--list <(find …)), "-" (standard input) or a FIFO, which may wait for its writer
+    // (openInputStream says so, and gives up after a while): never forever.
+    const int fd = facet::openInputStream(shown(list.string()), "the list of inputs");
+    struct FdCloser {
+        int fd;
+        ~FdCloser() {
+            if (fd != STDIN_FILENO) ::close(fd);
+        }
+    } closer{fd};
+    const std::string name = list == "-" ? "standard input (--list -)" : shown(list.string());
+    const auto cannotRead = [&](int error) {
+        throw facet::InputError(name + ": cannot read the list of inputs (" + std::strerror(error) + ")");
+    };
+    // Read a character at a time, so that a line is bounded before it is stored: a list may be a pipe,
+    // and one from /dev/zero must stop at its first byte, not fill the memory. An endless one (yes x |)
+    // stops at kMostListedInputs inputs or kMostListBytes bytes.
+    // A pipe has no folder of its own: its relative paths are the working folder's.
     std::error_code error;
-    if (!in || std::filesystem::is_directory(list, error)) {
-        const std::string reason =
-            std::filesystem::is_directory(list, error) ? "is a folder" : std::strerror(errno);
-        throw facet::InputError(shown(list.string()) + ": cannot read the list of inputs (" + reason + ")");
-    }
-    // Read a character at a time, so that a line is bounded before it is stored: a list may be a pipe
-    // (--list <(find …)), and one from /dev/zero must stop at its first byte, not fill the memory.
-    // A pipe (--list <(find …)) has no folder of its own: its relative paths are the working folder's.
-    const std::filesystem::path folder =
-        std::filesystem::is_regular_file(list, error) ? list.parent_path() : std::filesystem::path();
+    const std::filesystem::path folder = list != "-" && std::filesystem::is_regular_file(list, error)
+                                             ? list.parent_path()
+                                             : std::filesystem::path();
     std::vector<std::string> inputs;
     std::string line;
-    for (int number = 1, c = 0; c != std::char_traits<char>::eof(); ++number) {
-        const auto where = [&] { return shown(list.string()) + ":" + std::to_string(number) + ": "; };
+    char buffer[1 << 16];
+    std::size_t bufferSize = 0, bufferAt = 0, bytesRead = 0;
+    constexpr int kEnd = -1;
+    const auto next = [&]() -> int {
+        if (bufferAt == bufferSize) {
+            ssize_t count;
+            while ((count = ::read(fd, buffer, sizeof buffer)) < 0 && errno == EINTR) {
+            }
+            if (count < 0) cannotRead(errno);
+            if (count == 0) return kEnd;
+            bytesRead += static_cast<std::size_t>(count);
+            if (bytesRead > kMostListBytes)
+                throw facet::InputError(name + ": the list of inputs is longer than " +
+                                        std::to_string(kMostListBytes >> 20) +
+                                        " MiB (split it, or give it in shards with --shard)");
+            bufferSize = static_cast<std::size_t>(count);
+            bufferAt = 0;
+        }
+        return static_cast<unsigned char>(buffer[bufferAt++]);
+    };
+    for (int number = 1, c = 0; c != kEnd; ++number) {
+        const auto where = [&] { return name + ":" + std::to_string(number) + ": "; };
         line.clear();
-        while ((c = in.get()) != std::char_traits<char>::eof() && c != '\n') {
+        while ((c = next()) != kEnd && c != '\n') {
             if (c == '\0')
                 throw facet::InputError(where() +
                                         "a NUL byte: the list must be a text file, one path a line");
@@ -163,15 +193,15 @@ std::vector<std::string> readInputList(const std::filesystem::path& list) {
         }
         const std::string_view path = trimmed(line);
         if (path.empty() || path.front() == '#') continue;
+        if (inputs.size() == kMostListedInputs)
+            throw facet::InputError(where() + "the list names more than " +
+                                    std::to_string(kMostListedInputs) +
+                                    " inputs (split it, or give it in shards with --shard)");
         const std::filesystem::path input(path);
         inputs.push_back(input.is_absolute() ? input.string() : (folder / input).string());
     }
-    if (in.bad())
-        throw facet::InputError(shown(list.string()) + ": cannot read the list of inputs (" +
-                                std::strerror(errno) + ")");
     if (inputs.empty())
-        throw facet::InputError(shown(list.string()) +
-                                ": the list names no input (one path a line; # starts a comment)");
+        throw facet::InputError(name + ": the list names no input (one path a line; # starts a comment)");
     return inputs;
 }
 

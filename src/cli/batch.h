@@ -25,11 +25,16 @@ struct Shard {
 // "I/N", two whole numbers with 0 ≤ I < N; throws InputError quoting the text otherwise.
 Shard parseShard(const std::string& text);
 
+// The most a list of inputs (--list) may hold, so that an endless one (yes model.obj | facet render
+// --list -) ends with a message instead of filling the memory: inputs, and bytes read.
+constexpr std::size_t kMostListedInputs = 1'000'000;
+constexpr std::size_t kMostListBytes = std::size_t{256} << 20;
+
 // The inputs a list file names, in order: one path a line, spaces and tabs around it (and the CR of
 // Windows line ends) trimmed; blank lines and lines starting with # are skipped. A relative path is taken
 // from the list's folder, so that a list and its models can move together (from the working folder
-// when the list is a pipe). Throws InputError when the file cannot be read, holds a NUL byte (not a
-// text file) or a line longer than a path can be, or names no input.
+// when the list is a pipe; "-" is standard input). Throws InputError when the file cannot be read, holds a
+// NUL byte (not a text file) or a line longer than a path can be, or names no input.
 std::vector<std::string> readInputList(const std::filesystem::path& list);
 
 // Does `output` hold {name} or {index}?

@@ -6,6 +6,7 @@
 
 #include "base/errors.h"
 #include "cli/options.h"
+#include "io/output_path.h"
 
 namespace facet::cli {
 
@@ -45,6 +46,13 @@ void chooseDefaultBenchModels(facet::BenchOptions& options, bool modelGiven) {
     if (!std::filesystem::is_regular_file(options.model, error))
         throw facet::InputError("the default benchmark model " + options.model.string() +
                                 " is not there; name a model to time: facet bench MODEL.obj");
+}
+
+// Where the benchmark's progress goes: standard error when a table or the chart goes to standard output
+// (--csv -), so the two never mix.
+std::ostream& reportStream(const facet::BenchOptions& options) {
+    return facet::isStandardOutput(options.csv) || facet::isStandardOutput(options.chart) ? std::cerr
+                                                                                          : std::cout;
 }
 
 }  // namespace
@@ -146,7 +154,7 @@ int bench(facet::BenchOptions& options, const CLI::App& command) {
         if (command.count("--frames") == 0) options.frames = kReferenceBenchFrames;
         if (command.count("--csv") == 0) options.csv = "out/bench-reference.csv";
         checkSize(options.width, options.height);
-        facet::runReferenceBench(options, std::cout);
+        facet::runReferenceBench(options, reportStream(options));
         return 0;
     }
     if (options.transparency) {
@@ -174,7 +182,7 @@ int bench(facet::BenchOptions& options, const CLI::App& command) {
         if (command.count("--width") || command.count("--height"))
             throw facet::InputError("--vs-mesa renders fixed sizes; --width and --height do not apply");
         if (options.quick && command.count("--frames") == 0) options.frames = 5;
-        facet::runMesaComparison(options, std::cout);
+        facet::runMesaComparison(options, reportStream(options));
         return 0;
     }
     if (options.quick || command.count("--csv") || command.count("--chart"))

@@ -10,6 +10,7 @@
 
 #include "base/errors.h"
 #include "io/image_io.h"
+#include "io/text_file.h"
 #include "oracle/compare.h"
 #include "oracle/reference_compare.h"
 #include "oracle/shader_compare.h"
@@ -140,11 +141,9 @@ int compareAgainstReference(const CompareArgs& args, const facet::Scene& scene) 
     }
     for (const auto& path : {args.facetImage, args.referenceImage, args.diffImage})
         if (path) facet::checkImageDestination(*path, scene.width, scene.height);
-    std::ofstream csv;  // opened first, so that a bad path is reported before the long comparison
-    if (args.csv) {
-        csv.open(*args.csv);
-        if (!csv) throw facet::InputError(*args.csv + ": cannot write the CSV file there");
-    }
+    // Checked first, so that a bad path is reported before the long comparison (and an old file is only
+    // replaced once the new one is whole).
+    if (args.csv) facet::checkTextDestination(*args.csv);
     const facet::ReferenceComparison result = facet::compareWithReference(scene, options);
     std::cout << "facet compare --reference: " << args.scene.input << "\n" << facet::describe(result);
     if (args.facetImage) facet::writeImage(*args.facetImage, result.rasterized, result.encoding);
@@ -152,10 +151,7 @@ int compareAgainstReference(const CompareArgs& args, const facet::Scene& scene) 
     if (args.diffImage)
         facet::writeImage(*args.diffImage,
                           facet::errorImage(result.rasterized, result.reference, result.encoding));
-    if (args.csv) {
-        csv << facet::shadowMapCsv(result);
-        if (!csv.flush()) throw facet::InputError(*args.csv + ": cannot write the CSV file there");
-    }
+    if (args.csv) facet::writeTextFile(*args.csv, facet::shadowMapCsv(result));
     return result.agrees() ? 0 : kImagesDiffer;
 }
 

@@ -14,6 +14,7 @@
 #include "base/quote.h"
 #include "cli/batch.h"
 #include "io/image_io.h"
+#include "io/output_path.h"
 #include "reference/reference.h"
 #include "render/renderer.h"
 
@@ -338,30 +339,37 @@ int render(const RenderArgs& args) {
     RenderArgs one = args;
     if (!args.inputs.empty()) one.input = args.inputs.front();  // else a caller set `input` itself
     one.output = expandOutput(args.output, one.input, 0);
+    // "-o -": the image is standard output, so the reports go to standard error.
+    const bool imageToStandardOutput = facet::isStandardOutput(one.output);
+    if (imageToStandardOutput && (args.frames || args.components))
+        throw facet::InputError(std::string("-o - writes one image to standard output; ") +
+                                (args.frames ? "--frames" : "--components") +
+                                " writes several: name a file, like -o out/image.png");
+    std::ostream& report = imageToStandardOutput ? std::cerr : std::cout;
     facet::DrawContext context(args.threads);
-    const RenderedInput result = renderInput(one, settings, context, std::cout, std::cerr);
+    const RenderedInput result = renderInput(one, settings, context, report, std::cerr);
 
     if (!args.quiet) {
         const std::vector<std::filesystem::path>& written = result.written;
-        std::cout << "facet: wrote "
-                  << (args.frames ? std::to_string(settings.lastFrame - settings.firstFrame + 1) +
-                                        " frames, " + written.front().string() + " to " +
-                                        framePath(one.output, settings.lastFrame).string()
-                                  : one.output)
-                  << " (" << result.width << "x" << result.height << ", " << result.triangles << " triangles";
-        if (result.degenerateSkipped) std::cout << ", " << result.degenerateSkipped << " degenerate skipped";
+        report << "facet: wrote "
+               << (args.frames ? std::to_string(settings.lastFrame - settings.firstFrame + 1) + " frames, " +
+                                     written.front().string() + " to " +
+                                     framePath(one.output, settings.lastFrame).string()
+                               : one.output)
+               << " (" << result.width << "x" << result.height << ", " << result.triangles << " triangles";
+        if (result.degenerateSkipped) report << ", " << result.degenerateSkipped << " degenerate skipped";
         const long ms = static_cast<long>(result.milliseconds + 0.5);
         if (settings.reference)
-            std::cout << ", reference renderer, " << settings.referenceOptions.samples << "x"
-                      << settings.referenceOptions.samples << " rays per pixel, " << ms
-                      << " ms including loading)\n";
+            report << ", reference renderer, " << settings.referenceOptions.samples << "x"
+                   << settings.referenceOptions.samples << " rays per pixel, " << ms
+                   << " ms including loading)\n";
         else
-            std::cout << ", " << result.fragmentsShaded << " fragments shaded, " << ms
-                      << " ms including loading)\n";
+            report << ", " << result.fragmentsShaded << " fragments shaded, " << ms
+                   << " ms including loading)\n";
         if (!args.frames)
             for (std::size_t k = 1; k < written.size(); ++k)
-                std::cout << "facet: wrote " << written[k].string() << " ("
-                          << facet::kLightingTermNames[k - 1].name << " term alone)\n";
+                report << "facet: wrote " << written[k].string() << " ("
+                       << facet::kLightingTermNames[k - 1].name << " term alone)\n";
     }
     return 0;
 }

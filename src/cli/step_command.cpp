@@ -9,6 +9,7 @@
 #include "base/errors.h"
 #include "base/memory_limit.h"
 #include "base/quote.h"
+#include "io/output_path.h"
 #include "io/text_file.h"
 #include "render/renderer.h"
 #include "scene/limits.h"
@@ -304,7 +305,10 @@ int step(const StepArgs& args) {
         args.versus ? std::optional(versusArgs(args, *args.versus)) : std::nullopt;
     const facet::Scene scene = sceneFromArgs(args);
     refuseAntialiasing(scene);
+    // Every output checked before any work: a file, a device or "-" for --json, folders for the others.
     if (args.json) facet::checkTextDestination(*args.json);
+    if (args.html) facet::checkOutputFolder(*args.html, "--html");
+    if (args.stages) facet::checkOutputFolder(*args.stages, "--stages");
     if (args.html) planHtml(args, scene.width, scene.height);  // too many pixels refused before any work
     if (args.htmlRegion && !args.html) throw facet::InputError("--html-region needs --html DIR");
     checkStageScale(args, scene.width, scene.height);

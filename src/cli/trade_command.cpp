@@ -5,6 +5,7 @@
 
 #include "base/errors.h"
 #include "base/quote.h"
+#include "io/output_path.h"
 
 namespace facet::cli {
 
@@ -91,6 +92,7 @@ int trade(const TradeArgs& args) {
                                   ("trade-" + std::filesystem::path(args.scene.input).stem().string());
     if (options.outputDir.empty())
         throw facet::InputError("no output folder given: name one with -o, like -o out/trade");
+    facet::checkOutputFolder(options.outputDir, "-o");  // before the minutes of measuring
     const facet::TradeResult result = facet::runTrade(
         [&](const std::vector<std::string>& words) { return sceneWithWords(args.scene, words); }, options,
         std::cerr);

@@ -1,8 +1,9 @@
 // Image files: LinearImage -> PNG/JPEG/PPM/TIFF/BMP/TGA (8-bit, sRGB-encoded) or EXR/HDR (32-bit
 // float, linear), and any readable file back to linear RGBA. PNG and PPM go through the built-in
 // library, the rest through OpenImageIO, loaded only then (image_file.h).
-// A write goes to a hidden temporary file beside the destination and is renamed into place once
-// complete, so a failure never leaves a partial image nor destroys the previous one.
+// A write goes where io/output_path.h decides: a file through a hidden temporary file beside it, renamed
+// into place once complete (a failure never leaves a partial image nor destroys the previous one); a
+// device, a FIFO or "-" (standard output, PNG unless the name says otherwise) directly.
 #include "io/image_io.h"
 
 #include <algorithm>
@@ -26,6 +27,7 @@
 #include "base/memory_limit.h"
 #include "base/quote.h"
 #include "io/image_file.h"
+#include "io/output_path.h"
 #include "pipeline/color.h"
 
 namespace facet {
@@ -100,31 +102,17 @@ std::unique_ptr<ImageFileReader> openImageFile(const fs::path& path, std::string
     }
 }
 
-// The library that writes this format: the built-in one for 8-bit PNG and PPM, else OpenImageIO.
-ImageLibrary& writerFor(const fs::path& path, bool isFloat) {
-    if (!isFloat && builtInFormat(path.string())) return builtInImageLibrary();
+// The library that writes this format: the built-in one for 8-bit PNG and PPM, else OpenImageIO. By the
+// format, not the path, which may have no extension ("-", a device written as PNG).
+ImageLibrary& writerFor(const fs::path& path, const FileFormat& format) {
+    if (!format.isFloat && builtInFormat("image" + std::string(format.extension)))
+        return builtInImageLibrary();
     try {
         return openImageIO();
     } catch (const InputError& e) {
         fail(path, "cannot write image: " + std::string(e.what()));
     }
 }
-
-// Removes the temporary file unless the write completed and the file was renamed into place.
-class TempFileGuard {
-  public:
-    explicit TempFileGuard(fs::path path) : path_(std::move(path)) {}
-    TempFileGuard(const TempFileGuard&) = delete;
-    TempFileGuard& operator=(const TempFileGuard&) = delete;
-    ~TempFileGuard() {
-        if (armed_) ::unlink(path_.c_str());  // unlink, not remove: never deletes a folder of that name
-    }
-    void release() { armed_ = false; }
-
-  private:
-    fs::path path_;
-    bool armed_ = true;
-};
 
 // Captures what libraries write straight to standard error (libpng's "libpng error: ..." lines) while
 // it lives, so that their messages become part of ours instead of raw lines on the terminal.
@@ -216,11 +204,20 @@ void arrangeTexels(const ImageHeader& spec, std::vector<T>& texels, Color color,
     }
 }
 
+// The format `path` is written in: by its extension, or PNG for a stream that has none ("-", /dev/null).
+const FileFormat* outputFormat(const fs::path& path) {
+    if (const FileFormat* format = findFormat(path)) return format;
+    std::error_code error;
+    if (fs::is_directory(path, error)) fail(path, "is a folder, not an image file");
+    if (classifyOutput(path).kind == OutputKind::Stream) return &kFormats[0];
+    return nullptr;
+}
+
 }  // namespace
 
 void checkImageDestination(const fs::path& path, int width, int height) {
     // Choose the format before touching the disk, so a typo writes nothing.
-    const FileFormat* format = findFormat(path);
+    const FileFormat* format = outputFormat(path);
     if (format == nullptr) {
         const std::string extension = path.extension().string();
         // "out/.png": to the file system a hidden file named ".png" without an extension.
@@ -245,17 +242,10 @@ void checkImageDestination(const fs::path& path, int width, int height) {
     }
     std::error_code error;
     if (fs::is_directory(path, error)) fail(path, "is a folder, not an image file");
-
-    // The folder: the nearest part of it that exists must be a folder we may write into (writeImage
-    // creates the rest), so that an unwritable destination fails before a long render.
-    fs::path existing = path.parent_path();
-    while (!existing.empty() && !fs::exists(existing, error) && existing != existing.parent_path())
-        existing = existing.parent_path();
-    if (existing.empty()) existing = ".";
-    if (!fs::is_directory(existing, error))
-        fail(path, "cannot write: " + std::string(std::strerror(ENOTDIR)));
-    if (::access(existing.c_str(), W_OK | X_OK) != 0)
-        fail(path, "cannot write: " + std::string(std::strerror(errno)));
+    // What is at the path (io/output_path.h), and the folder: the nearest part of it that exists must be
+    // a folder we may write into (writeImage creates the rest), so an unwritable destination fails before
+    // a long render.
+    checkOutput(path, true);
 }
 
 void writeImage(const fs::path& path, const LinearImage& image, ColorEncoding encoding, int pngCompression) {
@@ -265,22 +255,13 @@ void writeImage(const fs::path& path, const LinearImage& image, ColorEncoding en
 void writeImage(const fs::path& path, const ImageView& image, ColorEncoding encoding, int pngCompression,
                 ThreadPool* pool) {
     checkImageDestination(path, image.width, image.height);
-    const FileFormat* format = findFormat(path);
+    const FileFormat* format = outputFormat(path);
     const std::size_t pixelCount = static_cast<std::size_t>(std::max(image.width, 0)) *
                                    static_cast<std::size_t>(std::max(image.height, 0));
     if (image.width <= 0 || image.height <= 0 || image.pixels.size() != pixelCount) {
         fail(path, "cannot write an image of " + std::to_string(image.width) + "x" +
                        std::to_string(image.height) + " pixels holding " +
                        std::to_string(image.pixels.size()) + " values");
-    }
-
-    // The destination folder is created when missing: "-o renders/spot.png" should just work.
-    std::error_code error;
-    const fs::path folder = path.parent_path();
-    if (!folder.empty() && !fs::is_directory(folder, error)) {
-        fs::create_directories(folder, error);
-        if (error)
-            fail(path, "cannot write: cannot create folder \"" + folder.string() + "\": " + error.message());
     }
 
     // Convert to the file's pixel type: float values unchanged, or 8-bit codes (sRGB-encoded by
@@ -326,38 +307,27 @@ void writeImage(const fs::path& path, const ImageView& image, ColorEncoding enco
         };
     }
 
-    // The temporary name keeps the real extension last, as the libraries pick the writer from it.
-    // ("out/.spot.tmp-1234.png"; hidden, and named by process so two programs never share one.)
-    std::string tempName = ".";
-    tempName += path.stem().string();
-    tempName += ".tmp-" + std::to_string(::getpid());
-    tempName += path.extension().string();
-    const fs::path tempPath = folder / tempName;
-    TempFileGuard guard(tempPath);
-    // Created here first, so that a folder that refuses files is reported with the user's path and the
-    // system's reason ("Permission denied"), not a library's words about the hidden temporary name.
-    const int created = ::open(tempPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    if (created < 0) fail(path, "cannot write: " + std::string(std::strerror(errno)));
-    ::close(created);
-    // The libraries' errors name the file they were given: the user knows the destination instead.
-    const auto withUserPath = [&](std::string text) {
-        for (std::size_t at; (at = text.find(tempPath.string())) != std::string::npos;)
-            text.replace(at, tempPath.string().size(), path.string());
-        return oneLine(std::move(text));
-    };
     const ImagePixels pixels{image.width,
                              image.height,
                              channels,
                              format->isFloat,
                              format->isFloat ? static_cast<const void*>(floats.data()) : nullptr,
                              std::move(encodeRows)};
-    const std::string problem =
-        writerFor(path, format->isFloat).write(tempPath.string(), pixels, pngCompression, pool);
-    if (!problem.empty()) fail(path, "cannot write image: " + withUserPath(problem));
-
-    fs::rename(tempPath, path, error);
-    if (error) fail(path, "cannot move the finished image into place: " + error.message());
-    guard.release();
+    // Written where io/output_path.h decides: a file through a temporary one renamed into place (its
+    // folder created when missing: "-o renders/spot.png" should just work), a stream directly.
+    writeOutputThrough(
+        path, format->extension,
+        [&](const fs::path& file) {
+            const std::string problem =
+                writerFor(path, *format).write(file.string(), pixels, pngCompression, pool);
+            if (problem.empty()) return;
+            // The libraries' errors name the file they were given: the user knows the destination instead.
+            std::string text = problem;
+            for (std::size_t at; (at = text.find(file.string())) != std::string::npos;)
+                text.replace(at, file.string().size(), path.string());
+            fail(path, "cannot write image: " + oneLine(std::move(text)));
+        },
+        true);
 }
 
 LinearImage readImage(const fs::path& path) {

@@ -36,9 +36,10 @@ struct ImageView {
 
 // Writes `image` to `path`, its format chosen by the extension (.png .exr .ppm .jpg/.jpeg .tif/.tiff ...).
 // Float formats (EXR) keep the buffer's values unchanged; 8-bit formats get `encoding`, clamped to
-// [0,1] (encodeChannel). PPM and JPEG have no alpha: RGB only. The
-// image is written to a temporary file in the same folder and renamed into place, so a failure never leaves a
-// partial file nor destroys an existing one. `pngCompression`: zlib's level for PNG, 0 (store) to 9
+// [0,1] (encodeChannel). PPM and JPEG have no alpha: RGB only. A file is written to a temporary file
+// in the same folder and renamed into place, so a failure never leaves a partial file nor destroys an
+// existing one; a device, a FIFO or "-" (standard output) is written directly, as PNG when its name has
+// no image extension (io/output_path.h). `pngCompression`: zlib's level for PNG, 0 (store) to 9
 // (smallest); the default favours speed. Throws InputError ("out/x.bmpx: unknown image format ...",
 // "out/: cannot write ...").
 void writeImage(const std::filesystem::path& path, const LinearImage& image,

@@ -1,5 +1,6 @@
-// Text files (JSON traces, web pages) written as images are: to a hidden temporary file beside the
-// destination, renamed into place once complete, so a failure never leaves half a file.
+// Text files (JSON traces, web pages, CSV tables), written as images are (io/output_path.h): a file
+// through a hidden temporary file beside it, renamed into place once complete, so a failure never leaves
+// half a file; a device, a FIFO or "-" (standard output) directly.
 #pragma once
 
 #include <filesystem>
@@ -7,7 +8,7 @@
 
 namespace facet {
 
-// Checks, without writing, that `path` could be written: its folder exists and it is not a folder.
+// Checks, without writing, that `path` could be written: a kind of path Facet writes, its folder exists.
 void checkTextDestination(const std::filesystem::path& path);
 
 // Writes `text` to `path`; throws InputError naming the file and the reason when it cannot.

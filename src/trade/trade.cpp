@@ -12,6 +12,7 @@
 #include "base/errors.h"
 #include "bench/chart.h"
 #include "bench/process_stats.h"
+#include "io/text_file.h"
 #include "reference/reference.h"
 #include "render/renderer.h"
 #include "trade/blank.h"
@@ -308,9 +309,9 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
 
     result.recommendations = tradeRecommendations(result);
     {
-        std::ofstream csv(options.outputDir / "trade.csv");
+        std::ostringstream csv;  // written whole, as every output is (io/output_path.h)
         writeTradeCsv(result, csv);
-        if (!csv) throw InputError((options.outputDir / "trade.csv").string() + ": cannot write the file");
+        writeTextFile(options.outputDir / "trade.csv", csv.str());
     }
     std::string title = "SPEED AND ERROR: ";
     title += baseline.source.filename().string();
