@@ -1,6 +1,8 @@
 #include "thread_pool.h"
 
 #include <algorithm>
+#include <new>
+#include <system_error>
 #include <utility>
 
 #if defined(__x86_64__) || defined(__i386__)
@@ -32,15 +34,56 @@ bool spinUntil(const Ready& ready) {
     return false;
 }
 
+std::atomic<ThreadShortfallReport> shortfallReport{nullptr};
+std::atomic<bool> shortfallReported{false};
+
+// Once per process: a batch or a trade makes many pools, and each would fall short the same way.
+void reportShortfall(int started, int requested, const std::string& reason) {
+    const ThreadShortfallReport report = shortfallReport.load();
+    if (!report || shortfallReported.exchange(true)) return;
+    const std::string goesOn = std::to_string(started) + (started == 1 ? " thread" : " threads");
+    report("the system let Facet start only " + std::to_string(started) + " of the " +
+           std::to_string(requested) + " threads asked for (" + reason + "); the work goes on with " +
+           goesOn + ", more slowly");
+}
+
 }  // namespace
 
-ThreadPool::ThreadPool(int threads) {
+void setThreadShortfallReport(ThreadShortfallReport report) {
+    shortfallReport.store(report);
+    shortfallReported.store(false);
+}
+
+ThreadPool::ThreadPool(int threads, const ThreadStarter& start) {
     if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-    for (int t = 1; t < threads; ++t)
-        workers_.emplace_back([this, t] { workerLoop(t); });
+    requested_ = threads;
+    // A thread the system refuses ends the starting, not the pool: the workers already started wait on
+    // wake_, which lives as long as the pool, and run their share of every job (the caller runs the
+    // rest). An exception escaping here would destroy running std::threads (std::terminate) or, once
+    // caught, the condition variable they wait on.
+    std::string refusal;
+    try {
+        workers_.reserve(static_cast<std::size_t>(threads - 1));  // push_back below cannot throw
+        for (int t = 1; t < threads; ++t) {
+            std::function<void()> run = [this, t] { workerLoop(t); };
+            workers_.push_back(start ? start(std::move(run)) : std::thread(std::move(run)));
+        }
+    } catch (const std::system_error& e) {
+        refusal = e.code().message();
+    } catch (const std::bad_alloc&) {
+        refusal = "out of memory";
+    } catch (...) {  // a test's starter throwing something else: no worker is left behind
+        stopWorkers();
+        throw;
+    }
+    if (!refusal.empty()) reportShortfall(this->threads(), requested_, refusal);
 }
 
 ThreadPool::~ThreadPool() {
+    stopWorkers();
+}
+
+void ThreadPool::stopWorkers() {
     {
         std::lock_guard lock(mutex_);
         stopping_ = true;
