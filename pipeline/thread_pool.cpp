@@ -1,6 +1,10 @@
 #include "thread_pool.h"
 
+#include <pthread.h>
+#include <sys/resource.h>
+
 #include <algorithm>
+#include <cstdint>
 #include <new>
 #include <system_error>
 #include <utility>
@@ -47,6 +51,26 @@ void reportShortfall(int started, int requested, const std::string& reason) {
            goesOn + ", more slowly");
 }
 
+// The most threads whose stacks fit in a quarter of the address-space limit (ulimit -v, RLIMIT_AS),
+// the calling thread counted; no bound without a limit. Every thread reserves its whole stack (8 MiB
+// by default) up front: under `ulimit -v 2000000`, 300 threads took all 2 GB at the 230th, and the
+// render then had no memory left. The other three quarters stay for the work.
+int threadsTheAddressSpaceAllows() {
+    rlimit limit{};
+    if (::getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return INT32_MAX;
+    std::size_t stack = std::size_t{8} << 20;
+#if defined(__GLIBC__)
+    pthread_attr_t defaults;
+    if (::pthread_getattr_default_np(&defaults) == 0) {
+        std::size_t size = 0;
+        if (::pthread_attr_getstacksize(&defaults, &size) == 0 && size > 0) stack = size;
+        ::pthread_attr_destroy(&defaults);
+    }
+#endif
+    const rlim_t stacks = limit.rlim_cur / 4 / stack;
+    return static_cast<int>(std::min<rlim_t>(stacks, INT32_MAX - 1)) + 1;
+}
+
 }  // namespace
 
 void setThreadShortfallReport(ThreadShortfallReport report) {
@@ -62,9 +86,12 @@ ThreadPool::ThreadPool(int threads, const ThreadStarter& start) {
     // rest). An exception escaping here would destroy running std::threads (std::terminate) or, once
     // caught, the condition variable they wait on.
     std::string refusal;
+    const int allowed = threadsTheAddressSpaceAllows();
+    if (allowed < threads) refusal = "the memory limit, ulimit -v, leaves room for the stacks of no more";
     try {
-        workers_.reserve(static_cast<std::size_t>(threads - 1));  // push_back below cannot throw
-        for (int t = 1; t < threads; ++t) {
+        const int starting = std::min(threads, allowed);
+        workers_.reserve(static_cast<std::size_t>(starting - 1));  // push_back below cannot throw
+        for (int t = 1; t < starting; ++t) {
             std::function<void()> run = [this, t] { workerLoop(t); };
             workers_.push_back(start ? start(std::move(run)) : std::thread(std::move(run)));
         }
