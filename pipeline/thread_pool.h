@@ -9,20 +9,38 @@
 #include <exception>
 #include <functional>
 #include <mutex>
+#include <string>
 #include <thread>
 #include <vector>
 
 namespace facet {
 
+// Starts one worker thread running `run`: std::thread's constructor by default. It throws
+// std::system_error when the system refuses the thread (a process limit such as `ulimit -u`, or no
+// address space left for its stack under `ulimit -v`). Tests pass one that fails at the k-th thread.
+using ThreadStarter = std::function<std::thread(std::function<void()> run)>;
+
+// Where a pool that could not start every thread it was asked for says so: one line in plain words,
+// e.g. "the system let Facet start only 3 of the 8 threads asked for (Resource temporarily
+// unavailable); the work goes on with 3, more slowly". The program sets it once (to print a warning);
+// it is called once, however many pools fall short after it was set. Unset: nothing is said.
+using ThreadShortfallReport = void (*)(const std::string& message);
+void setThreadShortfallReport(ThreadShortfallReport report);
+
 class ThreadPool {
   public:
-    // threads ≤ 0: one per hardware thread.
-    explicit ThreadPool(int threads = 0);
+    // threads ≤ 0: one per hardware thread. A pool never fails for want of threads: it keeps the
+    // workers it could start (possibly none: the calling thread then does all the work) and reports
+    // the shortfall once (setThreadShortfallReport). Images are the same for any number of threads.
+    explicit ThreadPool(int threads = 0, const ThreadStarter& start = nullptr);
     ~ThreadPool();
     ThreadPool(const ThreadPool&) = delete;
     ThreadPool& operator=(const ThreadPool&) = delete;
 
     int threads() const { return static_cast<int>(workers_.size()) + 1; }
+    // The threads the pool was asked for (after `threads ≤ 0` became the hardware's count): more than
+    // threads() when the system refused some.
+    int requestedThreads() const { return requested_; }
 
     // Calls body(item, thread) for every item in [0, count), spread over the threads, and returns when
     // all are done. `thread` in [0, threads()) names the calling thread, for per-thread scratch.
@@ -38,6 +56,9 @@ class ThreadPool {
     void workerLoop(int thread);
     void runItems(int thread);
 
+    void stopWorkers();
+
+    int requested_ = 1;
     std::vector<std::thread> workers_;
     std::mutex mutex_;
     std::condition_variable wake_;

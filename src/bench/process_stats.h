@@ -63,7 +63,8 @@ void trimHeap();
 // frames depend on it (every stage hands its output to the other core): on one virtual machine it read
 // 55–90 ns or 190–230 ns depending on where the host placed the two cores, and two-thread frames took up
 // to a third longer in the second state. A value far above those means the two threads could not run
-// at once (other work on the machine). Returns 0 on a machine with one hardware thread.
+// at once (other work on the machine). Returns 0 on a machine with one hardware thread, or when the
+// system refuses the second thread (a process limit).
 double coreHandoffNanoseconds(double milliseconds = 20.0);
 
 // The bench header's line about coreHandoffNanoseconds, for `threads` ≥ 2 ("" below): "cores      one

@@ -14,6 +14,7 @@
 #include "cli/render_command.h"
 #include "cli/step_command.h"
 #include "cli/trade_command.h"
+#include "pipeline/thread_pool.h"
 #include "render/frame_kernels.h"
 
 #ifndef FACET_VERSION
@@ -28,6 +29,11 @@ int main(int argc, char** argv) {
     mallopt(M_MMAP_THRESHOLD, 32 << 20);  // glibc's largest threshold
     mallopt(M_TRIM_THRESHOLD, 512 << 20);
     mallopt(M_TOP_PAD, 64 << 20);
+    // A process limit (ulimit -u, ulimit -v) may refuse some of the threads asked for: the work goes
+    // on with those there are, and the user hears it once.
+    facet::setThreadShortfallReport([](const std::string& message) {
+        std::cerr << "facet: warning: " << message << "\n" << std::flush;
+    });
     CLI::App app{"Facet: a software rasterizer. Renders OBJ models and scene files to images on the CPU."};
     app.require_subcommand(1);
     app.set_version_flag("--version", [] {

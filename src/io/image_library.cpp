@@ -1,7 +1,10 @@
 // openImageIO(): the OpenImageIO module, loaded with dlopen at its first use (image_file.h says why).
 #include <atomic>
 #include <mutex>
+#include <system_error>
+#include <thread>
 
+#include "base/errors.h"
 #include "base/module.h"
 #include "io/image_file.h"
 
@@ -15,6 +18,16 @@ namespace {
 std::atomic<OpenImageIOLibrary*> loadedLibrary{nullptr};
 
 OpenImageIOLibrary* load() {
+    // The libraries OpenImageIO brings (log4cplus) start a thread as they load, and abort the process
+    // when the system refuses it (ulimit -u): one is tried first, so that a refusal is one line.
+    try {
+        std::thread([] {}).join();
+    } catch (const std::system_error& e) {
+        throw ResourceError(
+            "this image format needs OpenImageIO, whose libraries start a thread as they load, "
+            "and the system refuses one (" +
+            e.code().message() + ")");
+    }
     using Entry = OpenImageIOLibrary* (*)();
     const auto entry =
         reinterpret_cast<Entry>(loadModuleEntry("libfacet_openimageio.so", FACET_OPENIMAGEIO_MODULE,

@@ -7,6 +7,9 @@
 #include <mutex>
 #include <stdexcept>
 #include <string>
+#include <system_error>
+#include <thread>
+#include <vector>
 
 #include <embree3/rtcore.h>
 
@@ -14,10 +17,29 @@ namespace facet {
 
 namespace {
 
+// How many of `wanted` threads the system would start now (the calling thread counted, so at least 1):
+// Embree aborts the process when it cannot start a thread of its pool (std::terminate after its
+// error), so under a process limit (ulimit -u) it is asked for no more than the system gives.
+int threadsTheSystemGives(int wanted) {
+    std::vector<std::thread> probes;
+    try {
+        while (static_cast<int>(probes.size()) + 1 < wanted)
+            probes.emplace_back([] {});
+    } catch (const std::system_error&) {
+    }
+    for (std::thread& probe : probes)
+        probe.join();
+    return static_cast<int>(probes.size()) + 1;
+}
+
 // One Embree device for the process: creating one costs milliseconds and a thread pool.
 RTCDevice sharedDevice() {
     static RTCDevice device = [] {
-        RTCDevice created = rtcNewDevice(nullptr);
+        const int wanted = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+        const int given = threadsTheSystemGives(wanted);
+        // Embree's default (nullptr) is one thread per hardware thread, as `wanted`.
+        const std::string config = "threads=" + std::to_string(given);
+        RTCDevice created = rtcNewDevice(given < wanted ? config.c_str() : nullptr);
         if (!created)
             throw std::runtime_error("Embree could not start: error " +
                                      std::to_string(rtcGetDeviceError(nullptr)));
