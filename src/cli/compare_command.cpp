@@ -29,6 +29,13 @@ constexpr int kImagesDiffer = 3;
 // --against: the images differ (as diff(1) says so).
 constexpr int kShaderDiffers = 1;
 
+// The scene's loading warnings (a texture that cannot be read, a camera whose rotation had to be
+// chosen, ...), as facet render prints them: the images compared are those of the scene they describe.
+void printWarnings(const std::vector<std::string>& warnings) {
+    for (const std::string& warning : warnings)
+        std::cerr << "facet: warning: " << warning << "\n";
+}
+
 }  // namespace
 
 CLI::App* addCompareCommand(CLI::App& app, CompareArgs& args) {
@@ -145,6 +152,7 @@ int compareAgainstReference(const CompareArgs& args, const facet::Scene& scene) 
     // replaced once the new one is whole).
     if (args.csv) facet::checkTextDestination(*args.csv);
     const facet::ReferenceComparison result = facet::compareWithReference(scene, options);
+    printWarnings(result.warnings);
     std::cout << "facet compare --reference: " << args.scene.input << "\n" << facet::describe(result);
     if (args.facetImage) facet::writeImage(*args.facetImage, result.rasterized, result.encoding);
     if (args.referenceImage) facet::writeImage(*args.referenceImage, result.reference, result.encoding);
@@ -196,6 +204,7 @@ int compareAgainstBuiltIn(const CompareArgs& args, const facet::Scene& scene) {
     facet::PreparedScene mine, builtIn;
     const facet::ShaderComparison c =
         facet::compareShaderWithBuiltIn(scenes, args.scene.threads, &mine, &builtIn);
+    printWarnings(c.warnings);
     const std::string shaderName =
         scene.shader ? scene.shader->source.filename().string() : std::string("the scene's shaders");
     const std::string builtInName = "built-in " + modelName;
@@ -263,6 +272,7 @@ int compare(const CompareArgs& args) {
 
     const facet::MesaDriver driver = args.driver.value_or(facet::MesaDriver::Softpipe);
     const facet::MesaComparison result = facet::compareWithMesa(scene, driver, args.scene.threads);
+    printWarnings(result.warnings);
     std::cout << "facet compare: " << input.string() << "\n" << facet::describe(result);
     if (args.facetImage) facet::writeImage(*args.facetImage, result.facet, result.encoding);
     if (args.mesaImage) facet::writeImage(*args.mesaImage, result.mesa, result.encoding);

@@ -11,6 +11,7 @@
 #include "base/memory_limit.h"
 #include "cli/bench_command.h"
 #include "cli/compare_command.h"
+#include "cli/options.h"
 #include "cli/render_command.h"
 #include "cli/step_command.h"
 #include "cli/trade_command.h"
@@ -71,7 +72,8 @@ int main(int argc, char** argv) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
         // One line, like every other error (CLI11's own report adds a second line).
-        std::cerr << "facet: error: " << e.what() << " (facet --help lists the commands and options)\n";
+        std::cerr << "facet: error: " << facet::cli::commandLineError(e)
+                  << " (facet --help lists the commands and options)\n";
         return 2;
     }
 

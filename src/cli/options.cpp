@@ -48,6 +48,20 @@ const CLI::Validator kFiniteNumber(
     },
     "NUMBER");
 
+std::string commandLineError(const CLI::ParseError& error) {
+    const std::string text = error.what();
+    // CLI11's ArgumentMismatch::AtMost: "NAME: At Most 1 required but received N", thrown only when an
+    // option of one value is given more than once (a second value after the first is another word).
+    const std::string atMost = ": At Most 1 required but received ";
+    const std::size_t at = text.find(atMost);
+    if (dynamic_cast<const CLI::ArgumentMismatch*>(&error) != nullptr && at != std::string::npos) {
+        const std::string name = text.substr(0, at), times = text.substr(at + atMost.size());
+        return name + " was given " + (times == "2" ? std::string("twice") : times + " times") +
+               "; give it once";
+    }
+    return text;
+}
+
 glm::vec3 parseVec3(const std::string& option, const std::string& text) {
     std::stringstream in(text);
     glm::vec3 v;

@@ -47,6 +47,11 @@ std::string byDefault(E value) {
     return " (default " + std::string(nameOf(value)) + ")";
 }
 
+// The one line for an error of the command line's parsing: CLI11's own words, except where they are not
+// a user's (an option given twice: "--width was given twice; give it once" rather than CLI11's "At Most
+// 1 required but received 2").
+std::string commandLineError(const CLI::ParseError& error);
+
 // Parses "x,y,z" into a vec3; CLI11 hands us the raw text so the error can quote it.
 glm::vec3 parseVec3(const std::string& option, const std::string& text);
 

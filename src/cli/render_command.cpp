@@ -233,6 +233,17 @@ RenderSettings renderSettings(const RenderArgs& args) {
                                     " (N×N rays per pixel; got " + std::to_string(*args.samples) + ")");
         settings.referenceOptions.samples = *args.samples;
     }
+    // The rasterizer's approximations, given on the command line for the exact renderer, which has none
+    // of them: refused rather than silently ignored (a scene file's keys are the scene, which the
+    // reference draws exactly whatever they ask of the rasterizer).
+    if (settings.reference)
+        for (const auto& [name, value] : args.knobs)
+            if (const facet::SceneKnob* knob = facet::sceneKnobNamed(name);
+                knob && !knob->referenceInstead.empty())
+                throw facet::InputError(knob->flag + " " + value +
+                                        " does not go with --renderer reference, which " +
+                                        knob->referenceInstead + ": leave " + knob->flag +
+                                        " out, or render without --renderer reference");
     settings.terms = args.only.value_or(facet::kAllTerms);
     return settings;
 }

@@ -41,7 +41,8 @@ CLI::App* addTradeCommand(CLI::App& app, TradeArgs& args) {
     command->add_flag(
         "--no-presets", args.noPresets,
         "Time and score only the baseline and the knobs, not the fast, default and best presets");
-    command->add_flag("-q,--quiet", args.quiet, "Print nothing: no progress, no table");
+    command->add_flag("-q,--quiet", args.quiet,
+                      "Print no progress and no table; warnings still go to standard error");
     return command;
 }
 
@@ -103,6 +104,11 @@ int trade(const TradeArgs& args) {
                   << " images (reference " << result.width << "x" << result.height << ", "
                   << result.referenceSamples << "x" << result.referenceSamples << " rays per pixel, "
                   << static_cast<long>(result.referenceMs + 0.5) << " ms)\n";
+    } else {
+        // The table that carries them is not printed: a blank image or a meaningless score must still
+        // be said.
+        for (const std::string& warning : result.warnings)
+            std::cerr << "facet: warning: " << warning << "\n";
     }
     return 0;
 }

@@ -24,6 +24,7 @@ MesaComparison compareWithMesa(const Scene& scene, MesaDriver driver, int thread
     const PreparedScene prepared = prepareScene(scene);
     MesaComparison result;
     result.encoding = prepared.encoding;
+    result.warnings = prepared.warnings;
 
     // Facet.
     Framebuffer framebuffer(scene.width, scene.height);

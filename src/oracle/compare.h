@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "oracle/image_compare.h"
 #include "oracle/mesa_peer.h"
@@ -17,6 +18,7 @@ struct MesaComparison {
     ColorEncoding encoding = kSrgbEncoding;
     LinearImage facet, mesa;  // the colour buffers, rows top to bottom
     PixelDifference difference;
+    std::vector<std::string> warnings;  // the scene's loading warnings (PreparedScene::warnings)
 
     // The bar the conformance tests hold Facet to: at least 99.5% of pixels within 2/255 on every channel,
     // of images that both drew something (two empty frames prove nothing).

@@ -430,6 +430,7 @@ ReferenceComparison compareWithReference(const Scene& scene, const ReferenceComp
     const std::size_t pixels = static_cast<std::size_t>(width) * height;
 
     ReferenceComparison result;
+    result.warnings = prepared.warnings;
     result.width = width;
     result.height = height;
     result.encoding = prepared.encoding;

@@ -208,6 +208,7 @@ struct ReferenceComparison {
     ShadowAgreement shadows;
     std::vector<ShadowMapRow> shadowMaps;  // empty when no light casts shadows or the table was skipped
     std::vector<DifferenceSpot> spots;     // where the largest colour differences lie (findDifferenceSpots)
+    std::vector<std::string> warnings;     // the scene's loading warnings (PreparedScene::warnings)
 
     // The bars: something drawn (two empty frames prove nothing), no disagreement away from edges, edge ones
     // under 1% of the covered pixels, 99% of the same-surface pixels within 1/255, shadows equal off

@@ -42,6 +42,7 @@ ShaderComparison compareShaderWithBuiltIn(const ShaderAgainstScenes& scenes, int
     c.width = mine.scene.width;
     c.height = mine.scene.height;
     c.encoding = mine.encoding;
+    c.warnings = mine.warnings;
     c.mine = draw(mine, context);
     c.builtIn = draw(builtIn, context);
     for (int y = 0; y < c.height; ++y)

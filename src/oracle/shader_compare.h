@@ -7,7 +7,9 @@
 
 #include <cstddef>
 #include <optional>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include "io/image_io.h"
 #include "render/renderer.h"
@@ -28,8 +30,9 @@ struct ShaderComparison {
     int width = 0, height = 0;
     ColorEncoding encoding = kSrgbEncoding;
     LinearImage mine, builtIn;
-    std::size_t differing = 0;  // pixels whose 8-bit codes differ in some channel (R, G or B)
-    int largest = 0;            // the largest difference of a channel, in 8-bit codes
+    std::vector<std::string> warnings;  // the scene's loading warnings (PreparedScene::warnings)
+    std::size_t differing = 0;          // pixels whose 8-bit codes differ in some channel (R, G or B)
+    int largest = 0;                    // the largest difference of a channel, in 8-bit codes
     // The first differing pixel in reading order (rows from the top, each from the left).
     std::optional<std::pair<int, int>> first;
     bool identical() const { return differing == 0; }

@@ -259,6 +259,12 @@ SceneKnob areaSamplesKnob() {
     return knob;
 }
 
+// `knob`, which the exact reference renderer replaces by `instead` (docs/reference.md).
+SceneKnob rasterizerOnly(SceneKnob knob, std::string instead) {
+    knob.referenceInstead = std::move(instead);
+    return knob;
+}
+
 // The table. Notes on the trade's values:
 //   shading: constant shading is unlit, another look rather than a cheaper approximation: not traded.
 //   cull: front-face culling draws the wrong side, not a trade; culling back faces is the fast choice (the
@@ -292,44 +298,58 @@ std::vector<SceneKnob> makeTable() {
             "notes' formulas and 2.2 gamma (docs/lighting.md)",
             "lighting", "preset", [](auto& s) -> auto& { return s.lighting.preset; }),
         traded(shadingKnob(), {"flat", "gouraud", "phong"}, "flat", "phong"),
-        traded(choice<Interpolation>(
-                   "interpolation", "--interpolation",
-                   "Varyings across a triangle: perspective-correct, or affine in screen "
-                   "space (wrong, for teaching)",
-                   "pipeline", "interpolation", [](auto& s) -> auto& { return s.pipeline.interpolation; }),
-               {}, "affine", "perspective"),
+        rasterizerOnly(traded(choice<Interpolation>(
+                                  "interpolation", "--interpolation",
+                                  "Varyings across a triangle: perspective-correct, or affine in screen "
+                                  "space (wrong, for teaching)",
+                                  "pipeline", "interpolation",
+                                  [](auto& s) -> auto& { return s.pipeline.interpolation; }),
+                              {}, "affine", "perspective"),
+                       "interpolates exactly, in double, at each ray's hit"),
         traded(shadowsKnob(), {}, "none", ""),
-        traded(number<int>(
-                   "shadow-map-size", "--shadow-map-size",
-                   "Shadow maps: texels per side (a point light draws six)", "shadow_map", "size", 16,
-                   kMaxShadowMapSize, " texels", [](auto& s) -> auto& { return s.shadowMap.size; }),
-               {"256", "512", "1024", "2048", "4096"}, "512", "4096", "shadows", "map"),
-        traded(shadowFilter, {"1", "4", "16"}, "1", "16", "shadows", "map"),
+        rasterizerOnly(
+            traded(number<int>(
+                       "shadow-map-size", "--shadow-map-size",
+                       "Shadow maps: texels per side (a point light draws six)", "shadow_map", "size", 16,
+                       kMaxShadowMapSize, " texels", [](auto& s) -> auto& { return s.shadowMap.size; }),
+                   {"256", "512", "1024", "2048", "4096"}, "512", "4096", "shadows", "map"),
+            "ray-casts the shadows of every light that casts them"),
+        rasterizerOnly(traded(shadowFilter, {"1", "4", "16"}, "1", "16", "shadows", "map"),
+                       "ray-casts the shadows of every light that casts them"),
         traded(areaSamplesKnob(), {"4", "16", "64", "256"}, "4", std::to_string(kReferenceAreaSamples)),
-        traded(number<float>(
-                   "shadow-bias", "--shadow-bias",
-                   "Shadow maps: constant depth offset, in units of the map's depth resolution", "shadow_map",
-                   "bias", 0, 1e6, "", [](auto& s) -> auto& { return s.shadowMap.constantBias; }),
-               {"0.5", "1", "2", "4"}, "", "", "shadows", "map"),
-        traded(number<float>(
-                   "shadow-slope-bias", "--shadow-slope-bias",
-                   "Shadow maps: depth offset per unit of the surface's depth slope across a texel",
-                   "shadow_map", "slope_bias", 0, 1e6, "",
-                   [](auto& s) -> auto& { return s.shadowMap.slopeBias; }),
-               {"0", "1.5", "4"}, "", "", "shadows", "map"),
-        traded(choice<TransparencyMode>(
-                   "transparency", "--transparency",
-                   "Transparent triangles back to front, in file order, or in exact per-pixel lists",
-                   "transparency", "mode", [](auto& s) -> auto& { return s.transparency.mode; }),
-               {}, "unsorted", "exact"),
+        rasterizerOnly(
+            traded(number<float>(
+                       "shadow-bias", "--shadow-bias",
+                       "Shadow maps: constant depth offset, in units of the map's depth resolution",
+                       "shadow_map", "bias", 0, 1e6, "",
+                       [](auto& s) -> auto& { return s.shadowMap.constantBias; }),
+                   {"0.5", "1", "2", "4"}, "", "", "shadows", "map"),
+            "ray-casts the shadows of every light that casts them"),
+        rasterizerOnly(
+            traded(number<float>(
+                       "shadow-slope-bias", "--shadow-slope-bias",
+                       "Shadow maps: depth offset per unit of the surface's depth slope across a texel",
+                       "shadow_map", "slope_bias", 0, 1e6, "",
+                       [](auto& s) -> auto& { return s.shadowMap.slopeBias; }),
+                   {"0", "1.5", "4"}, "", "", "shadows", "map"),
+            "ray-casts the shadows of every light that casts them"),
+        rasterizerOnly(
+            traded(choice<TransparencyMode>(
+                       "transparency", "--transparency",
+                       "Transparent triangles back to front, in file order, or in exact per-pixel lists",
+                       "transparency", "mode", [](auto& s) -> auto& { return s.transparency.mode; }),
+                   {}, "unsorted", "exact"),
+            "composites every see-through surface along each ray in depth order"),
         // Used by "sorted" only, but accepted with every mode: switching the mode (in the file or with
         // --transparency) must not make the rest of the file wrong.
-        traded(choice<SortKey>(
-                   "sort-key", "--sort-key",
-                   "Depth that orders transparent triangles: the centroid's or the farthest "
-                   "vertex's",
-                   "transparency", "sort_key", [](auto& s) -> auto& { return s.transparency.key; }),
-               {}, "", "", "transparency", "sorted"),
+        rasterizerOnly(
+            traded(choice<SortKey>(
+                       "sort-key", "--sort-key",
+                       "Depth that orders transparent triangles: the centroid's or the farthest "
+                       "vertex's",
+                       "transparency", "sort_key", [](auto& s) -> auto& { return s.transparency.key; }),
+                   {}, "", "", "transparency", "sorted"),
+            "composites every see-through surface along each ray in depth order"),
         traded(choice<CullMode>(
                    "cull", "--cull", "Which faces are not drawn", "pipeline", "cull",
                    [](auto& s) -> auto& { return s.pipeline.cull; }),
@@ -343,32 +363,40 @@ std::vector<SceneKnob> makeTable() {
                    "lighting", "blinn_exponent",
                    [](auto& s) -> auto& { return s.lighting.brdf.blinnExponent; })),
                {}, "", ""),
-        traded(choice<Antialiasing>(
-                   "aa", "--aa",
-                   "Anti-aliasing: supersampling (ssaaN) draws the frame once per sample (2, 4, 8 or 16, at "
-                   "the standard sample positions) and averages them; multisampling (msaaN) draws it once, "
-                   "testing coverage and depth per sample and shading once per pixel",
-                   "pipeline", "antialiasing", [](auto& s) -> auto& { return s.pipeline.antialiasing; }),
-               {}, "none", "ssaa16"),
-        traded(number<int>(
-                   "subpixel-bits", "--subpixel-bits",
-                   "Rasterizer precision: vertices snapped to 1/2^N of a pixel, N from 0 to 8 (8 as "
-                   "GPUs and Mesa)",
-                   "pipeline", "subpixel_bits", 0, kMaxSubpixelBits, "",
-                   [](auto& s) -> auto& { return s.pipeline.subpixelBits; }),
-               {"0", "2", "4", "8"}, "", "8"),
-        traded(choice<DepthBufferFormat>(
-                   "depth", "--depth",
-                   "Depth buffer format: 16- or 24-bit unorm, 32-bit float, or float "
-                   "with reversed Z (docs/trade.md)",
-                   "pipeline", "depth", [](auto& s) -> auto& { return s.pipeline.depth; }),
-               {}, "float", "reversed-float"),
-        traded(choice<ColorBufferFormat>(
-                   "color-buffer", "--color-buffer",
-                   "Colour buffer precision, rounded after every write: 8-bit linear, "
-                   "half or float (docs/trade.md)",
-                   "pipeline", "color_buffer", [](auto& s) -> auto& { return s.pipeline.colorBuffer; }),
-               {}, "", "float"),
+        rasterizerOnly(
+            traded(
+                choice<Antialiasing>(
+                    "aa", "--aa",
+                    "Anti-aliasing: supersampling (ssaaN) draws the frame once per sample (2, 4, 8 or 16, at "
+                    "the standard sample positions) and averages them; multisampling (msaaN) draws it once, "
+                    "testing coverage and depth per sample and shading once per pixel",
+                    "pipeline", "antialiasing", [](auto& s) -> auto& { return s.pipeline.antialiasing; }),
+                {}, "none", "ssaa16"),
+            "averages N×N rays per pixel (--samples)"),
+        rasterizerOnly(
+            traded(number<int>(
+                       "subpixel-bits", "--subpixel-bits",
+                       "Rasterizer precision: vertices snapped to 1/2^N of a pixel, N from 0 to 8 (8 as "
+                       "GPUs and Mesa)",
+                       "pipeline", "subpixel_bits", 0, kMaxSubpixelBits, "",
+                       [](auto& s) -> auto& { return s.pipeline.subpixelBits; }),
+                   {"0", "2", "4", "8"}, "", "8"),
+            "casts its rays through exact points, with no snapping"),
+        rasterizerOnly(traded(choice<DepthBufferFormat>(
+                                  "depth", "--depth",
+                                  "Depth buffer format: 16- or 24-bit unorm, 32-bit float, or float "
+                                  "with reversed Z (docs/trade.md)",
+                                  "pipeline", "depth", [](auto& s) -> auto& { return s.pipeline.depth; }),
+                              {}, "float", "reversed-float"),
+                       "finds the nearest surface along each ray in double, with no depth buffer"),
+        rasterizerOnly(
+            traded(choice<ColorBufferFormat>(
+                       "color-buffer", "--color-buffer",
+                       "Colour buffer precision, rounded after every write: 8-bit linear, "
+                       "half or float (docs/trade.md)",
+                       "pipeline", "color_buffer", [](auto& s) -> auto& { return s.pipeline.colorBuffer; }),
+                   {}, "", "float"),
+            "keeps colours in double until the output is encoded"),
         traded(choice<TextureFilter>(
                    "texture-filter", "--texture-filter",
                    "Texture filtering: the nearest texel, bilinear, or trilinear over mipmaps "
@@ -391,23 +419,28 @@ std::vector<SceneKnob> makeTable() {
                    "polygon's area, or its angle at the vertex (docs/trade.md)",
                    "lighting", "normals", [](auto& s) -> auto& { return s.lighting.normals; })),
                {}, "", ""),
-        traded(choice<MathPrecision>(
-                   "powers", "--powers",
-                   "pow and exp in lighting and fog: the C library's, or polynomials on the "
-                   "float's bits",
-                   "lighting", "powers", [](auto& s) -> auto& { return s.lighting.powers; }),
-               {}, "fast", "exact"),
-        traded(choice<Normalization>(
-                   "normalize", "--normalize",
-                   "Unit vectors N, L, V, H: 1/sqrt, or the reciprocal square root estimate "
-                   "and one Newton step",
-                   "lighting", "normalize", [](auto& s) -> auto& { return s.lighting.normalize; }),
-               {}, "fast", "exact"),
-        traded(choice<FresnelModel>(
-                   "fresnel", "--fresnel",
-                   "Cook-Torrance's Fresnel term: Schlick's approximation or the exact dielectric one",
-                   "lighting", "fresnel", [](auto& s) -> auto& { return s.lighting.brdf.fresnel; }),
-               {}, "schlick", "exact"),
+        rasterizerOnly(traded(choice<MathPrecision>(
+                                  "powers", "--powers",
+                                  "pow and exp in lighting and fog: the C library's, or polynomials on the "
+                                  "float's bits",
+                                  "lighting", "powers", [](auto& s) -> auto& { return s.lighting.powers; }),
+                              {}, "fast", "exact"),
+                       "uses the C library's pow and exp"),
+        rasterizerOnly(
+            traded(choice<Normalization>(
+                       "normalize", "--normalize",
+                       "Unit vectors N, L, V, H: 1/sqrt, or the reciprocal square root estimate "
+                       "and one Newton step",
+                       "lighting", "normalize", [](auto& s) -> auto& { return s.lighting.normalize; }),
+                   {}, "fast", "exact"),
+            "normalises vectors exactly"),
+        rasterizerOnly(
+            traded(choice<FresnelModel>(
+                       "fresnel", "--fresnel",
+                       "Cook-Torrance's Fresnel term: Schlick's approximation or the exact dielectric one",
+                       "lighting", "fresnel", [](auto& s) -> auto& { return s.lighting.brdf.fresnel; }),
+                   {}, "schlick", "exact"),
+            "uses the exact dielectric Fresnel term"),
         // The material's shininess and the fog: what a lecture's exercises vary. The fog's keys are read
         // by the scene file's "fog" section (scene_sections.cpp), which checks them against each other
         // (start and end for linear fog only); the command line accepts each with every mode, as

@@ -49,6 +49,11 @@ struct SceneKnob {
     // reflection model, shadows it does not have) rather than how exactly the scene is drawn: the
     // trade lists such settings apart from the accuracy knobs and no preset sets them. Empty: never.
     std::function<bool(const Scene& baseline, const std::string& value)> changesContent;
+    // What the exact reference renderer does in the knob's place, for messages ("averages N×N rays per
+    // pixel (--samples)"); empty: the reference follows the knob. Such a knob is one of the rasterizer's
+    // approximations, which `facet render --renderer reference` refuses on its command line rather than
+    // ignore.
+    std::string referenceInstead;
     // The knob's value in a scene, as the flag takes it; empty when its objects or lights disagree.
     std::function<std::string(const Scene&)> get;
     // Sets the knob's field of `scene` to `value`, which check() allows.

@@ -65,4 +65,25 @@ std::string blankWarning(const TradeSetting& setting, const Coverage& coverage) 
     return text;
 }
 
+bool scoresMeaningful(const TradeResult& result, const TradeRow& row) {
+    return !row.blank && !(!result.rows.empty() && result.rows.front().blank);
+}
+
+void markBlankBaseline(TradeResult& result) {
+    if (result.rows.empty() || !result.rows.front().blank) return;
+    for (TradeRow& row : result.rows) {
+        row.noEffect = false;
+        row.withinReferenceFloor = false;
+        row.timeVerdict = TimeVerdict::WithinNoise;
+    }
+    result.rows.front().pareto = false;
+    result.warnings.insert(result.warnings.begin(),
+                           "the scores are meaningless: the baseline (the scene as given) draws nothing of "
+                           "what the reference shows, so no setting is judged faster, slower, more "
+                           "accurate or without effect against it (trade.csv: scores_meaningful 0)");
+    result.recommendations = {
+        "none: the scene as given draws nothing of what the reference shows; make it draw the scene "
+        "(another camera, near plane, depth format or culling) and run the trade again"};
+}
+
 }  // namespace facet

@@ -12,6 +12,7 @@
 #include "reference/reference.h"
 #include "render/renderer.h"
 #include "trade/knobs.h"
+#include "trade/trade.h"
 
 namespace facet {
 
@@ -46,5 +47,17 @@ void requireReferenceShowsScene(const std::vector<bool>& referenceSurface, const
 
 // The warning for a blank image of `setting`.
 std::string blankWarning(const TradeSetting& setting, const Coverage& coverage);
+
+// When the baseline (the scene as given) is blank, every comparison with it says nothing about the
+// scene: another setting's time is against an empty image's, its image the same as the baseline's
+// means both draw nothing, its error beside the baseline's within the reference's floor is beside an
+// empty image's. Then no row gets a time verdict, "no effect" or "within floor", the baseline is off
+// the Pareto front, the scores are marked meaningless (scoresMeaningful), the warning says why and
+// the knob-by-knob advice is one line on what to change. Nothing when the baseline drew the scene.
+void markBlankBaseline(TradeResult& result);
+
+// Whether a row's scores describe the scene: false for a blank row (its error is an empty image's)
+// and for every row when the baseline is blank (its time and verdicts are against an empty image).
+bool scoresMeaningful(const TradeResult& result, const TradeRow& row);
 
 }  // namespace facet

@@ -6,6 +6,8 @@
 #include <ostream>
 #include <utility>
 
+#include "trade/blank.h"
+
 namespace facet {
 
 namespace {
@@ -254,7 +256,8 @@ void writeTradeCsv(const TradeResult& result, std::ostream& out) {
         for (const char* metric : {"psnr_db", "ssim", "mean_abs", "max_abs", "over_1_255", "over_2_255"})
             out << "," << space << "_" << metric;
     out << ",no_effect,pareto,image,error_image";
-    out << ",cpu_ms_median,cpu_ms_min,cpu_ms_max,time_verdict,blank,changes_content,within_reference_floor\n";
+    out << ",cpu_ms_median,cpu_ms_min,cpu_ms_max,time_verdict,blank,changes_content,within_reference_floor";
+    out << ",scores_meaningful\n";
     for (const TradeRow& row : result.rows) {
         out << csvField(row.setting.knob) << "," << csvField(row.setting.value) << ","
             << csvField(row.setting.words.empty() ? "" : row.setting.label()) << "," << row.frames << ","
@@ -269,7 +272,8 @@ void writeTradeCsv(const TradeResult& result, std::ostream& out) {
         out << "," << csvNumber(row.cpuMsMedian) << "," << csvNumber(row.cpuMsMin) << ","
             << csvNumber(row.cpuMsMax) << ","
             << (row.setting.knob == "baseline" ? "" : timeVerdictWords(row.timeVerdict)) << "," << row.blank
-            << "," << row.changesContent << "," << row.withinReferenceFloor << "\n";
+            << "," << row.changesContent << "," << row.withinReferenceFloor << ","
+            << scoresMeaningful(result, row) << "\n";
     }
 }
 

@@ -222,8 +222,9 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
                     row.changesContent = settingChangesContent(baseline, row.setting);
                     if (k == 0)
                         baselineImage = image;
-                    else
-                        row.noEffect = sameEncoded(image, baselineImage, encoding);
+                    else  // two images that both draw nothing of the scene say nothing of the knob
+                        row.noEffect =
+                            !result.rows.front().blank && sameEncoded(image, baselineImage, encoding);
                     const std::string stem = settingFileStem(static_cast<int>(k), row.setting);
                     row.image = stem + ".png";
                     row.errorImage = stem + "-error.png";
@@ -308,6 +309,7 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
             result.warnings.push_back(warning);
 
     result.recommendations = tradeRecommendations(result);
+    markBlankBaseline(result);
     {
         std::ostringstream csv;  // written whole, as every output is (io/output_path.h)
         writeTradeCsv(result, csv);

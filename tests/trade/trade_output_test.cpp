@@ -214,21 +214,23 @@ TEST(TradeCsv, KeepsItsColumnsAndAddsTheVerdicts) {
         "error_image";
     EXPECT_EQ(lines[0], earlier +
                             ",cpu_ms_median,cpu_ms_min,cpu_ms_max,time_verdict,blank,changes_content,"
-                            "within_reference_floor");
-    auto tail = [&](std::size_t row) {  // the last seven fields (no field of these rows is quoted)
+                            "within_reference_floor,scores_meaningful");
+    auto tail = [&](std::size_t row) {  // the last eight fields (no field of these rows is quoted)
         std::vector<std::string> fields;
         std::stringstream in(lines[row + 1]);
         for (std::string field; std::getline(in, field, ',');)
             fields.push_back(field);
         if (lines[row + 1].back() == ',') fields.push_back("");
-        return std::vector<std::string>(fields.end() - 7, fields.end());
+        return std::vector<std::string>(fields.end() - 8, fields.end());
     };
-    EXPECT_EQ(tail(0), (std::vector<std::string>{"2443.42", "2394.5516", "2516.7226", "", "0", "0", "0"}));
+    EXPECT_EQ(tail(0),
+              (std::vector<std::string>{"2443.42", "2394.5516", "2516.7226", "", "0", "0", "0", "1"}));
     EXPECT_EQ(tail(1)[3], "faster");
     EXPECT_EQ(tail(2)[3], "slower");
     EXPECT_EQ(tail(2)[6], "1");
     EXPECT_EQ(tail(3)[3], "within noise");
     EXPECT_EQ(tail(4)[4], "1");
+    EXPECT_EQ(tail(4)[7], "0");  // a blank row's scores are an empty image's
     EXPECT_EQ(tail(5)[5], "1");
 }
 
