@@ -59,6 +59,7 @@ class PngReader final : public ImageFileReader {
 
     // False with error() set when the file is not a PNG whose header libpng accepts.
     bool open(const std::string& path) {
+        path_ = path;
         file_ = std::fopen(path.c_str(), "rb");
         if (file_ == nullptr) return fail(std::string("cannot open: ") + std::strerror(errno));
         png_ = png_create_read_struct(PNG_LIBPNG_VER_STRING, &sink_, onPngError, onPngWarning);
@@ -78,8 +79,10 @@ class PngReader final : public ImageFileReader {
         const std::size_t rowStride = static_cast<std::size_t>(header_.width) * pixelStride;
         // A file without interlacing is decoded row by row straight into `out`: a 16384² RGB texture
         // needs its 1 GiB of texels and one row more, not another 768 MiB for the whole decoded file.
+        // A second read (another channel range) decodes the file again from its start: libpng cannot
+        // rewind, and keeping the first pass's rows would cost the memory streaming saves.
         if (!decoded_ && passes_ == 1) {
-            if (streamed_) return fail("the PNG's rows were read already");
+            if (streamed_ && !reopen()) return false;
             streamed_ = true;
             std::vector<std::uint8_t> row(rowBytes_);
             for (int y = 0; y < header_.height; ++y) {
@@ -101,6 +104,16 @@ class PngReader final : public ImageFileReader {
     bool fail(std::string what) {
         error_ = std::move(what);
         return false;
+    }
+
+    bool reopen() {
+        png_destroy_read_struct(&png_, &info_, nullptr);
+        std::fclose(file_);
+        png_ = nullptr;
+        info_ = nullptr;
+        file_ = nullptr;
+        streamed_ = false;
+        return open(std::string(path_));
     }
 
     // One decoded row's channels [firstChannel, endChannel) into `bytes`, pixels `pixelStride` apart.
@@ -193,6 +206,7 @@ class PngReader final : public ImageFileReader {
         return true;
     }
 
+    std::string path_;
     std::FILE* file_ = nullptr;
     png_structp png_ = nullptr;
     png_infop info_ = nullptr;

@@ -27,7 +27,10 @@ class CameraMessagesCli : public ::testing::Test {
             dir_);
     }
     std::string file(const std::string& name, const std::string& text) {
-        return "'" + dir_.write(name, text).string() + "'";
+        std::string quoted = "'";  // appended piece by piece: GCC 12 warns falsely on "'" + s (-Wrestrict)
+        quoted += dir_.write(name, text).string();
+        quoted += "'";
+        return quoted;
     }
 };
 
