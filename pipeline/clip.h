@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "state.h"
 #include "types.h"
 
 namespace facet {
@@ -41,11 +42,29 @@ inline std::uint8_t computeOutcode(const vec4& p, ClipDepthRange depth = ClipDep
 float planeDistance(const vec4& position, std::uint8_t plane,
                     ClipDepthRange depth = ClipDepthRange::MinusWToW);
 
+// Where the edge from a vertex inside a plane (distance dInside ≥ 0) to one outside it (dOutside < 0)
+// crosses the plane: P = P_in + t·(P_out − P_in) with t = d_in / (d_in − d_out), 0 ≤ t < 1.
+inline float clipEdgeT(float dInside, float dOutside) {
+    return dInside / (dInside - dOutside);
+}
+
+// The clip position made at `t` on the edge inside → outside: interpolated, except its depth z_c, which
+// is fromW's z_c(w) of the interpolated w when the projection ties them (state.h, DepthFromW: a huge
+// triangle's corners can carry z_c = w in float, which interpolation would hand on to every vertex made
+// on its edges).
+inline vec4 clipEdgePoint(const vec4& inside, const vec4& outside, float t, const DepthFromW& fromW) {
+    vec4 p = inside + t * (outside - inside);
+    if (fromW.known) p.z = fromW.at(p.w);
+    return p;
+}
+
 // Clips `polygon` in place against every plane in `planes` (a ClipPlaneBit mask), in the fixed order
 // left, right, bottom, top, near, far, w. Varyings are interpolated in clip space with the position,
-// which keeps them perspective-correct. Each new vertex is computed from the edge's inside vertex toward
-// its outside one, so two triangles that share an edge get bit-identical new vertices on it.
+// which keeps them perspective-correct; a new vertex's depth follows its w where `fromW` is known
+// (clipEdgePoint). Each new vertex is computed from the edge's inside vertex toward its outside one, so
+// two triangles that share an edge get bit-identical new vertices on it.
 // A result with a non-finite coordinate (from inputs near the float range) is emptied.
-void clipPolygon(ClipPolygon& polygon, std::uint8_t planes, ClipDepthRange depth = ClipDepthRange::MinusWToW);
+void clipPolygon(ClipPolygon& polygon, std::uint8_t planes, ClipDepthRange depth = ClipDepthRange::MinusWToW,
+                 const DepthFromW& fromW = {});
 
 }  // namespace facet

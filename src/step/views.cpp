@@ -596,6 +596,14 @@ Screen clipScreen(const TriangleTrace& t) {
            "t = d_in / (d_in − d_out), d the signed distance to the plane (≥ 0 inside).\n"
            "Each section numbers the polygon before its plane p0, p1, …; before the first\n"
            "cut they are v0, v1, v2.\n";
+    const DepthFromW& fromW = t.state.depth.fromW;
+    if (fromW.known)
+        out << wrapText(
+            "A new vertex's depth z is not taken from the line but from its w, as the camera's "
+            "projection ties them for every point: z = a·w + b, a = " +
+                number(fromW.slope) + ", b = " + number(fromW.offset) +
+                " (so a huge triangle's new vertices keep a depth the test can pass).",
+            kScreenColumns, 0);
     std::vector<vec4> polygon(t.clipPositions.begin(), t.clipPositions.end());
     for (const ClipStep& step : t.clipSteps) {
         out << "\nPlane " << planeRule(step.plane, range) << ":\n";
