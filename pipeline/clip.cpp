@@ -31,10 +31,10 @@ namespace {
 // The vertex where the segment inside → outside meets the plane (clipEdgeT, clipEdgePoint), its
 // varyings interpolated with the same t.
 ClipVertex intersect(const ClipVertex& inside, float dInside, const ClipVertex& outside, float dOutside,
-                     int varyingCount, const DepthFromW& fromW) {
+                     int varyingCount, const DepthFromW& fromW, ClipDepthRange depth) {
     const float t = clipEdgeT(dInside, dOutside);
     ClipVertex v;
-    v.position = clipEdgePoint(inside.position, outside.position, t, fromW);
+    v.position = clipEdgePoint(inside.position, outside.position, t, fromW, depth);
     for (int k = 0; k < varyingCount; ++k)
         v.varyings[k] = inside.varyings[k] + t * (outside.varyings[k] - inside.varyings[k]);
     return v;
@@ -54,9 +54,9 @@ int clipAgainstPlane(const ClipVertex* in, int count, std::uint8_t plane, ClipDe
         const bool nextInside = dNext >= 0.0f;
         if (currentInside) out[written++] = current;
         if (currentInside && !nextInside)
-            out[written++] = intersect(current, dCurrent, next, dNext, varyingCount, fromW);
+            out[written++] = intersect(current, dCurrent, next, dNext, varyingCount, fromW, depth);
         else if (!currentInside && nextInside)
-            out[written++] = intersect(next, dNext, current, dCurrent, varyingCount, fromW);
+            out[written++] = intersect(next, dNext, current, dCurrent, varyingCount, fromW, depth);
     }
     return written;
 }

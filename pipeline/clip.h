@@ -48,13 +48,33 @@ inline float clipEdgeT(float dInside, float dOutside) {
     return dInside / (dInside - dOutside);
 }
 
-// The clip position made at `t` on the edge inside → outside: interpolated, except its depth z_c, which
-// is fromW's z_c(w) of the interpolated w when the projection ties them (state.h, DepthFromW: a huge
+// The share of the depth left before the far plane that the rounding of an interpolated depth may take
+// before the clipper sets the depth from w instead (clipEdgePoint): 2^-10, a thousandth. Interpolation is
+// kept below it, so that ordinary scenes keep the depths (and the ties between coplanar surfaces) that
+// interpolating the corners gives; above it the depth buffer could no longer tell such a vertex from the
+// far plane.
+inline constexpr float kInterpolatedDepthRoundingShare = 0x1p-10f;
+
+// The clip position made at `t` on the edge inside → outside: interpolated, except its depth z_c where
+// interpolating cannot resolve it and the projection ties it to w (state.h, DepthFromW): there z_c is
+// fromW's z_c(w) of the interpolated w. Interpolating rounds z_c by up to about 2^-22 of the corners'
+// sizes, |z_in| + |z_out| + |w_in| + |w_out| (each corner is rounded to 2^-24 of itself, the lerp adds a
+// few roundings); the depth that matters is what is left before the far plane, w − z_c (window depth
+// 1 − z_w = (w − z_c)/2w) under OpenGL's range, z_c itself (z_w = z_c/w) under reversed Z. A huge
 // triangle's corners can carry z_c = w in float, which interpolation would hand on to every vertex made
-// on its edges).
-inline vec4 clipEdgePoint(const vec4& inside, const vec4& outside, float t, const DepthFromW& fromW) {
+// on its edges: window depth 1, drawn nowhere.
+// `depthFromW`, when given, is told whether the depth was set from w.
+inline vec4 clipEdgePoint(const vec4& inside, const vec4& outside, float t, const DepthFromW& fromW,
+                          ClipDepthRange depth = ClipDepthRange::MinusWToW, bool* depthFromW = nullptr) {
     vec4 p = inside + t * (outside - inside);
-    if (fromW.known) p.z = fromW.at(p.w);
+    if (!fromW.known) return p;
+    const float projected = fromW.at(p.w);
+    const float depthLeft = depth == ClipDepthRange::ReversedZeroToW ? projected : p.w - projected;
+    const float rounding =
+        0x1p-22f * (std::abs(inside.z) + std::abs(outside.z) + std::abs(inside.w) + std::abs(outside.w));
+    const bool fromProjection = rounding > kInterpolatedDepthRoundingShare * std::abs(depthLeft);
+    if (fromProjection) p.z = projected;
+    if (depthFromW) *depthFromW = fromProjection;
     return p;
 }
 

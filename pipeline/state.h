@@ -98,7 +98,7 @@ constexpr std::span<const EnumName<DepthBufferFormat>> enumNames(DepthBufferForm
 // gives w_c = −z_e and z_c = P[2][2]·z_e + P[3][2] for every point, so z_c = slope·w_c + offset with
 // slope = −P[2][2], offset = P[3][2] (OpenGL's: slope = (f + n)/(f − n), offset = −2fn/(f − n); reversed
 // Z's: slope = −n/(f − n), offset = fn/(f − n)). The clipper gives the vertices it makes this depth
-// instead of one interpolated from the corners' (clip.h, clipEdgePoint): when the far plane is 10^8 near
+// where the one interpolated from the corners' cannot be resolved (clip.h, clipEdgePoint): when the far plane is 10^8 near
 // planes away, a huge triangle's corners near the far plane have z_c and w the same float (they differ
 // by 2n(w − f)/(f − n), below half a step of w), so every vertex interpolated between them has z_c = w,
 // window depth 1, and fails the test against the cleared far plane, where the relation keeps

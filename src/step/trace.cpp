@@ -149,7 +149,7 @@ void TraceRecorder::recordClipping(TriangleTrace& view, std::uint32_t triangle,
             made.to = to;
             made.t = clipEdgeT(dFrom, dTo);
             made.position = clipEdgePoint(before.vertices[from].position, before.vertices[to].position,
-                                          made.t, call_.state.depth.fromW);
+                                          made.t, call_.state.depth.fromW, range, &made.depthFromW);
             step.made.push_back(made);
         }
         // The clipper's output order (clip.cpp's clipAgainstPlane): walking the edges i → i + 1, an
