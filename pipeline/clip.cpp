@@ -28,13 +28,13 @@ float planeDistance(const vec4& p, std::uint8_t plane, ClipDepthRange depth) {
 
 namespace {
 
-// The point where the segment inside → outside meets the plane: inside + t·(outside − inside),
-// t = d_in / (d_in − d_out), with d the plane distances (d_in ≥ 0 > d_out, so 0 ≤ t < 1).
+// The vertex where the segment inside → outside meets the plane (clipEdgeT, clipEdgePoint), its
+// varyings interpolated with the same t.
 ClipVertex intersect(const ClipVertex& inside, float dInside, const ClipVertex& outside, float dOutside,
-                     int varyingCount) {
-    const float t = dInside / (dInside - dOutside);
+                     int varyingCount, const DepthFromW& fromW, ClipDepthRange depth) {
+    const float t = clipEdgeT(dInside, dOutside);
     ClipVertex v;
-    v.position = inside.position + t * (outside.position - inside.position);
+    v.position = clipEdgePoint(inside.position, outside.position, t, fromW, depth);
     for (int k = 0; k < varyingCount; ++k)
         v.varyings[k] = inside.varyings[k] + t * (outside.varyings[k] - inside.varyings[k]);
     return v;
@@ -43,7 +43,7 @@ ClipVertex intersect(const ClipVertex& inside, float dInside, const ClipVertex& 
 // One Sutherland–Hodgman pass: keeps the inside part of `in` with respect to one plane.
 // Returns the number of vertices written to `out`.
 int clipAgainstPlane(const ClipVertex* in, int count, std::uint8_t plane, ClipDepthRange depth,
-                     int varyingCount, ClipVertex* out) {
+                     const DepthFromW& fromW, int varyingCount, ClipVertex* out) {
     int written = 0;
     for (int i = 0; i < count; ++i) {
         const ClipVertex& current = in[i];
@@ -54,16 +54,16 @@ int clipAgainstPlane(const ClipVertex* in, int count, std::uint8_t plane, ClipDe
         const bool nextInside = dNext >= 0.0f;
         if (currentInside) out[written++] = current;
         if (currentInside && !nextInside)
-            out[written++] = intersect(current, dCurrent, next, dNext, varyingCount);
+            out[written++] = intersect(current, dCurrent, next, dNext, varyingCount, fromW, depth);
         else if (!currentInside && nextInside)
-            out[written++] = intersect(next, dNext, current, dCurrent, varyingCount);
+            out[written++] = intersect(next, dNext, current, dCurrent, varyingCount, fromW, depth);
     }
     return written;
 }
 
 }  // namespace
 
-void clipPolygon(ClipPolygon& polygon, std::uint8_t planes, ClipDepthRange depth) {
+void clipPolygon(ClipPolygon& polygon, std::uint8_t planes, ClipDepthRange depth, const DepthFromW& fromW) {
     static constexpr std::uint8_t kOrder[] = {kClipLeft, kClipRight, kClipBottom, kClipTop,
                                               kClipNear, kClipFar,   kClipW};
     // Ping-pong between the polygon's own storage and a scratch polygon. Both have room for 3 + 7
@@ -80,7 +80,7 @@ void clipPolygon(ClipPolygon& polygon, std::uint8_t planes, ClipDepthRange depth
             anyOutside |= planeDistance(source[i].position, plane, depth) < 0.0f;
         if (!anyOutside) continue;
         polygon.planesCut |= plane;
-        count = clipAgainstPlane(source, count, plane, depth, polygon.varyingCount, target);
+        count = clipAgainstPlane(source, count, plane, depth, fromW, polygon.varyingCount, target);
         std::swap(source, target);
     }
     if (count < 3) count = 0;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "state.h"
 #include "types.h"
 
 namespace facet {
@@ -41,11 +42,49 @@ inline std::uint8_t computeOutcode(const vec4& p, ClipDepthRange depth = ClipDep
 float planeDistance(const vec4& position, std::uint8_t plane,
                     ClipDepthRange depth = ClipDepthRange::MinusWToW);
 
+// Where the edge from a vertex inside a plane (distance dInside ≥ 0) to one outside it (dOutside < 0)
+// crosses the plane: P = P_in + t·(P_out − P_in) with t = d_in / (d_in − d_out), 0 ≤ t < 1.
+inline float clipEdgeT(float dInside, float dOutside) {
+    return dInside / (dInside - dOutside);
+}
+
+// The share of the depth left before the far plane that the rounding of an interpolated depth may take
+// before the clipper sets the depth from w instead (clipEdgePoint): 2^-10, a thousandth. Interpolation is
+// kept below it, so that ordinary scenes keep the depths (and the ties between coplanar surfaces) that
+// interpolating the corners gives; above it the depth buffer could no longer tell such a vertex from the
+// far plane.
+inline constexpr float kInterpolatedDepthRoundingShare = 0x1p-10f;
+
+// The clip position made at `t` on the edge inside → outside: interpolated, except its depth z_c where
+// interpolating cannot resolve it and the projection ties it to w (state.h, DepthFromW): there z_c is
+// fromW's z_c(w) of the interpolated w. Interpolating rounds z_c by up to about 2^-22 of the corners'
+// sizes, |z_in| + |z_out| + |w_in| + |w_out| (each corner is rounded to 2^-24 of itself, the lerp adds a
+// few roundings); the depth that matters is what is left before the far plane, w − z_c (window depth
+// 1 − z_w = (w − z_c)/2w) under OpenGL's range, z_c itself (z_w = z_c/w) under reversed Z. A huge
+// triangle's corners can carry z_c = w in float, which interpolation would hand on to every vertex made
+// on its edges: window depth 1, drawn nowhere.
+// `depthFromW`, when given, is told whether the depth was set from w.
+inline vec4 clipEdgePoint(const vec4& inside, const vec4& outside, float t, const DepthFromW& fromW,
+                          ClipDepthRange depth = ClipDepthRange::MinusWToW, bool* depthFromW = nullptr) {
+    vec4 p = inside + t * (outside - inside);
+    if (!fromW.known) return p;
+    const float projected = fromW.at(p.w);
+    const float depthLeft = depth == ClipDepthRange::ReversedZeroToW ? projected : p.w - projected;
+    const float rounding =
+        0x1p-22f * (std::abs(inside.z) + std::abs(outside.z) + std::abs(inside.w) + std::abs(outside.w));
+    const bool fromProjection = rounding > kInterpolatedDepthRoundingShare * std::abs(depthLeft);
+    if (fromProjection) p.z = projected;
+    if (depthFromW) *depthFromW = fromProjection;
+    return p;
+}
+
 // Clips `polygon` in place against every plane in `planes` (a ClipPlaneBit mask), in the fixed order
 // left, right, bottom, top, near, far, w. Varyings are interpolated in clip space with the position,
-// which keeps them perspective-correct. Each new vertex is computed from the edge's inside vertex toward
-// its outside one, so two triangles that share an edge get bit-identical new vertices on it.
+// which keeps them perspective-correct; a new vertex's depth follows its w where `fromW` is known
+// (clipEdgePoint). Each new vertex is computed from the edge's inside vertex toward its outside one, so
+// two triangles that share an edge get bit-identical new vertices on it.
 // A result with a non-finite coordinate (from inputs near the float range) is emptied.
-void clipPolygon(ClipPolygon& polygon, std::uint8_t planes, ClipDepthRange depth = ClipDepthRange::MinusWToW);
+void clipPolygon(ClipPolygon& polygon, std::uint8_t planes, ClipDepthRange depth = ClipDepthRange::MinusWToW,
+                 const DepthFromW& fromW = {});
 
 }  // namespace facet

@@ -143,7 +143,7 @@ template <class Observer>
     const DrawState& state = setupAndBin.state;
     DrawStats& stats = setupAndBin.chunk.stats;
     ++stats.trianglesClipped;
-    clipPolygon(polygon, outcodeOr, clipDepthRange(state.depth.format));
+    clipPolygon(polygon, outcodeOr, clipDepthRange(state.depth.format), state.depth.fromW);
     if constexpr (Observer::enabled) setupAndBin.observer.onClipped(triangleIndex, polygon);
     if (polygon.count == 0) {
         ++stats.trianglesRejected;

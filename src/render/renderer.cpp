@@ -595,6 +595,9 @@ PreparedScene prepareFrame(const Scene& scene, std::shared_ptr<const SceneAssets
     setTriangles(frame, std::move(triangles));
 
     frame.state = pipelineState(scene);
+    // The clipper's new vertices take their depth from their w by the camera's projection (state.h,
+    // DepthFromW); a supersampling pass's projection shifts x and y only, so the relation holds there too.
+    frame.state.depth.fromW = clipDepthFromW(drawnClipFromView(frame.camera));
     frame.clearColor = vec4(decode(vec3(scene.background)), scene.background.a);
     frame.encoding = glPreset ? kGlEncoding
                      : scene.lighting.preset == LightingPreset::Lecture
@@ -824,10 +827,17 @@ PlannedDraw runCall(const PreparedScene& prepared, const FrameMemory& memory,
 std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, TransparencyMode mode, FrameMemory& memory,
                                    FrameStats& stats) {
     std::vector<PlannedDraw> plan;
+    // A user's vertex shader need not place its vertices by the camera's projection: its clipped
+    // vertices keep interpolated depths (state.h, DepthFromW).
+    const auto drawState = [&](std::uint32_t k) {
+        DrawState state = prepared.state;
+        if (prepared.draws[k].userShader.module) state.depth.fromW = {};
+        return state;
+    };
     // Opaque draws, with depth writes, in file order.
     for (std::uint32_t k = 0; k < prepared.draws.size(); ++k) {
         const PreparedDraw& d = prepared.draws[k];
-        if (!d.transparent) plan.push_back({k, d.vertices, d.indices, prepared.state, {}});
+        if (!d.transparent) plan.push_back({k, d.vertices, d.indices, drawState(k), {}});
     }
     const std::span<const TransparentTriangle> triangles = prepared.transparentTriangles;
     if (triangles.empty()) return plan;
@@ -835,7 +845,7 @@ std::vector<PlannedDraw> planFrame(const PreparedScene& prepared, TransparencyMo
     // The transparent pass: depth test on, depth writes off, each draw's own blend.
     const TransparencyOptions& options = prepared.scene.transparency;
     const auto transparentState = [&](std::uint32_t k) {
-        DrawState state = prepared.state;
+        DrawState state = drawState(k);
         state.depth.writeEnabled = false;
         state.blend = prepared.draws[k].uniforms.blend;
         if (mode == TransparencyMode::Exact) state.output = FragmentOutput::AppendToLists;

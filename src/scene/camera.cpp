@@ -110,6 +110,18 @@ glm::dmat4 drawnClipFromView(const Camera& camera) {
     return reversedFromClip * camera.clipFromViewExact;
 }
 
+DepthFromW clipDepthFromW(const glm::dmat4& p) {  // column-major: p[column][row]
+    DepthFromW fromW;
+    const bool wFromDepthAlone = p[0][3] == 0.0 && p[1][3] == 0.0 && p[2][3] != 0.0;
+    const bool zFromDepthAlone = p[0][2] == 0.0 && p[1][2] == 0.0;
+    if (!wFromDepthAlone || !zFromDepthAlone) return fromW;
+    // z_c = P[2][2]·(w_c − P[3][3])/P[2][3] + P[3][2] = slope·w_c + offset.
+    fromW.slope = p[2][2] / p[2][3];
+    fromW.offset = p[3][2] - fromW.slope * p[3][3];
+    fromW.known = std::isfinite(fromW.slope) && std::isfinite(fromW.offset);
+    return fromW;
+}
+
 Camera frameCamera(const CameraSpec& spec, const Bounds& bounds, float aspect,
                    DepthBufferFormat depthFormat) {
     Camera camera;

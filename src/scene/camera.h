@@ -48,6 +48,12 @@ struct Camera {
 // The other formats draw with clipFromViewExact itself.
 glm::dmat4 drawnClipFromView(const Camera& camera);
 
+// How `clipFromView`'s z_c follows its w_c (pipeline/state.h, DepthFromW): known when w_c = P[2][3]·z_e +
+// P[3][3] depends on z_e alone (a perspective projection, P[2][3] ≠ 0) and z_c on z_e alone, so that
+// z_e = (w_c − P[3][3])/P[2][3] and z_c = P[2][2]·z_e + P[3][2]. Not for an orthographic projection
+// (w_c = 1 whatever the depth).
+DepthFromW clipDepthFromW(const glm::dmat4& clipFromView);
+
 // Fills in what `spec` leaves unset: the eye looks at the box's centre from the front (+z), a little from
 // above and to the right, just far enough for the whole box to fit the view with a 10% margin; the near
 // and far planes hug the box's bounding sphere (a tight near/far ratio keeps depth precision).

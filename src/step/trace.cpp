@@ -132,7 +132,7 @@ void TraceRecorder::recordClipping(TriangleTrace& view, std::uint32_t triangle,
     for (std::uint8_t plane : kOrder) {
         if (!(planes & plane) || polygon.count == 0) continue;
         const ClipPolygon before = polygon;
-        clipPolygon(polygon, plane, range);
+        clipPolygon(polygon, plane, range, call_.state.depth.fromW);
         if (!(polygon.planesCut & plane)) continue;
         ClipStep step;
         step.plane = plane;
@@ -147,9 +147,9 @@ void TraceRecorder::recordClipping(TriangleTrace& view, std::uint32_t triangle,
             ClipStep::NewVertex made;
             made.from = from;
             made.to = to;
-            made.t = dFrom / (dFrom - dTo);
-            made.position = before.vertices[from].position +
-                            made.t * (before.vertices[to].position - before.vertices[from].position);
+            made.t = clipEdgeT(dFrom, dTo);
+            made.position = clipEdgePoint(before.vertices[from].position, before.vertices[to].position,
+                                          made.t, call_.state.depth.fromW, range, &made.depthFromW);
             step.made.push_back(made);
         }
         // The clipper's output order (clip.cpp's clipAgainstPlane): walking the edges i → i + 1, an

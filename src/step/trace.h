@@ -115,9 +115,10 @@ struct WindowPiece {
 struct ClipStep {
     std::uint8_t plane = 0;  // one ClipPlaneBit
     struct NewVertex {
-        int from = 0, to = 0;  // the edge it lies on: vertices of the polygon before this plane
-        float t = 0.0f;        // P = P_from + t·(P_to − P_from), t = d_from / (d_from − d_to)
-        vec4 position{0.0f};   // clip space
+        int from = 0, to = 0;     // the edge it lies on: vertices of the polygon before this plane
+        float t = 0.0f;           // P = P_from + t·(P_to − P_from), t = d_from / (d_from − d_to)
+        vec4 position{0.0f};      // clip space
+        bool depthFromW = false;  // its z set from its w by the projection (clip.h, clipEdgePoint)
     };
     std::vector<NewVertex> made;
     std::vector<vec4> polygon;  // clip positions after this plane

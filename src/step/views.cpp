@@ -596,6 +596,19 @@ Screen clipScreen(const TriangleTrace& t) {
            "t = d_in / (d_in − d_out), d the signed distance to the plane (≥ 0 inside).\n"
            "Each section numbers the polygon before its plane p0, p1, …; before the first\n"
            "cut they are v0, v1, v2.\n";
+    // Huge triangles only (clip.h, clipEdgePoint): where the line's depth would be lost to rounding.
+    const DepthFromW& fromW = t.state.depth.fromW;
+    bool anyDepthFromW = false;
+    for (const ClipStep& step : t.clipSteps)
+        for (const ClipStep::NewVertex& made : step.made)
+            anyDepthFromW = anyDepthFromW || made.depthFromW;
+    if (anyDepthFromW)
+        out << wrapText(
+            "Marked \"z from w\": where rounding would lose the depth on the line (a huge "
+            "triangle), a new vertex's z is set from its w, as the camera's projection ties "
+            "them for every point: z = a·w + b, a = " +
+                number(fromW.slope) + ", b = " + number(fromW.offset) + ".",
+            kScreenColumns, 0);
     std::vector<vec4> polygon(t.clipPositions.begin(), t.clipPositions.end());
     for (const ClipStep& step : t.clipSteps) {
         out << "\nPlane " << planeRule(step.plane, range) << ":\n";
@@ -606,7 +619,7 @@ Screen clipScreen(const TriangleTrace& t) {
             const float dOut = planeDistance(polygon[made.to], step.plane, range);
             out << "  new vertex on p" << made.from << "→p" << made.to << ": t = " << number(dIn) << " / ("
                 << number(dIn) << " − " << bracketedIfNegative(dOut) << ") = " << number(made.t) << "\n"
-                << "    P = " << vectorText(made.position) << "\n";
+                << "    P = " << vectorText(made.position) << (made.depthFromW ? ", z from w" : "") << "\n";
         }
         polygon = step.polygon;
         out << "  left: " << polygon.size() << " vertices\n";
