@@ -98,13 +98,13 @@ constexpr std::span<const EnumName<DepthBufferFormat>> enumNames(DepthBufferForm
 // gives w_c = −z_e and z_c = P[2][2]·z_e + P[3][2] for every point, so z_c = slope·w_c + offset with
 // slope = −P[2][2], offset = P[3][2] (OpenGL's: slope = (f + n)/(f − n), offset = −2fn/(f − n); reversed
 // Z's: slope = −n/(f − n), offset = fn/(f − n)). The clipper gives the vertices it makes this depth
-// where the one interpolated from the corners' cannot be resolved (clip.h, clipEdgePoint): when the far plane is 10^8 near
-// planes away, a huge triangle's corners near the far plane have z_c and w the same float (they differ
-// by 2n(w − f)/(f − n), below half a step of w), so every vertex interpolated between them has z_c = w,
-// window depth 1, and fails the test against the cleared far plane, where the relation keeps
-// 1 − z_w ≈ n/w. Unknown (the default): interpolation, as for
-// a user's vertex shader (gl_Position need not follow the camera), an orthographic projection (z_c is
-// tied to z_e, not to w = 1, and interpolation is exact there) and shadow maps.
+// where the one interpolated from the corners' cannot be resolved (clip.h, clipEdgePoint): when the far plane
+// is 10^8 near planes away, a huge triangle's corners near the far plane have z_c and w the same float (they
+// differ by 2n(w − f)/(f − n), below half a step of w), so every vertex interpolated between them has z_c =
+// w, window depth 1, and fails the test against the cleared far plane, where the relation keeps 1 − z_w ≈
+// n/w. Unknown (the default): interpolation, as for a user's vertex shader (gl_Position need not follow the
+// camera), an orthographic projection (z_c is tied to z_e, not to w = 1, and interpolation is exact there)
+// and shadow maps.
 struct DepthFromW {
     bool known = false;
     double slope = 0.0;
