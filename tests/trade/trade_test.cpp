@@ -578,20 +578,26 @@ std::vector<std::string> decisionsOf(const TradeResult& result) {
         return v == TimeVerdict::Faster ? "faster" : v == TimeVerdict::Slower ? "slower" : "within noise";
     };
     std::vector<std::string> decisions;
-    for (const TradeRow& row : result.rows)
+    for (std::size_t i = 0; i < result.rows.size(); ++i) {
+        const TradeRow& row = result.rows[i];
+        // A row that changes the image really costs what it costs: an 8-bit colour buffer sits near the
+        // margin (1 + 2 x noise) and reads "slower" in one run and "within noise" in the next on a
+        // loaded machine. Only the baseline's and the no-effect rows' verdicts are fixed by design.
+        const bool verdictFixed = i == 0 || row.noEffect;
         decisions.push_back(row.setting.knob + " " + row.setting.value + " [" + row.setting.label() +
-                            "]: " + verdict(row.timeVerdict) + (row.pareto ? ", front" : "") +
-                            (row.noEffect ? ", no effect" : ""));
+                            "]: " + (verdictFixed ? verdict(row.timeVerdict) : "any verdict") +
+                            (row.pareto ? ", front" : "") + (row.noEffect ? ", no effect" : ""));
+    }
     return decisions;
 }
 
 // The same small trade run twice in one test agrees on every decision: the time verdicts, the front and
 // the presets' knobs. Its knobs cost the baseline's time or nearly (no transparency mode, depth format
-// or half colour buffer changes the opaque cow; an 8-bit colour buffer changes it for about the same
-// work), so that on a loaded machine any raw difference between their times is noise: with CPU time
-// and the noise margin no verdict comes from it. (Anti-aliasing is left out: settings such as ssaa2 and
-// msaa2 cost within a few per cent of each other, and which of the two a front keeps then depends on
-// the margin of that run.) Catches: verdicts, front or presets taken from the raw times (the rows
+// or half colour buffer changes the opaque cow; an 8-bit colour buffer changes it, and its verdict
+// is left out of the comparison), so that on a loaded machine any raw difference between their times is
+// noise: with CPU time and the noise margin no verdict comes from it. (Anti-aliasing is left out: settings
+// such as ssaa2 and msaa2 cost within a few per cent of each other, and which of the two a front keeps then
+// depends on the margin of that run.) Catches: verdicts, front or presets taken from the raw times (the rows
 // without effect then read faster or slower by chance and push the baseline off the front), a row
 // without effect given a verdict.
 TEST(TradeRepeat, TheSameTradeTwiceAgreesOnEveryVerdict) {
