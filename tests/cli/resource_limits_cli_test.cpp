@@ -126,7 +126,9 @@ TEST(ResourceLimitsCli, EveryCommandUnderTightProcessLimitsWorksOrSaysOneLine) {
         {"render", kCube, "--threads", "8", "--width", "64", "--height", "48", "-o", out + "/render.png"},
         {"render", "--renderer", "reference", kCube, "--threads", "8", "--width", "32", "--height", "24",
          "-o", out + "/reference.png"},
-        {"compare", kCube, "--threads", "8", "--width", "32", "--height", "24"},
+        // Against the exact reference: this test runs where OSMesa is not installed too (the OpenGL
+        // comparison then fails for that reason, with its own exit status).
+        {"compare", "--reference", kCube, "--threads", "8", "--width", "32", "--height", "24"},
         {"step", kCube, "--threads", "8", "--width", "32", "--height", "24", "--print"},
         {"bench", kCube, "--threads", "8", "--frames", "1", "--width", "16", "--height", "16"},
         {"trade", kSpot, "--threads", "8", "--width", "32", "--height", "24", "--knobs", "shading",
