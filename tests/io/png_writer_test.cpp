@@ -67,7 +67,8 @@ int paeth(int a, int b, int c) {  // PNG specification, 9.4
 // RGBA rows, every other one noise; the rows between are made so that one filter, (y / 2) mod 5,
 // predicts each byte exactly from the noise above and to the left: zeros (None: Sub gives 0s as well,
 // and None comes first), a constant row (Sub), the row above (Up), each byte the mean of its left and
-// upper neighbours (Average), Paeth's prediction from its three (Paeth). Bands of 64 rows start with
+// upper neighbours (Average), Paeth's prediction from its three after a first pixel of noise (Paeth;
+// from the row above alone it would copy that row, which Up predicts as well). Bands of 64 rows start with
 // an Up row (64) and a Paeth row (128).
 struct FilterImage {
     static constexpr int kWidth = 37, kHeight = 150, kChannels = 4;
@@ -91,7 +92,7 @@ struct FilterImage {
                 if (filter == 1 && i >= kChannels) value = a;
                 if (filter == 2) value = b;
                 if (filter == 3) value = (a + b) / 2;
-                if (filter == 4) value = paeth(a, b, c);
+                if (filter == 4 && i >= kChannels) value = paeth(a, b, c);
                 row[i] = static_cast<std::uint8_t>(value);
             }
         }
