@@ -134,7 +134,7 @@ endif()
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "${facet_shader_compiler_package}, libglm-dev")
 # OSMesa: facet compare and facet bench --vs-mesa load it at run time (the rest runs without it). The
 # others: what building against the installed headers needs besides a C++20 compiler (find_package(Facet)).
-set(CPACK_DEBIAN_PACKAGE_SUGGESTS "libosmesa6, libpng-dev, libtinyobjloader-dev, nlohmann-json3-dev")
+set(CPACK_DEBIAN_PACKAGE_SUGGESTS "libosmesa6, libpng-dev, libdeflate-dev, libtinyobjloader-dev, nlohmann-json3-dev")
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)  # facet_<version>_<architecture>.deb
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 include(CPack)

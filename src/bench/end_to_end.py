@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """End to end, Facet against a plain OpenGL program (../shared/glref, Mesa llvmpipe): the same model
 loaded, rendered at 1920x1080 on two threads and written to PNG, the two programs alternating so that a
-slow spell of the machine falls on both. Prints each one's median and fastest wall time and their ratio.
+slow spell of the machine falls on both. Prints each one's median and fastest wall time and their ratio,
+and the median CPU time (user + system, all threads) and minor page faults of each program's runs.
 
     ../shared/glref/build.sh /tmp/glref
     python3 src/bench/end_to_end.py [--rounds 25] [--glref /tmp/glref/glref] [--facet build/src/facet] [MODEL]
@@ -28,13 +29,23 @@ commands = {
 }
 environment = dict(os.environ, LP_NUM_THREADS="2")
 seconds = {name: [] for name in commands}
+cpu_seconds = {name: [] for name in commands}
+minor_faults = {name: [] for name in commands}
 for _ in range(args.rounds):
     for name, command in commands.items():
         start = time.perf_counter()
-        subprocess.run(command, env=environment, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        child = subprocess.Popen(command, env=environment, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        _, status, usage = os.wait4(child.pid, 0)
         seconds[name].append(time.perf_counter() - start)
+        child.returncode = os.waitstatus_to_exitcode(status)
+        if child.returncode != 0:
+            raise SystemExit(f"{' '.join(command)} exited with {child.returncode}")
+        cpu_seconds[name].append(usage.ru_utime + usage.ru_stime)
+        minor_faults[name].append(usage.ru_minflt)
 for name, times in seconds.items():
-    print(f"{name:18} median {statistics.median(times) * 1000:7.1f} ms   fastest {min(times) * 1000:7.1f} ms")
+    print(f"{name:18} median {statistics.median(times) * 1000:7.1f} ms   fastest {min(times) * 1000:7.1f} ms   "
+          f"CPU {statistics.median(cpu_seconds[name]) * 1000:7.1f} ms   "
+          f"minor faults {statistics.median(minor_faults[name]):7.0f}")
 facet, peer = seconds["facet"], seconds["glref (llvmpipe)"]
 print(f"facet / glref: {statistics.median(facet) / statistics.median(peer):.3f} (medians), "
       f"{min(facet) / min(peer):.3f} (fastest runs); {args.rounds} alternating rounds")

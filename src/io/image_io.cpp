@@ -297,8 +297,16 @@ void writeImage(const fs::path& path, const ImageView& image, ColorEncoding enco
             const std::size_t width = static_cast<std::size_t>(image.width);
             const std::size_t begin = static_cast<std::size_t>(first) * width;
             const std::size_t end = begin + static_cast<std::size_t>(count) * width;
+            // A render is mostly runs of equal pixels (the background): a pixel with the same bits as
+            // the one before it takes its codes without walking the tables again.
+            const glm::vec4* previous = nullptr;
             for (std::size_t i = begin; i < end; ++i, out += channels) {
                 const glm::vec4& p = image.pixels[i];
+                if (previous != nullptr && std::memcmp(&p, previous, sizeof p) == 0) {
+                    std::memcpy(out, out - channels, static_cast<std::size_t>(channels));
+                    continue;
+                }
+                previous = &p;
                 out[0] = encode(p.r);
                 out[1] = encode(p.g);
                 out[2] = encode(p.b);
