@@ -12,10 +12,10 @@
 #include <unordered_map>
 #include <vector>
 
-#include <tiny_obj_loader.h>
 #include <glm/glm.hpp>
 
 #include "io/obj_import.h"
+#include "io/obj_scan.h"
 #include "scene/mesh.h"
 
 namespace facet::obj {
@@ -23,7 +23,7 @@ namespace facet::obj {
 constexpr std::uint32_t kNoVertex = std::numeric_limits<std::uint32_t>::max();
 
 struct CornerKey {
-    std::int32_t position, texcoord, normal;  // tinyobjloader indices, -1 when absent
+    std::int32_t position, texcoord, normal;  // ObjCorner indices, -1 when absent
     bool operator==(const CornerKey&) const = default;
 };
 
@@ -71,14 +71,14 @@ struct CornerKeyHash {
 // "within the crease angle" is not transitive.
 class MeshBuilder {
   public:
-    MeshBuilder(const tinyobj::attrib_t& attrib, std::size_t cornerCount, float creaseAngleDegrees,
+    MeshBuilder(const ObjGeometry& geometry, std::size_t cornerCount, float creaseAngleDegrees,
                 VertexNormals weighting = VertexNormals::PolygonArea)
-        : attrib_(attrib),
+        : geometry_(geometry),
           weighting_(weighting),
           smoothAll_(creaseAngleDegrees >= 180.0f),
           creaseCos_(std::cos(double(creaseAngleDegrees) * (std::numbers::pi / 180.0)) - kCosTolerance),
           cellSize_(2.0 * std::sin(double(creaseAngleDegrees) * (std::numbers::pi / 360.0)) * 1.0001 + 1e-5) {
-        const std::size_t positionCount = attrib.vertices.size() / 3;
+        const std::size_t positionCount = geometry.positions.size() / 3;
         plainVertex_.assign(positionCount, kNoVertex);
         welded_.reserve(cornerCount / 2 + 16);
         baseVertices_.reserve(cornerCount / 3 + 16);
@@ -88,11 +88,12 @@ class MeshBuilder {
         incidenceFace_.reserve(cornerCount);
 
         // File normals, normalised once; a zero-length one counts as absent.
-        const std::size_t normalCount = attrib.normals.size() / 3;
+        const std::size_t normalCount = geometry.normals.size() / 3;
         fileNormals_.resize(normalCount);
         usableNormal_.assign(normalCount, false);
         for (std::size_t i = 0; i < normalCount; ++i) {
-            const glm::dvec3 n(attrib.normals[3 * i], attrib.normals[3 * i + 1], attrib.normals[3 * i + 2]);
+            const glm::dvec3 n(geometry.normals[3 * i], geometry.normals[3 * i + 1],
+                               geometry.normals[3 * i + 2]);
             const double length = glm::length(n);
             if (length > 0.0 && std::isfinite(length)) {
                 fileNormals_[i] = glm::vec3(n / length);
@@ -103,27 +104,26 @@ class MeshBuilder {
 
     glm::dvec3 position(std::size_t index) const {
         const std::size_t i = index * 3;
-        return {attrib_.vertices[i], attrib_.vertices[i + 1], attrib_.vertices[i + 2]};
+        return {geometry_.positions[i], geometry_.positions[i + 1], geometry_.positions[i + 2]};
     }
 
     // Adds one polygon: fan-triangulated, degenerate triangles counted, the rest into `out` as corner
     // ids (vertexOf maps them to vertices after finishNormals). Returns the number of triangles kept.
-    std::size_t addPolygon(const tinyobj::index_t* corners, std::size_t count,
-                           std::vector<std::uint32_t>& out, std::size_t& degenerate) {
+    std::size_t addPolygon(const ObjCorner* corners, std::size_t count, std::vector<std::uint32_t>& out,
+                           std::size_t& degenerate) {
         kept_.clear();
         keptCross_.clear();
         glm::dvec3 area(0.0);  // the polygon's vector area ×2: the sum of its fan triangles' cross products
-        const glm::dvec3 p0 = position(std::size_t(corners[0].vertex_index));
+        const glm::dvec3 p0 = position(std::size_t(corners[0].position));
         for (std::size_t i = 1; i + 1 < count; ++i) {
-            const tinyobj::index_t &a = corners[0], &b = corners[i], &c = corners[i + 1];
-            if (a.vertex_index == b.vertex_index || b.vertex_index == c.vertex_index ||
-                a.vertex_index == c.vertex_index) {
+            const ObjCorner &a = corners[0], &b = corners[i], &c = corners[i + 1];
+            if (a.position == b.position || b.position == c.position || a.position == c.position) {
                 ++degenerate;
                 continue;
             }
             // Doubles: a float cross product of 1e30-sized coordinates would overflow.
-            const glm::dvec3 cross = glm::cross(position(std::size_t(b.vertex_index)) - p0,
-                                                position(std::size_t(c.vertex_index)) - p0);
+            const glm::dvec3 cross =
+                glm::cross(position(std::size_t(b.position)) - p0, position(std::size_t(c.position)) - p0);
             if (cross == glm::dvec3(0.0)) {
                 ++degenerate;
                 continue;
@@ -141,14 +141,14 @@ class MeshBuilder {
         polygonIncidence_.resize(count);
         for (std::size_t i = 0; i < count; ++i) {
             std::size_t j = 0;
-            while (corners[j].vertex_index != corners[i].vertex_index)
+            while (corners[j].position != corners[i].position)
                 ++j;
             if (j < i) {
                 polygonIncidence_[i] = polygonIncidence_[j];
                 continue;
             }
             polygonIncidence_[i] = static_cast<std::uint32_t>(incidenceFace_.size());
-            incidencePosition_.push_back(static_cast<std::uint32_t>(corners[i].vertex_index));
+            incidencePosition_.push_back(static_cast<std::uint32_t>(corners[i].position));
             incidenceFace_.push_back(face);
         }
         if (weighting_ != VertexNormals::PolygonArea) addCornerWeights(corners, count, area);
@@ -225,7 +225,7 @@ class MeshBuilder {
 
     // The weights of the polygon just added at its positions (its incidences, the last added), under
     // the triangle-area and angle rules (polygon-area needs none: it is the face's area).
-    void addCornerWeights(const tinyobj::index_t* corners, std::size_t count, const glm::dvec3& area) {
+    void addCornerWeights(const ObjCorner* corners, std::size_t count, const glm::dvec3& area) {
         incidenceWeight_.resize(incidenceFace_.size(), glm::dvec3(0.0));
         if (weighting_ == VertexNormals::TriangleArea) {
             // Each kept fan triangle (0, i, i + 1) adds its cross product at its three positions.
@@ -240,10 +240,10 @@ class MeshBuilder {
         // sums its corners' angles.
         const glm::dvec3 unit = unitNormal(area);
         for (std::size_t i = 0; i < count; ++i) {
-            const glm::dvec3 p = position(std::size_t(corners[i].vertex_index));
-            const glm::dvec3 toNext = position(std::size_t(corners[(i + 1) % count].vertex_index)) - p;
+            const glm::dvec3 p = position(std::size_t(corners[i].position));
+            const glm::dvec3 toNext = position(std::size_t(corners[(i + 1) % count].position)) - p;
             const glm::dvec3 toPrevious =
-                position(std::size_t(corners[(i + count - 1) % count].vertex_index)) - p;
+                position(std::size_t(corners[(i + count - 1) % count].position)) - p;
             const glm::dvec3 cross = glm::cross(toNext, toPrevious);
             double angle = std::atan2(glm::length(cross), glm::dot(toNext, toPrevious));
             if (glm::dot(cross, unit) < 0.0) angle = 2.0 * std::numbers::pi - angle;
@@ -443,20 +443,20 @@ class MeshBuilder {
     }
 
     // The step mode's record of a corner's file values (VertexNormalTrace::FileCorner).
-    void recordFileCorner(const tinyobj::index_t& corner) const {
+    void recordFileCorner(const ObjCorner& corner) const {
         VertexNormalTrace::FileCorner c;
-        c.positionIndex = corner.vertex_index;
-        c.position = glm::vec3(position(static_cast<std::size_t>(corner.vertex_index)));
-        if (corner.texcoord_index >= 0) {
-            const std::size_t t = static_cast<std::size_t>(corner.texcoord_index) * 2;
-            c.texcoordIndex = corner.texcoord_index;
-            c.uv = glm::vec2(attrib_.texcoords[t], attrib_.texcoords[t + 1]);
+        c.positionIndex = corner.position;
+        c.position = glm::vec3(position(static_cast<std::size_t>(corner.position)));
+        if (corner.texcoord >= 0) {
+            const std::size_t t = static_cast<std::size_t>(corner.texcoord) * 2;
+            c.texcoordIndex = corner.texcoord;
+            c.uv = glm::vec2(geometry_.texcoords[t], geometry_.texcoords[t + 1]);
         }
-        if (corner.normal_index >= 0) {
-            const std::size_t n = static_cast<std::size_t>(corner.normal_index);
-            c.normalIndex = corner.normal_index;
-            c.normal =
-                glm::vec3(attrib_.normals[3 * n], attrib_.normals[3 * n + 1], attrib_.normals[3 * n + 2]);
+        if (corner.normal >= 0) {
+            const std::size_t n = static_cast<std::size_t>(corner.normal);
+            c.normalIndex = corner.normal;
+            c.normal = glm::vec3(geometry_.normals[3 * n], geometry_.normals[3 * n + 1],
+                                 geometry_.normals[3 * n + 2]);
             c.unitNormal = usableNormal_[n] ? fileNormals_[n] : glm::vec3(0.0f);
         }
         trace_->fileCorners.push_back(c);
@@ -492,11 +492,11 @@ class MeshBuilder {
         return length > 0.0 && std::isfinite(length) ? glm::vec3(sum / length) : glm::vec3(0.0f);
     }
 
-    std::uint32_t baseVertexFor(const tinyobj::index_t& corner) {
-        int normal = corner.normal_index;
+    std::uint32_t baseVertexFor(const ObjCorner& corner) {
+        int normal = corner.normal;
         if (normal >= 0 && !usableNormal_[static_cast<std::size_t>(normal)]) normal = -1;
-        const int texcoord = corner.texcoord_index;
-        const std::size_t positionIndex = static_cast<std::size_t>(corner.vertex_index);
+        const int texcoord = corner.texcoord;
+        const std::size_t positionIndex = static_cast<std::size_t>(corner.position);
 
         // Most meshes have positions only: an array beats hashing there.
         std::uint32_t* slot;
@@ -504,7 +504,7 @@ class MeshBuilder {
             slot = &plainVertex_[positionIndex];
         } else {
             const auto [it, inserted] =
-                welded_.try_emplace(CornerKey{corner.vertex_index, texcoord, normal}, kNoVertex);
+                welded_.try_emplace(CornerKey{corner.position, texcoord, normal}, kNoVertex);
             slot = &it->second;
         }
         if (*slot != kNoVertex) return *slot;
@@ -515,7 +515,7 @@ class MeshBuilder {
         vertex.uv = glm::vec2(0.0f);
         if (texcoord >= 0) {
             const std::size_t t = static_cast<std::size_t>(texcoord) * 2;
-            vertex.uv = glm::vec2(attrib_.texcoords[t], attrib_.texcoords[t + 1]);
+            vertex.uv = glm::vec2(geometry_.texcoords[t], geometry_.texcoords[t + 1]);
             hasTexcoords_ = true;
         }
         vertex.normal = normal >= 0 ? fileNormals_[static_cast<std::size_t>(normal)] : glm::vec3(0.0f);
@@ -526,7 +526,7 @@ class MeshBuilder {
         return *slot;
     }
 
-    const tinyobj::attrib_t& attrib_;
+    const ObjGeometry& geometry_;
     const VertexNormals weighting_;
     const bool smoothAll_;    // crease angle 180: one group per position
     const double creaseCos_;  // within the crease angle: dot of the unit normals >= this

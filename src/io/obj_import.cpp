@@ -1,24 +1,25 @@
 // OBJ import: OBJ + MTL text → validated, welded, fan-triangulated Mesh.
-// tinyobjloader parses. A pre-scan of the same text first catches what it accepts silently ("nan" and
-// "inf" read as 0, index 0, relative indices before the first vertex) and maps each face to its line.
+// Facet reads the OBJ itself (obj_scan): one pass splits the text into statements, a second checks each
+// statement (catching what tinyobjloader would accept silently: "nan" and "inf" read as 0, index 0,
+// relative indices before the first vertex) and reads its numbers and indices, on several threads for a
+// large file. MTL files are read by tinyobjloader (mtl_reader). tinyobjloader can still read the OBJ
+// (ObjReader::kTinyobjloader), as the peer the tests and benchmarks compare against: same meshes.
 // Computed normals weight each face by its area (they sum the faces' unnormalised cross products) and
 // smooth only faces within the crease angle of each other (see MeshBuilder).
-// The steps are separate modules: obj_scan (the pre-scan), mtl_reader (MTL files, materials, textures),
-// mesh_builder (welding and normals), obj_text (what they share: messages, tokens, numbers).
+// The steps are separate modules: obj_scan (the reader), mtl_reader (MTL files, materials, textures),
+// mesh_builder (welding and normals), obj_text (what they share: messages, tokens, numbers),
+// obj_tinyobj (the peer).
 
 #include "io/obj_import.h"
 
 #include <cmath>
 #include <cstdint>
 #include <future>
-#include <istream>
 #include <map>
 #include <set>
 #include <stdexcept>
-#include <streambuf>
 #include <string>
 #include <system_error>
-#include <type_traits>
 #include <vector>
 
 #include <tiny_obj_loader.h>
@@ -28,6 +29,7 @@
 #include "io/mtl_reader.h"
 #include "io/obj_scan.h"
 #include "io/obj_text.h"
+#include "io/obj_tinyobj.h"
 
 namespace facet {
 
@@ -35,12 +37,9 @@ using namespace obj;  // the importer's own modules
 
 namespace {
 
-// tinyobjloader::tinyobjloader is the float build; the _double one compiles with TINYOBJLOADER_USE_DOUBLE.
-static_assert(std::is_same_v<tinyobj::real_t, float>, "link tinyobjloader::tinyobjloader (float build)");
-
-// Any value tinyobjloader produced that the pre-scan did not foresee (a bug, not bad input) is still
-// refused rather than drawn as NaN.
-void checkFinite(const std::vector<tinyobj::real_t>& values, std::size_t stride, const char* what,
+// Any value read that the checks did not foresee (a bug, not bad input) is still refused rather than
+// drawn as NaN.
+void checkFinite(const std::vector<float>& values, std::size_t stride, const char* what,
                  const std::string& file) {
     for (std::size_t i = 0; i < values.size(); ++i) {
         if (!std::isfinite(values[i])) {
@@ -49,17 +48,37 @@ void checkFinite(const std::vector<tinyobj::real_t>& values, std::size_t stride,
     }
 }
 
-// The text as an input stream for tinyobjloader, read in place (an istringstream would copy it).
-class TextStreamBuffer : public std::streambuf {
-  public:
-    explicit TextStreamBuffer(std::string& text) {
-        setg(text.data(), text.data(), text.data() + text.size());
+// The material statements in file order, as tinyobjloader takes them: every file named on an mtllib
+// line is handed to `reader` (LibraryReader reads them all), and each usemtl names a material of the
+// files read above it. Returns, per usemtl of the scan, its material (-1: unknown).
+std::vector<int> resolveMaterials(const ObjScan& scan, tinyobj::MaterialReader& reader,
+                                  std::vector<tinyobj::material_t>& materials) {
+    std::map<std::string, int> byName;
+    std::vector<int> materialOfUse(scan.useMaterials.size(), -1);
+    std::size_t library = 0;
+    for (std::size_t use = 0; use <= scan.useMaterials.size(); ++use) {
+        const std::size_t line = use < scan.useMaterials.size() ? scan.useMaterials[use].line : SIZE_MAX;
+        for (; library < scan.libraries.size() && scan.libraries[library].line < line; ++library) {
+            for (const std::string& name : scan.libraries[library].names) {
+                std::string warnings, errors;  // LibraryReader keeps its own
+                reader(name, &materials, &byName, &warnings, &errors);
+            }
+        }
+        if (use == scan.useMaterials.size()) break;
+        const auto it = byName.find(scan.useMaterials[use].name);
+        if (it != byName.end()) materialOfUse[use] = it->second;
     }
-};
+    return materialOfUse;
+}
 
 }  // namespace
 
 Mesh loadObj(const std::filesystem::path& path, const ObjOptions& options, VertexNormalTrace* normalTrace) {
+    return loadObjWith(path, ObjReader::kFacet, options, normalTrace);
+}
+
+Mesh loadObjWith(const std::filesystem::path& path, ObjReader reader, const ObjOptions& options,
+                 VertexNormalTrace* normalTrace) {
     const float crease = options.creaseAngleDegrees;
     if (!(crease >= 0.0f && crease <= 180.0f)) {  // NaN fails both
         throw std::invalid_argument("loadObj: creaseAngleDegrees must be within [0, 180], not " +
@@ -71,47 +90,46 @@ Mesh loadObj(const std::filesystem::path& path, const ObjOptions& options, Verte
     std::string text = readObjText(path, file);
     const ObjStatements statements = splitObj(text);
 
-    // 2. Check every statement on a thread of its own while tinyobjloader parses the same text (both
-    // only read it): the two passes take about as long. A pre-scan error still wins over whatever
+    // 2. Check and read every statement (obj_scan), or check them on a thread of their own while
+    // tinyobjloader reads the same text (both only read it). A check's error wins over whatever
     // tinyobjloader makes of the file, as the first in the file is the one to report.
-    const auto check = [&] { return checkObj(text, statements, file); };
-    std::future<ObjScan> checked;
-    try {
-        checked = std::async(std::launch::async, check);
-    } catch (const std::system_error&) {  // no thread to be had: check after the parse instead
-        checked = std::async(std::launch::deferred, check);
-    }
-
-    // 3. Parse with tinyobjloader, untriangulated: facet fans, and faces stay one-to-one with lines.
-    tinyobj::attrib_t attrib;
-    std::vector<tinyobj::shape_t> shapes;
-    std::vector<tinyobj::material_t> tinyMaterials;
-    std::string tinyWarnings, tinyErrors;  // its warnings repeat what the pre-scan reports better
     LibraryReader libraries(path.parent_path());
-    TextStreamBuffer buffer(text);
-    std::istream stream(&buffer);
-    const bool parsed =
-        tinyobj::LoadObj(&attrib, &shapes, &tinyMaterials, &tinyWarnings, &tinyErrors, &stream, &libraries,
-                         /*triangulate=*/false, /*default_vcols_fallback=*/false);
-    const ObjScan scan = checked.get();  // rethrows the pre-scan's error
-    if (!parsed) {
-        std::string what = tinyErrors.substr(0, tinyErrors.find('\n'));
-        fail(file, kNoLine, what.empty() ? "tinyobjloader cannot parse it" : what);
+    std::vector<tinyobj::material_t> tinyMaterials;
+    ObjScan scan;
+    ObjGeometry geometry;
+    std::vector<int> faceMaterials;  // per face: its material in tinyMaterials, -1 for none
+    bool linesTrusted = true;        // scan.faceLines are the faces' lines
+    if (reader == ObjReader::kFacet) {
+        scan = checkObj(text, statements, file);
+        geometry = std::move(scan.geometry);
+        const std::vector<int> materialOfUse = resolveMaterials(scan, libraries, tinyMaterials);
+        faceMaterials.reserve(scan.faceMaterial.size());
+        for (const std::int32_t use : scan.faceMaterial)
+            faceMaterials.push_back(use >= 0 ? materialOfUse[std::size_t(use)] : -1);
+    } else {
+        const auto check = [&] { return checkObj(text, statements, file, /*readGeometry=*/false, 1); };
+        std::future<ObjScan> checked;
+        try {
+            checked = std::async(std::launch::async, check);
+        } catch (const std::system_error&) {  // no thread to be had: check after the parse instead
+            checked = std::async(std::launch::deferred, check);
+        }
+        TinyobjRead read = readWithTinyobjloader(text, libraries, tinyMaterials);
+        scan = checked.get();  // rethrows the check's error
+        if (!read.parsed)
+            fail(file, kNoLine, read.error.empty() ? "tinyobjloader cannot parse it" : read.error);
+        geometry = std::move(read.geometry);
+        faceMaterials = std::move(read.faceMaterials);
+        // The line map is only trusted when tinyobjloader saw the same faces as the check.
+        linesTrusted =
+            geometry.cornerCounts.size() == scan.faceLines.size() &&
+            geometry.corners.size() == scan.cornerCount && geometry.positions.size() == 3 * scan.positions &&
+            geometry.texcoords.size() == 2 * scan.texcoords && geometry.normals.size() == 3 * scan.normals;
     }
-    checkFinite(attrib.vertices, 3, "vertex", file);
-    checkFinite(attrib.texcoords, 2, "texture coordinate", file);
-    checkFinite(attrib.normals, 3, "normal", file);
-
-    // The line map is only trusted when tinyobjloader saw the same faces as the pre-scan.
-    std::size_t faceCount = 0, cornerCount = 0;
-    for (const tinyobj::shape_t& shape : shapes) {
-        faceCount += shape.mesh.num_face_vertices.size();
-        cornerCount += shape.mesh.indices.size();
-    }
-    const bool linesTrusted = faceCount == scan.faceLines.size() && cornerCount == scan.cornerCount &&
-                              attrib.vertices.size() == 3 * scan.positions &&
-                              attrib.texcoords.size() == 2 * scan.texcoords &&
-                              attrib.normals.size() == 3 * scan.normals;
+    checkFinite(geometry.positions, 3, "vertex", file);
+    checkFinite(geometry.texcoords, 2, "texture coordinate", file);
+    checkFinite(geometry.normals, 3, "normal", file);
+    const std::size_t cornerCount = geometry.corners.size();
 
     Mesh mesh;
     mesh.stats.facesRead = scan.facesRead;
@@ -176,75 +194,52 @@ Mesh loadObj(const std::filesystem::path& path, const ObjOptions& options, Verte
     }
 
     // 5. Triangulate, weld and bucket the triangles by material, in first-use order.
-    MeshBuilder builder(attrib, cornerCount, crease, options.normals);
+    MeshBuilder builder(geometry, cornerCount, crease, options.normals);
     if (normalTrace) builder.trace(normalTrace);
     std::vector<int> meshMaterialOf(tinyMaterials.size() + 1, -1);  // [0]: no material; [i + 1]: material i
     std::vector<int> tinyMaterialOf;  // mesh material → tinyobjloader's, or -1
     std::vector<std::vector<std::uint32_t>> buckets;
     std::set<std::string> unknownReported;
-    std::size_t face = 0;
-    std::vector<tinyobj::index_t> repaired;  // a face's corners with out-of-range attribute indices dropped
-    for (const tinyobj::shape_t& shape : shapes) {
-        const tinyobj::mesh_t& m = shape.mesh;
-        std::size_t offset = 0;
-        for (std::size_t f = 0; f < m.num_face_vertices.size(); ++f, ++face) {
-            const std::size_t count = m.num_face_vertices[f];
-            const std::size_t line = linesTrusted ? scan.faceLines[face] : kNoLine;
-            if (offset + count > m.indices.size())
-                fail(file, line, "face corners do not match tinyobjloader's");
-            const tinyobj::index_t* corners = &m.indices[offset];
-            offset += count;
-            if (count < 3) {  // tinyobjloader drops these itself; kept for safety
-                ++mesh.stats.degenerateSkipped;
-                continue;
-            }
-            // The pre-scan checked every index; this keeps a mismatch from reading out of bounds. A texture
-            // coordinate or normal index out of range (the pre-scan warned of it) is dropped from a copy
-            // of the corners: the corner is drawn without it.
-            const auto outside = [](int index, std::size_t size) {
-                return index < -1 || (index >= 0 && std::size_t(index) >= size);
-            };
-            const std::size_t texcoordCount = attrib.texcoords.size() / 2,
-                              normalCount = attrib.normals.size() / 3;
-            bool dropped = false;
-            for (std::size_t c = 0; c < count; ++c) {
-                const tinyobj::index_t& k = corners[c];
-                if (k.vertex_index < 0 || std::size_t(k.vertex_index) >= attrib.vertices.size() / 3)
-                    fail(file, line, "face index out of range");
-                dropped = dropped || outside(k.texcoord_index, texcoordCount) ||
-                          outside(k.normal_index, normalCount);
-            }
-            if (dropped) {
-                repaired.assign(corners, corners + count);
-                for (tinyobj::index_t& k : repaired) {
-                    if (outside(k.texcoord_index, texcoordCount)) k.texcoord_index = -1;
-                    if (outside(k.normal_index, normalCount)) k.normal_index = -1;
-                }
-                corners = repaired.data();
-            }
-
-            int tinyMaterial = f < m.material_ids.size() ? m.material_ids[f] : -1;
-            if (tinyMaterial < 0 || std::size_t(tinyMaterial) >= tinyMaterials.size()) {
-                tinyMaterial = -1;
-                const std::int32_t use = linesTrusted ? scan.faceMaterial[face] : -1;
-                if (use >= 0) {
-                    const UseMaterial& statement = scan.useMaterials[std::size_t(use)];
-                    if (unknownReported.insert(statement.name).second) {
-                        warnings.push_back(located(file, statement.line,
-                                                   "unknown material " + inSingleQuotes(statement.name) +
-                                                       "; using the default material"));
-                    }
-                }
-            }
-            int& meshMaterial = meshMaterialOf[std::size_t(tinyMaterial + 1)];
-            if (meshMaterial < 0) {
-                meshMaterial = static_cast<int>(buckets.size());
-                buckets.emplace_back();
-                tinyMaterialOf.push_back(tinyMaterial);
-            }
-            mesh.stats.trianglesKept += builder.addPolygon(corners, count, buckets[std::size_t(meshMaterial)],
-                                                           mesh.stats.degenerateSkipped);
+    const std::size_t positionCount = geometry.positions.size() / 3;
+    std::size_t offset = 0;
+    for (std::size_t face = 0; face < geometry.cornerCounts.size(); ++face) {
+        const std::size_t count = geometry.cornerCounts[face];
+        const std::size_t line = linesTrusted ? scan.faceLines[face] : kNoLine;
+        if (offset + count > cornerCount) fail(file, line, "face corners do not match tinyobjloader's");
+        const ObjCorner* corners = &geometry.corners[offset];
+        offset += count;
+        if (count < 3) {  // neither reader keeps these; kept for safety
+            ++mesh.stats.degenerateSkipped;
+            continue;
         }
+        // The check refused every position index out of range; this keeps a mismatch from reading out of
+        // bounds.
+        for (std::size_t c = 0; c < count; ++c) {
+            if (corners[c].position < 0 || std::size_t(corners[c].position) >= positionCount)
+                fail(file, line, "face index out of range");
+        }
+
+        int tinyMaterial = face < faceMaterials.size() ? faceMaterials[face] : -1;
+        if (tinyMaterial < 0 || std::size_t(tinyMaterial) >= tinyMaterials.size()) {
+            tinyMaterial = -1;
+            const std::int32_t use = linesTrusted ? scan.faceMaterial[face] : -1;
+            if (use >= 0) {
+                const UseMaterial& statement = scan.useMaterials[std::size_t(use)];
+                if (unknownReported.insert(statement.name).second) {
+                    warnings.push_back(located(file, statement.line,
+                                               "unknown material " + inSingleQuotes(statement.name) +
+                                                   "; using the default material"));
+                }
+            }
+        }
+        int& meshMaterial = meshMaterialOf[std::size_t(tinyMaterial + 1)];
+        if (meshMaterial < 0) {
+            meshMaterial = static_cast<int>(buckets.size());
+            buckets.emplace_back();
+            tinyMaterialOf.push_back(tinyMaterial);
+        }
+        mesh.stats.trianglesKept += builder.addPolygon(corners, count, buckets[std::size_t(meshMaterial)],
+                                                       mesh.stats.degenerateSkipped);
     }
 
     if (mesh.stats.trianglesKept == 0) {

@@ -11,7 +11,7 @@
 
 namespace facet {
 
-// Loads `path` with tinyobjloader, validates it and builds the mesh:
+// Reads `path` (its MTL files through tinyobjloader), validates it and builds the mesh:
 // - polygons are fan-triangulated; degenerate triangles (repeated corners, zero area) are skipped
 //   and counted in stats.degenerateSkipped. A face with fewer than 3 corners is skipped too, counted
 //   there as one degenerate triangle, and reported once as a warning (as Blender and tinyobjloader do);
@@ -104,5 +104,12 @@ struct VertexNormalTrace {
 
 Mesh loadObj(const std::filesystem::path& path, const ObjOptions& options = {},
              VertexNormalTrace* normalTrace = nullptr);
+
+// Which code reads the OBJ text: Facet's own reader, or tinyobjloader, kept as the peer that tests and
+// benchmarks compare it with. Both give the same mesh and the same messages for any file the checks
+// accept; loadObj uses kFacet.
+enum class ObjReader { kFacet, kTinyobjloader };
+Mesh loadObjWith(const std::filesystem::path& path, ObjReader reader, const ObjOptions& options = {},
+                 VertexNormalTrace* normalTrace = nullptr);
 
 }  // namespace facet

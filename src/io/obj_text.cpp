@@ -142,6 +142,43 @@ NumberRead readNumber(std::string_view token) {
     return read;
 }
 
+float objCoordinate(std::string_view token) {
+    // The same operations in the same order as tinyobjloader's tryParseDouble (the build has
+    // -ffp-contract=off: no multiply-add is fused), for its grammar [+-]digits[.digits][(e|E)[+-]digits].
+    const char* at = token.data();
+    const char* const end = at + token.size();
+    char sign = '+';
+    if (at != end && (*at == '+' || *at == '-')) sign = *at++;
+    double mantissa = 0.0;
+    for (; at != end && isDigit(*at); ++at) {
+        mantissa *= 10;
+        mantissa += static_cast<int>(*at - '0');
+    }
+    if (at != end && *at == '.') {
+        static constexpr double kPowers[] = {1.0, 0.1, 0.01, 0.001, 0.0001, 0.00001, 0.000001, 0.0000001};
+        constexpr int kPowerCount = sizeof kPowers / sizeof kPowers[0];
+        int read = 1;
+        for (++at; at != end && isDigit(*at); ++at, ++read)
+            mantissa +=
+                static_cast<int>(*at - '0') * (read < kPowerCount ? kPowers[read] : std::pow(10.0, -read));
+    }
+    int exponent = 0;
+    if (at != end && (*at == 'e' || *at == 'E')) {
+        ++at;
+        char exponentSign = '+';
+        if (at != end && (*at == '+' || *at == '-')) exponentSign = *at++;
+        for (; at != end && isDigit(*at); ++at) {
+            if (exponent > 2147483647 / 10) return 0.0f;  // tinyobjloader gives up: the default, 0
+            exponent *= 10;
+            exponent += static_cast<int>(*at - '0');
+        }
+        exponent *= exponentSign == '+' ? 1 : -1;
+    }
+    const double value = (sign == '+' ? 1 : -1) *
+                         (exponent ? std::ldexp(mantissa * std::pow(5.0, exponent), exponent) : mantissa);
+    return static_cast<float>(value);
+}
+
 std::string numberText(double value) {
     char text[32];
     std::snprintf(text, sizeof text, "%.9g", value);

@@ -87,6 +87,13 @@ struct NumberRead {
 // its value, and a decimal comma is told apart from a stray character.
 NumberRead readNumber(std::string_view token);
 
+// The float the OBJ's `token` stands for, computed as tinyobjloader's tryParseDouble computes it (the
+// prefix readNumber reads: digits accumulated in a double, fraction digits scaled by 10^-k, then
+// ldexp(m * 5^e, e), rounded to float), so that a mesh's attributes keep the bytes every earlier
+// release gave them: a correctly rounded reading (from_chars) differs from it in the last float bit for
+// some numbers with many digits. Only for a token readNumber found kFinite or kStrayCharacters.
+float objCoordinate(std::string_view token);
+
 // The number read from `token` as it is shown in messages: "0", "1.5", "-2.5e-07" (up to 9 digits).
 std::string numberText(double value);
 
