@@ -1,7 +1,9 @@
 // facet bench --instruction-sets: the frame with each copy of its hot path this CPU runs, frames taking
-// turns, medians side by side and the images compared byte for byte.
+// turns, medians side by side and the images compared byte for byte; the medians are recorded for this
+// CPU model, and later runs use the fastest copy (frame_kernels.h, chooseInstructionSet).
 #include <chrono>
 #include <cstring>
+#include <filesystem>
 #include <iomanip>
 #include <memory>
 #include <ostream>
@@ -9,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "base/errors.h"
 #include "bench/bench.h"
 #include "bench/process_stats.h"
 #include "render/frame_kernels.h"
@@ -29,6 +32,8 @@ struct TimedCopy {
     std::vector<double> frameMs;
 };
 
+constexpr int kFramesToRecord = 5;
+
 // Puts back the copy the program had chosen, however the benchmark ends.
 struct RestoreFrameKernels {
     InstructionSet chosen;
@@ -42,6 +47,33 @@ std::string joinedNames(const std::vector<InstructionSet>& sets) {
     return names;
 }
 
+// Records the medians for this CPU model, so that later runs use the fastest copy, and says so. A run
+// of fewer than kFramesToRecord frames per copy is a smoke test: its medians are not a measurement.
+void recordVerdict(const std::vector<std::unique_ptr<TimedCopy>>& copies, int frames, std::ostream& out) {
+    std::vector<MeasuredCopy> measured;
+    for (const auto& copy : copies)
+        measured.push_back({copy->set, median(copy->frameMs)});
+    out << "verdict    ";
+    if (frames < kFramesToRecord) {
+        out << "not recorded: fewer than " << kFramesToRecord << " frames per copy\n";
+        return;
+    }
+    try {
+        const std::filesystem::path file = recordInstructionSetTimings(measured);
+        const std::vector<InstructionSet> runs = [&] {
+            std::vector<InstructionSet> sets;
+            for (const MeasuredCopy& copy : measured)
+                sets.push_back(copy.set);
+            return sets;
+        }();
+        const InstructionSetChoice next = chooseInstructionSet({"", runs, runs, measured});
+        out << nameOf(next.set) << " is the fastest here; recorded in " << file.string()
+            << ", which later runs on this CPU model follow unless FACET_ISA is set\n";
+    } catch (const InputError& e) {
+        out << "not recorded: " << e.what() << "\n";
+    }
+}
+
 }  // namespace
 
 void runInstructionSetBench(const BenchOptions& options, std::ostream& out) {
@@ -49,6 +81,7 @@ void runInstructionSetBench(const BenchOptions& options, std::ostream& out) {
     const PreparedScene prepared = prepareScene(scene);
     // frameKernels() first: it throws, as every frame would, when FACET_ISA names no usable copy.
     const RestoreFrameKernels restore{frameKernels().instructionSet};
+    const std::string chosenBefore = describeFrameKernels();
     std::vector<InstructionSet> built, runnable;
     for (const FrameKernels& kernels : builtFrameKernels()) {
         built.push_back(kernels.instructionSet);
@@ -83,8 +116,8 @@ void runInstructionSetBench(const BenchOptions& options, std::ostream& out) {
     out << "model      " << options.model.string() << "\n";
     out << "image      " << scene.width << "x" << scene.height << ", " << context.pool.threads()
         << (context.pool.threads() == 1 ? " thread" : " threads") << ", built-in Blinn-Phong shader\n";
-    out << "code       built: " << joinedNames(built) << "; this CPU runs: " << joinedNames(runnable)
-        << "; frames use " << nameOf(restore.chosen) << " (FACET_ISA chooses)\n";
+    out << "code       built: " << joinedNames(built) << "; this CPU runs: " << joinedNames(runnable) << "\n";
+    out << "cpu        " << cpuModelName() << "; frames use " << chosenBefore << "\n";
     out << "frames     " << options.frames << " timed per copy after 1 warm-up, the copies taking turns\n";
     std::vector<InstructionSet> differing;
     for (const auto& copy : copies) {
@@ -100,6 +133,7 @@ void runInstructionSetBench(const BenchOptions& options, std::ostream& out) {
                 << "'s";
         out << "\n";
     }
+    if (differing.empty()) recordVerdict(copies, options.frames, out);
     if (!differing.empty())
         throw std::runtime_error("facet bench --instruction-sets: the image of " + joinedNames(differing) +
                                  " differs from " + std::string(nameOf(widest.set)) +
