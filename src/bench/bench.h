@@ -53,6 +53,9 @@ struct BenchOptions {
     // --reference (writes `csv`, out/bench-reference.csv unless given)
     bool reference = false;
     std::filesystem::path ground = "models/fog-and-glass/ground.obj";  // the shadows' ground, a quad at y = 0
+
+    // --batch LIST (batch_bench.h): the list of inputs rendered by one process and by shards
+    std::filesystem::path batchList;
 };
 
 // The scene a benchmark draws: options.model (an OBJ file or a scene) at the options' size and

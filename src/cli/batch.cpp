@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <charconv>
 #include <chrono>
 #include <cstdio>
@@ -13,6 +14,8 @@
 #include <iostream>
 #include <new>
 #include <sstream>
+#include <system_error>
+#include <thread>
 #include <unordered_map>
 
 #include "base/errors.h"
@@ -20,6 +23,8 @@
 #include "base/quote.h"
 #include "cli/render_command.h"
 #include "io/output_path.h"
+#include "render/memory_estimate.h"
+#include "scene/scene.h"
 
 namespace facet::cli {
 
@@ -288,34 +293,174 @@ BatchPlan planBatch(const RenderArgs& args) {
     return planBatch(inputs, args.output, shard, args.components);
 }
 
+BatchLanes planLanes(int threads, std::size_t items) {
+    if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    const std::size_t lanes = std::max<std::size_t>(1, std::min<std::size_t>(std::size_t(threads), items));
+    BatchLanes plan;
+    // threads / lanes each, the remainder one more to the first lanes: 5 threads, 2 inputs → 3 and 2.
+    for (std::size_t lane = 0; lane < lanes; ++lane)
+        plan.threads.push_back(threads / static_cast<int>(lanes) +
+                               (lane < std::size_t(threads) % lanes ? 1 : 0));
+    return plan;
+}
+
+std::uint64_t inputMemoryEstimate(const facet::Scene& scene) {
+    std::uint64_t modelBytes = 0;
+    std::vector<std::filesystem::path> counted;  // a model drawn by several objects is read once
+    for (const facet::ObjectSpec& object : scene.objects) {
+        if (std::find(counted.begin(), counted.end(), object.model) != counted.end()) continue;
+        counted.push_back(object.model);
+        std::error_code error;
+        const std::uintmax_t size = std::filesystem::file_size(object.model, error);
+        if (!error) modelBytes = facet::plusSaturating(modelBytes, size);
+    }
+    return facet::plusSaturating(facet::frameImageBytes(scene),
+                                 facet::timesSaturating(modelBytes, kModelBytesPerFileByte));
+}
+
+void MemoryGate::enter(std::uint64_t bytes) {
+    std::unique_lock lock(mutex_);
+    changed_.wait(lock, [&] { return inFlight_ == 0 || facet::plusSaturating(held_, bytes) <= limit_; });
+    held_ += bytes;
+    ++inFlight_;
+}
+
+void MemoryGate::leave(std::uint64_t bytes) {
+    {
+        const std::lock_guard lock(mutex_);
+        held_ -= bytes;
+        --inFlight_;
+    }
+    changed_.notify_all();
+}
+
+namespace {
+
+// What one input of a batch has to say, held until the inputs before it have said theirs.
+struct InputReport {
+    bool finished = false;
+    bool rendered = false;
+    std::string warnings;  // to standard error
+    std::string out;       // --stats lines and "facet: wrote …", to standard output
+    BatchFailure failure;  // when not rendered
+};
+
+// Prints the inputs' reports in list order as they finish, and keeps the progress line on the first
+// input not yet reported. Called from every lane.
+class InOrderReporter {
+  public:
+    InOrderReporter(const BatchConsole& console, std::size_t count, BatchResult& result)
+        : console_(console), progress_(console), reports_(count), result_(result) {}
+
+    void showFirst(const std::string& input) {
+        const std::lock_guard lock(mutex_);
+        if (next_ == 0) progress_.show(1, reports_.size(), input);
+    }
+
+    // `report` of input k, and what follows it in the list that had finished before it.
+    void finish(std::size_t k, InputReport report, const std::vector<BatchItem>& items) {
+        const std::lock_guard lock(mutex_);
+        report.finished = true;
+        reports_[k] = std::move(report);
+        while (next_ < reports_.size() && reports_[next_].finished) {
+            InputReport& done = reports_[next_];
+            progress_.clear();  // warnings and --stats lines wait for it to be erased
+            console_.err << done.warnings << std::flush;
+            console_.out << done.out << std::flush;
+            if (done.rendered)
+                ++result_.rendered;
+            else
+                result_.failures.push_back(std::move(done.failure));
+            done = InputReport{};  // its text is printed: free it
+            done.finished = true;
+            if (++next_ < reports_.size()) progress_.show(next_ + 1, reports_.size(), items[next_].input);
+        }
+    }
+
+    void clearProgress() {
+        const std::lock_guard lock(mutex_);
+        progress_.clear();
+    }
+
+  private:
+    std::mutex mutex_;
+    const BatchConsole& console_;
+    ProgressLine progress_;
+    std::vector<InputReport> reports_;
+    std::size_t next_ = 0;  // the first input not yet printed
+    BatchResult& result_;
+};
+
+// One input of the batch on `context`'s threads, let in by `gate` once its scene says what it needs.
+InputReport renderItem(RenderArgs& item, const BatchItem& planned, const RenderSettings& settings,
+                       facet::DrawContext& context, MemoryGate& gate, bool quiet) {
+    item.input = planned.input;
+    item.output = planned.output;
+    InputReport report;
+    std::ostringstream out, warnings;
+    try {
+        const facet::Scene scene = inputScene(item);
+        const std::uint64_t bytes = inputMemoryEstimate(scene);
+        gate.enter(bytes);
+        const struct Leave {
+            MemoryGate& gate;
+            std::uint64_t bytes;
+            ~Leave() { gate.leave(bytes); }
+        } leave{gate, bytes};
+        const RenderedInput rendered = renderScene(item, settings, scene, context, out, warnings);
+        report.rendered = true;
+        if (!quiet) out << wroteLine(rendered);
+    } catch (...) {
+        report.failure = {item.input, failureMessage(item.input)};
+    }
+    report.out = out.str();
+    report.warnings = warnings.str();
+    return report;
+}
+
+}  // namespace
+
 BatchResult runBatch(const RenderArgs& args, const BatchPlan& plan, const BatchConsole& console) {
     const RenderSettings settings = renderSettings(args);
     const auto start = std::chrono::steady_clock::now();
-    // The threads, made once: every input is drawn with them (the bytes do not depend on their number).
-    facet::DrawContext context(args.threads);
-    RenderArgs item = args;  // the options; input and output are each item's
-    item.inputs.clear();
+    const BatchLanes lanes = planLanes(args.threads, plan.items.size());
+    MemoryGate gate(facet::memoryLimit().bytes);
     BatchResult result;
     {
-        ProgressLine progress(console);
-        for (std::size_t k = 0; k < plan.items.size(); ++k) {
-            item.input = plan.items[k].input;
-            item.output = plan.items[k].output;
-            progress.show(k + 1, plan.items.size(), item.input);
-            // Warnings and --stats lines wait for the progress line to be erased.
-            std::ostringstream out, warnings;
-            std::string wrote;
+        InOrderReporter reporter(console, plan.items.size(), result);
+        if (!plan.items.empty()) reporter.showFirst(plan.items.front().input);
+        std::atomic<std::size_t> next{0};  // the next item a lane takes, in list order
+        std::mutex failedMutex;
+        std::exception_ptr failed;  // a lane's own failure (not an input's): rethrown once all have stopped
+        // A lane: its own threads, made once (the bytes do not depend on their number), and its own
+        // copy of the options, input and output being each item's.
+        const auto lane = [&](int threads) {
             try {
-                const RenderedInput rendered = renderInput(item, settings, context, out, warnings);
-                ++result.rendered;
-                if (!args.quiet) wrote = wroteLine(rendered);
+                facet::DrawContext context(threads);
+                RenderArgs item = args;
+                item.inputs.clear();
+                for (std::size_t k; (k = next.fetch_add(1)) < plan.items.size();)
+                    reporter.finish(k, renderItem(item, plan.items[k], settings, context, gate, args.quiet),
+                                    plan.items);
             } catch (...) {
-                result.failures.push_back({item.input, failureMessage(item.input)});
+                const std::lock_guard lock(failedMutex);
+                if (!failed) failed = std::current_exception();
+                next = plan.items.size();  // the other lanes stop after their input
             }
-            progress.clear();
-            console.err << warnings.str() << std::flush;
-            console.out << out.str() << wrote << std::flush;
+        };
+        std::vector<std::thread> others;
+        for (std::size_t k = 1; k < lanes.threads.size(); ++k) {
+            try {
+                others.emplace_back(lane, lanes.threads[k]);
+            } catch (const std::system_error&) {
+                break;  // the system refuses more threads: the lanes started take every input
+            }
         }
+        lane(lanes.threads.front());  // the calling thread is the first lane
+        for (std::thread& other : others)
+            other.join();
+        if (failed) std::rethrow_exception(failed);
+        reporter.clearProgress();
     }
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 

@@ -1,17 +1,25 @@
 // facet render over many inputs in one process (docs/batch.md). First the plan: the inputs of the
 // command line and of --list, each one's image named by -o's {name} and {index}, and the share of them
-// this process renders (--shard). Then the run: one input after another on one set of threads, each
-// loaded and prepared on its own; an input that fails is reported at the end and the next one rendered.
+// this process renders (--shard). Then the run: several inputs in flight at once, each on its own share
+// of the threads, loaded, prepared, rendered and written on its own (as many as the memory limit lets
+// in); their messages in list order; an input that fails is reported at the end and the others rendered.
 #pragma once
 
+#include <condition_variable>
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
+#include <mutex>
 #include <ostream>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "cli/options.h"
+
+namespace facet {
+struct Scene;
+}
 
 namespace facet::cli {
 
@@ -95,11 +103,48 @@ struct BatchConsole {
     int columns = 80;
 };
 
-// Renders the items of `plan` in order, each with `args`' options, on one DrawContext (one thread pool)
-// made here: each image is the same bytes as `facet render INPUT -o IMAGE` with those options. An
-// input that fails (InputError, out of memory, any exception) is skipped and reported. Prints
-// "facet: wrote …" per image (not with --quiet), then the summary: "facet: rendered N of M inputs in
-// T s (R models per second)" to `out` (not with --quiet), or, when an input failed, to `err`
+// How a batch shares its threads: one lane per input in flight, each drawing with its own DrawContext
+// (thread pool) of threads[lane] threads. An input alone on one thread has no job to hand out, wake up
+// or wait for (docs/batch.md measures it): as many lanes as threads, one thread each, while the list has
+// at least as many inputs; a shorter list gets one lane per input and the threads shared out among
+// them. The threads of all lanes add up to the batch's.
+struct BatchLanes {
+    std::vector<int> threads;  // one entry per lane, each at least 1
+};
+// `threads` ≤ 0: one per hardware thread (as ThreadPool); `items`: the inputs to render.
+BatchLanes planLanes(int threads, std::size_t items);
+
+// The memory an input in flight is counted for, from what is known before its models are read: its
+// image's buffers (frameImageBytes, the estimate a render checks against the limit) and
+// kModelBytesPerFileByte per byte of its model files (the text read, the mesh built from it and the
+// prepared copy of its triangles).
+constexpr std::uint64_t kModelBytesPerFileByte = 4;
+std::uint64_t inputMemoryEstimate(const facet::Scene& scene);
+
+// The inputs in flight count together against the memory limit: an input is let in while the
+// estimates of those in flight and its own stay within the limit, or when nothing else is in flight
+// (then it meets the usual checks against the whole limit, exactly as rendered alone). Waits otherwise.
+class MemoryGate {
+  public:
+    explicit MemoryGate(std::uint64_t limit) : limit_(limit) {}
+    void enter(std::uint64_t bytes);
+    void leave(std::uint64_t bytes);
+
+  private:
+    std::mutex mutex_;
+    std::condition_variable changed_;
+    std::uint64_t limit_;
+    std::uint64_t held_ = 0;  // the estimates of the inputs in flight
+    int inFlight_ = 0;
+};
+
+// Renders the items of `plan`, each with `args`' options, several at once (planLanes; the memory limit
+// counting the inputs in flight together, MemoryGate): each image is the same bytes as `facet render
+// INPUT -o IMAGE` with those options, whatever the threads. An input that fails (InputError, out of
+// memory, any exception) is skipped and reported. Each input's messages are held until those of the
+// inputs before it are printed, so the output is in list order, as when rendered one after another:
+// its warnings, then "facet: wrote …" (not with --quiet); then the summary: "facet: rendered N of M
+// inputs in T s (R models per second)" to `out` (not with --quiet), or, when an input failed, to `err`
 // followed by every failure's message. Throws InputError only for a bad command line, before rendering.
 BatchResult runBatch(const RenderArgs& args, const BatchPlan& plan, const BatchConsole& console);
 

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "base/errors.h"
+#include "bench/batch_bench.h"
 #include "cli/options.h"
 #include "io/output_path.h"
 
@@ -118,10 +119,32 @@ CLI::App* addBenchCommand(CLI::App& app, facet::BenchOptions& options) {
                       "alone, the BVH build, and the rasterizer's cost per shadowing light (ray-cast, maps "
                       "of 1024, 2048, 4096); 7 frames (unless --frames), CSV to out/bench-reference.csv "
                       "(unless --csv)");
+    command
+        ->add_option("--batch", options.batchList,
+                     "Time a list of inputs (as facet render --list reads it) rendered by one process on "
+                     "--threads N threads and by N one-thread processes side by side (--shard), in turns: "
+                     "inputs per second of each and their ratio; 3 rounds (unless --frames)")
+        ->type_name("LIST");
     return command;
 }
 
 int bench(facet::BenchOptions& options, const CLI::App& command) {
+    if (command.count("--batch")) {
+        // Whole renders of the list's inputs: the frame modes' options do not apply.
+        for (const char* option :
+             {"model", "--aa", "--shader", "--uniform", "--instruction-sets", "--vs-mesa", "--quick", "--csv",
+              "--chart", "--sort", "--transparency", "--degrees-per-frame", "--reference"})
+            if (command.count(option))
+                throw facet::InputError(std::string(option) + " does not go with --batch");
+        facet::BatchBenchOptions batch;
+        batch.list = options.batchList;
+        batch.threads = options.threads;
+        if (command.count("--frames")) batch.rounds = options.frames;
+        if (command.count("--width")) batch.width = options.width;
+        if (command.count("--height")) batch.height = options.height;
+        facet::runBatchBench(batch, std::cout);
+        return 0;
+    }
     chooseDefaultBenchModels(options, command.count("model") > 0);
     // --shader times plain frames against the built-in's; the other modes draw fixed configurations.
     if (command.count("--uniform") && !options.shader)

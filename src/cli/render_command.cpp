@@ -248,11 +248,19 @@ RenderSettings renderSettings(const RenderArgs& args) {
     return settings;
 }
 
-RenderedInput renderInput(const RenderArgs& args, const RenderSettings& settings, facet::DrawContext& context,
-                          std::ostream& out, std::ostream& warnings) {
+facet::Scene inputScene(const RenderArgs& args) {
     facet::Scene scene = sceneFromArgs(args);
     facet::checkImageDestination(args.output, scene.width, scene.height);
+    return scene;
+}
 
+RenderedInput renderInput(const RenderArgs& args, const RenderSettings& settings, facet::DrawContext& context,
+                          std::ostream& out, std::ostream& warnings) {
+    return renderScene(args, settings, inputScene(args), context, out, warnings);
+}
+
+RenderedInput renderScene(const RenderArgs& args, const RenderSettings& settings, const facet::Scene& scene,
+                          facet::DrawContext& context, std::ostream& out, std::ostream& warnings) {
     const auto start = std::chrono::steady_clock::now();
     const facet::PreparedScene asWritten = facet::prepareScene(scene);
     for (const std::string& warning : asWritten.warnings)

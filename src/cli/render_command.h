@@ -1,5 +1,5 @@
 // facet render: an OBJ model or a scene file to an image, or to the frames of a turntable; several
-// inputs are a batch, rendered one after another in one process (cli/batch.h).
+// inputs are a batch, several rendered at once in one process (cli/batch.h).
 #pragma once
 
 #include <cstdint>
@@ -52,8 +52,18 @@ struct RenderedInput {
 // Loads args.input and renders it to args.output (no placeholders left) on `context`'s threads, with
 // its own scene, framebuffer and frame memory: the same bytes as any other run with these arguments.
 // --stats lines go to `out`, "facet: warning: " lines to `warnings`. Throws InputError for bad input.
+// It is inputScene then renderScene.
 RenderedInput renderInput(const RenderArgs& args, const RenderSettings& settings, facet::DrawContext& context,
                           std::ostream& out, std::ostream& warnings);
+
+// The first step of renderInput: the scene of args.input (a scene file read, or an OBJ named, not yet
+// parsed) with the command line's options, and its image's destination checked. Cheap: the models'
+// triangles are read by renderScene, so a batch can weigh an input's memory before loading it.
+facet::Scene inputScene(const RenderArgs& args);
+
+// The rest of renderInput: `scene` (from inputScene(args)) loaded, prepared, rendered and written.
+RenderedInput renderScene(const RenderArgs& args, const RenderSettings& settings, const facet::Scene& scene,
+                          facet::DrawContext& context, std::ostream& out, std::ostream& warnings);
 
 // The image of one lighting term next to the output (--components): "out/spot.png" + "diffuse" ->
 // "out/spot-diffuse.png".
