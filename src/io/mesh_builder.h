@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -40,6 +41,56 @@ struct CornerKeyHash {
         h ^= h >> 31;
         return static_cast<std::size_t>(h);
     }
+};
+
+// The base vertex of each (position, texcoord, normal) triple seen: an open-addressing table with linear
+// probing, its entries in one array: std::unordered_map allocates a node per distinct corner, which made
+// welding the largest part of importing a large model. Which vertex a triple gets is decided by the
+// builder (the order corners are first seen), never by the table.
+class CornerWeldTable {
+  public:
+    explicit CornerWeldTable(std::size_t expectedKeys = 0) { rehash(std::bit_ceil(expectedKeys * 2 + 16)); }
+
+    // The value slot of `key`, inserted with kNoVertex when new. Valid until the next call.
+    std::uint32_t& slotFor(const CornerKey& key) {
+        if ((size_ + 1) * 2 > entries_.size()) rehash(entries_.size() * 2);  // load factor at most 1/2
+        const std::size_t mask = entries_.size() - 1;
+        for (std::size_t i = CornerKeyHash{}(key)&mask;; i = (i + 1) & mask) {
+            Entry& entry = entries_[i];
+            if (entry.key.position == kEmpty) {
+                entry.key = key;
+                entry.value = kNoVertex;
+                ++size_;
+                return entry.value;
+            }
+            if (entry.key == key) return entry.value;
+        }
+    }
+
+    std::size_t size() const { return size_; }
+
+  private:
+    static constexpr std::int32_t kEmpty = -1;  // no position index is negative once resolved
+    struct Entry {
+        CornerKey key{kEmpty, 0, 0};
+        std::uint32_t value = kNoVertex;
+    };
+
+    void rehash(std::size_t capacity) {
+        std::vector<Entry> old(capacity);
+        old.swap(entries_);
+        const std::size_t mask = entries_.size() - 1;
+        for (const Entry& entry : old) {
+            if (entry.key.position == kEmpty) continue;
+            std::size_t i = CornerKeyHash{}(entry.key) & mask;
+            while (entries_[i].key.position != kEmpty)
+                i = (i + 1) & mask;
+            entries_[i] = entry;
+        }
+    }
+
+    std::vector<Entry> entries_;
+    std::size_t size_ = 0;
 };
 
 // Builds the mesh in two steps. addPolygon fan-triangulates and welds corners on their (position,
@@ -80,7 +131,7 @@ class MeshBuilder {
           cellSize_(2.0 * std::sin(double(creaseAngleDegrees) * (std::numbers::pi / 360.0)) * 1.0001 + 1e-5) {
         const std::size_t positionCount = geometry.positions.size() / 3;
         plainVertex_.assign(positionCount, kNoVertex);
-        welded_.reserve(cornerCount / 2 + 16);
+        welded_ = CornerWeldTable(cornerCount / 4);
         baseVertices_.reserve(cornerCount / 3 + 16);
         cornerVertex_.reserve(cornerCount);  // exact for triangles; polygons have more
         cornerIncidence_.reserve(cornerCount);
@@ -503,9 +554,7 @@ class MeshBuilder {
         if (texcoord < 0 && normal < 0) {
             slot = &plainVertex_[positionIndex];
         } else {
-            const auto [it, inserted] =
-                welded_.try_emplace(CornerKey{corner.position, texcoord, normal}, kNoVertex);
-            slot = &it->second;
+            slot = &welded_.slotFor(CornerKey{corner.position, texcoord, normal});
         }
         if (*slot != kNoVertex) return *slot;
         if (trace_ && (trace_->fileCornersOfAll || traced(positionIndex))) recordFileCorner(corner);
@@ -534,7 +583,7 @@ class MeshBuilder {
     std::vector<glm::vec3> fileNormals_;
     std::vector<bool> usableNormal_;
     std::vector<std::uint32_t> plainVertex_;  // per position: its base vertex without texcoord or normal
-    std::unordered_map<CornerKey, std::uint32_t, CornerKeyHash> welded_;
+    CornerWeldTable welded_;
     std::vector<MeshVertex> baseVertices_;     // welded on the index triple, computed normals still zero
     std::vector<std::uint32_t> basePosition_;  // per base vertex: its position index
     std::vector<bool> computedNormal_;         // per base vertex: no usable file normal
