@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
+#include <iterator>
 #include <memory>
 #include <ostream>
 #include <string>
@@ -26,6 +27,9 @@ using Clock = std::chrono::steady_clock;
 
 constexpr int kWarmUpFrames = 2;
 constexpr int kPredictedThreads = 16;  // the many-core machine the figures are stated for
+// The spin limits timed at the largest thread count (ThreadPool::setSpinLimit), microseconds: what the
+// default, kDefaultSpinLimit, was chosen from.
+constexpr int kSpinLimitsUs[] = {0, 1, 5, 20, 100};
 
 struct ScalingScene {
     fs::path model;
@@ -163,6 +167,12 @@ void benchScalingScene(const ScalingScene& bench, const std::vector<int>& counts
             << oneWall / wall / counts[c] << std::setw(15) << cpu << std::setw(11) << cpu / oneCpu << "x"
             << std::setw(12) << median(sides[c].busyShare) << "\n";
     }
+    out << "  spin limit at " << widest.pool.threads() << " threads, ms/frame wall / cpu:";
+    for (std::size_t l = 0; l < std::size(kSpinLimitsUs); ++l)
+        out << (l ? "," : "") << "  " << kSpinLimitsUs[l] << " us"
+            << (std::chrono::microseconds(kSpinLimitsUs[l]) == kDefaultSpinLimit ? " (default) " : " ")
+            << median(spinWallMs[l]) << " / " << median(spinCpuMs[l]);
+    out << "\n";
     const int given = counts.back();
     out << std::setprecision(2) << "  one-thread trace: " << serial.jobsPerFrame
         << " jobs per frame, median gap " << std::setprecision(1) << serial.medianGapUs
