@@ -153,6 +153,20 @@ void benchScalingScene(const ScalingScene& bench, const std::vector<int>& counts
                 busy += ms;
             side.busyShare.push_back(busy / (wall * side.context->pool.threads()));
         }
+    // The largest count's frames with each spin limit, taking turns.
+    DrawContext& widest = *sides.back().context;
+    std::vector<std::vector<double>> spinWallMs(std::size(kSpinLimitsUs)),
+        spinCpuMs(std::size(kSpinLimitsUs));
+    for (int i = 0; i < frames; ++i)
+        for (std::size_t l = 0; l < std::size(kSpinLimitsUs); ++l) {
+            widest.pool.setSpinLimit(std::chrono::microseconds(kSpinLimitsUs[l]));
+            const double cpuStart = processCpuMs();
+            const auto start = Clock::now();
+            renderFrame(prepared, *sides.back().framebuffer, widest, sides.back().memory);
+            spinWallMs[l].push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+            spinCpuMs[l].push_back(processCpuMs() - cpuStart);
+        }
+    widest.pool.setSpinLimit(kDefaultSpinLimit);
     const SerialPart serial =
         traceOneThread(prepared, *sides[0].framebuffer, *sides[0].context, sides[0].memory, frames);
 
