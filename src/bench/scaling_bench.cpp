@@ -1,6 +1,7 @@
 // facet bench --scaling: frames of a scene on 1, 2, 4, ... threads; speed-up, CPU time per frame, and the
 // serial part of a frame from a trace of the pool's jobs (ThreadPool::startTrace) with Amdahl's bound.
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -107,6 +108,32 @@ SerialPart traceOneThread(const PreparedScene& prepared, Framebuffer& framebuffe
             job.longestItemMs *= (part.frameMs - part.outsideJobsMs) / (kept - part.outsideJobsMs);
         }
     return part;
+}
+
+// How long a worker takes to start a job posted to the pool, in microseconds (median of `trials`): asleep
+// (spin limit 0, the job wakes it) or polling (no limit). A two-item job whose items wait for each other:
+// the caller holds one, so a worker must take the other. The trials are 200 us apart, so that the
+// sleeping worker is asleep.
+double wakeUpMicroseconds(bool polling, int trials = 200) {
+    ThreadPool pool(2);
+    if (pool.threads() < 2) return 0.0;
+    pool.setSpinLimit(polling ? std::chrono::nanoseconds(std::chrono::hours(1))
+                              : std::chrono::nanoseconds(0));
+    std::vector<double> us;
+    for (int trial = 0; trial < trials; ++trial) {
+        std::this_thread::sleep_for(std::chrono::microseconds(200));
+        std::atomic<int> started{0};
+        Clock::time_point workerStart;
+        const Clock::time_point posted = Clock::now();
+        pool.parallelFor(2, [&](std::size_t, int thread) {
+            if (thread != 0) workerStart = Clock::now();
+            ++started;
+            while (started.load() < 2)
+                std::this_thread::yield();
+        });
+        us.push_back(std::chrono::duration<double, std::micro>(workerStart - posted).count());
+    }
+    return median(us);
 }
 
 void benchScalingScene(const ScalingScene& bench, const std::vector<int>& counts, int frames,
@@ -225,6 +252,10 @@ void runScalingBench(const BenchOptions& options, bool modelGiven, std::ostream&
         << kWarmUpFrames << " warm-up\n"
         << "code       compiled for " << describeFrameKernels() << "; " << std::thread::hardware_concurrency()
         << " hardware threads\n"
+        << "wake-up    a worker starts a posted job after " << std::setprecision(1)
+        << wakeUpMicroseconds(false) << " us asleep, " << wakeUpMicroseconds(true)
+        << " us polling (medians); a waiting thread polls for "
+        << std::chrono::duration<double, std::micro>(kDefaultSpinLimit).count() << " us, then sleeps\n"
         << "columns    medians per frame; speed-up = 1-thread ms / ms; efficiency = speed-up / threads;\n"
         << "           cpu ratio = cpu ms / 1-thread cpu ms (1.00: no CPU spent waiting or sharing);\n"
         << "           busy share = the threads' time in jobs / (threads x wall), traced frames apart\n";
