@@ -44,7 +44,8 @@ struct ThreadCountResult {
     double busyShare = 0.0;  // Σ of the threads' busy time in jobs / (threads × wall), traced frames
 };
 
-// The serial part of a frame, from the jobs of frames traced on one thread (where nothing waits):
+// The serial part of a frame, from the jobs of frames traced on one thread (where nothing waits), in CPU
+// time (a thread's items are timed by its CPU clock):
 // serial = the frame's time outside jobs of two or more items (the caller alone: planning, sorting,
 // gathering) plus the one-item jobs; f = serial / frame. Amdahl: speed-up(P) = 1 / (f + (1 − f) / P).
 // The job bound is tighter: a job of items W_j with longest item m_j takes at least max(W_j / P, m_j),
@@ -76,10 +77,12 @@ SerialPart traceOneThread(const PreparedScene& prepared, Framebuffer& framebuffe
     std::size_t jobs = 0;
     PoolTrace trace;
     for (int i = 0; i < frames; ++i) {
+        // CPU time of the one thread, as the trace's items are timed: a shared machine's other processes
+        // lengthen neither.
         context.pool.startTrace(trace);
-        const auto start = Clock::now();
+        const double start = threadCpuMs();
         renderFrame(prepared, framebuffer, context, memory);
-        const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+        const double ms = threadCpuMs() - start;
         context.pool.stopTrace();
         double inJobs = 0.0, oneItem = 0.0;
         for (std::size_t j = 0; j < trace.jobs.size(); ++j) {
@@ -245,7 +248,7 @@ void runScalingBench(const BenchOptions& options, bool modelGiven, std::ostream&
         }
         scenes.push_back({options.smallModel, 3840, 2160});
     }
-    out << "facet bench --scaling: the same frames on ";
+    out << std::fixed << "facet bench --scaling: the same frames on ";
     for (std::size_t c = 0; c < counts.size(); ++c)
         out << (c ? ", " : "") << counts[c];
     out << " threads, taking turns frame by frame; " << options.frames << " timed frames each after "
