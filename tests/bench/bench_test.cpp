@@ -90,7 +90,7 @@ TEST_F(BenchTest, ReferenceModeNamesEveryRow) {
     expected.push_back("bvh,5856 triangles," + std::to_string(std::thread::hardware_concurrency()) + ",0,3");
     for (const char* lights : {"1", "2", "4"})
         for (const char* shadows : {"none", "ray", "map 1024", "map 2048", "map 4096"})
-            expected.push_back(std::string("shadows,") + shadows + ",1," + lights + ",1" +
+            expected.push_back(std::string("shadows,") + shadows + ",3," + lights + ",1" +
                                (std::string(shadows) == "none" ? "" : " +per-light"));
     EXPECT_EQ(csvRowNames(options.csv), expected);
 
