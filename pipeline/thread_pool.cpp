@@ -2,8 +2,10 @@
 
 #include <pthread.h>
 #include <sys/resource.h>
+#include <time.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdint>
 #include <new>
 #include <system_error>
@@ -17,10 +19,7 @@ namespace facet {
 
 namespace {
 
-// How long a thread polls before it sleeps, waiting for the next job (a worker) or for the others to
-// finish (the caller). A draw is one or two jobs, and a frame of many small draws (Lost Empire's
-// transparent pass: 4,064) would otherwise pay a sleep and a wake-up, tens of microseconds, for each.
-constexpr int kSpinRounds = 4000;  // of a pause instruction each: some tens of microseconds
+using Clock = std::chrono::steady_clock;
 
 void cpuRelax() {
 #if defined(__x86_64__) || defined(__i386__)
@@ -28,14 +27,31 @@ void cpuRelax() {
 #endif
 }
 
-// True when `ready` became true while polling.
+// True when `ready` became true while polling, for at most `limit`. The clock is read every 16 pause
+// instructions: a pause takes about 10 cycles on some CPUs and about 140 on others, so a count of them
+// would be a tenfold different time; a clock read (vDSO) costs about as much as one pause.
 template <class Ready>
-bool spinUntil(const Ready& ready) {
-    for (int round = 0; round < kSpinRounds; ++round) {
-        if (ready()) return true;
+bool spinUntil(const Ready& ready, std::chrono::nanoseconds limit) {
+    if (ready()) return true;
+    if (limit.count() <= 0) return false;
+    const Clock::time_point deadline = Clock::now() + limit;
+    for (unsigned round = 1;; ++round) {
         cpuRelax();
+        if (ready()) return true;
+        if (round % 16 == 0 && Clock::now() >= deadline) return false;
     }
-    return false;
+}
+
+// The calling thread's CPU time: an item's time in a trace, which the time slices other processes take
+// from a shared machine do not lengthen.
+std::int64_t threadCpuNs() {
+    timespec now{};
+    ::clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+    return std::int64_t{now.tv_sec} * 1'000'000'000 + now.tv_nsec;
+}
+
+double msBetween(Clock::time_point from, Clock::time_point to) {
+    return std::chrono::duration<double, std::milli>(to - from).count();
 }
 
 std::atomic<ThreadShortfallReport> shortfallReport{nullptr};
@@ -85,6 +101,7 @@ ThreadPool::ThreadPool(int threads, const ThreadStarter& start) {
     // wake_, which lives as long as the pool, and run their share of every job (the caller runs the
     // rest). An exception escaping here would destroy running std::threads (std::terminate) or, once
     // caught, the condition variable they wait on.
+    slots_ = std::make_unique<ThreadSlot[]>(static_cast<std::size_t>(threads));
     std::string refusal;
     const int allowed = threadsTheAddressSpaceAllows();
     if (allowed < threads) refusal = "the memory limit, ulimit -v, leaves room for the stacks of no more";
@@ -133,24 +150,57 @@ void ThreadPool::runItems(int thread) {
     }
 }
 
+// runItems, timing each item into this thread's slot (a traced pool: startTrace).
+void ThreadPool::runItemsTraced(int thread) {
+    ThreadSlot& slot = slots_[static_cast<std::size_t>(thread)];
+    for (std::size_t item = next_.fetch_add(1); item < count_; item = next_.fetch_add(1)) {
+        const std::int64_t start = threadCpuNs();
+        try {
+            (*body_)(item, thread);
+        } catch (...) {
+            std::lock_guard lock(mutex_);
+            if (!failure_) failure_ = std::current_exception();
+            next_.store(count_);
+        }
+        const std::int64_t ns = threadCpuNs() - start;
+        slot.jobBusyNs += ns;
+        slot.jobLongestItemNs = std::max(slot.jobLongestItemNs, ns);
+    }
+}
+
 void ThreadPool::workerLoop(int thread) {
+    ThreadSlot& slot = slots_[static_cast<std::size_t>(thread)];
     std::uint64_t seen = 0;
     for (;;) {
-        spinUntil([&] {
-            return stopping_.load(std::memory_order_acquire) ||
-                   generation_.load(std::memory_order_acquire) != seen;
-        });
+        const bool caught = spinUntil(
+            [&] {
+                return stopping_.load(std::memory_order_acquire) ||
+                       generation_.load(std::memory_order_acquire) != seen;
+            },
+            spinLimit());
+        bool traced = false;
         {
             std::unique_lock lock(mutex_);
-            wake_.wait(lock, [&] { return stopping_ || generation_ != seen; });
+            if (!caught && !stopping_ && generation_ == seen) {
+                slot.slept.fetch_add(1, std::memory_order_relaxed);
+                ++sleeping_;
+                wake_.wait(lock, [&] { return stopping_ || generation_ != seen; });
+                --sleeping_;
+            } else if (caught) {
+                slot.caughtSpinning.fetch_add(1, std::memory_order_relaxed);
+            }
             if (stopping_) return;
             seen = generation_;
             // A job the caller has already finished alone is not joined: on a machine busy with other
             // work a worker may wake long after its job ended, and the caller does not wait for it.
             if (!open_) continue;
             ++busy_;
+            traced = trace_ != nullptr;
         }
-        runItems(thread);
+        if (traced)
+            runItemsTraced(thread);
+        else
+            runItems(thread);
         {
             std::lock_guard lock(mutex_);
             if (--busy_ == 0) done_.notify_one();
@@ -160,11 +210,28 @@ void ThreadPool::workerLoop(int thread) {
 
 void ThreadPool::parallelFor(std::size_t count, const std::function<void(std::size_t, int)>& body) {
     if (count == 0) return;
+    const Clock::time_point start = trace_ ? Clock::now() : Clock::time_point{};
     if (workers_.empty() || count == 1) {
-        for (std::size_t item = 0; item < count; ++item)
-            body(item, 0);
+        if (!trace_) {
+            for (std::size_t item = 0; item < count; ++item)
+                body(item, 0);
+            return;
+        }
+        {
+            std::lock_guard lock(mutex_);
+            body_ = &body;
+            count_ = count;
+            next_.store(0);
+        }
+        slots_[0].jobBusyNs = slots_[0].jobLongestItemNs = 0;
+        runItemsTraced(0);
+        body_ = nullptr;
+        recordJob(start, count);
+        if (failure_) std::rethrow_exception(std::exchange(failure_, nullptr));
         return;
     }
+    int wakeUps = 0;
+    bool wakeAll = false;
     {
         std::lock_guard lock(mutex_);
         body_ = &body;
@@ -172,20 +239,81 @@ void ThreadPool::parallelFor(std::size_t count, const std::function<void(std::si
         next_.store(0);
         open_ = true;
         ++generation_;
+        if (trace_)
+            for (int t = 0; t < threads(); ++t)
+                slots_[static_cast<std::size_t>(t)].jobBusyNs =
+                    slots_[static_cast<std::size_t>(t)].jobLongestItemNs = 0;
+        // The caller takes an item itself: a job of k items needs at most k − 1 workers, and a worker
+        // woken for nothing costs a context switch. Polling workers need no call.
+        wakeUps = static_cast<int>(std::min<std::size_t>(count - 1, static_cast<std::size_t>(sleeping_)));
+        wakeAll = wakeUps == sleeping_;
     }
-    wake_.notify_all();
-    runItems(0);
+    if (wakeAll)
+        wake_.notify_all();
+    else
+        for (int w = 0; w < wakeUps; ++w)
+            wake_.notify_one();
+    if (trace_)
+        runItemsTraced(0);
+    else
+        runItems(0);
     {
         // Every item has begun: from now on no worker joins this job, and only those that did are
         // waited for.
         std::lock_guard lock(mutex_);
         open_ = false;
     }
-    spinUntil([&] { return busy_.load(std::memory_order_acquire) == 0; });
+    spinUntil([&] { return busy_.load(std::memory_order_acquire) == 0; }, spinLimit());
     std::unique_lock lock(mutex_);  // taken even when the spin saw the end: the workers' writes are seen
     done_.wait(lock, [&] { return busy_ == 0; });
     body_ = nullptr;
+    if (trace_) recordJob(start, count);
     if (failure_) std::rethrow_exception(std::exchange(failure_, nullptr));
+}
+
+void ThreadPool::recordJob(Clock::time_point start, std::size_t count) {
+    PoolJobTrace job;
+    job.startMs = msBetween(traceStart_, start);
+    job.endMs = msBetween(traceStart_, Clock::now());
+    job.items = static_cast<std::uint32_t>(std::min<std::size_t>(count, UINT32_MAX));
+    std::int64_t busyNs = 0, longestNs = 0;
+    for (int t = 0; t < threads(); ++t) {
+        const ThreadSlot& slot = slots_[static_cast<std::size_t>(t)];
+        trace_->threadBusyMs[static_cast<std::size_t>(t)] += static_cast<double>(slot.jobBusyNs) * 1e-6;
+        busyNs += slot.jobBusyNs;
+        longestNs = std::max(longestNs, slot.jobLongestItemNs);
+    }
+    job.busyMs = static_cast<double>(busyNs) * 1e-6;
+    job.longestItemMs = static_cast<double>(longestNs) * 1e-6;
+    trace_->jobs.push_back(job);
+}
+
+void ThreadPool::startTrace(PoolTrace& trace) {
+    trace.threadBusyMs.assign(static_cast<std::size_t>(threads()), 0.0);
+    trace.jobs.clear();
+    traceStart_ = Clock::now();
+    std::lock_guard lock(mutex_);  // the workers read trace_ under the lock
+    trace_ = &trace;
+}
+
+void ThreadPool::stopTrace() {
+    std::lock_guard lock(mutex_);
+    trace_ = nullptr;
+}
+
+PoolWaits ThreadPool::waits() const {
+    PoolWaits total;
+    for (int t = 1; t < threads(); ++t) {
+        total.caughtSpinning +=
+            slots_[static_cast<std::size_t>(t)].caughtSpinning.load(std::memory_order_relaxed);
+        total.slept += slots_[static_cast<std::size_t>(t)].slept.load(std::memory_order_relaxed);
+    }
+    return total;
+}
+
+int ThreadPool::sleepingWorkers() {
+    std::lock_guard lock(mutex_);
+    return sleeping_;
 }
 
 }  // namespace facet

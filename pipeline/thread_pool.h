@@ -4,10 +4,13 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstddef>
+#include <cstdint>
 #include <exception>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -26,6 +29,34 @@ using ThreadStarter = std::function<std::thread(std::function<void()> run)>;
 // it is called once, however many pools fall short after it was set. Unset: nothing is said.
 using ThreadShortfallReport = void (*)(const std::string& message);
 void setThreadShortfallReport(ThreadShortfallReport report);
+
+// How long a waiting thread polls before it sleeps (a worker waiting for the next job, the caller for
+// the workers to finish): about what a sleep and a wake-up cost, so that polling never burns more
+// than twice what sleeping at once would (the rule of the rent-or-buy problem), and far less than the
+// gaps between the jobs of a frame of many small draws. docs/performance.md gives the measurements.
+inline constexpr std::chrono::nanoseconds kDefaultSpinLimit = std::chrono::microseconds(5);
+
+// One job of a traced pool (ThreadPool::startTrace): when it began and ended, in ms since the trace
+// began, its items, their summed time and the longest one's (on any thread).
+struct PoolJobTrace {
+    double startMs = 0.0, endMs = 0.0;
+    std::uint32_t items = 0;
+    double busyMs = 0.0;         // Σ of the items' times: the job's work
+    double longestItemMs = 0.0;  // no number of threads finishes the job sooner
+};
+
+// What a traced pool did (ThreadPool::startTrace): each thread's time running items (thread 0: the
+// caller's), and every job. facet bench --scaling derives the serial part of a frame from it.
+struct PoolTrace {
+    std::vector<double> threadBusyMs;
+    std::vector<PoolJobTrace> jobs;
+};
+
+// How the pool's workers waited for jobs since the pool started (ThreadPool::waits).
+struct PoolWaits {
+    std::uint64_t caughtSpinning = 0;  // the job came while the worker polled
+    std::uint64_t slept = 0;           // the worker went to sleep (and was woken, or is asleep now)
+};
 
 class ThreadPool {
   public:
@@ -52,9 +83,32 @@ class ThreadPool {
     // goes on after an input that ran out of memory.
     void parallelFor(std::size_t count, const std::function<void(std::size_t item, int thread)>& body);
 
+    // How long a waiting thread polls before it sleeps (kDefaultSpinLimit unless set); 0: it sleeps at
+    // once. Set between jobs. Bounded by the clock, not by a count of pause instructions, whose cost
+    // differs tenfold between CPUs.
+    void setSpinLimit(std::chrono::nanoseconds limit) { spinLimitNs_.store(limit.count()); }
+    std::chrono::nanoseconds spinLimit() const { return std::chrono::nanoseconds(spinLimitNs_.load()); }
+
+    // How the workers waited, summed over them; and how many sleep now, waiting for a job.
+    PoolWaits waits() const;
+    int sleepingWorkers();
+
+    // Records every job and each thread's busy time into `trace` (cleared here) until stopTrace(): two
+    // clock reads per item, so only benchmarks turn it on. Called between jobs; `trace` must outlive it.
+    void startTrace(PoolTrace& trace);
+    void stopTrace();
+
   private:
+    // One thread's counters, on a cache line of its own: only that thread writes them.
+    struct alignas(64) ThreadSlot {
+        std::atomic<std::uint64_t> caughtSpinning{0}, slept{0};
+        std::int64_t jobBusyNs = 0, jobLongestItemNs = 0;  // traced: the current job's items on this thread
+    };
+
     void workerLoop(int thread);
     void runItems(int thread);
+    void runItemsTraced(int thread);
+    void recordJob(std::chrono::steady_clock::time_point start, std::size_t count);
 
     void stopWorkers();
 
@@ -72,6 +126,11 @@ class ThreadPool {
     std::exception_ptr failure_;                // the current job's first exception
     std::atomic<std::uint64_t> generation_{0};  // bumped for every job, so a worker runs each job once
     std::atomic<bool> stopping_{false};
+    std::atomic<std::int64_t> spinLimitNs_{kDefaultSpinLimit.count()};
+    int sleeping_ = 0;  // workers asleep on wake_ (under mutex_): a job wakes no more than it has items for
+    std::unique_ptr<ThreadSlot[]> slots_;
+    PoolTrace* trace_ = nullptr;
+    std::chrono::steady_clock::time_point traceStart_;
 };
 
 // pool.parallelFor(count, body), or the same items in order on the calling thread (thread 0) when

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <iosfwd>
 #include <optional>
+#include <utility>
 
 #include "scene/scene.h"
 
@@ -49,6 +50,9 @@ struct BenchOptions {
     // --transparency
     bool transparency = false;
     float degreesPerFrame = 1.0f;  // the turntable's step
+
+    // --scaling
+    bool scaling = false;
 
     // --reference (writes `csv`, out/bench-reference.csv unless given)
     bool reference = false;
@@ -94,6 +98,19 @@ void runTransparencyBench(const BenchOptions& options, std::ostream& out);
 // options.chart. Without OSMesa it says so and times Facet alone. Throws InputError on bad input.
 void runMesaComparison(const BenchOptions& options, std::ostream& out);
 
+// The OBJ file under `folder` (recursively) with the most triangles, and their count: the largest scene
+// of --vs-mesa and --scaling. Empty when there is none.
+std::pair<std::filesystem::path, std::size_t> largestModel(const std::filesystem::path& folder);
+
+// Frames of options.model at the options' size (with modelGiven; else the named scenes of
+// runMesaComparison: options.model at 1920×1080, the largest model of options.sharedModels at
+// 1920×1080, options.smallModel at 3840×2160) on 1, 2, 4, ... threads up to options.threads
+// (threadSweep), frames taking turns across the counts: per count the median wall-clock and CPU ms
+// per frame, speed-up and CPU ratio to one thread, and the threads' busy share; from a trace of the
+// pool's jobs on one thread, the serial fraction of a frame and the speed-up Amdahl's law and the jobs'
+// sizes allow at 16 threads and at the largest count. Throws InputError on bad input.
+void runScalingBench(const BenchOptions& options, bool modelGiven, std::ostream& out);
+
 // Treats every triangle of options.model (at least 50,000 of them, or InputError) as transparent and
 // turns the model on a turntable (about the vertical axis through its bounding box's centre, camera as
 // `facet render` frames it). Each frame computes one key per triangle (view-space depth of the centroid)
@@ -105,11 +122,13 @@ void runSortBench(const BenchOptions& options, std::ostream& out);
 
 // The reference renderer's speed and what shadows cost the rasterizer, printed as tables and written to
 // options.csv (one line per row of the tables):
-//   - renderReference on options.model at the options' size with 1 and 4×4 = 16 samples per pixel, on 1 and
-//     2 threads: median ms per frame (BVH build included, as facet render --renderer reference pays it),
-//     the BVH's share, camera rays per second of tracing and shading;
+//   - renderReference on options.model at the options' size with 1 and 4×4 = 16 samples per pixel, on 1,
+//     2, 4, ... threads up to options.threads (threadSweep): median ms per frame (BVH build included, as
+//     facet render --renderer reference pays it), the BVH's share, camera rays per second of tracing and
+//     shading;
 //   - the ray casting alone (RayScene::nearestOpaque8 on the same camera rays, 1 per pixel, generated
-//     beforehand): packets of 8 and single rays, the scene's face culling and none, 1 and 2 threads;
+//     beforehand): packets of 8 and single rays, the scene's face culling and none, on the same thread
+//     counts;
 //   - the BVH build (RayScene of the model), median of a few builds;
 //   - the rasterizer (options.threads) drawing options.model on options.ground with 1, 2 and 4
 //     directional lights that cast ray-cast shadows, or shadow maps of 1024, 2048 and 4096 texels, or

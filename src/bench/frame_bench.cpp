@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <chrono>
 #include <iomanip>
+#include <optional>
 #include <ostream>
 #include <vector>
 
@@ -112,14 +113,31 @@ void runBench(const BenchOptions& options, std::ostream& out) {
     FrameMemory memory;
     DrawStats stats =
         renderFrame(prepared, framebuffer, context, memory).draw;  // warm-up: caches, buffers, threads
+    // The CPU time a frame costs on N threads is set against one thread's, measured here on frames taking
+    // turns with the N-thread ones (a shared machine drifts): what waiting and sharing the work cost.
+    const bool againstOneThread = context.pool.threads() > 1;
+    std::optional<DrawContext> oneThread;
+    Framebuffer oneThreadFramebuffer(againstOneThread ? scene.width : 1, againstOneThread ? scene.height : 1);
+    FrameMemory oneThreadMemory;
+    if (againstOneThread) {
+        oneThread.emplace(1);
+        renderFrame(prepared, oneThreadFramebuffer, *oneThread, oneThreadMemory);
+    }
 
     using Clock = std::chrono::steady_clock;
-    std::vector<double> frameMs, clearMs;
+    std::vector<double> frameMs, clearMs, cpuMs, oneThreadCpuMs;
     for (int i = 0; i < options.frames; ++i) {
+        const double cpuStart = processCpuMs();
         const auto start = Clock::now();
         stats = renderFrame(prepared, framebuffer, context, memory).draw;
         const auto end = Clock::now();
+        cpuMs.push_back(processCpuMs() - cpuStart);
         frameMs.push_back(std::chrono::duration<double, std::milli>(end - start).count());
+        if (againstOneThread) {
+            const double oneStart = processCpuMs();
+            renderFrame(prepared, oneThreadFramebuffer, *oneThread, oneThreadMemory);
+            oneThreadCpuMs.push_back(processCpuMs() - oneStart);
+        }
     }
     // A clear of every pixel, on a framebuffer of its own (one that held the frame would write only
     // the cells the frame drew into, and spare the next frame's clear): the colour alternates, so no
@@ -149,6 +167,12 @@ void runBench(const BenchOptions& options, std::ostream& out) {
     out << "ms/frame   median " << median(frameMs) << "  min "
         << *std::min_element(frameMs.begin(), frameMs.end()) << "  max "
         << *std::max_element(frameMs.begin(), frameMs.end()) << "\n";
+    out << "cpu/frame  median " << median(cpuMs) << " ms (every thread's CPU time)";
+    if (againstOneThread)
+        out << "; one thread: " << median(oneThreadCpuMs) << " ms, ratio " << std::setprecision(2)
+            << median(cpuMs) / median(oneThreadCpuMs)
+            << " (1.00: the threads cost no CPU time beyond the work; one-thread frames taking turns)";
+    out << "\n";
     out << "full clear median " << median(clearMs)
         << " ms (colour + depth, every pixel; a frame clears only the 64×64 cells the previous one drew "
            "into, each as its tile is first drawn)\n";

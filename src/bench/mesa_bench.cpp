@@ -55,6 +55,9 @@ struct BenchScene {
 
     // Frames alternating between the two renderers (medians; NaN for Mesa when it is missing).
     double facetMs = 0.0, facetCpuMs = 0.0;
+    // Facet's CPU time per frame on one thread, from frames taking turns with the others (NaN when the
+    // bench runs on one thread): what the N-thread frame's CPU time is set against.
+    double facetOneThreadCpuMs = std::numeric_limits<double>::quiet_NaN();
     double mesaMs = std::numeric_limits<double>::quiet_NaN(), mesaCpuMs = mesaMs;
     std::optional<ImageAgreement> agreement;
 };
@@ -67,37 +70,6 @@ BenchScene benchScene(std::string name, std::string sweep, fs::path model, int w
     scene.width = width;
     scene.height = height;
     return scene;
-}
-
-// The OBJ file under `folder` (recursively) with the most triangles, counting an 'f' statement of k
-// corners as k − 2 triangles, as the importer fans it. Ties go to the first path in sorted order.
-std::pair<fs::path, std::size_t> largestModel(const fs::path& folder) {
-    std::vector<fs::path> files;
-    for (const auto& entry : fs::recursive_directory_iterator(folder))
-        if (entry.is_regular_file() && entry.path().extension() == ".obj") files.push_back(entry.path());
-    std::sort(files.begin(), files.end());
-    std::pair<fs::path, std::size_t> best{{}, 0};
-    for (const fs::path& file : files) {
-        std::ifstream in(file);
-        std::string line;
-        std::size_t triangles = 0;
-        while (std::getline(in, line)) {
-            const std::size_t start = line.find_first_not_of(" \t");
-            if (start == std::string::npos || line[start] != 'f' || start + 1 >= line.size() ||
-                (line[start + 1] != ' ' && line[start + 1] != '\t'))
-                continue;
-            std::size_t corners = 0;
-            bool inWord = false;
-            for (std::size_t i = start + 1; i < line.size(); ++i) {
-                const bool space = line[i] == ' ' || line[i] == '\t' || line[i] == '\r';
-                corners += !space && !inWord;
-                inWord = !space;
-            }
-            if (corners >= 3) triangles += corners - 2;
-        }
-        if (triangles > best.second) best = {file, triangles};
-    }
-    return best;
 }
 
 // Writes a unit icosphere as an OBJ with normals: each of the icosahedron's 20 faces cut into n²
@@ -286,10 +258,18 @@ void writeDisagreement(const BenchScene& bench, const LinearImage& facet, const 
 // Loads the scene into both renderers, warms both up, checks that their images agree, then times
 // `frames` frames of each, alternating (and alternating which goes first) so that both see the same
 // machine state. Uploads and the check are not timed.
-void timeScene(BenchScene& bench, MesaPeer* mesa, DrawContext& context, int frames,
+// With `oneThread`, Facet's frames on one thread take turns with them too (CPU time only).
+void timeScene(BenchScene& bench, MesaPeer* mesa, DrawContext& context, DrawContext* oneThread, int frames,
                const fs::path& imageFolder, std::ostream& out) {
     const PreparedScene prepared = prepareBenchScene(bench);
     Framebuffer framebuffer(bench.width, bench.height);
+    std::optional<Framebuffer> oneThreadFramebuffer;
+    FrameMemory oneThreadMemory;
+    if (oneThread) {
+        oneThreadFramebuffer.emplace(bench.width, bench.height);
+        for (int i = 0; i < kWarmUpFrames; ++i)
+            renderFrame(prepared, *oneThreadFramebuffer, *oneThread, oneThreadMemory);
+    }
     if (mesa) mesa->load(toGlScene(prepared));
     // Facet's frames as a loop of frames draws them (facet render --frames): the transparent triangles'
     // order and the plan's buffers kept from frame to frame (Mesa is given that order once, at load).
@@ -309,7 +289,7 @@ void timeScene(BenchScene& bench, MesaPeer* mesa, DrawContext& context, int fram
     }
 
     using Clock = std::chrono::steady_clock;
-    std::vector<double> facetMs, facetCpuMs, mesaMs, mesaCpuMs;
+    std::vector<double> facetMs, facetCpuMs, mesaMs, mesaCpuMs, oneThreadCpuMs;
     auto timeFacet = [&] {
         const double cpu = processCpuMs();
         const auto start = Clock::now();
@@ -324,14 +304,21 @@ void timeScene(BenchScene& bench, MesaPeer* mesa, DrawContext& context, int fram
         mesaMs.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
         mesaCpuMs.push_back(processCpuMs() - cpu);
     };
+    auto timeFacetOneThread = [&] {
+        const double cpu = processCpuMs();
+        renderFrame(prepared, *oneThreadFramebuffer, *oneThread, oneThreadMemory);
+        oneThreadCpuMs.push_back(processCpuMs() - cpu);
+    };
     for (int i = 0; i < frames; ++i) {
         const bool mesaFirst = mesa && i % 2 == 1;
         if (mesaFirst) timeMesa();
         timeFacet();
         if (mesa && !mesaFirst) timeMesa();
+        if (oneThread) timeFacetOneThread();
     }
     bench.facetMs = median(facetMs);
     bench.facetCpuMs = median(facetCpuMs);
+    if (oneThread) bench.facetOneThreadCpuMs = median(oneThreadCpuMs);
     if (mesa) {
         bench.mesaMs = median(mesaMs);
         bench.mesaCpuMs = median(mesaCpuMs);
@@ -358,6 +345,9 @@ void printScene(const BenchScene& bench, int nameWidth, std::ostream& out) {
     out << "\n"
         << std::string(2 + nameWidth, ' ') << std::setprecision(2) << "cpu/frame: facet " << bench.facetCpuMs
         << " ms";
+    if (!std::isnan(bench.facetOneThreadCpuMs))
+        out << " (" << bench.facetCpuMs / bench.facetOneThreadCpuMs << "x one thread's "
+            << bench.facetOneThreadCpuMs << " ms)";
     if (!std::isnan(bench.mesaCpuMs)) out << ", mesa " << bench.mesaCpuMs << " ms";
     if (bench.agreement) {
         const ImageAgreement& a = *bench.agreement;
@@ -420,6 +410,37 @@ LinearImage drawScalingChart(const std::vector<BenchScene>& scenes, int threads,
 
 }  // namespace
 
+// The OBJ file under `folder` (recursively) with the most triangles, counting an 'f' statement of k
+// corners as k − 2 triangles, as the importer fans it. Ties go to the first path in sorted order.
+std::pair<fs::path, std::size_t> largestModel(const fs::path& folder) {
+    std::vector<fs::path> files;
+    for (const auto& entry : fs::recursive_directory_iterator(folder))
+        if (entry.is_regular_file() && entry.path().extension() == ".obj") files.push_back(entry.path());
+    std::sort(files.begin(), files.end());
+    std::pair<fs::path, std::size_t> best{{}, 0};
+    for (const fs::path& file : files) {
+        std::ifstream in(file);
+        std::string line;
+        std::size_t triangles = 0;
+        while (std::getline(in, line)) {
+            const std::size_t start = line.find_first_not_of(" \t");
+            if (start == std::string::npos || line[start] != 'f' || start + 1 >= line.size() ||
+                (line[start + 1] != ' ' && line[start + 1] != '\t'))
+                continue;
+            std::size_t corners = 0;
+            bool inWord = false;
+            for (std::size_t i = start + 1; i < line.size(); ++i) {
+                const bool space = line[i] == ' ' || line[i] == '\t' || line[i] == '\r';
+                corners += !space && !inWord;
+                inWord = !space;
+            }
+            if (corners >= 3) triangles += corners - 2;
+        }
+        if (triangles > best.second) best = {file, triangles};
+    }
+    return best;
+}
+
 void runMesaComparison(const BenchOptions& options, std::ostream& out) {
     if (options.frames < 1) throw InputError("--frames must be at least 1");
     if (options.model.extension() != ".obj")
@@ -481,6 +502,11 @@ void runMesaComparison(const BenchOptions& options, std::ostream& out) {
         << "\n"
         << "frames     " << options.frames << " timed per renderer after " << kWarmUpFrames
         << " warm-up frames each; median ms per frame; ratio = facet / mesa (< 1: Facet faster)\n"
+        << (threads > 1
+                ? "cpu        every thread's CPU time per frame; (Rx one thread's): Facet's over its CPU "
+                  "time on one thread,\n           from one-thread frames taking turns with the others "
+                  "(1.00: no CPU spent waiting)\n"
+                : "")
         << "scenes     built-in per-pixel Lambert + Blinn-Phong, one white point light above left of the "
            "eye;\n"
         << "           back faces culled, depth test LESS, colour + depth cleared every frame\n"
@@ -512,6 +538,8 @@ void runMesaComparison(const BenchOptions& options, std::ostream& out) {
 
     // 4. The frames.
     DrawContext context(threads);
+    std::optional<DrawContext> oneThread;
+    if (context.pool.threads() > 1) oneThread.emplace(1);
     const fs::path imageFolder = disagreementFolder(options);
     std::string section = "-";
     int nameWidth = 0;
@@ -524,7 +552,8 @@ void runMesaComparison(const BenchOptions& options, std::ostream& out) {
             if (section == "triangles") out << "triangle sweep: icospheres at 1920x1080\n";
             if (section == "resolution") out << "resolution sweep: " << mainName << "\n";
         }
-        timeScene(bench, mesa.get(), context, options.frames, imageFolder, out);
+        timeScene(bench, mesa.get(), context, oneThread ? &*oneThread : nullptr, options.frames, imageFolder,
+                  out);
         printScene(bench, nameWidth, out);
     }
 

@@ -25,6 +25,15 @@ double median(std::vector<double> values) {
     return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
+std::vector<int> threadSweep(int threads) {
+    if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    std::vector<int> counts;
+    for (int count = 1; count < threads; count *= 2)
+        counts.push_back(count);
+    counts.push_back(threads);
+    return counts;
+}
+
 double processCpuMs() {
     timespec now{};
     ::clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);

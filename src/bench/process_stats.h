@@ -15,6 +15,10 @@ inline constexpr double kMiB = 1024.0 * 1024.0;
 // The median of `values` (the mean of the middle two for an even count); values must not be empty.
 double median(std::vector<double> values);
 
+// The thread counts a sweep times: 1, 2, 4, ... up to `threads` and `threads` itself (≤ 0: the
+// hardware's count), e.g. 1 2 4 8 12 for 12.
+std::vector<int> threadSweep(int threads);
+
 // CPU time of the whole process (every thread), to show how many cores a frame kept busy.
 double processCpuMs();
 

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
+#include <memory>
 #include <ostream>
 #include <sstream>
 #include <string>
@@ -33,7 +34,6 @@ double msSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-constexpr int kThreadCounts[] = {1, 2};          // the reference and the ray casting, each on both
 constexpr int kMaxSlowReferenceFrames = 3;       // 16 samples per pixel: seconds per frame
 constexpr int kMinBvhBuilds = 3;                 // a median needs a few
 constexpr int kShadowLightCounts[] = {1, 2, 4};  // directional lights, all casting shadows or none
@@ -100,8 +100,8 @@ std::string threadsText(int threads) {
 
 // ---- the reference renderer ---------------------------------------------------------------------
 
-std::vector<Row> benchReference(const PreparedScene& prepared, std::array<ThreadPool*, 2> pools, int frames,
-                                std::ostream& out) {
+std::vector<Row> benchReference(const PreparedScene& prepared, const std::vector<ThreadPool*>& pools,
+                                int frames, std::ostream& out) {
     struct Config {
         int samples;  // N: N×N per pixel
         ThreadPool* pool;
@@ -211,8 +211,8 @@ void castAll(const RayScene& scene, const CameraRays& rays, bool packets, RaySce
     });
 }
 
-std::vector<Row> benchRayCasting(const PreparedScene& prepared, std::array<ThreadPool*, 2> pools, int frames,
-                                 std::ostream& out) {
+std::vector<Row> benchRayCasting(const PreparedScene& prepared, const std::vector<ThreadPool*>& pools,
+                                 int frames, std::ostream& out) {
     std::vector<std::vector<vec3>> positions;
     const std::vector<RayMesh> meshes = rayMeshes(prepared, positions);
 
@@ -436,8 +436,14 @@ void runReferenceBench(const BenchOptions& options, std::ostream& out) {
     checkOutput(options.csv, true);  // before the minutes of measuring
     const Scene scene = benchScene(options);
     const PreparedScene prepared = prepareScene(scene);
-    ThreadPool one(kThreadCounts[0]), two(kThreadCounts[1]);
-    const std::array<ThreadPool*, 2> pools{&one, &two};
+    // The reference and the ray casting on 1, 2, 4, ... threads up to --threads (the hardware's count
+    // when not given).
+    std::vector<std::unique_ptr<ThreadPool>> ownedPools;
+    std::vector<ThreadPool*> pools;
+    for (const int threads : threadSweep(options.threads)) {
+        ownedPools.push_back(std::make_unique<ThreadPool>(threads));
+        pools.push_back(ownedPools.back().get());
+    }
 
     out << std::fixed << std::setprecision(2);
     out << "Reference renderer, ray casting and shadows: " << options.model.string() << " ("

@@ -114,11 +114,19 @@ CLI::App* addBenchCommand(CLI::App& app, facet::BenchOptions& options) {
         ->add_option("--degrees-per-frame", options.degreesPerFrame,
                      "With --transparency: the turntable's step (default 1)")
         ->check(kFiniteNumber);
-    command->add_flag("--reference", options.reference,
-                      "Time the reference renderer (1 and 16 samples, 1 and 2 threads), Embree's ray casting "
-                      "alone, the BVH build, and the rasterizer's cost per shadowing light (ray-cast, maps "
-                      "of 1024, 2048, 4096); 7 frames (unless --frames), CSV to out/bench-reference.csv "
-                      "(unless --csv)");
+    command->add_flag(
+        "--reference", options.reference,
+        "Time the reference renderer (1 and 16 samples, on 1, 2, 4, ... threads up to --threads), "
+        "Embree's ray casting "
+        "alone, the BVH build, and the rasterizer's cost per shadowing light (ray-cast, maps "
+        "of 1024, 2048, 4096); 7 frames (unless --frames), CSV to out/bench-reference.csv "
+        "(unless --csv)");
+    command->add_flag(
+        "--scaling", options.scaling,
+        "Time the frames of MODEL (default: the --vs-mesa scenes) on 1, 2, 4, ... threads up to "
+        "--threads: speed-up, CPU time per frame and its ratio to one thread's, the serial "
+        "fraction of a frame from a trace of the threads' busy time, and Amdahl's prediction "
+        "at 16 threads");
     command
         ->add_option("--batch", options.batchList,
                      "Time a list of inputs (as facet render --list reads it) rendered by one process on "
@@ -133,7 +141,7 @@ int bench(facet::BenchOptions& options, const CLI::App& command) {
         // Whole renders of the list's inputs: the frame modes' options do not apply.
         for (const char* option :
              {"model", "--aa", "--shader", "--uniform", "--instruction-sets", "--vs-mesa", "--quick", "--csv",
-              "--chart", "--sort", "--transparency", "--degrees-per-frame", "--reference"})
+              "--chart", "--sort", "--transparency", "--degrees-per-frame", "--reference", "--scaling"})
             if (command.count(option))
                 throw facet::InputError(std::string(option) + " does not go with --batch");
         facet::BatchBenchOptions batch;
@@ -151,14 +159,27 @@ int bench(facet::BenchOptions& options, const CLI::App& command) {
         throw facet::InputError("--uniform goes with --shader FILE");
     if (options.shader)
         for (const char* option :
-             {"--instruction-sets", "--vs-mesa", "--sort", "--transparency", "--reference"})
+             {"--instruction-sets", "--vs-mesa", "--sort", "--transparency", "--reference", "--scaling"})
             if (command.count(option))
                 throw facet::InputError(std::string("--shader does not go with ") + option);
     // --aa times plain frames; the other modes draw fixed configurations.
     if (command.count("--aa"))
-        for (const char* option : {"--vs-mesa", "--sort", "--transparency", "--reference"})
+        for (const char* option : {"--vs-mesa", "--sort", "--transparency", "--reference", "--scaling"})
             if (command.count(option))
                 throw facet::InputError(std::string("--aa does not go with ") + option);
+    if (options.scaling) {
+        for (const char* option : {"--instruction-sets", "--vs-mesa", "--quick", "--csv", "--chart", "--sort",
+                                   "--transparency", "--degrees-per-frame", "--reference"})
+            if (command.count(option))
+                throw facet::InputError(std::string(option) + " does not go with --scaling");
+        if (command.count("model") == 0 && (command.count("--width") || command.count("--height")))
+            throw facet::InputError(
+                "--scaling renders the --vs-mesa scenes at fixed sizes unless a model is named; "
+                "--width and --height go with a model");
+        checkSize(options.width, options.height);
+        facet::runScalingBench(options, command.count("model") > 0, std::cout);
+        return 0;
+    }
     if (options.instructionSets) {
         for (const char* option : {"--vs-mesa", "--quick", "--csv", "--chart", "--sort", "--transparency",
                                    "--degrees-per-frame", "--reference"})
@@ -169,7 +190,7 @@ int bench(facet::BenchOptions& options, const CLI::App& command) {
         return 0;
     }
     if (options.reference) {
-        // --threads sets the rasterizer's threads; the reference and the rays run on 1 and on 2.
+        // --threads sets the rasterizer's threads; the reference and the rays run on 1, 2, 4, ... up to it.
         for (const char* option :
              {"--vs-mesa", "--quick", "--chart", "--sort", "--transparency", "--degrees-per-frame"})
             if (command.count(option))

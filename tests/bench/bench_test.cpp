@@ -65,7 +65,8 @@ std::vector<std::string> csvRowNames(const std::filesystem::path& path) {
 }
 
 // facet bench --reference, tiny (32×24, 1 frame each): every row of every table, named in the report and
-// in the CSV, once, in order; the cost per shadowing light given exactly where lights cast shadows.
+// in the CSV, once, in order; the cost per shadowing light given exactly where lights cast shadows; the
+// reference and the rays on 1, 2, 4, ... threads up to --threads and on --threads itself (3 here).
 TEST_F(BenchTest, ReferenceModeNamesEveryRow) {
     BenchOptions options;
     options.model = std::filesystem::path(FACET_SOURCE_DIR) / "models/spot/spot_triangulated.obj";
@@ -73,23 +74,23 @@ TEST_F(BenchTest, ReferenceModeNamesEveryRow) {
     options.width = 32;
     options.height = 24;
     options.frames = 1;
-    options.threads = 1;
+    options.threads = 3;
     options.csv = folder_ / "out/bench-reference.csv";  // its folder is made
     std::ostringstream out;
     runReferenceBench(options, out);
 
     std::vector<std::string> expected;
     for (const char* samples : {"1 sample", "16 samples"})
-        for (const char* threads : {"1", "2"})
+        for (const char* threads : {"1", "2", "3"})
             expected.push_back(std::string("reference,") + samples + "," + threads + ",0,1");
     for (const char* rays : {"packets of 8", "single rays"})
         for (const char* culling : {" culling back", " culling none"})
-            for (const char* threads : {"1", "2"})
+            for (const char* threads : {"1", "2", "3"})
                 expected.push_back(std::string("rays,") + rays + culling + "," + threads + ",0,1");
     expected.push_back("bvh,5856 triangles," + std::to_string(std::thread::hardware_concurrency()) + ",0,3");
     for (const char* lights : {"1", "2", "4"})
         for (const char* shadows : {"none", "ray", "map 1024", "map 2048", "map 4096"})
-            expected.push_back(std::string("shadows,") + shadows + ",1," + lights + ",1" +
+            expected.push_back(std::string("shadows,") + shadows + ",3," + lights + ",1" +
                                (std::string(shadows) == "none" ? "" : " +per-light"));
     EXPECT_EQ(csvRowNames(options.csv), expected);
 

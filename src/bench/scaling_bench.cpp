@@ -1,0 +1,269 @@
+// facet bench --scaling: frames of a scene on 1, 2, 4, ... threads; speed-up, CPU time per frame, and the
+// serial part of a frame from a trace of the pool's jobs (ThreadPool::startTrace) with Amdahl's bound.
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <iterator>
+#include <memory>
+#include <ostream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "base/errors.h"
+#include "bench/bench.h"
+#include "bench/process_stats.h"
+#include "render/frame_kernels.h"
+#include "render/renderer.h"
+
+namespace facet {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+constexpr int kWarmUpFrames = 2;
+constexpr int kPredictedThreads = 16;  // the many-core machine the figures are stated for
+// The spin limits timed at the largest thread count (ThreadPool::setSpinLimit), microseconds: what the
+// default, kDefaultSpinLimit, was chosen from.
+constexpr int kSpinLimitsUs[] = {0, 1, 5, 20, 100};
+
+struct ScalingScene {
+    fs::path model;
+    int width = 0, height = 0;
+};
+
+// What one thread count measured: medians per frame.
+struct ThreadCountResult {
+    int threads = 0;
+    double wallMs = 0.0, cpuMs = 0.0;
+    double busyShare = 0.0;  // Σ of the threads' busy time in jobs / (threads × wall), traced frames
+};
+
+// The serial part of a frame, from the jobs of frames traced on one thread (where nothing waits), in CPU
+// time (a thread's items are timed by its CPU clock):
+// serial = the frame's time outside jobs of two or more items (the caller alone: planning, sorting,
+// gathering) plus the one-item jobs; f = serial / frame. Amdahl: speed-up(P) = 1 / (f + (1 − f) / P).
+// The job bound is tighter: a job of items W_j with longest item m_j takes at least max(W_j / P, m_j),
+// so T(P) ≥ outside + Σ_j max(W_j / P, m_j) (a job of few tiles keeps few threads busy).
+struct SerialPart {
+    double frameMs = 0.0;        // per frame, traced on one thread
+    double outsideJobsMs = 0.0;  // per frame
+    double oneItemJobsMs = 0.0;  // per frame
+    double jobsPerFrame = 0.0;
+    double medianGapUs = 0.0;        // between consecutive jobs of a frame: what a waiting worker waits
+    std::vector<PoolJobTrace> jobs;  // of one frame
+    double fraction() const { return (outsideJobsMs + oneItemJobsMs) / frameMs; }
+    double amdahl(int threads) const {
+        const double f = fraction();
+        return 1.0 / (f + (1.0 - f) / threads);
+    }
+    double jobBound(int threads) const {
+        double ms = outsideJobsMs;
+        for (const PoolJobTrace& job : jobs)
+            ms += std::max(job.busyMs / threads, job.longestItemMs);
+        return frameMs / ms;
+    }
+};
+
+SerialPart traceOneThread(const PreparedScene& prepared, Framebuffer& framebuffer, DrawContext& context,
+                          FrameMemory& memory, int frames) {
+    SerialPart part;
+    std::vector<double> frameMs, outsideMs, oneItemMs, gapsUs;
+    std::size_t jobs = 0;
+    PoolTrace trace;
+    for (int i = 0; i < frames; ++i) {
+        // CPU time of the one thread, as the trace's items are timed: a shared machine's other processes
+        // lengthen neither.
+        context.pool.startTrace(trace);
+        const double start = threadCpuMs();
+        renderFrame(prepared, framebuffer, context, memory);
+        const double ms = threadCpuMs() - start;
+        context.pool.stopTrace();
+        double inJobs = 0.0, oneItem = 0.0;
+        for (std::size_t j = 0; j < trace.jobs.size(); ++j) {
+            const PoolJobTrace& job = trace.jobs[j];
+            (job.items > 1 ? inJobs : oneItem) += job.busyMs;
+            if (j > 0) gapsUs.push_back(1e3 * (job.startMs - trace.jobs[j - 1].endMs));
+        }
+        frameMs.push_back(ms);
+        outsideMs.push_back(ms - inJobs - oneItem);
+        oneItemMs.push_back(oneItem);
+        jobs += trace.jobs.size();
+        if (i == frames / 2) part.jobs = trace.jobs;
+    }
+    part.frameMs = median(frameMs);
+    part.outsideJobsMs = median(outsideMs);
+    part.oneItemJobsMs = median(oneItemMs);
+    part.jobsPerFrame = static_cast<double>(jobs) / frames;
+    part.medianGapUs = gapsUs.empty() ? 0.0 : median(gapsUs);
+    // The job bound's jobs scaled to the median frame (the kept frame may have run slower or faster).
+    double kept = part.outsideJobsMs;
+    for (const PoolJobTrace& job : part.jobs)
+        kept += job.busyMs;
+    if (kept > 0.0)
+        for (PoolJobTrace& job : part.jobs) {
+            job.busyMs *= (part.frameMs - part.outsideJobsMs) / (kept - part.outsideJobsMs);
+            job.longestItemMs *= (part.frameMs - part.outsideJobsMs) / (kept - part.outsideJobsMs);
+        }
+    return part;
+}
+
+// How long a worker takes to start a job posted to the pool, in microseconds (median of `trials`): asleep
+// (spin limit 0, the job wakes it) or polling (no limit). A two-item job whose items wait for each other:
+// the caller holds one, so a worker must take the other. The trials are 200 us apart, so that the
+// sleeping worker is asleep.
+double wakeUpMicroseconds(bool polling, int trials = 200) {
+    ThreadPool pool(2);
+    if (pool.threads() < 2) return 0.0;
+    pool.setSpinLimit(polling ? std::chrono::nanoseconds(std::chrono::hours(1))
+                              : std::chrono::nanoseconds(0));
+    std::vector<double> us;
+    for (int trial = 0; trial < trials; ++trial) {
+        std::this_thread::sleep_for(std::chrono::microseconds(200));
+        std::atomic<int> started{0};
+        Clock::time_point workerStart;
+        const Clock::time_point posted = Clock::now();
+        pool.parallelFor(2, [&](std::size_t, int thread) {
+            if (thread != 0) workerStart = Clock::now();
+            ++started;
+            while (started.load() < 2)
+                std::this_thread::yield();
+        });
+        us.push_back(std::chrono::duration<double, std::micro>(workerStart - posted).count());
+    }
+    return median(us);
+}
+
+void benchScalingScene(const ScalingScene& bench, const std::vector<int>& counts, int frames,
+                       std::ostream& out) {
+    Scene scene = loadSceneOrModel(bench.model);
+    scene.width = bench.width;
+    scene.height = bench.height;
+    const PreparedScene prepared = prepareScene(scene);
+
+    // One context, framebuffer and frame memory per thread count; frames take turns across the counts,
+    // so that a slow spell of a shared machine falls on all of them.
+    struct Side {
+        std::unique_ptr<DrawContext> context;
+        std::unique_ptr<Framebuffer> framebuffer;
+        FrameMemory memory;
+        std::vector<double> wallMs, cpuMs, busyShare;
+    };
+    std::vector<Side> sides(counts.size());
+    for (std::size_t c = 0; c < counts.size(); ++c) {
+        sides[c].context = std::make_unique<DrawContext>(counts[c]);
+        sides[c].framebuffer = std::make_unique<Framebuffer>(scene.width, scene.height);
+        for (int i = 0; i < kWarmUpFrames; ++i)
+            renderFrame(prepared, *sides[c].framebuffer, *sides[c].context, sides[c].memory);
+    }
+    PoolTrace trace;
+    for (int i = 0; i < frames; ++i)
+        for (Side& side : sides) {
+            const double cpuStart = processCpuMs();
+            const auto start = Clock::now();
+            renderFrame(prepared, *side.framebuffer, *side.context, side.memory);
+            side.wallMs.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+            side.cpuMs.push_back(processCpuMs() - cpuStart);
+        }
+    // Busy shares from traced frames of their own (the trace's clock reads stay out of the times above).
+    for (int i = 0; i < frames; ++i)
+        for (Side& side : sides) {
+            side.context->pool.startTrace(trace);
+            const auto start = Clock::now();
+            renderFrame(prepared, *side.framebuffer, *side.context, side.memory);
+            const double wall = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+            side.context->pool.stopTrace();
+            double busy = 0.0;
+            for (const double ms : trace.threadBusyMs)
+                busy += ms;
+            side.busyShare.push_back(busy / (wall * side.context->pool.threads()));
+        }
+    // The largest count's frames with each spin limit, taking turns.
+    DrawContext& widest = *sides.back().context;
+    std::vector<std::vector<double>> spinWallMs(std::size(kSpinLimitsUs)),
+        spinCpuMs(std::size(kSpinLimitsUs));
+    for (int i = 0; i < frames; ++i)
+        for (std::size_t l = 0; l < std::size(kSpinLimitsUs); ++l) {
+            widest.pool.setSpinLimit(std::chrono::microseconds(kSpinLimitsUs[l]));
+            const double cpuStart = processCpuMs();
+            const auto start = Clock::now();
+            renderFrame(prepared, *sides.back().framebuffer, widest, sides.back().memory);
+            spinWallMs[l].push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+            spinCpuMs[l].push_back(processCpuMs() - cpuStart);
+        }
+    widest.pool.setSpinLimit(kDefaultSpinLimit);
+    const SerialPart serial =
+        traceOneThread(prepared, *sides[0].framebuffer, *sides[0].context, sides[0].memory, frames);
+
+    out << bench.model.filename().string() << " at " << scene.width << "x" << scene.height << ", "
+        << prepared.triangleCount << " triangles\n"
+        << "  threads   ms/frame   speed-up   efficiency   cpu ms/frame   cpu ratio   busy share\n";
+    const double oneWall = median(sides[0].wallMs), oneCpu = median(sides[0].cpuMs);
+    for (std::size_t c = 0; c < counts.size(); ++c) {
+        const double wall = median(sides[c].wallMs), cpu = median(sides[c].cpuMs);
+        out << std::fixed << std::setprecision(2) << std::setw(9) << sides[c].context->pool.threads()
+            << std::setw(11) << wall << std::setw(10) << oneWall / wall << "x" << std::setw(12)
+            << oneWall / wall / counts[c] << std::setw(15) << cpu << std::setw(11) << cpu / oneCpu << "x"
+            << std::setw(12) << median(sides[c].busyShare) << "\n";
+    }
+    out << "  spin limit at " << widest.pool.threads() << " threads, ms/frame wall / cpu:";
+    for (std::size_t l = 0; l < std::size(kSpinLimitsUs); ++l)
+        out << (l ? "," : "") << "  " << kSpinLimitsUs[l] << " us"
+            << (std::chrono::microseconds(kSpinLimitsUs[l]) == kDefaultSpinLimit ? " (default) " : " ")
+            << median(spinWallMs[l]) << " / " << median(spinCpuMs[l]);
+    out << "\n";
+    const int given = counts.back();
+    out << std::setprecision(2) << "  one-thread trace: " << serial.jobsPerFrame
+        << " jobs per frame, median gap " << std::setprecision(1) << serial.medianGapUs
+        << " us between jobs; per frame " << std::setprecision(2) << serial.frameMs << " ms, of it "
+        << serial.outsideJobsMs << " ms outside jobs and " << serial.oneItemJobsMs << " ms in one-item jobs\n"
+        << "  serial fraction " << std::setprecision(3) << serial.fraction() << std::setprecision(2)
+        << "; predicted speed-up at " << kPredictedThreads << " threads: Amdahl "
+        << serial.amdahl(kPredictedThreads) << "x, job bound " << serial.jobBound(kPredictedThreads) << "x";
+    if (given != kPredictedThreads)
+        out << "; at " << given << ": Amdahl " << serial.amdahl(given) << "x, job bound "
+            << serial.jobBound(given) << "x";
+    out << std::endl;  // flushed: a long run shows its progress
+}
+
+}  // namespace
+
+void runScalingBench(const BenchOptions& options, bool modelGiven, std::ostream& out) {
+    if (options.frames < 1) throw InputError("--frames must be at least 1");
+    const std::vector<int> counts = threadSweep(options.threads);
+    std::vector<ScalingScene> scenes;
+    if (modelGiven) {
+        scenes.push_back({options.model, options.width, options.height});
+    } else {
+        // The named scenes of --vs-mesa.
+        scenes.push_back({options.model, 1920, 1080});
+        if (fs::is_directory(options.sharedModels)) {
+            const fs::path largest = largestModel(options.sharedModels).first;
+            if (!largest.empty()) scenes.push_back({largest, 1920, 1080});
+        }
+        scenes.push_back({options.smallModel, 3840, 2160});
+    }
+    out << std::fixed << "facet bench --scaling: the same frames on ";
+    for (std::size_t c = 0; c < counts.size(); ++c)
+        out << (c ? ", " : "") << counts[c];
+    out << " threads, taking turns frame by frame; " << options.frames << " timed frames each after "
+        << kWarmUpFrames << " warm-up\n"
+        << "code       compiled for " << describeFrameKernels() << "; " << std::thread::hardware_concurrency()
+        << " hardware threads\n"
+        << "wake-up    a worker starts a posted job after " << std::setprecision(1)
+        << wakeUpMicroseconds(false) << " us asleep, " << wakeUpMicroseconds(true)
+        << " us polling (medians); a waiting thread polls for "
+        << std::chrono::duration<double, std::micro>(kDefaultSpinLimit).count() << " us, then sleeps\n"
+        << "columns    medians per frame; speed-up = 1-thread ms / ms; efficiency = speed-up / threads;\n"
+        << "           cpu ratio = cpu ms / 1-thread cpu ms (1.00: no CPU spent waiting or sharing);\n"
+        << "           busy share = the threads' time in jobs / (threads x wall), traced frames apart\n";
+    for (const ScalingScene& scene : scenes)
+        benchScalingScene(scene, counts, options.frames, out);
+}
+
+}  // namespace facet

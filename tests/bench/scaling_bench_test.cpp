@@ -1,0 +1,74 @@
+// facet bench --scaling, the thread sweep, and the CPU time per frame against one thread's.
+#include <filesystem>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "bench/bench.h"
+#include "bench/process_stats.h"
+
+namespace facet {
+namespace {
+
+// The bundled cow at 64×48, one frame: quick enough for a test.
+BenchOptions tinySpot(int threads) {
+    BenchOptions options;
+    options.model = std::filesystem::path(FACET_SOURCE_DIR) / "models/spot/spot_triangulated.obj";
+    options.width = 64;
+    options.height = 48;
+    options.frames = 1;
+    options.threads = threads;
+    return options;
+}
+
+// Catches: a sweep that skips the count asked for, repeats a count, or does not double from 1.
+TEST(ThreadSweep, DoublesFromOneAndEndsAtTheCountAskedFor) {
+    for (int threads = 1; threads <= 40; ++threads) {
+        const std::vector<int> counts = threadSweep(threads);
+        ASSERT_FALSE(counts.empty());
+        EXPECT_EQ(counts.front(), 1);
+        EXPECT_EQ(counts.back(), threads);
+        for (std::size_t c = 1; c + 1 < counts.size(); ++c)
+            EXPECT_EQ(counts[c], 2 * counts[c - 1]) << threads;
+        for (std::size_t c = 1; c < counts.size(); ++c)
+            EXPECT_LT(counts[c - 1], counts[c]) << threads;
+        EXPECT_LE(counts.back(), 2 * counts[counts.size() > 1 ? counts.size() - 2 : 0]) << threads;
+    }
+}
+
+// Catches: a --scaling report that leaves out a thread count of the sweep, or whose serial fraction is
+// not a fraction (a trace that misses jobs gives more than the frame, or less than nothing).
+TEST(ScalingBench, ReportsEveryThreadCountAndASerialFraction) {
+    std::ostringstream out;
+    runScalingBench(tinySpot(3), true, out);
+    const std::string report = out.str();
+    for (const int threads : {1, 2, 3})
+        EXPECT_TRUE(
+            std::regex_search(report, std::regex("\n +" + std::to_string(threads) + " +[0-9.]+ +[0-9.]+x")))
+            << threads << " threads missing from:\n"
+            << report;
+    std::smatch match;
+    ASSERT_TRUE(std::regex_search(report, match, std::regex("serial fraction ([-0-9.]+)"))) << report;
+    const double fraction = std::stod(match[1]);
+    EXPECT_GE(fraction, 0.0) << report;
+    EXPECT_LE(fraction, 1.0) << report;
+    EXPECT_NE(report.find("Amdahl"), std::string::npos) << report;
+}
+
+// Catches: the frame bench dropping the CPU time per frame, or setting it against one thread's when it
+// runs on one thread (the ratio would be 1 by construction).
+TEST(FrameBench, SetsTheCpuTimeAgainstOneThreadsOnlyOnMoreThreads) {
+    std::ostringstream one, two;
+    runBench(tinySpot(1), one);
+    runBench(tinySpot(2), two);
+    EXPECT_NE(one.str().find("cpu/frame  median"), std::string::npos) << one.str();
+    EXPECT_EQ(one.str().find("one thread:"), std::string::npos) << one.str();
+    EXPECT_TRUE(std::regex_search(two.str(), std::regex("one thread: [0-9.]+ ms, ratio [0-9.]+")))
+        << two.str();
+}
+
+}  // namespace
+}  // namespace facet
