@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include "cli/batch.h"
+#include "cli/parse_render.h"
 #include "cli/render_command.h"
 #include "render/memory_estimate.h"
 #include "scene/scene.h"
@@ -27,15 +28,6 @@ namespace fs = std::filesystem;
 using testing_support::TempFolderTest;
 
 const fs::path kModels = fs::path(FACET_SOURCE_DIR) / "models";
-
-RenderArgs parseRender(std::vector<std::string> words) {
-    CLI::App app;
-    RenderArgs args;
-    addRenderCommand(app, args);
-    words.insert(words.begin(), "render");
-    app.parse(std::vector<std::string>(words.rbegin(), words.rend()));  // CLI11 takes them last first
-    return args;
-}
 
 std::string bytesOf(const fs::path& file) {
     std::ifstream in(file, std::ios::binary);

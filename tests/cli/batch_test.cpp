@@ -15,6 +15,7 @@
 
 #include "base/errors.h"
 #include "cli/batch.h"
+#include "cli/parse_render.h"
 #include "cli/render_command.h"
 #include "support/temp_folder.h"
 
@@ -25,16 +26,6 @@ namespace fs = std::filesystem;
 using testing_support::TempFolderTest;
 
 const fs::path kModels = fs::path(FACET_SOURCE_DIR) / "models";
-
-// `facet render WORDS...`, parsed as the program parses it.
-RenderArgs parseRender(std::vector<std::string> words) {
-    CLI::App app;
-    RenderArgs args;
-    addRenderCommand(app, args);
-    words.insert(words.begin(), "render");
-    app.parse(std::vector<std::string>(words.rbegin(), words.rend()));  // CLI11 takes them last first
-    return args;
-}
 
 // The InputError message of `body`, which must throw one; one line.
 template <class Body>
