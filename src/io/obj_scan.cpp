@@ -301,6 +301,28 @@ std::string readObjText(const fs::path& path, const std::string& file) {
     return text;
 }
 
+namespace {
+
+// run(r) for every run r in [0, runs): run 0 on the calling thread, each other on a thread of its own,
+// returning when all are done. A thread the system refuses is no error: the calling thread runs that
+// run after its own.
+template <class Run>
+void runEachOnAThread(std::size_t runs, const Run& run) {
+    std::vector<std::future<void>> others;
+    for (std::size_t r = 1; r < runs; ++r) {
+        try {
+            others.push_back(std::async(std::launch::async, run, r));
+        } catch (const std::system_error&) {
+            others.push_back(std::async(std::launch::deferred, run, r));
+        }
+    }
+    run(0);
+    for (std::future<void>& other : others)
+        other.get();
+}
+
+}  // namespace
+
 ObjStatements splitObj(std::string& text, unsigned threads) {
     // Runs of at least kRunBytes, each split on a thread of its own, then joined in file order.
     if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
@@ -316,17 +338,7 @@ ObjStatements splitObj(std::string& text, unsigned threads) {
     const auto split = [&](std::size_t r) {
         splits[r].statements = cleanAndSplit(text, bounds[r], bounds[r + 1], splits[r].counts, lines[r]);
     };
-    std::vector<std::future<void>> others;
-    for (std::size_t r = 1; r < runs; ++r) {
-        try {
-            others.push_back(std::async(std::launch::async, split, r));
-        } catch (const std::system_error&) {  // no thread to be had: this one splits it after its own
-            others.push_back(std::async(std::launch::deferred, split, r));
-        }
-    }
-    split(0);
-    for (std::future<void>& other : others)
-        other.get();
+    runEachOnAThread(runs, split);
 
     ObjStatements joined = std::move(splits[0]);
     std::size_t linesBefore = lines[0];
@@ -539,17 +551,7 @@ ObjScan checkObj(std::string_view text, const ObjStatements& split, const std::s
             errors[r] = std::current_exception();
         }
     };
-    std::vector<std::future<void>> others;
-    for (std::size_t r = 1; r < runs; ++r) {
-        try {
-            others.push_back(std::async(std::launch::async, check, r));
-        } catch (const std::system_error&) {  // no thread to be had: this one checks it after its own
-            others.push_back(std::async(std::launch::deferred, check, r));
-        }
-    }
-    check(0);
-    for (std::future<void>& other : others)
-        other.get();
+    runEachOnAThread(runs, check);
     for (const std::exception_ptr& error : errors) {
         if (error) std::rethrow_exception(error);
     }
