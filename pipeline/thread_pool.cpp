@@ -57,16 +57,6 @@ double msBetween(Clock::time_point from, Clock::time_point to) {
 std::atomic<ThreadShortfallReport> shortfallReport{nullptr};
 std::atomic<bool> shortfallReported{false};
 
-// Once per process: a batch or a trade makes many pools, and each would fall short the same way.
-void reportShortfall(int started, int requested, const std::string& reason) {
-    const ThreadShortfallReport report = shortfallReport.load();
-    if (!report || shortfallReported.exchange(true)) return;
-    const std::string goesOn = std::to_string(started) + (started == 1 ? " thread" : " threads");
-    report("the system let Facet start only " + std::to_string(started) + " of the " +
-           std::to_string(requested) + " threads asked for (" + reason + "); the work goes on with " +
-           goesOn + ", more slowly");
-}
-
 // The most threads whose stacks fit in a quarter of the address-space limit (ulimit -v, RLIMIT_AS),
 // the calling thread counted; no bound without a limit. Every thread reserves its whole stack (8 MiB
 // by default) up front: under `ulimit -v 2000000`, 300 threads took all 2 GB at the 230th, and the
@@ -92,6 +82,16 @@ int threadsTheAddressSpaceAllows() {
 void setThreadShortfallReport(ThreadShortfallReport report) {
     shortfallReport.store(report);
     shortfallReported.store(false);
+}
+
+// Once per process: a batch or a trade makes many pools, and each would fall short the same way.
+void reportThreadShortfall(int started, int requested, const std::string& reason) {
+    const ThreadShortfallReport report = shortfallReport.load();
+    if (!report || shortfallReported.exchange(true)) return;
+    const std::string goesOn = std::to_string(started) + (started == 1 ? " thread" : " threads");
+    report("the system let Facet start only " + std::to_string(started) + " of the " +
+           std::to_string(requested) + " threads asked for (" + reason + "); the work goes on with " +
+           goesOn + ", more slowly");
 }
 
 ThreadPool::ThreadPool(int threads, const ThreadStarter& start) {
@@ -120,7 +120,7 @@ ThreadPool::ThreadPool(int threads, const ThreadStarter& start) {
         stopWorkers();
         throw;
     }
-    if (!refusal.empty()) reportShortfall(this->threads(), requested_, refusal);
+    if (!refusal.empty()) reportThreadShortfall(this->threads(), requested_, refusal);
 }
 
 ThreadPool::~ThreadPool() {
@@ -137,8 +137,12 @@ void ThreadPool::stopWorkers() {
         worker.join();
 }
 
-void ThreadPool::runItems(int thread) {
+// Runs the current job's items until none is left; a traced pool (startTrace) times each item into this
+// thread's slot.
+void ThreadPool::runItems(int thread, bool traced) {
+    ThreadSlot& slot = slots_[static_cast<std::size_t>(thread)];
     for (std::size_t item = next_.fetch_add(1); item < count_; item = next_.fetch_add(1)) {
+        const std::int64_t start = traced ? threadCpuNs() : 0;
         try {
             (*body_)(item, thread);
         } catch (...) {
@@ -147,24 +151,11 @@ void ThreadPool::runItems(int thread) {
             if (!failure_) failure_ = std::current_exception();
             next_.store(count_);
         }
-    }
-}
-
-// runItems, timing each item into this thread's slot (a traced pool: startTrace).
-void ThreadPool::runItemsTraced(int thread) {
-    ThreadSlot& slot = slots_[static_cast<std::size_t>(thread)];
-    for (std::size_t item = next_.fetch_add(1); item < count_; item = next_.fetch_add(1)) {
-        const std::int64_t start = threadCpuNs();
-        try {
-            (*body_)(item, thread);
-        } catch (...) {
-            std::lock_guard lock(mutex_);
-            if (!failure_) failure_ = std::current_exception();
-            next_.store(count_);
+        if (traced) {
+            const std::int64_t ns = threadCpuNs() - start;
+            slot.jobBusyNs += ns;
+            slot.jobLongestItemNs = std::max(slot.jobLongestItemNs, ns);
         }
-        const std::int64_t ns = threadCpuNs() - start;
-        slot.jobBusyNs += ns;
-        slot.jobLongestItemNs = std::max(slot.jobLongestItemNs, ns);
     }
 }
 
@@ -197,10 +188,7 @@ void ThreadPool::workerLoop(int thread) {
             ++busy_;
             traced = trace_ != nullptr;
         }
-        if (traced)
-            runItemsTraced(thread);
-        else
-            runItems(thread);
+        runItems(thread, traced);
         {
             std::lock_guard lock(mutex_);
             if (--busy_ == 0) done_.notify_one();
@@ -224,7 +212,7 @@ void ThreadPool::parallelFor(std::size_t count, const std::function<void(std::si
             next_.store(0);
         }
         slots_[0].jobBusyNs = slots_[0].jobLongestItemNs = 0;
-        runItemsTraced(0);
+        runItems(0, true);
         body_ = nullptr;
         recordJob(start, count);
         if (failure_) std::rethrow_exception(std::exchange(failure_, nullptr));
@@ -253,10 +241,7 @@ void ThreadPool::parallelFor(std::size_t count, const std::function<void(std::si
     else
         for (int w = 0; w < wakeUps; ++w)
             wake_.notify_one();
-    if (trace_)
-        runItemsTraced(0);
-    else
-        runItems(0);
+    runItems(0, trace_ != nullptr);
     {
         // Every item has begun: from now on no worker joins this job, and only those that did are
         // waited for.

@@ -29,6 +29,9 @@ using ThreadStarter = std::function<std::thread(std::function<void()> run)>;
 // it is called once, however many pools fall short after it was set. Unset: nothing is said.
 using ThreadShortfallReport = void (*)(const std::string& message);
 void setThreadShortfallReport(ThreadShortfallReport report);
+// Says through that report that only `started` of the `requested` threads could be started, and why;
+// once per process, like a pool that falls short (a batch's lanes, which start threads of their own).
+void reportThreadShortfall(int started, int requested, const std::string& reason);
 
 // How long a waiting thread polls before it sleeps (a worker waiting for the next job, the caller for
 // the workers to finish): about what a sleep and a wake-up cost, so that polling never burns more
@@ -106,8 +109,7 @@ class ThreadPool {
     };
 
     void workerLoop(int thread);
-    void runItems(int thread);
-    void runItemsTraced(int thread);
+    void runItems(int thread, bool traced);
     void recordJob(std::chrono::steady_clock::time_point start, std::size_t count);
 
     void stopWorkers();
