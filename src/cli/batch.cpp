@@ -13,6 +13,7 @@
 #include <fstream>
 #include <iostream>
 #include <new>
+#include <numeric>
 #include <sstream>
 #include <system_error>
 #include <thread>
@@ -23,6 +24,7 @@
 #include "base/quote.h"
 #include "cli/render_command.h"
 #include "io/output_path.h"
+#include "pipeline/thread_pool.h"
 #include "render/memory_estimate.h"
 #include "scene/scene.h"
 
@@ -452,8 +454,14 @@ BatchResult runBatch(const RenderArgs& args, const BatchPlan& plan, const BatchC
         for (std::size_t k = 1; k < lanes.threads.size(); ++k) {
             try {
                 others.emplace_back(lane, lanes.threads[k]);
-            } catch (const std::system_error&) {
-                break;  // the system refuses more threads: the lanes started take every input
+            } catch (const std::system_error& refused) {
+                // The lanes started take every input, more slowly: said once, as a pool says it.
+                const auto sum = [&](std::size_t end) {
+                    return std::accumulate(lanes.threads.begin(),
+                                           lanes.threads.begin() + static_cast<std::ptrdiff_t>(end), 0);
+                };
+                facet::reportThreadShortfall(sum(k), sum(lanes.threads.size()), refused.code().message());
+                break;
             }
         }
         lane(lanes.threads.front());  // the calling thread is the first lane

@@ -15,6 +15,7 @@
 
 #include <csignal>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -114,6 +115,29 @@ TEST(ResourceLimitsCli, RenderUnderAProcessLimitWorksWithFewerThreadsAndOneWarni
     EXPECT_NE(run.err.find("facet: warning: the system let Facet start only"), std::string::npos) << run.err;
     EXPECT_NE(run.err.find("of the 8 threads asked for"), std::string::npos) << run.err;
     EXPECT_TRUE(fs::is_regular_file(image));
+}
+
+// Catches: `render --list` whose lanes (one thread each here: four inputs on four threads) the system
+// refuses going on with fewer lanes without a word, where a pool that falls short says so.
+TEST(ResourceLimitsCli, BatchWhoseLanesAreRefusedSaysSoOnceAndRendersEveryInput) {
+    TempFolder dir;
+    const std::string list = (dir.path() / "list.txt").string();
+    {
+        std::ofstream file(list);
+        for (int k = 0; k < 4; ++k)
+            file << kCube << "\n";
+    }
+    // The process and one more thread: the second lane starts, the third is refused.
+    const RunResult run = runLimited({"render", "--list", list, "-o", (dir.path() / "{index}.png").string(),
+                                      "--threads", "4", "--width", "32", "--height", "24", "--quiet"},
+                                     {.tasks = 2}, dir);
+    expectWorksOrOneResourceLine(run, "render --list under ulimit -u 2");
+    ASSERT_EQ(run.status, 0) << run.err;
+    EXPECT_NE(run.err.find("facet: warning: the system let Facet start only 2 of the 4 threads asked for"),
+              std::string::npos)
+        << run.err;
+    for (int k = 0; k < 4; ++k)
+        EXPECT_TRUE(fs::is_regular_file(dir.path() / (std::to_string(k) + ".png"))) << k;
 }
 
 // Catches: any command aborting, hanging or saying "internal error" (exit 2) when the system refuses
