@@ -12,6 +12,7 @@
 #include "io/image_io.h"
 #include "run_facet.h"
 #include "support/mesa_fixture.h"
+#include "support/sanitizers.h"
 #include "support/user_shader_files.h"
 
 namespace facet {
@@ -74,7 +75,8 @@ TEST(Cli, OpenImageIOIsLoadedOnlyForFormatsThatNeedIt) {
     EXPECT_NE(png.err.find("libpng16"), std::string::npos);  // the record is there
     EXPECT_EQ(png.err.find("libOpenImageIO"), std::string::npos);
     EXPECT_EQ(png.err.find("libfacet_openimageio"), std::string::npos);
-#if !defined(__SANITIZE_ADDRESS__)  // sanitized builds link OpenCV (src/trade/CMakeLists.txt says why)
+    // Sanitized builds link OpenCV (src/trade/CMakeLists.txt says why).
+#if !defined(FACET_TEST_ADDRESS_SANITIZER)
     EXPECT_EQ(png.err.find("libopencv"), std::string::npos);
     EXPECT_EQ(png.err.find("libfacet_opencv"), std::string::npos);
 #endif

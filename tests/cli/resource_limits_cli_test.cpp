@@ -22,6 +22,7 @@
 #include <gtest/gtest.h>
 
 #include "cli/run_facet.h"
+#include "support/sanitizers.h"
 
 namespace facet {
 namespace {
@@ -172,7 +173,7 @@ TEST(ResourceLimitsCli, EveryCommandUnderTightProcessLimitsWorksOrSaysOneLine) {
 // 230th thread's stack found no address space (the half-built pool's condition variable destroyed while
 // its workers wait), instead of rendering with fewer threads or failing with one line.
 TEST(ResourceLimitsCli, ManyThreadsUnderAnAddressSpaceLimitWorkOrSayOneLine) {
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(FACET_TEST_ADDRESS_SANITIZER)
     // AddressSanitizer reserves terabytes of shadow address space at start: no sanitized program starts
     // under `ulimit -v`. The release suite runs this test.
     GTEST_SKIP() << "a program built with AddressSanitizer cannot start under an address-space limit";

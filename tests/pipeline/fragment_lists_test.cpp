@@ -15,6 +15,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../support/sanitizers.h"
 #include "../support/test_shaders.h"
 #include "pipeline.h"
 
@@ -23,14 +24,14 @@
 // brings its own operator new.
 namespace {
 std::atomic<long> gAllocations{0};
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(FACET_TEST_ADDRESS_SANITIZER)
 constexpr bool kCountingAllocations = false;
 #else
 constexpr bool kCountingAllocations = true;
 #endif
 }  // namespace
 
-#if !defined(__SANITIZE_ADDRESS__)
+#if !defined(FACET_TEST_ADDRESS_SANITIZER)
 // GCC pairs the operator new it sees inlined here with the free() in operator delete; both are ours.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmismatched-new-delete"
