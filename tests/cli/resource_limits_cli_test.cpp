@@ -118,8 +118,8 @@ TEST(ResourceLimitsCli, RenderUnderAProcessLimitWorksWithFewerThreadsAndOneWarni
     EXPECT_TRUE(fs::is_regular_file(image));
 }
 
-// Catches: `render --list` whose lanes (one thread each here: four inputs on four threads) the system
-// refuses going on with fewer lanes without a word, where a pool that falls short says so.
+// Catches: `render --list` going on with fewer lanes, without a word, when the system refuses some of
+// them (one thread a lane here: four inputs on four threads), where a pool that falls short says so.
 TEST(ResourceLimitsCli, BatchWhoseLanesAreRefusedSaysSoOnceAndRendersEveryInput) {
     TempFolder dir;
     const std::string list = (dir.path() / "list.txt").string();
