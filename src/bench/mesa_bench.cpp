@@ -34,7 +34,6 @@ namespace {
 namespace fs = std::filesystem;
 using glm::dvec2;
 
-constexpr int kWarmUpFrames = 2;  // per renderer: llvmpipe compiles its shader variants on the first draw
 constexpr int kChartWidth = 1400;
 constexpr int kChartHeight = 640;
 

@@ -11,6 +11,9 @@
 namespace facet {
 
 inline constexpr double kMiB = 1024.0 * 1024.0;
+// Frames rendered and not timed before a timed run, per renderer and thread count: llvmpipe compiles its
+// shader variants on the first draw, and a frame's fresh buffers fault their pages in.
+inline constexpr int kWarmUpFrames = 2;
 
 // The median of `values` (the mean of the middle two for an even count); values must not be empty.
 double median(std::vector<double> values);

@@ -26,7 +26,6 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-constexpr int kWarmUpFrames = 2;
 constexpr int kPredictedThreads = 16;  // the many-core machine the figures are stated for
 // The spin limits timed at the largest thread count (ThreadPool::setSpinLimit), microseconds: what the
 // default, kDefaultSpinLimit, was chosen from.

@@ -122,7 +122,7 @@ void setShadowMethods(PreparedScene& prepared, const std::array<ShadowMethod, kM
     prepareShadows(prepared);
 }
 
-std::string percent(double fraction, int decimals = 3) {
+std::string percentOf(double fraction, int decimals = 3) {
     char text[32];
     std::snprintf(text, sizeof text, "%.*f%%", decimals, 100.0 * fraction);
     return text;
@@ -582,9 +582,9 @@ std::string describe(const ReferenceComparison& c) {
     out << "Surfaces (which triangle each pixel shows):\n";
     out << "  pixels showing a surface in either:  " << s.covered << " of " << s.pixels << "\n";
     out << "  the same triangle in both:           " << s.same << " ("
-        << percent(s.covered ? double(s.same) / s.covered : 1.0) << " of those)\n";
-    out << "  different, at an edge:               " << s.atEdge << " (" << percent(s.edgeShare())
-        << "; bar < " << percent(ReferenceComparison::kMaxEdgeShare, 0)
+        << percentOf(s.covered ? double(s.same) / s.covered : 1.0) << " of those)\n";
+    out << "  different, at an edge:               " << s.atEdge << " (" << percentOf(s.edgeShare())
+        << "; bar < " << percentOf(ReferenceComparison::kMaxEdgeShare, 0)
         << ")  the centre within 1/64 px of an edge,\n"
         << "                                       where either side may cover it; " << s.onSharedEdge
         << " of them between two triangles sharing that edge\n";
@@ -607,7 +607,7 @@ std::string describe(const ReferenceComparison& c) {
     const ColorAgreement& col = c.color;
     out << "Colour (the pixels showing the same triangle, float shading against double):\n";
     out << "  within 1/255 on every channel:       " << col.within1 << " of " << col.compared << " ("
-        << percent(col.within1Share()) << "; bar ≥ " << percent(ReferenceComparison::kMinColorWithin1, 0)
+        << percentOf(col.within1Share()) << "; bar ≥ " << percentOf(ReferenceComparison::kMinColorWithin1, 0)
         << ")\n";
     char linear[64];
     std::snprintf(linear, sizeof linear, "%.3g", col.largestLinearDifference);

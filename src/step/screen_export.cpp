@@ -507,12 +507,6 @@ bool isMathTrigger(char32_t c) {
 
 enum class LineKind { Blank, Prose, Formula, Columns };
 
-// The lines of a text as strings of their own (screens.h's linesOf, copied out of the text).
-std::vector<std::string> lineStrings(const std::string& text) {
-    const std::vector<std::string_view> lines = linesOf(text);
-    return {lines.begin(), lines.end()};
-}
-
 std::size_t indentOf(const std::string& line) {
     return std::min(line.find_first_not_of(' '), line.size());
 }
@@ -559,7 +553,7 @@ std::vector<std::string> numbersOf(const std::string& row) {
 }
 
 std::string latexBody(const std::string& text) {
-    const std::vector<std::string> lines = lineStrings(text);
+    const std::vector<std::string> lines = ownedLinesOf(text);
     std::string out;
     bool inParagraph = false;
     auto endParagraph = [&] {
@@ -639,7 +633,7 @@ std::string markdownText(const std::string& prose) {
 }
 
 std::string markdownBody(const std::string& text) {
-    const std::vector<std::string> lines = lineStrings(text);
+    const std::vector<std::string> lines = ownedLinesOf(text);
     std::string out, paragraph;
     std::vector<std::string> block;
     auto flushParagraph = [&] {

@@ -42,7 +42,10 @@ std::vector<std::string_view> linesOf(std::string_view text) {
     return lines;
 }
 
-namespace {}  // namespace
+std::vector<std::string> ownedLinesOf(std::string_view text) {
+    const std::vector<std::string_view> lines = linesOf(text);
+    return {lines.begin(), lines.end()};
+}
 
 std::vector<std::string> linesTooWide(const Walk& walk) {
     std::vector<std::string> wide;

@@ -70,6 +70,8 @@ std::size_t columnsOf(std::string_view text);
 
 // The lines of a text, without their '\n' (a last line without one counts; none after a final '\n').
 std::vector<std::string_view> linesOf(std::string_view text);
+// The same lines as strings of their own, for when the text does not outlive them.
+std::vector<std::string> ownedLinesOf(std::string_view text);
 
 // The lines of the walk's screens wider than their columns (texts kScreenColumns, titles
 // kTitleColumns), each as "id: line": what the screens made, before any fitting.

@@ -37,7 +37,7 @@ Stage makeStage(const std::string& id, std::string title, std::string descriptio
 }
 
 // Every number of the titles and descriptions: four significant digits, enough to check by hand.
-std::string number(double value) {
+std::string fourDigits(double value) {
     char text[32];
     std::snprintf(text, sizeof text, "%.4g", value);
     return text;
@@ -62,7 +62,7 @@ std::string encodingInWords(ColorEncoding encoding) {
         case TransferCurve::Srgb:
             return "encoded with the sRGB curve";
         case TransferCurve::Power:
-            return "encoded as c^(1/" + number(encoding.gamma) + ")";
+            return "encoded as c^(1/" + fourDigits(encoding.gamma) + ")";
         case TransferCurve::Linear:
             return "written without encoding (code = 255·c)";
     }
@@ -297,7 +297,7 @@ std::string heatLegend(std::uint32_t maxCount) {
     if (maxCount == 1) return "Black: 0; blue: 1, the most at any pixel.";
     return "Black: 0; blue: 1; red: " + std::to_string(maxCount) +
            ", the most at any pixel; in between the colours run from blue through cyan, green (" +
-           number(1.0 + 0.5 * (maxCount - 1.0)) + ") and yellow to red.";
+           fourDigits(1.0 + 0.5 * (maxCount - 1.0)) + ") and yellow to red.";
 }
 
 LinearImage StageRecorder::heatImage(const std::vector<std::uint32_t>& counts, std::uint32_t maxCount) const {
@@ -371,18 +371,18 @@ Stage StageRecorder::fogFactor(const FogParams& fog, double viewScale) const {
             formula = "f = 1";
             break;
         case FogMode::Linear:
-            formula = "f = (end − z)/(end − start) with start " + number(fog.start / viewScale) +
-                      " and end " + number(fog.end / viewScale);
+            formula = "f = (end − z)/(end − start) with start " + fourDigits(fog.start / viewScale) +
+                      " and end " + fourDigits(fog.end / viewScale);
             break;
         case FogMode::Exponential:
-            formula = "f = e^(−density·z) with density " + number(fog.density * viewScale);
+            formula = "f = e^(−density·z) with density " + fourDigits(fog.density * viewScale);
             break;
         case FogMode::Height:
             formula = "f = e^(−τ), τ the height fog's optical depth with density " +
-                      number(fog.density * viewScale) + " and falloff " + number(fog.falloff * viewScale);
+                      fourDigits(fog.density * viewScale) + " and falloff " + fourDigits(fog.falloff * viewScale);
             break;
         case FogMode::ExponentialSquared:
-            formula = "f = e^(−(density·z)²) with density " + number(fog.density * viewScale);
+            formula = "f = e^(−(density·z)²) with density " + fourDigits(fog.density * viewScale);
             break;
     }
     return makeStage("fog-factor", "Fog factor f per pixel: white 1 (no fog) to black 0 (only fog)",
@@ -441,8 +441,8 @@ Stage depthStage(const PreparedScene& prepared, const Framebuffer& framebuffer) 
         image.pixels[i] = vec4(vec3(static_cast<float>(1.0 - (1.0 - kFarthestGrey) * t)), 1.0f);
     }
     const bool any = nearest <= farthest;
-    const std::string title = any ? "Depth as distance from the eye: white " + number(nearest) +
-                                        " to dark grey " + number(farthest) + " (this frame's range)"
+    const std::string title = any ? "Depth as distance from the eye: white " + fourDigits(nearest) +
+                                        " to dark grey " + fourDigits(farthest) + " (this frame's range)"
                                   : "Depth: no surface wrote the depth buffer";
     return makeStage(
         "depth", title,
@@ -450,7 +450,7 @@ Stage depthStage(const PreparedScene& prepared, const Framebuffer& framebuffer) 
         "direction (world units) through the inverse of the projection: the buffer stores z_w = (z_ndc + "
         "1)/2, which crowds the far distances together. Nearer is brighter, from this frame's nearest "
         "surface to its farthest; the camera's near and far planes are at " +
-            number(prepared.camera.near) + " and " + number(prepared.camera.far) +
+            fourDigits(prepared.camera.near) + " and " + fourDigits(prepared.camera.far) +
             ". Black: no surface (the buffer holds its clear value). Transparent surfaces do not write "
             "depth.",
         std::move(image), kLinearEncoding);

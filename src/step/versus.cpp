@@ -10,12 +10,6 @@ namespace facet::step {
 
 namespace {
 
-// The lines of a text as strings of their own (screens.h's linesOf, copied out of the text).
-std::vector<std::string> lineStrings(const std::string& text) {
-    const std::vector<std::string_view> lines = linesOf(text);
-    return {lines.begin(), lines.end()};
-}
-
 // `text` as it is when it fits `width` columns (its spacing kept), else wrapped with `indent`.
 std::string fitted(const std::string& text, std::size_t width, std::size_t indent) {
     return columnsOf(text) <= width ? text + "\n" : wrapText(text, width, indent);
@@ -94,7 +88,7 @@ std::string sideBySide(const Walk& a, const std::string& nameA, const Walk& b, c
     {
         Block verdict{
             "Verdict", "Verdict",
-            align(lineStrings(wrapText(a.verdict, 80, 2)), lineStrings(wrapText(b.verdict, 80, 2)))};
+            align(ownedLinesOf(wrapText(a.verdict, 80, 2)), ownedLinesOf(wrapText(b.verdict, 80, 2)))};
         blocks.push_back(verdict);
         for (std::size_t r = 0; r < verdict.rows.size() && !first; ++r)
             if (verdict.rows[r].left != verdict.rows[r].right) first = std::pair(std::size_t{0}, r);
@@ -103,8 +97,8 @@ std::string sideBySide(const Walk& a, const std::string& nameA, const Walk& b, c
         const Screen* sa = findOrCounterpart(a, b, id);
         const Screen* sb = findOrCounterpart(b, a, id);
         Block block{sa ? sa->title : "(no such screen)", sb ? sb->title : "(no such screen)",
-                    align(sa ? lineStrings(sa->text) : std::vector<std::string>{},
-                          sb ? lineStrings(sb->text) : std::vector<std::string>{})};
+                    align(sa ? ownedLinesOf(sa->text) : std::vector<std::string>{},
+                          sb ? ownedLinesOf(sb->text) : std::vector<std::string>{})};
         for (std::size_t r = 0; r < block.rows.size(); ++r) {
             const Row& row = block.rows[r];
             if (!first && row.left != row.right) first = std::pair(blocks.size(), r);
@@ -118,7 +112,7 @@ std::string sideBySide(const Walk& a, const std::string& nameA, const Walk& b, c
     std::ostringstream out;
     const auto emit = [&out](std::string_view gutter, const std::string& text) {
         const std::size_t indent = std::min<std::size_t>(text.find_first_not_of(' '), 40);
-        const std::vector<std::string> wrapped = lineStrings(fitted(text, kWidth - kGutter, indent + 4));
+        const std::vector<std::string> wrapped = ownedLinesOf(fitted(text, kWidth - kGutter, indent + 4));
         for (const std::string& line : wrapped.empty() ? std::vector<std::string>{""} : wrapped)
             out << gutter << line << "\n";
     };
