@@ -379,7 +379,8 @@ Stage StageRecorder::fogFactor(const FogParams& fog, double viewScale) const {
             break;
         case FogMode::Height:
             formula = "f = e^(−τ), τ the height fog's optical depth with density " +
-                      fourDigits(fog.density * viewScale) + " and falloff " + fourDigits(fog.falloff * viewScale);
+                      fourDigits(fog.density * viewScale) + " and falloff " +
+                      fourDigits(fog.falloff * viewScale);
             break;
         case FogMode::ExponentialSquared:
             formula = "f = e^(−(density·z)²) with density " + fourDigits(fog.density * viewScale);
