@@ -19,6 +19,8 @@
 #include "cli/render_command.h"
 #include "render/memory_estimate.h"
 #include "scene/scene.h"
+#include "support/bundled_models.h"
+#include "support/file_bytes.h"
 #include "support/temp_folder.h"
 
 namespace facet::cli {
@@ -27,12 +29,9 @@ namespace {
 namespace fs = std::filesystem;
 using testing_support::TempFolderTest;
 
-const fs::path kModels = fs::path(FACET_SOURCE_DIR) / "models";
+using testing_support::kModels;
 
-std::string bytesOf(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using testing_support::fileBytes;
 
 // Catches: lanes whose threads add up to more or fewer than the batch was given (a machine
 // oversubscribed, or cores left idle), a lane with no thread, or more lanes than inputs.
@@ -118,9 +117,9 @@ TEST_F(BatchConcurrent, EveryImageIsTheBytesOfTheInputRenderedAlone) {
     for (std::size_t k = 0; k < inputs_.size(); ++k) {
         const std::string name = std::to_string(k) + "-" + fs::path(inputs_[k]).stem().string() + ".png";
         ASSERT_EQ(render(args({inputs_[k]}, folder_ / "alone" / name, {"--threads", "1", "-q"})), 0);
-        const std::string alone = bytesOf(folder_ / "alone" / name);
+        const std::string alone = fileBytes(folder_ / "alone" / name);
         EXPECT_GT(alone.size(), 100u) << name;
-        EXPECT_TRUE(bytesOf(folder_ / "batch" / name) == alone) << name;
+        EXPECT_TRUE(fileBytes(folder_ / "batch" / name) == alone) << name;
     }
 }
 

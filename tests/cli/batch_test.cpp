@@ -17,6 +17,8 @@
 #include "cli/batch.h"
 #include "cli/parse_render.h"
 #include "cli/render_command.h"
+#include "support/bundled_models.h"
+#include "support/file_bytes.h"
 #include "support/temp_folder.h"
 
 namespace facet::cli {
@@ -25,7 +27,7 @@ namespace {
 namespace fs = std::filesystem;
 using testing_support::TempFolderTest;
 
-const fs::path kModels = fs::path(FACET_SOURCE_DIR) / "models";
+using testing_support::kModels;
 
 // The InputError message of `body`, which must throw one; one line.
 template <class Body>
@@ -41,10 +43,7 @@ std::string refusal(const Body& body) {
     return {};
 }
 
-std::string bytesOf(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using testing_support::fileBytes;
 
 std::vector<std::string> outputsOf(const BatchPlan& plan) {
     std::vector<std::string> outputs;
@@ -271,9 +270,9 @@ TEST_F(BatchRun, EachImageIsTheBytesOfTheInputRenderedAlone) {
         const std::string name = fs::path(input).stem().string();
         const fs::path alone = folder_ / "alone" / (name + ".png");
         ASSERT_EQ(render(batchArgs({input}, alone.string(), {"--threads", "1", "-q"})), 0);
-        const std::string bytes = bytesOf(alone);
+        const std::string bytes = fileBytes(alone);
         EXPECT_GT(bytes.size(), 100u) << name;
-        EXPECT_TRUE(bytesOf(folder_ / "batch" / (name + ".png")) == bytes) << name;
+        EXPECT_TRUE(fileBytes(folder_ / "batch" / (name + ".png")) == bytes) << name;
     }
 }
 

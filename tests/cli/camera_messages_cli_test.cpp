@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "cli/run_facet.h"
+#include "support/bundled_models.h"
 
 namespace facet {
 namespace {
@@ -15,7 +16,7 @@ using testing_support::runFacet;
 using testing_support::RunResult;
 using testing_support::TempFolder;
 
-const std::string kCube = std::string(FACET_SOURCE_DIR) + "/models/cube/cube.obj";
+using testing_support::kCube;
 
 class CameraMessagesCli : public ::testing::Test {
   protected:

@@ -18,7 +18,7 @@ namespace facet::cli {
 namespace {
 
 // `facet render model.obj -o out.png OPTION NAME`, parsed; the arguments it fills.
-RenderArgs parseRender(const std::string& option, const std::string& name) {
+RenderArgs parseOption(const std::string& option, const std::string& name) {
     CLI::App app;
     RenderArgs args;
     addRenderCommand(app, args);
@@ -38,7 +38,7 @@ template <class E, class Reached>
 void expectEveryNameReaches(const std::string& option, Reached reached) {
     for (const std::string& name : namesOf<E>()) {
         SCOPED_TRACE(option + " " + name);
-        EXPECT_EQ(reached(sceneWith(parseRender(option, name))), *parseName<E>(name));
+        EXPECT_EQ(reached(sceneWith(parseOption(option, name))), *parseName<E>(name));
     }
 }
 
@@ -46,16 +46,16 @@ void expectEveryNameReaches(const std::string& option, Reached reached) {
 // them is refused naming the option and its range, as every knob's range is (scene/knobs.h); a value
 // that is not a whole number is refused by the parser.
 TEST(CommandLineChoices, SubpixelBitsReachTheScene) {
-    EXPECT_EQ(sceneWith(parseRender("--subpixel-bits", "0")).pipeline.subpixelBits, 0);
-    EXPECT_EQ(sceneWith(parseRender("--subpixel-bits", "3")).pipeline.subpixelBits, 3);
-    EXPECT_EQ(sceneWith(parseRender("--subpixel-bits", "8")).pipeline.subpixelBits, 8);
+    EXPECT_EQ(sceneWith(parseOption("--subpixel-bits", "0")).pipeline.subpixelBits, 0);
+    EXPECT_EQ(sceneWith(parseOption("--subpixel-bits", "3")).pipeline.subpixelBits, 3);
+    EXPECT_EQ(sceneWith(parseOption("--subpixel-bits", "8")).pipeline.subpixelBits, 8);
     try {
-        sceneWith(parseRender("--subpixel-bits", "9"));
+        sceneWith(parseOption("--subpixel-bits", "9"));
         ADD_FAILURE() << "--subpixel-bits 9 accepted";
     } catch (const InputError& e) {
         EXPECT_STREQ(e.what(), "--subpixel-bits must be from 0 to 8 (got 9)");
     }
-    EXPECT_THROW(parseRender("--subpixel-bits", "2.5"), CLI::ParseError);
+    EXPECT_THROW(parseOption("--subpixel-bits", "2.5"), CLI::ParseError);
 }
 
 TEST(CommandLineChoices, EveryNameReachesTheScene) {
@@ -106,7 +106,7 @@ TEST(CommandLineChoices, StepTakesEveryOptionOfRenderThatDecidesTheFrame) {
 
 TEST(CommandLineChoices, OnlyTakesEachTermByItsName) {
     for (const EnumName<LightingTerm>& term : kLightingTermNames) {
-        const RenderArgs args = parseRender("--only", std::string(term.name));
+        const RenderArgs args = parseOption("--only", std::string(term.name));
         ASSERT_TRUE(args.only.has_value()) << term.name;
         EXPECT_EQ(*args.only, term.value) << term.name;
     }
@@ -115,7 +115,7 @@ TEST(CommandLineChoices, OnlyTakesEachTermByItsName) {
 // A wrong name is refused, the message listing every name of the table.
 TEST(CommandLineChoices, WrongNameListsTheTablesNames) {
     try {
-        parseRender("--reflection", "lambert");
+        parseOption("--reflection", "lambert");
         ADD_FAILURE() << "lambert accepted";
     } catch (const CLI::ParseError& e) {
         const std::string message = e.what();

@@ -30,18 +30,15 @@ int lineCount(const std::string& text) {
     return n;
 }
 
-std::string quoted(const std::filesystem::path& p) {
-    std::ostringstream text;
-    text << "'" << p.string() << "'";
-    return text.str();
-}
+using testing_support::shellQuoted;
 
 TEST(Cli, RendersABundledModelToPng) {
     TempFolder dir;
     const auto png = dir.path() / "spot.png";
     const RunResult run = runFacet(
-        "render " + quoted(std::filesystem::path(FACET_SOURCE_DIR) / "models/spot/spot_triangulated.obj") +
-            " -o " + quoted(png) + " --width 96 --height 72",
+        "render " +
+            shellQuoted(std::filesystem::path(FACET_SOURCE_DIR) / "models/spot/spot_triangulated.obj") +
+            " -o " + shellQuoted(png) + " --width 96 --height 72",
         dir);
     ASSERT_EQ(run.status, 0) << run.err;
     EXPECT_NE(run.out.find("5856 triangles"), std::string::npos) << run.out;
@@ -63,12 +60,12 @@ TEST(Cli, RendersABundledModelToPng) {
 TEST(Cli, OpenImageIOIsLoadedOnlyForFormatsThatNeedIt) {
     TempFolder dir;
     const std::string model =
-        quoted(std::filesystem::path(FACET_SOURCE_DIR) / "models/spot/spot_triangulated.obj");
+        shellQuoted(std::filesystem::path(FACET_SOURCE_DIR) / "models/spot/spot_triangulated.obj");
     ::setenv("LD_DEBUG", "files", 1);
     const RunResult png = runFacet(
-        "render " + model + " -o " + quoted(dir.path() / "spot.png") + " --width 32 --height 24", dir);
+        "render " + model + " -o " + shellQuoted(dir.path() / "spot.png") + " --width 32 --height 24", dir);
     const RunResult exr = runFacet(
-        "render " + model + " -o " + quoted(dir.path() / "spot.exr") + " --width 32 --height 24", dir);
+        "render " + model + " -o " + shellQuoted(dir.path() / "spot.exr") + " --width 32 --height 24", dir);
     ::unsetenv("LD_DEBUG");
     ASSERT_EQ(png.status, 0) << png.err.substr(png.err.size() > 2000 ? png.err.size() - 2000 : 0);
     ASSERT_EQ(exr.status, 0);
@@ -94,8 +91,8 @@ TEST(Cli, FacetIsaForcesTheFrameCodeAndABadOneIsOneError) {
     const RunResult version = runFacet("--version", dir);
     ::setenv("FACET_ISA", "sse9", 1);
     const RunResult bad =
-        runFacet("render " + quoted(std::filesystem::path(FACET_SOURCE_DIR) / "models/cube/cube.obj") +
-                     " -o " + quoted(dir.path() / "cube.png") + " --width 32 --height 24",
+        runFacet("render " + shellQuoted(std::filesystem::path(FACET_SOURCE_DIR) / "models/cube/cube.obj") +
+                     " -o " + shellQuoted(dir.path() / "cube.png") + " --width 32 --height 24",
                  dir);
     ::unsetenv("FACET_ISA");
     ASSERT_EQ(version.status, 0) << version.err;
@@ -116,7 +113,7 @@ TEST(Cli, ThreadCountDoesNotChangeTheImage) {
     std::vector<glm::vec4> reference;
     for (int threads : {1, 2, 7}) {
         const auto exr = dir.path() / ("bunny-" + std::to_string(threads) + ".exr");
-        const RunResult run = runFacet("render " + quoted(model) + " -o " + quoted(exr) +
+        const RunResult run = runFacet("render " + shellQuoted(model) + " -o " + shellQuoted(exr) +
                                            " --width 320 --height 240 --threads " + std::to_string(threads),
                                        dir);
         ASSERT_EQ(run.status, 0) << run.err;
@@ -136,9 +133,10 @@ TEST(Cli, ComponentImagesAddUpToTheImage) {
                                                    "\", \"background\": [0, 0, 0, 1], \"width\": 80, "
                                                    "\"height\": 60, \"lights\": [{\"type\": \"point\", "
                                                    "\"position\": [1, 1, 3]}]}");
-    const RunResult run = runFacet("render " + quoted(scene) + " -o " + quoted(dir.path() / "cow.exr") +
-                                       " --components --reflection phong",
-                                   dir);
+    const RunResult run =
+        runFacet("render " + shellQuoted(scene) + " -o " + shellQuoted(dir.path() / "cow.exr") +
+                     " --components --reflection phong",
+                 dir);
     ASSERT_EQ(run.status, 0) << run.err;
     EXPECT_NE(run.out.find("cow-specular.exr (specular term alone)"), std::string::npos) << run.out;
     const LinearImage whole = readImage(dir.path() / "cow.exr");
@@ -161,9 +159,10 @@ TEST(Cli, ComponentImagesAddUpToTheImage) {
         ASSERT_NEAR(sum.pixels[i].b, whole.pixels[i].b, 1e-3f * (1.0f + whole.pixels[i].b)) << i;
     }
 
-    const RunResult only = runFacet("render " + quoted(scene) + " -o " + quoted(dir.path() / "only.exr") +
-                                        " --only specular --reflection phong",
-                                    dir);
+    const RunResult only =
+        runFacet("render " + shellQuoted(scene) + " -o " + shellQuoted(dir.path() / "only.exr") +
+                     " --only specular --reflection phong",
+                 dir);
     ASSERT_EQ(only.status, 0) << only.err;
     EXPECT_TRUE(readImage(dir.path() / "only.exr").pixels ==
                 readImage(dir.path() / "cow-specular.exr").pixels);
@@ -178,8 +177,8 @@ TEST_F(CliWithMesa, CompareWithOpenGlAgreesOnTheBundledScene) {
     TempFolder dir;
     const auto scene = std::filesystem::path(FACET_SOURCE_DIR) / "models/example-scene.json";
     const RunResult run =
-        runFacet("compare " + quoted(scene) + " --width 160 --height 120 --lighting gl --diff " +
-                     quoted(dir.path() / "diff.png") + " --mesa " + quoted(dir.path() / "gl.png"),
+        runFacet("compare " + shellQuoted(scene) + " --width 160 --height 120 --lighting gl --diff " +
+                     shellQuoted(dir.path() / "diff.png") + " --mesa " + shellQuoted(dir.path() / "gl.png"),
                  dir);
     ASSERT_EQ(run.status, 0) << run.out << run.err;
     EXPECT_NE(run.out.find("verdict    agrees"), std::string::npos) << run.out;
@@ -194,9 +193,10 @@ TEST_F(CliWithMesa, CompareWithOpenGlAgreesOnTheBundledScene) {
 TEST(Cli, TurntableFramesWithSortStatistics) {
     TempFolder dir;
     const auto scene = std::filesystem::path(FACET_SOURCE_DIR) / "models/intersecting-quads.json";
-    const RunResult run = runFacet("render " + quoted(scene) + " -o " + quoted(dir.path() / "spin.png") +
-                                       " --width 64 --height 48 --frames 3-5 --turntable 30 --stats",
-                                   dir);
+    const RunResult run =
+        runFacet("render " + shellQuoted(scene) + " -o " + shellQuoted(dir.path() / "spin.png") +
+                     " --width 64 --height 48 --frames 3-5 --turntable 30 --stats",
+                 dir);
     ASSERT_EQ(run.status, 0) << run.err;
     for (const char* name : {"spin-0003.png", "spin-0004.png", "spin-0005.png"})
         EXPECT_TRUE(std::filesystem::exists(dir.path() / name)) << name;
@@ -233,13 +233,13 @@ class CliBadInput : public ::testing::TestWithParam<BadInput> {};
 TEST_P(CliBadInput, FailsWithOneLineAndKeepsTheOldImage) {
     const BadInput& c = GetParam();
     TempFolder dir;
-    std::string input = quoted(dir.path() / "missing.obj");
-    if (c.objText) input = quoted(dir.write("bad.obj", c.objText));
-    if (c.sceneText) input = quoted(dir.write("bad.json", c.sceneText));
+    std::string input = shellQuoted(dir.path() / "missing.obj");
+    if (c.objText) input = shellQuoted(dir.write("bad.obj", c.objText));
+    if (c.sceneText) input = shellQuoted(dir.write("bad.json", c.sceneText));
     if (!c.objText && !c.sceneText && std::string(c.extraArgs).empty() == false)
-        input = quoted(dir.write("ok.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
+        input = shellQuoted(dir.write("ok.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
     const auto out = dir.write("old.png", "previous contents");
-    const RunResult run = runFacet("render " + input + " -o " + quoted(out) + " " + c.extraArgs, dir);
+    const RunResult run = runFacet("render " + input + " -o " + shellQuoted(out) + " " + c.extraArgs, dir);
     EXPECT_EQ(run.status, c.status) << run.err;
     EXPECT_EQ(lineCount(run.err), 1) << run.err;
     EXPECT_EQ(run.err.rfind("facet: error: ", 0), 0u) << run.err;
@@ -290,7 +290,7 @@ TEST(Cli, UnknownImageFormatWritesNothing) {
     TempFolder dir;
     const auto obj = dir.write("ok.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     const RunResult run =
-        runFacet("render " + quoted(obj) + " -o " + quoted(dir.path() / "x.notaformat"), dir);
+        runFacet("render " + shellQuoted(obj) + " -o " + shellQuoted(dir.path() / "x.notaformat"), dir);
     EXPECT_EQ(run.status, 1);
     EXPECT_EQ(lineCount(run.err), 1) << run.err;
     EXPECT_NE(run.err.find("x.notaformat"), std::string::npos) << run.err;
@@ -301,8 +301,8 @@ TEST(Cli, UnknownImageFormatWritesNothing) {
 // about the images --frames and --components would write, and it comes at once.
 TEST(Cli, ImageCountIsCheckedBeforeTheModelIsLoaded) {
     TempFolder dir;
-    const RunResult run = runFacet("render " + quoted(dir.path() / "missing.obj") + " -o " +
-                                       quoted(dir.path() / "x.png") + " --frames 0-20000 --components",
+    const RunResult run = runFacet("render " + shellQuoted(dir.path() / "missing.obj") + " -o " +
+                                       shellQuoted(dir.path() / "x.png") + " --frames 0-20000 --components",
                                    dir);
     EXPECT_EQ(run.status, 1);
     EXPECT_EQ(lineCount(run.err), 1) << run.err;
@@ -312,7 +312,7 @@ TEST(Cli, ImageCountIsCheckedBeforeTheModelIsLoaded) {
 
 TEST(Cli, OutputPathsGetPlainMessages) {
     TempFolder dir;
-    const auto obj = quoted(dir.write("ok.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
+    const auto obj = shellQuoted(dir.write("ok.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
     const auto file = dir.write("file.png", "a file, not a folder");
     const struct {
         std::string output;
@@ -327,7 +327,7 @@ TEST(Cli, OutputPathsGetPlainMessages) {
     };
     for (const auto& c : cases) {
         const RunResult run = runFacet(
-            "render " + obj + " -o " + quoted(std::filesystem::path(c.output)) + " --width 8 --height 8",
+            "render " + obj + " -o " + shellQuoted(std::filesystem::path(c.output)) + " --width 8 --height 8",
             dir);
         EXPECT_EQ(run.status, 1) << c.output;
         EXPECT_EQ(run.err, c.expected);
@@ -340,7 +340,7 @@ TEST(Cli, OutputPathsGetPlainMessages) {
 TEST(Cli, UnwritableFolderNamesThePathAndTheReason) {
     if (!std::filesystem::is_directory("/sys")) GTEST_SKIP() << "no /sys here";
     TempFolder dir;
-    const auto obj = quoted(dir.write("ok.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
+    const auto obj = shellQuoted(dir.write("ok.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
     const RunResult run = runFacet("render " + obj + " -o /sys/facet-test.png --width 8 --height 8", dir);
     EXPECT_EQ(run.status, 1);
     EXPECT_EQ(lineCount(run.err), 1) << run.err;
@@ -362,7 +362,7 @@ TEST(Cli, BenchFindsItsDefaultModelFromAnyFolder) {
 // refuses the other modes' options.
 TEST(Cli, BenchTimesEachInstructionSet) {
     TempFolder dir;
-    const auto obj = quoted(dir.write("triangle.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
+    const auto obj = shellQuoted(dir.write("triangle.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
     const RunResult run =
         runFacet("bench --instruction-sets --frames 1 --width 16 --height 16 --threads 1 " + obj, dir);
     EXPECT_EQ(run.status, 0) << run.err;
@@ -378,7 +378,7 @@ TEST(Cli, BenchRefusesNonFiniteSteps) {
     TempFolder dir;
     for (const char* value : {"nan", "inf", "-inf"}) {
         const RunResult run = runFacet(std::string("bench --transparency --degrees-per-frame ") + value +
-                                           " " + quoted(dir.path() / "missing.obj"),
+                                           " " + shellQuoted(dir.path() / "missing.obj"),
                                        dir);
         EXPECT_EQ(run.status, 2) << value;
         EXPECT_NE(run.err.find("--degrees-per-frame: expects a finite number"), std::string::npos) << run.err;
@@ -398,20 +398,21 @@ TEST(Cli, InteriorViewLostToDepthPrecisionSaysSo) {
     TempFolder dir;
     dir.write("cube.obj", kCubeObj);
     const auto scene = [&](const std::string& near) {
-        return quoted(dir.write("inside-" + near + ".json",
-                                "{\"camera\": {\"eye\": [0, 0, 0.5], \"target\": [0, 0, -1], \"near\": " +
-                                    near + "}, \"objects\": [{\"model\": \"cube.obj\"}]}"));
+        return shellQuoted(
+            dir.write("inside-" + near + ".json",
+                      "{\"camera\": {\"eye\": [0, 0, 0.5], \"target\": [0, 0, -1], \"near\": " + near +
+                          "}, \"objects\": [{\"model\": \"cube.obj\"}]}"));
     };
     const std::string options = " --width 32 --height 24 --cull none --depth unorm16 -o ";
     const RunResult lost =
-        runFacet("render " + scene("1e-6") + options + quoted(dir.path() / "lost.png"), dir);
+        runFacet("render " + scene("1e-6") + options + shellQuoted(dir.path() / "lost.png"), dir);
     EXPECT_EQ(lost.status, 0) << lost.err;
     EXPECT_NE(lost.err.find("every depth farther than 0.12"), std::string::npos) << lost.err;
     EXPECT_NE(lost.err.find("nothing was drawn"), std::string::npos) << lost.err;
     EXPECT_NE(lost.err.find("their depths all rounded to the far plane"), std::string::npos) << lost.err;
     EXPECT_EQ(lost.err.find("look away"), std::string::npos) << lost.err;
     const RunResult seen =
-        runFacet("render " + scene("0.1") + options + quoted(dir.path() / "seen.png"), dir);
+        runFacet("render " + scene("0.1") + options + shellQuoted(dir.path() / "seen.png"), dir);
     EXPECT_EQ(seen.status, 0) << seen.err;
     EXPECT_EQ(seen.err, "");
 }
@@ -419,8 +420,8 @@ TEST(Cli, InteriorViewLostToDepthPrecisionSaysSo) {
 // The last line of defence: a frame that draws nothing says so, and what became of its triangles.
 TEST(Cli, FrameThatDrawsNothingIsWarnedAbout) {
     TempFolder dir;
-    const auto obj = quoted(dir.write("cube.obj", kCubeObj));
-    const RunResult away = runFacet("render " + obj + " -o " + quoted(dir.path() / "away.png") +
+    const auto obj = shellQuoted(dir.write("cube.obj", kCubeObj));
+    const RunResult away = runFacet("render " + obj + " -o " + shellQuoted(dir.path() / "away.png") +
                                         " --width 32 --height 24 --eye 0,0,5 --target 0,0,10",
                                     dir);
     EXPECT_EQ(away.status, 0) << away.err;
@@ -430,9 +431,9 @@ TEST(Cli, FrameThatDrawsNothingIsWarnedAbout) {
                       ": nothing was drawn, only the background: of 12 triangles, 12 lay outside the view"),
         std::string::npos)
         << away.err;
-    const RunResult seen = runFacet(
-        "render " + obj + " -o " + quoted(dir.path() / "seen.png") + " --width 32 --height 24 --eye 0,0,5",
-        dir);
+    const RunResult seen = runFacet("render " + obj + " -o " + shellQuoted(dir.path() / "seen.png") +
+                                        " --width 32 --height 24 --eye 0,0,5",
+                                    dir);
     EXPECT_EQ(seen.status, 0) << seen.err;
     EXPECT_EQ(seen.err, "");
 }
@@ -440,12 +441,12 @@ TEST(Cli, FrameThatDrawsNothingIsWarnedAbout) {
 // Straight above the target with the default up vector: drawn, with the up vector chosen and named.
 TEST(Cli, EyeStraightAboveTheTargetRendersWithAWarning) {
     TempFolder dir;
-    const auto obj = quoted(dir.write("cube.obj", kCubeObj));
+    const auto obj = shellQuoted(dir.write("cube.obj", kCubeObj));
     const auto scene = dir.write("above.json", "{\"model\": \"cube.obj\", \"camera\": {\"eye\": [0, 5, 0]}}");
     for (const std::string& input :
-         {"render " + obj + " --eye 0,5,0 --target 0,0,0", "render " + quoted(scene)}) {
+         {"render " + obj + " --eye 0,5,0 --target 0,0,0", "render " + shellQuoted(scene)}) {
         const RunResult run =
-            runFacet(input + " -o " + quoted(dir.path() / "above.png") + " --width 32 --height 24", dir);
+            runFacet(input + " -o " + shellQuoted(dir.path() / "above.png") + " --width 32 --height 24", dir);
         EXPECT_EQ(run.status, 0) << run.err;
         EXPECT_EQ(lineCount(run.err), 1) << run.err;
         EXPECT_NE(run.err.find("facet: warning: "), std::string::npos) << run.err;
@@ -460,7 +461,8 @@ TEST(Cli, ImpossibleNearPlaneIsRefusedAndExtremeFarPlaneRenders) {
     TempFolder dir;
     dir.write("cube.obj", kCubeObj);
     const auto tiny = dir.write("tiny-near.json", "{\"model\": \"cube.obj\", \"camera\": {\"near\": 1e-10}}");
-    const RunResult refused = runFacet("render " + quoted(tiny) + " -o " + quoted(dir.path() / "x.png"), dir);
+    const RunResult refused =
+        runFacet("render " + shellQuoted(tiny) + " -o " + shellQuoted(dir.path() / "x.png"), dir);
     EXPECT_EQ(refused.status, 1);
     EXPECT_EQ(lineCount(refused.err), 1) << refused.err;
     EXPECT_NE(refused.err.find("tiny-near.json: the camera's near plane (1e-10) is too small"),
@@ -469,8 +471,9 @@ TEST(Cli, ImpossibleNearPlaneIsRefusedAndExtremeFarPlaneRenders) {
     EXPECT_FALSE(std::filesystem::exists(dir.path() / "x.png"));
 
     const auto huge = dir.write("huge-far.json", "{\"model\": \"cube.obj\", \"camera\": {\"far\": 3e38}}");
-    const RunResult drawn = runFacet(
-        "render " + quoted(huge) + " -o " + quoted(dir.path() / "y.png") + " --width 32 --height 24", dir);
+    const RunResult drawn = runFacet("render " + shellQuoted(huge) + " -o " +
+                                         shellQuoted(dir.path() / "y.png") + " --width 32 --height 24",
+                                     dir);
     EXPECT_EQ(drawn.status, 0) << drawn.err;
     EXPECT_EQ(drawn.out.find(" 0 fragments shaded"), std::string::npos) << drawn.out;
 }
@@ -479,8 +482,9 @@ TEST(Cli, ImpossibleNearPlaneIsRefusedAndExtremeFarPlaneRenders) {
 TEST(Cli, ModelFarFromTheOriginForItsSizeIsWarnedAbout) {
     TempFolder dir;
     const auto obj = dir.write("far.obj", "v 10000000 0 0\nv 10000002 0 0\nv 10000000 2 0\nf 1 2 3\n");
-    const RunResult run = runFacet(
-        "render " + quoted(obj) + " -o " + quoted(dir.path() / "far.png") + " --width 32 --height 24", dir);
+    const RunResult run = runFacet("render " + shellQuoted(obj) + " -o " +
+                                       shellQuoted(dir.path() / "far.png") + " --width 32 --height 24",
+                                   dir);
     EXPECT_EQ(run.status, 0) << run.err;
     EXPECT_EQ(lineCount(run.err), 1) << run.err;
     EXPECT_NE(run.err.find("far.obj: coordinates reach 1e+07 while the model is only 2.82843 across"),
@@ -493,7 +497,8 @@ TEST(Cli, MissingMaterialFileWarnsAndRenders) {
     const auto obj =
         dir.write("m.obj", "mtllib nowhere.mtl\nusemtl red\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     const RunResult run = runFacet(
-        "render " + quoted(obj) + " -o " + quoted(dir.path() / "m.png") + " --width 32 --height 32", dir);
+        "render " + shellQuoted(obj) + " -o " + shellQuoted(dir.path() / "m.png") + " --width 32 --height 32",
+        dir);
     EXPECT_EQ(run.status, 0) << run.err;
     EXPECT_NE(run.err.find("warning"), std::string::npos);
     EXPECT_NE(run.err.find("nowhere.mtl"), std::string::npos) << run.err;
@@ -549,7 +554,8 @@ TEST(Cli, TextureDeclaringAHugeSizeFailsNamingIt) {
         bytes[29 + k] = static_cast<char>((crc >> (24 - 8 * k)) & 0xFF);
     dir.write("huge.png", bytes);
     const auto obj = writeTexturedSquare(dir, "map_Kd huge.png\n");
-    const RunResult run = runFacet("render " + quoted(obj) + " -o " + quoted(dir.path() / "x.png"), dir);
+    const RunResult run =
+        runFacet("render " + shellQuoted(obj) + " -o " + shellQuoted(dir.path() / "x.png"), dir);
     EXPECT_EQ(run.status, 1) << run.err;
     EXPECT_EQ(lineCount(run.err), 1) << run.err;
     EXPECT_EQ(run.err.rfind("facet: error: " + texture.string() + ": ", 0), 0u) << run.err;
@@ -572,8 +578,8 @@ TEST(Cli, UnreadableTextureWarnsAndDrawsWithoutIt) {
     for (const char* name : {"truncated.png", "text.png"}) {
         const auto obj = writeTexturedSquare(dir, std::string("map_Kd ") + name + "\n");
         const auto png = dir.path() / "x.png";
-        const RunResult run =
-            runFacet("render " + quoted(obj) + " -o " + quoted(png) + " --width 32 --height 32", dir);
+        const RunResult run = runFacet(
+            "render " + shellQuoted(obj) + " -o " + shellQuoted(png) + " --width 32 --height 32", dir);
         EXPECT_EQ(run.status, 0) << run.err;
         EXPECT_EQ(lineCount(run.err), 1) << run.err;
         EXPECT_EQ(run.err.rfind("facet: warning: " + (dir.path() / name).string() + ": ", 0), 0u) << run.err;
@@ -619,13 +625,14 @@ TEST(CompareAgainst, AShaderIsComparedWithTheBuiltInModel) {
 TEST(Cli, EnvironmentFlagReachesTheImageAndTheStepScreen) {
     TempFolder dir;
     const std::filesystem::path root(FACET_SOURCE_DIR);
-    const std::string model = quoted(root / "models/spot/spot_triangulated.obj");
-    const std::string sky = quoted(root / "models/environment/sky.png");
+    const std::string model = shellQuoted(root / "models/spot/spot_triangulated.obj");
+    const std::string sky = shellQuoted(root / "models/environment/sky.png");
     const auto plain = dir.path() / "plain.png", mapped = dir.path() / "mapped.png";
-    ASSERT_EQ(runFacet("render " + model + " -o " + quoted(plain) + " --width 48 --height 36", dir).status,
-              0);
+    ASSERT_EQ(
+        runFacet("render " + model + " -o " + shellQuoted(plain) + " --width 48 --height 36", dir).status, 0);
     const RunResult run = runFacet(
-        "render " + model + " -o " + quoted(mapped) + " --width 48 --height 36 --environment " + sky, dir);
+        "render " + model + " -o " + shellQuoted(mapped) + " --width 48 --height 36 --environment " + sky,
+        dir);
     ASSERT_EQ(run.status, 0) << run.err;
     // The top-left corner looks up-left into the sky: blue above red, not the dark clear colour.
     const glm::vec4 before = readImage(plain).at(0, 0), after = readImage(mapped).at(0, 0);
@@ -639,9 +646,9 @@ TEST(Cli, EnvironmentFlagReachesTheImageAndTheStepScreen) {
     EXPECT_NE(step.out.find("R = 2(N·V)N − V"), std::string::npos) << step.out;
     EXPECT_NE(step.out.find("reflection = w ⊗ E(R) = RGB("), std::string::npos) << step.out;
 
-    const RunResult missing = runFacet(
-        "render " + model + " -o " + quoted(mapped) + " --width 48 --height 36 --environment nowhere/sky.png",
-        dir);
+    const RunResult missing = runFacet("render " + model + " -o " + shellQuoted(mapped) +
+                                           " --width 48 --height 36 --environment nowhere/sky.png",
+                                       dir);
     EXPECT_NE(missing.status, 0);
     EXPECT_NE(missing.err.find("nowhere/sky.png"), std::string::npos) << missing.err;
     EXPECT_NE(missing.err.find("--environment"), std::string::npos) << missing.err;

@@ -7,6 +7,7 @@
 
 #include "cli/run_facet.h"
 #include "io/image_io.h"
+#include "support/bundled_models.h"
 
 namespace facet {
 namespace {
@@ -14,7 +15,7 @@ namespace {
 using testing_support::runFacet;
 using testing_support::TempFolder;
 
-const std::filesystem::path kModels = std::filesystem::path(FACET_SOURCE_DIR) / "models";
+using testing_support::kModels;
 
 // Catches: --diff refused or ignored with --reference, or written at another size than the error
 // image of a scene-sized pair (the image, plus the legend strip below from 200 px wide); the largest

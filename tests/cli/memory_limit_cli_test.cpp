@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "cli/run_facet.h"
+#include "support/bundled_models.h"
 #include "support/temp_folder.h"
 
 namespace facet {
@@ -17,14 +18,9 @@ namespace {
 using testing_support::runFacet;
 using testing_support::TempFolderTest;
 
-std::string quoted(const std::filesystem::path& path) {
-    std::string text = "'";  // appended piece by piece: GCC 12 warns falsely on "'" + s (-Wrestrict)
-    text += path.string();
-    text += "'";
-    return text;
-}
+using testing_support::shellQuoted;
 
-const std::filesystem::path kModels = std::filesystem::path(FACET_SOURCE_DIR) / "models";
+using testing_support::kModels;
 
 // One line on standard error, exit 4, and no image written.
 void expectRefused(const testing_support::RunResult& run, const std::filesystem::path& image,
@@ -45,8 +41,8 @@ TEST_F(MemoryLimitCli, MultisamplingBeyondTheLimitIsRefusedBeforeLoading) {
     // 2048² × (16 + 1) samples × 20 bytes ≈ 1.3 GiB: more than 1G, refused before the model is read.
     const auto image = folder_ / "out.png";
     const auto run =
-        runFacet("render " + quoted(kModels / "cube/cube.obj") +
-                     " --width 2048 --height 2048 --aa msaa16 --memory-limit 1G -o " + quoted(image),
+        runFacet("render " + shellQuoted(kModels / "cube/cube.obj") +
+                     " --width 2048 --height 2048 --aa msaa16 --memory-limit 1G -o " + shellQuoted(image),
                  temp_);
     expectRefused(run, image, "rendering a 2048x2048 image with 16 samples per pixel (--aa msaa16) needs 1.");
     EXPECT_NE(run.err.find("1.0 GiB (--memory-limit)"), std::string::npos) << run.err;
@@ -57,9 +53,10 @@ TEST_F(MemoryLimitCli, EnvironmentVariableSetsTheLimitAndTheOptionWins) {
     const auto image = folder_ / "out.png";
     // 512² × 5 samples × 20 bytes = 25 MiB of planes: more than 10M, less than 100M. (The command runs
     // under sh: "VAR=value facet ..." sets the variable for the second facet.)
-    const std::string withVariable =
-        "--version >/dev/null; FACET_MEMORY_LIMIT=10M '" FACET_BINARY "' render " +
-        quoted(kModels / "cube/cube.obj") + " --width 512 --height 512 --aa msaa4 -o " + quoted(image);
+    const std::string withVariable = "--version >/dev/null; FACET_MEMORY_LIMIT=10M '" FACET_BINARY
+                                     "' render " +
+                                     shellQuoted(kModels / "cube/cube.obj") +
+                                     " --width 512 --height 512 --aa msaa4 -o " + shellQuoted(image);
     auto run = runFacet(withVariable, temp_);
     expectRefused(run, image, "(FACET_MEMORY_LIMIT; --memory-limit SIZE sets it)");
     run = runFacet(withVariable + " --memory-limit 100M", temp_);
@@ -70,15 +67,16 @@ TEST_F(MemoryLimitCli, EnvironmentVariableSetsTheLimitAndTheOptionWins) {
 // the exit status of resource errors instead of the command line's.
 TEST_F(MemoryLimitCli, BadSizesAreCommandLineErrors) {
     for (const char* size : {"abc", "12X", "0", "1.2.3G", "-5G"}) {
-        const auto run = runFacet("render " + quoted(kModels / "cube/cube.obj") + " --memory-limit=" + size +
-                                      " -o " + quoted(folder_ / "out.png"),
+        const auto run = runFacet("render " + shellQuoted(kModels / "cube/cube.obj") +
+                                      " --memory-limit=" + size + " -o " + shellQuoted(folder_ / "out.png"),
                                   temp_);
         EXPECT_EQ(run.status, 2) << size << ": " << run.err;
         EXPECT_NE(run.err.find("--memory-limit"), std::string::npos) << run.err;
     }
-    const auto run = runFacet("--version >/dev/null; FACET_MEMORY_LIMIT=lots '" FACET_BINARY "' render " +
-                                  quoted(kModels / "cube/cube.obj") + " -o " + quoted(folder_ / "out.png"),
-                              temp_);
+    const auto run =
+        runFacet("--version >/dev/null; FACET_MEMORY_LIMIT=lots '" FACET_BINARY "' render " +
+                     shellQuoted(kModels / "cube/cube.obj") + " -o " + shellQuoted(folder_ / "out.png"),
+                 temp_);
     EXPECT_EQ(run.status, 1) << run.err;
     EXPECT_NE(run.err.find("FACET_MEMORY_LIMIT expects a size like 512M"), std::string::npos) << run.err;
 }
@@ -94,10 +92,12 @@ TEST_F(MemoryLimitCli, ShadowMapsBeyondTheLimitAreRefusedBeforeTheyAreDrawn) {
                          << (kModels / "cube/cube.obj").string() << R"("}]})";
     const auto image = folder_ / "out.png";
     // 2 lights × 6 faces × 4096² × 4 bytes = 768 MiB of depths, and 320 MiB for the one framebuffer.
-    const auto run = runFacet("render " + quoted(scene) + " --memory-limit 512M -o " + quoted(image), temp_);
+    const auto run =
+        runFacet("render " + shellQuoted(scene) + " --memory-limit 512M -o " + shellQuoted(image), temp_);
     expectRefused(run, image, "drawing the shadow maps of 2 lights (12 images of 4096x4096 texels");
-    const auto fits = runFacet(
-        "render " + quoted(scene) + " --shadow-map-size 256 --memory-limit 512M -o " + quoted(image), temp_);
+    const auto fits = runFacet("render " + shellQuoted(scene) +
+                                   " --shadow-map-size 256 --memory-limit 512M -o " + shellQuoted(image),
+                               temp_);
     EXPECT_EQ(fits.status, 0) << fits.err;
 }
 
@@ -116,19 +116,21 @@ TEST_F(MemoryLimitCli, FragmentListsBeyondTheLimitAreRefused) {
     }
     const auto image = folder_ / "out.png";
     const auto run = runFacet(
-        "render " + quoted(scene) + " --transparency exact --memory-limit 1M -o " + quoted(image), temp_);
+        "render " + shellQuoted(scene) + " --transparency exact --memory-limit 1M -o " + shellQuoted(image),
+        temp_);
     expectRefused(run, image, "keeping every transparent layer of a 64x64 image (--transparency exact;");
     const auto sorted = runFacet(
-        "render " + quoted(scene) + " --transparency sorted --memory-limit 1M -o " + quoted(image), temp_);
+        "render " + shellQuoted(scene) + " --transparency sorted --memory-limit 1M -o " + shellQuoted(image),
+        temp_);
     EXPECT_EQ(sorted.status, 0) << sorted.err;
 }
 
 // Catches: facet step --html at a large size running for minutes before running out of memory (8192²
 // reached 6.7 GB after 400 s): its stage images are estimated before the scene is loaded.
 TEST_F(MemoryLimitCli, StepPageBeyondTheLimitIsRefusedBeforeTheWork) {
-    const auto run = runFacet("step " + quoted(kModels / "cube/cube.obj") +
+    const auto run = runFacet("step " + shellQuoted(kModels / "cube/cube.obj") +
                                   " --width 8192 --height 8192 --html-step 64 --memory-limit 2G --html " +
-                                  quoted(folder_ / "page"),
+                                  shellQuoted(folder_ / "page"),
                               temp_);
     expectRefused(run, folder_ / "page", "drawing the stage images of --html for a 8192x8192 image");
 }
@@ -150,8 +152,8 @@ TEST_F(MemoryLimitCli, TexturesAreRefusedByTheirTotalFromTheirHeaders) {
     std::ofstream(folder_ / "m.obj") << "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\nvt 1 0\n"
                                         "vt 0 1\nusemtl a\nf 1/1 2/2 3/3\nusemtl b\nf 2/2 4/1 3/3\n";
     const auto image = folder_ / "out.png";
-    const auto run = runFacet("render " + quoted(folder_ / "m.obj") +
-                                  " --width 16 --height 16 --memory-limit 1536K -o " + quoted(image),
+    const auto run = runFacet("render " + shellQuoted(folder_ / "m.obj") +
+                                  " --width 16 --height 16 --memory-limit 1536K -o " + shellQuoted(image),
                               temp_);
     expectRefused(run, image, "loading the 2 textures of this render needs 2.0 MiB");
 }

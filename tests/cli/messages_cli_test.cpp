@@ -12,6 +12,7 @@
 #include "cli/options.h"
 #include "cli/run_facet.h"
 #include "scene/knobs.h"
+#include "support/bundled_models.h"
 #include "support/temp_folder.h"
 
 namespace facet {
@@ -20,7 +21,7 @@ namespace {
 using testing_support::runFacet;
 using testing_support::TempFolder;
 
-const std::string kCube = FACET_SOURCE_DIR "/models/cube/cube.obj";
+using testing_support::kCube;
 
 // Catches: CLI11's "--width: At Most 1 required but received 2" back, a second line, or another exit
 // status than a bad command line's (2), for any command.

@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include "run_facet.h"
+#include "support/bundled_models.h"
 
 namespace facet {
 namespace {
@@ -25,15 +26,10 @@ using testing_support::runFacet;
 using testing_support::RunResult;
 using testing_support::TempFolder;
 
-const fs::path kCube = fs::path(FACET_SOURCE_DIR) / "models/cube/cube.obj";
+using testing_support::kCube;
 const std::string kPngSignature = "\x89PNG\r\n\x1a\n";
 
-std::string quoted(const fs::path& path) {
-    std::string text = "'";  // appended piece by piece: GCC 12 warns falsely on "'" + string (-Wrestrict)
-    text += path.string();
-    text += '\'';
-    return text;
-}
+using testing_support::shellQuoted;
 
 // Reads a FIFO on another thread while facet runs; get() lets a reader go that facet never wrote to
 // (a reader waiting to open a FIFO is let go by a writer opening it), so a failing test cannot hang.
@@ -76,7 +72,7 @@ TEST(OutputKindsCli, RenderIntoAFifoStreamsTheImage) {
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
     FifoReader reader(fifo);
     const RunResult run =
-        runFacet("render " + quoted(kCube) + " --width 32 --height 24 -o " + quoted(fifo), dir);
+        runFacet("render " + shellQuoted(kCube) + " --width 32 --height 24 -o " + shellQuoted(fifo), dir);
     const std::string image = reader.get();
     EXPECT_EQ(run.status, 0) << run.err;
     EXPECT_EQ(image.rfind(kPngSignature, 0), 0u) << "the reader got " << image.size() << " bytes";
@@ -87,7 +83,7 @@ TEST(OutputKindsCli, RenderIntoAFifoStreamsTheImage) {
 TEST(OutputKindsCli, RenderToDashWritesThePngToStandardOutput) {
     TempFolder dir;
     const RunResult run =
-        runFacet("render " + quoted(kCube) + " --width 32 --height 24 -o -", dir, dir.path());
+        runFacet("render " + shellQuoted(kCube) + " --width 32 --height 24 -o -", dir, dir.path());
     EXPECT_EQ(run.status, 0) << run.err;
     EXPECT_EQ(run.out.rfind(kPngSignature, 0), 0u);
     EXPECT_EQ(run.out.find("facet: wrote"), std::string::npos) << "a report went into the image";
@@ -104,7 +100,8 @@ TEST(OutputKindsCli, RenderThroughLinksWritesTheirTargets) {
     fs::create_symlink(dir.path() / "made.png", dir.path() / "dangling.png");
     for (const char* link : {"link.png", "dangling.png"}) {
         const RunResult run = runFacet(
-            "render " + quoted(kCube) + " --width 32 --height 24 -o " + quoted(dir.path() / link), dir);
+            "render " + shellQuoted(kCube) + " --width 32 --height 24 -o " + shellQuoted(dir.path() / link),
+            dir);
         EXPECT_EQ(run.status, 0) << link << ": " << run.err;
         EXPECT_TRUE(fs::is_symlink(dir.path() / link)) << link << " was replaced";
     }
@@ -118,13 +115,13 @@ TEST(OutputKindsCli, FoldersAreRefusedInOneLine) {
     fs::create_directories(dir.path() / "folder.png");
     fs::create_symlink(dir.path() / "folder.png", dir.path() / "to-folder.json");
     const RunResult image =
-        runFacet("render " + quoted(kCube) + " -o " + quoted(dir.path() / "folder.png"), dir);
+        runFacet("render " + shellQuoted(kCube) + " -o " + shellQuoted(dir.path() / "folder.png"), dir);
     EXPECT_EQ(image.status, 1);
     EXPECT_EQ(image.err,
               "facet: error: " + (dir.path() / "folder.png").string() + ": is a folder, not an image file\n");
-    const RunResult json = runFacet(
-        "step " + quoted(kCube) + " --width 32 --height 24 --json " + quoted(dir.path() / "to-folder.json"),
-        dir);
+    const RunResult json = runFacet("step " + shellQuoted(kCube) + " --width 32 --height 24 --json " +
+                                        shellQuoted(dir.path() / "to-folder.json"),
+                                    dir);
     EXPECT_EQ(json.status, 1);
     EXPECT_EQ(json.err, "facet: error: " + (dir.path() / "to-folder.json").string() +
                             ": cannot write: it is a folder\n");
@@ -138,7 +135,7 @@ TEST(OutputKindsCli, StepJsonIntoAFifo) {
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
     FifoReader reader(fifo);
     const RunResult run =
-        runFacet("step " + quoted(kCube) + " --width 32 --height 24 --json " + quoted(fifo), dir);
+        runFacet("step " + shellQuoted(kCube) + " --width 32 --height 24 --json " + shellQuoted(fifo), dir);
     const std::string json = reader.get();
     EXPECT_EQ(run.status, 0) << run.err;
     EXPECT_EQ(json.rfind("{", 0), 0u) << json.substr(0, 80);
@@ -148,7 +145,7 @@ TEST(OutputKindsCli, StepJsonIntoAFifo) {
 // Catches: `--html ""` reported as ": cannot create the folder: Invalid argument".
 TEST(OutputKindsCli, EmptyHtmlFolderNameIsNamed) {
     TempFolder dir;
-    const RunResult run = runFacet("step " + quoted(kCube) + " --width 32 --height 24 --html ''", dir);
+    const RunResult run = runFacet("step " + shellQuoted(kCube) + " --width 32 --height 24 --html ''", dir);
     EXPECT_EQ(run.status, 1);
     EXPECT_EQ(run.err, "facet: error: --html needs the name of a folder to write into (got an empty name)\n");
 }
@@ -158,7 +155,8 @@ TEST(OutputKindsCli, EmptyHtmlFolderNameIsNamed) {
 TEST(OutputKindsCli, BenchCsvFolderIsRefusedBeforeTheBenchmark) {
     TempFolder dir;
     fs::create_directories(dir.path() / "tables");
-    const RunResult run = runFacet("bench --vs-mesa --quick --csv " + quoted(dir.path() / "tables"), dir);
+    const RunResult run =
+        runFacet("bench --vs-mesa --quick --csv " + shellQuoted(dir.path() / "tables"), dir);
     EXPECT_EQ(run.status, 1);
     EXPECT_EQ(run.out, "") << "the benchmark began";
     EXPECT_EQ(run.err,
@@ -172,8 +170,8 @@ TEST(OutputKindsCli, ListFifoNobodyWritesIsGivenUp) {
     const fs::path fifo = dir.path() / "list";
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
     ::setenv("FACET_PIPE_WAIT_SECONDS", "0.3", 1);
-    const RunResult run =
-        runFacet("render --list " + quoted(fifo) + " -o " + quoted(dir.path() / "{index}.png"), dir);
+    const RunResult run = runFacet(
+        "render --list " + shellQuoted(fifo) + " -o " + shellQuoted(dir.path() / "{index}.png"), dir);
     ::unsetenv("FACET_PIPE_WAIT_SECONDS");
     EXPECT_EQ(run.status, 1);
     EXPECT_NE(run.err.find("facet: error: " + fifo.string() +
@@ -186,8 +184,9 @@ TEST(OutputKindsCli, ListFifoNobodyWritesIsGivenUp) {
 TEST(OutputKindsCli, EndlessListFromAPipeIsBounded) {
     TempFolder dir;
     const fs::path err = dir.path() / "stderr.txt", out = dir.path() / "stdout.txt";
-    const std::string command = "yes " + quoted(kCube) + " | '" + FACET_BINARY + "' render --list - -o " +
-                                quoted(dir.path() / "{index}.png") + " >" + quoted(out) + " 2>" + quoted(err);
+    const std::string command = "yes " + shellQuoted(kCube) + " | '" + FACET_BINARY +
+                                "' render --list - -o " + shellQuoted(dir.path() / "{index}.png") + " >" +
+                                shellQuoted(out) + " 2>" + shellQuoted(err);
     const int raw = std::system(command.c_str());
     ASSERT_TRUE(WIFEXITED(raw));
     EXPECT_EQ(WEXITSTATUS(raw), 1);

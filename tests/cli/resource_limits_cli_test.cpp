@@ -22,6 +22,7 @@
 #include <gtest/gtest.h>
 
 #include "cli/run_facet.h"
+#include "support/bundled_models.h"
 #include "support/sanitizers.h"
 
 namespace facet {
@@ -32,8 +33,8 @@ using testing_support::RunResult;
 using testing_support::TempFolder;
 namespace fs = std::filesystem;
 
-const std::string kCube = std::string(FACET_SOURCE_DIR) + "/models/cube/cube.obj";
-const std::string kSpot = std::string(FACET_SOURCE_DIR) + "/models/spot/spot_triangulated.obj";
+using testing_support::kCube;
+using testing_support::kSpot;
 
 struct Limits {
     rlim_t tasks = RLIM_INFINITY;         // RLIMIT_NPROC: this user's processes and threads together

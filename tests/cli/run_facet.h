@@ -20,6 +20,14 @@ inline std::string readText(const std::filesystem::path& file) {
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
+// `path` in single quotes: one word of the shell command runFacet runs.
+inline std::string shellQuoted(const std::filesystem::path& path) {
+    std::string text = "'";  // appended piece by piece: GCC 12 warns falsely on "'" + s (-Wrestrict)
+    text += path.string();
+    text += '\'';
+    return text;
+}
+
 #ifdef FACET_BINARY
 struct RunResult {
     int status = -1;

@@ -19,7 +19,7 @@ using testing_support::runFacet;
 using testing_support::RunResult;
 using testing_support::TempFolder;
 
-const std::string kSpot =
+const std::string kSpotArguments =
     std::string("'") + FACET_SOURCE_DIR + "/models/spot/spot_triangulated.obj' --width 96 --height 72";
 
 // Columns a line takes: UTF-8 continuation bytes take none.
@@ -37,7 +37,7 @@ TEST(StepCli, WithoutATerminalPrintsEveryScreenWithin80Columns) {
     TempFolder dir;
     for (const char* shading : {"flat", "gouraud", "phong"}) {
         SCOPED_TRACE(shading);
-        const RunResult run = runFacet("step " + kSpot + " --shading " + shading, dir);
+        const RunResult run = runFacet("step " + kSpotArguments + " --shading " + shading, dir);
         ASSERT_EQ(run.status, 0) << run.err;
         for (const char* title : {"Pixel history of", "Input: triangle", "Vertex shader: object",
                                   "Clipping:", "Divide and viewport", "Setup:", "Rasterization:",
@@ -54,12 +54,12 @@ TEST(StepCli, WithoutATerminalPrintsEveryScreenWithin80Columns) {
 // msaa4 draws the frame 4 times.
 TEST(StepCli, AntialiasingIsRefusedSayingWhatItDoes) {
     TempFolder dir;
-    const RunResult msaa = runFacet("step " + kSpot + " --print --aa msaa4", dir);
+    const RunResult msaa = runFacet("step " + kSpotArguments + " --print --aa msaa4", dir);
     EXPECT_EQ(msaa.status, 1);
     EXPECT_NE(msaa.err.find("--aa msaa4"), std::string::npos) << msaa.err;
     EXPECT_NE(msaa.err.find("tests coverage and depth at 4 sample positions"), std::string::npos) << msaa.err;
     EXPECT_EQ(msaa.err.find("times"), std::string::npos) << msaa.err;
-    const RunResult ssaa = runFacet("step " + kSpot + " --print --aa ssaa4", dir);
+    const RunResult ssaa = runFacet("step " + kSpotArguments + " --print --aa ssaa4", dir);
     EXPECT_EQ(ssaa.status, 1);
     EXPECT_NE(ssaa.err.find("draws the frame 4 times"), std::string::npos) << ssaa.err;
 }
@@ -70,7 +70,7 @@ TEST(StepCli, JsonHasThePixelAskedForAndItsHistory) {
     TempFolder dir;
     const auto json = dir.path() / "trace.json";
     const RunResult run =
-        runFacet("step " + kSpot + " --pixel 40,30 --print --json '" + json.string() + "'", dir);
+        runFacet("step " + kSpotArguments + " --pixel 40,30 --print --json '" + json.string() + "'", dir);
     ASSERT_EQ(run.status, 0) << run.err;
     const nlohmann::json trace = nlohmann::json::parse(readText(json));
     EXPECT_EQ(trace["pixel"]["x"], 40);
@@ -87,7 +87,8 @@ TEST(StepCli, JsonHasThePixelAskedForAndItsHistory) {
 // --versus's options not applied to the second trace (no difference), or applied to both.
 TEST(StepCli, VersusMarksWhereAffineInterpolationFirstDiffers) {
     TempFolder dir;
-    const RunResult run = runFacet("step " + kSpot + " --pixel 48,30 --versus '--interpolation affine'", dir);
+    const RunResult run =
+        runFacet("step " + kSpotArguments + " --pixel 48,30 --versus '--interpolation affine'", dir);
     ASSERT_EQ(run.status, 0) << run.err;
     // The pixel history lists what interpolation gave each fragment: the weights part there first.
     EXPECT_NE(run.out.find("They first differ in \"Pixel history of (48, 30)\""), std::string::npos)
@@ -97,7 +98,7 @@ TEST(StepCli, VersusMarksWhereAffineInterpolationFirstDiffers) {
     // And the interpolation screen says the same.
     EXPECT_NE(run.out.find(" > Affine interpolation (no perspective correction)"), std::string::npos);
     const RunResult same =
-        runFacet("step " + kSpot + " --pixel 48,30 --versus '--interpolation perspective'", dir);
+        runFacet("step " + kSpotArguments + " --pixel 48,30 --versus '--interpolation perspective'", dir);
     ASSERT_EQ(same.status, 0) << same.err;
     EXPECT_NE(same.out.find("The two traces are the same"), std::string::npos) << same.out.substr(0, 400);
 }
@@ -108,7 +109,7 @@ TEST(StepCli, VersusMarksWhereAffineInterpolationFirstDiffers) {
 // preset not reaching the step mode, the versus view not showing both forms, or its lines too wide.
 TEST(StepCli, VersusLecturePresetNamesTheDifferingForms) {
     TempFolder dir;
-    const std::string cookTorrance = kSpot + " --pixel 48,30 --reflection cook-torrance";
+    const std::string cookTorrance = kSpotArguments + " --pixel 48,30 --reflection cook-torrance";
     const RunResult lecture = runFacet("step " + cookTorrance + " --lighting lecture --print", dir);
     ASSERT_EQ(lecture.status, 0) << lecture.err;
     EXPECT_NE(lecture.out.find("f_r = metalness·D·F·G/(π(N·V)(N·L))·c_base"), std::string::npos)
@@ -134,7 +135,7 @@ TEST(StepCli, BadRequestsAreRefusedWithOneLine) {
          {std::string(" --pixel 96,0"), std::string(" --pixel 3"), std::string(" --pixel -1,2"),
           std::string(" --triangle 99999"), std::string(" --versus '--shading wobbly'")}) {
         SCOPED_TRACE(bad);
-        const RunResult run = runFacet("step " + kSpot + bad, dir);
+        const RunResult run = runFacet("step " + kSpotArguments + bad, dir);
         EXPECT_EQ(run.status, 1);
         EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
         EXPECT_EQ(run.err.rfind("facet: error: ", 0), 0u) << run.err;
@@ -162,16 +163,16 @@ TEST(StepCli, HtmlStepTooFineIsRefusedBeforeAnythingIsWritten) {
 // from --print, a format name not reaching its writer.
 TEST(StepCli, ScreenPrintsOneScreenInTheFormatAsked) {
     TempFolder dir;
-    const std::string all = runFacet("step " + kSpot + " --print", dir).out;
-    const RunResult text = runFacet("step " + kSpot + " --screen clip", dir);
+    const std::string all = runFacet("step " + kSpotArguments + " --print", dir).out;
+    const RunResult text = runFacet("step " + kSpotArguments + " --screen clip", dir);
     ASSERT_EQ(text.status, 0) << text.err;
     EXPECT_NE(all.find("\n" + text.out), std::string::npos) << text.out;
     EXPECT_EQ(text.out.find("Pixel history"), std::string::npos);
-    const RunResult markdown = runFacet("step " + kSpot + " --screen clip --format markdown", dir);
+    const RunResult markdown = runFacet("step " + kSpotArguments + " --screen clip --format markdown", dir);
     EXPECT_EQ(markdown.out.rfind("## Clipping", 0), 0u) << markdown.out;
-    const RunResult latex = runFacet("step " + kSpot + " --screen clip --format latex", dir);
+    const RunResult latex = runFacet("step " + kSpotArguments + " --screen clip --format latex", dir);
     EXPECT_EQ(latex.out.rfind("\\frametitle{Clipping", 0), 0u) << latex.out;
-    const RunResult walk = runFacet("step " + kSpot + " --format latex", dir);
+    const RunResult walk = runFacet("step " + kSpotArguments + " --format latex", dir);
     EXPECT_NE(walk.out.find("\\begin{frame}\n\\frametitle{Pixel history"), std::string::npos);
     EXPECT_NE(walk.out.find("\\frametitle{Encoding"), std::string::npos);
 }
@@ -181,7 +182,7 @@ TEST(StepCli, StageScaleWritesTheImagesThatManyTimesLarger) {
     TempFolder dir;
     const auto stages = dir.path() / "stages";
     const RunResult run =
-        runFacet("step " + kSpot + " --print --stages '" + stages.string() + "' --stage-scale 2", dir);
+        runFacet("step " + kSpotArguments + " --print --stages '" + stages.string() + "' --stage-scale 2", dir);
     ASSERT_EQ(run.status, 0) << run.err;
     // A PNG's size: the IHDR chunk's width and height, big-endian, at bytes 16 and 20.
     const std::string png = readText(stages / "final.png");
@@ -211,7 +212,7 @@ TEST(StepCli, BadScreenOrScaleIsRefusedWithOneLine) {
           Bad{" --stage-scale 200" + stages, 1, "at most 16384 pixels a side (--stage-scale 170"},
           Bad{" --screen clip --versus '--shading flat'", 1, "--versus"}}) {
         SCOPED_TRACE(bad.options);
-        const RunResult run = runFacet("step " + kSpot + bad.options, dir);
+        const RunResult run = runFacet("step " + kSpotArguments + bad.options, dir);
         EXPECT_EQ(run.status, bad.status);
         EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
         EXPECT_NE(run.err.find(bad.says), std::string::npos) << run.err;
@@ -272,7 +273,7 @@ TEST(StepCli, BadHtmlRegionsAreRefusedWithOneLine) {
          {" --html-region 1,2,3" + page, " --html-region 0,0,0,5" + page, " --html-region 90,0,10,10" + page,
           " --html-region a,b,c,d" + page, std::string(" --html-region 0,0,5,5")}) {
         SCOPED_TRACE(bad);
-        const RunResult run = runFacet("step " + kSpot + bad, dir);
+        const RunResult run = runFacet("step " + kSpotArguments + bad, dir);
         EXPECT_EQ(run.status, 1);
         EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
         EXPECT_NE(run.err.find("--html-region"), std::string::npos) << run.err;

@@ -34,12 +34,7 @@ const fs::path kSource = FACET_SOURCE_DIR;
 const fs::path kShaders = kSource / "tests/cli/shaders";
 const fs::path kModel = kSource / "models/spot/spot_triangulated.obj";
 
-// Built with a stream: GCC 12 reports a false -Wrestrict on "'" + std::string.
-std::string quoted(const fs::path& p) {
-    std::ostringstream text;
-    text << "'" << p.string() << "'";
-    return text.str();
-}
+using testing_support::shellQuoted;
 
 bool contains(const std::string& text, const std::string& part) {
     return text.find(part) != std::string::npos;
@@ -68,8 +63,8 @@ void useCache(const fs::path& cache) {
 RunResult render(const TempFolder& dir, const fs::path& image, const std::string& options,
                  const fs::path& workingFolder = {}) {
     return runFacet(
-        "render " + quoted(kModel) + " --width 64 --height 48 -o " + quoted(image) + " " + options, dir,
-        workingFolder);
+        "render " + shellQuoted(kModel) + " --width 64 --height 48 -o " + shellQuoted(image) + " " + options,
+        dir, workingFolder);
 }
 
 // A refused run: status 1, one "facet: error:" line holding `message` (and for `exactlyOneLine`, nothing
@@ -97,7 +92,7 @@ class UserShaderCli : public ::testing::Test {
         return scene;
     }
     RunResult renderScene(const fs::path& scene) const {
-        return runFacet("render " + quoted(scene) + " -o " + quoted(image()), dir);
+        return runFacet("render " + shellQuoted(scene) + " -o " + shellQuoted(image()), dir);
     }
 };
 
@@ -108,7 +103,7 @@ class UserShaderCli : public ::testing::Test {
 TEST_F(UserShaderCli, ModuleFromFacetAddShaderDraws) {
     const RunResult builtin = render(dir, dir.path() / "builtin.ppm", "");
     ASSERT_EQ(builtin.status, 0) << builtin.err;
-    const RunResult toon = render(dir, image(), "--shader " + quoted(FACET_TEST_TOON_MODULE));
+    const RunResult toon = render(dir, image(), "--shader " + shellQuoted(FACET_TEST_TOON_MODULE));
     ASSERT_EQ(toon.status, 0) << toon.err;
     EXPECT_FALSE(contains(toon.err, "compiling")) << "a .so is loaded as it is: " << toon.err;
     EXPECT_NE(readText(image()), readText(dir.path() / "builtin.ppm"));
@@ -118,20 +113,20 @@ TEST_F(UserShaderCli, ModuleFromFacetAddShaderDraws) {
 
 // Breaks caught: a missing shader file reaching the compiler (its messages instead of facet's line).
 TEST_F(UserShaderCli, ShaderFileThatDoesNotExist) {
-    expectRefused(render(dir, image(), "--shader " + quoted(dir.path() / "missing.cpp")),
+    expectRefused(render(dir, image(), "--shader " + shellQuoted(dir.path() / "missing.cpp")),
                   "missing.cpp: no such shader file");
 }
 
 // Breaks caught: a text file named .so passed to the program crashing it or giving dlerror alone.
 TEST_F(UserShaderCli, FileNamedSoThatIsNoSharedLibrary) {
     writeFile(dir.path() / "fake.so", "not an ELF file\n");
-    expectRefused(render(dir, image(), "--shader " + quoted(dir.path() / "fake.so")),
+    expectRefused(render(dir, image(), "--shader " + shellQuoted(dir.path() / "fake.so")),
                   "fake.so: the shader module does not load: ");
 }
 
 // Breaks caught: a library without FACET_SHADER's entry points called through a null pointer.
 TEST_F(UserShaderCli, SharedLibraryWithoutEntryPoints) {
-    expectRefused(render(dir, image(), "--shader " + quoted(FACET_TEST_NO_ENTRY_MODULE)),
+    expectRefused(render(dir, image(), "--shader " + shellQuoted(FACET_TEST_NO_ENTRY_MODULE)),
                   "not a facet shader module (it exports no facet_shader_abi or facet_shader_module: "
                   "does the shader's file end with FACET_SHADER(Name)?)");
 }
@@ -139,7 +134,7 @@ TEST_F(UserShaderCli, SharedLibraryWithoutEntryPoints) {
 // Breaks caught: a module of another Facet's headers run with this one's layouts (its module entry,
 // null in the stand-in, would be called).
 TEST_F(UserShaderCli, ModuleOfAnotherFacetIsRefused) {
-    expectRefused(render(dir, image(), "--shader " + quoted(FACET_TEST_OTHER_KEY_MODULE)),
+    expectRefused(render(dir, image(), "--shader " + shellQuoted(FACET_TEST_OTHER_KEY_MODULE)),
                   "the shader module was built for facet 0.0.0, headers 0123456789abcdef, GNU 1.0 (a test's "
                   "stand-in), and this is facet ");
 }
@@ -148,10 +143,11 @@ TEST_F(UserShaderCli, ModuleOfAnotherFacetIsRefused) {
 
 // Breaks caught: a misspelt --uniform silently ignored, or the message not listing the declared ones.
 TEST_F(UserShaderCli, UniformTheShaderDoesNotDeclare) {
-    expectRefused(render(dir, image(), "--shader " + quoted(FACET_TEST_TOON_MODULE) + " --uniform band=3"),
-                  "--uniform band=3");
+    expectRefused(
+        render(dir, image(), "--shader " + shellQuoted(FACET_TEST_TOON_MODULE) + " --uniform band=3"),
+        "--uniform band=3");
     const RunResult run =
-        render(dir, image(), "--shader " + quoted(FACET_TEST_TOON_MODULE) + " --uniform band=3");
+        render(dir, image(), "--shader " + shellQuoted(FACET_TEST_TOON_MODULE) + " --uniform band=3");
     EXPECT_TRUE(contains(run.err, "(it has: bands (int, 4), outline (float, 0.3), ink (vec3, (0, 0, 0)))"))
         << run.err;
     // In the scene file: the uniform's place in the file, and the shader's declarations.
@@ -165,7 +161,7 @@ TEST_F(UserShaderCli, UniformTheShaderDoesNotDeclare) {
 // Breaks caught: a value of the wrong type converted (true as an int, a vec3 from one number, a
 // fraction for an int) instead of refused.
 TEST_F(UserShaderCli, UniformValueOfTheWrongType) {
-    const std::string toon = "--shader " + quoted(FACET_TEST_TOON_MODULE);
+    const std::string toon = "--shader " + shellQuoted(FACET_TEST_TOON_MODULE);
     expectRefused(render(dir, image(), toon + " --uniform bands=true"), "declares bands as int");
     expectRefused(render(dir, image(), toon + " --uniform ink=1,2"), "declares ink as vec3: give 3 numbers");
     expectRefused(render(dir, image(), toon + " --uniform outline=false"), "declares outline as float");
@@ -222,7 +218,7 @@ TEST_F(UserShaderCli, CompileErrorPointsAtTheFileAndLine) {
 // each is written (shader_module.h's checkParts()). Breaks caught: the static_asserts' readable messages
 // lost among (or replaced by) template errors from the pipeline.
 TEST_F(UserShaderCli, WrongPartsSayHowThePartsAreWritten) {
-    const RunResult run = render(dir, image(), "--shader " + quoted(kShaders / "wrong_parts.cpp"));
+    const RunResult run = render(dir, image(), "--shader " + shellQuoted(kShaders / "wrong_parts.cpp"));
     expectRefused(run, "wrong_parts.cpp: the shader did not compile", false);
     EXPECT_TRUE(contains(run.err,
                          "a user shader's vertex part: static VertexOut<VaryingsT<float>> "
@@ -254,7 +250,7 @@ void writeShaderWithHelper(const fs::path& folder, const std::string& light) {
 // for ever (or the damaged file found again by dlopen under its name).
 TEST_F(UserShaderCli, CacheCompilesOnceAndAgainWhenTheShaderItsHeaderOrTheModuleChanges) {
     writeShaderWithHelper(dir.path(), "0.8f");
-    const std::string shader = "--shader " + quoted(dir.path() / "shader.cpp");
+    const std::string shader = "--shader " + shellQuoted(dir.path() / "shader.cpp");
     const RunResult first = render(dir, dir.path() / "first.ppm", shader);
     ASSERT_EQ(first.status, 0) << first.err;
     EXPECT_TRUE(contains(first.err, "facet: compiling ")) << first.err;
@@ -321,7 +317,7 @@ TEST_F(UserShaderCli, SameFileNameInTwoFoldersDoesNotCollide) {
 // about to load, or both compiling (a job array's hundred tasks compiling one shader a hundred times).
 TEST_F(UserShaderCli, TwoRunsAtOnceBothSucceedAndOneCompiles) {
     fs::copy_file(kShaders / "toon.cpp", dir.path() / "toon.cpp");
-    const std::string shader = "--shader " + quoted(dir.path() / "toon.cpp");
+    const std::string shader = "--shader " + shellQuoted(dir.path() / "toon.cpp");
     TempFolder other("second");  // runFacet keeps each run's output in its folder
     auto second =
         std::async(std::launch::async, [&] { return render(other, dir.path() / "two.ppm", shader); });
@@ -349,7 +345,7 @@ TEST_F(UserShaderCli, CacheFolderThatCannotBeMadeIsAnError) {
     writeFile(dir.path() / "file", "a file where the cache's parent folder should be\n");
     useCache(dir.path() / "file/cache");
     fs::copy_file(kShaders / "toon.cpp", dir.path() / "toon.cpp");
-    expectRefused(render(dir, image(), "--shader " + quoted(dir.path() / "toon.cpp")),
+    expectRefused(render(dir, image(), "--shader " + shellQuoted(dir.path() / "toon.cpp")),
                   "toon.cpp: cannot make the shader cache " + (dir.path() / "file/cache").string() + ": ");
 }
 
@@ -369,15 +365,16 @@ TEST_F(UserShaderCli, ReadmeShaderDrawsAndIsTraced) {
     ASSERT_LT(codeStart, codeEnd);
     const fs::path shader = dir.path() / "bands.cpp";
     writeFile(shader, readme.substr(codeStart + 7, codeEnd - codeStart - 7));
-    const RunResult three = render(dir, image(), "--shader " + quoted(shader) + " --uniform bands=3");
+    const RunResult three = render(dir, image(), "--shader " + shellQuoted(shader) + " --uniform bands=3");
     ASSERT_EQ(three.status, 0) << three.err;
     const RunResult two =
-        render(dir, dir.path() / "two.ppm", "--shader " + quoted(shader) + " --uniform bands=2");
+        render(dir, dir.path() / "two.ppm", "--shader " + shellQuoted(shader) + " --uniform bands=2");
     ASSERT_EQ(two.status, 0) << two.err;
     EXPECT_NE(readText(image()), readText(dir.path() / "two.ppm"));
-    const RunResult step = runFacet(
-        "step " + quoted(kModel) + " --width 64 --height 48 --pixel 32,24 --print --shader " + quoted(shader),
-        dir);
+    const RunResult step =
+        runFacet("step " + shellQuoted(kModel) + " --width 64 --height 48 --pixel 32,24 --print --shader " +
+                     shellQuoted(shader),
+                 dir);
     ASSERT_EQ(step.status, 0) << step.err;
     EXPECT_TRUE(contains(step.out, "level = ")) << step.out;
 }

@@ -20,6 +20,7 @@
 #include "io/image_io.h"
 #include "io/stored_bytes.h"
 #include "pipeline/thread_pool.h"
+#include "support/file_bytes.h"
 #include "support/temp_folder.h"
 
 namespace facet {
@@ -122,10 +123,7 @@ void writeKind(const fs::path& path, const PngKind& kind) {
 
 class ImageLibraries : public TempFolderTest {};
 
-std::string fileBytes(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using testing_support::fileBytes;
 
 // Every PNG kind reads to the same header and the same values, as float and (8-bit) as codes, through
 // the built-in reader and OpenImageIO. Breaks caught: a palette not expanded, grey below 8 bits left

@@ -21,6 +21,7 @@
 #include <gtest/gtest.h>
 
 #include "base/errors.h"
+#include "support/bundled_models.h"
 #include "support/temp_folder.h"
 
 namespace facet {
@@ -28,7 +29,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kModels = FACET_SHARED_MODELS;
+using testing_support::kSharedModels;
 
 // Each test gets its own folder (support/temp_folder.h), so tests may run in parallel (ctest -j)
 // without sharing files.
@@ -1062,7 +1063,7 @@ TEST_F(ObjImport, MtlValuesInMessagesAreShortAndPrintable) {
 
 TEST_F(ObjImport, DWinsOverTrInEitherOrder) {
     // Material.001 has d 0.75 then Tr 0.5; Material.002 the other way round. d wins in both.
-    const fs::path path = kModels / "tinyobjloader-tests" / "tr-and-d-issue-43.obj";
+    const fs::path path = kSharedModels / "tinyobjloader-tests" / "tr-and-d-issue-43.obj";
     const Mesh mesh = loadObj(path);
 
     ASSERT_EQ(mesh.materials.size(), 2u);
@@ -1070,7 +1071,7 @@ TEST_F(ObjImport, DWinsOverTrInEitherOrder) {
     EXPECT_EQ(mesh.materials[1].name, "Material.002");
     EXPECT_FLOAT_EQ(mesh.materials[0].opacity, 0.75f);
     EXPECT_FLOAT_EQ(mesh.materials[1].opacity, 0.75f);
-    const std::string mtl = (kModels / "tinyobjloader-tests" / "tr-and-d-issue-43.mtl").string();
+    const std::string mtl = (kSharedModels / "tinyobjloader-tests" / "tr-and-d-issue-43.mtl").string();
     EXPECT_EQ(
         mesh.warnings,
         (std::vector<std::string>{
@@ -1278,7 +1279,7 @@ TEST(ObjImportModels, TinyobjloaderTestsLoadOrThrowInputError) {
     };
     std::map<std::string, std::string> refusals;
     std::size_t loaded = 0;
-    for (const fs::directory_entry& entry : fs::directory_iterator(kModels / "tinyobjloader-tests")) {
+    for (const fs::directory_entry& entry : fs::directory_iterator(kSharedModels / "tinyobjloader-tests")) {
         if (entry.path().extension() != ".obj") continue;
         const std::string file = entry.path().string();
         try {
@@ -1331,11 +1332,11 @@ TEST(ObjImportModels, BundledModelsLoadWithTheirTriangleCounts) {
     };
     // Every .obj outside tinyobjloader-tests/ must be in the table, so a new model cannot be skipped.
     std::set<std::string> found;
-    for (const fs::directory_entry& folder : fs::directory_iterator(kModels)) {
+    for (const fs::directory_entry& folder : fs::directory_iterator(kSharedModels)) {
         if (!folder.is_directory() || folder.path().filename() == "tinyobjloader-tests") continue;
         for (const fs::directory_entry& entry : fs::directory_iterator(folder.path())) {
             if (entry.path().extension() == ".obj")
-                found.insert(fs::relative(entry.path(), kModels).generic_string());
+                found.insert(fs::relative(entry.path(), kSharedModels).generic_string());
         }
     }
     std::set<std::string> listed;
@@ -1345,7 +1346,7 @@ TEST(ObjImportModels, BundledModelsLoadWithTheirTriangleCounts) {
 
     for (const auto& [name, triangles] : expected) {
         SCOPED_TRACE(name);
-        const Mesh mesh = loadObj(kModels / name);
+        const Mesh mesh = loadObj(kSharedModels / name);
         EXPECT_EQ(mesh.stats.trianglesKept, triangles);
         EXPECT_EQ(mesh.stats.degenerateSkipped, 0u);
         EXPECT_EQ(mesh.indices.size(), 3 * triangles);
@@ -1371,7 +1372,7 @@ TEST(ObjImportModels, BundledModelsLoadWithTheirTriangleCounts) {
 // the crease rule: every corner's normal is the normalised sum of the cross products of the triangles
 // at its position within 60° of its own, and corners share a vertex exactly when their sets agree.
 TEST(ObjImportModels, BunnyNormalsFollowTheCreaseRule) {
-    const fs::path path = kModels / "stanford-bunny" / "stanford-bunny.obj";
+    const fs::path path = kSharedModels / "stanford-bunny" / "stanford-bunny.obj";
     const Mesh mesh = loadObj(path);
     const Mesh welded = loadObj(path, kSmoothAll);
 
@@ -1432,7 +1433,7 @@ TEST(ObjImportModels, BunnyNormalsFollowTheCreaseRule) {
 }
 
 TEST(ObjImportModels, CubeMcguireIsTexturedAndWarningFree) {
-    const fs::path folder = kModels / "cube-mcguire";
+    const fs::path folder = kSharedModels / "cube-mcguire";
     const Mesh mesh = loadObj(folder / "cube.obj");
 
     EXPECT_TRUE(mesh.warnings.empty());
@@ -1448,7 +1449,7 @@ TEST(ObjImportModels, CubeMcguireIsTexturedAndWarningFree) {
 }
 
 TEST(ObjImportModels, CornellBoxHasOnePartPerMaterial) {
-    const Mesh mesh = loadObj(kModels / "cornell-box" / "CornellBox-Original.obj");
+    const Mesh mesh = loadObj(kSharedModels / "cornell-box" / "CornellBox-Original.obj");
 
     EXPECT_TRUE(mesh.warnings.empty());
     std::vector<std::string> names;
@@ -1461,7 +1462,7 @@ TEST(ObjImportModels, CornellBoxHasOnePartPerMaterial) {
 }
 
 TEST(ObjImportModels, UnknownMaterialInBundledFileWarnsWithItsLine) {
-    const fs::path path = kModels / "lat-long-sphere" / "sphere-cylcoords-1k.obj";
+    const fs::path path = kSharedModels / "lat-long-sphere" / "sphere-cylcoords-1k.obj";
     const Mesh mesh = loadObj(path);
     ASSERT_EQ(mesh.warnings.size(), 1u);
     EXPECT_EQ(mesh.warnings[0].rfind(path.string() + ":", 0), 0u);

@@ -15,6 +15,7 @@
 #include "base/errors.h"
 #include "io/obj_import.h"
 #include "io/obj_scan.h"
+#include "support/bundled_models.h"
 #include "support/temp_folder.h"
 
 namespace facet {
@@ -22,7 +23,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kModels = FACET_SHARED_MODELS;
+using testing_support::kSharedModels;
 
 // A mesh, or the error that refused the file, as one comparable record: floats by their bytes.
 struct Loaded {
@@ -78,9 +79,9 @@ void expectSameBothWays(const fs::path& path) {
 // Catches: Facet's reader reading a number, an index, a face or a material of a real model differently
 // from tinyobjloader (a mesh or a message that changed), on any file of ../shared/models.
 TEST(ObjReader, EveryModelAsTinyobjloaderReadsIt) {
-    if (!fs::is_directory(kModels)) GTEST_SKIP() << kModels << " is absent";
+    if (!fs::is_directory(kSharedModels)) GTEST_SKIP() << kSharedModels << " is absent";
     std::size_t files = 0;
-    for (const fs::directory_entry& entry : fs::recursive_directory_iterator(kModels)) {
+    for (const fs::directory_entry& entry : fs::recursive_directory_iterator(kSharedModels)) {
         if (entry.path().extension() != ".obj") continue;
         expectSameBothWays(entry.path());
         ++files;

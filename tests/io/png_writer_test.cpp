@@ -18,6 +18,7 @@
 #include "io/image_file.h"
 #include "io/stored_bytes.h"
 #include "pipeline/thread_pool.h"
+#include "support/file_bytes.h"
 #include "support/temp_folder.h"
 
 namespace facet {
@@ -28,10 +29,7 @@ using testing_support::TempFolderTest;
 
 class PngWriter : public TempFolderTest {};
 
-std::string fileBytes(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using testing_support::fileBytes;
 
 std::uint32_t bigEndian(const std::string& bytes, std::size_t at) {
     std::uint32_t value = 0;

@@ -12,7 +12,7 @@
 namespace facet {
 namespace {
 
-const vec4 kBackground(0.2f, 0.2f, 0.2f, 0.0f);
+const vec4 kClearColour(0.2f, 0.2f, 0.2f, 0.0f);
 
 LinearImage filled(vec4 color) {
     LinearImage image;
@@ -26,23 +26,23 @@ MesaComparison comparison(const LinearImage& facet, const LinearImage& mesa) {
     MesaComparison c;
     c.facet = facet;
     c.mesa = mesa;
-    c.difference = comparePixels(facet, mesa, c.encoding, kBackground);
+    c.difference = comparePixels(facet, mesa, c.encoding, kClearColour);
     return c;
 }
 
 // Two empty frames agree pixel for pixel, and prove nothing: a renderer that draws nothing must not pass
 // (breaks caught: agrees() without drewSomething(); comparePixels not counting covered pixels).
 TEST(MesaComparison, TwoEmptyFramesAreNotAnAgreement) {
-    const MesaComparison empty = comparison(filled(kBackground), filled(kBackground));
+    const MesaComparison empty = comparison(filled(kClearColour), filled(kClearColour));
     EXPECT_EQ(empty.difference.within2, 1.0);
     EXPECT_FALSE(empty.drewSomething());
     EXPECT_FALSE(empty.agrees());
     EXPECT_NE(describe(empty).find("verdict    NOTHING DRAWN"), std::string::npos) << describe(empty);
 
     // One side drawing and the other not is a difference, not agreement on nothing.
-    LinearImage drawn = filled(kBackground);
+    LinearImage drawn = filled(kClearColour);
     drawn.at(3, 3) = vec4(0.8f, 0.5f, 0.1f, 1.0f);
-    EXPECT_FALSE(comparison(drawn, filled(kBackground)).agrees());
+    EXPECT_FALSE(comparison(drawn, filled(kClearColour)).agrees());
 }
 
 TEST(MesaComparison, EqualDrawnFramesAgree) {

@@ -11,11 +11,12 @@
 #include <gtest/gtest.h>
 
 #include "reference/reference.h"
+#include "support/bundled_models.h"
 
 namespace facet {
 namespace {
 
-const std::filesystem::path kModels = std::filesystem::path(FACET_SOURCE_DIR) / "models";
+using testing_support::kModels;
 const std::filesystem::path kSharedModels = FACET_SHARED_MODELS;
 
 Scene sceneAt(const std::filesystem::path& path, int width, int height) {

@@ -36,7 +36,7 @@ Scene displaceCutoutScene(double displacement, double cut) {
     return scene;
 }
 
-ReferenceComparison compareWithoutTable(const Scene& scene) {
+ReferenceComparison compareWithoutShadowMapTable(const Scene& scene) {
     ReferenceCompareOptions options;
     options.shadowMapTable = false;
     return compareWithReference(scene, options);
@@ -57,9 +57,9 @@ void expectAgreement(const ReferenceComparison& c) {
 // barycentrics (the colours would be off by more than 1/255 across the model).
 TEST(UserShaderReference, DisplacedTrianglesAgreeWithTheRasterizer) {
     const OwnShaderCache cache;
-    const ReferenceComparison flat = compareWithoutTable(displaceCutoutScene(0.0, 2.0));
+    const ReferenceComparison flat = compareWithoutShadowMapTable(displaceCutoutScene(0.0, 2.0));
     expectAgreement(flat);
-    const ReferenceComparison displaced = compareWithoutTable(displaceCutoutScene(0.04, 2.0));
+    const ReferenceComparison displaced = compareWithoutShadowMapTable(displaceCutoutScene(0.04, 2.0));
     expectAgreement(displaced);
     // The vertices did move: the swollen model covers more pixels, in both renderers.
     EXPECT_GT(displaced.surfaces.covered, flat.surfaces.covered + 100);
@@ -79,8 +79,8 @@ TEST(UserShaderReference, DiscardedFragmentsShowWhatIsBehind) {
         s.pipeline.cull = CullMode::None;
         return s;
     };
-    const ReferenceComparison whole = compareWithoutTable(scene(2.0));
-    const ReferenceComparison cut = compareWithoutTable(scene(0.3));
+    const ReferenceComparison whole = compareWithoutShadowMapTable(scene(2.0));
+    const ReferenceComparison cut = compareWithoutShadowMapTable(scene(0.3));
     expectAgreement(cut);
     // Fragments were discarded: the images differ from the whole model's ...
     std::size_t changed = 0;

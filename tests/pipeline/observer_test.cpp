@@ -46,7 +46,7 @@ struct RecordingObserver : NullObserver {
 };
 
 // A shader that discards where its colour's red is above ½: a third way for a fragment to end.
-struct DiscardingShader {
+struct RedDiscardingShader {
     using Attributes = ClipSpaceColorShader::Attributes;
     using Varyings = ClipSpaceColorShader::Varyings;
     using Uniforms = ClipSpaceColorShader::Uniforms;
@@ -111,8 +111,8 @@ TEST(Observer, WatchingChangesNoByte) {
     state.raster.cull = CullMode::None;
     state.interpolation = Interpolation::Affine;
     state.depth.compare = CompareOp::LessEqual;
-    drawBoth<DiscardingShader>(state, randomTriangles<DiscardingShader>(rng, 30), plain, plainContext,
-                               watched, watchedContext, observer);
+    drawBoth<RedDiscardingShader>(state, randomTriangles<RedDiscardingShader>(rng, 30), plain, plainContext,
+                                  watched, watchedContext, observer);
     state.interpolation = Interpolation::PerspectiveCorrect;
     state.blend = BlendMode::Additive;
     drawBoth<BatchColorShader>(state, randomTriangles<BatchColorShader>(rng, 30), plain, plainContext,

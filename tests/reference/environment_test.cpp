@@ -14,6 +14,7 @@
 #include "reference/reference.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
+#include "support/bundled_models.h"
 #include "support/temp_folder.h"
 
 namespace facet {
@@ -64,7 +65,7 @@ LinearImage rasterize(const PreparedScene& prepared, int threads = 1) {
     return toImage(framebuffer);
 }
 
-const std::string kCube = FACET_SOURCE_DIR "/models/cube/cube.obj";
+using testing_support::kCube;
 const std::string kSphere = FACET_SOURCE_DIR "/models/environment/sphere.obj";
 
 TEST(EnvironmentFrame, BackgroundIsTheMapAlongEachViewRay) {

@@ -18,7 +18,7 @@ namespace facet {
 namespace {
 
 // Restores the process's choice when a test that forces one ends.
-class FrameKernelsTest : public testing::Test {
+class FrameKernelsTest : public ::testing::Test {
   protected:
     void TearDown() override { useFrameKernels(initial_); }
     const InstructionSet initial_ = frameKernels().instructionSet;

@@ -18,12 +18,13 @@
 #include "render/renderer.h"
 #include "render/shadow_maps.h"
 #include "scene/scene.h"
+#include "support/bundled_models.h"
 #include "support/temp_folder.h"
 
 namespace facet {
 namespace {
 
-const std::filesystem::path kCube = std::filesystem::path(FACET_SOURCE_DIR) / "models/cube/cube.obj";
+using testing_support::kCube;
 
 // Catches: Framebuffer::bytesFor leaving out a plane (the sample planes of --aa msaaN, the cell
 // states) or counting one the framebuffer does not allocate.
@@ -40,8 +41,8 @@ TEST(MemoryEstimate, FramebufferBytesAreWhatItHolds) {
 // A scene of the cube with `extra` JSON keys, loaded.
 Scene cubeScene(const testing_support::TempFolder& dir, const std::string& extra) {
     const auto file = dir.path() / "scene.json";
-    std::ofstream(file) << R"({"width": 48, "height": 32, )" << extra << R"("objects": [{"model": ")"
-                        << kCube.string() << R"("}]})";
+    std::ofstream(file) << R"({"width": 48, "height": 32, )" << extra << R"("objects": [{"model": ")" << kCube
+                        << R"("}]})";
     return loadScene(file);
 }
 

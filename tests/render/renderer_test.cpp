@@ -19,6 +19,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
+#include "support/bundled_models.h"
 #include "support/temp_folder.h"
 
 namespace facet {
@@ -26,7 +27,7 @@ namespace {
 
 using testing_support::TempFolder;
 
-const std::filesystem::path kModels = std::filesystem::path(FACET_SOURCE_DIR) / "models";
+using testing_support::kModels;
 
 // Pixels whose colour is not the clear colour (the framebuffer is cleared to exactly it).
 std::size_t coveredPixels(const LinearImage& image, const vec4& clearColor) {

@@ -22,12 +22,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr float kAspect = 4.0f / 3.0f;
+constexpr float kImageAspect = 4.0f / 3.0f;
 
-std::string errorOf(const CameraSpec& spec, const Bounds& bounds,
-                    DepthBufferFormat depth = DepthBufferFormat::Float) {
+std::string framingError(const CameraSpec& spec, const Bounds& bounds,
+                         DepthBufferFormat depth = DepthBufferFormat::Float) {
     try {
-        frameCamera(spec, bounds, kAspect, depth);
+        frameCamera(spec, bounds, kImageAspect, depth);
     } catch (const InputError& e) {
         return e.what();
     }
@@ -106,12 +106,12 @@ TEST_F(CameraExtremesTest, EveryNumberKnobIsAcceptedAtItsBounds) {
 // Catches: such a model reported as "outside the view" (a blank image, exit 0) instead of too small.
 TEST(CameraExtremes, SceneBelowTheSmallestNormalFloatIsTooSmallToDraw) {
     const Bounds tiny{vec3(0.0f), vec3(1e-40f, 1e-40f, 0.0f)};
-    const std::string error = errorOf({}, tiny);
+    const std::string error = framingError({}, tiny);
     EXPECT_NE(error.find("too small to draw"), std::string::npos) << error;
     // The smallest normal size still frames, with finite matrices.
     const float smallest = std::numeric_limits<float>::min();
     const Bounds small{vec3(0.0f), vec3(2.0f * smallest)};
-    EXPECT_EQ(errorOf({}, small), "");
+    EXPECT_EQ(framingError({}, small), "");
 }
 
 // A camera for a model of 1e-30 units: eye and target 2.4e-30 apart are not the same point.
@@ -122,7 +122,7 @@ TEST(CameraExtremes, EyeAndTargetOfATinyModelFrameIt) {
     spec.eye = vec3(0.5e-30f, 0.6e-30f, 2.6e-30f);
     spec.target = vec3(0.0f, 0.1e-30f, 0.0f);
     const Bounds box{vec3(-1e-30f), vec3(1e-30f)};
-    const Camera camera = frameCamera(spec, box, kAspect);
+    const Camera camera = frameCamera(spec, box, kImageAspect);
     // The target lands mid-image and in front of the near plane.
     const glm::dvec4 clip =
         camera.clipFromViewExact * camera.viewFromWorldExact * glm::dvec4(glm::dvec3(*spec.target), 1.0);
@@ -137,7 +137,7 @@ TEST(CameraExtremes, EyeAndTargetOfATinyModelFrameIt) {
 TEST(CameraExtremes, EyeAtThePointItLooksAtIsRefused) {
     CameraSpec spec;
     spec.eye = vec3(0.0f);  // the centre of the box below, looked at by default
-    const std::string error = errorOf(spec, {vec3(-1.0f), vec3(1.0f)});
+    const std::string error = framingError(spec, {vec3(-1.0f), vec3(1.0f)});
     EXPECT_NE(error.find("the point it looks at"), std::string::npos) << error;
 }
 
@@ -152,7 +152,7 @@ TEST(CameraExtremes, DefaultNearPlaneInsideAHugeSceneKeepsTheTarget) {
     const Bounds ground{vec3(-1e6f, 0.0f, -1e6f), vec3(1e6f, 1.0f, 1e6f)};
     for (const DepthBufferFormat depth : {DepthBufferFormat::Float, DepthBufferFormat::Unorm16,
                                           DepthBufferFormat::Unorm24, DepthBufferFormat::ReversedFloat}) {
-        const Camera camera = frameCamera(spec, ground, kAspect, depth);
+        const Camera camera = frameCamera(spec, ground, kImageAspect, depth);
         const double toTarget = glm::length(glm::dvec3(*spec.target) - glm::dvec3(*spec.eye));
         EXPECT_LT(camera.near, toTarget) << nameOf(depth);
         // Its window depth is below the far plane's (1) by more than a step of a 16-bit buffer.

@@ -3,6 +3,7 @@
 // the observer's FragmentEvent reports for it, through big triangles (rows shaded whole), small ones
 // (the queue, mixing triangles in a batch) and clipped ones; the one-lane entry passes FragmentInput's;
 // shaders that do not ask get nothing written.
+#include "float_bits.h"
 #include "shaders/shader_module.h"
 
 #include <bit>
@@ -58,9 +59,7 @@ struct LastWritten : NullObserver {
     }
 };
 
-std::uint32_t bits(float v) {
-    return std::bit_cast<std::uint32_t>(v);
-}
+using testing_shaders::bits;
 
 // A frame of big, small and near-clipped triangles in perspective.
 std::vector<MeshVertex> scene() {

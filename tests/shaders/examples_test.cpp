@@ -2,6 +2,7 @@
 // into its module (examples/CMakeLists.txt), opened with dlopen, its facet_shader_module() called. Their
 // vertex and fragment parts are run on chosen inputs (ShaderModule::shadeVertex, shadeFragment) and
 // the Phong solution's draw is compared with the built-in shader's, pixel for pixel.
+#include "float_bits.h"
 #include "shaders/shader_module.h"
 #include "three_lights.h"
 
@@ -74,9 +75,7 @@ std::optional<vec4> shade(const ShaderModule& module, const SceneUniforms& scene
     return color;
 }
 
-std::uint32_t bits(float v) {
-    return std::bit_cast<std::uint32_t>(v);
-}
+using testing_shaders::bits;
 
 // One white directional light shining along −z (from behind the eye), no ambient light.
 SceneUniforms headLight() {

@@ -2,6 +2,7 @@
 // up the standard equation's terms from them, in the built-in order, gives SurfaceShader<Phong>'s colour
 // bit for bit, in one lane and in eight, for Phong and Blinn-Phong, both precisions and normalisations,
 // fog and blends; D, F, G, the fog factor and the sRGB lanes are the renderer's own numbers.
+#include "float_bits.h"
 #include "shaders/user_shader.h"
 #include "three_lights.h"
 
@@ -16,7 +17,7 @@ namespace {
 
 using namespace glsl;  // the one-lane functions
 
-SurfaceUniforms threeLights() {
+SurfaceUniforms shinyThreeLights() {
     SurfaceUniforms u = testing_shaders::threeLights();
     u.material.shininess = 24.0f;
     return u;
@@ -47,9 +48,7 @@ LaneVec4<F> userStandard(const PerPixelSurface::VaryingsT<F>& in, const SurfaceU
     return builtinOutput<F>(c, lanes<F>(u.opacity), P, u);
 }
 
-std::uint32_t bits(float v) {
-    return std::bit_cast<std::uint32_t>(v);
-}
+using testing_shaders::bits;
 void expectSameBits(const vec4& got, const vec4& want, const char* what) {
     for (int k = 0; k < 4; ++k)
         EXPECT_EQ(bits(got[k]), bits(want[k]))
@@ -65,7 +64,7 @@ TEST(Formulas, UserStandardEquationEqualsTheBuiltInShader) {
     std::mt19937 rng(11);
     std::uniform_real_distribution<float> r(-1.0f, 1.0f);
     using S = SurfaceShader<ShadingFrequency::Phong>;
-    SurfaceUniforms u = threeLights();
+    SurfaceUniforms u = shinyThreeLights();
     for (int variant = 0; variant < 3; ++variant) {
         if (variant == 1) {
             u.fog.mode = FogMode::Exponential;
@@ -120,7 +119,7 @@ TEST(Formulas, UserStandardEquationEqualsTheBuiltInShader) {
 TEST(Formulas, CookTorranceTermsAreTheBuiltInOnes) {
     std::mt19937 rng(5);
     std::uniform_real_distribution<float> r(-1.0f, 1.0f);
-    SurfaceUniforms u = threeLights();
+    SurfaceUniforms u = shinyThreeLights();
     for (NormalDistribution d : {NormalDistribution::GGX, NormalDistribution::Beckmann})
         for (FresnelModel fm : {FresnelModel::Schlick, FresnelModel::Exact})
             for (GeometryTerm g : {GeometryTerm::SmithGGX, GeometryTerm::CookTorrance})
@@ -188,7 +187,7 @@ TEST(Formulas, FogAndSrgbAreTheBuiltInOnes) {
 // order (the float product is commutative, but a wrapper that added an extra factor would show), a
 // spot wrapper that ignores the smooth profile.
 TEST(Formulas, LightVectorReachAndSpotAreTheBuiltInOnes) {
-    SurfaceUniforms u = threeLights();
+    SurfaceUniforms u = shinyThreeLights();
     u.lights[2].spotProfile = SpotProfile::Smooth;
     for (const LightParams& light : u.activeLights())
         for (const vec3 P : {vec3(0.1f, 0.2f, -3.0f), vec3(-1.0f, 0.5f, -2.0f), vec3(0.0f, 0.0f, -1.0f)}) {

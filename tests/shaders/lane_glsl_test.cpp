@@ -1,6 +1,7 @@
 // GLSL's functions over lanes (shaders/lane_glsl.h): each eight-lane function gives, lane by lane, the
 // same bits as its one-lane version, over a spread of inputs with negatives, both zeros, tiny and huge
 // values, infinities and NaN. Each test names the break it would catch.
+#include "float_bits.h"
 #include "shaders/user_shader.h"
 
 #include <bit>
@@ -37,9 +38,7 @@ Float8 eight(int first, int stride = 1) {
         r[lane] = at(first + lane * stride);
     return r;
 }
-std::uint32_t bits(float v) {
-    return std::bit_cast<std::uint32_t>(v);
-}
+using testing_shaders::bits;
 
 // f8(x) lane by lane against f1(x[lane]), for every offset of the spread.
 template <class F8, class F1>

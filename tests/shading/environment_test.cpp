@@ -11,7 +11,7 @@
 namespace facet {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using std::numbers::pi;
 
 // A map of 8×4 texels, each its own colour: red = column/8, green = row/4 (row 0 at the top), as codes
 // read linearly (code/255).
@@ -89,7 +89,7 @@ TEST(Environment, RoundTripDirectionUvDirection) {
         EXPECT_NEAR(glm::length(back - d), 0.0, 1e-12) << i;
         // And the other way: (u, v) → d → (u, v), from the textbook's spherical coordinates.
         const glm::dvec2 uv((i % 17 + 0.5) / 17.0, (i % 13 + 0.5) / 13.0);
-        const double p = 2 * kPi * (uv.x - 0.5), t = kPi * (uv.y - 0.5);
+        const double p = 2 * pi * (uv.x - 0.5), t = pi * (uv.y - 0.5);
         const glm::dvec3 expected(std::cos(t) * std::sin(p), std::sin(t), -std::cos(t) * std::cos(p));
         EXPECT_NEAR(glm::length(equirectDirection<double>(uv) - expected), 0.0, 1e-12);
         EXPECT_NEAR(glm::length(equirectUv<double>(expected) - uv), 0.0, 1e-12);
@@ -111,7 +111,7 @@ TEST(Environment, MirrorVectorAndSchlickWeight) {
     env.map = &map;
     // A surface at P = (0, 0, −5) tilted 60° from the view: N·V = cos 60° = ½.
     const glm::dvec3 P(0, 0, -5);
-    const glm::dvec3 N(std::sin(kPi / 3), 0, std::cos(kPi / 3));
+    const glm::dvec3 N(std::sin(pi / 3), 0, std::cos(pi / 3));
     const vec3 f0(0.04f);
     EnvironmentRecord record;
     const glm::dvec3 term = environmentReflection<double>(env, P, N, true, &f0, vec3(0.0f), 1u, &record);
@@ -120,8 +120,8 @@ TEST(Environment, MirrorVectorAndSchlickWeight) {
     EXPECT_NEAR(term.x, F, 1e-6);
     EXPECT_NEAR(record.NdotV, 0.5, 1e-6);
     // R = 2(N·V)N − V with V = (0, 0, 1): (2·½·sin 60°, 0, 2·½·cos 60° − 1).
-    EXPECT_NEAR(record.R.x, std::sin(kPi / 3), 1e-6);
-    EXPECT_NEAR(record.R.z, std::cos(kPi / 3) - 1.0, 1e-6);
+    EXPECT_NEAR(record.R.x, std::sin(pi / 3), 1e-6);
+    EXPECT_NEAR(record.R.z, std::cos(pi / 3) - 1.0, 1e-6);
     // The standard equation's weight is m_specular as given.
     const glm::dvec3 standard =
         environmentReflection<double>(env, P, N, true, nullptr, vec3(0.3f, 0.2f, 0.1f), 1u);
@@ -136,7 +136,7 @@ TEST(Environment, FresnelWeightGrowsTowardTheSilhouette) {
     const vec3 f0(0.04f);
     double previous = 0.0;
     for (int k = 0; k <= 8; ++k) {
-        const double angle = (kPi / 2) * k / 9.0;  // from head-on towards grazing
+        const double angle = (pi / 2) * k / 9.0;  // from head-on towards grazing
         const glm::dvec3 N(std::sin(angle), 0, std::cos(angle));
         const double w =
             environmentReflection<double>(env, glm::dvec3(0, 0, -5), N, true, &f0, vec3(0.0f), 1u).x;
@@ -148,7 +148,7 @@ TEST(Environment, FresnelWeightGrowsTowardTheSilhouette) {
                     .x,
                 0.04, 1e-6);  // head-on: F0
     // At 80°, Schlick by hand: 0.04 + 0.96·(1 − cos 80°)^5.
-    EXPECT_NEAR(previous, 0.04 + 0.96 * std::pow(1.0 - std::cos(kPi * 4.0 / 9.0), 5), 1e-6);
+    EXPECT_NEAR(previous, 0.04 + 0.96 * std::pow(1.0 - std::cos(pi * 4.0 / 9.0), 5), 1e-6);
 }
 
 TEST(Environment, EightLanesMatchOneLane) {

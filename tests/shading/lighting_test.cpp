@@ -2,6 +2,7 @@
 // closed forms, the microfacet distributions' normalisation and the Lambert white furnace by numerical
 // integration, the eight-lane templates against the one-lane ones, and the material presets.
 #include "shading/lighting.h"
+#include "expect_near.h"
 
 #include <cmath>
 #include <cstdio>
@@ -16,11 +17,7 @@ namespace {
 
 constexpr float kPi = std::numbers::pi_v<float>;
 
-void expectVec3Near(const vec3& actual, const vec3& expected, float tolerance) {
-    EXPECT_NEAR(actual.x, expected.x, tolerance);
-    EXPECT_NEAR(actual.y, expected.y, tolerance);
-    EXPECT_NEAR(actual.z, expected.z, tolerance);
-}
+using testing_shading::expectVec3Near;
 
 // ---- Light sources ----------------------------------------------------------------------------------
 

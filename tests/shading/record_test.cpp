@@ -7,17 +7,14 @@
 
 #include <gtest/gtest.h>
 
+#include "expect_near.h"
 #include "shading/fog.h"
 #include "shading/lighting.h"
 
 namespace facet {
 namespace {
 
-void expectVec3Near(const vec3& actual, const vec3& expected, float tolerance = 1e-6f) {
-    EXPECT_NEAR(actual.x, expected.x, tolerance);
-    EXPECT_NEAR(actual.y, expected.y, tolerance);
-    EXPECT_NEAR(actual.z, expected.z, tolerance);
-}
+using testing_shading::expectVec3Near;
 
 bool sameBits(const vec3& a, const vec3& b) {
     return std::memcmp(&a, &b, sizeof a) == 0;

@@ -14,19 +14,19 @@
 namespace facet {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using std::numbers::pi;
 
 // ∫_Ω f(θ) dω = 2π ∫_0^{π/2} f(θ) sin θ dθ by the midpoint rule, in double.
 template <class Integrand>
 double integrateOverTheta(Integrand f) {
     constexpr int kSteps = 200000;
-    const double step = (kPi / 2) / kSteps;
+    const double step = (pi / 2) / kSteps;
     double sum = 0;
     for (int i = 0; i < kSteps; ++i) {
         const double theta = (i + 0.5) * step;
         sum += f(theta) * std::sin(theta);
     }
-    return 2 * kPi * sum * step;
+    return 2 * pi * sum * step;
 }
 
 // ---- The Gaussian distribution -----------------------------------------------------------------------
@@ -46,7 +46,7 @@ TEST(GaussianDistribution, ProjectedAreaIntegratesToOne) {
 // [0, ∞) is m²/2), and the shape: D(θ = m) = c/e, D(0) = c. Catches a wrong m mapping or exponent.
 TEST(GaussianDistribution, ConstantAndShape) {
     const float m = 0.01f;
-    EXPECT_NEAR(gaussianNormalization(m) * kPi * m * m, 1.0, 1e-3);
+    EXPECT_NEAR(gaussianNormalization(m) * pi * m * m, 1.0, 1e-3);
     const float alpha = 0.3f;
     const float c = gaussianNormalization(alpha);
     EXPECT_NEAR(distributionGaussian(1.0f, alpha), c, 1e-4f * c);
@@ -81,20 +81,20 @@ TEST(AnisotropicGgx, NormalisesAndStretchesAlongTheTangent) {
     constexpr int kTheta = 2000, kPhi = 400;
     double sum = 0;
     for (int i = 0; i < kTheta; ++i) {
-        const double theta = (i + 0.5) * (kPi / 2) / kTheta;
+        const double theta = (i + 0.5) * (pi / 2) / kTheta;
         for (int j = 0; j < kPhi; ++j) {
-            const double phi = (j + 0.5) * 2 * kPi / kPhi;
+            const double phi = (j + 0.5) * 2 * pi / kPhi;
             const double x = std::sin(theta) * std::cos(phi), y = std::sin(theta) * std::sin(phi);
             sum += distributionGGXAnisotropic(float(x), float(y), float(std::cos(theta)), ax, ay) *
                    std::cos(theta) * std::sin(theta);
         }
     }
-    EXPECT_NEAR(sum * (kPi / 2 / kTheta) * (2 * kPi / kPhi), 1.0, 5e-3);
+    EXPECT_NEAR(sum * (pi / 2 / kTheta) * (2 * pi / kPhi), 1.0, 5e-3);
     // The independent value at one h: 1/(π α_x α_y (x²/α_x² + y²/α_y² + z²)²).
     const double x = 0.1, y = 0.2, z = std::sqrt(1 - x * x - y * y);
     const double s = x * x / (ax * ax) + y * y / (ay * ay) + z * z;
-    EXPECT_NEAR(distributionGGXAnisotropic(float(x), float(y), float(z), ax, ay), 1 / (kPi * ax * ay * s * s),
-                1e-4 / (kPi * ax * ay * s * s));
+    EXPECT_NEAR(distributionGGXAnisotropic(float(x), float(y), float(z), ax, ay), 1 / (pi * ax * ay * s * s),
+                1e-4 / (pi * ax * ay * s * s));
     // Rougher along b: a half vector tilted towards b keeps more D than one tilted as far towards t.
     EXPECT_GT(distributionGGXAnisotropic(0.0f, 0.3f, 0.954f, ax, ay),
               distributionGGXAnisotropic(0.3f, 0.0f, 0.954f, ax, ay));
@@ -133,7 +133,7 @@ Polarized fresnelReference(double thetaI, double eta) {
 TEST(FresnelPolarized, MatchesFresnelsEquations) {
     for (double eta : {1.33, 1.5, 2.42}) {
         for (double degrees = 0; degrees < 90; degrees += 7.5) {
-            const double theta = degrees * kPi / 180;
+            const double theta = degrees * pi / 180;
             const Polarized expected = fresnelReference(theta, eta);
             const FresnelPolarized<float> r = fresnelPolarized(float(std::cos(theta)), float(eta));
             EXPECT_NEAR(r.s, expected.s, 1e-5) << eta << " " << degrees;
@@ -173,14 +173,14 @@ TEST(FresnelPolarized, GlassReflectsHalfNear83Degrees) {
     double lo = 60, hi = 89.9;
     for (int i = 0; i < 60; ++i) {
         const double mid = (lo + hi) / 2;
-        const Polarized r = fresnelReference(mid * kPi / 180, 1.5);
+        const Polarized r = fresnelReference(mid * pi / 180, 1.5);
         ((r.s + r.p) / 2 < 0.5 ? lo : hi) = mid;
     }
     EXPECT_GT(lo, 82.0);
     EXPECT_LT(lo, 83.0);
-    EXPECT_NEAR(fresnelExact(float(std::cos(lo * kPi / 180)), 1.5f), 0.5f, 1e-4f);
-    EXPECT_LT(fresnelExact(float(std::cos(82.0 * kPi / 180)), 1.5f), 0.5f);
-    EXPECT_GT(fresnelExact(float(std::cos(83.5 * kPi / 180)), 1.5f), 0.5f);
+    EXPECT_NEAR(fresnelExact(float(std::cos(lo * pi / 180)), 1.5f), 0.5f, 1e-4f);
+    EXPECT_LT(fresnelExact(float(std::cos(82.0 * pi / 180)), 1.5f), 0.5f);
+    EXPECT_GT(fresnelExact(float(std::cos(83.5 * pi / 180)), 1.5f), 0.5f);
 }
 
 // A dielectric with an IOR takes the exact Fresnel term at η itself, recording R_s and R_p.

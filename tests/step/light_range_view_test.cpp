@@ -8,17 +8,11 @@
 
 #include "raycast/ray_scene.h"
 #include "render/renderer.h"
+#include "step/screens.h"
 #include "step/shading_view.h"
 
 namespace facet::step {
 namespace {
-
-std::size_t columns(const std::string& line) {
-    std::size_t n = 0;
-    for (unsigned char c : line)
-        n += (c & 0xC0) != 0x80;
-    return n;
-}
 
 std::string lightingScreen(const SurfaceUniforms& u) {
     const PerPixelSurface::VaryingsT<float> in{vec3(0.0f, 0.0f, -2.0f), vec3(0.0f, 0.0f, 1.0f), vec2(0.0f)};
@@ -33,7 +27,7 @@ std::string lightingScreen(const SurfaceUniforms& u) {
         std::size_t start = 0;
         while (start < screen.text.size()) {
             const std::size_t end = std::min(screen.text.find('\n', start), screen.text.size());
-            EXPECT_LE(columns(screen.text.substr(start, end - start)), 80u)
+            EXPECT_LE(columnsOf(screen.text.substr(start, end - start)), 80u)
                 << screen.text.substr(start, end - start);
             start = end + 1;
         }

@@ -11,18 +11,12 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/run_facet.h"
+#include "step/screens.h"
 
 namespace facet::step {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::size_t columns(std::string_view text) {
-    std::size_t n = 0;
-    for (unsigned char c : text)
-        n += (c & 0xC0) != 0x80;
-    return n;
-}
 
 // The code points a symbol is made of: ASCII letters, digits and '_', Greek letters, the prime ′ and
 // the combining hat of n̂. Everything else (spaces, ·, ², brackets, the ASCII apostrophe) ends a token.
@@ -114,7 +108,7 @@ TEST(Notation, TextFitsEightyColumns) {
     int count = 0;
     while (std::getline(lines, line)) {
         ++count;
-        EXPECT_LE(columns(line), 80u) << line;
+        EXPECT_LE(columnsOf(line), 80u) << line;
     }
     EXPECT_GT(count, static_cast<int>(notation().size()));
 }
@@ -144,7 +138,7 @@ TEST(Notation, DocsTableListsExactlyTheCodesTable) {
 
 // What the students see in one walk over several models and options: every screen of --print, and
 // the web page's stage titles and descriptions (its trace data without the legend itself).
-class NotationWalk : public testing::Test {
+class NotationWalk : public ::testing::Test {
   protected:
     static void SetUpTestSuite() {
         const std::vector<std::string> runs = {

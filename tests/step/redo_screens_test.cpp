@@ -32,7 +32,7 @@ const Screen* screenOf(const StepTrace& trace, const std::string& id) {
 }
 
 // Every line of the screens these tests are about within 80 columns, the titles too.
-void expectWithin80Columns(const StepTrace& trace) {
+void expectRedoneScreensWithin80Columns(const StepTrace& trace) {
     testing_walk::expectWithin80Columns(trace, {"input", "clip", "interpolate", "lighting"});
 }
 
@@ -151,7 +151,7 @@ TEST_F(RedoScreensTest, ClippingNamesThePlanesThatCutAndListsTheOthers) {
     ASSERT_EQ(shown.size(), ts.size()) << clip->text;
     for (std::size_t k = 0; k < ts.size(); ++k)
         EXPECT_NEAR(shown[k], ts[k], 1e-5 * std::max(1.0, ts[k])) << k << "\n" << clip->text;
-    expectWithin80Columns(trace);
+    expectRedoneScreensWithin80Columns(trace);
 }
 
 // The input screen shows the file's position, texture coordinates and normal of each corner as the
@@ -186,7 +186,7 @@ TEST_F(RedoScreensTest, InputScreenShowsTheFilesValuesThenNormalised) {
         EXPECT_NEAR(numbersAfter(text, "length ", at).at(0), length, 1e-5) << text;
         expectVector(numbersAfter(text, "normalised: ", at), kNormals[k] / length, 1e-6, "normalised");
     }
-    expectWithin80Columns(trace);
+    expectRedoneScreensWithin80Columns(trace);
 }
 
 // Flat shading: the lighting screen derives the face normal from v1 − v0 and v2 − v0 of the triangle
@@ -221,7 +221,7 @@ TEST_F(RedoScreensTest, FlatShadingDerivesItsFaceNormalOnTheLightingScreen) {
     ASSERT_NE(n, std::string::npos) << text;
     expectVector(numbersAfter(text, "    = ", n), glm::normalize(cross), 1e-3, "n");
     EXPECT_NE(oneLine.find("the face normal"), std::string::npos) << text;
-    expectWithin80Columns(trace);
+    expectRedoneScreensWithin80Columns(trace);
 }
 
 // Gouraud shading: the lighting screen's corners are v0, v1, v2 in that order, each at the face's
@@ -257,7 +257,7 @@ TEST_F(RedoScreensTest, GouraudCornersAreTheTrianglesAsDrawn) {
         EXPECT_NEAR(invW[k], 1.0 / (clipFromWorld * dvec4(kCorners[k], 1.0)).w, 1e-3) << k;
         EXPECT_NEAR(mu[k], lambda[k] * invW[k] / pixel[0], 2e-3) << k;
     }
-    expectWithin80Columns(trace);
+    expectRedoneScreensWithin80Columns(trace);
 }
 
 // The interpolation screen lists every varying at v0, v1, v2 and at the pixel: the eye-space
@@ -298,7 +298,7 @@ TEST_F(RedoScreensTest, InterpolationListsEveryVaryingAtTheCorners) {
         }
         EXPECT_NEAR(row[3], sum, 1e-4) << names[i];
     }
-    expectWithin80Columns(trace);
+    expectRedoneScreensWithin80Columns(trace);
 }
 
 // Gouraud after clipping: the near plane cuts the tip C of the triangle off, and the pixel lies in a
@@ -365,7 +365,7 @@ TEST_F(RedoScreensTest, GouraudAfterClippingMixesThePiecesCornersWithT) {
         const double sum = mu[0] * corners[0][c] + mu[1] * corners[1][c] + mu[2] * corners[2][c];
         EXPECT_NEAR(sum, pixel[c], 2e-3 * std::max(1.0, double(pixel[c]))) << c << "\n" << text;
     }
-    expectWithin80Columns(trace);
+    expectRedoneScreensWithin80Columns(trace);
 }
 
 // A point light above a small square that shades the ground: the shadow line names the blocker, the
@@ -403,7 +403,7 @@ TEST_F(RedoScreensTest, ShadowScreenNamesTheBlockerAndItsDistance) {
         const bool byMap = text.find("the shadow map decided; a ray from P towards the light only names") !=
                            std::string::npos;
         EXPECT_EQ(byMap, method == ShadowMethod::Map) << lighting->text;
-        expectWithin80Columns(trace);
+        expectRedoneScreensWithin80Columns(trace);
     }
 }
 

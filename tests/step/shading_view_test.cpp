@@ -14,19 +14,12 @@
 #include "pipeline/names.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
+#include "step/screens.h"
 
 namespace facet::step {
 namespace {
 
 // ---- Real renders --------------------------------------------------------------------------------
-
-// Columns of a UTF-8 line: one per code point.
-std::size_t columns(const std::string& line) {
-    std::size_t n = 0;
-    for (const char c : line)
-        n += (static_cast<unsigned char>(c) & 0xc0) != 0x80;
-    return n;
-}
 
 // Every fragment of a frame traced again as the step mode traces it.
 struct ShadingChecker : NullObserver {
@@ -103,11 +96,11 @@ struct ShadingChecker : NullObserver {
             for (const Screen& screen : shadingScreens(trace)) {
                 std::istringstream lines(screen.text);
                 for (std::string line; std::getline(lines, line);)
-                    if (columns(line) > 80) {
+                    if (columnsOf(line) > 80) {
                         ++longLines;
                         if (firstProblem.empty()) firstProblem = "long line: " + line;
                     }
-                if (columns(screen.title) > 80) ++longLines;
+                if (columnsOf(screen.title) > 80) ++longLines;
             }
             (void)toJson(trace).dump();
         }
@@ -320,7 +313,7 @@ TEST(ShadingView, LectureFormOnTheLightingScreen) {
     EXPECT_EQ(lighting.find("4(N·L)(N·V)"), std::string::npos) << lighting;
     std::istringstream lines(lighting);
     for (std::string line; std::getline(lines, line);)
-        EXPECT_LE(columns(line), 80u) << line;
+        EXPECT_LE(columnsOf(line), 80u) << line;
 
     // The same point seen from below: N·V < 0, clamped, no diffuse or specular light.
     const PerPixelSurface::VaryingsT<float> below{vec3(0.0f, 0.0f, -2.0f), vec3(0.0f, 0.0f, -1.0f),
@@ -418,7 +411,7 @@ TEST(ShadingView, GaussianDistributionAndPolarisedFresnelOnTheScreen) {
     EXPECT_GT(b.Rs.x, b.Rp.x);
     std::istringstream text(lighting);
     for (std::string line; std::getline(text, line);)
-        EXPECT_LE(columns(line), 80u) << line;
+        EXPECT_LE(columnsOf(line), 80u) << line;
 }
 
 // The environment's reflection on the lighting screen: R, (u, v), the texel, the weight and the term,
@@ -457,7 +450,7 @@ TEST(ShadingView, EnvironmentReflectionOnTheScreen) {
         std::size_t start = 0;
         while (start <= screen.text.size()) {
             const std::size_t end = std::min(screen.text.find('\n', start), screen.text.size());
-            EXPECT_LE(columns(screen.text.substr(start, end - start)), 80u)
+            EXPECT_LE(columnsOf(screen.text.substr(start, end - start)), 80u)
                 << screen.text.substr(start, end - start);
             start = end + 1;
         }

@@ -12,6 +12,8 @@
 #include <gtest/gtest.h>
 
 #include "pipeline/viewport.h"
+#include "support/bundled_models.h"
+#include "support/file_bytes.h"
 #include "support/temp_folder.h"
 
 namespace facet::step {
@@ -19,7 +21,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kModels = fs::path(FACET_SOURCE_DIR) / "models";
+using testing_support::kModels;
 
 struct Rendered {
     StageImage image;
@@ -54,10 +56,7 @@ vec3 rgbAt(const Rendered& r, ivec2 pixel) {
     return vec3(r.pixels.at(pixel.x, pixel.y));
 }
 
-std::string bytesOf(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using testing_support::fileBytes;
 
 // Pixels of `image` exactly `colour`.
 std::size_t pixelsOf(const LinearImage& image, vec3 colour) {
@@ -304,7 +303,7 @@ TEST_F(StageImagesTest, BuildUpDrawsTheTrianglesInOrder) {
 
 // The bundled intersecting quads: an opaque backdrop and three transparent panes, sorted back to front
 // or in exact per-pixel lists. Break: the last frame's count one short (k·T/N − 1, or frames + 1 of them).
-class LastBuildFrame : public testing::TestWithParam<TransparencyMode> {};
+class LastBuildFrame : public ::testing::TestWithParam<TransparencyMode> {};
 
 TEST_P(LastBuildFrame, EqualsTheFinalImage) {
     Scene scene = loadScene(kModels / "intersecting-quads.json");
@@ -319,7 +318,7 @@ TEST_P(LastBuildFrame, EqualsTheFinalImage) {
 }
 
 INSTANTIATE_TEST_SUITE_P(StageImages, LastBuildFrame,
-                         testing::Values(TransparencyMode::Sorted, TransparencyMode::Exact));
+                         ::testing::Values(TransparencyMode::Sorted, TransparencyMode::Exact));
 
 // The final image's PNG is facet render's, byte for byte: a scene with fog, a textured model and a
 // glass cube, shaded per vertex. Break: the final image written linearly (as the data images are), or
@@ -342,7 +341,7 @@ TEST_F(StageImagesTest, FinalImageIsFacetRendersFileByteForByte) {
         writeStageImages(prepareScene(scene), folder_ / "stages", {.buildFrames = 0, .threads = 1});
     ASSERT_FALSE(written.empty());
     EXPECT_EQ(written.back().id, "final");
-    EXPECT_EQ(bytesOf(folder_ / "stages" / written.back().file), bytesOf(rendered));
+    EXPECT_EQ(fileBytes(folder_ / "stages" / written.back().file), fileBytes(rendered));
     for (const StageImage& image : written)
         EXPECT_TRUE(fs::exists(folder_ / "stages" / image.file)) << image.file;
 }

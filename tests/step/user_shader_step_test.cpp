@@ -15,6 +15,7 @@
 #include "cli/run_facet.h"
 #include "render/user_shaders.h"
 #include "shading/gamma.h"
+#include "step/screens.h"
 #include "step/versus.h"
 #include "step/views.h"
 #include "step/walk.h"
@@ -57,19 +58,11 @@ class UserShaderStep : public ::testing::Test {
     }
 };
 
-// Columns a line takes: UTF-8 continuation bytes take none.
-std::size_t columns(const std::string& line) {
-    std::size_t n = 0;
-    for (unsigned char c : line)
-        n += (c & 0xC0) != 0x80;
-    return n;
-}
-
 void expectWithin80Columns(const Walk& walk) {
     for (const Screen& s : walk.screens) {
         std::istringstream lines(s.text);
         for (std::string line; std::getline(lines, line);)
-            EXPECT_LE(columns(line), 80u) << s.id << ": " << line;
+            EXPECT_LE(columnsOf(line), 80u) << s.id << ": " << line;
     }
 }
 

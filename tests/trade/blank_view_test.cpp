@@ -10,6 +10,8 @@
 #include <gtest/gtest.h>
 
 #include "cli/trade_command.h"
+#include "quick_trade.h"
+#include "support/bundled_models.h"
 #include "support/temp_folder.h"
 #include "trade/blank.h"
 #include "trade/trade.h"
@@ -17,7 +19,8 @@
 namespace facet {
 namespace {
 
-const std::string kModels = FACET_SOURCE_DIR "/models";
+using testing_support::kModels;
+using testing_support::quickTrade;
 
 // The camera inside the cow's bounds with a near plane of 1e-6 and a 16-bit unorm depth buffer: every
 // depth, 1 - near/z, rounds to the far plane and fails the depth test, so the scene as given draws
@@ -28,26 +31,8 @@ std::filesystem::path blankBaselineScene(const std::filesystem::path& folder) {
         "camera": {"eye": [0.1, 0.3, 0.5], "target": [0, 0.2, 0], "near": 1e-6},
         "pipeline": {"depth": "unorm16"},
         "objects": [{"model": ")"
-                        << kModels << R"(/spot/spot_triangulated.obj"}]})";
+                        << kModels.string() << R"(/spot/spot_triangulated.obj"}]})";
     return path;
-}
-
-TradeResult quickTrade(const std::filesystem::path& scene, const std::string& knobs,
-                       const std::filesystem::path& outputDir) {
-    cli::SceneArgs args;
-    args.input = scene.string();
-    TradeOptions options;
-    options.knobs = knobs;
-    options.frames = 1;
-    options.rounds = 1;
-    options.threads = 1;
-    options.referenceSamples = 1;
-    options.presets = false;
-    options.outputDir = outputDir;
-    options.progress = false;
-    std::ostringstream log;
-    return runTrade([&](const std::vector<std::string>& words) { return cli::sceneWithWords(args, words); },
-                    options, log);
 }
 
 // Catches: a blank baseline reported with "NO EFFECT" for every knob that also draws nothing (the
@@ -56,7 +41,7 @@ TradeResult quickTrade(const std::filesystem::path& scene, const std::string& kn
 TEST(TradeBlankView, ABlankBaselineMarksEveryScoreMeaningless) {
     const testing_support::TempFolder folder;
     const TradeResult result =
-        quickTrade(blankBaselineScene(folder.path()), "depth,shading", folder.path() / "t");
+        quickTrade(blankBaselineScene(folder.path()), "depth,shading", folder.path() / "t", false);
     ASSERT_FALSE(result.rows.empty());
     ASSERT_TRUE(result.rows.front().blank);
     bool anyDraws = false;  // --depth float draws the cow: the reference does show the scene
@@ -100,7 +85,7 @@ TEST(TradeBlankView, ABaselineThatDrawsKeepsItsScores) {
         s.replace(s.find("unorm16"), 7, "float");
         std::ofstream(scene) << s;
     }
-    const TradeResult result = quickTrade(scene, "shading", folder.path() / "t");
+    const TradeResult result = quickTrade(scene, "shading", folder.path() / "t", false);
     ASSERT_FALSE(result.rows.empty());
     EXPECT_FALSE(result.rows.front().blank);
     EXPECT_TRUE(scoresMeaningful(result, result.rows.front()));

@@ -16,7 +16,9 @@
 #include "base/errors.h"
 #include "cli/render_command.h"
 #include "cli/trade_command.h"
+#include "quick_trade.h"
 #include "scene/knobs.h"
+#include "support/bundled_models.h"
 #include "support/temp_folder.h"
 #include "trade/blank.h"
 #include "trade/knobs.h"
@@ -26,34 +28,17 @@
 namespace facet {
 namespace {
 
-const std::string kModels = FACET_SOURCE_DIR "/models";
+using testing_support::kModels;
+using testing_support::quickTrade;
 
 // A scene file of `text` in `folder`; "MODELS" in it is replaced by the bundled models' folder.
 std::filesystem::path writeScene(const std::filesystem::path& folder, const std::string& name,
                                  std::string text) {
     for (std::size_t at = text.find("MODELS"); at != std::string::npos; at = text.find("MODELS"))
-        text.replace(at, 6, kModels);
+        text.replace(at, 6, kModels.string());
     const std::filesystem::path path = folder / name;
     std::ofstream(path) << text;
     return path;
-}
-
-// A quick trade of the scene file `scene` turning `knobs`: one frame, one ray per pixel.
-TradeResult quickTrade(const std::filesystem::path& scene, const std::string& knobs,
-                       const std::filesystem::path& outputDir) {
-    cli::SceneArgs args;
-    args.input = scene.string();
-    TradeOptions options;
-    options.knobs = knobs;
-    options.frames = 1;
-    options.rounds = 1;
-    options.threads = 1;
-    options.referenceSamples = 1;
-    options.outputDir = outputDir;
-    options.progress = false;
-    std::ostringstream log;
-    return runTrade([&](const std::vector<std::string>& words) { return cli::sceneWithWords(args, words); },
-                    options, log);
 }
 
 const TradeRow* rowLabelled(const TradeResult& result, const std::string& label) {

@@ -10,17 +10,18 @@
 #include "cli/trade_command.h"
 #include "reference/reference.h"
 #include "render/renderer.h"
+#include "support/bundled_models.h"
 #include "trade/reference_floor.h"
 #include "trade/trade.h"
 
 namespace facet {
 namespace {
 
-const std::string kModel = FACET_SOURCE_DIR "/models/spot/spot_triangulated.obj";
+using testing_support::kSpot;
 
 cli::SceneArgs spotArgs() {
     cli::SceneArgs args;
-    args.input = kModel;
+    args.input = kSpot;
     args.width = 64;
     args.height = 48;
     return args;

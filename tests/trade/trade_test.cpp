@@ -17,6 +17,7 @@
 #include "cli/render_command.h"
 #include "cli/trade_command.h"
 #include "reference/reference.h"
+#include "support/bundled_models.h"
 #include "support/temp_folder.h"
 #include "support/user_shader_files.h"
 #include "trade/knobs.h"
@@ -29,7 +30,7 @@
 namespace facet {
 namespace {
 
-const std::string kModel = FACET_SOURCE_DIR "/models/spot/spot_triangulated.obj";
+using testing_support::kSpot;
 
 std::vector<std::string> splitCsvLine(const std::string& line) {  // the trade's CSV quotes no number
     std::vector<std::string> fields;
@@ -62,7 +63,7 @@ class TradeRun : public ::testing::Test {
         cli::TradeArgs args;
         cli::addTradeCommand(app, args);
         // clang-format off
-        const std::vector<std::string> words = {"trade", kModel, "--knobs", "shading,transparency",
+        const std::vector<std::string> words = {"trade", kSpot, "--knobs", "shading,transparency",
                                                 "--frames", "3", "--rounds", "2", "--reference-samples", "1",
                                                 "--width", "48", "--height", "36", "--threads", "1",
                                                 "-o", dir_.string()};
@@ -217,7 +218,7 @@ TEST(TradeTimes, EachRowReportsItsOwnSettingsFrames) {
     const testing_support::TempFolder folder;
     const std::filesystem::path dir = folder.path() / "trade";
     cli::SceneArgs args;
-    args.input = kModel;
+    args.input = kSpot;
     args.width = 32;
     args.height = 24;
     // A distinct step for each setting's words, in the order the trade first asks for them.
@@ -291,17 +292,17 @@ TEST(TradeKnobs, EverySettingIsAcceptedByTheRenderParserAndReachesTheScene) {
             CLI::App app;
             cli::RenderArgs args;
             cli::addRenderCommand(app, args);
-            std::vector<std::string> words = {"render", kModel, "-o", "out.png"};
+            std::vector<std::string> words = {"render", kSpot, "-o", "out.png"};
             words.insert(words.end(), setting.words.begin(), setting.words.end());
             EXPECT_NO_THROW(app.parse(std::vector<std::string>(words.rbegin(), words.rend())));
-            Scene scene = sceneForModel(kModel);
+            Scene scene = sceneForModel(kSpot);
             cli::applyLightingOptions(args, scene);
             EXPECT_TRUE(sceneHasSetting(scene, setting));
         }
     for (const std::string& preset : kPresetNames) {
         SCOPED_TRACE(preset);
         cli::SceneArgs args;
-        args.input = kModel;
+        args.input = kSpot;
         EXPECT_TRUE(
             sceneHasSetting(cli::sceneWithWords(args, presetSetting(preset).words), presetSetting(preset)));
     }
@@ -603,7 +604,7 @@ std::vector<std::string> decisionsOf(const TradeResult& result) {
 TEST(TradeRepeat, TheSameTradeTwiceAgreesOnEveryVerdict) {
     const testing_support::TempFolder folder;
     cli::SceneArgs args;
-    args.input = kModel;
+    args.input = kSpot;
     args.width = 160;
     args.height = 120;
     auto run = [&](const std::string& name) {
@@ -637,7 +638,7 @@ TEST(TradeCommand, NoPresetsLeavesThePresetsOut) {
     cli::TradeArgs args;
     cli::addTradeCommand(app, args);
     // clang-format off
-    const std::vector<std::string> words = {"trade", kModel, "--knobs", "shading", "--no-presets", "--frames", "1",
+    const std::vector<std::string> words = {"trade", kSpot, "--knobs", "shading", "--no-presets", "--frames", "1",
                                             "--rounds", "1", "--reference-samples", "1", "--width", "32",
                                             "--height", "24", "--threads", "1", "-q",
                                             "-o", (folder.path() / "trade").string()};
@@ -749,7 +750,7 @@ TEST(TradeWithShader, TheKnobsAreScoredAgainstTheReferenceOfTheShader) {
     cli::addTradeCommand(app, args);
     const std::string shader = (testing_support::kUserShaders / "displace_cutout.cpp").string();
     // clang-format off
-    const std::vector<std::string> words = {"trade", kModel, "--shader", shader, "--uniform", "displacement=0.04",
+    const std::vector<std::string> words = {"trade", kSpot, "--shader", shader, "--uniform", "displacement=0.04",
                                             "--knobs", "depth", "--frames", "1", "--rounds", "1",
                                             "--reference-samples", "1", "--width", "48", "--height", "36",
                                             "--threads", "1", "-q", "-o", (folder.path() / "trade").string()};
@@ -775,7 +776,7 @@ TEST(TradeWithShader, TheKnobsAreScoredAgainstTheReferenceOfTheShader) {
     EXPECT_EQ(result.rows[0].setting.knob, "baseline");
     EXPECT_GT(result.rows[0].error.encoded.ssim, 0.95) << result.rows[0].image;
     // That reference is not the built-in shader's: the built-in's own reference image differs from it.
-    Scene builtIn = loadSceneOrModel(kModel);
+    Scene builtIn = loadSceneOrModel(kSpot);
     builtIn.width = 48;
     builtIn.height = 36;
     ReferenceOptions referenceOptions;
