@@ -181,8 +181,8 @@ TEST(StepCli, ScreenPrintsOneScreenInTheFormatAsked) {
 TEST(StepCli, StageScaleWritesTheImagesThatManyTimesLarger) {
     TempFolder dir;
     const auto stages = dir.path() / "stages";
-    const RunResult run =
-        runFacet("step " + kSpotArguments + " --print --stages '" + stages.string() + "' --stage-scale 2", dir);
+    const RunResult run = runFacet(
+        "step " + kSpotArguments + " --print --stages '" + stages.string() + "' --stage-scale 2", dir);
     ASSERT_EQ(run.status, 0) << run.err;
     // A PNG's size: the IHDR chunk's width and height, big-endian, at bytes 16 and 20.
     const std::string png = readText(stages / "final.png");
