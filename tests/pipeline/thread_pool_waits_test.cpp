@@ -44,7 +44,10 @@ TEST(ThreadPoolWaits, AnUnboundedSpinNeverSleeps) {
     pool.setSpinLimit(std::chrono::hours(1));
     std::atomic<int> items{0};
     // The first job wakes a worker that fell asleep under the default limit before the new one was set.
+    // On a busy machine the woken worker may not run before the caller has done every job alone: it
+    // is waited for, so that it is polling from here on.
     pool.parallelFor(8, [&](std::size_t, int) { ++items; });
+    ASSERT_TRUE(eventually([&] { return pool.sleepingWorkers() == 0; }));
     const std::uint64_t sleptBefore = pool.waits().slept;
     for (int job = 1; job < 20; ++job)
         pool.parallelFor(8, [&](std::size_t, int) { ++items; });
