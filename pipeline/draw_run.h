@@ -29,16 +29,28 @@ inline bool fitsInRun(std::size_t vertexCount, std::size_t indexCount) {
     return vertexCount <= kVertexChunk && indexCount / 3 <= kTriangleChunk;
 }
 
-// drawRun cuts its draws into runs of at most kMaxRunCalls draws and kMaxRunTriangles triangles, so that
-// the two runs it holds at a time take no more memory in set-ups than one big draw's batch.
+// drawRun cuts its draws into runs of at most runCallsFor(threads, tiles) draws and kMaxRunTriangles
+// triangles, so that the two runs it holds at a time take no more memory in set-ups than one big draw's
+// batch. Each run is one job of the pool (its tiles and the next run's front ends), and a job lasts at least
+// its longest item: with many threads, a run of 64 draws of a few triangles each is too little work to share
+// (its largest tile or front end is a good part of it), so runs grow with the threads: kMaxRunCalls
+// draws per two threads, as far as the two runs' tables of bins (one per draw, a std::vector per tile:
+// 12 KB a draw at 1920×1080 in tiles of 64) fit in kRunBinTablesBytes, and never below kMaxRunCalls.
 inline constexpr std::size_t kMaxRunCalls = 64;
-inline constexpr std::size_t kMaxRunTriangles = kTriangleChunk * kChunksPerBatch / 2;
+inline constexpr std::size_t kMaxRunTriangles = kBatchTriangles / 2;
+inline constexpr std::size_t kRunBinTablesBytes = std::size_t{16} << 20;
+inline std::size_t runCallsFor(int threads, int tiles) {
+    const std::size_t wanted = kMaxRunCalls * static_cast<std::size_t>(std::max(1, threads / 2));
+    const std::size_t fitting = kRunBinTablesBytes / (2 * static_cast<std::size_t>(std::max(1, tiles)) *
+                                                      sizeof(std::vector<std::uint32_t>));
+    return std::max(kMaxRunCalls, std::min(wanted, fitting));
+}
 
-// One past the last draw of the run that starts at draws[first].
+// One past the last draw of the run that starts at draws[first], of at most maxCalls draws.
 template <Shader S>
-std::size_t runEnd(std::span<const RunDraw<S>> draws, std::size_t first) {
+std::size_t runEnd(std::span<const RunDraw<S>> draws, std::size_t first, std::size_t maxCalls) {
     std::size_t end = first + 1, triangles = draws[first].indices.size() / 3;
-    while (end < draws.size() && end - first < kMaxRunCalls) {
+    while (end < draws.size() && end - first < maxCalls) {
         triangles += draws[end].indices.size() / 3;
         if (triangles > kMaxRunTriangles) break;
         ++end;
@@ -64,12 +76,12 @@ void validateRun(std::span<const RunDraw<S>> draws, const Framebuffer& target, c
 
 namespace detail {
 
-// The context's scratch for a run of `draws` on `threads` threads, emptied, and the target ready for
-// each draw (prepareTarget).
+// The context's scratch for runs of up to maxCalls of `draws` on `threads` threads, emptied, and the target
+// ready for each draw (prepareTarget).
 template <Shader S>
 void startRun(std::span<const RunDraw<S>> draws, Framebuffer& target, DrawContext& context,
-              std::size_t threads) {
-    if (context.runSlots.size() < 2 * kMaxRunCalls) context.runSlots.resize(2 * kMaxRunCalls);
+              std::size_t threads, std::size_t maxCalls) {
+    if (context.runSlots.size() < 2 * maxCalls) context.runSlots.resize(2 * maxCalls);
     if (context.runThreads.size() < threads) context.runThreads.resize(threads);
     for (std::size_t t = 0; t < threads; ++t) {
         context.runThreads[t].frontEnd = DrawStats{};
@@ -150,12 +162,13 @@ DrawStats drawRun(std::span<const RunDraw<S>> draws, Framebuffer& target, DrawCo
     validateRun(draws, target, context);
     const TileGrid grid = makeTileGrid(draws.front().state->viewport, context.tileSize);
     const auto threads = static_cast<std::size_t>(context.pool.threads());
-    detail::startRun(draws, target, context, threads);
+    const std::size_t maxCalls = runCallsFor(context.threadsToCutFor(), grid.count());
+    detail::startRun(draws, target, context, threads, maxCalls);
 
-    // Draw i's chunks and plan: two consecutive runs span at most 2 · kMaxRunCalls draws, so the run being
+    // Draw i's chunks and plan: two consecutive runs span at most 2 · maxCalls draws, so the run being
     // drawn and the run being set up never share a slot. One thread runs a job's items in order (the
     // tiles, then the next front ends), so it reuses the slots the last run left in its caches.
-    const std::size_t slotCount = threads > 1 ? 2 * kMaxRunCalls : kMaxRunCalls;
+    const std::size_t slotCount = threads > 1 ? 2 * maxCalls : maxCalls;
     const auto slotOf = [&](std::size_t i) -> DrawContext::RunDrawSlot& {
         return context.runSlots[i % slotCount];
     };
@@ -178,13 +191,13 @@ DrawStats drawRun(std::span<const RunDraw<S>> draws, Framebuffer& target, DrawCo
 
     // The first run's front ends alone; then each job draws one run's tiles (first: they are the bigger
     // items) and sets up the next run.
-    std::size_t first = 0, end = runEnd(draws, 0);
+    std::size_t first = 0, end = runEnd(draws, 0, maxCalls);
     context.pool.parallelFor(end, frontEnd);
     while (first < draws.size()) {
         detail::gatherRunTiles(context, threads);
         if (runs) ++*runs;
         const std::size_t nextFirst = end,
-                          nextEnd = nextFirst < draws.size() ? runEnd(draws, nextFirst) : end;
+                          nextEnd = nextFirst < draws.size() ? runEnd(draws, nextFirst, maxCalls) : end;
         const std::size_t tileItems = context.runTiles.size();
         context.pool.parallelFor(tileItems + (nextEnd - nextFirst), [&](std::size_t item, int thread) {
             if (item < tileItems)

@@ -44,6 +44,11 @@ struct DrawContext {
         : pool(threads), tileSize(tileSize) {}
     ThreadPool pool;
     int tileSize;  // pixels, a multiple of kBlockSize
+    // The number of threads a draw cuts its vertices and triangles for (chunkSize); 0: the pool's. Only
+    // the sizes of the pool's items change, never the image: a trace on one thread cut for 16 shows the
+    // items a 16-thread frame would run (facet bench --scaling predicts from it).
+    int cutForThreads = 0;
+    int threadsToCutFor() const { return cutForThreads > 0 ? cutForThreads : pool.threads(); }
     ShadedVertices shaded;
     std::vector<WindowVertex> window;  // viewport transform of each vertex that needs no clipping
     std::vector<SetupChunk> chunks;
@@ -76,16 +81,33 @@ struct DrawContext {
     std::vector<RunTile> runTiles;
 };
 
-// Work sizes: vertices are shaded in chunks of kVertexChunk, triangles set up in chunks of
-// kTriangleChunk, and at most kChunksPerBatch chunks are binned before their tiles are drawn, which
-// bounds the memory held in setups whatever the size of the mesh (65,536 triangles: ~17 MB with the
-// built-in surface shader's varyings).
+// Work sizes: vertices are shaded in chunks of at most kVertexChunk, triangles set up in chunks of at
+// most kTriangleChunk, and at most kBatchTriangles triangles are binned before their tiles are drawn, which
+// bounds the memory held in setups whatever the size of the mesh (~17 MB with the built-in surface
+// shader's varyings).
 // Each batch draws every tile it touches once more, fetching its pixels into a cache again and, with
-// two threads, often from the other core's: 32 chunks a batch rather than 8 made Lost Empire's frame
-// ~6% faster on two threads and the bunny's ~2%, and left one thread's unchanged.
+// two threads, often from the other core's: batches of 65,536 triangles rather than 16,384 made Lost
+// Empire's frame ~6% faster on two threads and the bunny's ~2%, and left one thread's unchanged.
 inline constexpr std::size_t kVertexChunk = 8192;
 inline constexpr std::size_t kTriangleChunk = 2048;
-inline constexpr std::size_t kChunksPerBatch = 32;
+inline constexpr std::size_t kBatchTriangles = 32 * kTriangleChunk;
+// A draw is cut into at least kItemsPerThread chunks per thread where its size allows (down to chunks of
+// kMinVertexChunk vertices and kMinTriangleChunk triangles, below which an item's own cost shows): a job
+// of items lasts at least its longest item, so a mesh of 117,000 vertices in chunks of 8192 keeps 15 of
+// 16 threads busy for one chunk's time and leaves the 16th idle, where chunks of 1836 keep all 16 busy
+// for a quarter of it. With k items per thread taken as they come, the job ends at most one item
+// (1/k of a thread's share) after the last thread began its share's end.
+inline constexpr std::size_t kMinVertexChunk = 1024;
+inline constexpr std::size_t kMinTriangleChunk = 256;
+inline constexpr std::size_t kItemsPerThread = 4;
+
+// The chunk size for `count` vertices or triangles on `threads` threads: count / (kItemsPerThread ·
+// threads) rounded up, within [smallest, largest]; `largest` on one thread.
+inline std::size_t chunkSize(std::size_t count, int threads, std::size_t smallest, std::size_t largest) {
+    if (threads <= 1) return largest;
+    const std::size_t items = kItemsPerThread * static_cast<std::size_t>(threads);
+    return std::clamp((count + items - 1) / items, smallest, largest);
+}
 
 // Checks a draw's state (viewport, tile size, subpixel bits, samples); throws std::invalid_argument
 // naming the problem.
@@ -141,18 +163,21 @@ DrawStats draw(const DrawState& state, const typename S::Uniforms& uniforms,
     prepareTarget(plan, target, context);
 
     // Vertex stage, every vertex once.
-    runVertexStage<S>(vertices, uniforms, state, context.pool, inOrder, kVertexChunk, context.shaded,
+    // Observed draws run on one thread: the largest chunks, so that hooks see the same items as ever.
+    const int threads = inOrder ? 1 : context.threadsToCutFor();
+    runVertexStage<S>(vertices, uniforms, state, context.pool, inOrder,
+                      chunkSize(vertices.size(), threads, kMinVertexChunk, kVertexChunk), context.shaded,
                       context.window, observer);
     DrawStats total;
     total.vertices = context.shaded.size();
     total.triangles = indices.size() / 3;
+    const std::size_t triangleChunk = chunkSize(total.triangles, threads, kMinTriangleChunk, kTriangleChunk);
     const TileGrid grid = makeTileGrid(state.viewport, context.tileSize);
     context.threadStats.assign(static_cast<std::size_t>(context.pool.threads()), DrawStats{});
-    for (std::size_t batchStart = 0; batchStart < total.triangles;
-         batchStart += kTriangleChunk * kChunksPerBatch) {
-        const std::size_t batchEnd = std::min(total.triangles, batchStart + kTriangleChunk * kChunksPerBatch);
+    for (std::size_t batchStart = 0; batchStart < total.triangles; batchStart += kBatchTriangles) {
+        const std::size_t batchEnd = std::min(total.triangles, batchStart + kBatchTriangles);
         // Primitive assembly → clipping → divide and viewport → culling and setup → binning.
-        const std::size_t chunkCount = setupBatch(indices, batchStart, batchEnd, kTriangleChunk, state, grid,
+        const std::size_t chunkCount = setupBatch(indices, batchStart, batchEnd, triangleChunk, state, grid,
                                                   context.shaded, context.window, flatVaryingFloats<S>(),
                                                   context.pool, inOrder, context.chunks, observer);
         const std::span<const SetupChunk> chunks(context.chunks.data(), chunkCount);

@@ -438,8 +438,8 @@ inline const SurfaceUniforms& callUniforms(const PreparedDraw& d, std::uint8_t t
 }
 
 // Consecutive small draw calls of one shading frequency are drawn together (pipeline.h's drawRun, which
-// draws them in runs of up to 64: one job of the pool per run instead of two or three per call).
-// One past the last call of the sequence that starts at plan[first] (first + 1: a call drawn alone).
+// draws them in runs of 64 calls per two threads: one job of the pool per run instead of two or three per
+// call). One past the last call of the sequence that starts at plan[first] (first + 1: a call drawn alone).
 inline std::size_t smallCallsEnd(const PreparedScene& prepared, std::span<const PlannedDraw> plan,
                                  std::size_t first) {
     const auto fits = [&](const PlannedDraw& call) {

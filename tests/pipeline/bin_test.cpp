@@ -66,7 +66,8 @@ TEST(Bin, EveryCoveredPixelIsInABinnedTile) {
     }
 }
 
-// The image does not depend on the number of threads nor on the tile size: the same bytes.
+// The image does not depend on the number of threads, the number the work is cut for (chunks of
+// vertices and triangles) nor on the tile size: the same bytes.
 TEST(Bin, SameBytesForAnyThreadCountAndTileSize) {
     std::mt19937 rng(9);
     std::uniform_real_distribution<float> u(-1.3f, 1.3f);
@@ -81,12 +82,13 @@ TEST(Bin, SameBytesForAnyThreadCountAndTileSize) {
     std::vector<std::uint32_t> indices(vertices.size());
     for (std::size_t i = 0; i < indices.size(); ++i)
         indices[i] = static_cast<std::uint32_t>(i);
-    auto render = [&](int threads, int tileSize, BlendMode blend) {
+    auto render = [&](int threads, int tileSize, BlendMode blend, int cutFor = 0) {
         Framebuffer fb(317, 211);
         fb.clearColor(vec4(0));
         DrawState state = testing::stateFor(fb);
         state.blend = blend;
         DrawContext context(threads, tileSize);
+        context.cutForThreads = cutFor;
         draw<testing::ClipSpaceColorShader>(
             state, {}, std::span<const testing::ClipSpaceColorShader::Attributes>(vertices),
             std::span<const std::uint32_t>(indices), fb, context);
@@ -99,16 +101,23 @@ TEST(Bin, SameBytesForAnyThreadCountAndTileSize) {
             EXPECT_TRUE(image.first == reference.first) << threads << " threads, tile " << tileSize;
             EXPECT_TRUE(image.second == reference.second) << threads << " threads, tile " << tileSize;
         }
+        // 2,000 triangles of 6,000 vertices: one chunk of each on one thread, 6 and 8 cut for 7, 6 and 8
+        // cut for 64 (the smallest chunks).
+        for (auto [threads, cutFor] : {std::pair{1, 64}, {2, 5}, {3, 64}}) {
+            const auto image = render(threads, 64, blend, cutFor);
+            EXPECT_TRUE(image.first == reference.first) << threads << " threads cut for " << cutFor;
+            EXPECT_TRUE(image.second == reference.second) << threads << " threads cut for " << cutFor;
+        }
     }
 }
 
-// A draw of more triangles than one batch (kTriangleChunk · kChunksPerBatch: set up and binned, then
+// A draw of more triangles than one batch (kBatchTriangles: set up and binned, then
 // drawn, before the next batch is set up) gives the bytes of the same triangles drawn as draws of one
 // chunk each, which never span a batch. The triangles overlap and blend over each other, so an order
 // changed, a triangle dropped or drawn twice shows. Breaks caught: a batch's end computed from one chunk
-// instead of kChunksPerBatch (triangles dropped), the last partial batch skipped.
+// instead of a batch's (triangles dropped), the last partial batch skipped.
 TEST(Bin, ADrawOfSeveralBatchesMatchesItsTrianglesInChunkSizedDraws) {
-    const std::size_t triangles = 2 * kTriangleChunk * kChunksPerBatch + 777;  // two batches and a part
+    const std::size_t triangles = 2 * kBatchTriangles + 777;  // two batches and a part
     std::mt19937 rng(21);
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);
     std::vector<testing::ClipSpaceColorShader::Attributes> vertices;

@@ -197,5 +197,45 @@ TEST(DrawPlumbing, TheDrawsBlendModeReachesTheOutputMerger) {
     }
 }
 
+// Breaks caught: the division rounded down (117,456 / 64 → 1835, which leaves a 65th chunk of one
+// vertex), either bound not applied, one thread cut like many.
+TEST(DrawPlumbing, ChunksShrinkWithTheThreadsDownToTheSmallest) {
+    EXPECT_EQ(chunkSize(117'456, 1, kMinVertexChunk, kVertexChunk), kVertexChunk);
+    EXPECT_EQ(chunkSize(117'456, 2, kMinVertexChunk, kVertexChunk), kVertexChunk);
+    EXPECT_EQ(chunkSize(117'456, 16, kMinVertexChunk, kVertexChunk), 1836u);  // 117,456 / 64, rounded up
+    EXPECT_EQ(chunkSize(5'000, 16, kMinVertexChunk, kVertexChunk), kMinVertexChunk);
+    EXPECT_EQ(chunkSize(10'000, 4, kMinTriangleChunk, kTriangleChunk), 625u);
+    EXPECT_EQ(chunkSize(0, 8, kMinTriangleChunk, kTriangleChunk), kMinTriangleChunk);
+}
+
+// The threads a context's work is cut for reach the vertex stage and the set-up: a trace of a draw on one
+// thread shows the items.
+// Breaks caught: draw() cutting for the pool's threads whatever DrawContext::cutForThreads says, or
+// either stage keeping its largest chunk.
+TEST(DrawPlumbing, TheThreadsToCutForSizeTheDrawsItems) {
+    Framebuffer fb(64, 64);
+    std::vector<ClipSpaceColorShader::Attributes> vertices(20'000);
+    for (std::size_t i = 0; i < vertices.size(); ++i)
+        vertices[i] = {
+            vec4(0.001f * static_cast<float>(i % 7), 0.002f * static_cast<float>(i % 5), 0.5f, 1.0f),
+            vec4(1.0f)};
+    std::vector<std::uint32_t> indices(3 * 10'000);
+    for (std::size_t i = 0; i < indices.size(); ++i)
+        indices[i] = static_cast<std::uint32_t>(i % vertices.size());
+    const auto itemsOfFirstTwoJobs = [&](int cutFor) {
+        DrawContext context(1);
+        context.cutForThreads = cutFor;
+        PoolTrace trace;
+        context.pool.startTrace(trace);
+        draw<ClipSpaceColorShader>(testing::stateFor(fb), {}, std::span(std::as_const(vertices)),
+                                   std::span(std::as_const(indices)), fb, context);
+        context.pool.stopTrace();
+        return trace.jobs.size() < 2 ? std::pair{0u, 0u}
+                                     : std::pair{trace.jobs[0].items, trace.jobs[1].items};
+    };
+    EXPECT_EQ(itemsOfFirstTwoJobs(0), (std::pair{3u, 5u}));     // chunks of 8192 vertices, 2048 triangles
+    EXPECT_EQ(itemsOfFirstTwoJobs(16), (std::pair{20u, 40u}));  // chunks of 1024 vertices, 256 triangles
+}
+
 }  // namespace
 }  // namespace facet

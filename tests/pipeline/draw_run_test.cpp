@@ -82,7 +82,7 @@ TEST(DrawRun, GivesTheBytesAndCountersOfItsDrawsOneByOne) {
     std::mt19937 rng(1201);
     for (int trial = 0; trial < 6; ++trial) {
         Framebuffer one(150, 90), run(150, 90);
-        const int drawCount = trial % 2 == 0 ? 40 : static_cast<int>(2 * kMaxRunCalls + 30);
+        const int drawCount = trial % 2 == 0 ? 40 : static_cast<int>(2 * runCallsFor(6, 1) + 30);
         const std::vector<RandomDraw> draws = randomDraws(one, drawCount, rng);
         DrawContext sequential(1);
         one.clear(vec4(0.1f, 0.2f, 0.3f, 1.0f), DepthFormat::kClear, sequential.pool);
@@ -91,16 +91,24 @@ TEST(DrawRun, GivesTheBytesAndCountersOfItsDrawsOneByOne) {
             expected += draw<FlatColorShader>(d.state, d.uniforms, std::span(d.vertices),
                                               std::span(d.indices), one, sequential);
         ASSERT_GT(expected.fragmentsWritten, 1000u);
-        for (const auto& [threads, tileSize] :
-             {std::pair{1, kDefaultTileSize}, {2, kDefaultTileSize}, {2, 16}}) {
-            SCOPED_TRACE(::testing::Message()
-                         << "trial " << trial << ", " << threads << " threads, tiles of " << tileSize);
+        struct Setting {
+            int threads, tileSize, cutFor;
+        };
+        for (const auto& [threads, tileSize, cutFor] : {Setting{1, kDefaultTileSize, 0},
+                                                        {2, kDefaultTileSize, 0},
+                                                        {2, 16, 0},
+                                                        {2, kDefaultTileSize, 6}}) {
+            SCOPED_TRACE(::testing::Message() << "trial " << trial << ", " << threads << " threads, tiles of "
+                                              << tileSize << ", cut for " << cutFor);
             DrawContext context(threads, tileSize);
+            context.cutForThreads = cutFor;
             run.clear(vec4(0.1f, 0.2f, 0.3f, 1.0f), DepthFormat::kClear, context.pool);
             const std::vector<RunDraw<FlatColorShader>> calls = asRun(draws);
             std::size_t runs = 0;
             const DrawStats stats = drawRun<FlatColorShader>(calls, run, context, &runs);
-            EXPECT_EQ(runs, (draws.size() + kMaxRunCalls - 1) / kMaxRunCalls);  // a few triangles each
+            const int tiles = makeTileGrid(draws.front().state.viewport, tileSize).count();
+            const std::size_t runCalls = runCallsFor(cutFor > 0 ? cutFor : threads, tiles);  // 64; 192 for 6
+            EXPECT_EQ(runs, (draws.size() + runCalls - 1) / runCalls);  // a few triangles each
             EXPECT_TRUE(sameBytes(one, run));
             EXPECT_EQ(stats.vertices, expected.vertices);
             EXPECT_EQ(stats.trianglesRasterized, expected.trianglesRasterized);
@@ -136,6 +144,20 @@ TEST(DrawRun, RefusesADrawTooBigOrWithAnotherViewportAndDrawsNothing) {
     EXPECT_FALSE(fitsInRun(3, 3 * (kTriangleChunk + 1)));
     EXPECT_FALSE(fitsInRun(kVertexChunk + 1, 3));
     EXPECT_TRUE(fitsInRun(kVertexChunk, 3 * kTriangleChunk));
+}
+
+// Breaks caught: runs that do not grow with the threads, grow on one or two threads, outgrow the memory
+// their tables of bins may take on a large image, or shrink below 64 draws on a huge one.
+TEST(DrawRun, RunsGrowWithTheThreadsWithinTheirMemory) {
+    constexpr int k1080pTiles = 30 * 17, k4kTiles = 60 * 34, k8kTiles = 120 * 68;  // tiles of 64
+    EXPECT_EQ(runCallsFor(1, k1080pTiles), kMaxRunCalls);
+    EXPECT_EQ(runCallsFor(2, k1080pTiles), kMaxRunCalls);
+    EXPECT_EQ(runCallsFor(16, k1080pTiles), 8 * kMaxRunCalls);
+    const std::size_t at4k = runCallsFor(16, k4kTiles);
+    EXPECT_LT(at4k, 8 * kMaxRunCalls);
+    EXPECT_LE(2 * at4k * k4kTiles * sizeof(std::vector<std::uint32_t>), kRunBinTablesBytes);
+    EXPECT_GT(2 * (at4k + 1) * k4kTiles * sizeof(std::vector<std::uint32_t>), kRunBinTablesBytes);
+    EXPECT_EQ(runCallsFor(16, k8kTiles), kMaxRunCalls);
 }
 
 }  // namespace
