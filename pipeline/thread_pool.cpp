@@ -5,6 +5,7 @@
 #include <time.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdint>
 #include <new>
@@ -48,6 +49,19 @@ std::int64_t threadCpuNs() {
     timespec now{};
     ::clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
     return std::int64_t{now.tv_sec} * 1'000'000'000 + now.tv_nsec;
+}
+
+// What one read of threadCpuNs costs: the median difference of two reads back to back (PoolTrace::clockReadMs
+// says why that is what an item's time holds of them).
+std::int64_t clockReadNs() {
+    constexpr int kPairs = 63;
+    std::array<std::int64_t, kPairs> differences{};
+    for (std::int64_t& difference : differences) {
+        const std::int64_t first = threadCpuNs();
+        difference = threadCpuNs() - first;
+    }
+    std::nth_element(differences.begin(), differences.begin() + kPairs / 2, differences.end());
+    return differences[kPairs / 2];
 }
 
 double msBetween(Clock::time_point from, Clock::time_point to) {
@@ -152,7 +166,8 @@ void ThreadPool::runItems(int thread, bool traced) {
             next_.store(count_);
         }
         if (traced) {
-            const std::int64_t ns = threadCpuNs() - start;
+            // Not clamped at 0: an item shorter than the reads' noise then averages out over a job.
+            const std::int64_t ns = threadCpuNs() - start - clockReadNs_;
             slot.jobBusyNs += ns;
             slot.jobLongestItemNs = std::max(slot.jobLongestItemNs, ns);
         }
@@ -199,6 +214,7 @@ void ThreadPool::workerLoop(int thread) {
 void ThreadPool::parallelFor(std::size_t count, const std::function<void(std::size_t, int)>& body) {
     if (count == 0) return;
     const Clock::time_point start = trace_ ? Clock::now() : Clock::time_point{};
+    const std::int64_t callerStartNs = trace_ ? threadCpuNs() : 0;
     if (workers_.empty() || count == 1) {
         if (!trace_) {
             for (std::size_t item = 0; item < count; ++item)
@@ -214,7 +230,7 @@ void ThreadPool::parallelFor(std::size_t count, const std::function<void(std::si
         slots_[0].jobBusyNs = slots_[0].jobLongestItemNs = 0;
         runItems(0, true);
         body_ = nullptr;
-        recordJob(start, count);
+        recordJob(start, callerStartNs, count);
         if (failure_) std::rethrow_exception(std::exchange(failure_, nullptr));
         return;
     }
@@ -252,12 +268,13 @@ void ThreadPool::parallelFor(std::size_t count, const std::function<void(std::si
     std::unique_lock lock(mutex_);  // taken even when the spin saw the end: the workers' writes are seen
     done_.wait(lock, [&] { return busy_ == 0; });
     body_ = nullptr;
-    if (trace_) recordJob(start, count);
+    if (trace_) recordJob(start, callerStartNs, count);
     if (failure_) std::rethrow_exception(std::exchange(failure_, nullptr));
 }
 
-void ThreadPool::recordJob(Clock::time_point start, std::size_t count) {
+void ThreadPool::recordJob(Clock::time_point start, std::int64_t callerStartNs, std::size_t count) {
     PoolJobTrace job;
+    job.callerMs = static_cast<double>(threadCpuNs() - callerStartNs) * 1e-6;
     job.startMs = msBetween(traceStart_, start);
     job.endMs = msBetween(traceStart_, Clock::now());
     job.items = static_cast<std::uint32_t>(std::min<std::size_t>(count, UINT32_MAX));
@@ -268,14 +285,16 @@ void ThreadPool::recordJob(Clock::time_point start, std::size_t count) {
         busyNs += slot.jobBusyNs;
         longestNs = std::max(longestNs, slot.jobLongestItemNs);
     }
-    job.busyMs = static_cast<double>(busyNs) * 1e-6;
-    job.longestItemMs = static_cast<double>(longestNs) * 1e-6;
+    job.busyMs = static_cast<double>(std::max<std::int64_t>(busyNs, 0)) * 1e-6;
+    job.longestItemMs = static_cast<double>(std::max<std::int64_t>(longestNs, 0)) * 1e-6;
     trace_->jobs.push_back(job);
 }
 
 void ThreadPool::startTrace(PoolTrace& trace) {
     trace.threadBusyMs.assign(static_cast<std::size_t>(threads()), 0.0);
     trace.jobs.clear();
+    clockReadNs_ = clockReadNs();
+    trace.clockReadMs = static_cast<double>(clockReadNs_) * 1e-6;
     traceStart_ = Clock::now();
     std::lock_guard lock(mutex_);  // the workers read trace_ under the lock
     trace_ = &trace;

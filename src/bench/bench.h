@@ -19,6 +19,7 @@
 namespace facet {
 
 struct Scene;
+struct PoolTrace;
 
 struct BenchOptions {
     std::filesystem::path model;  // OBJ or scene file
@@ -110,6 +111,15 @@ std::pair<std::filesystem::path, std::size_t> largestModel(const std::filesystem
 // pool's jobs on one thread, the serial fraction of a frame and the speed-up Amdahl's law and the jobs'
 // sizes allow at 16 threads and at the largest count. Throws InputError on bad input.
 void runScalingBench(const BenchOptions& options, bool modelGiven, std::ostream& out);
+
+// A frame's serial part from the trace of its jobs on one thread (ThreadPool::startTrace) and its CPU time:
+// serialMs = the time outside its jobs of two or more items (each job's span on the caller and its clock
+// reads taken off) plus the one-item jobs' items; workMs = the items of the other jobs. The trace's own
+// clock reads are in neither, so their sum is the frame's time untraced.
+struct FrameSerialPart {
+    double serialMs = 0.0, workMs = 0.0;
+};
+FrameSerialPart serialPartOf(const PoolTrace& trace, double frameCpuMs);
 
 // Treats every triangle of options.model (at least 50,000 of them, or InputError) as transparent and
 // turns the model on a turntable (about the vertical axis through its bounding box's centre, camera as

@@ -43,36 +43,61 @@ struct ThreadCountResult {
     double busyShare = 0.0;  // Σ of the threads' busy time in jobs / (threads × wall), traced frames
 };
 
-// The serial part of a frame, from the jobs of frames traced on one thread (where nothing waits), in CPU
-// time (a thread's items are timed by its CPU clock):
-// serial = the frame's time outside jobs of two or more items (the caller alone: planning, sorting,
-// gathering) plus the one-item jobs; f = serial / frame. Amdahl: speed-up(P) = 1 / (f + (1 − f) / P).
-// The job bound is tighter: a job of items W_j with longest item m_j takes at least max(W_j / P, m_j),
-// so T(P) ≥ outside + Σ_j max(W_j / P, m_j) (a job of few tiles keeps few threads busy).
+// The serial part of a frame, from frames traced on one thread (where nothing waits), in the thread's CPU
+// time: serialMs = the frame's time outside its jobs of two or more items (the caller alone: planning,
+// sorting, gathering), measured from each job's span on the caller (PoolJobTrace::callerMs), plus the
+// one-item jobs; workMs = the items of the other jobs. Both leave out the trace's own clock reads
+// (PoolTrace::clockReadMs), so serialMs + workMs is the untraced frame. f = serial / (serial + work);
+// Amdahl: speed-up(P) = 1 / (f + (1 − f) / P). The job bound is tighter: a job of items W_j with longest
+// item m_j takes at least max(W_j / P, m_j), so T(P) ≥ serial + Σ_j max(W_j / P, m_j) (a job of few
+// tiles keeps few threads busy).
 struct SerialPart {
-    double frameMs = 0.0;        // per frame, traced on one thread
-    double outsideJobsMs = 0.0;  // per frame
-    double oneItemJobsMs = 0.0;  // per frame
+    double tracedMs = 0.0;  // per frame, traced, clock reads included
+    double serialMs = 0.0;  // per frame
+    double workMs = 0.0;    // per frame
     double jobsPerFrame = 0.0;
     double medianGapUs = 0.0;        // between consecutive jobs of a frame: what a waiting worker waits
-    std::vector<PoolJobTrace> jobs;  // of one frame
-    double fraction() const { return (outsideJobsMs + oneItemJobsMs) / frameMs; }
+    double clockReadUs = 0.0;        // one read of the thread's CPU clock, taken off
+    std::vector<PoolJobTrace> jobs;  // of one frame, its jobs of two or more items
+    double fraction() const { return serialMs / (serialMs + workMs); }
     double amdahl(int threads) const {
         const double f = fraction();
         return 1.0 / (f + (1.0 - f) / threads);
     }
     double jobBound(int threads) const {
-        double ms = outsideJobsMs;
+        double ms = serialMs;
         for (const PoolJobTrace& job : jobs)
             ms += std::max(job.busyMs / threads, job.longestItemMs);
-        return frameMs / ms;
+        return (serialMs + workMs) / ms;
     }
 };
 
+}  // namespace
+
+FrameSerialPart serialPartOf(const PoolTrace& trace, double frameCpuMs) {
+    FrameSerialPart part;
+    part.serialMs = frameCpuMs;
+    for (const PoolJobTrace& job : trace.jobs) {
+        // The job's span on the caller, and the halves of its two clock reads outside the span.
+        part.serialMs -= job.callerMs + trace.clockReadMs;
+        if (job.items > 1)
+            part.workMs += job.busyMs;
+        else
+            part.serialMs += job.busyMs;
+    }
+    part.serialMs = std::max(part.serialMs, 0.0);
+    return part;
+}
+
+namespace {
+
+// Frames traced on one thread (`context`'s pool has one), their work cut for `cutFor` threads (what a frame
+// on that many runs as items).
 SerialPart traceOneThread(const PreparedScene& prepared, Framebuffer& framebuffer, DrawContext& context,
-                          FrameMemory& memory, int frames) {
+                          FrameMemory& memory, int frames, int cutFor) {
     SerialPart part;
-    std::vector<double> frameMs, outsideMs, oneItemMs, gapsUs;
+    context.cutForThreads = cutFor;
+    std::vector<double> tracedMs, serialMs, workMs, gapsUs, clockReadUs;
     std::size_t jobs = 0;
     PoolTrace trace;
     for (int i = 0; i < frames; ++i) {
@@ -83,32 +108,36 @@ SerialPart traceOneThread(const PreparedScene& prepared, Framebuffer& framebuffe
         renderFrame(prepared, framebuffer, context, memory);
         const double ms = threadCpuMs() - start;
         context.pool.stopTrace();
-        double inJobs = 0.0, oneItem = 0.0;
-        for (std::size_t j = 0; j < trace.jobs.size(); ++j) {
-            const PoolJobTrace& job = trace.jobs[j];
-            (job.items > 1 ? inJobs : oneItem) += job.busyMs;
-            if (j > 0) gapsUs.push_back(1e3 * (job.startMs - trace.jobs[j - 1].endMs));
-        }
-        frameMs.push_back(ms);
-        outsideMs.push_back(ms - inJobs - oneItem);
-        oneItemMs.push_back(oneItem);
+        const FrameSerialPart frame = serialPartOf(trace, ms);
+        for (std::size_t j = 1; j < trace.jobs.size(); ++j)
+            gapsUs.push_back(1e3 * (trace.jobs[j].startMs - trace.jobs[j - 1].endMs));
+        tracedMs.push_back(ms);
+        serialMs.push_back(frame.serialMs);
+        workMs.push_back(frame.workMs);
+        clockReadUs.push_back(1e3 * trace.clockReadMs);
         jobs += trace.jobs.size();
-        if (i == frames / 2) part.jobs = trace.jobs;
+        if (i == frames / 2) {
+            part.jobs.clear();
+            std::copy_if(trace.jobs.begin(), trace.jobs.end(), std::back_inserter(part.jobs),
+                         [](const PoolJobTrace& job) { return job.items > 1; });
+        }
     }
-    part.frameMs = median(frameMs);
-    part.outsideJobsMs = median(outsideMs);
-    part.oneItemJobsMs = median(oneItemMs);
+    part.tracedMs = median(tracedMs);
+    part.serialMs = median(serialMs);
+    part.workMs = median(workMs);
     part.jobsPerFrame = static_cast<double>(jobs) / frames;
     part.medianGapUs = gapsUs.empty() ? 0.0 : median(gapsUs);
-    // The job bound's jobs scaled to the median frame (the kept frame may have run slower or faster).
-    double kept = part.outsideJobsMs;
+    part.clockReadUs = median(clockReadUs);
+    // The job bound's jobs scaled to the median frame's work (the kept frame may have run slower or faster).
+    double kept = 0.0;
     for (const PoolJobTrace& job : part.jobs)
         kept += job.busyMs;
     if (kept > 0.0)
         for (PoolJobTrace& job : part.jobs) {
-            job.busyMs *= (part.frameMs - part.outsideJobsMs) / (kept - part.outsideJobsMs);
-            job.longestItemMs *= (part.frameMs - part.outsideJobsMs) / (kept - part.outsideJobsMs);
+            job.busyMs *= part.workMs / kept;
+            job.longestItemMs *= part.workMs / kept;
         }
+    context.cutForThreads = 0;
     return part;
 }
 
@@ -196,8 +225,13 @@ void benchScalingScene(const ScalingScene& bench, const std::vector<int>& counts
             spinCpuMs[l].push_back(processCpuMs() - cpuStart);
         }
     widest.pool.setSpinLimit(kDefaultSpinLimit);
+    const int given = counts.back();
     const SerialPart serial =
-        traceOneThread(prepared, *sides[0].framebuffer, *sides[0].context, sides[0].memory, frames);
+        traceOneThread(prepared, *sides[0].framebuffer, *sides[0].context, sides[0].memory, frames, given);
+    const SerialPart serialAt16 = given == kPredictedThreads
+                                      ? serial
+                                      : traceOneThread(prepared, *sides[0].framebuffer, *sides[0].context,
+                                                       sides[0].memory, frames, kPredictedThreads);
 
     out << bench.model.filename().string() << " at " << scene.width << "x" << scene.height << ", "
         << prepared.triangleCount << " triangles\n"
@@ -216,18 +250,21 @@ void benchScalingScene(const ScalingScene& bench, const std::vector<int>& counts
             << (std::chrono::microseconds(kSpinLimitsUs[l]) == kDefaultSpinLimit ? " (default) " : " ")
             << median(spinWallMs[l]) << " / " << median(spinCpuMs[l]);
     out << "\n";
-    const int given = counts.back();
-    out << std::setprecision(2) << "  one-thread trace: " << serial.jobsPerFrame
-        << " jobs per frame, median gap " << std::setprecision(1) << serial.medianGapUs
-        << " us between jobs; per frame " << std::setprecision(2) << serial.frameMs << " ms, of it "
-        << serial.outsideJobsMs << " ms outside jobs and " << serial.oneItemJobsMs << " ms in one-item jobs\n"
-        << "  serial fraction " << std::setprecision(3) << serial.fraction() << std::setprecision(2)
-        << "; predicted speed-up at " << kPredictedThreads << " threads: Amdahl "
-        << serial.amdahl(kPredictedThreads) << "x, job bound " << serial.jobBound(kPredictedThreads) << "x";
-    if (given != kPredictedThreads)
-        out << "; at " << given << ": Amdahl " << serial.amdahl(given) << "x, job bound "
-            << serial.jobBound(given) << "x";
-    out << std::endl;  // flushed: a long run shows its progress
+    // What the trace cut for `threads` shows and predicts for them.
+    const auto printTrace = [&](const SerialPart& part, int threads) {
+        out << std::setprecision(2) << "  one-thread trace, work cut for " << threads
+            << " threads: " << part.jobsPerFrame << " jobs per frame, median gap " << std::setprecision(1)
+            << part.medianGapUs << " us between jobs; per frame " << std::setprecision(2) << part.serialMs
+            << " ms serial (outside jobs, or in one-item jobs) and " << part.workMs << " ms in jobs ("
+            << part.tracedMs << " ms traced: the trace's clock reads, " << part.clockReadUs
+            << " us each, left out)\n"
+            << "    serial fraction " << std::setprecision(3) << part.fraction() << std::setprecision(2)
+            << "; predicted speed-up at " << threads << " threads: Amdahl " << part.amdahl(threads)
+            << "x, job bound " << part.jobBound(threads) << "x\n";
+    };
+    printTrace(serialAt16, kPredictedThreads);
+    if (given != kPredictedThreads) printTrace(serial, given);
+    out << std::flush;  // a long run shows its progress
 }
 
 }  // namespace

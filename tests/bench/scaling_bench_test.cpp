@@ -9,6 +9,7 @@
 
 #include "bench/bench.h"
 #include "bench/process_stats.h"
+#include "pipeline/thread_pool.h"
 
 namespace facet {
 namespace {
@@ -56,6 +57,41 @@ TEST(ScalingBench, ReportsEveryThreadCountAndASerialFraction) {
     EXPECT_GE(fraction, 0.0) << report;
     EXPECT_LE(fraction, 1.0) << report;
     EXPECT_NE(report.find("Amdahl"), std::string::npos) << report;
+    // Predictions for 16 threads and for the largest count swept, each from a trace cut for that many.
+    EXPECT_NE(report.find("work cut for 16 threads"), std::string::npos) << report;
+    EXPECT_NE(report.find("work cut for 3 threads"), std::string::npos) << report;
+    EXPECT_NE(report.find("predicted speed-up at 3 threads"), std::string::npos) << report;
+}
+
+// CPU time of the calling thread spent spinning until `ms` of it have passed.
+void spinCpu(double ms) {
+    const double start = threadCpuMs();
+    while (threadCpuMs() - start < ms) {
+    }
+}
+
+// Catches: a serial part inferred from the items' times with the trace's clock reads in it (20,000 empty
+// items would add 20,000 reads: about 25 ms where a read is a microsecond), a one-item job counted as
+// work that threads share, or a job's span not taken off the frame. The frame: 3 ms alone, 20,000 empty
+// items, four items of 1 ms, one item of 0.5 ms (serial too: nothing can share it).
+TEST(ScalingBench, MeasuresTheSerialPartOfAFrameWithoutTheTracesCost) {
+    ThreadPool pool(1);
+    PoolTrace trace;
+    pool.startTrace(trace);
+    const double start = threadCpuMs();
+    spinCpu(3.0);
+    pool.parallelFor(20'000, [](std::size_t, int) {});
+    pool.parallelFor(4, [](std::size_t, int) { spinCpu(1.0); });
+    pool.parallelFor(1, [](std::size_t, int) { spinCpu(0.5); });
+    const double frameMs = threadCpuMs() - start;
+    pool.stopTrace();
+    const FrameSerialPart part = serialPartOf(trace, frameMs);
+    EXPECT_GT(part.serialMs, 3.4);
+    EXPECT_LT(part.serialMs, 4.2);
+    // The empty items' calls and the reads' cost beyond the back-to-back pairs' stay in the work (0.2 us an
+    // item in one virtual machine): less than half of what the reads would add.
+    EXPECT_GT(part.workMs, 3.9);
+    EXPECT_LT(part.workMs, 4.1 + 0.5 * 20'000 * trace.clockReadMs);
 }
 
 // Catches: the frame bench dropping the CPU time per frame, or setting it against one thread's when it
