@@ -1,13 +1,12 @@
 // facet: renders OBJ models and scene files to images with the Facet software rasterizer. One file per
 // command (render_command, compare_command, bench_command), the options they share in options.h.
-#include <malloc.h>
-
 #include <iostream>
 #include <new>
 
 #include <CLI/CLI.hpp>
 
 #include "base/errors.h"
+#include "base/heap.h"
 #include "base/memory_limit.h"
 #include "cli/bench_command.h"
 #include "cli/compare_command.h"
@@ -23,13 +22,10 @@
 #endif
 
 int main(int argc, char** argv) {
-    // Large blocks from the heap, kept after they are freed, instead of a fresh mapping each: loading a
-    // model grows vectors by reallocation, and each fresh mapping is faulted in page by page again (the
-    // bunny's load and render: 12,300 page faults → 9,900, a tenth of its time). Memory a run has
-    // touched stays with the process until it ends; a batch reuses it from one model to the next.
-    mallopt(M_MMAP_THRESHOLD, 32 << 20);  // glibc's largest threshold
-    mallopt(M_TRIM_THRESHOLD, 512 << 20);
-    mallopt(M_TOP_PAD, 64 << 20);
+    // Large blocks from the heap, kept after they are freed, and the heap in huge pages where that is
+    // free (base/heap.h): loading a model faults in its buffers 2 MB at a time, not 4 KB (the bunny's
+    // load and render: docs/performance.md, "End to end").
+    facet::setUpHeap();
     // A process limit (ulimit -u, ulimit -v) may refuse some of the threads asked for: the work goes
     // on with those there are, and the user hears it once.
     facet::setThreadShortfallReport([](const std::string& message) {
