@@ -95,8 +95,8 @@ inline constexpr std::size_t kBatchTriangles = 32 * kTriangleChunk;
 // kMinVertexChunk vertices and kMinTriangleChunk triangles, below which an item's own cost shows): a job
 // of items lasts at least its longest item, so a mesh of 117,000 vertices in chunks of 8192 keeps 15 of
 // 16 threads busy for one chunk's time and leaves the 16th idle, where chunks of 1836 keep all 16 busy
-// for a quarter of it. With k items per thread taken as they come, the job ends at most one item
-// (1/k of a thread's share) after the last thread began its share's end.
+// for a quarter of it. With k items per thread, taken by the threads as they free up, a job ends at most
+// one item (a k-th of a thread's share) later than an even split would.
 inline constexpr std::size_t kMinVertexChunk = 1024;
 inline constexpr std::size_t kMinTriangleChunk = 256;
 inline constexpr std::size_t kItemsPerThread = 4;

@@ -47,7 +47,7 @@ struct ThreadCountResult {
 // time: serialMs = the frame's time outside its jobs of two or more items (the caller alone: planning,
 // sorting, gathering), measured from each job's span on the caller (PoolJobTrace::callerMs), plus the
 // one-item jobs; workMs = the items of the other jobs. Both leave out the trace's own clock reads
-// (PoolTrace::clockReadMs), so serialMs + workMs is the untraced frame. f = serial / (serial + work);
+// (PoolTrace::clockReadMs), so serialMs + workMs is about the untraced frame. f = serial / (serial + work);
 // Amdahl: speed-up(P) = 1 / (f + (1 − f) / P). The job bound is tighter: a job of items W_j with longest
 // item m_j takes at least max(W_j / P, m_j), so T(P) ≥ serial + Σ_j max(W_j / P, m_j) (a job of few
 // tiles keeps few threads busy).
@@ -59,7 +59,7 @@ struct SerialPart {
     double medianGapUs = 0.0;        // between consecutive jobs of a frame: what a waiting worker waits
     double clockReadUs = 0.0;        // one read of the thread's CPU clock, taken off
     std::vector<PoolJobTrace> jobs;  // of one frame, its jobs of two or more items
-    double fraction() const { return serialMs / (serialMs + workMs); }
+    double fraction() const { return serialMs + workMs > 0.0 ? serialMs / (serialMs + workMs) : 0.0; }
     double amdahl(int threads) const {
         const double f = fraction();
         return 1.0 / (f + (1.0 - f) / threads);
