@@ -14,11 +14,11 @@ struct HeapSetUp {
 };
 
 // glibc's malloc: blocks up to 32 MB from the heap, not from a mapping of their own, and freed memory kept
-// (a vector grown by reallocation reuses the pages of the one before instead of faulting in new ones).
-// Then, unless FACET_HUGE_PAGES=0: the heap is extended by kHeapReserve of address space at once and the
-// extension marked for transparent huge pages (madvise MADV_HUGEPAGE), so that what the heap hands out
-// is faulted in 2 MB at a time, and every thread allocates from it (one arena). That is done only where
-// it costs nothing: no address-space limit
+// (a vector grown by reallocation reuses the pages of the one before instead of faulting in new ones;
+// a batch reuses them from one model to the next). Then, unless FACET_HUGE_PAGES=0: the heap is extended
+// by kHeapReserve of address space at once and the extension marked for transparent huge pages (madvise
+// MADV_HUGEPAGE), so that what the heap hands out is faulted in 2 MB at a time, and every thread
+// allocates from it (one arena). That is done only where it costs nothing: no address-space limit
 // (ulimit -v), no strict overcommit (vm.overcommit_memory 2, where the reserve would be charged as
 // memory), transparent huge pages not turned off, and a heap that is glibc's own (a sanitizer's
 // allocator has its own).
