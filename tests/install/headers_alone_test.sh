@@ -24,11 +24,11 @@ export compiler include work
 find "$include" -name '*.h' | sort >"$work/headers"
 count=$(wc -l <"$work/headers")
 xargs -P 2 -I {} bash -c '
-    header={}
+    header=$1
     name=${header#"$include/"}
     log=$work/$(echo "$name" | tr / _).log
     echo "#include \"$name\"" >"$log.cpp"
     "$compiler" -std=c++20 -fsyntax-only -Wall -Wextra -Wno-psabi -I"$include" -I"$include/pipeline" "$log.cpp" \
         >"$log" 2>&1 || { echo "$name does not compile alone:"; head -n 20 "$log"; exit 1; }
-' <"$work/headers" || exit 1
+' header-check {} <"$work/headers" || exit 1
 echo "each of the $count installed headers compiles alone"
