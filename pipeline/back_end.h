@@ -121,6 +121,11 @@ template <class C, class Queue>
             std::memcpy(&target.color(queue.x[0], queue.y[0]), shaded, sizeof shaded);
             return;
         }
+        if (written == 0xffu) {  // a full batch (the common case): eight stores, no branch per lane
+            for (int lane = 0; lane < kBlockSize; ++lane)
+                target.color(queue.x[lane], queue.y[lane]) = shaded[lane];
+            return;
+        }
         for (unsigned lanes = written; lanes; lanes &= lanes - 1) {
             const int lane = std::countr_zero(lanes);
             target.color(queue.x[lane], queue.y[lane]) = shaded[lane];
@@ -317,18 +322,27 @@ template <class C>
         std::memcpy(rowQueue.b2, &row.b2, sizeof row.b2);
     }
     // The passing fragments of a row not shaded whole go to the queue (a row shaded whole has nothing to
-    // do here unless watched: its slots' 1/w).
-    const unsigned queued = rowShadedWhole && !C::kObserving ? 0u : passed;
-    for (unsigned lanes = queued; lanes; lanes &= lanes - 1) {
-        const int lane = std::countr_zero(lanes);
-        int slot = lane;  // a row shaded whole: its slots are its columns, filled above
-        if (!rowShadedWhole)
-            slot = queueFragment(queue, setup, planes, row.x + lane, row.y, row.z[lane], row.b1[lane],
-                                 row.b2[lane]);
-        if constexpr (C::kObserving)  // λ1 and λ2 are in the slot already
+    // do here unless watched: its slots' 1/w). Unwatched, as many as the queue has room for at once,
+    // the queue shaded when full, then the rest: the slots and batches of queueing them one by one.
+    if constexpr (!C::kObserving) {
+        if (!rowShadedWhole && passed) {
+            const unsigned now = lowestSetBits(passed, kBlockSize - queue.count);
+            queueRow(queue, setup, planes, row.x, row.y, row.z, row.b1, row.b2, now);
+            if (queue.count == kBlockSize) shadeQueue(walk, queue);
+            if (const unsigned later = passed & ~now)
+                queueRow(queue, setup, planes, row.x, row.y, row.z, row.b1, row.b2, later);
+        }
+    } else {  // watched: one by one, each slot's 1/w recorded (λ1 and λ2 are in the slot already)
+        for (unsigned lanes = passed; lanes; lanes &= lanes - 1) {
+            const int lane = std::countr_zero(lanes);
+            int slot = lane;  // a row shaded whole: its slots are its columns, filled above
+            if (!rowShadedWhole)
+                slot = queueFragment(queue, setup, planes, row.x + lane, row.y, row.z[lane], row.b1[lane],
+                                     row.b2[lane]);
             (rowShadedWhole ? rowQueue : queue).invW[slot] =
                 interpolateInvW(setup, row.b1[lane], row.b2[lane]);
-        if (queue.count == kBlockSize) shadeQueue(walk, queue);
+            if (queue.count == kBlockSize) shadeQueue(walk, queue);
+        }
     }
     if (rowShadedWhole) {
         rowQueue.count = kBlockSize;

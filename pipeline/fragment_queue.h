@@ -28,17 +28,20 @@ namespace detail {
 // slots in use are those of batch.mask: the first `count` for fragments queued one by one, or the passing
 // lanes of a block row shaded whole (kRowShadedWhole), where slot = column.
 struct FragmentQueue {
+    // The per-slot arrays hold kBlockSize slots and as many again: a block row's fragments are appended
+    // eight lanes wide (queueRow), its dead lanes landing past the last slot in use.
+    static constexpr int kSlotRoom = 2 * kBlockSize;
     int count = 0;
-    int x[kBlockSize] = {}, y[kBlockSize] = {};
-    float z[kBlockSize] = {};
-    std::uint32_t triangle[kBlockSize] = {};
+    int x[kSlotRoom] = {}, y[kSlotRoom] = {};
+    float z[kSlotRoom] = {};
+    std::uint32_t triangle[kSlotRoom] = {};
     FragmentBatch batch{};            // interpolated varyings, lane = queue slot (zeroed once per tile)
     FragmentLists::TileWriter lists;  // the tile's fragment lists, for AppendToLists draws
     // Each slot's barycentrics λ1, λ2 and its triangle's setup and varying planes (zeroed once per tile,
     // so that the lanes of empty slots compute with finite values).
-    float b1[kBlockSize] = {}, b2[kBlockSize] = {};
-    const TriangleSetup* setups[kBlockSize] = {};
-    const float* planes[kBlockSize] = {};
+    float b1[kSlotRoom] = {}, b2[kSlotRoom] = {};
+    const TriangleSetup* setups[kSlotRoom] = {};
+    const float* planes[kSlotRoom] = {};
     // For an observer only (written under Observer::enabled): each slot's 1/w.
     float invW[kBlockSize];
 
@@ -51,11 +54,15 @@ struct FragmentQueue {
         pixelsMod8 |= std::uint64_t{1} << ((pixelY & 7) * 8 + (pixelX & 7));
     }
 
+    // Column c of a row starting at pixel firstX has filter bit (firstX + c) mod 8: `columns` rotated.
+    static unsigned filterBitsOf(int firstX, unsigned columns) {
+        const unsigned shift = static_cast<unsigned>(firstX) & 7u;
+        return ((columns << shift) | (columns >> ((8u - shift) & 7u))) & 0xffu;
+    }
+
     // Does a queued fragment sit in row y, at a column of [x, x + 8) whose bit is set in `columns`?
     bool holdsAny(int rowY, int firstX, unsigned columns) const {
-        // Column c is pixel firstX + c, whose filter bit is (firstX + c) mod 8: the columns rotated.
-        const unsigned shift = static_cast<unsigned>(firstX) & 7u;
-        const unsigned rotated = ((columns << shift) | (columns >> ((8u - shift) & 7u))) & 0xffu;
+        const unsigned rotated = filterBitsOf(firstX, columns);
         const unsigned rowBits = static_cast<unsigned>(pixelsMod8 >> ((rowY & 7) * 8)) & 0xffu;
         if (!(rowBits & rotated)) return false;
         bool found = false;
@@ -107,6 +114,33 @@ inline int queueFragment(FragmentQueue& queue, const TriangleSetup& setup, const
     return slot;
 }
 
+// Puts the fragments of block row (rowX, rowY) in `columns` (at most kBlockSize − queue.count of them),
+// each with its column's depth and barycentrics of `setup`, into the next queue slots in column order:
+// the slots queueFragment would give them one by one, filled eight lanes at a time (the columns packed
+// to the front by one permutation), with no branch on which columns they are.
+inline void queueRow(FragmentQueue& queue, const TriangleSetup& setup, const float* planes, int rowX,
+                     int rowY, Float8 z, Float8 b1, Float8 b2, unsigned columns) {
+    const int first = queue.count, n = std::popcount(columns);
+    const Int8 packed = packedLaneIndices(columns);
+    const Int8 x = packed + rowX, y = Int8{} + rowY;
+    const Int8 triangle = Int8{} + static_cast<std::int32_t>(setup.triangle);
+    const Float8 packedZ = permuteLanes(z, packed), packedB1 = permuteLanes(b1, packed),
+                 packedB2 = permuteLanes(b2, packed);
+    std::memcpy(&queue.x[first], &x, sizeof x);
+    std::memcpy(&queue.y[first], &y, sizeof y);
+    std::memcpy(&queue.z[first], &packedZ, sizeof packedZ);
+    std::memcpy(&queue.triangle[first], &triangle, sizeof triangle);
+    std::memcpy(&queue.b1[first], &packedB1, sizeof packedB1);
+    std::memcpy(&queue.b2[first], &packedB2, sizeof packedB2);
+    for (int slot = first; slot < first + kBlockSize; ++slot) {
+        queue.setups[slot] = &setup;
+        queue.planes[slot] = planes;
+    }
+    queue.count = first + n;
+    queue.batch.mask |= ((1u << n) - 1u) << first;
+    queue.pixelsMod8 |= std::uint64_t{FragmentQueue::filterBitsOf(rowX, columns)} << ((rowY & 7) * 8);
+}
+
 // The varyings (and texture coordinate derivatives) of a block row's eight lanes at once, into `out`.
 template <Shader S, bool kDerivatives>
 void interpolateRowWide(const TriangleSetup& setup, const float* planes, const VaryingPairSlopes& uvSlopes,
@@ -140,11 +174,10 @@ void interpolateQueue(FragmentQueue& queue) {
         const int lead = std::countr_zero(remaining);
         const TriangleSetup& setup = *queue.setups[lead];
         const float* planes = queue.planes[lead];
-        unsigned group = 0;  // the live slots of lead's triangle
-        for (unsigned lanes = remaining; lanes; lanes &= lanes - 1) {
-            const int lane = std::countr_zero(lanes);
-            if (queue.setups[lane] == &setup) group |= 1u << lane;
-        }
+        unsigned group = 0;  // the live slots of lead's triangle (all eight compared: no branch per slot)
+        for (int lane = 0; lane < kBlockSize; ++lane)
+            group |= static_cast<unsigned>(queue.setups[lane] == &setup) << lane;
+        group &= remaining;
         remaining &= ~group;
         VaryingPairSlopes uvSlopes;
         if constexpr (kDerivatives) uvSlopes = VaryingPairSlopes(setup, planes, derivativeVarying<S>());

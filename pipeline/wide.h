@@ -178,6 +178,44 @@ inline Float8 gather(const float* table, Int8 index) {
     return r;
 #endif
 }
+// For each 8-bit mask, the indices of its set bits in ascending order, then zeros: lane i of a vector
+// permuted by entry `mask` is the lane of the i-th set bit (a "compress" of the lanes the mask keeps).
+inline constexpr auto kPackedLaneIndices = [] {
+    std::array<std::array<std::int32_t, 8>, 256> table{};
+    for (unsigned mask = 0; mask < 256; ++mask) {
+        int next = 0;
+        for (int lane = 0; lane < 8; ++lane)
+            if ((mask >> lane) & 1u) table[mask][static_cast<std::size_t>(next++)] = lane;
+    }
+    return table;
+}();
+
+inline Int8 packedLaneIndices(unsigned mask) {
+    Int8 indices;
+    std::memcpy(&indices, kPackedLaneIndices[mask & 0xffu].data(), sizeof indices);
+    return indices;
+}
+
+// v[index[i]] in each lane (indices 0–7): one permute instruction with AVX2, eight moves without.
+inline Float8 permuteLanes(Float8 v, Int8 index) {
+#if defined(__AVX2__)
+    return std::bit_cast<Float8>(
+        _mm256_permutevar8x32_ps(std::bit_cast<__m256>(v), std::bit_cast<__m256i>(index)));
+#else
+    Float8 r;
+    for (int i = 0; i < 8; ++i)
+        r[i] = v[index[i] & 7];
+    return r;
+#endif
+}
+
+// The lowest k set bits of an 8-bit `mask` (k ≥ 0): all of it when it has no more than k.
+inline unsigned lowestSetBits(unsigned mask, int k) {
+    if (std::popcount(mask) <= k) return mask;
+    const int beyond = kPackedLaneIndices[mask & 0xffu][static_cast<std::size_t>(k)];  // the (k+1)-th
+    return mask & ((1u << beyond) - 1u);
+}
+
 // The 4-byte word at bytes + 4·index[i] in each lane, as the bytes lie in memory (any 4-byte element,
 // read without regard to its type: memcpy's semantics, one gather with AVX2).
 inline Int8 gatherWords(const void* bytes, Int8 index) {

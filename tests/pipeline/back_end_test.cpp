@@ -1,6 +1,7 @@
 // The back end's fragment queue: what keeps every pixel's fragments in submission order.
 #include "back_end.h"
 
+#include <bit>
 #include <random>
 #include <vector>
 
@@ -53,6 +54,75 @@ TEST(FragmentQueue, HoldsAnyAgreesWithLookingAtEverySlot) {
     }
     EXPECT_GT(held, 1000);
     EXPECT_GT(notHeld, 1000);
+}
+
+// The back end queues a block row's passing fragments eight lanes at a time (queueRow) where it once
+// queued them one by one (queueFragment); the slots must be the same, since they decide which fragments
+// share a batch. For every mask of columns that fits the room left in queues filled 0–7 deep, both ways
+// are compared slot by slot, with the live-slot mask and the pixel filter.
+// Breaks caught: the columns packed out of order or from the wrong lanes (a fragment gets another
+// column's depth or barycentrics), the live-slot mask not shifted past the slots already queued, the
+// filter bits not rotated by the row's first column, a slot's triangle or planes left stale.
+TEST(FragmentQueue, QueueingARowFillsTheSlotsOfQueueingItsFragmentsOneByOne) {
+    TriangleSetup earlier, setup;
+    earlier.triangle = 3;
+    setup.triangle = 41;
+    const float earlierPlanes[3] = {}, planes[3] = {};
+    Float8 z, b1, b2;
+    for (int lane = 0; lane < kBlockSize; ++lane) {
+        z[lane] = 0.1f * static_cast<float>(lane + 1);
+        b1[lane] = 1.0f / static_cast<float>(lane + 2);
+        b2[lane] = -0.5f * static_cast<float>(lane);
+    }
+    int compared = 0;
+    for (int already = 0; already < kBlockSize; ++already)
+        for (unsigned columns = 1; columns < 256; ++columns) {
+            if (std::popcount(columns) > kBlockSize - already) continue;
+            for (const int rowX : {16, 21}) {
+                const int rowY = 13;
+                detail::FragmentQueue one, wide;
+                for (int i = 0; i < already; ++i)
+                    for (detail::FragmentQueue* q : {&one, &wide})
+                        detail::queueFragment(*q, earlier, earlierPlanes, 40 + i, 2, 0.5f, 0.25f, 0.25f);
+                for (int lane = 0; lane < kBlockSize; ++lane)
+                    if ((columns >> lane) & 1u)
+                        detail::queueFragment(one, setup, planes, rowX + lane, rowY, z[lane], b1[lane],
+                                              b2[lane]);
+                detail::queueRow(wide, setup, planes, rowX, rowY, z, b1, b2, columns);
+                ASSERT_EQ(wide.count, one.count);
+                ASSERT_EQ(wide.batch.mask, one.batch.mask) << "columns " << columns << ", after " << already;
+                ASSERT_EQ(wide.pixelsMod8, one.pixelsMod8) << "columns " << columns << ", first x " << rowX;
+                for (int slot = 0; slot < one.count; ++slot) {
+                    SCOPED_TRACE(::testing::Message()
+                                 << "columns " << columns << ", after " << already << ", slot " << slot);
+                    EXPECT_EQ(wide.x[slot], one.x[slot]);
+                    EXPECT_EQ(wide.y[slot], one.y[slot]);
+                    EXPECT_EQ(wide.z[slot], one.z[slot]);
+                    EXPECT_EQ(wide.b1[slot], one.b1[slot]);
+                    EXPECT_EQ(wide.b2[slot], one.b2[slot]);
+                    EXPECT_EQ(wide.triangle[slot], one.triangle[slot]);
+                    EXPECT_EQ(wide.setups[slot], one.setups[slot]);
+                    EXPECT_EQ(wide.planes[slot], one.planes[slot]);
+                }
+                ++compared;
+            }
+        }
+    EXPECT_GT(compared, 2000);
+}
+
+// Splitting a row between a full queue and the next: the lowest k set bits of a mask, checked against
+// clearing the lowest bit one at a time. Breaks caught: the k-th bit itself dropped or one bit too many
+// kept (a fragment queued twice, or lost, when a row straddles a full queue).
+TEST(FragmentQueue, LowestSetBitsKeepsExactlyTheFirstK) {
+    for (unsigned mask = 0; mask < 256; ++mask)
+        for (int k = 0; k <= kBlockSize; ++k) {
+            unsigned expected = 0, rest = mask;
+            for (int i = 0; i < k && rest; ++i) {
+                expected |= rest & (~rest + 1u);
+                rest &= rest - 1u;
+            }
+            ASSERT_EQ(lowestSetBits(mask, k), expected) << "mask " << mask << ", k " << k;
+        }
 }
 
 // Fragments of many small triangles share the queue's batches, and are interpolated when a batch is
