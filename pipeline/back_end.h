@@ -546,9 +546,8 @@ template <class C>
                                                  const PixelRect& rect) {
     if (k + 2 < bin.size()) {
         const char* afterNext = reinterpret_cast<const char*>(&chunk.setups[bin[k + 2]]);
-        __builtin_prefetch(afterNext);
+        __builtin_prefetch(afterNext);  // its two cache lines
         __builtin_prefetch(afterNext + 64);
-        __builtin_prefetch(afterNext + 128);
     }
     if (k + 1 < bin.size()) {
         const TriangleSetup& next = chunk.setups[bin[k + 1]];

@@ -50,7 +50,7 @@ void binTriangle(const TileGrid& grid, const TriangleSetup& setup, std::uint32_t
                                                    : sampleCoordinate(rect.minX) - sampleReach;
                     const std::int64_t y = e.b > 0 ? sampleCoordinate(rect.maxY) + sampleReach
                                                    : sampleCoordinate(rect.minY) - sampleReach;
-                    outside |= e.at(x, y) + e.bias < 0;
+                    outside |= e.at(x, y) + e.bias() < 0;
                 }
                 if (outside) continue;
             }

@@ -35,8 +35,8 @@ inline CoverageEvent coverageAt(const TriangleSetup& setup, int x, int y) {
         event.edgeValues[static_cast<std::size_t>(i)] = value;
         const auto bit = static_cast<std::uint8_t>(1u << i);
         if (value == 0) event.tiedEdges |= bit;
-        if (e.bias == 0) event.topLeftEdges |= bit;
-        if (value + e.bias < 0) event.excludingEdges |= bit;
+        if (e.bias() == 0) event.topLeftEdges |= bit;
+        if (value + e.bias() < 0) event.excludingEdges |= bit;
     }
     event.covered = event.excludingEdges == 0;
     return event;
@@ -160,7 +160,7 @@ struct BlockEdgeSteps {
     bool outside = false;
     inside = true;
     for (int i = 0; i < 3; ++i) {
-        origin[i] = setup.edges[i].at(first.x + dx, first.y + dy) + setup.edges[i].bias;
+        origin[i] = setup.edges[i].at(first.x + dx, first.y + dy) + setup.edges[i].bias();
         outside |= origin[i] + steps.maxOffset[i] < 0;
         inside &= origin[i] + steps.minOffset[i] >= 0;
     }

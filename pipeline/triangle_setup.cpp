@@ -20,10 +20,9 @@ std::int64_t orient2d(const WindowVertex& a, const WindowVertex& b, const Window
 // The edge function of edge a → b: E(p) = orient2d(a, b, p) written as a·x + b·y + c.
 EdgeFunction makeEdge(const WindowVertex& from, const WindowVertex& to) {
     EdgeFunction e;
-    e.a = from.yFixed - to.yFixed;
-    e.b = to.xFixed - from.xFixed;
+    e.a = static_cast<std::int32_t>(from.yFixed - to.yFixed);
+    e.b = static_cast<std::int32_t>(to.xFixed - from.xFixed);
     e.c = from.xFixed * to.yFixed - from.yFixed * to.xFixed;
-    e.bias = isTopLeft(to.xFixed - from.xFixed, to.yFixed - from.yFixed) ? 0 : -1;
     return e;
 }
 

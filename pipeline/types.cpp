@@ -66,7 +66,7 @@ std::ostream& operator<<(std::ostream& os, const WindowTriangle& t) {
 
 std::ostream& operator<<(std::ostream& os, const EdgeFunction& e) {
     return os << "E(x,y) = " << e.a << "·x + " << e.b << "·y + " << e.c
-              << (e.bias ? " (not top-left: bias −1)" : " (top-left)");
+              << (e.bias() ? " (not top-left: bias −1)" : " (top-left)");
 }
 
 std::ostream& operator<<(std::ostream& os, const TriangleSetup& s) {

@@ -102,19 +102,29 @@ struct WindowTriangle {
 
 // ---- Setup → rasterize → interpolate ----------------------------------------------------------------
 
-// E(x, y) = a·x + b·y + c in fixed-point window coordinates, ≥ 0 on the inner side of the edge.
-// `bias` is 0 for a top or left edge and −1 otherwise: testing E + bias ≥ 0 then includes samples
-// exactly on the edge only for top-left edges, so two triangles sharing an edge never both cover them.
+// E(x, y) = a·x + b·y + c in fixed-point window coordinates, ≥ 0 on the inner side of the edge, for the
+// edge from vertex p to vertex q: a = p.y − q.y, b = q.x − p.x, c = p.x·q.y − p.y·q.x. Window
+// coordinates are clamped to ±2·kMaxViewportSide pixels (viewport.h), 24 bits in fixed point, so a and b
+// fit in 32 bits (products with them are taken in 64); c, a product, needs 64. Small, so that a
+// triangle's setup fits in two cache lines.
 struct EdgeFunction {
-    std::int64_t a = 0;
-    std::int64_t b = 0;
+    std::int32_t a = 0;
+    std::int32_t b = 0;
     std::int64_t c = 0;
-    std::int64_t bias = 0;
-    std::int64_t at(std::int64_t xFixed, std::int64_t yFixed) const { return a * xFixed + b * yFixed + c; }
+    std::int64_t at(std::int64_t xFixed, std::int64_t yFixed) const {
+        return std::int64_t{a} * xFixed + std::int64_t{b} * yFixed + c;
+    }
+    // 0 for a top or left edge and −1 otherwise: testing E + bias ≥ 0 then includes samples exactly on
+    // the edge only for top-left edges, so two triangles sharing an edge never both cover them. The
+    // edge's direction q − p is (b, −a), so it is top-left (isTopLeft: dy < 0, or dy = 0 and dx > 0)
+    // when a > 0, or a = 0 and b > 0.
+    std::int64_t bias() const { return a > 0 || (a == 0 && b > 0) ? 0 : -1; }
 };
 
-// Everything the rasterizer and the interpolator need for one triangle, computed once.
-struct TriangleSetup {
+// Everything the rasterizer and the interpolator need for one triangle, computed once. Two cache lines,
+// aligned: the back end reads the setups of a tile's triangles one after another, often on another core
+// than the one that wrote them.
+struct alignas(64) TriangleSetup {
     // edges[i] is the edge opposite vertex i; its value at a sample, divided by doubleArea,
     // is vertex i's barycentric weight λᵢ.
     std::array<EdgeFunction, 3> edges;
@@ -140,6 +150,7 @@ struct TriangleSetup {
     // The pixel bounds hold no pixel whose sample the triangle could cover (set-up's MissesSamples).
     bool boxEmpty() const { return minX > maxX || minY > maxY; }
 };
+static_assert(sizeof(TriangleSetup) == 128, "a triangle's setup is two cache lines");
 
 // The rasterizer's unit of work: an 8×8 block of pixels with one coverage bit per pixel.
 // Bit (8·row + column) is pixel (x + column, y + row). Blocks sit on multiples of 8 in the framebuffer,

@@ -116,7 +116,7 @@ json triangleJson(const TriangleTrace& t) {
     for (const WindowPiece& piece : t.pieces) {
         json edges = json::array();
         for (const EdgeFunction& e : piece.setup.edges)
-            edges.push_back({{"a", e.a}, {"b", e.b}, {"c", e.c}, {"bias", e.bias}});
+            edges.push_back({{"a", e.a}, {"b", e.b}, {"c", e.c}, {"bias", e.bias()}});
         pieces.push_back({{"vertices",
                            {windowVertexJson(piece.vertices[0]), windowVertexJson(piece.vertices[1]),
                             windowVertexJson(piece.vertices[2])}},

@@ -727,7 +727,7 @@ Screen setupScreen(const TriangleTrace& t) {
             const EdgeFunction& e = s.edges[i];
             out << "    E" << i << " = " << e.a << "·x " << signedTerm(e.b) << "·y " << signedTerm(e.c)
                 << "\n      "
-                << (e.bias == 0 ? "top or left edge: a centre exactly on it is inside"
+                << (e.bias() == 0 ? "top or left edge: a centre exactly on it is inside"
                                 : "not top-left: bias −1, a centre exactly on it is outside")
                 << "\n";
         }

@@ -102,6 +102,31 @@ TEST(TriangleSetup, TopLeftClassification) {
     EXPECT_FALSE(isTopLeft(3, 2));   // going down: right edge
 }
 
+// An edge's bias is not stored but read off its coefficients (its direction is (b, −a)). For every
+// direction, zero components included, and for the edges setup builds around a triangle of either
+// winding: bias() is 0 exactly where isTopLeft says so.
+// Breaks caught: the direction's sign taken the wrong way (every edge's ties flip to the other
+// triangle), horizontal edges (a = 0) classified by a alone.
+TEST(TriangleSetup, AnEdgesBiasIsTheTopLeftRuleOfItsDirection) {
+    for (int dx = -2; dx <= 2; ++dx)
+        for (int dy = -2; dy <= 2; ++dy) {
+            if (dx == 0 && dy == 0) continue;
+            const EdgeFunction e{-dy, dx, 0};
+            EXPECT_EQ(e.bias(), isTopLeft(dx, dy) ? 0 : -1) << "direction (" << dx << ", " << dy << ")";
+        }
+    for (const bool clockwise : {false, true}) {
+        const WindowTriangle t = clockwise ? tri(at(0.5f, 0.5f), at(1.5f, 6.5f), at(6.5f, 1.5f))
+                                           : tri(at(0.5f, 0.5f), at(6.5f, 1.5f), at(1.5f, 6.5f));
+        TriangleSetup setup;
+        ASSERT_EQ(setupTriangle(t, stateOf(8, 8), setup, nullptr), TriangleFate::Drawn);
+        int topLeft = 0;
+        for (const EdgeFunction& e : setup.edges)
+            topLeft += e.bias() == 0;
+        // The edge from (0.5, 0.5) down to (1.5, 6.5) is its one left edge; it has no horizontal one.
+        EXPECT_EQ(topLeft, 1) << "clockwise " << clockwise;
+    }
+}
+
 // Direct3D's rasterization-rules example: the square (0,0)–(5,5) split along its diagonal. The five
 // pixel centres on the diagonal belong to the triangle for which it is a left edge: 15 + 10 pixels.
 TEST(TriangleSetup, SquareSplitAlongDiagonalGivesFifteenAndTen) {
@@ -189,7 +214,7 @@ TEST(TriangleSetup, ADrawnTriangleWritesEveryFieldOfItsSetup) {
     TriangleSetup fresh;
     ASSERT_EQ(setupTriangle(t, stateOf(8, 8), fresh, nullptr), TriangleFate::Drawn);
     TriangleSetup reused;
-    reused.edges.fill(EdgeFunction{7, 7, 7, 7});
+    reused.edges.fill(EdgeFunction{7, 7, 7});
     reused.doubleArea = 7;
     reused.frontFacing = !fresh.frontFacing;
     reused.perspective = !fresh.perspective;
@@ -202,7 +227,6 @@ TEST(TriangleSetup, ADrawnTriangleWritesEveryFieldOfItsSetup) {
         EXPECT_EQ(reused.edges[i].a, fresh.edges[i].a) << i;
         EXPECT_EQ(reused.edges[i].b, fresh.edges[i].b) << i;
         EXPECT_EQ(reused.edges[i].c, fresh.edges[i].c) << i;
-        EXPECT_EQ(reused.edges[i].bias, fresh.edges[i].bias) << i;
     }
     EXPECT_EQ(reused.doubleArea, fresh.doubleArea);
     EXPECT_EQ(reused.frontFacing, fresh.frontFacing);
