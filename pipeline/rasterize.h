@@ -55,10 +55,11 @@ inline std::uint64_t rectMask(int blockX, int blockY, const PixelRect& rect) {
               lastRow = std::min(rect.maxY - blockY, kBlockSize - 1);
     if (firstColumn > lastColumn || firstRow > lastRow) return 0;
     const std::uint64_t rowBits = ((std::uint64_t{1} << (lastColumn - firstColumn + 1)) - 1) << firstColumn;
-    std::uint64_t mask = 0;
-    for (int row = firstRow; row <= lastRow; ++row)
-        mask |= rowBits << (row * kBlockSize);
-    return mask;
+    // rowBits in every byte (it is below 256), kept in the bytes of rows firstRow..lastRow: no loop over
+    // the rows, whose count varies from block to block (a branch the CPU would often mispredict).
+    const std::uint64_t rows = (~std::uint64_t{0} >> (64 - kBlockSize * (lastRow - firstRow + 1)))
+                               << (kBlockSize * firstRow);
+    return (rowBits * 0x0101010101010101u) & rows;
 }
 
 namespace detail {

@@ -214,5 +214,27 @@ TEST(Rasterize, RectMaskSelectsThePixelsInside) {
     EXPECT_EQ(std::popcount(rectMask(16, 8, {18, 9, 30, 12})), 6 * 4);
 }
 
+// Every rectangle with corners from two pixels before the block to two after it, bit by bit against
+// "is the pixel inside". Breaks caught: the rows' span one row short or long, rows shifted by the
+// first row twice, the columns' bits not copied to every kept row.
+TEST(Rasterize, RectMaskAgreesWithTestingEachPixel) {
+    const int bx = 16, by = 8;
+    for (int minY = by - 2; minY <= by + 9; ++minY)
+        for (int maxY = minY - 1; maxY <= by + 9; ++maxY)
+            for (int minX = bx - 2; minX <= bx + 9; ++minX)
+                for (int maxX = minX - 1; maxX <= bx + 9; ++maxX) {
+                    const PixelRect rect{minX, minY, maxX, maxY};
+                    std::uint64_t expected = 0;
+                    for (int row = 0; row < kBlockSize; ++row)
+                        for (int column = 0; column < kBlockSize; ++column) {
+                            const int x = bx + column, y = by + row;
+                            if (x >= minX && x <= maxX && y >= minY && y <= maxY)
+                                expected |= std::uint64_t{1} << (row * kBlockSize + column);
+                        }
+                    ASSERT_EQ(rectMask(bx, by, rect), expected)
+                        << "rect " << minX << "," << minY << " – " << maxX << "," << maxY;
+                }
+}
+
 }  // namespace
 }  // namespace facet
