@@ -728,7 +728,7 @@ Screen setupScreen(const TriangleTrace& t) {
             out << "    E" << i << " = " << e.a << "·x " << signedTerm(e.b) << "·y " << signedTerm(e.c)
                 << "\n      "
                 << (e.bias() == 0 ? "top or left edge: a centre exactly on it is inside"
-                                : "not top-left: bias −1, a centre exactly on it is outside")
+                                  : "not top-left: bias −1, a centre exactly on it is outside")
                 << "\n";
         }
         out << "  Bounding box: pixels x " << s.minX << ".." << s.maxX << ", y " << s.minY << ".." << s.maxY
