@@ -110,10 +110,6 @@ bool isCulled(bool frontFacing, CullMode cull) {
     return (cull == CullMode::Back && !frontFacing) || (cull == CullMode::Front && frontFacing);
 }
 
-bool isTopLeft(std::int64_t dx, std::int64_t dy) {
-    return dy < 0 || (dy == 0 && dx > 0);
-}
-
 float depthOffset(const TriangleSetup& setup, const DepthOffset& offset, DepthBufferFormat format) {
     // z = z0 + λ1·dz1 + λ2·dz2 with λi = Ei(x, y) / doubleArea, Ei = a·x + b·y + c in fixed units:
     // ∂z/∂x = (dz1·a1 + dz2·a2) · kFixedOne / doubleArea per pixel, and likewise with b for y.

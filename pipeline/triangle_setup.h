@@ -17,11 +17,6 @@ std::int64_t signedDoubleArea(const WindowTriangle& triangle);
 bool isFrontFacing(std::int64_t signedDoubleArea, FrontFace frontFace);
 bool isCulled(bool frontFacing, CullMode cull);
 
-// A top edge is horizontal with the triangle below it; a left edge has the triangle to its right.
-// For an edge a → b of a triangle with positive orientation in y-down window space, that is
-// dy < 0 (left), or dy = 0 and dx > 0 (top).
-bool isTopLeft(std::int64_t dx, std::int64_t dy);
-
 // Culls (facing, zero area) and, for a triangle that survives, computes its TriangleSetup:
 // orientation made positive, edge functions with fill-rule bias, the pixel bounding box clamped to
 // the viewport, and the attribute planes for depth, 1/w and each varying (written to `varyingPlanes`,

@@ -102,6 +102,13 @@ struct WindowTriangle {
 
 // ---- Setup → rasterize → interpolate ----------------------------------------------------------------
 
+// A top edge is horizontal with the triangle below it; a left edge has the triangle to its right.
+// For an edge a → b of a triangle with positive orientation in y-down window space, that is
+// dy < 0 (left), or dy = 0 and dx > 0 (top).
+inline bool isTopLeft(std::int64_t dx, std::int64_t dy) {
+    return dy < 0 || (dy == 0 && dx > 0);
+}
+
 // E(x, y) = a·x + b·y + c in fixed-point window coordinates, ≥ 0 on the inner side of the edge, for the
 // edge from vertex p to vertex q: a = p.y − q.y, b = q.x − p.x, c = p.x·q.y − p.y·q.x. Window
 // coordinates are clamped to ±2·kMaxViewportSide pixels (viewport.h), 24 bits in fixed point, so a and b
@@ -115,10 +122,9 @@ struct EdgeFunction {
         return std::int64_t{a} * xFixed + std::int64_t{b} * yFixed + c;
     }
     // 0 for a top or left edge and −1 otherwise: testing E + bias ≥ 0 then includes samples exactly on
-    // the edge only for top-left edges, so two triangles sharing an edge never both cover them. The
-    // edge's direction q − p is (b, −a), so it is top-left (isTopLeft: dy < 0, or dy = 0 and dx > 0)
-    // when a > 0, or a = 0 and b > 0.
-    std::int64_t bias() const { return a > 0 || (a == 0 && b > 0) ? 0 : -1; }
+    // the edge only for top-left edges, so two triangles sharing an edge never both cover them. Read off
+    // the edge's direction q − p, which is (b, −a).
+    std::int64_t bias() const { return isTopLeft(b, -std::int64_t{a}) ? 0 : -1; }
 };
 
 // Everything the rasterizer and the interpolator need for one triangle, computed once. Two cache lines,

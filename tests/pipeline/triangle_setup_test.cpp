@@ -103,10 +103,10 @@ TEST(TriangleSetup, TopLeftClassification) {
 }
 
 // An edge's bias is not stored but read off its coefficients (its direction is (b, −a)). For every
-// direction, zero components included, and for the edges setup builds around a triangle of either
-// winding: bias() is 0 exactly where isTopLeft says so.
-// Breaks caught: the direction's sign taken the wrong way (every edge's ties flip to the other
-// triangle), horizontal edges (a = 0) classified by a alone.
+// direction, zero components included, bias() is 0 exactly where isTopLeft says so of that direction;
+// the edges setup builds around a triangle of either winding have one top-left edge.
+// Breaks caught: the direction read the wrong way round ((a, b), or −b: every edge's ties flip to the
+// other triangle).
 TEST(TriangleSetup, AnEdgesBiasIsTheTopLeftRuleOfItsDirection) {
     for (int dx = -2; dx <= 2; ++dx)
         for (int dy = -2; dy <= 2; ++dy) {
