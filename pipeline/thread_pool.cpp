@@ -170,6 +170,7 @@ void ThreadPool::runItems(int thread, bool traced) {
             const std::int64_t ns = threadCpuNs() - start - clockReadNs_;
             slot.jobBusyNs += ns;
             slot.jobLongestItemNs = std::max(slot.jobLongestItemNs, ns);
+            ++slot.jobItems;
         }
     }
 }
@@ -228,6 +229,7 @@ void ThreadPool::parallelFor(std::size_t count, const std::function<void(std::si
             next_.store(0);
         }
         slots_[0].jobBusyNs = slots_[0].jobLongestItemNs = 0;
+        slots_[0].jobItems = 0;
         runItems(0, true);
         body_ = nullptr;
         recordJob(start, callerStartNs, count);
@@ -244,9 +246,11 @@ void ThreadPool::parallelFor(std::size_t count, const std::function<void(std::si
         open_ = true;
         ++generation_;
         if (trace_)
-            for (int t = 0; t < threads(); ++t)
-                slots_[static_cast<std::size_t>(t)].jobBusyNs =
-                    slots_[static_cast<std::size_t>(t)].jobLongestItemNs = 0;
+            for (int t = 0; t < threads(); ++t) {
+                ThreadSlot& slot = slots_[static_cast<std::size_t>(t)];
+                slot.jobBusyNs = slot.jobLongestItemNs = 0;
+                slot.jobItems = 0;
+            }
         // The caller takes an item itself: a job of k items needs at most k − 1 workers, and a worker
         // woken for nothing costs a context switch. Polling workers need no call.
         wakeUps = static_cast<int>(std::min<std::size_t>(count - 1, static_cast<std::size_t>(sleeping_)));
@@ -282,6 +286,7 @@ void ThreadPool::recordJob(Clock::time_point start, std::int64_t callerStartNs, 
     for (int t = 0; t < threads(); ++t) {
         const ThreadSlot& slot = slots_[static_cast<std::size_t>(t)];
         trace_->threadBusyMs[static_cast<std::size_t>(t)] += static_cast<double>(slot.jobBusyNs) * 1e-6;
+        trace_->threadItems[static_cast<std::size_t>(t)] += slot.jobItems;
         busyNs += slot.jobBusyNs;
         longestNs = std::max(longestNs, slot.jobLongestItemNs);
     }
@@ -292,6 +297,7 @@ void ThreadPool::recordJob(Clock::time_point start, std::int64_t callerStartNs, 
 
 void ThreadPool::startTrace(PoolTrace& trace) {
     trace.threadBusyMs.assign(static_cast<std::size_t>(threads()), 0.0);
+    trace.threadItems.assign(static_cast<std::size_t>(threads()), 0);
     trace.jobs.clear();
     clockReadNs_ = clockReadNs();
     trace.clockReadMs = static_cast<double>(clockReadNs_) * 1e-6;

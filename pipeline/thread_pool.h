@@ -56,6 +56,7 @@ struct PoolJobTrace {
 // caller's), and every job. facet bench --scaling derives the serial part of a frame from it.
 struct PoolTrace {
     std::vector<double> threadBusyMs;
+    std::vector<std::uint64_t> threadItems;  // the items each thread ran (two clock reads each)
     std::vector<PoolJobTrace> jobs;
     // What one read of a thread's CPU clock costs (a system call: about a microsecond in some virtual
     // machines), measured when the trace starts. An item's time, from one read to the next, holds one
@@ -116,6 +117,7 @@ class ThreadPool {
     struct alignas(64) ThreadSlot {
         std::atomic<std::uint64_t> caughtSpinning{0}, slept{0};
         std::int64_t jobBusyNs = 0, jobLongestItemNs = 0;  // traced: the current job's items on this thread
+        std::uint64_t jobItems = 0;                        // traced: how many of them
     };
 
     void workerLoop(int thread);

@@ -121,6 +121,12 @@ struct FrameSerialPart {
 };
 FrameSerialPart serialPartOf(const PoolTrace& trace, double frameCpuMs);
 
+// The share of a traced frame's threads' time spent in jobs: the items' times summed over the threads,
+// over each thread's wall-clock time `frameWallMs` less the trace's own clock reads on that thread (two
+// per item, and two per job on the caller), which the items' times leave out too: else a frame of many
+// small items would look idle for the reads' time where a read is a system call.
+double busyShareOf(const PoolTrace& trace, double frameWallMs);
+
 // Treats every triangle of options.model (at least 50,000 of them, or InputError) as transparent and
 // turns the model on a turntable (about the vertical axis through its bounding box's centre, camera as
 // `facet render` frames it). Each frame computes one key per triangle (view-space depth of the centroid)

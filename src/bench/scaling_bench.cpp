@@ -40,7 +40,7 @@ struct ScalingScene {
 struct ThreadCountResult {
     int threads = 0;
     double wallMs = 0.0, cpuMs = 0.0;
-    double busyShare = 0.0;  // Σ of the threads' busy time in jobs / (threads × wall), traced frames
+    double busyShare = 0.0;  // busyShareOf: the threads' time in jobs / their time, traced frames
 };
 
 // The serial part of a frame, from frames traced on one thread (where nothing waits), in the thread's CPU
@@ -87,6 +87,17 @@ FrameSerialPart serialPartOf(const PoolTrace& trace, double frameCpuMs) {
     }
     part.serialMs = std::max(part.serialMs, 0.0);
     return part;
+}
+
+double busyShareOf(const PoolTrace& trace, double frameWallMs) {
+    double busyMs = 0.0, availableMs = 0.0;
+    for (std::size_t t = 0; t < trace.threadBusyMs.size(); ++t) {
+        double reads = 2.0 * static_cast<double>(trace.threadItems[t]);
+        if (t == 0) reads += 2.0 * static_cast<double>(trace.jobs.size());
+        busyMs += trace.threadBusyMs[t];
+        availableMs += frameWallMs - reads * trace.clockReadMs;
+    }
+    return availableMs > 0.0 ? busyMs / availableMs : 0.0;
 }
 
 namespace {
@@ -206,10 +217,7 @@ void benchScalingScene(const ScalingScene& bench, const std::vector<int>& counts
             renderFrame(prepared, *side.framebuffer, *side.context, side.memory);
             const double wall = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
             side.context->pool.stopTrace();
-            double busy = 0.0;
-            for (const double ms : trace.threadBusyMs)
-                busy += ms;
-            side.busyShare.push_back(busy / (wall * side.context->pool.threads()));
+            side.busyShare.push_back(busyShareOf(trace, wall));
         }
     // The largest count's frames with each spin limit, taking turns.
     DrawContext& widest = *sides.back().context;
@@ -297,7 +305,8 @@ void runScalingBench(const BenchOptions& options, bool modelGiven, std::ostream&
         << std::chrono::duration<double, std::micro>(kDefaultSpinLimit).count() << " us, then sleeps\n"
         << "columns    medians per frame; speed-up = 1-thread ms / ms; efficiency = speed-up / threads;\n"
         << "           cpu ratio = cpu ms / 1-thread cpu ms (1.00: no CPU spent waiting or sharing);\n"
-        << "           busy share = the threads' time in jobs / (threads x wall), traced frames apart\n";
+        << "           busy share = the threads' time in jobs / (threads x wall, less the trace's clock "
+           "reads), traced frames apart\n";
     for (const ScalingScene& scene : scenes)
         benchScalingScene(scene, counts, options.frames, out);
 }

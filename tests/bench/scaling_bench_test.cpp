@@ -94,6 +94,22 @@ TEST(ScalingBench, MeasuresTheSerialPartOfAFrameWithoutTheTracesCost) {
     EXPECT_LT(part.workMs, 4.1 + 0.5 * 20'000 * trace.clockReadMs);
 }
 
+// Catches: a busy share that leaves the trace's clock reads in the threads' time (a frame of 12,000 items
+// whose reads are system calls of a microsecond looked a quarter idle on one thread), counts one read
+// per item instead of two, or takes the caller's two reads per job off every thread's time.
+TEST(ScalingBench, ABusyShareLeavesOutTheTracesClockReads) {
+    PoolTrace trace;
+    trace.clockReadMs = 0.001;
+    trace.threadBusyMs = {30.0, 20.0};
+    trace.threadItems = {1000, 500};
+    trace.jobs.resize(3);
+    // Thread 0 (the caller): 40 − (2·1000 + 2·3) reads; thread 1: 40 − 2·500 reads, of 1 us each.
+    EXPECT_DOUBLE_EQ(busyShareOf(trace, 40.0), 50.0 / ((40.0 - 2.006) + (40.0 - 1.0)));
+    // No reads: the plain share.
+    trace.clockReadMs = 0.0;
+    EXPECT_DOUBLE_EQ(busyShareOf(trace, 40.0), 50.0 / 80.0);
+}
+
 // Catches: the frame bench dropping the CPU time per frame, or setting it against one thread's when it
 // runs on one thread (the ratio would be 1 by construction).
 TEST(FrameBench, SetsTheCpuTimeAgainstOneThreadsOnlyOnMoreThreads) {

@@ -79,7 +79,8 @@ TEST(ThreadPoolWaits, AJobWakesOnlyAsManySleepersAsItHasItemsBeyondTheCaller) {
 }
 
 // Catches: a trace that misses the items run on workers or on the caller alone (one-item jobs, a pool
-// of one thread), or counts a job twice: each job's item count and every thread's busy time add up.
+// of one thread), or counts a job twice: each job's item count, every thread's busy time and every
+// thread's item count add up.
 TEST(ThreadPoolWaits, ATraceAccountsForEveryJobAndItem) {
     for (const int threads : {1, 3}) {
         ThreadPool pool(threads);
@@ -106,6 +107,12 @@ TEST(ThreadPoolWaits, ATraceAccountsForEveryJobAndItem) {
             threadBusy += ms;
         EXPECT_NEAR(busy, threadBusy, 1e-9 * (1.0 + busy));
         EXPECT_GT(busy, 0.0);
+        // Every traced item counted once, on the thread that ran it (the untraced job's seven in none).
+        ASSERT_EQ(trace.threadItems.size(), static_cast<std::size_t>(threads));
+        std::uint64_t items = 0;
+        for (const std::uint64_t count : trace.threadItems)
+            items += count;
+        EXPECT_EQ(items, 1u + 5u + 40u + 2u) << threads << " threads";
     }
 }
 
