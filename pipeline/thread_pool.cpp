@@ -155,15 +155,19 @@ void ThreadPool::stopWorkers() {
 // thread's slot.
 void ThreadPool::runItems(int thread, bool traced) {
     ThreadSlot& slot = slots_[static_cast<std::size_t>(thread)];
-    for (std::size_t item = next_.fetch_add(1); item < count_; item = next_.fetch_add(1)) {
+    // The job's body and size, read once: they stay fixed while the job runs (set under mutex_ before
+    // any thread joins it), and read per item they would be read beside the claims of the other threads.
+    const std::function<void(std::size_t, int)>& body = *body_;
+    const std::size_t count = count_;
+    for (std::size_t item = next_.fetch_add(1); item < count; item = next_.fetch_add(1)) {
         const std::int64_t start = traced ? threadCpuNs() : 0;
         try {
-            (*body_)(item, thread);
+            body(item, thread);
         } catch (...) {
             // Kept for parallelFor to rethrow; no thread begins another item of this job.
             std::lock_guard lock(mutex_);
             if (!failure_) failure_ = std::current_exception();
-            next_.store(count_);
+            next_.store(count);
         }
         if (traced) {
             // Not clamped at 0: an item shorter than the reads' noise then averages out over a job.

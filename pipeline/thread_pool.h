@@ -134,9 +134,12 @@ class ThreadPool {
     std::condition_variable done_;
     const std::function<void(std::size_t, int)>* body_ = nullptr;
     std::size_t count_ = 0;
-    std::atomic<std::size_t> next_{0};
+    // The next item to claim: every thread in a job changes it once an item, so it has a cache line of
+    // its own, which the fields the threads poll between jobs (generation_, busy_) and read per job
+    // (body_, count_) do not share.
+    alignas(64) std::atomic<std::size_t> next_{0};
     // Changed under mutex_; atomic so that waiting threads may poll them before they sleep.
-    std::atomic<int> busy_{0};                  // workers that joined the current job and are still in it
+    alignas(64) std::atomic<int> busy_{0};      // workers that joined the current job and are still in it
     bool open_ = false;                         // workers may still join the current job
     std::exception_ptr failure_;                // the current job's first exception
     std::atomic<std::uint64_t> generation_{0};  // bumped for every job, so a worker runs each job once
