@@ -209,8 +209,17 @@ void benchScalingScene(const ScalingScene& bench, const std::vector<int>& counts
             side.wallMs.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
             side.cpuMs.push_back(processCpuMs() - cpuStart);
         }
-    // Busy shares from traced frames of their own (the trace's clock reads stay out of the times above).
-    for (int i = 0; i < frames; ++i)
+    // Busy shares from traced frames of their own (the trace's clock reads stay out of the times above),
+    // and the work in jobs of the largest count's frames against the same jobs on one thread: a frame on
+    // one thread cut as the largest count cuts it, taking turns with them.
+    std::vector<double> widestWorkMs, oneThreadWorkMs;
+    const auto workMsOf = [](const PoolTrace& t) {
+        double ms = 0.0;
+        for (const double busy : t.threadBusyMs)
+            ms += busy;
+        return ms;
+    };
+    for (int i = 0; i < frames; ++i) {
         for (Side& side : sides) {
             side.context->pool.startTrace(trace);
             const auto start = Clock::now();
@@ -218,7 +227,18 @@ void benchScalingScene(const ScalingScene& bench, const std::vector<int>& counts
             const double wall = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
             side.context->pool.stopTrace();
             side.busyShare.push_back(busyShareOf(trace, wall));
+            if (&side == &sides.back()) widestWorkMs.push_back(workMsOf(trace));
         }
+        if (sides.size() > 1) {
+            DrawContext& one = *sides[0].context;
+            one.cutForThreads = counts.back();
+            one.pool.startTrace(trace);
+            renderFrame(prepared, *sides[0].framebuffer, one, sides[0].memory);
+            one.pool.stopTrace();
+            one.cutForThreads = 0;
+            oneThreadWorkMs.push_back(workMsOf(trace));
+        }
+    }
     // The largest count's frames with each spin limit, taking turns.
     DrawContext& widest = *sides.back().context;
     std::vector<std::vector<double>> spinWallMs(std::size(kSpinLimitsUs)),
@@ -252,6 +272,12 @@ void benchScalingScene(const ScalingScene& bench, const std::vector<int>& counts
             << oneWall / wall / counts[c] << std::setw(15) << cpu << std::setw(11) << cpu / oneCpu << "x"
             << std::setw(12) << median(sides[c].busyShare) << "\n";
     }
+    if (sides.size() > 1)
+        out << "  work in jobs on " << widest.pool.threads() << " threads: " << median(widestWorkMs)
+            << " ms per frame, " << median(widestWorkMs) / median(oneThreadWorkMs)
+            << "x the same jobs' on one thread (traced frames taking turns; above 1: the work itself costs "
+               "more,\n    its data moving between cores or the cores sharing caches and memory; the rest "
+               "of the cpu ratio is waiting)\n";
     out << "  spin limit at " << widest.pool.threads() << " threads, ms/frame wall / cpu:";
     for (std::size_t l = 0; l < std::size(kSpinLimitsUs); ++l)
         out << (l ? "," : "") << "  " << kSpinLimitsUs[l] << " us"

@@ -40,8 +40,9 @@ TEST(ThreadSweep, DoublesFromOneAndEndsAtTheCountAskedFor) {
     }
 }
 
-// Catches: a --scaling report that leaves out a thread count of the sweep, or whose serial fraction is
-// not a fraction (a trace that misses jobs gives more than the frame, or less than nothing).
+// Catches: a --scaling report that leaves out a thread count of the sweep, whose serial fraction is not a
+// fraction (a trace that misses jobs gives more than the frame, or less than nothing), or that drops the
+// work in jobs on the largest count against one thread's (or traces no job for either: 0 ms, or nan).
 TEST(ScalingBench, ReportsEveryThreadCountAndASerialFraction) {
     std::ostringstream out;
     runScalingBench(tinySpot(3), true, out);
@@ -61,6 +62,12 @@ TEST(ScalingBench, ReportsEveryThreadCountAndASerialFraction) {
     EXPECT_NE(report.find("work cut for 16 threads"), std::string::npos) << report;
     EXPECT_NE(report.find("work cut for 3 threads"), std::string::npos) << report;
     EXPECT_NE(report.find("predicted speed-up at 3 threads"), std::string::npos) << report;
+    // The largest count's work in jobs against the same jobs on one thread: a time and a ratio.
+    ASSERT_TRUE(std::regex_search(
+        report, match, std::regex("work in jobs on 3 threads: ([0-9.]+) ms per frame, ([0-9.]+)x the same")))
+        << report;
+    EXPECT_GT(std::stod(match[1]), 0.0) << report;
+    EXPECT_GT(std::stod(match[2]), 0.0) << report;
 }
 
 // CPU time of the calling thread spent spinning until `ms` of it have passed.
