@@ -556,19 +556,24 @@ template <class C>
     }
 }
 
-// One tile: its triangles from every chunk, in submission order, each block by block. An observer also
+// One tile, or the part `rect` of it (`inPart`: drawBatchTiles and drawRun cut a tile in parts): its
+// triangles from every chunk, in submission order, each block by block. An observer also
 // sees the coverage decision at every sample of a triangle's bounding box inside the tile, before its
 // fragments.
 template <class C>
-void drawTile(TileWalk<C>& walk, const PixelRect& rect, std::size_t tile,
+void drawTile(TileWalk<C>& walk, const PixelRect& rect, bool inPart, std::size_t tile,
               std::span<const SetupChunk> chunks) {
     if constexpr (C::kOutput == FragmentOutput::AppendToLists)
         walk.queue.lists = walk.rowQueue.lists = walk.target.fragmentLists().writer(rect.minX, rect.minY);
     for (const SetupChunk& chunk : chunks) {
         const std::vector<std::uint32_t>& bin = chunk.bins[tile];
         for (std::size_t k = 0; k < bin.size(); ++k) {
-            prefetchAhead(walk, chunk, bin, k, rect);
             const TriangleSetup& setup = chunk.setups[bin[k]];
+            // Binned to the tile, but beside this part of it: passed over before its prefetches.
+            if (inPart && (setup.maxX < rect.minX || setup.minX > rect.maxX || setup.maxY < rect.minY ||
+                           setup.minY > rect.maxY))
+                continue;
+            prefetchAhead(walk, chunk, bin, k, rect);
             const float* planes = chunk.planesOf(setup);
             if constexpr (C::kObserving) {
                 for (int y = std::max(rect.minY, setup.minY); y <= std::min(rect.maxY, setup.maxY); ++y)
@@ -586,27 +591,28 @@ void drawTile(TileWalk<C>& walk, const PixelRect& rect, std::size_t tile,
 
 // One tile drawn with the walk compiled for C.
 template <class C>
-void drawTileAs(const PixelRect& rect, std::size_t tile, std::span<const SetupChunk> chunks,
+void drawTileAs(const PixelRect& rect, bool inPart, std::size_t tile, std::span<const SetupChunk> chunks,
                 const DrawPlan& plan, const typename C::Depth& depth, const typename C::Uniforms& uniforms,
                 Framebuffer& framebuffer, DrawStats& stats, typename C::Observer& observer) {
     TileWalk<C> walk(plan, depth, uniforms, framebuffer.planesToDraw(rect), stats, observer);
-    drawTile(walk, rect, tile, chunks);
+    drawTile(walk, rect, inPart, tile, chunks);
 }
 
-// One tile of a draw's set-up chunks, with the walk chosen for the draw: the depth coding, single or
+// The pixels `rect` of one tile (the whole tile, or a part of it: `inPart`) of a draw's set-up chunks,
+// with the walk chosen for the draw: the depth coding, single or
 // multisampled, the output, and whether fragments get their texture coordinates' derivatives (the
 // draw's shader reads them: drawUsesDerivatives). Watched draws (the step mode) are for reading, not
 // speed: one walk per shader, observer and output, with the depth coding chosen per fragment and the
 // derivatives computed whenever the shader has them. Same bytes as the unwatched walks.
 template <Shader S, class Observer>
-void drawTileOfChunks(const TileGrid& grid, std::size_t tile, std::span<const SetupChunk> chunks,
-                      const DrawPlan& plan, const typename S::Uniforms& uniforms, Framebuffer& target,
-                      DrawStats& stats, Observer& observer) {
-    const PixelRect rect = grid.tileRect(static_cast<int>(tile));
+void drawTileOfChunks(const PixelRect& rect, bool inPart, std::size_t tile,
+                      std::span<const SetupChunk> chunks, const DrawPlan& plan,
+                      const typename S::Uniforms& uniforms, Framebuffer& target, DrawStats& stats,
+                      Observer& observer) {
     const auto drawAs =
         [&]<class Depth, bool kMultisample, FragmentOutput kOutput, bool kDerivatives>(const Depth& depth) {
             using C = BackEndConfig<S, Observer, Depth, kMultisample, kOutput, kDerivatives>;
-            drawTileAs<C>(rect, tile, chunks, plan, depth, uniforms, target, stats, observer);
+            drawTileAs<C>(rect, inPart, tile, chunks, plan, depth, uniforms, target, stats, observer);
         };
     const auto drawWith = [&]<bool kDerivatives>(const auto& depth) {
         using Depth = std::decay_t<decltype(depth)>;
@@ -647,17 +653,45 @@ inline void sortUniqueTiles(std::vector<std::uint32_t>& tiles) {
 // The back end for one batch of set-up chunks: only the tiles some triangle touches (a draw of a few
 // triangles then costs little more than its triangles, and a single tile is drawn on the calling
 // thread without waking the pool), in tile order, in parallel unless `inOrder`; each tile with the
-// draw's walk (drawTileOfChunks). Returns the number of tiles drawn.
+// draw's walk (drawTileOfChunks), cut in parts (tilePartsPerSide: the triangles binned to it against
+// the batch's) when the batch is cut for `threads` threads. A tile's fragment list has one writer
+// (FragmentLists::writer): a draw that appends to lists draws its tiles whole. Returns the number of
+// tiles drawn.
 template <Shader S, class Observer>
 std::size_t drawBatchTiles(const TileGrid& grid, std::span<const SetupChunk> chunks, const DrawPlan& plan,
                            const typename S::Uniforms& uniforms, Framebuffer& target, ThreadPool& pool,
-                           bool inOrder, std::vector<std::uint32_t>& activeTiles,
-                           std::span<DrawStats> threadStats, Observer& observer) {
+                           bool inOrder, int threads, std::vector<std::uint32_t>& activeTiles,
+                           std::vector<TilePart>& parts, std::span<DrawStats> threadStats,
+                           Observer& observer) {
     activeTiles.clear();
     detail::appendTouchedTiles(chunks, activeTiles);
     detail::sortUniqueTiles(activeTiles);
-    forEachItem(pool, inOrder, activeTiles.size(), [&](std::size_t active, int thread) {
-        detail::drawTileOfChunks<S>(grid, activeTiles[active], chunks, plan, uniforms, target,
+    const int maxSide = inOrder || plan.output == FragmentOutput::AppendToLists ? 1 : grid.maxPartsPerSide();
+    parts.clear();
+    if (maxSide == 1 || threads < 2 || activeTiles.size() == 1) {
+        for (std::size_t active = 0; active < activeTiles.size(); ++active)
+            parts.push_back({static_cast<std::uint32_t>(active)});
+    } else {
+        const auto binnedTo = [&](std::uint32_t tile) {
+            std::size_t triangles = 0;
+            for (const SetupChunk& chunk : chunks)
+                triangles += chunk.bins[tile].size();
+            return triangles;
+        };
+        std::size_t binned = 0;
+        for (const std::uint32_t tile : activeTiles)
+            binned += binnedTo(tile);
+        for (std::size_t active = 0; active < activeTiles.size(); ++active) {
+            const std::uint32_t tile = activeTiles[active];
+            appendTileParts(grid, static_cast<std::uint32_t>(active), static_cast<int>(tile),
+                            tilePartsPerSide(binnedTo(tile), binned, threads, maxSide), parts);
+        }
+    }
+    forEachItem(pool, inOrder, parts.size(), [&](std::size_t item, int thread) {
+        const TilePart& part = parts[item];
+        const std::uint32_t tile = activeTiles[part.tile];
+        detail::drawTileOfChunks<S>(grid.tilePartRect(static_cast<int>(tile), part.side, part.part),
+                                    part.side > 1, tile, chunks, plan, uniforms, target,
                                     threadStats[static_cast<std::size_t>(thread)], observer);
     });
     return activeTiles.size();

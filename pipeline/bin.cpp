@@ -27,6 +27,40 @@ PixelRect TileGrid::tileRect(int index) const {
             std::min((column + 1) * tileSize - 1, area.maxX), std::min((row + 1) * tileSize - 1, area.maxY)};
 }
 
+int TileGrid::maxPartsPerSide() const {
+    int side = 1;
+    while (side < 4 && tileSize % (2 * side * kBlockSize) == 0)
+        side *= 2;
+    return side;
+}
+
+PixelRect TileGrid::tilePartRect(int index, int side, int part) const {
+    const int partSize = tileSize / side;
+    const int x = (firstColumn + index % columns) * tileSize + (part % side) * partSize;
+    const int y = (firstRow + index / columns) * tileSize + (part / side) * partSize;
+    return {std::max(x, area.minX), std::max(y, area.minY), std::min(x + partSize - 1, area.maxX),
+            std::min(y + partSize - 1, area.maxY)};
+}
+
+int tilePartsPerSide(std::size_t weight, std::size_t totalWeight, int threads, int maxSide) {
+    if (threads < 2) return 1;
+    int side = 1;
+    while (side < maxSide && weight * 2 * static_cast<std::size_t>(threads) >
+                                 totalWeight * static_cast<std::size_t>(side * side))
+        side *= 2;
+    return side;
+}
+
+void appendTileParts(const TileGrid& grid, std::uint32_t tile, int gridTile, int side,
+                     std::vector<TilePart>& parts) {
+    bool first = true;
+    for (int part = 0; part < side * side; ++part) {
+        if (side > 1 && grid.tilePartRect(gridTile, side, part).empty()) continue;
+        parts.push_back({tile, static_cast<std::uint8_t>(side), static_cast<std::uint8_t>(part), first});
+        first = false;
+    }
+}
+
 void binTriangle(const TileGrid& grid, const TriangleSetup& setup, std::uint32_t setupIndex,
                  std::vector<std::vector<std::uint32_t>>& bins, std::int64_t sampleReach,
                  std::vector<std::uint32_t>* touched) {

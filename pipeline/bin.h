@@ -28,9 +28,36 @@ struct TileGrid {
     // tens of cycles).
     int tileOf(int p) const { return tileShift >= 0 ? p >> tileShift : p / tileSize; }
     PixelRect tileRect(int index) const;  // the tile's pixels inside the viewport
+    // The most parts a side of a tile may be cut into (tilePartRect): 1, 2 or 4, keeping each part a
+    // multiple of kBlockSize wide, so that the back end places its blocks in a part as in a tile.
+    int maxPartsPerSide() const;
+    // Part `part` (row-major) of tile `index` cut into side × side squares of tileSize / side pixels,
+    // inside the viewport (empty for a part of an edge tile wholly outside it). side divides tileSize.
+    PixelRect tilePartRect(int index, int side, int part) const;
 };
 
 TileGrid makeTileGrid(const Viewport& viewport, int tileSize);
+
+// One item of a back end: tile `tile` of a list of tiles (its index there), whole (side 1) or one of its
+// side × side parts (TileGrid::tilePartRect). Each pixel of a part sees the tile's triangles in the
+// same order, and a triangle's blocks are placed in a part as in a tile, so the bytes do not depend on
+// the cut.
+struct TilePart {
+    std::uint32_t tile = 0;
+    std::uint8_t side = 1, part = 0;
+    bool first = true;  // the tile's first part inside the viewport: the one that counts the tile as drawn
+};
+
+// How many parts a side of a tile is cut into for `threads` threads: the tile holds `weight` of the
+// back end's `totalWeight` (triangles binned to it, or draws touching it), and is cut, side by 2 up to
+// maxSide, while a part would hold more than 1/(2·threads) of the total. A job of the pool lasts at
+// least its longest item: cut for 16 threads, Lost Empire's transparent runs are 512 draws over 20–40
+// tiles, and one tile held up to a fifth of its run's back end. One thread cuts nothing.
+int tilePartsPerSide(std::size_t weight, std::size_t totalWeight, int threads, int maxSide);
+
+// Appends tile `tile` of a list (grid tile gridTile) cut side × side: its parts inside the viewport.
+void appendTileParts(const TileGrid& grid, std::uint32_t tile, int gridTile, int side,
+                     std::vector<TilePart>& parts);
 
 // Appends `setupIndex` to bins[t] for every tile t that the triangle's bounding box overlaps and that
 // is not wholly outside one of its edges. `bins` has grid.count() entries. `sampleReach`: how far from

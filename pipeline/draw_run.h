@@ -110,8 +110,15 @@ void runFrontEnd(const RunDraw<S>& d, std::size_t i, DrawContext::RunDrawSlot& s
                    flatVaryingFloats<S>(), context.pool, kOneThread, slot.chunks, observer);
     scratch.frontEnd.vertices += scratch.shaded.size();
     scratch.frontEnd.triangles += triangles;
+    slot.bounds = PixelRect{};
     for (std::size_t c = 0; c < slot.chunkCount; ++c) {
         const SetupChunk& chunk = slot.chunks[c];
+        for (const TriangleSetup& setup : chunk.setups)
+            slot.bounds = slot.bounds.empty() ? PixelRect{setup.minX, setup.minY, setup.maxX, setup.maxY}
+                                              : PixelRect{std::min(slot.bounds.minX, setup.minX),
+                                                          std::min(slot.bounds.minY, setup.minY),
+                                                          std::max(slot.bounds.maxX, setup.maxX),
+                                                          std::max(slot.bounds.maxY, setup.maxY)};
         scratch.frontEnd += chunk.stats;
         for (const std::uint32_t tile : chunk.touchedTiles)
             scratch.touches.push_back(std::uint64_t{tile} << 32 | i);
@@ -137,6 +144,20 @@ inline void gatherRunTiles(DrawContext& context, std::size_t threads) {
         if (tiles.empty() || tiles.back().tile != tile)
             tiles.push_back({tile, static_cast<std::uint32_t>(e), static_cast<std::uint32_t>(e)});
         ++tiles.back().endTouch;
+    }
+}
+
+// The run's back-end items, in tile order: each tile of context.runTiles whole, or, when `mayCut`, in
+// parts (tilePartsPerSide: the draws touching it against the run's (tile, draw) pairs).
+inline void cutRunTiles(DrawContext& context, const TileGrid& grid, int threads, bool mayCut) {
+    std::vector<TilePart>& parts = context.tileParts;
+    parts.clear();
+    const int maxSide = mayCut ? grid.maxPartsPerSide() : 1;
+    for (std::size_t r = 0; r < context.runTiles.size(); ++r) {
+        const DrawContext::RunTile& tile = context.runTiles[r];
+        const int side =
+            tilePartsPerSide(tile.endTouch - tile.firstTouch, context.runTouches.size(), threads, maxSide);
+        appendTileParts(grid, static_cast<std::uint32_t>(r), static_cast<int>(tile.tile), side, parts);
     }
 }
 
@@ -176,17 +197,28 @@ DrawStats drawRun(std::span<const RunDraw<S>> draws, Framebuffer& target, DrawCo
         detail::runFrontEnd(draws[i], i, slotOf(i), context.runThreads[static_cast<std::size_t>(thread)],
                             grid, context);
     };
-    // The back end of one tile of a run: each draw that touches it, in draw order.
-    const auto backEnd = [&](const DrawContext::RunTile& tile, int thread) {
+    // The back end of one tile of a run, or of a part of it: each draw that touches the tile (and, in a
+    // part, whose triangles' bounds reach the part), in draw order.
+    const auto backEnd = [&](const TilePart& part, int thread) {
         DrawStats& stats = context.threadStats[static_cast<std::size_t>(thread)];
+        const DrawContext::RunTile& tile = context.runTiles[part.tile];
+        const PixelRect rect = grid.tilePartRect(static_cast<int>(tile.tile), part.side, part.part);
         for (std::uint32_t e = tile.firstTouch; e < tile.endTouch; ++e) {
             const auto i = static_cast<std::size_t>(context.runTouches[e] & 0xffffffffu);
             const DrawContext::RunDrawSlot& slot = slotOf(i);
+            if (part.first) ++stats.tilesDrawn;
+            if (part.side > 1 && !overlaps(slot.bounds, rect)) continue;
             NullObserver observer;
-            detail::drawTileOfChunks<S>(grid, tile.tile, {slot.chunks.data(), slot.chunkCount}, slot.plan,
-                                        *draws[i].uniforms, target, stats, observer);
-            ++stats.tilesDrawn;
+            detail::drawTileOfChunks<S>(rect, part.side > 1, tile.tile, {slot.chunks.data(), slot.chunkCount},
+                                        slot.plan, *draws[i].uniforms, target, stats, observer);
         }
+    };
+    // A tile's fragment list has one writer (FragmentLists::writer): a run with a draw that appends to
+    // lists draws its tiles whole.
+    const auto mayCutTiles = [&](std::size_t runFirst, std::size_t runEnd) {
+        for (std::size_t i = runFirst; i < runEnd; ++i)
+            if (slotOf(i).plan.output == FragmentOutput::AppendToLists) return false;
+        return true;
     };
 
     // The first run's front ends alone; then each job draws one run's tiles (first: they are the bigger
@@ -195,13 +227,14 @@ DrawStats drawRun(std::span<const RunDraw<S>> draws, Framebuffer& target, DrawCo
     context.pool.parallelFor(end, frontEnd);
     while (first < draws.size()) {
         detail::gatherRunTiles(context, threads);
+        detail::cutRunTiles(context, grid, context.threadsToCutFor(), mayCutTiles(first, end));
         if (runs) ++*runs;
         const std::size_t nextFirst = end,
                           nextEnd = nextFirst < draws.size() ? runEnd(draws, nextFirst, maxCalls) : end;
-        const std::size_t tileItems = context.runTiles.size();
+        const std::size_t tileItems = context.tileParts.size();
         context.pool.parallelFor(tileItems + (nextEnd - nextFirst), [&](std::size_t item, int thread) {
             if (item < tileItems)
-                backEnd(context.runTiles[item], thread);
+                backEnd(context.tileParts[item], thread);
             else
                 frontEnd(nextFirst + (item - tileItems), thread);
         });

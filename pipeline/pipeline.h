@@ -53,6 +53,7 @@ struct DrawContext {
     std::vector<WindowVertex> window;  // viewport transform of each vertex that needs no clipping
     std::vector<SetupChunk> chunks;
     std::vector<std::uint32_t> activeTiles;  // the tiles a batch's triangles touch, in tile order
+    std::vector<TilePart> tileParts;         // a batch's or a run's back-end items
     std::vector<DrawStats> threadStats;      // back-end counters, one per thread
     std::uint64_t drawsStarted = 0;          // draws begun with this context: the next draw's id
 
@@ -64,6 +65,7 @@ struct DrawContext {
         std::vector<SetupChunk> chunks;
         std::size_t chunkCount = 0;
         DrawPlan plan;
+        PixelRect bounds;  // the pixels its set-up triangles' bounding boxes cover
     };
     struct alignas(64) RunThreadScratch {
         ShadedVertices shaded;
@@ -182,8 +184,9 @@ DrawStats draw(const DrawState& state, const typename S::Uniforms& uniforms,
                                                   context.pool, inOrder, context.chunks, observer);
         const std::span<const SetupChunk> chunks(context.chunks.data(), chunkCount);
         // The back end, tile by tile.
-        total.tilesDrawn += drawBatchTiles<S>(grid, chunks, plan, uniforms, target, context.pool, inOrder,
-                                              context.activeTiles, context.threadStats, observer);
+        total.tilesDrawn +=
+            drawBatchTiles<S>(grid, chunks, plan, uniforms, target, context.pool, inOrder, threads,
+                              context.activeTiles, context.tileParts, context.threadStats, observer);
         for (const SetupChunk& chunk : chunks)
             total += chunk.stats;
     }

@@ -176,6 +176,11 @@ struct PixelRect {
     bool empty() const { return minX > maxX || minY > maxY; }
 };
 
+inline bool overlaps(const PixelRect& a, const PixelRect& b) {
+    return !a.empty() && !b.empty() && a.minX <= b.maxX && b.minX <= a.maxX && a.minY <= b.maxY &&
+           b.minY <= a.maxY;
+}
+
 // ---- Fragment → output -------------------------------------------------------------------------------
 
 // The rasterizer's decision at one pixel's sample for one triangle, edge by edge: a pixel history's view

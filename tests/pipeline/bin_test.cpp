@@ -36,6 +36,72 @@ TEST(TileGrid, TileOfIsTheQuotientForEverySize) {
     }
 }
 
+// A tile cut side × side: its parts inside the viewport tile its pixels exactly once, each part a
+// multiple of kBlockSize wide and high unless the viewport clips it, and one part counts the tile.
+// Breaks caught: parts overlapping or leaving a gap (a part's size or origin off by one), a part
+// outside the viewport handed out, no part or two parts counting the tile, a cut that leaves parts
+// narrower than a block (24-pixel tiles) or one capped below 4 parts a side (64-pixel tiles).
+TEST(TileGrid, PartsOfATileCoverItsPixelsOnce) {
+    EXPECT_EQ(makeTileGrid(Viewport{0, 0, 100, 100}, 64).maxPartsPerSide(), 4);
+    EXPECT_EQ(makeTileGrid(Viewport{0, 0, 100, 100}, 32).maxPartsPerSide(), 4);
+    EXPECT_EQ(makeTileGrid(Viewport{0, 0, 100, 100}, 16).maxPartsPerSide(), 2);
+    EXPECT_EQ(makeTileGrid(Viewport{0, 0, 100, 100}, 24).maxPartsPerSide(), 1);
+    EXPECT_EQ(makeTileGrid(Viewport{0, 0, 100, 100}, 8).maxPartsPerSide(), 1);
+    for (const int tileSize : {64, 32, 16}) {
+        // The viewport starts and ends inside tiles, so edge tiles have parts wholly outside it.
+        const TileGrid grid = makeTileGrid(Viewport{37, 5, 150, 90}, tileSize);
+        for (int side = 1; side <= grid.maxPartsPerSide(); side *= 2)
+            for (int tile = 0; tile < grid.count(); ++tile) {
+                SCOPED_TRACE(::testing::Message()
+                             << "tiles of " << tileSize << ", tile " << tile << ", side " << side);
+                std::vector<TilePart> parts;
+                appendTileParts(grid, 7, tile, side, parts);
+                const PixelRect whole = grid.tileRect(tile);
+                std::vector<int> hits(static_cast<std::size_t>(grid.area.maxX + 1) * (grid.area.maxY + 1));
+                int counting = 0;
+                for (const TilePart& part : parts) {
+                    EXPECT_EQ(part.tile, 7u);
+                    EXPECT_EQ(part.side, side);
+                    counting += part.first;
+                    const PixelRect r = grid.tilePartRect(tile, part.side, part.part);
+                    ASSERT_FALSE(r.empty());
+                    if (r.minX > whole.minX) {
+                        EXPECT_EQ(r.minX % kBlockSize, 0);
+                    }
+                    if (r.minY > whole.minY) {
+                        EXPECT_EQ(r.minY % kBlockSize, 0);
+                    }
+                    for (int y = r.minY; y <= r.maxY; ++y)
+                        for (int x = r.minX; x <= r.maxX; ++x)
+                            ++hits[static_cast<std::size_t>(y) * (grid.area.maxX + 1) + x];
+                }
+                EXPECT_EQ(counting, 1);
+                for (int y = 0; y <= grid.area.maxY; ++y)
+                    for (int x = 0; x <= grid.area.maxX; ++x) {
+                        const bool inTile =
+                            x >= whole.minX && x <= whole.maxX && y >= whole.minY && y <= whole.maxY;
+                        ASSERT_EQ(hits[static_cast<std::size_t>(y) * (grid.area.maxX + 1) + x],
+                                  inTile ? 1 : 0)
+                            << "pixel " << x << ", " << y;
+                    }
+            }
+    }
+}
+
+// A tile is cut while a part would hold more than 1/(2·threads) of the back end's work, never on one
+// thread, never past maxSide. Breaks caught: the share compared the wrong way or without the factor 2,
+// a cut on one thread, the side grown past maxSide or by one instead of doubled.
+TEST(TileGrid, ATileIsCutWhileAPartHoldsMoreThanItsShare) {
+    EXPECT_EQ(tilePartsPerSide(900, 1000, 1, 4), 1);    // one thread: nothing to share
+    EXPECT_EQ(tilePartsPerSide(31, 1000, 16, 4), 1);    // 31 · 32 ≤ 1000
+    EXPECT_EQ(tilePartsPerSide(32, 1000, 16, 4), 2);    // 32 · 32 > 1000
+    EXPECT_EQ(tilePartsPerSide(125, 1000, 16, 4), 2);   // 125 · 32 ≤ 4 · 1000
+    EXPECT_EQ(tilePartsPerSide(126, 1000, 16, 4), 4);   // 126 · 32 > 4 · 1000
+    EXPECT_EQ(tilePartsPerSide(1000, 1000, 16, 4), 4);  // a part never smaller than a quarter side
+    EXPECT_EQ(tilePartsPerSide(1000, 1000, 16, 2), 2);  // capped by the tile size
+    EXPECT_EQ(tilePartsPerSide(300, 1000, 2, 4), 2);    // 300 · 4 > 1000, ≤ 4 · 1000
+}
+
 // Every pixel a triangle covers lies in a tile the triangle was binned into, for tiles whose size is a
 // power of two and tiles whose size is not.
 TEST(Bin, EveryCoveredPixelIsInABinnedTile) {
@@ -103,10 +169,49 @@ TEST(Bin, SameBytesForAnyThreadCountAndTileSize) {
         }
         // 2,000 triangles of 6,000 vertices: one chunk of each on one thread, 6 and 8 cut for 7, 6 and 8
         // cut for 64 (the smallest chunks).
+        // Cut for 5 and 64, the busiest of the 20 tiles are drawn in 4 or 16 parts (drawBatchTiles).
         for (auto [threads, cutFor] : {std::pair{1, 64}, {2, 5}, {3, 64}}) {
             const auto image = render(threads, 64, blend, cutFor);
             EXPECT_TRUE(image.first == reference.first) << threads << " threads cut for " << cutFor;
             EXPECT_TRUE(image.second == reference.second) << threads << " threads cut for " << cutFor;
+        }
+    }
+}
+
+// The back end of a draw cut for many threads draws its busiest tiles in parts, and whole on one thread.
+// Breaks caught: drawBatchTiles ignoring the threads it is cut for (every tile whole), or cutting for one
+// thread; a tile's parts not all handed out.
+TEST(Bin, ADrawCutForManyThreadsDrawsItsBusiestTilesInParts) {
+    Framebuffer fb(200, 130);  // 4 × 3 tiles of 64
+    std::vector<testing::ClipSpaceColorShader::Attributes> vertices;
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> u(-0.9f, 0.9f);
+    for (int t = 0; t < 300; ++t) {
+        // Small triangles, a third of them around the centre: the tiles there hold far more than the rest.
+        const vec2 centre = t % 3 == 0 ? 0.1f * vec2(u(rng), u(rng)) : vec2(u(rng), u(rng));
+        for (int k = 0; k < 3; ++k)
+            vertices.push_back({vec4(centre + 0.05f * vec2(u(rng), u(rng)), 0.0f, 1.0f), vec4(1.0f)});
+    }
+    std::vector<std::uint32_t> indices(vertices.size());
+    for (std::size_t i = 0; i < indices.size(); ++i)
+        indices[i] = static_cast<std::uint32_t>(i);
+    for (const int cutFor : {1, 16}) {
+        DrawContext context(1);
+        context.cutForThreads = cutFor;
+        fb.clearColor(vec4(0));
+        const DrawStats stats = draw<testing::ClipSpaceColorShader>(
+            testing::stateFor(fb), {}, std::span<const testing::ClipSpaceColorShader::Attributes>(vertices),
+            std::span<const std::uint32_t>(indices), fb, context);
+        std::size_t tilesCounted = 0;
+        int widest = 1;
+        for (const TilePart& part : context.tileParts) {
+            tilesCounted += part.first;
+            widest = std::max<int>(widest, part.side);
+        }
+        EXPECT_EQ(tilesCounted, stats.tilesDrawn) << "cut for " << cutFor;
+        EXPECT_EQ(widest, cutFor == 1 ? 1 : 4) << "cut for " << cutFor;
+        if (cutFor == 16) {
+            EXPECT_GT(context.tileParts.size(), stats.tilesDrawn + 3 * 4);
         }
     }
 }

@@ -73,11 +73,11 @@ bool sameBytes(const Framebuffer& a, const Framebuffer& b) {
 }
 
 // Breaks caught: the back end drawing a tile's draws in another order than the run's, skipping a draw
-// in a tile it touches, drawing every draw with the first one's plan or uniforms, or a front end
-// writing another draw's chunk; with more draws than one run takes (every other trial), a run's tiles
-// drawn before its front ends have run, or the last run's not at all; counters summed wrongly. Not
-// caught for certain: the run being drawn and the run being set up sharing a slot (a race between the
-// threads, which shows only when they overlap on one draw).
+// in a tile it touches (or in a part of a tile its triangles reach), runs not cut for many threads, drawing
+// every draw with the first one's plan or uniforms, or a front end writing another draw's chunk; with more
+// draws than one run takes (every other trial), a run's tiles drawn before its front ends have run, or the
+// last run's not at all; counters summed wrongly. Not caught for certain: the run being drawn and the run
+// being set up sharing a slot (a race between the threads, which shows only when they overlap on one draw).
 TEST(DrawRun, GivesTheBytesAndCountersOfItsDrawsOneByOne) {
     std::mt19937 rng(1201);
     for (int trial = 0; trial < 6; ++trial) {
@@ -94,10 +94,13 @@ TEST(DrawRun, GivesTheBytesAndCountersOfItsDrawsOneByOne) {
         struct Setting {
             int threads, tileSize, cutFor;
         };
+        // Cut for 6 or 16 threads, a run's busiest tiles are drawn in parts (cutRunTiles).
         for (const auto& [threads, tileSize, cutFor] : {Setting{1, kDefaultTileSize, 0},
                                                         {2, kDefaultTileSize, 0},
                                                         {2, 16, 0},
-                                                        {2, kDefaultTileSize, 6}}) {
+                                                        {2, kDefaultTileSize, 6},
+                                                        {1, kDefaultTileSize, 16},
+                                                        {2, kDefaultTileSize, 16}}) {
             SCOPED_TRACE(::testing::Message() << "trial " << trial << ", " << threads << " threads, tiles of "
                                               << tileSize << ", cut for " << cutFor);
             DrawContext context(threads, tileSize);
@@ -120,6 +123,16 @@ TEST(DrawRun, GivesTheBytesAndCountersOfItsDrawsOneByOne) {
                 EXPECT_EQ(stats.tilesDrawn, expected.tilesDrawn);
             }
             EXPECT_EQ(context.drawsStarted, draws.size());
+            // The last run's items: tiles whole on one thread, the busiest in parts when cut for many.
+            int widest = 1;
+            for (const TilePart& part : context.tileParts)
+                widest = std::max<int>(widest, part.side);
+            if (cutFor == 16) {
+                EXPECT_EQ(widest, 4);
+            }
+            if (threads == 1 && cutFor == 0) {
+                EXPECT_EQ(widest, 1);
+            }
         }
     }
 }

@@ -338,6 +338,26 @@ TEST(FragmentLists, SameBytesForAnyThreadCountAndTileSize) {
         }
 }
 
+// A tile's fragment list has one writer: a draw that appends to lists draws its tiles whole however many
+// threads it is cut for, while the same draw blending is cut in parts. Breaks caught: drawBatchTiles
+// cutting the tiles of a list-appending draw (two threads would write one tile's pool at once).
+TEST(FragmentLists, ADrawAppendingToListsDrawsItsTilesWhole) {
+    const RandomScene scene = makeRandomScene(4);
+    for (FragmentOutput output : {FragmentOutput::AppendToLists, FragmentOutput::Blend}) {
+        Framebuffer fb(123, 97);
+        DrawContext context(1);
+        context.cutForThreads = 16;
+        fb.clear(vec4(0.1f, 0.2f, 0.3f, 1.0f), 1.0f, context.pool);
+        draw<ClipSpaceColorShader>(transparentState(fb, BlendMode::Over, output), {},
+                                   std::span<const ClipSpaceColorShader::Attributes>(scene.layers[0]),
+                                   std::span<const std::uint32_t>(scene.indices), fb, context);
+        int widest = 1;
+        for (const TilePart& part : context.tileParts)
+            widest = std::max<int>(widest, part.side);
+        EXPECT_EQ(widest > 1, output == FragmentOutput::Blend) << static_cast<int>(output);
+    }
+}
+
 // Clearing empties every list and keeps the memory: the next frame reuses it, allocating nothing per
 // fragment (a pool that lost its capacity would grow again, allocation by allocation).
 TEST(FragmentLists, ClearingEmptiesTheListsAndKeepsTheirMemory) {
