@@ -27,6 +27,10 @@ struct BenchOptions {
     int height = 1080;
     int frames = 30;  // timed frames, after one untimed warm-up frame
     int threads = 0;  // 0: one per hardware thread
+    // --cut-for: plain frames' work cut into the items a frame on this many threads runs, whatever
+    // `threads` (0: cut for `threads`). The image is the same; the work a bigger machine would do can be
+    // counted on a small one.
+    int cutFor = 0;
     // --aa: the anti-aliasing of the timed frames (the scene file's, else none, when not given).
     std::optional<Antialiasing> antialiasing;
     // --shader FILE, --uniform NAME=VALUE: the frame drawn with a shader of one's own, timed against
@@ -120,6 +124,11 @@ struct FrameSerialPart {
     double serialMs = 0.0, workMs = 0.0;
 };
 FrameSerialPart serialPartOf(const PoolTrace& trace, double frameCpuMs);
+
+// A traced frame's speed-up bound on `threads` threads: a job of two or more items, of work W_j and
+// longest item m_j, lasts at least max(W_j / threads, m_j), and the serial part (`frame`) all of its time:
+// (serial + work) / (serial + Σ_j max(W_j / threads, m_j)).
+double jobBoundOf(const PoolTrace& trace, const FrameSerialPart& frame, int threads);
 
 // The share of a traced frame's threads' time spent in jobs: the items' times summed over the threads,
 // over each thread's wall-clock time `frameWallMs` less the trace's own clock reads on that thread (two

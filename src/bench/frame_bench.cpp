@@ -107,6 +107,7 @@ void runBench(const BenchOptions& options, std::ostream& out) {
 
     Framebuffer framebuffer(scene.width, scene.height);
     DrawContext context(options.threads);
+    context.cutForThreads = options.cutFor;
     // Frames as a loop of frames draws them (facet render --frames): the plan's buffers and the transparent
     // triangles' order kept from one frame to the next, so that sorting starts from the last order
     // rather than from scratch, and nothing is allocated per frame.
@@ -154,7 +155,10 @@ void runBench(const BenchOptions& options, std::ostream& out) {
     out << std::fixed << std::setprecision(2);
     out << "model      " << options.model.string() << "\n";
     out << "image      " << scene.width << "x" << scene.height << ", " << context.pool.threads()
-        << (context.pool.threads() == 1 ? " thread" : " threads") << ", built-in Blinn-Phong shader\n";
+        << (context.pool.threads() == 1 ? " thread" : " threads");
+    if (context.threadsToCutFor() != context.pool.threads())
+        out << " (work cut for " << context.threadsToCutFor() << ")";
+    out << ", built-in Blinn-Phong shader\n";
     out << coreHandoffLine(context.pool.threads());
     out << "code       compiled for " << describeFrameKernels() << "\n";
     const Antialiasing aa = scene.pipeline.antialiasing;

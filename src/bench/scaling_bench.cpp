@@ -50,29 +50,32 @@ struct ThreadCountResult {
 // (PoolTrace::clockReadMs), so serialMs + workMs is about the untraced frame. f = serial / (serial + work);
 // Amdahl: speed-up(P) = 1 / (f + (1 − f) / P). The job bound is tighter: a job of items W_j with longest
 // item m_j takes at least max(W_j / P, m_j), so T(P) ≥ serial + Σ_j max(W_j / P, m_j) (a job of few
-// tiles keeps few threads busy).
+// tiles keeps few threads busy); its speed-up, (serial + work) / T(P), is the median over the traced
+// frames (one frame's longest items move with the host's noise).
 struct SerialPart {
     double tracedMs = 0.0;  // per frame, traced, clock reads included
     double serialMs = 0.0;  // per frame
     double workMs = 0.0;    // per frame
     double jobsPerFrame = 0.0;
-    double medianGapUs = 0.0;        // between consecutive jobs of a frame: what a waiting worker waits
-    double clockReadUs = 0.0;        // one read of the thread's CPU clock, taken off
-    std::vector<PoolJobTrace> jobs;  // of one frame, its jobs of two or more items
+    double medianGapUs = 0.0;       // between consecutive jobs of a frame: what a waiting worker waits
+    double clockReadUs = 0.0;       // one read of the thread's CPU clock, taken off
+    std::vector<double> jobBounds;  // per traced frame, at the number of threads the work was cut for
     double fraction() const { return serialMs + workMs > 0.0 ? serialMs / (serialMs + workMs) : 0.0; }
     double amdahl(int threads) const {
         const double f = fraction();
         return 1.0 / (f + (1.0 - f) / threads);
     }
-    double jobBound(int threads) const {
-        double ms = serialMs;
-        for (const PoolJobTrace& job : jobs)
-            ms += std::max(job.busyMs / threads, job.longestItemMs);
-        return (serialMs + workMs) / ms;
-    }
+    double jobBound() const { return jobBounds.empty() ? 1.0 : median(jobBounds); }
 };
 
 }  // namespace
+
+double jobBoundOf(const PoolTrace& trace, const FrameSerialPart& frame, int threads) {
+    double ms = frame.serialMs;
+    for (const PoolJobTrace& job : trace.jobs)
+        if (job.items > 1) ms += std::max(job.busyMs / threads, job.longestItemMs);
+    return ms > 0.0 ? (frame.serialMs + frame.workMs) / ms : 1.0;
+}
 
 FrameSerialPart serialPartOf(const PoolTrace& trace, double frameCpuMs) {
     FrameSerialPart part;
@@ -127,11 +130,7 @@ SerialPart traceOneThread(const PreparedScene& prepared, Framebuffer& framebuffe
         workMs.push_back(frame.workMs);
         clockReadUs.push_back(1e3 * trace.clockReadMs);
         jobs += trace.jobs.size();
-        if (i == frames / 2) {
-            part.jobs.clear();
-            std::copy_if(trace.jobs.begin(), trace.jobs.end(), std::back_inserter(part.jobs),
-                         [](const PoolJobTrace& job) { return job.items > 1; });
-        }
+        part.jobBounds.push_back(jobBoundOf(trace, frame, cutFor));
     }
     part.tracedMs = median(tracedMs);
     part.serialMs = median(serialMs);
@@ -139,15 +138,6 @@ SerialPart traceOneThread(const PreparedScene& prepared, Framebuffer& framebuffe
     part.jobsPerFrame = static_cast<double>(jobs) / frames;
     part.medianGapUs = gapsUs.empty() ? 0.0 : median(gapsUs);
     part.clockReadUs = median(clockReadUs);
-    // The job bound's jobs scaled to the median frame's work (the kept frame may have run slower or faster).
-    double kept = 0.0;
-    for (const PoolJobTrace& job : part.jobs)
-        kept += job.busyMs;
-    if (kept > 0.0)
-        for (PoolJobTrace& job : part.jobs) {
-            job.busyMs *= part.workMs / kept;
-            job.longestItemMs *= part.workMs / kept;
-        }
     context.cutForThreads = 0;
     return part;
 }
@@ -294,7 +284,7 @@ void benchScalingScene(const ScalingScene& bench, const std::vector<int>& counts
             << " us each, left out)\n"
             << "    serial fraction " << std::setprecision(3) << part.fraction() << std::setprecision(2)
             << "; predicted speed-up at " << threads << " threads: Amdahl " << part.amdahl(threads)
-            << "x, job bound " << part.jobBound(threads) << "x\n";
+            << "x, job bound " << part.jobBound() << "x (median of the traced frames)\n";
     };
     printTrace(serialAt16, kPredictedThreads);
     if (given != kPredictedThreads) printTrace(serial, given);

@@ -68,6 +68,12 @@ CLI::App* addBenchCommand(CLI::App& app, facet::BenchOptions& options) {
         ->check(wholeNumber(1, kMaxBenchFrames));
     command->add_option("--threads", options.threads, "Worker threads (default: one per hardware thread)")
         ->check(wholeNumber(0, 1024));
+    command
+        ->add_option("--cut-for", options.cutFor,
+                     "Cut the frame's work into the items a frame on N threads runs, whatever --threads "
+                     "(the image is the same): to count on a small machine what a bigger one would do, "
+                     "e.g. under valgrind --tool=callgrind (default: cut for --threads)")
+        ->check(wholeNumber(1, 1024));
     addKnobOption(*command, *facet::sceneKnobNamed("aa"), [&options](const std::string& value) {
         options.antialiasing = parseName<facet::Antialiasing>(value);
     });
@@ -139,9 +145,9 @@ CLI::App* addBenchCommand(CLI::App& app, facet::BenchOptions& options) {
 int bench(facet::BenchOptions& options, const CLI::App& command) {
     if (command.count("--batch")) {
         // Whole renders of the list's inputs: the frame modes' options do not apply.
-        for (const char* option :
-             {"model", "--aa", "--shader", "--uniform", "--instruction-sets", "--vs-mesa", "--quick", "--csv",
-              "--chart", "--sort", "--transparency", "--degrees-per-frame", "--reference", "--scaling"})
+        for (const char* option : {"model", "--aa", "--shader", "--uniform", "--instruction-sets",
+                                   "--vs-mesa", "--quick", "--csv", "--chart", "--sort", "--transparency",
+                                   "--degrees-per-frame", "--reference", "--scaling", "--cut-for"})
             if (command.count(option))
                 throw facet::InputError(std::string(option) + " does not go with --batch");
         facet::BatchBenchOptions batch;
@@ -153,6 +159,12 @@ int bench(facet::BenchOptions& options, const CLI::App& command) {
         facet::runBatchBench(batch, std::cout);
         return 0;
     }
+    if (command.count("--cut-for"))
+        for (const char* option : {"--shader", "--instruction-sets", "--vs-mesa", "--sort", "--transparency",
+                                   "--reference", "--scaling"})
+            if (command.count(option))
+                throw facet::InputError(std::string("--cut-for does not go with ") + option +
+                                        ": it times plain frames");
     chooseDefaultBenchModels(options, command.count("model") > 0);
     // --shader times plain frames against the built-in's; the other modes draw fixed configurations.
     if (command.count("--uniform") && !options.shader)

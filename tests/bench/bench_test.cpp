@@ -135,6 +135,19 @@ TEST_F(BenchTest, TimesTheAntialiasingAskedFor) {
     EXPECT_LT(four, 5 * one);
 }
 
+// facet bench --cut-for: one thread's frames cut as for 16 threads (the report says so, from the context the
+// frames were drawn with) give the same fragments. Fails if runBench drops options.cutFor.
+TEST_F(BenchTest, CutsTheWorkForTheThreadsAskedFor) {
+    BenchOptions options = tinySpotOptions();
+    std::ostringstream plain, cut;
+    runBench(options, plain);
+    options.cutFor = 16;
+    runBench(options, cut);
+    EXPECT_EQ(plain.str().find("work cut for"), std::string::npos) << plain.str();
+    EXPECT_NE(cut.str().find("1 thread (work cut for 16)"), std::string::npos) << cut.str();
+    EXPECT_EQ(fragmentsShaded(cut.str()), fragmentsShaded(plain.str()));
+}
+
 // With two threads the report says how long a cache line takes to reach the other core (what two-thread
 // frames depend on), measured then; with one it says nothing of it. Fails if the line is dropped, printed
 // for one thread, or its measurement returns nothing (0 on a machine of two hardware threads or more).

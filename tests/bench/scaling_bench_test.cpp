@@ -117,6 +117,26 @@ TEST(ScalingBench, ABusyShareLeavesOutTheTracesClockReads) {
     EXPECT_DOUBLE_EQ(busyShareOf(trace, 40.0), 50.0 / 80.0);
 }
 
+// Catches: a job bound that counts a one-item job's time as work shared by the threads (it is in the
+// serial part already), that takes W / P or the longest item alone instead of the larger, or that leaves
+// out the serial part.
+TEST(ScalingBench, AJobLastsAtLeastItsShareAndItsLongestItem) {
+    PoolTrace trace;
+    trace.jobs.resize(3);
+    trace.jobs[0].items = 4;  // 8 ms of work over 4 threads: 2 ms, longer than its longest item
+    trace.jobs[0].busyMs = 8.0;
+    trace.jobs[0].longestItemMs = 1.0;
+    trace.jobs[1].items = 2;  // its longest item, 1.5 ms, bounds it
+    trace.jobs[1].busyMs = 2.0;
+    trace.jobs[1].longestItemMs = 1.5;
+    trace.jobs[2].items = 1;  // serial: counted in the frame's serial part
+    trace.jobs[2].busyMs = 5.0;
+    trace.jobs[2].longestItemMs = 5.0;
+    const FrameSerialPart frame{6.0, 10.0};  // 1 ms outside jobs + the 5 ms one-item job; 8 + 2 in jobs
+    EXPECT_DOUBLE_EQ(jobBoundOf(trace, frame, 4), 16.0 / (6.0 + 2.0 + 1.5));
+    EXPECT_DOUBLE_EQ(jobBoundOf(trace, frame, 1), 16.0 / (6.0 + 8.0 + 2.0));
+}
+
 // Catches: the frame bench dropping the CPU time per frame, or setting it against one thread's when it
 // runs on one thread (the ratio would be 1 by construction).
 TEST(FrameBench, SetsTheCpuTimeAgainstOneThreadsOnlyOnMoreThreads) {

@@ -374,6 +374,21 @@ TEST(Cli, BenchTimesEachInstructionSet) {
         << refused.err;
 }
 
+// facet bench --cut-for reaches the plain frames' report and is refused by the modes that draw their own
+// configurations (and out of range).
+TEST(Cli, BenchCutsPlainFramesForTheThreadsAskedFor) {
+    TempFolder dir;
+    const auto obj = shellQuoted(dir.write("triangle.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
+    const RunResult run =
+        runFacet("bench --cut-for 8 --frames 1 --width 16 --height 16 --threads 1 " + obj, dir);
+    EXPECT_EQ(run.status, 0) << run.err;
+    EXPECT_NE(run.out.find("1 thread (work cut for 8)"), std::string::npos) << run.out;
+    const RunResult refused = runFacet("bench --cut-for 8 --scaling " + obj, dir);
+    EXPECT_EQ(refused.status, 1);
+    EXPECT_NE(refused.err.find("--cut-for does not go with --scaling"), std::string::npos) << refused.err;
+    EXPECT_EQ(runFacet("bench --cut-for 0 " + obj, dir).status, 2);
+}
+
 TEST(Cli, BenchRefusesNonFiniteSteps) {
     TempFolder dir;
     for (const char* value : {"nan", "inf", "-inf"}) {
