@@ -72,7 +72,7 @@ CLI::App* addBenchCommand(CLI::App& app, facet::BenchOptions& options) {
         ->add_option("--cut-for", options.cutFor,
                      "Cut the frame's work into the items a frame on N threads runs, whatever --threads "
                      "(the image is the same): to count on a small machine what a bigger one would do, "
-                     "e.g. under valgrind --tool=callgrind (default: cut for --threads)")
+                     "e.g. under valgrind (default: cut for --threads)")
         ->check(wholeNumber(1, 1024));
     addKnobOption(*command, *facet::sceneKnobNamed("aa"), [&options](const std::string& value) {
         options.antialiasing = parseName<facet::Antialiasing>(value);
