@@ -661,8 +661,8 @@ template <Shader S, class Observer>
 std::size_t drawBatchTiles(const TileGrid& grid, std::span<const SetupChunk> chunks, const DrawPlan& plan,
                            const typename S::Uniforms& uniforms, Framebuffer& target, ThreadPool& pool,
                            bool inOrder, int threads, std::vector<std::uint32_t>& activeTiles,
-                           std::vector<TilePart>& parts, std::span<DrawStats> threadStats,
-                           Observer& observer) {
+                           std::vector<TilePart>& parts, std::vector<std::uint32_t>& tileWeights,
+                           std::span<DrawStats> threadStats, Observer& observer) {
     activeTiles.clear();
     detail::appendTouchedTiles(chunks, activeTiles);
     detail::sortUniqueTiles(activeTiles);
@@ -672,19 +672,20 @@ std::size_t drawBatchTiles(const TileGrid& grid, std::span<const SetupChunk> chu
         for (std::size_t active = 0; active < activeTiles.size(); ++active)
             parts.push_back({static_cast<std::uint32_t>(active)});
     } else {
-        const auto binnedTo = [&](std::uint32_t tile) {
-            std::size_t triangles = 0;
-            for (const SetupChunk& chunk : chunks)
-                triangles += chunk.bins[tile].size();
-            return triangles;
-        };
+        // The triangles binned to each tile, from the tiles each chunk touched (on the calling thread,
+        // between two jobs: not every chunk's bin of every active tile).
+        tileWeights.resize(static_cast<std::size_t>(grid.count()));  // all 0 (reset below)
         std::size_t binned = 0;
-        for (const std::uint32_t tile : activeTiles)
-            binned += binnedTo(tile);
+        for (const SetupChunk& chunk : chunks)
+            for (const std::uint32_t tile : chunk.touchedTiles) {
+                tileWeights[tile] += static_cast<std::uint32_t>(chunk.bins[tile].size());
+                binned += chunk.bins[tile].size();
+            }
         for (std::size_t active = 0; active < activeTiles.size(); ++active) {
             const std::uint32_t tile = activeTiles[active];
             appendTileParts(grid, static_cast<std::uint32_t>(active), static_cast<int>(tile),
-                            tilePartsPerSide(binnedTo(tile), binned, threads, maxSide), parts);
+                            tilePartsPerSide(tileWeights[tile], binned, threads, maxSide), parts);
+            tileWeights[tile] = 0;
         }
     }
     forEachItem(pool, inOrder, parts.size(), [&](std::size_t item, int thread) {

@@ -54,6 +54,7 @@ struct DrawContext {
     std::vector<SetupChunk> chunks;
     std::vector<std::uint32_t> activeTiles;  // the tiles a batch's triangles touch, in tile order
     std::vector<TilePart> tileParts;         // a batch's or a run's back-end items
+    std::vector<std::uint32_t> tileWeights;  // per tile of the grid, 0 between batches
     std::vector<DrawStats> threadStats;      // back-end counters, one per thread
     std::uint64_t drawsStarted = 0;          // draws begun with this context: the next draw's id
 
@@ -184,9 +185,9 @@ DrawStats draw(const DrawState& state, const typename S::Uniforms& uniforms,
                                                   context.pool, inOrder, context.chunks, observer);
         const std::span<const SetupChunk> chunks(context.chunks.data(), chunkCount);
         // The back end, tile by tile.
-        total.tilesDrawn +=
-            drawBatchTiles<S>(grid, chunks, plan, uniforms, target, context.pool, inOrder, threads,
-                              context.activeTiles, context.tileParts, context.threadStats, observer);
+        total.tilesDrawn += drawBatchTiles<S>(grid, chunks, plan, uniforms, target, context.pool, inOrder,
+                                              threads, context.activeTiles, context.tileParts,
+                                              context.tileWeights, context.threadStats, observer);
         for (const SetupChunk& chunk : chunks)
             total += chunk.stats;
     }
