@@ -570,9 +570,7 @@ void drawTile(TileWalk<C>& walk, const PixelRect& rect, bool inPart, std::size_t
         for (std::size_t k = 0; k < bin.size(); ++k) {
             const TriangleSetup& setup = chunk.setups[bin[k]];
             // Binned to the tile, but beside this part of it: passed over before its prefetches.
-            if (inPart && (setup.maxX < rect.minX || setup.minX > rect.maxX || setup.maxY < rect.minY ||
-                           setup.minY > rect.maxY))
-                continue;
+            if (inPart && rasterRect(setup, rect).empty()) continue;
             prefetchAhead(walk, chunk, bin, k, rect);
             const float* planes = chunk.planesOf(setup);
             if constexpr (C::kObserving) {

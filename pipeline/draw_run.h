@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <climits>
 #include <cstdint>
 #include <span>
 #include <stdexcept>
@@ -110,15 +111,16 @@ void runFrontEnd(const RunDraw<S>& d, std::size_t i, DrawContext::RunDrawSlot& s
                    flatVaryingFloats<S>(), context.pool, kOneThread, slot.chunks, observer);
     scratch.frontEnd.vertices += scratch.shaded.size();
     scratch.frontEnd.triangles += triangles;
-    slot.bounds = PixelRect{};
+    PixelRect& bounds = slot.bounds;
+    bounds = {INT_MAX, INT_MAX, INT_MIN, INT_MIN};  // empty until a triangle widens it
     for (std::size_t c = 0; c < slot.chunkCount; ++c) {
         const SetupChunk& chunk = slot.chunks[c];
-        for (const TriangleSetup& setup : chunk.setups)
-            slot.bounds = slot.bounds.empty() ? PixelRect{setup.minX, setup.minY, setup.maxX, setup.maxY}
-                                              : PixelRect{std::min(slot.bounds.minX, setup.minX),
-                                                          std::min(slot.bounds.minY, setup.minY),
-                                                          std::max(slot.bounds.maxX, setup.maxX),
-                                                          std::max(slot.bounds.maxY, setup.maxY)};
+        for (const TriangleSetup& setup : chunk.setups) {
+            bounds.minX = std::min(bounds.minX, setup.minX);
+            bounds.minY = std::min(bounds.minY, setup.minY);
+            bounds.maxX = std::max(bounds.maxX, setup.maxX);
+            bounds.maxY = std::max(bounds.maxY, setup.maxY);
+        }
         scratch.frontEnd += chunk.stats;
         for (const std::uint32_t tile : chunk.touchedTiles)
             scratch.touches.push_back(std::uint64_t{tile} << 32 | i);
