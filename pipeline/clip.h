@@ -4,11 +4,14 @@
 // In: ClipPolygon (a triangle). Out: the same ClipPolygon, convex, winding kept, 0 or ≥ 3 vertices.
 #pragma once
 
+#include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 
 #include "state.h"
 #include "types.h"
+#include "wide.h"
 
 namespace facet {
 
@@ -36,6 +39,29 @@ inline std::uint8_t computeOutcode(const vec4& p, ClipDepthRange depth = ClipDep
     }
     if (p.w < kMinClipW) code |= kClipW;
     return code;
+}
+
+// computeOutcode of eight positions at once (the vertex stage's groups), the same codes: the four
+// coordinates' lanes compared whole, each plane's bit where its comparison holds, kNonFinite alone
+// where a coordinate's exponent bits are all ones (NaN or ±Inf), as std::isfinite tells.
+[[gnu::always_inline]] inline void computeOutcodes(const vec4* positions, std::uint8_t* codes,
+                                                   ClipDepthRange depth = ClipDepthRange::MinusWToW) {
+    const Vec4x8 p = loadTransposed(positions);
+    const auto bit = [](Int8 holds, ClipPlaneBit plane) { return holds & static_cast<std::int32_t>(plane); };
+    const Float8 minusW = -p.w;
+    Int8 code = bit(p.x < minusW, kClipLeft) | bit(p.x > p.w, kClipRight) | bit(p.y < minusW, kClipBottom) |
+                bit(p.y > p.w, kClipTop) | bit(p.w < kMinClipW, kClipW);
+    if (depth == ClipDepthRange::MinusWToW)
+        code |= bit(p.z < minusW, kClipNear) | bit(p.z > p.w, kClipFar);
+    else
+        code |= bit(p.z > p.w, kClipNear) | bit(p.z < 0.0f, kClipFar);
+    constexpr std::int32_t kExponent = 0x7f800000;
+    const auto nonFinite = [&](Float8 v) { return (std::bit_cast<Int8>(v) & kExponent) == kExponent; };
+    const Int8 anyNonFinite = nonFinite(p.x) | nonFinite(p.y) | nonFinite(p.z) | nonFinite(p.w);
+    code = anyNonFinite ? Int8{} + static_cast<std::int32_t>(kNonFinite) : code;
+    using Bytes8 = std::uint8_t __attribute__((vector_size(8)));
+    const Bytes8 bytes = __builtin_convertvector(code, Bytes8);
+    std::memcpy(codes, &bytes, sizeof bytes);
 }
 
 // Signed distance-like value of `position` to one plane: ≥ 0 inside. `plane` is a single ClipPlaneBit.

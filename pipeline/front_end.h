@@ -38,7 +38,13 @@ void runVertexStage(std::span<const typename S::Attributes> vertices, const type
     forEachItem(pool, inOrder, chunks, [&](std::size_t chunk, int) {
         const std::size_t begin = chunk * vertexChunk, end = std::min(begin + vertexChunk, vertices.size());
         shadeVertices<S>(vertices, uniforms, begin, end, shaded, clipDepthRange(state.depth.format));
-        for (std::size_t i = begin; i < end; ++i)
+        // Eight at a time (a group's lanes outside the frustum are computed too, and not read), then
+        // the rest one by one.
+        std::size_t i = begin;
+        for (; i + 8 <= end; i += 8)
+            toWindow(&shaded.positions[i], &shaded.outcodes[i], state.viewport, state.raster.subpixelBits,
+                     state.depth.format, &window[i]);
+        for (; i < end; ++i)
             if (shaded.outcodes[i] == 0)
                 window[i] = toWindow(shaded.positions[i], state.viewport, state.raster.subpixelBits,
                                      state.depth.format);

@@ -29,10 +29,13 @@ void shadeVertices(std::span<const typename S::Attributes> attributes, const typ
                    std::size_t begin, std::size_t end, ShadedVertices& out,
                    ClipDepthRange clipDepth = ClipDepthRange::MinusWToW) {
     constexpr int kFloats = kVaryingFloatCount<typename S::Varyings>;
-    const auto store = [&](std::size_t i, const VertexOut<typename S::Varyings>& shaded) {
+    const auto storeShaded = [&](std::size_t i, const VertexOut<typename S::Varyings>& shaded) {
         out.positions[i] = shaded.position;
         if constexpr (kFloats > 0)
             std::memcpy(out.varyings.data() + i * kFloats, &shaded.varyings, kFloats * sizeof(float));
+    };
+    const auto store = [&](std::size_t i, const VertexOut<typename S::Varyings>& shaded) {
+        storeShaded(i, shaded);
         out.outcodes[i] = computeOutcode(shaded.position, clipDepth);
     };
     if constexpr (BatchVertexShader<S>) {
@@ -42,8 +45,12 @@ void shadeVertices(std::span<const typename S::Attributes> attributes, const typ
         for (; i + kVertexBatch <= end; i += kVertexBatch) {
             S::vertexBatch(&attributes[i], uniforms, shaded);
             for (int lane = 0; lane < kVertexBatch; ++lane)
-                store(i + lane, shaded[lane]);
+                storeShaded(i + lane, shaded[lane]);
         }
+        // The groups' outcodes eight at a time, in a pass of their own: loaded right after the group's
+        // positions were stored, a 32-byte load spanning two 16-byte stores would wait for them.
+        for (std::size_t group = begin; group < i; group += kVertexBatch)
+            computeOutcodes(&out.positions[group], &out.outcodes[group], clipDepth);
         if (i < end) {
             typename S::Attributes group[kVertexBatch];
             for (int lane = 0; lane < kVertexBatch; ++lane)

@@ -110,6 +110,50 @@ inline void storeTransposed(const Vec4x8& v, vec4 (&out)[8]) {
     std::memcpy(&out[6], &lanes67, sizeof lanes67);
 }
 
+// Eight vec4 as the four lanes of a Vec4x8 (array of structures to structure of arrays): four 32-byte
+// loads and eight shuffles, storeTransposed's inverse.
+[[gnu::always_inline]] inline Vec4x8 loadTransposed(const vec4* in) {
+    static_assert(sizeof(vec4) == 4 * sizeof(float));
+    Float8 rows[4];  // vertices (0, 1), (2, 3), (4, 5), (6, 7)
+    std::memcpy(rows, in, sizeof rows);
+    // (v0 | v4), (v1 | v5), (v2 | v6), (v3 | v7): each half of the register then a 4×4 transpose.
+    const Float8 v04 = __builtin_shufflevector(rows[0], rows[2], 0, 1, 2, 3, 8, 9, 10, 11);
+    const Float8 v15 = __builtin_shufflevector(rows[0], rows[2], 4, 5, 6, 7, 12, 13, 14, 15);
+    const Float8 v26 = __builtin_shufflevector(rows[1], rows[3], 0, 1, 2, 3, 8, 9, 10, 11);
+    const Float8 v37 = __builtin_shufflevector(rows[1], rows[3], 4, 5, 6, 7, 12, 13, 14, 15);
+    // (x0 x1 y0 y1 | x4 x5 y4 y5), (z0 z1 w0 w1 | z4 z5 w4 w5), and the same for vertices 2, 3, 6, 7.
+    const Float8 xy01 = __builtin_shufflevector(v04, v15, 0, 8, 1, 9, 4, 12, 5, 13);
+    const Float8 zw01 = __builtin_shufflevector(v04, v15, 2, 10, 3, 11, 6, 14, 7, 15);
+    const Float8 xy23 = __builtin_shufflevector(v26, v37, 0, 8, 1, 9, 4, 12, 5, 13);
+    const Float8 zw23 = __builtin_shufflevector(v26, v37, 2, 10, 3, 11, 6, 14, 7, 15);
+    return {__builtin_shufflevector(xy01, xy23, 0, 1, 8, 9, 4, 5, 12, 13),
+            __builtin_shufflevector(xy01, xy23, 2, 3, 10, 11, 6, 7, 14, 15),
+            __builtin_shufflevector(zw01, zw23, 0, 1, 8, 9, 4, 5, 12, 13),
+            __builtin_shufflevector(zw01, zw23, 2, 3, 10, 11, 6, 7, 14, 15)};
+}
+
+// An 8×8 matrix of 32-bit lanes transposed in registers: rows[k][j] becomes rows[j][k]. Eight structures
+// of eight floats (or ints) loaded as rows come out as eight lanes of each field, and the other way
+// round: 24 shuffles instead of 64 single-element moves. Three rounds: pairs of rows interleaved, pairs
+// of pairs, then the 128-bit halves exchanged.
+template <class V>
+[[gnu::always_inline]] inline void transpose8x8(V (&rows)[8]) {
+    V a[8], b[8];
+    for (int k = 0; k < 8; k += 2) {
+        a[k] = __builtin_shufflevector(rows[k], rows[k + 1], 0, 8, 1, 9, 4, 12, 5, 13);
+        a[k + 1] = __builtin_shufflevector(rows[k], rows[k + 1], 2, 10, 3, 11, 6, 14, 7, 15);
+    }
+    for (int k = 0; k < 8; k += 4)
+        for (int j = 0; j < 2; ++j) {
+            b[k + 2 * j] = __builtin_shufflevector(a[k + j], a[k + j + 2], 0, 1, 8, 9, 4, 5, 12, 13);
+            b[k + 2 * j + 1] = __builtin_shufflevector(a[k + j], a[k + j + 2], 2, 3, 10, 11, 6, 7, 14, 15);
+        }
+    for (int j = 0; j < 4; ++j) {
+        rows[j] = __builtin_shufflevector(b[j], b[j + 4], 0, 1, 2, 3, 8, 9, 10, 11);
+        rows[j + 4] = __builtin_shufflevector(b[j], b[j + 4], 4, 5, 6, 7, 12, 13, 14, 15);
+    }
+}
+
 inline Vec3x8 operator+(const Vec3x8& a, const Vec3x8& b) {
     return {a.x + b.x, a.y + b.y, a.z + b.z};
 }

@@ -15,6 +15,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <span>
 #include <string_view>
 
@@ -439,15 +440,16 @@ struct PerPixelSurface {
     // vertices in one pass. The same bits as vertex(), lane by lane: GLM computes M·v as
     // (M[0]·x + M[1]·y) + (M[2]·z + M[3]·w) and M·n as M[0]·x + M[1]·y + M[2]·z, and so does this.
     static void vertexBatch(const Attributes* in, const Uniforms& u, VertexOut<VaryingsT<float>>* out) {
-        Float8 px, py, pz, nx, ny, nz;
-        for (int lane = 0; lane < kVertexBatch; ++lane) {
-            px[lane] = in[lane].position.x;
-            py[lane] = in[lane].position.y;
-            pz[lane] = in[lane].position.z;
-            nx[lane] = in[lane].normal.x;
-            ny[lane] = in[lane].normal.y;
-            nz[lane] = in[lane].normal.z;
-        }
+        // A vertex is eight floats (position, normal, uv) and so are its varyings (eye position,
+        // normal, uv): eight vertices in, eight out, each an 8×8 transpose.
+        static_assert(sizeof(Attributes) == 8 * sizeof(float) &&
+                      sizeof(VaryingsT<float>) == 8 * sizeof(float));
+        static_assert(kVertexBatch == 8);
+        Float8 field[8];  // vertex k's floats; transposed, float k of the eight vertices
+        std::memcpy(field, in, sizeof field);
+        transpose8x8(field);
+        const Float8 &px = field[0], &py = field[1], &pz = field[2];
+        const Float8 &nx = field[3], &ny = field[4], &nz = field[5];
         // Row r of M·(p, 1), with w = 1: M[3][r]·1 is M[3][r] exactly.
         auto point = [&](const mat4& m, int r) {
             return (m[0][r] * px + m[1][r] * py) + (m[2][r] * pz + m[3][r]);
@@ -459,10 +461,14 @@ struct PerPixelSurface {
                                point(u.viewFromObject, 2)};
         const Float8 normal[3] = {direction(u.normalFromObject, 0), direction(u.normalFromObject, 1),
                                   direction(u.normalFromObject, 2)};
-        for (int lane = 0; lane < kVertexBatch; ++lane)
-            out[lane] = {vec4(clip[0][lane], clip[1][lane], clip[2][lane], clip[3][lane]),
-                         {vec3(eye[0][lane], eye[1][lane], eye[2][lane]),
-                          vec3(normal[0][lane], normal[1][lane], normal[2][lane]), in[lane].uv}};
+        vec4 positions[kVertexBatch];
+        storeTransposed({clip[0], clip[1], clip[2], clip[3]}, positions);
+        Float8 varyings[8] = {eye[0], eye[1], eye[2], normal[0], normal[1], normal[2], field[6], field[7]};
+        transpose8x8(varyings);  // row k: vertex k's varyings
+        for (int lane = 0; lane < kVertexBatch; ++lane) {
+            out[lane].position = positions[lane];
+            std::memcpy(&out[lane].varyings, &varyings[lane], sizeof varyings[lane]);
+        }
     }
 
     // A FragmentRecord, when given (F = float), receives every number of the shading. `uvDerivatives`:

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -43,6 +45,39 @@ TEST(ClipOutcode, NonFiniteIsItsOwnVerdict) {
     EXPECT_EQ(computeOutcode({nan, 0, 0, 1}), kNonFinite);
     EXPECT_EQ(computeOutcode({0, inf, 0, 1}), kNonFinite);
     EXPECT_EQ(computeOutcode({0, 0, 0, -inf}), kNonFinite);
+}
+
+// The vertex stage's eight-at-a-time outcodes are computeOutcode's, lane by lane, under both clip-depth
+// ranges: random positions in and around the frustum, positions on its planes and at kMinClipW, and a
+// NaN or an infinity in each coordinate (breaks caught: a plane's comparison turned round or given
+// another plane's bit, the reversed-Z planes not taken, a non-finite lane keeping its plane bits).
+TEST(ClipOutcode, EightAtOnceAreOneAtATimes) {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float inf = std::numeric_limits<float>::infinity();
+    std::vector<vec4> positions = {{1, 1, 1, 1},      {-1, -1, -1, 1},         {0, 0, 0, kMinClipW},
+                                   {0, 0, 0, 0},      {0, 0, 0, -kMinClipW},   {2, -3, 0.5f, 1},
+                                   {0, 0, 0, 1e-10f}, {0.5f, 0.5f, -0.5f, -1}, {0, 0, 1, 1}};
+    for (int k = 0; k < 4; ++k)
+        for (const float bad : {nan, inf, -inf}) {
+            vec4 p(0.5f, -0.5f, 3.0f, 1.0f);
+            p[k] = bad;
+            positions.push_back(p);
+        }
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> coordinate(-3.0f, 3.0f), w(-1.0f, 3.0f);
+    while (positions.size() % 8 != 0 || positions.size() < 400)
+        positions.push_back({coordinate(rng), coordinate(rng), coordinate(rng), w(rng)});
+    for (const ClipDepthRange range : {ClipDepthRange::MinusWToW, ClipDepthRange::ReversedZeroToW})
+        for (std::size_t group = 0; group < positions.size(); group += 8) {
+            std::uint8_t codes[8];
+            computeOutcodes(&positions[group], codes, range);
+            for (std::size_t lane = 0; lane < 8; ++lane) {
+                const vec4& p = positions[group + lane];
+                EXPECT_EQ(codes[lane], computeOutcode(p, range))
+                    << p.x << ", " << p.y << ", " << p.z << ", " << p.w
+                    << (range == ClipDepthRange::MinusWToW ? " (-w..w)" : " (0..w)");
+            }
+        }
 }
 
 TEST(Clip, InsideTriangleIsUnchanged) {

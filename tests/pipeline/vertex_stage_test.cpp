@@ -6,6 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include "front_end.h"
+#include "observer.h"
+#include "thread_pool.h"
+
 namespace facet {
 namespace {
 
@@ -68,6 +72,44 @@ TEST(VertexStage, RangesShadeOnlyTheirVertices) {
         EXPECT_EQ(out.varyingsOf(i)[0], inside ? 2.0f * i : -7.0f) << i;
     }
     EXPECT_EQ(uniforms.batches, 2);
+}
+
+// The vertex stage's window positions, eight at a time and the tail one by one: every vertex inside the
+// frustum gets toWindow's, whatever its place in a chunk, on one thread and two (breaks caught: a group
+// or the tail left out, a group's positions read at another group's offset).
+TEST(VertexStage, WindowPositionsAreToWindowsForEveryVertexInside) {
+    for (std::size_t count : {5u, 8u, 13u, 8192u + 21u}) {
+        std::vector<IndexedShader::Attributes> vertices(count);
+        for (std::size_t i = 0; i < count; ++i) {
+            const float t = static_cast<float>(i) / static_cast<float>(count);
+            // Every seventh vertex to the right of the frustum.
+            vertices[i] = {vec3(i % 7 == 3 ? 1.5f : 2.0f * t - 1.0f, 0.5f - t, t - 0.25f),
+                           static_cast<float>(i)};
+        }
+        DrawState state;
+        state.viewport = {3, 4, 640, 480, 0.0f, 1.0f};
+        for (const int threads : {1, 2}) {
+            ThreadPool pool(threads);
+            IndexedShader::Uniforms uniforms;
+            ShadedVertices shaded;
+            std::vector<WindowVertex> window;
+            NullObserver observer;
+            constexpr bool kInOrder = false;
+            runVertexStage<IndexedShader>(std::span<const IndexedShader::Attributes>(vertices), uniforms,
+                                          state, pool, kInOrder, 8192, shaded, window, observer);
+            ASSERT_EQ(window.size(), count);
+            for (std::size_t i = 0; i < count; ++i) {
+                EXPECT_EQ(shaded.outcodes[i], i % 7 == 3 ? kClipRight : 0) << i;
+                if (shaded.outcodes[i] != 0) continue;
+                const WindowVertex one =
+                    toWindow(shaded.positions[i], state.viewport, state.raster.subpixelBits);
+                EXPECT_EQ(window[i].xFixed, one.xFixed) << i;
+                EXPECT_EQ(window[i].yFixed, one.yFixed) << i;
+                EXPECT_EQ(window[i].z, one.z) << i;
+                EXPECT_EQ(window[i].invW, one.invW) << i;
+            }
+        }
+    }
 }
 
 }  // namespace

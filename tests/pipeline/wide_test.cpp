@@ -55,6 +55,40 @@ TEST(Wide, StoreTransposedPutsEachLaneInItsVec4) {
             << "lane " << lane;
 }
 
+// loadTransposed reads eight vec4 back into the lanes storeTransposed wrote them from (breaks caught: a
+// shuffle index off by one, the vertices of the two 128-bit halves swapped).
+TEST(Wide, LoadTransposedPutsEachVec4InItsLane) {
+    vec4 in[8];
+    for (int lane = 0; lane < 8; ++lane)
+        in[lane] = vec4(10.0f * lane + 1.0f, 10.0f * lane + 2.0f, 10.0f * lane + 3.0f, 10.0f * lane + 4.0f);
+    const Vec4x8 v = loadTransposed(in);
+    for (int lane = 0; lane < 8; ++lane) {
+        EXPECT_EQ(v.x[lane], in[lane].x) << "lane " << lane;
+        EXPECT_EQ(v.y[lane], in[lane].y) << "lane " << lane;
+        EXPECT_EQ(v.z[lane], in[lane].z) << "lane " << lane;
+        EXPECT_EQ(v.w[lane], in[lane].w) << "lane " << lane;
+    }
+}
+
+// Element (k, j) of the eight rows ends at (j, k), for float and int lanes (breaks caught: any of the
+// three rounds' shuffle indices or pairings off).
+TEST(Wide, Transpose8x8SwapsRowsAndColumns) {
+    Float8 floats[8];
+    Int8 ints[8];
+    for (int k = 0; k < 8; ++k)
+        for (int j = 0; j < 8; ++j) {
+            floats[k][j] = static_cast<float>(8 * k + j);
+            ints[k][j] = -(8 * k + j);
+        }
+    transpose8x8(floats);
+    transpose8x8(ints);
+    for (int k = 0; k < 8; ++k)
+        for (int j = 0; j < 8; ++j) {
+            EXPECT_EQ(floats[j][k], static_cast<float>(8 * k + j)) << k << ", " << j;
+            EXPECT_EQ(ints[j][k], -(8 * k + j)) << k << ", " << j;
+        }
+}
+
 TEST(Wide, VectorHelpersAreLaneWise) {
     const Vec3x8 v(vec3(3, 4, 0));
     const Vec3x8 n = normalize(v);
