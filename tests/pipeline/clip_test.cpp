@@ -51,7 +51,7 @@ TEST(ClipOutcode, NonFiniteIsItsOwnVerdict) {
 // ranges: random positions in and around the frustum, positions on its planes and at kMinClipW, and a
 // NaN or an infinity in each coordinate (breaks caught: a plane's comparison turned round or given
 // another plane's bit, the reversed-Z planes not taken, a non-finite lane keeping its plane bits).
-TEST(ClipOutcode, EightAtOnceAreOneAtATimes) {
+TEST(ClipOutcode, EightAtOnceMatchOneAtATime) {
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const float inf = std::numeric_limits<float>::infinity();
     std::vector<vec4> positions = {{1, 1, 1, 1},      {-1, -1, -1, 1},         {0, 0, 0, kMinClipW},

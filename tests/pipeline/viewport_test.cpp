@@ -59,7 +59,7 @@ TEST(Viewport, SnappingFollowsSubpixelBits) {
 // ranges; a lane outside the frustum, even a NaN one, leaves the others alone (breaks caught: the
 // rounding of a tie or of a negative coordinate, the int64 halves of a snapped coordinate for some
 // precision, reversed Z's depth mapping, the depth clamp, a field in the wrong word of WindowVertex).
-TEST(Viewport, EightAtOnceGiveOneAtATimesBits) {
+TEST(Viewport, EightAtOnceMatchOneAtATimeBitForBit) {
     std::mt19937 rng(3);
     std::uniform_real_distribution<float> unit(-1.0f, 1.0f), logW(-6.0f, 3.0f);
     std::vector<vec4> positions = {{-1, 1, -1, 1},
