@@ -40,8 +40,9 @@ void runVertexStage(std::span<const typename S::Attributes> vertices, const type
         shadeVertices<S>(vertices, uniforms, begin, end, shaded, clipDepthRange(state.depth.format));
         // Eight at a time (a group's lanes outside the frustum are computed too, and not read), then
         // the rest one by one.
+        static_assert(kVertexBatch == 8, "the eight-lane toWindow takes a group of eight");
         std::size_t i = begin;
-        for (; i + 8 <= end; i += 8)
+        for (; i + kVertexBatch <= end; i += kVertexBatch)
             toWindow(&shaded.positions[i], &shaded.outcodes[i], state.viewport, state.raster.subpixelBits,
                      state.depth.format, &window[i]);
         for (; i < end; ++i)
