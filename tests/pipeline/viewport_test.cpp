@@ -56,9 +56,10 @@ TEST(Viewport, SnappingFollowsSubpixelBits) {
 // The vertex stage's eight-at-a-time viewport transform gives toWindow's bits, lane by lane: positions
 // inside the frustum (up to its planes, w from tiny to large), ties between subpixels, every subpixel
 // precision, viewports off the origin and of the largest size, the depth formats and reversed depth
-// ranges; a lane outside the frustum, even a NaN one, leaves the others alone (breaks caught: the
-// rounding of a tie or of a negative coordinate, the int64 halves of a snapped coordinate for some
-// precision, reversed Z's depth mapping, the depth clamp, a field in the wrong word of WindowVertex).
+// ranges; in a group that mixes them with lanes outside the frustum (NaN, behind the eye), the lanes
+// inside still get their bits (breaks caught: the rounding of a tie or of a negative coordinate, the int64
+// halves of a snapped coordinate for some precision, reversed Z's depth mapping, the depth clamp, a field in
+// the wrong word of WindowVertex).
 TEST(Viewport, EightAtOnceMatchOneAtATimeBitForBit) {
     std::mt19937 rng(3);
     std::uniform_real_distribution<float> unit(-1.0f, 1.0f), logW(-6.0f, 3.0f);
@@ -101,7 +102,8 @@ TEST(Viewport, EightAtOnceMatchOneAtATimeBitForBit) {
                                   std::bit_cast<std::uint64_t>(one.window));
                     }
                 }
-    // Lanes outside the frustum, NaN and behind the eye among them, are not read.
+    // A group mixing lanes inside and outside the frustum: the outside ones (NaN, behind the eye, beside
+    // it) are computed from a stand-in position and not read; the inside ones are exact.
     const float nan = std::numeric_limits<float>::quiet_NaN();
     vec4 mixed[8] = {{0.5f, 0.5f, 0.5f, 1.0f},
                      {nan, 0, 0, 1},
