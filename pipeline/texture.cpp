@@ -32,6 +32,14 @@ std::vector<Footprint> footprints(int n, int m) {
     return out;
 }
 
+// Every alpha code's value, for nearestCode.
+constexpr std::array<float, 256> kAlphaFromCode = [] {
+    std::array<float, 256> table{};
+    for (int code = 0; code < 256; ++code)
+        table[static_cast<std::size_t>(code)] = alphaFromCode(code);
+    return table;
+}();
+
 // The code whose table value is nearest `value` (the tables rise with the code).
 std::uint8_t nearestCode(const std::array<float, 256>& table, float value) {
     const auto above = std::lower_bound(table.begin(), table.end(), value);
@@ -47,7 +55,6 @@ Texture nextLevel(const Texture& above) {
     level.width = mipSide(above.width);
     level.height = mipSide(above.height);
     level.colorFromCode = above.colorFromCode;
-    level.alphaFromCode = above.alphaFromCode;
     const std::vector<Footprint> columns = footprints(above.width, level.width);
     const std::vector<Footprint> rows = footprints(above.height, level.height);
     // Rows first: each input row filtered across to the new width, then the new rows down.
@@ -80,7 +87,7 @@ Texture nextLevel(const Texture& above) {
     for (std::size_t i = 0; i < count; ++i) {
         const vec4& c = linear[i];
         level.codes[i] = {nearestCode(level.colorFromCode, c.r), nearestCode(level.colorFromCode, c.g),
-                          nearestCode(level.colorFromCode, c.b), nearestCode(level.alphaFromCode, c.a)};
+                          nearestCode(level.colorFromCode, c.b), nearestCode(kAlphaFromCode, c.a)};
     }
     return level;
 }

@@ -31,9 +31,20 @@ constexpr std::span<const EnumName<TextureFilter>> enumNames(TextureFilter) {
     return kTextureFilterNames;
 }
 
+// An 8-bit alpha code's value: code/255 as the image libraries read 8-bit data as float (code · (1/255)),
+// and 255 exactly 1, opaque (the product rounds a hair away from it). Alpha is never display-encoded,
+// so it needs no table: a sample computes it, eight lanes at once, where a table would cost a gather.
+constexpr float alphaFromCode(int code) {
+    return code == 255 ? 1.0f : static_cast<float>(code) * (1.0f / 255.0f);
+}
+// The same for eight codes (0–255), lane by lane the same bits.
+inline Float8 alphaFromCode(Int8 code) {
+    return select(code == 255, splat(1.0f), __builtin_convertvector(code, Float8) * (1.0f / 255.0f));
+}
+
 // Texels are kept at their file's precision: an 8-bit file as its codes (4 bytes a texel, a quarter of
-// float RGBA), decoded to linear values when sampled through a 256-entry table per channel kind; float
-// and 16-bit files as linear float RGBA.
+// float RGBA), decoded to linear values when sampled: R, G and B through a 256-entry table (sRGB-decoded,
+// or code/255), alpha by alphaFromCode; float and 16-bit files as linear float RGBA.
 struct Texture {
     using Codes = std::array<std::uint8_t, 4>;  // R, G, B, A
 
@@ -43,7 +54,6 @@ struct Texture {
     std::vector<vec4> texels;                // linear RGBA
     std::vector<Codes> codes;                // 8-bit RGBA codes, decoded by the tables below
     std::array<float, 256> colorFromCode{};  // an R, G or B code's linear value (sRGB-decoded, or code/255)
-    std::array<float, 256> alphaFromCode{};  // an alpha code's value (code/255: alpha is not encoded)
     // Mip levels 1, 2, … down to 1×1 (level 0 is this texture), each in this texture's form: built by
     // buildMipChain() only for a texture some draw filters trilinearly; empty otherwise.
     std::vector<Texture> mipLevels;
@@ -63,7 +73,7 @@ struct Texture {
         const std::size_t i = static_cast<std::size_t>(y) * width + x;
         if (codes.empty()) return texels[i];
         const Codes& c = codes[i];
-        return {colorFromCode[c[0]], colorFromCode[c[1]], colorFromCode[c[2]], alphaFromCode[c[3]]};
+        return {colorFromCode[c[0]], colorFromCode[c[1]], colorFromCode[c[2]], alphaFromCode(c[3])};
     }
 };
 
@@ -178,15 +188,15 @@ inline void wrapTexelPair(float i, int n, int& first, int& second) {
         return {channel(0), channel(1), channel(2), channel(3)};
     }
     // 8-bit codes: one word per texel, R in its lowest byte (Codes' order in memory, little-endian),
-    // each byte decoded through its table.
+    // R, G and B decoded through the colour table, alpha (the top byte) computed.
     const Int8 c00 = gatherWords(t.codes.data(), i00), c10 = gatherWords(t.codes.data(), i10),
                c01 = gatherWords(t.codes.data(), i01), c11 = gatherWords(t.codes.data(), i11);
-    auto channel = [&](const std::array<float, 256>& table, int shift) {
-        auto decode = [&](Int8 c) { return gather(table.data(), (c >> shift) & 0xff); };
+    auto color = [&](int shift) {
+        auto decode = [&](Int8 c) { return gather(t.colorFromCode.data(), (c >> shift) & 0xff); };
         return filter(decode(c00), decode(c10), decode(c01), decode(c11));
     };
-    return {channel(t.colorFromCode, 0), channel(t.colorFromCode, 8), channel(t.colorFromCode, 16),
-            channel(t.alphaFromCode, 24)};
+    auto alpha = [&](Int8 c) { return alphaFromCode((c >> 24) & 0xff); };
+    return {color(0), color(8), color(16), filter(alpha(c00), alpha(c10), alpha(c01), alpha(c11))};
 }
 
 // GL_NEAREST: the texel whose square [i, i + 1)/size contains uv.

@@ -446,17 +446,13 @@ TextureRead readTexture(const fs::path& path, bool decodeSrgb, const TextureLimi
     texture.height = spec.height;
     if (eightBit) {
         // Each code's value as both libraries read it as float (code · (1/255), image_file.h), so that
-        // sampling gives the values a float read would.
-        for (int c = 0; c < 256; ++c) {
-            const float value = static_cast<float>(c) * (1.0f / 255.0f);
-            texture.colorFromCode[c] = finish(value);
-            texture.alphaFromCode[c] = value;
-        }
+        // sampling gives the values a float read would; alpha's is alphaFromCode, the same product.
+        for (int c = 0; c < 256; ++c)
+            texture.colorFromCode[c] = finish(static_cast<float>(c) * (1.0f / 255.0f));
         if (!readTexels(*input, false, texture.codes))
             return problem("cannot read it: " + oneLine(input->error()));
         const auto same = [](std::uint8_t code) { return code; };
         arrangeTexels(spec, texture.codes, same, same, std::uint8_t{255});
-        texture.alphaFromCode[255] = 1.0f;  // opaque, also where the file has no alpha
     } else {
         if (!readTexels(*input, true, texture.texels))
             return problem("cannot read it: " + oneLine(input->error()));

@@ -35,7 +35,7 @@ std::optional<std::string> coordinatePrecisionWarning(const Mesh& mesh, const st
 bool hasTranslucentTexel(const Texture& texture) {
     if (!texture.codes.empty())
         return std::any_of(texture.codes.begin(), texture.codes.end(),
-                           [&](const Texture::Codes& c) { return texture.alphaFromCode[c[3]] < 1.0f; });
+                           [](const Texture::Codes& c) { return alphaFromCode(c[3]) < 1.0f; });
     return std::any_of(texture.texels.begin(), texture.texels.end(),
                        [](const vec4& t) { return t.a < 1.0f; });
 }

@@ -147,7 +147,7 @@ void BM_TextureFilter(benchmark::State& state) {
             for (std::uint8_t& channel : c)
                 channel = static_cast<std::uint8_t>(random() & 0xffu);
         for (int code = 0; code < 256; ++code)
-            t.colorFromCode[code] = t.alphaFromCode[code] = static_cast<float>(code) / 255.0f;
+            t.colorFromCode[code] = static_cast<float>(code) / 255.0f;
         buildMipChain(t);
         return t;
     }();

@@ -45,8 +45,8 @@ TEST(TextureLanes, GathersReadTheIndexedElements) {
     }
 }
 
-// An 8-bit texture with random codes, decoded through tables that are not code/255 and differ per
-// kind, so that a channel decoded through the wrong table or from the wrong byte shows.
+// An 8-bit texture with random codes, its colour decoded through a table that is not code/255, so
+// that a channel decoded the wrong way or from the wrong byte shows.
 Texture codedTexture(int width, int height, std::mt19937& random) {
     Texture t;
     t.width = width;
@@ -55,10 +55,8 @@ Texture codedTexture(int width, int height, std::mt19937& random) {
     for (Texture::Codes& c : t.codes)
         for (std::uint8_t& channel : c)
             channel = static_cast<std::uint8_t>(random() & 0xffu);
-    for (int code = 0; code < 256; ++code) {
+    for (int code = 0; code < 256; ++code)
         t.colorFromCode[code] = std::pow(static_cast<float>(code) / 255.0f, 2.2f);
-        t.alphaFromCode[code] = 1.0f - static_cast<float>(code) / 255.0f;
-    }
     return t;
 }
 
@@ -99,6 +97,18 @@ float coordinate(std::mt19937& random, int size, bool inside) {
                                 : -std::numeric_limits<float>::infinity();
         default:
             return unit(random);
+    }
+}
+
+// Every alpha code computed eight at a time, as the eight-lane sampler does, gives the one-lane bits.
+// Breaks caught: the opaque lanes chosen by another comparison, or the code converted as unsigned
+// bytes of the wrong lane.
+TEST(TextureLanes, EightAlphaCodesGiveTheBitsOfOneAtATime) {
+    for (int first = 0; first < 256; first += 8) {
+        const Int8 codes = Int8{0, 1, 2, 3, 4, 5, 6, 7} + first;
+        const Float8 alpha = alphaFromCode(codes);
+        for (int lane = 0; lane < 8; ++lane)
+            EXPECT_TRUE(sameBits(alpha[lane], alphaFromCode(first + lane))) << "code " << first + lane;
     }
 }
 

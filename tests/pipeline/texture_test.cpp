@@ -98,22 +98,20 @@ TEST(Texture, WrappedIndexPairsMatchFmod) {
     }
 }
 
-// An 8-bit texture decodes R, G and B through colorFromCode and alpha through alphaFromCode, and samples
-// like the float texture of its decoded values.
+// An 8-bit texture decodes R, G and B through colorFromCode and alpha by alphaFromCode, and samples like
+// the float texture of its decoded values.
 // Breaks caught: alpha decoded with the colour table, or a channel read from the wrong code.
 TEST(Texture, EightBitCodesDecodeThroughTheirTables) {
     Texture codes;
     codes.width = 2;
     codes.height = 1;
     codes.codes = {{10, 200, 255, 128}, {0, 64, 3, 255}};
-    for (int i = 0; i < 256; ++i) {
+    for (int i = 0; i < 256; ++i)
         codes.colorFromCode[static_cast<std::size_t>(i)] =
             std::pow(i / 255.0f, 2.2f);  // any curve but identity
-        codes.alphaFromCode[static_cast<std::size_t>(i)] = i / 255.0f;
-    }
     const vec4 first = codes.texel(0, 0);
     EXPECT_EQ(first, vec4(codes.colorFromCode[10], codes.colorFromCode[200], codes.colorFromCode[255],
-                          128 / 255.0f));
+                          alphaFromCode(128)));
     Texture decoded;
     decoded.width = 2;
     decoded.height = 1;
@@ -122,6 +120,21 @@ TEST(Texture, EightBitCodesDecodeThroughTheirTables) {
     for (const vec2 uv : {vec2(0.25f, 0.5f), vec2(0.5f, 0.5f), vec2(0.9f, 0.3f)})
         EXPECT_EQ(sampleBilinear(codes, uv), sampleBilinear(decoded, uv));
     EXPECT_EQ(codes.bytes(), 8u);
+}
+
+// Alpha codes are code · (1/255), the value an image library reads for them as float, with 255 exactly
+// opaque; they rise with the code, so re-encoding a mip level's alpha finds the nearest.
+// Breaks caught: 255 left at the product (0.99999994 or 1.0000001, a translucent or over-opaque texel),
+// a division where the libraries multiply (a last-bit difference from a float read of the same file),
+// or the opaque case tested on the wrong code.
+TEST(Texture, AlphaCodesAreTheirShareOf255AndOpaqueAtTheTop) {
+    EXPECT_EQ(alphaFromCode(0), 0.0f);
+    EXPECT_EQ(alphaFromCode(255), 1.0f);
+    EXPECT_LT(alphaFromCode(254), 1.0f);
+    for (int code = 1; code < 255; ++code) {
+        EXPECT_EQ(alphaFromCode(code), static_cast<float>(code) * (1.0f / 255.0f)) << code;
+        EXPECT_GT(alphaFromCode(code), alphaFromCode(code - 1)) << code;
+    }
 }
 
 TEST(Texture, EmptyIsWhiteAndNonFiniteCoordinatesAreBlack) {
@@ -143,7 +156,6 @@ Texture srgbTexture(int width, int height, Codes codes) {
         const float c = static_cast<float>(i) / 255.0f;
         t.colorFromCode[static_cast<std::size_t>(i)] =
             c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-        t.alphaFromCode[static_cast<std::size_t>(i)] = c;
     }
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x)
