@@ -52,7 +52,7 @@ struct Texture {
     int height = 0;
     // Row-major, row 0 at v = 1 (the top of the image file). Exactly one of the two is filled.
     std::vector<vec4> texels;                // linear RGBA
-    std::vector<Codes> codes;                // 8-bit RGBA codes, decoded by the tables below
+    std::vector<Codes> codes;                // 8-bit RGBA codes: colorFromCode, alphaFromCode
     std::array<float, 256> colorFromCode{};  // an R, G or B code's linear value (sRGB-decoded, or code/255)
     // Mip levels 1, 2, … down to 1×1 (level 0 is this texture), each in this texture's form: built by
     // buildMipChain() only for a texture some draw filters trilinearly; empty otherwise.

@@ -101,8 +101,8 @@ float coordinate(std::mt19937& random, int size, bool inside) {
 }
 
 // Every alpha code computed eight at a time, as the eight-lane sampler does, gives the one-lane bits.
-// Breaks caught: the opaque lanes chosen by another comparison, or the code converted as unsigned
-// bytes of the wrong lane.
+// Breaks caught: the opaque lanes chosen by another comparison, or a division where the one-lane
+// function multiplies by 1/255 (a last-bit difference in some lanes).
 TEST(TextureLanes, EightAlphaCodesGiveTheBitsOfOneAtATime) {
     for (int first = 0; first < 256; first += 8) {
         const Int8 codes = Int8{0, 1, 2, 3, 4, 5, 6, 7} + first;
