@@ -60,6 +60,26 @@ struct BackEndConfig {
     // each passing sample's depth when the fragment is kept. The same bytes either way.
     static constexpr bool kDepthWrittenAtTest = !kMultisampled && !kMayDiscard<S> && !O::enabled;
     using Queue = std::conditional_t<kMultisampled, MultisampleQueue, FragmentQueue>;
+    // Whether batches are shaded two at a time (sixteen lanes: wide.h), the first kept waiting for the
+    // second (ParkedBatch). Only where nothing reads what a waiting batch will write before it is
+    // written: its depths were written at the test, and its colours are written before the next
+    // batch's, so a later fragment at one of its pixels blends over it as it would have.
+    static constexpr bool kShadesPairs = [] {
+#if FACET_SIXTEEN_LANES
+        return PairBatchShader<S> && kDepthWrittenAtTest && kOutputTo == FragmentOutput::Blend;
+#else
+        return false;
+#endif
+    }();
+};
+
+// A shaded-in-pairs walk's batch waiting for its partner: its fragments' pixels and interpolated
+// varyings, and whether its slots are a block row's columns (writeFragments).
+struct ParkedBatch {
+    bool waiting = false;
+    bool slotsAreColumns = false;
+    int x[kBlockSize], y[kBlockSize];
+    FragmentBatch batch;
 };
 
 struct NoMember {};
@@ -91,6 +111,8 @@ struct TileWalk {
     [[no_unique_address]] std::conditional_t<C::kMultisample, NoMember, FragmentQueue> rowQueue;
     // The draw's sample positions (multisampled only).
     [[no_unique_address]] std::conditional_t<C::kMultisample, SampleOffsetsFixed, NoMember> offsets;
+    // The batch waiting to be shaded with the next (kShadesPairs only).
+    [[no_unique_address]] std::conditional_t<C::kShadesPairs, ParkedBatch, NoMember> parked;
 };
 
 // ---- Shading and writing the queue ------------------------------------------------------------------
@@ -207,6 +229,59 @@ void writeWatched(TileWalk<C>& walk, FragmentQueue& queue, int n, const vec4 (&s
     }
 }
 
+// A shaded-in-pairs walk: the interpolated queue waits in walk.parked for the next batch, or is shaded
+// with the one waiting there in one sixteen-lane call, the waiting one written first.
+template <class C>
+void parkOrShadePair(TileWalk<C>& walk, FragmentQueue& queue, bool slotsAreColumns) {
+    using S = typename C::Shader;
+    ParkedBatch& parked = walk.parked;
+    FragmentBatch& batch = queue.batch;
+    if (!parked.waiting) {
+        parked.waiting = true;
+        parked.slotsAreColumns = slotsAreColumns;
+        std::memcpy(parked.x, queue.x, sizeof parked.x);
+        std::memcpy(parked.y, queue.y, sizeof parked.y);
+        std::memcpy(parked.batch.varyings, batch.varyings, kVaryingsOf<S> * sizeof(Float8));
+        if constexpr (C::kDerivatives)
+            std::memcpy(parked.batch.uvDerivatives, batch.uvDerivatives, sizeof batch.uvDerivatives);
+        if constexpr (wantsBarycentrics<S>())
+            std::memcpy(parked.batch.barycentrics, batch.barycentrics, sizeof batch.barycentrics);
+        parked.batch.mask = batch.mask;
+    } else {
+#if FACET_SIXTEEN_LANES
+        const Vec4x16 colors = S::fragmentBatchPair(parked.batch, batch, walk.uniforms);
+        vec4 first[kBlockSize], second[kBlockSize];
+        storeTransposed(lowHalf(colors), first);
+        storeTransposed(highHalf(colors), second);
+        const unsigned shaded =
+            static_cast<unsigned>(std::popcount(parked.batch.mask) + std::popcount(batch.mask));
+        walk.stats.fragmentsShaded += shaded;
+        walk.stats.fragmentsShadedBy16 += shaded;
+        walk.stats.fragmentsWritten += shaded;
+        writeFragments(walk, parked, first, parked.batch.mask, parked.slotsAreColumns);
+        writeFragments(walk, queue, second, batch.mask, slotsAreColumns);
+        parked.waiting = false;
+#endif
+    }
+    batch.mask = 0;
+    queue.pixelsMod8 = 0;
+}
+
+// The batch still waiting at the end of a shaded-in-pairs walk, shaded alone (the bits it would have
+// had with a partner).
+template <class C>
+void shadeParked(TileWalk<C>& walk) {
+    ParkedBatch& parked = walk.parked;
+    if (!parked.waiting) return;
+    parked.waiting = false;
+    vec4 shaded[kBlockSize];
+    storeTransposed(C::Shader::fragmentBatch(parked.batch, walk.uniforms), shaded);
+    const unsigned n = static_cast<unsigned>(std::popcount(parked.batch.mask));
+    walk.stats.fragmentsShaded += n;
+    walk.stats.fragmentsWritten += n;
+    writeFragments(walk, parked, shaded, parked.batch.mask, parked.slotsAreColumns);
+}
+
 // The queued fragments (or a block row shaded whole, `slotsAreColumns`, interpolated with its row):
 // interpolation, the fragment shader, then the depth write and the output.
 // Left to the compiler (out of line, as it chooses): the walk calls it from three places.
@@ -216,6 +291,10 @@ void shadeQueue(TileWalk<C>& walk, Queue& queue, bool slotsAreColumns = false) {
     if (n == 0) return;
     queue.count = 0;
     if (!slotsAreColumns) interpolateQueue<typename C::Shader, C::kDerivatives>(queue);
+    if constexpr (C::kShadesPairs) {
+        parkOrShadePair(walk, queue, slotsAreColumns);
+        return;
+    }
     vec4 shaded[kBlockSize];
     const unsigned kept = runFragmentShader<typename C::Shader>(queue, n, walk.uniforms, shaded, walk.stats);
     const unsigned live = queue.batch.mask;
@@ -583,6 +662,7 @@ void drawTile(TileWalk<C>& walk, const PixelRect& rect, bool inPart, std::size_t
         }
     }
     shadeQueue(walk, walk.queue);
+    if constexpr (C::kShadesPairs) shadeParked(walk);
 }
 
 // ---- Choosing the walk, once per draw ---------------------------------------------------------------

@@ -21,11 +21,21 @@ concept BatchShader = Shader<S> && !kMayDiscard<S> &&
 // FragmentBatch&, const Uniforms&, unsigned& kept), which clears in `kept` (on entry the batch's mask)
 // the bit of every lane it discards, as fragment() returning nullopt would.
 template <class S>
-concept DiscardingBatchShader =
-    Shader<S> && kMayDiscard<S> &&
+concept DiscardingBatchShader = Shader<S> && kMayDiscard<S> &&
     requires(const FragmentBatch& batch, const typename S::Uniforms& uniforms, unsigned& kept) {
     { S::fragmentBatch(batch, uniforms, kept) } -> std::same_as<Vec4x8>;
 };
+
+#if FACET_SIXTEEN_LANES
+// A batch shader that also shades two batches in one call, sixteen lanes (wide.h): static Vec4x16
+// fragmentBatchPair(const FragmentBatch& a, const FragmentBatch& b, const Uniforms&), a's lanes then
+// b's, each what fragmentBatch gives it.
+template <class S>
+concept PairBatchShader = BatchShader<S> &&
+    requires(const FragmentBatch& batch, const typename S::Uniforms& uniforms) {
+    { S::fragmentBatchPair(batch, batch, uniforms) } -> std::same_as<Vec4x16>;
+};
+#endif
 
 template <Shader S>
 inline bool shadeFragment(const float* varyingFloats, const typename S::Uniforms& uniforms, vec4& color) {

@@ -189,6 +189,32 @@ Bundle<Float8> loadLanes(const FragmentBatch& batch) {
     return wide;
 }
 
+#if FACET_SIXTEEN_LANES
+// Two FragmentBatches' varyings as one sixteen-lane bundle: a's lanes, then b's.
+template <template <class> class Bundle>
+Bundle<Floatx16> loadLanePair(const FragmentBatch& a, const FragmentBatch& b) {
+    constexpr int kFloats = kLaneBundleFloats<Bundle>;
+    static_assert(kIsLaneBundle<Bundle> && sizeof(Bundle<Floatx16>) == kFloats * sizeof(Floatx16),
+                  "a lane bundle has the same float members at every lane type");
+    Floatx16 columns[kFloats];
+    for (int k = 0; k < kFloats; ++k)
+        columns[k] = joinHalves(a.varyings[k], b.varyings[k]);
+    Bundle<Floatx16> wide;
+    std::memcpy(&wide, columns, sizeof wide);
+    return wide;
+}
+#endif
+
+// Whether a body's shade() compiles for sixteen lanes too (it declares kSixteenLanes): the back end
+// then shades two batches in one call where the instruction set has them (wide.h).
+template <class Body>
+constexpr bool shadesSixteenLanes() {
+    if constexpr (requires { Body::kSixteenLanes; })
+        return Body::kSixteenLanes;
+    else
+        return false;
+}
+
 // The pipeline's entry points of a shader whose fragment shader (and per-vertex lighting) is one body
 // for both lane types. Body declares Attributes, Uniforms, vertex(), and
 //   template <class F> struct VaryingsT;  // a lane bundle; Varyings is VaryingsT<float>
@@ -239,6 +265,25 @@ struct LaneShader : Body {
             return Body::template shade<Float8>(loadLanes<Body::template VaryingsT>(in), u, in.mask);
         }
     }
+#if FACET_SIXTEEN_LANES
+    // Two batches in one call, sixteen lanes (a's, then b's), each lane the bits fragmentBatch gives it.
+    static Vec4x16 fragmentBatchPair(const FragmentBatch& a, const FragmentBatch& b,
+                                     const Uniforms& u) requires(shadesSixteenLanes<Body>()) {
+        const unsigned liveLanes = a.mask | (b.mask << 8);
+        const auto varyings = loadLanePair<Body::template VaryingsT>(a, b);
+        if constexpr (requires { Body::kDerivativeVarying; }) {
+            TexCoordDerivativesT<Floatx16> derivatives;
+            Floatx16 columns[4];
+            for (int k = 0; k < 4; ++k)
+                columns[k] = joinHalves(a.uvDerivatives[k], b.uvDerivatives[k]);
+            static_assert(sizeof derivatives == sizeof columns);
+            std::memcpy(&derivatives, columns, sizeof derivatives);
+            return Body::template shade<Floatx16>(varyings, u, liveLanes, derivatives);
+        } else {
+            return Body::template shade<Floatx16>(varyings, u, liveLanes);
+        }
+    }
+#endif
     // Eight vertices at once: the body's own vertexBatch when it has one, else vertexInputs lane by
     // lane and lightVertex on eight lanes (LanewiseVertexLighting).
     static void vertexBatch(const Attributes* in, const Uniforms& u,

@@ -37,10 +37,16 @@ constexpr std::span<const EnumName<TextureFilter>> enumNames(TextureFilter) {
 constexpr float alphaFromCode(int code) {
     return code == 255 ? 1.0f : static_cast<float>(code) * (1.0f / 255.0f);
 }
-// The same for eight codes (0–255), lane by lane the same bits.
+// The same for eight codes (0–255), or sixteen, lane by lane the same bits.
 inline Float8 alphaFromCode(Int8 code) {
     return select(code == 255, splat(1.0f), __builtin_convertvector(code, Float8) * (1.0f / 255.0f));
 }
+#if FACET_SIXTEEN_LANES
+inline Floatx16 alphaFromCode(Intx16 code) {
+    return select(code == 255, splatLanes<Floatx16>(1.0f),
+                  __builtin_convertvector(code, Floatx16) * (1.0f / 255.0f));
+}
+#endif
 
 // Texels are kept at their file's precision: an 8-bit file as its codes (4 bytes a texel, a quarter of
 // float RGBA), decoded to linear values when sampled: R, G and B through a 256-entry table (sRGB-decoded,
@@ -139,26 +145,31 @@ inline void wrapTexelPair(float i, int n, int& first, int& second) {
     return mix(mix(t.texel(x0, y0), t.texel(x1, y0), s), mix(t.texel(x0, y1), t.texel(x1, y1), s), r);
 }
 
-// The same at eight points at once (bit i of liveLanes: lane i is a fragment; the others, whose uv may
-// be anything, are opaque white). The lanes give sampleBilinear's bits: the same operations in the
-// same order, lane by lane. When every live lane's four texels lie inside the texture without
-// wrapping (the common case), the weights are computed eight at a time and the texels gathered;
-// otherwise each live lane is sampled alone.
-[[gnu::always_inline]] inline Vec4x8 sampleBilinear(const Texture& t, const Vec2x8& uv, unsigned liveLanes) {
-    const Float8 one = splat(1.0f);
+// The same at eight points at once, or sixteen (F: the lanes; bit i of liveLanes: lane i is a fragment;
+// the others, whose uv may be anything, are opaque white). The lanes give sampleBilinear's bits: the same
+// operations in the same order, lane by lane. When every live lane's four texels lie inside the texture
+// without wrapping (the common case), the weights are computed for all the lanes at once and the texels
+// gathered; otherwise each live lane is sampled alone.
+template <WideLanes F>
+[[gnu::always_inline]] inline WideVec4<F> sampleBilinear(const Texture& t, const WideVec2<F>& uv,
+                                                         unsigned liveLanes) {
+    using Int = WideMask<F>;
+    constexpr int kLanes = LaneTraits<F>::kCount;
+    constexpr unsigned kAllLanes = (1u << kLanes) - 1u;
+    const F one = splatLanes<F>(1.0f);
     // No live lane: nothing to read (below, dead lanes read texel 0 and its neighbours, which exist only
     // when some live lane has shown the texture to be at least 2×2).
     if (t.empty() || liveLanes == 0) return {one, one, one, one};
-    const Float8 u = uv.x * static_cast<float>(t.width) - 0.5f;
-    const Float8 v = (1.0f - uv.y) * static_cast<float>(t.height) - 0.5f;
+    const F u = uv.x * static_cast<float>(t.width) - 0.5f;
+    const F v = (1.0f - uv.y) * static_cast<float>(t.height) - 0.5f;
     // 0 ≤ u < width − 1 is 0 ≤ ⌊u⌋ ≤ width − 2: the texel and its right neighbour without wrapping
     // (wrapTexelPair's first case); false for NaN and ±∞.
-    const Int8 live = laneMaskOf(liveLanes);
-    const Int8 inside = (u >= 0.0f) & (u < static_cast<float>(t.width - 1)) & (v >= 0.0f) &
-                        (v < static_cast<float>(t.height - 1));
-    if (signMask(inside | ~live) != 0xffu) {
-        Vec4x8 texel{one, one, one, one};
-        for (int lane = 0; lane < 8; ++lane) {
+    const Int live = laneMaskOf<F>(liveLanes);
+    const Int inside = (u >= 0.0f) & (u < static_cast<float>(t.width - 1)) & (v >= 0.0f) &
+                       (v < static_cast<float>(t.height - 1));
+    if (signMask(inside | ~live) != kAllLanes) {
+        WideVec4<F> texel{one, one, one, one};
+        for (int lane = 0; lane < kLanes; ++lane) {
             if (!((liveLanes >> lane) & 1)) continue;
             const vec4 c = sampleBilinear(t, vec2(uv.x[lane], uv.y[lane]));
             texel.x[lane] = c.r;
@@ -169,13 +180,13 @@ inline void wrapTexelPair(float i, int n, int& first, int& second) {
         return texel;
     }
     // Dead lanes read texel 0 (their uv may be out of range or NaN) and are made white at the end.
-    const Int8 x0 = __builtin_convertvector(select(live, u, 0.0f), Int8);  // ⌊u⌋: u ≥ 0
-    const Int8 y0 = __builtin_convertvector(select(live, v, 0.0f), Int8);
-    const Float8 s = u - __builtin_convertvector(x0, Float8), r = v - __builtin_convertvector(y0, Float8);
-    const Int8 i00 = y0 * t.width + x0, i10 = i00 + 1, i01 = i00 + t.width, i11 = i01 + 1;
+    const Int x0 = __builtin_convertvector(select(live, u, 0.0f), Int);  // ⌊u⌋: u ≥ 0
+    const Int y0 = __builtin_convertvector(select(live, v, 0.0f), Int);
+    const F s = u - __builtin_convertvector(x0, F), r = v - __builtin_convertvector(y0, F);
+    const Int i00 = y0 * t.width + x0, i10 = i00 + 1, i01 = i00 + t.width, i11 = i01 + 1;
     // mix(mix(t00, t10, s), mix(t01, t11, s), r), GLM's mix(x, y, a) = x·(1 − a) + y·a, per channel.
-    const Float8 notS = 1.0f - s, notR = 1.0f - r;
-    auto filter = [&](Float8 t00, Float8 t10, Float8 t01, Float8 t11) {
+    const F notS = 1.0f - s, notR = 1.0f - r;
+    auto filter = [&](F t00, F t10, F t01, F t11) {
         return select(live, (t00 * notS + t10 * s) * notR + (t01 * notS + t11 * s) * r, one);
     };
     if (t.codes.empty()) {
@@ -189,13 +200,13 @@ inline void wrapTexelPair(float i, int n, int& first, int& second) {
     }
     // 8-bit codes: one word per texel, R in its lowest byte (Codes' order in memory, little-endian),
     // R, G and B decoded through the colour table, alpha (the top byte) computed.
-    const Int8 c00 = gatherWords(t.codes.data(), i00), c10 = gatherWords(t.codes.data(), i10),
-               c01 = gatherWords(t.codes.data(), i01), c11 = gatherWords(t.codes.data(), i11);
+    const Int c00 = gatherWords(t.codes.data(), i00), c10 = gatherWords(t.codes.data(), i10),
+              c01 = gatherWords(t.codes.data(), i01), c11 = gatherWords(t.codes.data(), i11);
     auto color = [&](int shift) {
-        auto decode = [&](Int8 c) { return gather(t.colorFromCode.data(), (c >> shift) & 0xff); };
+        auto decode = [&](Int c) { return gather(t.colorFromCode.data(), (c >> shift) & 0xff); };
         return filter(decode(c00), decode(c10), decode(c01), decode(c11));
     };
-    auto alpha = [&](Int8 c) { return alphaFromCode((c >> 24) & 0xff); };
+    auto alpha = [&](Int c) { return alphaFromCode((c >> 24) & 0xff); };
     return {color(0), color(8), color(16), filter(alpha(c00), alpha(c10), alpha(c01), alpha(c11))};
 }
 

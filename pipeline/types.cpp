@@ -15,6 +15,7 @@ DrawStats& DrawStats::operator+=(const DrawStats& o) {
     trianglesMissingSamples += o.trianglesMissingSamples;
     trianglesRasterized += o.trianglesRasterized;
     fragmentsShaded += o.fragmentsShaded;
+    fragmentsShadedBy16 += o.fragmentsShadedBy16;
     fragmentsDepthFailed += o.fragmentsDepthFailed;
     fragmentsDiscarded += o.fragmentsDiscarded;
     fragmentsWritten += o.fragmentsWritten;
@@ -164,8 +165,9 @@ std::ostream& operator<<(std::ostream& os, const DrawStats& s) {
               << " clipped, " << s.trianglesRejected << " rejected, " << s.trianglesCulled << " culled, "
               << s.trianglesZeroArea << " zero-area, " << s.trianglesMissingSamples
               << " between pixel centres, " << s.trianglesRasterized << " rasterized), " << s.fragmentsShaded
-              << " fragments shaded (" << s.fragmentsDepthFailed << " failed depth, " << s.fragmentsDiscarded
-              << " discarded, " << s.fragmentsWritten << " written, " << s.fragmentsStored << " stored)";
+              << " fragments shaded (" << s.fragmentsShadedBy16 << " sixteen at a time, "
+              << s.fragmentsDepthFailed << " failed depth, " << s.fragmentsDiscarded << " discarded, "
+              << s.fragmentsWritten << " written, " << s.fragmentsStored << " stored)";
 }
 
 }  // namespace facet

@@ -26,6 +26,37 @@ namespace facet {
 using Float8 = float __attribute__((vector_size(32)));
 using Int8 = std::int32_t __attribute__((vector_size(32)));
 
+// Sixteen lanes, where the instruction set has 512-bit registers (the AVX-512 copy of the hot path,
+// frame_kernels.h): the fragment shader then runs on two batches of eight at once (back_end.h), one
+// instruction per operation for sixteen fragments. Elsewhere a 64-byte vector would be split by the
+// compiler into single lanes for every comparison, so only the AVX-512 copy has them. Every operation
+// is the same correctly rounded one lane by lane, so sixteen lanes give the bits eight give.
+#if defined(__AVX512F__)
+#define FACET_SIXTEEN_LANES 1
+using Floatx16 = float __attribute__((vector_size(64)));
+using Intx16 = std::int32_t __attribute__((vector_size(64)));
+#endif
+
+// The float lane vectors (Float8, and Floatx16 where there is one) and their comparison results.
+template <class F>
+struct WideMaskOf;
+template <>
+struct WideMaskOf<Float8> {
+    using type = Int8;
+};
+#if FACET_SIXTEEN_LANES
+template <>
+struct WideMaskOf<Floatx16> {
+    using type = Intx16;
+};
+#endif
+template <class F>
+concept WideLanes = requires {
+    typename WideMaskOf<F>::type;
+};
+template <class F>
+using WideMask = typename WideMaskOf<F>::type;
+
 // One bit per lane, set where the lane is negative (comparison results are all ones or all zeros).
 inline unsigned signMask(Int8 v) {
 #if defined(__AVX__)
@@ -38,13 +69,25 @@ inline unsigned signMask(Int8 v) {
 #endif
 }
 
+#if FACET_SIXTEEN_LANES
+inline unsigned signMask(Intx16 v) {
+    return static_cast<unsigned>(_mm512_cmplt_epi32_mask(std::bit_cast<__m512i>(v), _mm512_setzero_si512()));
+}
+#endif
+
 inline Float8 splat(float v) {
     return Float8{v, v, v, v, v, v, v, v};
+}
+// v in every lane of a lane vector.
+template <WideLanes F>
+F splatLanes(float v) {
+    return F{} + v;
 }
 
 // Lane-wise choice: cond ? a : b, with cond a comparison result. The scalar overload lets templates
 // written for both lane types use the same word.
-inline Float8 select(Int8 cond, Float8 a, Float8 b) {
+template <WideLanes F>
+F select(WideMask<F> cond, F a, F b) {
     return cond ? a : b;
 }
 inline float select(bool cond, float a, float b) {
@@ -54,37 +97,90 @@ inline Float8 select(Int8 cond, float a, float b) {
     return cond ? splat(a) : splat(b);
 }
 
-inline Float8 max(Float8 a, Float8 b) {
+template <WideLanes F>
+F max(F a, F b) {
     return a > b ? a : b;
 }
-inline Float8 min(Float8 a, Float8 b) {
+template <WideLanes F>
+F min(F a, F b) {
     return a < b ? a : b;
 }
-inline Float8 max(Float8 a, float b) {
-    return max(a, splat(b));
+template <WideLanes F>
+F max(F a, float b) {
+    return max(a, splatLanes<F>(b));
 }
 
-inline Float8 sqrt(Float8 v) {
-    Float8 r{};
-    for (int i = 0; i < 8; ++i)
+template <WideLanes F>
+F sqrt(F v) {
+    F r{};
+    for (int i = 0; i < int(sizeof(F) / sizeof(float)); ++i)
         r[i] = std::sqrt(v[i]);  // one vsqrtps: the loop is vectorised
     return r;
 }
 
-struct Vec2x8 {
-    Float8 x, y;
+// vec2, vec3 and vec4 of lane vectors: one lane vector per component (structure of arrays).
+template <WideLanes F>
+struct WideVec2 {
+    F x, y;
 };
 
-struct Vec3x8 {
-    Float8 x, y, z;
-    Vec3x8() = default;
-    Vec3x8(Float8 x_, Float8 y_, Float8 z_) : x(x_), y(y_), z(z_) {}
-    explicit Vec3x8(const vec3& v) : x(splat(v.x)), y(splat(v.y)), z(splat(v.z)) {}
+template <WideLanes F>
+struct WideVec3 {
+    F x, y, z;
+    WideVec3() = default;
+    WideVec3(F x_, F y_, F z_) : x(x_), y(y_), z(z_) {}
+    explicit WideVec3(const vec3& v) : x(splatLanes<F>(v.x)), y(splatLanes<F>(v.y)), z(splatLanes<F>(v.z)) {}
 };
 
-struct Vec4x8 {
-    Float8 x, y, z, w;
+template <WideLanes F>
+struct WideVec4 {
+    F x, y, z, w;
 };
+
+using Vec2x8 = WideVec2<Float8>;
+using Vec3x8 = WideVec3<Float8>;
+using Vec4x8 = WideVec4<Float8>;
+#if FACET_SIXTEEN_LANES
+using Vec2x16 = WideVec2<Floatx16>;
+using Vec3x16 = WideVec3<Floatx16>;
+using Vec4x16 = WideVec4<Floatx16>;
+
+// The halves of sixteen lanes (lanes 0–7, 8–15) and sixteen lanes from two halves.
+inline Float8 lowHalf(Floatx16 v) {
+    return __builtin_shufflevector(v, v, 0, 1, 2, 3, 4, 5, 6, 7);
+}
+inline Float8 highHalf(Floatx16 v) {
+    return __builtin_shufflevector(v, v, 8, 9, 10, 11, 12, 13, 14, 15);
+}
+inline Floatx16 joinHalves(Float8 low, Float8 high) {
+    return __builtin_shufflevector(low, high, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+}
+inline Vec2x8 lowHalf(const Vec2x16& v) {
+    return {lowHalf(v.x), lowHalf(v.y)};
+}
+inline Vec2x8 highHalf(const Vec2x16& v) {
+    return {highHalf(v.x), highHalf(v.y)};
+}
+inline Vec3x8 lowHalf(const Vec3x16& v) {
+    return {lowHalf(v.x), lowHalf(v.y), lowHalf(v.z)};
+}
+inline Vec3x8 highHalf(const Vec3x16& v) {
+    return {highHalf(v.x), highHalf(v.y), highHalf(v.z)};
+}
+inline Vec3x16 joinHalves(const Vec3x8& low, const Vec3x8& high) {
+    return {joinHalves(low.x, high.x), joinHalves(low.y, high.y), joinHalves(low.z, high.z)};
+}
+inline Vec4x16 joinHalves(const Vec4x8& low, const Vec4x8& high) {
+    return {joinHalves(low.x, high.x), joinHalves(low.y, high.y), joinHalves(low.z, high.z),
+            joinHalves(low.w, high.w)};
+}
+inline Vec4x8 lowHalf(const Vec4x16& v) {
+    return {lowHalf(v.x), lowHalf(v.y), lowHalf(v.z), lowHalf(v.w)};
+}
+inline Vec4x8 highHalf(const Vec4x16& v) {
+    return {highHalf(v.x), highHalf(v.y), highHalf(v.z), highHalf(v.w)};
+}
+#endif
 
 // The eight lanes of a Vec4x8 as eight vec4 (structure of arrays to array of structures): a 4×8
 // transpose in registers, twelve shuffles and four 32-byte stores instead of 32 single-float moves.
@@ -154,59 +250,83 @@ template <class V>
     }
 }
 
-inline Vec3x8 operator+(const Vec3x8& a, const Vec3x8& b) {
+template <class F>
+WideVec3<F> operator+(const WideVec3<F>& a, const WideVec3<F>& b) {
     return {a.x + b.x, a.y + b.y, a.z + b.z};
 }
-inline Vec3x8 operator-(const Vec3x8& a, const Vec3x8& b) {
+template <class F>
+WideVec3<F> operator-(const WideVec3<F>& a, const WideVec3<F>& b) {
     return {a.x - b.x, a.y - b.y, a.z - b.z};
 }
-inline Vec3x8 operator-(const Vec3x8& a) {
+template <class F>
+WideVec3<F> operator-(const WideVec3<F>& a) {
     return {-a.x, -a.y, -a.z};
 }
-inline Vec3x8 operator*(const Vec3x8& a, const Vec3x8& b) {
+template <class F>
+WideVec3<F> operator*(const WideVec3<F>& a, const WideVec3<F>& b) {
     return {a.x * b.x, a.y * b.y, a.z * b.z};
 }
-inline Vec3x8 operator*(const Vec3x8& a, Float8 s) {
+template <class F>
+WideVec3<F> operator*(const WideVec3<F>& a, F s) {
     return {a.x * s, a.y * s, a.z * s};
 }
-inline Vec3x8 operator*(Float8 s, const Vec3x8& a) {
+template <class F>
+WideVec3<F> operator*(F s, const WideVec3<F>& a) {
     return a * s;
 }
-inline Vec3x8 operator*(const Vec3x8& a, const vec3& v) {
+template <class F>
+WideVec3<F> operator*(const WideVec3<F>& a, const vec3& v) {
     return {a.x * v.x, a.y * v.y, a.z * v.z};
 }
-inline Vec3x8 operator*(const vec3& v, const Vec3x8& a) {
+template <class F>
+WideVec3<F> operator*(const vec3& v, const WideVec3<F>& a) {
     return a * v;
 }
-inline Vec3x8 operator*(const vec3& v, Float8 s) {
+template <WideLanes F>
+WideVec3<F> operator*(const vec3& v, F s) {
     return {v.x * s, v.y * s, v.z * s};
 }
-inline Vec3x8 operator+(const Vec3x8& a, const vec3& v) {
+template <class F>
+WideVec3<F> operator+(const WideVec3<F>& a, const vec3& v) {
     return {a.x + v.x, a.y + v.y, a.z + v.z};
 }
-inline Vec3x8 operator-(const vec3& v, const Vec3x8& a) {
+template <class F>
+WideVec3<F> operator-(const vec3& v, const WideVec3<F>& a) {
     return {v.x - a.x, v.y - a.y, v.z - a.z};
 }
-inline Vec3x8& operator+=(Vec3x8& a, const Vec3x8& b) {
+template <class F>
+WideVec3<F>& operator+=(WideVec3<F>& a, const WideVec3<F>& b) {
     return a = a + b;
 }
 
-inline Float8 dot(const Vec3x8& a, const Vec3x8& b) {
+template <class F>
+F dot(const WideVec3<F>& a, const WideVec3<F>& b) {
     return a.x * b.x + a.y * b.y + a.z * b.z;
 }
-inline Float8 dot(const Vec3x8& a, const vec3& b) {
+template <class F>
+F dot(const WideVec3<F>& a, const vec3& b) {
     return a.x * b.x + a.y * b.y + a.z * b.z;
 }
-inline Vec3x8 normalize(const Vec3x8& v) {
+template <class F>
+WideVec3<F> normalize(const WideVec3<F>& v) {
     return v * (1.0f / sqrt(dot(v, v)));
 }
-inline Vec3x8 select(Int8 cond, const Vec3x8& a, const Vec3x8& b) {
+template <class F>
+WideVec3<F> select(WideMask<F> cond, const WideVec3<F>& a, const WideVec3<F>& b) {
     return {select(cond, a.x, b.x), select(cond, a.y, b.y), select(cond, a.z, b.z)};
 }
 
 // Lane i all ones where bit i of `bits` is set: a lane mask (FragmentBatch::mask) as a comparison result.
 inline Int8 laneMaskOf(unsigned bits) {
     const Int8 laneBits = {1, 2, 4, 8, 16, 32, 64, 128};
+    return (laneBits & static_cast<std::int32_t>(bits)) != 0;
+}
+// The same for the lanes of F: laneMaskOf<F>(bits).
+template <WideLanes F>
+WideMask<F> laneMaskOf(unsigned bits) {
+    WideMask<F> laneBits;
+    for (int lane = 0; lane < int(sizeof(F) / sizeof(float)); ++lane)
+        laneBits[lane] = 1 << lane;
     return (laneBits & static_cast<std::int32_t>(bits)) != 0;
 }
 
@@ -222,6 +342,13 @@ inline Float8 gather(const float* table, Int8 index) {
     return r;
 #endif
 }
+#if FACET_SIXTEEN_LANES
+// (The masked form with every lane set: GCC 12's plain one reads an uninitialised register.)
+inline Floatx16 gather(const float* table, Intx16 index) {
+    return std::bit_cast<Floatx16>(
+        _mm512_mask_i32gather_ps(_mm512_setzero_ps(), 0xffff, std::bit_cast<__m512i>(index), table, 4));
+}
+#endif
 // For each 8-bit mask, the indices of its set bits in ascending order, then zeros: lane i of a vector
 // permuted by entry `mask` is the lane of the i-th set bit (a "compress" of the lanes the mask keeps).
 inline constexpr auto kPackedLaneIndices = [] {
@@ -278,6 +405,13 @@ inline Int8 gatherWords(const void* bytes, Int8 index) {
 #endif
 }
 
+#if FACET_SIXTEEN_LANES
+inline Intx16 gatherWords(const void* bytes, Intx16 index) {
+    return std::bit_cast<Intx16>(
+        _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), 0xffff, std::bit_cast<__m512i>(index), bytes, 4));
+}
+#endif
+
 // Scalar counterparts, so shader templates can use the same names for both lane types.
 inline vec3 select(bool cond, const vec3& a, const vec3& b) {
     return cond ? a : b;
@@ -315,16 +449,16 @@ struct LaneTraits<float> {
     static float toFloat(std::int32_t v) { return static_cast<float>(v); }
     static std::int32_t toInt(float v) { return static_cast<std::int32_t>(v); }
 };
-template <>
-struct LaneTraits<Float8> {
-    using Int = Int8;
-    using Vec2 = Vec2x8;
-    using Vec3 = Vec3x8;
-    using Vec4 = Vec4x8;
-    static constexpr int kCount = 8;
-    static Float8 splat(float v) { return facet::splat(v); }
-    static Float8 toFloat(Int8 v) { return __builtin_convertvector(v, Float8); }
-    static Int8 toInt(Float8 v) { return __builtin_convertvector(v, Int8); }
+template <WideLanes F>
+struct LaneTraits<F> {
+    using Int = WideMask<F>;
+    using Vec2 = WideVec2<F>;
+    using Vec3 = WideVec3<F>;
+    using Vec4 = WideVec4<F>;
+    static constexpr int kCount = int(sizeof(F) / sizeof(float));
+    static F splat(float v) { return splatLanes<F>(v); }
+    static F toFloat(Int v) { return __builtin_convertvector(v, F); }
+    static Int toInt(F v) { return __builtin_convertvector(v, Int); }
 };
 
 // The vector types that go with the lane type F: vec2/vec3/vec4 for one lane, Vec2x8/Vec3x8/Vec4x8 for
@@ -346,34 +480,42 @@ F lanes(float v) {
 inline vec3 rgb(const vec4& c) {
     return vec3(c);
 }
-inline Vec3x8 rgb(const Vec4x8& c) {
+template <class F>
+WideVec3<F> rgb(const WideVec4<F>& c) {
     return {c.x, c.y, c.z};
 }
 inline vec4 withAlpha(const vec3& c, float alpha) {
     return vec4(c, alpha);
 }
-inline Vec4x8 withAlpha(const Vec3x8& c, Float8 alpha) {
+template <class F>
+WideVec4<F> withAlpha(const WideVec3<F>& c, F alpha) {
     return {c.x, c.y, c.z, alpha};
 }
 
-inline Vec3x8 operator*(const Vec3x8& a, float s) {
+template <class F>
+WideVec3<F> operator*(const WideVec3<F>& a, float s) {
     return {a.x * s, a.y * s, a.z * s};
 }
-inline Vec3x8 operator*(float s, const Vec3x8& a) {
+template <class F>
+WideVec3<F> operator*(float s, const WideVec3<F>& a) {
     return a * s;
 }
-inline Vec3x8 operator+(const vec3& v, const Vec3x8& a) {
+template <class F>
+WideVec3<F> operator+(const vec3& v, const WideVec3<F>& a) {
     return a + v;
 }
 
-inline Float8 min(Float8 a, float b) {
-    return min(a, splat(b));
+template <WideLanes F>
+F min(F a, float b) {
+    return min(a, splatLanes<F>(b));
 }
-inline Float8 select(Int8 cond, Float8 a, float b) {
-    return select(cond, a, splat(b));
+template <WideLanes F>
+F select(WideMask<F> cond, F a, float b) {
+    return select(cond, a, splatLanes<F>(b));
 }
-inline Float8 select(Int8 cond, float a, Float8 b) {
-    return select(cond, splat(a), b);
+template <WideLanes F>
+F select(WideMask<F> cond, float a, F b) {
+    return select(cond, splatLanes<F>(a), b);
 }
 
 inline float sqrt(float x) {
@@ -384,8 +526,9 @@ inline float abs(float x) {
     return std::fabs(x);
 }
 // The sign bit cleared, as fabs does (max(x, −x) would give −0 for +0 and −NaN for a NaN).
-inline Float8 abs(Float8 x) {
-    return std::bit_cast<Float8>(std::bit_cast<Int8>(x) & 0x7fffffff);
+template <WideLanes F>
+F abs(F x) {
+    return std::bit_cast<F>(std::bit_cast<WideMask<F>>(x) & 0x7fffffff);
 }
 
 // ---- Double: one lane in double precision, the exact reference renderer's -------------------------
@@ -524,14 +667,16 @@ template <>
 struct Maths<MathPrecision::Exact> {
     // x^n for x ≥ 0, n ≥ 0, as GLSL's pow: 0 where x = 0 and n > 0, 1 where n = 0.
     static float pow(float x, float n) { return std::pow(x, n); }
-    static Float8 pow(Float8 x, float n) {
-        for (int i = 0; i < 8; ++i)
+    template <WideLanes F>
+    static F pow(F x, float n) {
+        for (int i = 0; i < LaneTraits<F>::kCount; ++i)
             x[i] = std::pow(x[i], n);
         return x;
     }
     static float exp(float x) { return std::exp(x); }
-    static Float8 exp(Float8 x) {
-        for (int i = 0; i < 8; ++i)
+    template <WideLanes F>
+    static F exp(F x) {
+        for (int i = 0; i < LaneTraits<F>::kCount; ++i)
             x[i] = std::exp(x[i]);
         return x;
     }
@@ -557,13 +702,16 @@ struct Maths<MathPrecision::Fast> {
 };
 
 // The eight-lane log2, exp2 and pow of GLSL's vocabulary are the fast ones.
-inline Float8 log2(Float8 x) {
+template <WideLanes F>
+F log2(F x) {
     return fastLog2(x);
 }
-inline Float8 exp2(Float8 y) {
+template <WideLanes F>
+F exp2(F y) {
     return fastExp2(y);
 }
-inline Float8 pow(Float8 x, float n) {
+template <WideLanes F>
+F pow(F x, float n) {
     return Maths<MathPrecision::Fast>::pow(x, n);
 }
 
@@ -604,6 +752,14 @@ inline Float8 fastInverseSqrt(Float8 x) {
 #endif
     return y * (1.5f - 0.5f * x * y * y);
 }
+#if FACET_SIXTEEN_LANES
+// Sixteen lanes: the eight-lane estimate of each half (vrsqrt14ps would give other bits).
+inline Floatx16 fastInverseSqrt(Floatx16 x) {
+    const Float8 low = fastInverseSqrt(Float8(__builtin_shufflevector(x, x, 0, 1, 2, 3, 4, 5, 6, 7)));
+    const Float8 high = fastInverseSqrt(Float8(__builtin_shufflevector(x, x, 8, 9, 10, 11, 12, 13, 14, 15)));
+    return __builtin_shufflevector(low, high, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+}
+#endif
 // Double lanes (the reference renderer) have no approximation: the exact 1/√x.
 inline double fastInverseSqrt(double x) {
     return 1.0 / std::sqrt(x);

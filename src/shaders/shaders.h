@@ -354,7 +354,7 @@ template <class F, class Sample>
     if constexpr (LaneTraits<F>::kCount == 1) {
         return sample(vec2(uv), vec2(d.dx), vec2(d.dy));
     } else {
-        LaneVec4<F> texel{splat(1.0f), splat(1.0f), splat(1.0f), splat(1.0f)};
+        LaneVec4<F> texel{lanes<F>(1.0f), lanes<F>(1.0f), lanes<F>(1.0f), lanes<F>(1.0f)};
         for (int lane = 0; lane < LaneTraits<F>::kCount; ++lane) {
             if (!((liveLanes >> lane) & 1)) continue;
             const vec4 t = sample(vec2(uv.x[lane], uv.y[lane]), vec2(d.dx.x[lane], d.dx.y[lane]),
@@ -381,7 +381,7 @@ LaneVec4<F> texels(const Texture& map, const LaneVec2<F>& uv, unsigned liveLanes
                 return sampleTrilinear(map, at, footprint * dx, footprint * dy);
             });
         case TextureFilter::Bilinear:
-            if constexpr (LaneTraits<F>::kCount == 8) return sampleBilinear(map, uv, liveLanes);
+            if constexpr (LaneTraits<F>::kCount > 1) return sampleBilinear(map, uv, liveLanes);
             break;
     }
     return sampleLanes<F>(uv, liveLanes, d, [&](vec2 at, vec2, vec2) { return sampleBilinear(map, at); });
@@ -401,6 +401,7 @@ struct SurfaceShader;
 struct PerPixelSurface {
     using Attributes = MeshVertex;
     using Uniforms = SurfaceUniforms;
+    static constexpr bool kSixteenLanes = true;
     template <class F>
     struct VaryingsT {
         LaneVec3<F> position;  // eye space
@@ -551,6 +552,7 @@ template <ShadingFrequency kFrequency>
 struct PerVertexSurface {
     using Attributes = MeshVertex;
     using Uniforms = SurfaceUniforms;
+    static constexpr bool kSixteenLanes = true;
     template <class F>
     struct VaryingsT {
         LaneVec3<F> modulated;  // flat when kFrequency is Flat

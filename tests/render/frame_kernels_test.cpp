@@ -129,6 +129,7 @@ TEST_F(FrameKernelsTest, EveryCopyThisCpuRunsDrawsTheSameBytes) {
             const Drawn drawn = drawWith(set, prepared, kWidth, kHeight);
             EXPECT_EQ(drawn.stats.instructionSet, set);
             EXPECT_EQ(drawn.stats.draw.fragmentsShaded, baseline.stats.draw.fragmentsShaded);
+            EXPECT_EQ(drawn.stats.draw.fragmentsWritten, baseline.stats.draw.fragmentsWritten);
             ASSERT_EQ(drawn.color.size(), baseline.color.size());
             EXPECT_EQ(
                 std::memcmp(drawn.color.data(), baseline.color.data(), drawn.color.size() * sizeof(vec4)), 0);
@@ -137,6 +138,27 @@ TEST_F(FrameKernelsTest, EveryCopyThisCpuRunsDrawsTheSameBytes) {
                                   drawn.depth.size() * sizeof(DepthFormat::Stored)),
                       0);
         }
+    }
+}
+
+// The AVX-512 copy shades most fragments sixteen at a time, two batches a call (wide.h), and the
+// narrower copies all eight at a time. Breaks if the back end stops pairing batches where it has
+// sixteen lanes (the test above then compares eight lanes with eight), or if a batch is counted twice or
+// not at all.
+TEST_F(FrameKernelsTest, OnlyTheAvx512CopyShadesSixteenFragmentsAtATime) {
+    Scene scene = loadSceneOrModel(FACET_SOURCE_DIR "/models/spot/spot_triangulated.obj");
+    scene.width = 160;
+    scene.height = 120;
+    const PreparedScene prepared = prepareScene(scene);
+    for (const InstructionSet set : runnableSets()) {
+        SCOPED_TRACE(nameOf(set));
+        const DrawStats stats = drawWith(set, prepared, scene.width, scene.height).stats.draw;
+        ASSERT_GT(stats.fragmentsShaded, 1000u);
+        EXPECT_EQ(stats.fragmentsWritten, stats.fragmentsShaded);
+        if (set == InstructionSet::Avx512)
+            EXPECT_GT(stats.fragmentsShadedBy16, stats.fragmentsShaded * 9 / 10);
+        else
+            EXPECT_EQ(stats.fragmentsShadedBy16, 0u);
     }
 }
 
