@@ -203,6 +203,17 @@ Bundle<Floatx16> loadLanePair(const FragmentBatch& a, const FragmentBatch& b) {
     std::memcpy(&wide, columns, sizeof wide);
     return wide;
 }
+
+// Two batches' texture coordinate derivatives (FragmentBatch::uvDerivatives) as sixteen lanes.
+inline TexCoordDerivativesT<Floatx16> derivativesOfPair(const FragmentBatch& a, const FragmentBatch& b) {
+    Floatx16 columns[4];
+    for (int k = 0; k < 4; ++k)
+        columns[k] = joinHalves(a.uvDerivatives[k], b.uvDerivatives[k]);
+    TexCoordDerivativesT<Floatx16> derivatives;
+    static_assert(sizeof derivatives == sizeof columns);
+    std::memcpy(&derivatives, columns, sizeof derivatives);
+    return derivatives;
+}
 #endif
 
 // Whether a body's shade() compiles for sixteen lanes too (it declares kSixteenLanes): the back end
@@ -272,13 +283,7 @@ struct LaneShader : Body {
         const unsigned liveLanes = a.mask | (b.mask << 8);
         const auto varyings = loadLanePair<Body::template VaryingsT>(a, b);
         if constexpr (requires { Body::kDerivativeVarying; }) {
-            TexCoordDerivativesT<Floatx16> derivatives;
-            Floatx16 columns[4];
-            for (int k = 0; k < 4; ++k)
-                columns[k] = joinHalves(a.uvDerivatives[k], b.uvDerivatives[k]);
-            static_assert(sizeof derivatives == sizeof columns);
-            std::memcpy(&derivatives, columns, sizeof derivatives);
-            return Body::template shade<Floatx16>(varyings, u, liveLanes, derivatives);
+            return Body::template shade<Floatx16>(varyings, u, liveLanes, derivativesOfPair(a, b));
         } else {
             return Body::template shade<Floatx16>(varyings, u, liveLanes);
         }

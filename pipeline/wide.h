@@ -56,6 +56,13 @@ concept WideLanes = requires {
 };
 template <class F>
 using WideMask = typename WideMaskOf<F>::type;
+// Their comparison results: Int8, and Intx16 where there is one.
+template <class I>
+concept WideMaskLanes = std::same_as<I, Int8>
+#if FACET_SIXTEEN_LANES
+    || std::same_as<I, Intx16>
+#endif
+    ;
 
 // One bit per lane, set where the lane is negative (comparison results are all ones or all zeros).
 inline unsigned signMask(Int8 v) {

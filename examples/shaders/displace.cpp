@@ -33,6 +33,8 @@ struct Displace {
         F offset;              // a · sin(f · p.y + φ), this vertex's move along n
     };
     static constexpr VaryingName kVaryings[] = {{"P_eye", 3}, {"N_eye", 3}, {"offset", 1}};
+    // The fragment part is written over any lane type F: the AVX-512 copy may shade sixteen at once.
+    static constexpr bool kSixteenLanes = true;
 
     static VertexOut<VaryingsT<float>> vertex(const MeshVertex& in, const Uniforms& u) {
         const float offset = u.amplitude * sin(u.frequency * in.position.y + u.phase);

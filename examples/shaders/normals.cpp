@@ -22,6 +22,8 @@ struct Normals {
         LaneVec3<F> normal;  // eye space
     };
     static constexpr VaryingName kVaryings[] = {{"N_eye", 3}};
+    // The fragment part is written over any lane type F: the AVX-512 copy may shade sixteen at once.
+    static constexpr bool kSixteenLanes = true;
 
     // The vertex part: gl_Position = clipFromObject·p, and the normal taken to eye space by the normal
     // matrix (the inverse transpose of the model-view matrix, so non-uniform scaling keeps it normal).

@@ -28,6 +28,8 @@ struct PhongSolution {
         LaneVec2<F> uv;        // for the material's textures
     };
     static constexpr VaryingName kVaryings[] = {{"P_eye", 3}, {"N_eye", 3}, {"uv", 2}};
+    // The fragment part is written over any lane type F: the AVX-512 copy may shade sixteen at once.
+    static constexpr bool kSixteenLanes = true;
     static constexpr int kDerivativeVarying = 6;  // uv's screen derivatives, for trilinear filtering
 
     static VertexOut<VaryingsT<float>> vertex(const MeshVertex& in, const Uniforms& u) {

@@ -35,6 +35,8 @@ struct Wireframe {
         LaneVec3<F> normal;    // eye space
     };
     static constexpr VaryingName kVaryings[] = {{"P_eye", 3}, {"N_eye", 3}};
+    // The fragment part is written over any lane type F: the AVX-512 copy may shade sixteen at once.
+    static constexpr bool kSixteenLanes = true;
 
     static VertexOut<VaryingsT<float>> vertex(const MeshVertex& in, const Uniforms& u) {
         return {u.clipFromObject * vec4(in.position, 1.0f),

@@ -195,26 +195,30 @@ LaneVec4<F> builtinOutput(const V3& c, F alpha, const V3& P, const SurfaceUnifor
 // pipeline/color.h's linearToSrgb and srgbToLinear (one float) for every lane and component. The
 // framebuffer holds linear light and the image writer encodes it: a shader needs these only to compute
 // in display values on purpose (a colour picked in an image editor is sRGB: srgbToLinear it).
-inline Float8 linearToSrgb(Float8 c) {
-    for (int i = 0; i < 8; ++i)
+template <WideLanes F>
+F linearToSrgb(F c) {
+    for (int i = 0; i < LaneTraits<F>::kCount; ++i)
         c[i] = linearToSrgb(c[i]);
     return c;
 }
-inline Float8 srgbToLinear(Float8 c) {
-    for (int i = 0; i < 8; ++i)
+template <WideLanes F>
+F srgbToLinear(F c) {
+    for (int i = 0; i < LaneTraits<F>::kCount; ++i)
         c[i] = srgbToLinear(c[i]);
     return c;
 }
 inline vec3 linearToSrgb(const vec3& c) {
     return {linearToSrgb(c.x), linearToSrgb(c.y), linearToSrgb(c.z)};
 }
-inline Vec3x8 linearToSrgb(const Vec3x8& c) {
+template <class F>
+WideVec3<F> linearToSrgb(const WideVec3<F>& c) {
     return {linearToSrgb(c.x), linearToSrgb(c.y), linearToSrgb(c.z)};
 }
 inline vec3 srgbToLinear(const vec3& c) {
     return {srgbToLinear(c.x), srgbToLinear(c.y), srgbToLinear(c.z)};
 }
-inline Vec3x8 srgbToLinear(const Vec3x8& c) {
+template <class F>
+WideVec3<F> srgbToLinear(const WideVec3<F>& c) {
     return {srgbToLinear(c.x), srgbToLinear(c.y), srgbToLinear(c.z)};
 }
 

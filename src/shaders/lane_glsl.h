@@ -1,6 +1,7 @@
 // GLSL's functions over lanes, for shaders of one's own (user_shader.h): one name for F = float (one
-// fragment) and F = Float8 (eight), and for their vectors vec2/vec3/vec4 and Vec2x8/Vec3x8/Vec4x8, so
-// that a fragment part written once over F reads like GLSL.
+// fragment), F = Float8 (eight) and F = Floatx16 (sixteen, in the AVX-512 copy: wide.h), and for their
+// vectors vec2/vec3/vec4 and WideVec2/3/4<F> (Vec2x8, Vec3x8, Vec4x8, …), so that a fragment part
+// written once over F reads like GLSL. The many-lane versions are templates over the lane type.
 //
 // What pipeline/wide.h and glsl.h already give is not repeated here: select, max, sqrt, abs, dot and
 // normalize of Vec3x8, saturate, smoothstep(edge0, edge1, x) with float edges, the Vec3x8 operators,
@@ -16,7 +17,7 @@
 // in another order than the eight-lane one (min and max of a signed zero or a NaN, clamp, mix), the float
 // version is defined here too, the same expression as the eight-lane one.
 //
-// One trap stays: pow(Float8 x, float n) in wide.h is the fast polynomial pow, while pow(float, float)
+// One trap stays: pow(x, float n) of many lanes in wide.h is the fast polynomial pow, while pow(float, float)
 // is the C library's. For the same bits in both, write pow(x, lanes<F>(n)) (the C library's, lane by
 // lane), or Maths<P>::pow(x, n) with one precision P for both.
 #pragma once
@@ -36,7 +37,7 @@ LaneVec2<F> lanes(const vec2& v) {
     if constexpr (std::is_same_v<F, float>)
         return v;
     else
-        return {splat(v.x), splat(v.y)};
+        return {lanes<F>(v.x), lanes<F>(v.y)};
 }
 template <class F>
 LaneVec3<F> lanes(const vec3& v) {
@@ -47,210 +48,262 @@ LaneVec4<F> lanes(const vec4& v) {
     if constexpr (std::is_same_v<F, float>)
         return v;
     else
-        return {splat(v.x), splat(v.y), splat(v.z), splat(v.w)};
+        return {lanes<F>(v.x), lanes<F>(v.y), lanes<F>(v.z), lanes<F>(v.w)};
 }
 
 // ---- Scalars ---------------------------------------------------------------------------------------------
 
 // clamp(x, lo, hi) = min(max(x, lo), hi).
-inline Float8 clamp(Float8 x, float lo, float hi) {
+template <WideLanes F>
+F clamp(F x, float lo, float hi) {
     return min(max(x, lo), hi);
 }
-inline Float8 clamp(Float8 x, Float8 lo, Float8 hi) {
+template <WideLanes F>
+F clamp(F x, F lo, F hi) {
     return min(max(x, lo), hi);
 }
 
 // mix(x, y, a) = x·(1 − a) + y·a, GLSL's linear blend (a = 0 gives x, a = 1 gives y, exactly).
-inline Float8 mix(Float8 x, Float8 y, Float8 a) {
+template <WideLanes F>
+F mix(F x, F y, F a) {
     return x * (1.0f - a) + y * a;
 }
-inline Float8 mix(float x, float y, Float8 a) {
+template <WideLanes F>
+F mix(float x, float y, F a) {
     return x * (1.0f - a) + y * a;
 }
 
 // sign(x): −1, 0 or 1 (0 for ±0; NaN gives 0).
-inline Float8 sign(Float8 x) {
-    return select(x > 0.0f, splat(1.0f), select(x < 0.0f, -1.0f, 0.0f));
+template <WideLanes F>
+F sign(F x) {
+    return select(x > 0.0f, lanes<F>(1.0f), select(x < 0.0f, lanes<F>(-1.0f), lanes<F>(0.0f)));
 }
 
-// The per-lane C library functions: floor, ceil, sin, cos, and pow with a power per lane. Each Float8
-// lane calls the one-lane function (the rounding ones compile to one roundps).
+// The per-lane C library functions: floor, ceil, sin, cos, and pow with a power per lane. Each lane
+// calls the one-lane function (the rounding ones compile to one roundps).
 namespace detail {
-template <class Fn>
-Float8 eachLane(Float8 x, Fn fn) {
-    for (int i = 0; i < 8; ++i)
+template <WideLanes F, class Fn>
+F eachLane(F x, Fn fn) {
+    for (int i = 0; i < LaneTraits<F>::kCount; ++i)
         x[i] = fn(x[i]);
     return x;
 }
 }  // namespace detail
 
-inline Float8 floor(Float8 x) {
+template <WideLanes F>
+F floor(F x) {
     return detail::eachLane(x, [](float v) { return std::floor(v); });
 }
-inline Float8 ceil(Float8 x) {
+template <WideLanes F>
+F ceil(F x) {
     return detail::eachLane(x, [](float v) { return std::ceil(v); });
 }
-inline Float8 sin(Float8 x) {
+template <WideLanes F>
+F sin(F x) {
     return detail::eachLane(x, [](float v) { return std::sin(v); });
 }
-inline Float8 cos(Float8 x) {
+template <WideLanes F>
+F cos(F x) {
     return detail::eachLane(x, [](float v) { return std::cos(v); });
 }
 // x^n with the C library's pow in each lane: the same bits as pow(float, float).
-inline Float8 pow(Float8 x, Float8 n) {
-    for (int i = 0; i < 8; ++i)
+template <WideLanes F>
+F pow(F x, F n) {
+    for (int i = 0; i < LaneTraits<F>::kCount; ++i)
         x[i] = std::pow(x[i], n[i]);
     return x;
 }
 
 // fract(x) = x − floor(x), in [0, 1) (GLSL's; 1 − ε rounds to 1 for tiny negative x, as GLSL's does).
-inline Float8 fract(Float8 x) {
+template <WideLanes F>
+F fract(F x) {
     return x - floor(x);
 }
 
 // mod(x, y) = x − y·floor(x/y), GLSL's (the result takes y's sign, unlike C's fmod).
-inline Float8 mod(Float8 x, Float8 y) {
+template <WideLanes F>
+F mod(F x, F y) {
     return x - y * floor(x / y);
 }
-inline Float8 mod(Float8 x, float y) {
+template <WideLanes F>
+F mod(F x, float y) {
     return x - y * floor(x / y);
 }
 
 // ---- Vectors -------------------------------------------------------------------------------------------
 
 // Vec2x8 and Vec4x8 arithmetic (wide.h has Vec3x8's).
-inline Vec2x8 operator+(const Vec2x8& a, const Vec2x8& b) {
+template <class F>
+WideVec2<F> operator+(const WideVec2<F>& a, const WideVec2<F>& b) {
     return {a.x + b.x, a.y + b.y};
 }
-inline Vec2x8 operator-(const Vec2x8& a, const Vec2x8& b) {
+template <class F>
+WideVec2<F> operator-(const WideVec2<F>& a, const WideVec2<F>& b) {
     return {a.x - b.x, a.y - b.y};
 }
-inline Vec2x8 operator-(const Vec2x8& a) {
+template <class F>
+WideVec2<F> operator-(const WideVec2<F>& a) {
     return {-a.x, -a.y};
 }
-inline Vec2x8 operator*(const Vec2x8& a, const Vec2x8& b) {
+template <class F>
+WideVec2<F> operator*(const WideVec2<F>& a, const WideVec2<F>& b) {
     return {a.x * b.x, a.y * b.y};
 }
-inline Vec2x8 operator*(const Vec2x8& a, Float8 s) {
+template <class F>
+WideVec2<F> operator*(const WideVec2<F>& a, F s) {
     return {a.x * s, a.y * s};
 }
-inline Vec2x8 operator*(Float8 s, const Vec2x8& a) {
+template <class F>
+WideVec2<F> operator*(F s, const WideVec2<F>& a) {
     return a * s;
 }
-inline Vec2x8 operator*(const Vec2x8& a, float s) {
+template <class F>
+WideVec2<F> operator*(const WideVec2<F>& a, float s) {
     return {a.x * s, a.y * s};
 }
-inline Vec2x8 operator*(float s, const Vec2x8& a) {
+template <class F>
+WideVec2<F> operator*(float s, const WideVec2<F>& a) {
     return a * s;
 }
-inline Vec4x8 operator+(const Vec4x8& a, const Vec4x8& b) {
+template <class F>
+WideVec4<F> operator+(const WideVec4<F>& a, const WideVec4<F>& b) {
     return {a.x + b.x, a.y + b.y, a.z + b.z, a.w + b.w};
 }
-inline Vec4x8 operator-(const Vec4x8& a, const Vec4x8& b) {
+template <class F>
+WideVec4<F> operator-(const WideVec4<F>& a, const WideVec4<F>& b) {
     return {a.x - b.x, a.y - b.y, a.z - b.z, a.w - b.w};
 }
-inline Vec4x8 operator*(const Vec4x8& a, const Vec4x8& b) {
+template <class F>
+WideVec4<F> operator*(const WideVec4<F>& a, const WideVec4<F>& b) {
     return {a.x * b.x, a.y * b.y, a.z * b.z, a.w * b.w};
 }
-inline Vec4x8 operator*(const Vec4x8& a, Float8 s) {
+template <class F>
+WideVec4<F> operator*(const WideVec4<F>& a, F s) {
     return {a.x * s, a.y * s, a.z * s, a.w * s};
 }
-inline Vec4x8 operator*(Float8 s, const Vec4x8& a) {
+template <class F>
+WideVec4<F> operator*(F s, const WideVec4<F>& a) {
     return a * s;
 }
-inline Vec4x8 operator*(const Vec4x8& a, float s) {
+template <class F>
+WideVec4<F> operator*(const WideVec4<F>& a, float s) {
     return {a.x * s, a.y * s, a.z * s, a.w * s};
 }
-inline Vec3x8 operator-(const Vec3x8& a, const vec3& v) {
+template <class F>
+WideVec3<F> operator-(const WideVec3<F>& a, const vec3& v) {
     return {a.x - v.x, a.y - v.y, a.z - v.z};
 }
-inline Vec3x8 operator/(const Vec3x8& a, Float8 s) {
+template <class F>
+WideVec3<F> operator/(const WideVec3<F>& a, F s) {
     return {a.x / s, a.y / s, a.z / s};
 }
-inline Vec3x8 operator/(const Vec3x8& a, float s) {
+template <class F>
+WideVec3<F> operator/(const WideVec3<F>& a, float s) {
     return {a.x / s, a.y / s, a.z / s};
 }
 
 // dot, length and normalize as GLM computes them for vec2/vec3: the products summed from x on,
 // length = sqrt(dot(v, v)), normalize = v·(1/sqrt(dot(v, v))).
-inline Float8 dot(const Vec2x8& a, const Vec2x8& b) {
+template <class F>
+F dot(const WideVec2<F>& a, const WideVec2<F>& b) {
     return a.x * b.x + a.y * b.y;
 }
-inline Float8 length(const Vec2x8& v) {
+template <class F>
+F length(const WideVec2<F>& v) {
     return sqrt(dot(v, v));
 }
-inline Float8 length(const Vec3x8& v) {
+template <class F>
+F length(const WideVec3<F>& v) {
     return sqrt(dot(v, v));
 }
-inline Vec2x8 normalize(const Vec2x8& v) {
+template <class F>
+WideVec2<F> normalize(const WideVec2<F>& v) {
     return v * (1.0f / sqrt(dot(v, v)));
 }
 
 // cross(a, b), in GLM's order of operations.
-inline Vec3x8 cross(const Vec3x8& a, const Vec3x8& b) {
+template <class F>
+WideVec3<F> cross(const WideVec3<F>& a, const WideVec3<F>& b) {
     return {a.y * b.z - b.y * a.z, a.z * b.x - b.z * a.x, a.x * b.y - b.x * a.y};
 }
 
 // reflect(I, N) = I − 2(N·I)N: I mirrored about the plane of the unit normal N (GLSL's, GLM's order).
-inline Vec3x8 reflect(const Vec3x8& I, const Vec3x8& N) {
+template <class F>
+WideVec3<F> reflect(const WideVec3<F>& I, const WideVec3<F>& N) {
     return I - N * dot(N, I) * 2.0f;
 }
 
 // Component-wise min, max, clamp, mix, floor, fract of vec3 and Vec3x8, with the scalar functions
 // above (so both lane widths compare in the same order).
-inline Vec3x8 min(const Vec3x8& a, const Vec3x8& b) {
+template <class F>
+WideVec3<F> min(const WideVec3<F>& a, const WideVec3<F>& b) {
     return {min(a.x, b.x), min(a.y, b.y), min(a.z, b.z)};
 }
-inline Vec3x8 max(const Vec3x8& a, const Vec3x8& b) {
+template <class F>
+WideVec3<F> max(const WideVec3<F>& a, const WideVec3<F>& b) {
     return {max(a.x, b.x), max(a.y, b.y), max(a.z, b.z)};
 }
-inline Vec3x8 clamp(const Vec3x8& v, float lo, float hi) {
+template <class F>
+WideVec3<F> clamp(const WideVec3<F>& v, float lo, float hi) {
     return {clamp(v.x, lo, hi), clamp(v.y, lo, hi), clamp(v.z, lo, hi)};
 }
-inline Vec3x8 mix(const Vec3x8& x, const Vec3x8& y, Float8 a) {
+template <class F>
+WideVec3<F> mix(const WideVec3<F>& x, const WideVec3<F>& y, F a) {
     return {mix(x.x, y.x, a), mix(x.y, y.y, a), mix(x.z, y.z, a)};
 }
-inline Vec3x8 mix(const Vec3x8& x, const Vec3x8& y, float a) {
-    return mix(x, y, splat(a));
+template <class F>
+WideVec3<F> mix(const WideVec3<F>& x, const WideVec3<F>& y, float a) {
+    return mix(x, y, lanes<F>(a));
 }
-inline Vec3x8 floor(const Vec3x8& v) {
+template <class F>
+WideVec3<F> floor(const WideVec3<F>& v) {
     return {floor(v.x), floor(v.y), floor(v.z)};
 }
-inline Vec3x8 fract(const Vec3x8& v) {
+template <class F>
+WideVec3<F> fract(const WideVec3<F>& v) {
     return {fract(v.x), fract(v.y), fract(v.z)};
 }
-inline Vec2x8 fract(const Vec2x8& v) {
+template <class F>
+WideVec2<F> fract(const WideVec2<F>& v) {
     return {fract(v.x), fract(v.y)};
 }
-inline Vec2x8 floor(const Vec2x8& v) {
+template <class F>
+WideVec2<F> floor(const WideVec2<F>& v) {
     return {floor(v.x), floor(v.y)};
 }
 
 // select for the other vectors (wide.h has float, Float8, vec3 and Vec3x8).
-inline Vec2x8 select(Int8 cond, const Vec2x8& a, const Vec2x8& b) {
+template <class F>
+WideVec2<F> select(WideMask<F> cond, const WideVec2<F>& a, const WideVec2<F>& b) {
     return {select(cond, a.x, b.x), select(cond, a.y, b.y)};
 }
-inline Vec4x8 select(Int8 cond, const Vec4x8& a, const Vec4x8& b) {
+template <class F>
+WideVec4<F> select(WideMask<F> cond, const WideVec4<F>& a, const WideVec4<F>& b) {
     return {select(cond, a.x, b.x), select(cond, a.y, b.y), select(cond, a.z, b.z), select(cond, a.w, b.w)};
 }
 
-// The lanes' masks combined: a && b, a || b, !a for one lane (bool) and eight (Int8, all ones where
+// The lanes' masks combined: a && b, a || b, !a for one lane (bool) and many (Int8, all ones where
 // true), for conditions written once.
-inline Int8 both(Int8 a, Int8 b) {
+template <WideMaskLanes I>
+I both(I a, I b) {
     return a & b;
 }
-inline Int8 either(Int8 a, Int8 b) {
+template <WideMaskLanes I>
+I either(I a, I b) {
     return a | b;
 }
-inline Int8 negate(Int8 a) {
+template <WideMaskLanes I>
+I negate(I a) {
     return ~a;
 }
 
 // One lane of a lane value (lane 0 of eight; the value itself for one): what record() and tests read.
-inline float laneOf(Float8 v, int lane) {
+template <WideLanes F>
+float laneOf(F v, int lane) {
     return v[lane];
 }
-inline vec3 laneOf(const Vec3x8& v, int lane) {
+template <class F>
+vec3 laneOf(const WideVec3<F>& v, int lane) {
     return {v.x[lane], v.y[lane], v.z[lane]};
 }
 
@@ -285,12 +338,14 @@ inline float step(float edge, float x) {
     return x < edge ? 0.0f : 1.0f;
 }
 
-inline Float8 step(float edge, Float8 x) {
-    return facet::select(x < edge, 0.0f, 1.0f);
+template <WideLanes F>
+F step(float edge, F x) {
+    return facet::select(x < edge, lanes<F>(0.0f), lanes<F>(1.0f));
 }
 
-inline Float8 step(Float8 edge, Float8 x) {
-    return facet::select(x < edge, 0.0f, 1.0f);
+template <WideLanes F>
+F step(F edge, F x) {
+    return facet::select(x < edge, lanes<F>(0.0f), lanes<F>(1.0f));
 }
 
 inline float sign(float x) {

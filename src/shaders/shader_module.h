@@ -251,6 +251,23 @@ struct Adapter : DerivativesOf<Body>, BarycentricsOf<Body> {
         }
         return gl;
     }
+#if FACET_SIXTEEN_LANES
+    // Two batches in one call, sixteen lanes (a's, then b's), for a shader that declares kSixteenLanes
+    // (pipeline/shader.h): each lane what fragmentBatch gives it.
+    static Vec4x16 fragmentBatchPair(const FragmentBatch& a, const FragmentBatch& b,
+                                     const Uniforms& u) requires(!discards<Body>() &&
+                                                                 shadesSixteenLanes<Body>()) {
+        Fragment<Floatx16> gl;
+        gl.liveLanes = a.mask | (b.mask << 8);
+        if constexpr (kHasDerivatives) gl.uvDerivatives = derivativesOfPair(a, b);
+        if constexpr (wantsBarycentrics<Body>()) {
+            const Floatx16 b1 = joinHalves(a.barycentrics[0], b.barycentrics[0]);
+            const Floatx16 b2 = joinHalves(a.barycentrics[1], b.barycentrics[1]);
+            gl.barycentric = Vec3x16(1.0f - b1 - b2, b1, b2);
+        }
+        return Body::template fragment<Floatx16>(loadLanePair<Body::template VaryingsT>(a, b), u, gl);
+    }
+#endif
     static Vec4x8 fragmentBatch(const FragmentBatch& in, const Uniforms& u) requires(!discards<Body>()) {
         Fragment<Float8> gl = batchFragment(in);
         return Body::template fragment<Float8>(loadLanes<Body::template VaryingsT>(in), u, gl);

@@ -14,7 +14,8 @@
 //       };
 //       static constexpr VaryingName kVaryings[] = {{"P_eye", 3}, {"N_eye", 3}};
 //       static VertexOut<VaryingsT<float>> vertex(const MeshVertex& in, const Uniforms& u);
-//       template <class F>                  // F = float (one fragment) or Float8 (eight at once)
+//       template <class F>                  // F = float (one fragment), Float8 (eight at once) or
+//                                           // Floatx16 (sixteen, with kSixteenLanes: docs/shaders.md)
 //       static LaneVec4<F> fragment(const VaryingsT<F>& in, const Uniforms& u, Fragment<F>& gl);
 //   };
 //   FACET_SHADER(Toon)

@@ -22,6 +22,8 @@ struct ToonStep {
         LaneVec3<F> normal;
     };
     static constexpr VaryingName kVaryings[] = {{"P_eye", 3}, {"N_eye", 3}};
+    // Sixteen lanes where the copy has them: the trace (one lane) must still match the pixel drawn.
+    static constexpr bool kSixteenLanes = true;
 
     static VertexOut<VaryingsT<float>> vertex(const MeshVertex& in, const Uniforms& u) {
         return {u.clipFromObject * vec4(in.position, 1.0f),
