@@ -17,6 +17,7 @@ struct OwnPhong {
         LaneVec2<F> uv;
     };
     static constexpr VaryingName kVaryings[] = {{"P_eye", 3}, {"N_eye", 3}, {"uv", 2}};
+    static constexpr bool kSixteenLanes = true;  // as the built-in shader: two batches a call with AVX-512
     static constexpr int kDerivativeVarying = 6;
 
     static VertexOut<VaryingsT<float>> vertex(const MeshVertex& in, const Uniforms& u) {
