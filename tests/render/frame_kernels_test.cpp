@@ -53,6 +53,14 @@ Drawn drawWith(InstructionSet set, const PreparedScene& prepared, int width, int
     return drawn;
 }
 
+// A bundled model (under models/) prepared for a frame of width × height.
+PreparedScene preparedAt(const char* file, int width, int height) {
+    Scene scene = loadSceneOrModel(std::string(FACET_SOURCE_DIR "/models/") + file);
+    scene.width = width;
+    scene.height = height;
+    return prepareScene(scene);
+}
+
 struct Variant {
     std::string name;
     std::string file;  // under models/
@@ -146,13 +154,10 @@ TEST_F(FrameKernelsTest, EveryCopyThisCpuRunsDrawsTheSameBytes) {
 // sixteen lanes (the test above then compares eight lanes with eight), or if a batch is counted twice or
 // not at all.
 TEST_F(FrameKernelsTest, OnlyTheAvx512CopyShadesSixteenFragmentsAtATime) {
-    Scene scene = loadSceneOrModel(FACET_SOURCE_DIR "/models/spot/spot_triangulated.obj");
-    scene.width = 160;
-    scene.height = 120;
-    const PreparedScene prepared = prepareScene(scene);
+    const PreparedScene prepared = preparedAt("spot/spot_triangulated.obj", 160, 120);
     for (const InstructionSet set : runnableSets()) {
         SCOPED_TRACE(nameOf(set));
-        const DrawStats stats = drawWith(set, prepared, scene.width, scene.height).stats.draw;
+        const DrawStats stats = drawWith(set, prepared, 160, 120).stats.draw;
         ASSERT_GT(stats.fragmentsShaded, 1000u);
         EXPECT_EQ(stats.fragmentsWritten, stats.fragmentsShaded);
         if (set == InstructionSet::Avx512)
@@ -165,10 +170,7 @@ TEST_F(FrameKernelsTest, OnlyTheAvx512CopyShadesSixteenFragmentsAtATime) {
 // renderFrame runs the copy chosen: its stats name the copy that drew. Breaks if the dispatcher always
 // calls one copy (the images alone could not tell: they are the same bytes).
 TEST_F(FrameKernelsTest, RenderFrameRunsTheChosenCopy) {
-    Scene scene = loadSceneOrModel(FACET_SOURCE_DIR "/models/cube/cube.obj");
-    scene.width = 16;
-    scene.height = 12;
-    const PreparedScene prepared = prepareScene(scene);
+    const PreparedScene prepared = preparedAt("cube/cube.obj", 16, 12);
     for (const InstructionSet set : runnableSets()) {
         SCOPED_TRACE(nameOf(set));
         useFrameKernels(set);
