@@ -56,6 +56,9 @@ concept WideLanes = requires {
 };
 template <class F>
 using WideMask = typename WideMaskOf<F>::type;
+// How many lanes F has.
+template <WideLanes F>
+inline constexpr int kLaneCount = int(sizeof(F) / sizeof(float));
 // Their comparison results: Int8, and Intx16 where there is one.
 template <class I>
 concept WideMaskLanes = std::same_as<I, Int8>
@@ -120,7 +123,7 @@ F max(F a, float b) {
 template <WideLanes F>
 F sqrt(F v) {
     F r{};
-    for (int i = 0; i < int(sizeof(F) / sizeof(float)); ++i)
+    for (int i = 0; i < kLaneCount<F>; ++i)
         r[i] = std::sqrt(v[i]);  // one vsqrtps: the loop is vectorised
     return r;
 }
@@ -332,7 +335,7 @@ inline Int8 laneMaskOf(unsigned bits) {
 template <WideLanes F>
 WideMask<F> laneMaskOf(unsigned bits) {
     WideMask<F> laneBits;
-    for (int lane = 0; lane < int(sizeof(F) / sizeof(float)); ++lane)
+    for (int lane = 0; lane < kLaneCount<F>; ++lane)
         laneBits[lane] = 1 << lane;
     return (laneBits & static_cast<std::int32_t>(bits)) != 0;
 }
@@ -462,7 +465,7 @@ struct LaneTraits<F> {
     using Vec2 = WideVec2<F>;
     using Vec3 = WideVec3<F>;
     using Vec4 = WideVec4<F>;
-    static constexpr int kCount = int(sizeof(F) / sizeof(float));
+    static constexpr int kCount = kLaneCount<F>;
     static F splat(float v) { return splatLanes<F>(v); }
     static F toFloat(Int v) { return __builtin_convertvector(v, F); }
     static Int toInt(F v) { return __builtin_convertvector(v, Int); }

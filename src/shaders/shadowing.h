@@ -113,7 +113,6 @@ F areaVisibility(const SceneShadows& shadows, const LightParams& light, const V3
     }
 }
 
-// Each light's visibility at P (N the normal the lighting uses, turned towards the viewer).
 // Light i's visibility at P; sixteen lanes (wide.h) as two halves of eight, the rays traced eight at a
 // time as for one batch.
 template <class F, class V3 = LaneVec3<F>>
