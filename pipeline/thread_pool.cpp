@@ -116,6 +116,7 @@ ThreadPool::ThreadPool(int threads, const ThreadStarter& start) {
     // rest). An exception escaping here would destroy running std::threads (std::terminate) or, once
     // caught, the condition variable they wait on.
     slots_ = std::make_unique<ThreadSlot[]>(static_cast<std::size_t>(threads));
+    ranges_ = std::make_unique<ItemRange[]>(static_cast<std::size_t>(threads));
     std::string refusal;
     const int allowed = threadsTheAddressSpaceAllows();
     if (allowed < threads) refusal = "the memory limit, ulimit -v, leaves room for the stacks of no more";
@@ -159,7 +160,7 @@ void ThreadPool::runItems(int thread, bool traced) {
     // any thread joins it), and read per item they would be read beside the claims of the other threads.
     const std::function<void(std::size_t, int)>& body = *body_;
     const std::size_t count = count_;
-    for (std::size_t item = next_.fetch_add(1); item < count; item = next_.fetch_add(1)) {
+    for (std::size_t item = claimItem(thread); item < count; item = claimItem(thread)) {
         const std::int64_t start = traced ? threadCpuNs() : 0;
         try {
             body(item, thread);
@@ -167,7 +168,7 @@ void ThreadPool::runItems(int thread, bool traced) {
             // Kept for parallelFor to rethrow; no thread begins another item of this job.
             std::lock_guard lock(mutex_);
             if (!failure_) failure_ = std::current_exception();
-            next_.store(count);
+            claimNoMore();
         }
         if (traced) {
             // Not clamped at 0: an item shorter than the reads' noise then averages out over a job.
@@ -176,6 +177,33 @@ void ThreadPool::runItems(int thread, bool traced) {
             slot.jobLongestItemNs = std::max(slot.jobLongestItemNs, ns);
             ++slot.jobItems;
         }
+    }
+}
+
+// Thread t's own items: the t-th of threads() equal parts of the items, in order.
+void ThreadPool::shareItems(std::size_t count) {
+    const auto n = static_cast<std::size_t>(threads());
+    for (std::size_t t = 0; t < n; ++t) {
+        ranges_[t].next.store(count * t / n, std::memory_order_relaxed);
+        ranges_[t].end = count * (t + 1) / n;
+    }
+}
+
+std::size_t ThreadPool::claimItem(int thread) {
+    const int n = threads();
+    for (int k = 0; k < n; ++k) {
+        ItemRange& range = ranges_[static_cast<std::size_t>((thread + k) % n)];
+        if (range.next.load(std::memory_order_relaxed) >= range.end) continue;
+        const std::size_t item = range.next.fetch_add(1);
+        if (item < range.end) return item;
+    }
+    return count_;
+}
+
+void ThreadPool::claimNoMore() {
+    for (int t = 0; t < threads(); ++t) {
+        ItemRange& range = ranges_[static_cast<std::size_t>(t)];
+        range.next.store(range.end);
     }
 }
 
@@ -230,7 +258,7 @@ void ThreadPool::parallelFor(std::size_t count, const std::function<void(std::si
             std::lock_guard lock(mutex_);
             body_ = &body;
             count_ = count;
-            next_.store(0);
+            shareItems(count);
         }
         slots_[0].jobBusyNs = slots_[0].jobLongestItemNs = 0;
         slots_[0].jobItems = 0;
@@ -246,7 +274,7 @@ void ThreadPool::parallelFor(std::size_t count, const std::function<void(std::si
         std::lock_guard lock(mutex_);
         body_ = &body;
         count_ = count;
-        next_.store(0);
+        shareItems(count);
         open_ = true;
         ++generation_;
         if (trace_)

@@ -134,10 +134,19 @@ class ThreadPool {
     std::condition_variable done_;
     const std::function<void(std::size_t, int)>* body_ = nullptr;
     std::size_t count_ = 0;
-    // The next item to claim: every thread in a job changes it once an item, so it has a cache line of
-    // its own, which the fields the threads poll between jobs (generation_, busy_) and read per job
-    // (body_, count_) do not share.
-    alignas(64) std::atomic<std::size_t> next_{0};
+    // One thread's share of a job's items, [next, end): the thread claims its own first, then the
+    // others' that are left. Each on a cache line of its own (claimed once an item), apart from the
+    // fields the threads poll between jobs (generation_, busy_) and read per job (body_, count_).
+    struct alignas(64) ItemRange {
+        std::atomic<std::size_t> next{0};
+        std::size_t end = 0;
+    };
+    // Cuts [0, count) into the threads' ranges (under mutex_, before any thread joins the job).
+    void shareItems(std::size_t count);
+    // The next unclaimed item for `thread` (its own range first), or count_ when none is left.
+    std::size_t claimItem(int thread);
+    // Ends the job's claiming: every range emptied (a failed item).
+    void claimNoMore();
     // Changed under mutex_; atomic so that waiting threads may poll them before they sleep.
     alignas(64) std::atomic<int> busy_{0};      // workers that joined the current job and are still in it
     bool open_ = false;                         // workers may still join the current job
@@ -147,6 +156,7 @@ class ThreadPool {
     std::atomic<std::int64_t> spinLimitNs_{kDefaultSpinLimit.count()};
     int sleeping_ = 0;  // workers asleep on wake_ (under mutex_): a job wakes no more than it has items for
     std::unique_ptr<ThreadSlot[]> slots_;
+    std::unique_ptr<ItemRange[]> ranges_;  // one per thread
     PoolTrace* trace_ = nullptr;
     std::chrono::steady_clock::time_point traceStart_;
     std::int64_t clockReadNs_ = 0;  // the trace's PoolTrace::clockReadMs, in ns

@@ -1,5 +1,7 @@
-// The thread pool when a job's body throws: the exception reaches the caller of parallelFor, not
-// std::terminate, and the pool runs the next job (a batch of renders goes on after a failed input).
+// The thread pool: when a job's body throws, the exception reaches the caller of parallelFor, not
+// std::terminate, and the pool runs the next job (a batch of renders goes on after a failed input);
+// each thread runs its own share of a job's items first, then helps with the others'.
+#include <atomic>
 #include <chrono>
 #include <stdexcept>
 #include <thread>
@@ -51,6 +53,61 @@ TEST(ThreadPool, ShortJobsRunEachItemOnceWhateverTheWorkersWakeUpTimes) {
         // Now and then the workers fall asleep before the next job.
         if (round % 500 == 0) std::this_thread::sleep_for(std::chrono::milliseconds(2));
     }
+}
+
+// Polls `ready` until it holds or ten seconds pass (a broken pool then fails the test, not hangs it).
+template <class Ready>
+bool waitUntil(const Ready& ready) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    while (!ready())
+        if (std::chrono::steady_clock::now() > deadline) return false;
+        else std::this_thread::yield();
+    return true;
+}
+
+// Two threads, four items: thread 0's share is items 0 and 1, thread 1's items 2 and 3. Item 0 waits
+// until item 2 has begun, item 3 until item 1 has: each thread must begin with its own first item and
+// go on to its own second, so item 1 runs on thread 0 and item 3 on thread 1. Breaks if the threads
+// take items in one shared order (the worker then takes item 1 while the caller waits in item 0), so
+// that a tile goes to whichever core comes first rather than the one whose cache holds its pixels.
+TEST(ThreadPool, EachThreadRunsItsOwnShareOfTheItemsFirst) {
+    ThreadPool pool(2);
+    ASSERT_EQ(pool.threads(), 2);
+    for (int round = 0; round < 20; ++round) {
+        std::atomic<bool> begun[4] = {false, false, false, false};
+        std::atomic<int> ranOn[4] = {-1, -1, -1, -1};
+        std::atomic<bool> timedOut{false};
+        pool.parallelFor(4, [&](std::size_t item, int thread) {
+            ranOn[item] = thread;
+            begun[item] = true;
+            if (item == 0 && !waitUntil([&] { return begun[2].load(); })) timedOut = true;
+            if (item == 3 && !waitUntil([&] { return begun[1].load(); })) timedOut = true;
+        });
+        ASSERT_FALSE(timedOut) << "round " << round;
+        EXPECT_EQ(ranOn[0], 0) << "round " << round;
+        EXPECT_EQ(ranOn[1], 0) << "round " << round;
+        EXPECT_EQ(ranOn[2], 1) << "round " << round;
+        EXPECT_EQ(ranOn[3], 1) << "round " << round;
+    }
+}
+
+// A thread held up in its first item: another thread runs the rest of its share, and every item runs
+// once. Breaks if a thread runs only its own share (item 0 then waits in vain for the worker to reach
+// thread 0's items: the test times out) or if a share's item is claimed twice or never.
+TEST(ThreadPool, AThreadThatIsHeldUpHasItsItemsRunByTheOthers) {
+    ThreadPool pool(2);
+    constexpr std::size_t kItems = 100;  // thread 0's share: items 0 to 49
+    std::vector<std::atomic<int>> done(kItems);
+    std::atomic<int> workerRanThreadZerosItem{0};
+    std::atomic<bool> timedOut{false};
+    pool.parallelFor(kItems, [&](std::size_t item, int thread) {
+        ++done[item];
+        if (thread != 0 && item < kItems / 2) ++workerRanThreadZerosItem;
+        if (item == 0 && !waitUntil([&] { return workerRanThreadZerosItem.load() >= 10; })) timedOut = true;
+    });
+    EXPECT_FALSE(timedOut);
+    for (std::size_t item = 0; item < kItems; ++item)
+        EXPECT_EQ(done[item], 1) << "item " << item;
 }
 
 }  // namespace
