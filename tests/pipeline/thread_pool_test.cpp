@@ -59,9 +59,10 @@ TEST(ThreadPool, ShortJobsRunEachItemOnceWhateverTheWorkersWakeUpTimes) {
 template <class Ready>
 bool waitUntil(const Ready& ready) {
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-    while (!ready())
+    while (!ready()) {
         if (std::chrono::steady_clock::now() > deadline) return false;
-        else std::this_thread::yield();
+        std::this_thread::yield();
+    }
     return true;
 }
 
