@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cstdint>
 #include <new>
+#include <stdexcept>
 #include <system_error>
 #include <utility>
 
@@ -180,31 +181,40 @@ void ThreadPool::runItems(int thread, bool traced) {
     }
 }
 
+namespace {
+
+std::uint64_t packRange(std::uint64_t next, std::uint64_t end) {
+    return next | end << 32;
+}
+
+}  // namespace
+
 // Thread t's own items: the t-th of threads() equal parts of the items, in order.
 void ThreadPool::shareItems(std::size_t count) {
-    const auto n = static_cast<std::size_t>(threads());
-    for (std::size_t t = 0; t < n; ++t) {
-        ranges_[t].next.store(count * t / n, std::memory_order_relaxed);
-        ranges_[t].end = count * (t + 1) / n;
-    }
+    const auto n = static_cast<std::uint64_t>(threads());
+    for (std::uint64_t t = 0; t < n; ++t)
+        ranges_[t].items.store(packRange(count * t / n, count * (t + 1) / n), std::memory_order_relaxed);
 }
 
 std::size_t ThreadPool::claimItem(int thread) {
     const int n = threads();
     for (int k = 0; k < n; ++k) {
-        ItemRange& range = ranges_[static_cast<std::size_t>((thread + k) % n)];
-        if (range.next.load(std::memory_order_relaxed) >= range.end) continue;
-        const std::size_t item = range.next.fetch_add(1);
-        if (item < range.end) return item;
+        std::atomic<std::uint64_t>& items = ranges_[static_cast<std::size_t>((thread + k) % n)].items;
+        std::uint64_t range = items.load(std::memory_order_relaxed);
+        for (;;) {
+            const std::uint64_t next = range & 0xffffffffu, end = range >> 32;
+            if (next >= end) break;
+            // Its own range's first item, or another's last.
+            const std::uint64_t claimed = k == 0 ? packRange(next + 1, end) : packRange(next, end - 1);
+            if (items.compare_exchange_weak(range, claimed)) return k == 0 ? next : end - 1;
+        }
     }
     return count_;
 }
 
 void ThreadPool::claimNoMore() {
-    for (int t = 0; t < threads(); ++t) {
-        ItemRange& range = ranges_[static_cast<std::size_t>(t)];
-        range.next.store(range.end);
-    }
+    for (int t = 0; t < threads(); ++t)
+        ranges_[static_cast<std::size_t>(t)].items.store(0);
 }
 
 void ThreadPool::workerLoop(int thread) {
@@ -246,6 +256,7 @@ void ThreadPool::workerLoop(int thread) {
 
 void ThreadPool::parallelFor(std::size_t count, const std::function<void(std::size_t, int)>& body) {
     if (count == 0) return;
+    if (count > kMaxItems) throw std::length_error("ThreadPool::parallelFor: more than 2^32 - 1 items");
     const Clock::time_point start = trace_ ? Clock::now() : Clock::time_point{};
     const std::int64_t callerStartNs = trace_ ? threadCpuNs() : 0;
     if (workers_.empty() || count == 1) {

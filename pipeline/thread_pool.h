@@ -95,7 +95,9 @@ class ThreadPool {
     // When `body` throws (on any thread), the items not yet begun are skipped and the first exception
     // is rethrown here once every thread is done, so the pool can run the next job: a batch of renders
     // goes on after an input that ran out of memory.
+    // At most kMaxItems items (std::length_error beyond).
     void parallelFor(std::size_t count, const std::function<void(std::size_t item, int thread)>& body);
+    static constexpr std::size_t kMaxItems = 0xffffffffu;
 
     // How long a waiting thread polls before it sleeps (kDefaultSpinLimit unless set); 0: it sleeps at
     // once. Set between jobs. Bounded by the clock, not by a count of pause instructions, whose cost
@@ -134,12 +136,13 @@ class ThreadPool {
     std::condition_variable done_;
     const std::function<void(std::size_t, int)>* body_ = nullptr;
     std::size_t count_ = 0;
-    // One thread's share of a job's items, [next, end): the thread claims its own first, then the
-    // others' that are left. Each on a cache line of its own (claimed once an item), apart from the
-    // fields the threads poll between jobs (generation_, busy_) and read per job (body_, count_).
+    // One thread's share of a job's items, [next, end), as next + end · 2^32 in one word: the thread
+    // claims its own from the front, then the others' that are left from the back (the items their
+    // owners would come to last, so that the same items change hands from one frame to the next).
+    // Each on a cache line of its own (claimed once an item), apart from the fields the threads poll
+    // between jobs (generation_, busy_) and read per job (body_, count_).
     struct alignas(64) ItemRange {
-        std::atomic<std::size_t> next{0};
-        std::size_t end = 0;
+        std::atomic<std::uint64_t> items{0};
     };
     // Cuts [0, count) into the threads' ranges (under mutex_, before any thread joins the job).
     void shareItems(std::size_t count);

@@ -92,23 +92,43 @@ TEST(ThreadPool, EachThreadRunsItsOwnShareOfTheItemsFirst) {
     }
 }
 
-// A thread held up in its first item: another thread runs the rest of its share, and every item runs
-// once. Breaks if a thread runs only its own share (item 0 then waits in vain for the worker to reach
-// thread 0's items: the test times out) or if a share's item is claimed twice or never.
-TEST(ThreadPool, AThreadThatIsHeldUpHasItsItemsRunByTheOthers) {
+// A thread held up in its first item: the other thread runs the rest of its share, taking it from the
+// back (the items the held-up thread would come to last), while the held-up thread, once free, goes
+// on from the front; every item runs once. Item 0 (thread 0's) waits until thread 1 has run ten of
+// thread 0's items, and the tenth waits until item 1 has begun. Breaks if a thread runs only its own
+// share (item 0 waits in vain: the test times out), if a thread takes another's items from the front
+// (thread 1 then runs item 1, not items 40 to 49), or if an item is claimed twice or never.
+TEST(ThreadPool, AThreadThatIsHeldUpHasTheLastItemsOfItsShareRunByTheOthers) {
     ThreadPool pool(2);
+    ASSERT_EQ(pool.threads(), 2);
     constexpr std::size_t kItems = 100;  // thread 0's share: items 0 to 49
-    std::vector<std::atomic<int>> done(kItems);
-    std::atomic<int> workerRanThreadZerosItem{0};
-    std::atomic<bool> timedOut{false};
+    std::vector<std::atomic<int>> done(kItems), ranOn(kItems);
+    std::atomic<int> taken{0};  // thread 0's items run by thread 1
+    std::atomic<bool> timedOut{false}, begunOne{false};
     pool.parallelFor(kItems, [&](std::size_t item, int thread) {
         ++done[item];
-        if (thread != 0 && item < kItems / 2) ++workerRanThreadZerosItem;
-        if (item == 0 && !waitUntil([&] { return workerRanThreadZerosItem.load() >= 10; })) timedOut = true;
+        ranOn[item] = thread;
+        if (item == 1) begunOne = true;
+        if (item == 0 && !waitUntil([&] { return taken.load() >= 10; })) timedOut = true;
+        if (thread != 0 && item < kItems / 2 && ++taken == 10 && !waitUntil([&] { return begunOne.load(); }))
+            timedOut = true;
     });
-    EXPECT_FALSE(timedOut);
+    ASSERT_FALSE(timedOut);
     for (std::size_t item = 0; item < kItems; ++item)
         EXPECT_EQ(done[item], 1) << "item " << item;
+    EXPECT_EQ(ranOn[1], 0);
+    for (std::size_t item = 40; item < kItems / 2; ++item)
+        EXPECT_EQ(ranOn[item], 1) << "item " << item;
+}
+
+// A job of more items than a share can count is refused, not cut short. Breaks if the check is
+// dropped (the items' count would wrap in the shares' 32-bit halves and most items never run).
+TEST(ThreadPool, AJobOfMoreThanTheItemsAShareCountsIsRefused) {
+    ThreadPool pool(2);
+    bool ran = false;
+    EXPECT_THROW(pool.parallelFor(ThreadPool::kMaxItems + 1, [&](std::size_t, int) { ran = true; }),
+                 std::length_error);
+    EXPECT_FALSE(ran);
 }
 
 }  // namespace
