@@ -89,6 +89,9 @@ class ThreadPool {
 
     // Calls body(item, thread) for every item in [0, count), spread over the threads, and returns when
     // all are done. `thread` in [0, threads()) names the calling thread, for per-thread scratch.
+    // Thread t's own items are the t-th of threads() equal parts of [0, count), run in order; a thread
+    // done with its own takes the last items left of the others' parts. So the same job on the same
+    // pool gives a thread the same items (the same tiles) from one frame to the next.
     // One std::function call per item, not per pixel: items are tiles or chunks of work. Once every
     // item has begun, the caller waits only for the workers that joined the job: one that wakes later
     // (a machine busy with other work may not run it for milliseconds) skips the job.
