@@ -9,10 +9,13 @@
 
 #include <gtest/gtest.h>
 
+#include "support/eventually.h"
 #include "thread_pool.h"
 
 namespace facet {
 namespace {
+
+using testing_support::eventually;
 
 // An item that throws on a worker thread: parallelFor rethrows it after every thread is done, and the
 // same pool then runs a whole job. Breaks if runItems lets the exception escape a worker (the test
@@ -55,17 +58,6 @@ TEST(ThreadPool, ShortJobsRunEachItemOnceWhateverTheWorkersWakeUpTimes) {
     }
 }
 
-// Polls `ready` until it holds or ten seconds pass (a broken pool then fails the test, not hangs it).
-template <class Ready>
-bool waitUntil(const Ready& ready) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-    while (!ready()) {
-        if (std::chrono::steady_clock::now() > deadline) return false;
-        std::this_thread::yield();
-    }
-    return true;
-}
-
 // Two threads, four items: thread 0's share is items 0 and 1, thread 1's items 2 and 3. Item 0 waits
 // until item 2 has begun, item 3 until item 1 has: each thread must begin with its own first item and
 // go on to its own second, so item 1 runs on thread 0 and item 3 on thread 1. Breaks if the threads
@@ -81,8 +73,8 @@ TEST(ThreadPool, EachThreadRunsItsOwnShareOfTheItemsFirst) {
         pool.parallelFor(4, [&](std::size_t item, int thread) {
             ranOn[item] = thread;
             begun[item] = true;
-            if (item == 0 && !waitUntil([&] { return begun[2].load(); })) timedOut = true;
-            if (item == 3 && !waitUntil([&] { return begun[1].load(); })) timedOut = true;
+            if (item == 0 && !eventually([&] { return begun[2].load(); })) timedOut = true;
+            if (item == 3 && !eventually([&] { return begun[1].load(); })) timedOut = true;
         });
         ASSERT_FALSE(timedOut) << "round " << round;
         EXPECT_EQ(ranOn[0], 0) << "round " << round;
@@ -109,8 +101,8 @@ TEST(ThreadPool, AThreadThatIsHeldUpHasTheLastItemsOfItsShareRunByTheOthers) {
         ++done[item];
         ranOn[item] = thread;
         if (item == 1) begunOne = true;
-        if (item == 0 && !waitUntil([&] { return taken.load() >= 10; })) timedOut = true;
-        if (thread != 0 && item < kItems / 2 && ++taken == 10 && !waitUntil([&] { return begunOne.load(); }))
+        if (item == 0 && !eventually([&] { return taken.load() >= 10; })) timedOut = true;
+        if (thread != 0 && item < kItems / 2 && ++taken == 10 && !eventually([&] { return begunOne.load(); }))
             timedOut = true;
     });
     ASSERT_FALSE(timedOut);

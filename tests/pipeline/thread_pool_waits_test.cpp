@@ -9,22 +9,13 @@
 
 #include <gtest/gtest.h>
 
+#include "support/eventually.h"
 #include "thread_pool.h"
 
 namespace facet {
 namespace {
 
-// Yields until `reached` holds; false only if it never does within a minute (a pool that never gets
-// there: a loaded machine reaches it in milliseconds).
-template <class Reached>
-bool eventually(const Reached& reached) {
-    const auto giveUp = std::chrono::steady_clock::now() + std::chrono::minutes(1);
-    while (!reached()) {
-        if (std::chrono::steady_clock::now() > giveUp) return false;
-        std::this_thread::yield();
-    }
-    return true;
-}
+using testing_support::eventually;
 
 // Catches: a worker that polls for work forever (a spin not bounded by the clock) instead of sleeping.
 TEST(ThreadPoolWaits, WorkersWithNoJobFallAsleep) {
