@@ -107,19 +107,23 @@ struct SetupAndBin {
             else
                 observer.onSetup(triangleIndex, window, fate, setup);
         }
-        DrawStats& stats = chunk.stats;
         if (fate != TriangleFate::Drawn) {
-            if (fate == TriangleFate::ZeroArea) ++stats.trianglesZeroArea;
-            if (fate == TriangleFate::Culled) ++stats.trianglesCulled;
-            if (fate == TriangleFate::MissesSamples) ++stats.trianglesMissingSamples;
+            countNotDrawn(fate);
             return;
         }
-        ++stats.trianglesRasterized;
+        ++chunk.stats.trianglesRasterized;
         const auto index = static_cast<std::uint32_t>(chunk.setups.size());
         setup.varyingPlaneOffset = static_cast<std::uint32_t>(chunk.varyingPlanes.size());
         chunk.setups.push_back(setup);
         chunk.varyingPlanes.insert(chunk.varyingPlanes.end(), planes, planes + planeFloats);
         binTriangle(grid, setup, index, chunk.bins, sampleReach, &chunk.touchedTiles);
+    }
+
+    void countNotDrawn(TriangleFate fate) {
+        DrawStats& stats = chunk.stats;
+        if (fate == TriangleFate::ZeroArea) ++stats.trianglesZeroArea;
+        if (fate == TriangleFate::Culled) ++stats.trianglesCulled;
+        if (fate == TriangleFate::MissesSamples) ++stats.trianglesMissingSamples;
     }
 };
 
@@ -214,7 +218,18 @@ void setupTriangles(std::span<const std::uint32_t> indices, std::size_t first, s
         window.provokingVaryings =
             shaded.varyingsOf(i[state.raster.provokingVertex == ProvokingVertex::Last ? 2 : 0]);
         if (outcodeOr == 0) {
-            // Trivially inside: no clipping, the vertices' window positions are ready.
+            // Trivially inside: no clipping, the vertices' window positions are ready. Unwatched, a
+            // triangle of zero area or culled for its facing is counted from its area alone, before
+            // it is gathered (setupTriangle decides the same first; an observer is shown its setup).
+            if constexpr (!kObserving) {
+                const TriangleFate fate = areaFate(
+                    signedDoubleArea(windowVertices[i[0]], windowVertices[i[1]], windowVertices[i[2]]),
+                    state.raster);
+                if (fate != TriangleFate::Drawn) {
+                    setupAndBin.countNotDrawn(fate);
+                    continue;
+                }
+            }
             for (int k = 0; k < 3; ++k) {
                 window.vertices[k] = windowVertices[i[k]];
                 window.varyings[k] = shaded.varyingsOf(i[k]);

@@ -12,12 +12,7 @@ namespace facet {
 
 namespace {
 
-// orient2d(a, b, p) = (b.x − a.x)(p.y − a.y) − (b.y − a.y)(p.x − a.x), exact in int64 (types.h budget).
-std::int64_t orient2d(const WindowVertex& a, const WindowVertex& b, const WindowVertex& p) {
-    return (b.xFixed - a.xFixed) * (p.yFixed - a.yFixed) - (b.yFixed - a.yFixed) * (p.xFixed - a.xFixed);
-}
-
-// The edge function of edge a → b: E(p) = orient2d(a, b, p) written as a·x + b·y + c.
+// The edge function of edge a → b: E(p) = signedDoubleArea(a, b, p) written as a·x + b·y + c.
 EdgeFunction makeEdge(const WindowVertex& from, const WindowVertex& to) {
     EdgeFunction e;
     e.a = static_cast<std::int32_t>(from.yFixed - to.yFixed);
@@ -96,20 +91,6 @@ void writePlaneRows(const float* __restrict a0, const float* __restrict a1, cons
 
 }  // namespace
 
-std::int64_t signedDoubleArea(const WindowTriangle& t) {
-    return orient2d(t.vertices[0], t.vertices[1], t.vertices[2]);
-}
-
-bool isFrontFacing(std::int64_t signedDoubleArea, FrontFace frontFace) {
-    // Counter-clockwise on a y-down screen is a negative orient2d.
-    const bool counterClockwise = signedDoubleArea < 0;
-    return frontFace == FrontFace::CounterClockwise ? counterClockwise : !counterClockwise;
-}
-
-bool isCulled(bool frontFacing, CullMode cull) {
-    return (cull == CullMode::Back && !frontFacing) || (cull == CullMode::Front && frontFacing);
-}
-
 float depthOffset(const TriangleSetup& setup, const DepthOffset& offset, DepthBufferFormat format) {
     // z = z0 + λ1·dz1 + λ2·dz2 with λi = Ei(x, y) / doubleArea, Ei = a·x + b·y + c in fixed units:
     // ∂z/∂x = (dz1·a1 + dz2·a2) · kFixedOne / doubleArea per pixel, and likewise with b for y.
@@ -125,13 +106,13 @@ float depthOffset(const TriangleSetup& setup, const DepthOffset& offset, DepthBu
 
 TriangleFate setupTriangle(const WindowTriangle& triangle, const DrawState& state, TriangleSetup& setup,
                            float* varyingPlanes) {
-    // Cull on the snapped area: zero area in fixed point covers no sample, whatever its float size.
+    // Cull on the snapped area and on facing, before the bounding box is worked out: half of a closed
+    // mesh goes here.
     const std::int64_t area = signedDoubleArea(triangle);
-    if (area == 0) return TriangleFate::ZeroArea;
-    // Then on facing, as OpenGL does before rasterization: half of a closed mesh goes here, before the
-    // bounding box is worked out for it.
+    const TriangleFate fate = areaFate(area, state.raster);
+    if (fate == TriangleFate::ZeroArea) return fate;
     setup.frontFacing = isFrontFacing(area, state.raster.frontFace);
-    if (isCulled(setup.frontFacing, state.raster.cull)) return TriangleFate::Culled;
+    if (fate == TriangleFate::Culled) return fate;
     setBoundingBox(triangle, state, setup);
 
     // A triangle between sample points covers none: common for the sub-pixel triangles of dense meshes.

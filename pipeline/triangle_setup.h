@@ -9,13 +9,36 @@
 
 namespace facet {
 
-// Twice the signed area of the snapped triangle, in fixed units²: orient2d(v0, v1, v2).
+// Twice the signed area of the snapped triangle, in fixed units²: orient2d(v0, v1, v2) =
+// (x1 − x0)(y2 − y0) − (y1 − y0)(x2 − x0), exact in int64 (types.h budget).
 // With window y growing downwards, a triangle that winds counter-clockwise on screen has a negative value.
-std::int64_t signedDoubleArea(const WindowTriangle& triangle);
+inline std::int64_t signedDoubleArea(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2) {
+    return (v1.xFixed - v0.xFixed) * (v2.yFixed - v0.yFixed) -
+           (v1.yFixed - v0.yFixed) * (v2.xFixed - v0.xFixed);
+}
+inline std::int64_t signedDoubleArea(const WindowTriangle& triangle) {
+    return signedDoubleArea(triangle.vertices[0], triangle.vertices[1], triangle.vertices[2]);
+}
 
 // Whether a triangle of the given signed double area faces the viewer, and whether `raster` culls it.
-bool isFrontFacing(std::int64_t signedDoubleArea, FrontFace frontFace);
-bool isCulled(bool frontFacing, CullMode cull);
+inline bool isFrontFacing(std::int64_t signedDoubleArea, FrontFace frontFace) {
+    // Counter-clockwise on a y-down screen is a negative orient2d.
+    const bool counterClockwise = signedDoubleArea < 0;
+    return frontFace == FrontFace::CounterClockwise ? counterClockwise : !counterClockwise;
+}
+inline bool isCulled(bool frontFacing, CullMode cull) {
+    return (cull == CullMode::Back && !frontFacing) || (cull == CullMode::Front && frontFacing);
+}
+
+// What the signed area alone decides, setupTriangle's first step: ZeroArea (zero area in fixed point
+// covers no sample, whatever its float size), Culled (its facing, as OpenGL culls before
+// rasterization), or Drawn: the triangle goes on to be set up. The front end asks this of a triangle
+// before gathering it, so that the half of a closed mesh that faces away costs only its area.
+inline TriangleFate areaFate(std::int64_t signedDoubleArea, const RasterState& raster) {
+    if (signedDoubleArea == 0) return TriangleFate::ZeroArea;
+    if (isCulled(isFrontFacing(signedDoubleArea, raster.frontFace), raster.cull)) return TriangleFate::Culled;
+    return TriangleFate::Drawn;
+}
 
 // Culls (facing, zero area) and, for a triangle that survives, computes its TriangleSetup:
 // orientation made positive, edge functions with fill-rule bias, the pixel bounding box clamped to

@@ -239,6 +239,49 @@ TEST(Observer, CoverageShowsTheFillRuleSettlingTies) {
     EXPECT_EQ(coveredSamples, fragmentSamples);
 }
 
+// Unwatched, the front end counts a triangle of zero area or culled for its facing from its area alone,
+// before gathering it; watched, setupTriangle decides. Both must give the same fates and image under
+// every cull mode and front face, with degenerate triangles (two vertices alike) among the rest.
+// Breaks caught: the unwatched early test ignoring the cull mode or the front face (culling back faces
+// under CullMode::Front or None), or counting a zero-area triangle as culled.
+TEST(Observer, UnwatchedDrawsCullAndCountAsWatchedOnesDo) {
+    std::mt19937 rng(7);
+    std::vector<ClipSpaceColorShader::Attributes> v = randomTriangles<ClipSpaceColorShader>(rng, 60);
+    for (std::size_t t = 0; t < v.size(); t += 9)  // every third triangle: its last vertex on its first
+        v[t + 2].position = v[t].position;
+    std::vector<std::uint32_t> indices(v.size());
+    for (std::size_t i = 0; i < indices.size(); ++i)
+        indices[i] = static_cast<std::uint32_t>(i);
+    for (CullMode cull : {CullMode::None, CullMode::Back, CullMode::Front})
+        for (FrontFace front : {FrontFace::CounterClockwise, FrontFace::Clockwise}) {
+            Framebuffer plain(40, 30), watched(40, 30);
+            DrawContext context;
+            for (Framebuffer* fb : {&plain, &watched})
+                fb->clear(vec4(0.0f), DepthFormat::kClear, context.pool);
+            DrawState state = testing::stateFor(plain);
+            state.raster.cull = cull;
+            state.raster.frontFace = front;
+            RecordingObserver observer;
+            const std::span<const ClipSpaceColorShader::Attributes> vertices(v);
+            const DrawStats plainStats =
+                draw<ClipSpaceColorShader>(state, {}, vertices, indices, plain, context);
+            const DrawStats watchedStats =
+                draw<ClipSpaceColorShader>(state, {}, vertices, indices, watched, context, observer);
+            SCOPED_TRACE(::testing::Message()
+                         << "cull " << static_cast<int>(cull) << ", front face " << static_cast<int>(front));
+            EXPECT_EQ(plainStats.trianglesCulled, watchedStats.trianglesCulled);
+            EXPECT_EQ(plainStats.trianglesZeroArea, watchedStats.trianglesZeroArea);
+            EXPECT_EQ(plainStats.trianglesMissingSamples, watchedStats.trianglesMissingSamples);
+            EXPECT_EQ(plainStats.trianglesRasterized, watchedStats.trianglesRasterized);
+            EXPECT_GT(watchedStats.trianglesZeroArea, 0u);
+            if (cull == CullMode::None)
+                EXPECT_EQ(watchedStats.trianglesCulled, 0u);
+            else
+                EXPECT_GT(watchedStats.trianglesCulled, 0u);
+            EXPECT_EQ(plain.colorPixels(), watched.colorPixels());
+        }
+}
+
 // A back-facing triangle culled by the draw is still shown to the observer: the setup it would have had
 // and the samples it would have covered, which are the ones it covers when culling is off.
 // Break caught: the would-be setup made with the draw's own culling (so nothing is shown).
