@@ -572,6 +572,123 @@ template <class C, class Block>
     }
 }
 
+// ---- The walk of a triangle of a few pixels -----------------------------------------------------------
+
+// The lanes a patch (rasterize.h) is walked with: sixteen, 4×4 pixels, in the AVX-512 copy; eight, 4×2,
+// elsewhere. The depth test and the queue take them eight at a time, two rows of the patch.
+#if FACET_SIXTEEN_LANES
+using PatchLanes = Intx16;
+inline Float8 patchHalf(Floatx16 v, int half) {
+    return half == 0 ? lowHalf(v) : highHalf(v);
+}
+#else
+using PatchLanes = Int8;
+#endif
+inline Float8 patchHalf(Float8 v, int) {
+    return v;
+}
+
+// The depth test of two patch rows, (x, y) and (x, y + 1), four pixels each, lane = row · 4 + column,
+// for the `covered` lanes, as depthTestRow does for a block row; the rows are inside the tile. Returns
+// the lanes that passed.
+template <class C>
+[[gnu::always_inline]] inline unsigned depthTestPatchRows(TileWalk<C>& walk, int x, int y, Float8 z,
+                                                          unsigned covered) {
+    using Stored = typename C::Depth::Stored;
+    static_assert(std::is_same_v<Stored, float>, "two rows of four stored depths load as eight floats");
+    using Float4 = float __attribute__((vector_size(16)));
+    Stored* top = &walk.target.depth(x, y);
+    Stored* bottom = &walk.target.depth(x, y + 1);
+    Float4 topDepths, bottomDepths;
+    std::memcpy(&topDepths, top, sizeof topDepths);
+    std::memcpy(&bottomDepths, bottom, sizeof bottomDepths);
+    const Float8 stored = __builtin_shufflevector(topDepths, bottomDepths, 0, 1, 2, 3, 4, 5, 6, 7);
+    unsigned passed = covered;
+    if (walk.plan.depthTest) passed &= signMask(walk.depth.passes(walk.plan.depthCompare, z, stored));
+    if constexpr (C::kDepthWrittenAtTest) {
+        if (walk.plan.depthWrite && passed) {
+            const Float8 written = select(laneMaskOf(passed), walk.depth.store(z), stored);
+            const Float4 topWritten = __builtin_shufflevector(written, written, 0, 1, 2, 3);
+            const Float4 bottomWritten = __builtin_shufflevector(written, written, 4, 5, 6, 7);
+            std::memcpy(top, &topWritten, sizeof topWritten);
+            std::memcpy(bottom, &bottomWritten, sizeof bottomWritten);
+        }
+    }
+    walk.stats.fragmentsDepthFailed += static_cast<unsigned>(std::popcount(covered & ~passed));
+    return passed;
+}
+
+// The passing lanes of two patch rows at (x, y), queued (as many as the queue has room for, the queue
+// shaded when full, then the rest), as shadePassingRow queues a block row's.
+template <class C>
+[[gnu::always_inline]] inline void queuePatchRows(TileWalk<C>& walk, const TriangleSetup& setup,
+                                                  const float* planes, int x, int y, Float8 z, Float8 b1,
+                                                  Float8 b2, unsigned passed) {
+    const Int8 lane = {0, 1, 2, 3, 4, 5, 6, 7};
+    const Int8 pixelX = (lane & (kPatchColumns - 1)) + x, pixelY = (lane >> 2) + y;
+    const auto filterBits = [&](unsigned lanes) {
+        std::uint64_t bits = 0;
+        for (int row = 0; row < 2; ++row)
+            bits |= std::uint64_t{FragmentQueue::filterBitsOf(x, (lanes >> (row * kPatchColumns)) & 0xfu)}
+                    << (((y + row) & 7) * 8);
+        return bits;
+    };
+    FragmentQueue& queue = walk.queue;
+    const unsigned now = lowestSetBits(passed, kBlockSize - queue.count);
+    queueLanes(queue, setup, planes, pixelX, pixelY, z, b1, b2, now, filterBits(now));
+    if (queue.count == kBlockSize) shadeQueue(walk, queue);
+    if (const unsigned later = passed & ~now)
+        queueLanes(queue, setup, planes, pixelX, pixelY, z, b1, b2, later, filterBits(later));
+}
+
+// A triangle that fitsPatch, over the patch at (x, y) inside the tile: coverage, barycentrics and depth
+// of every lane at once, then the depth test and queueing two rows at a time. The same fragments, with
+// the same bits, as the block walk gives (tests: PatchWalk).
+template <class C>
+[[gnu::always_inline]] inline void drawPatch(TileWalk<C>& walk, const TriangleSetup& setup,
+                                             const float* planes, const PixelRect& rect, int x, int y) {
+    ++walk.stats.patchWalks;
+    PatchLanes e1, e2;
+    const unsigned covered = patchCoverage(setup, x, y, rect, e1, e2);
+    if (!covered) return;
+    // A queued fragment at one of the patch's pixels reaches the framebuffer before they are tested.
+    if (walk.queue.count) {
+        for (int row = 0; row < kPatchRows<PatchLanes>; ++row) {
+            const unsigned columns = (covered >> (row * kPatchColumns)) & 0xfu;
+            if (columns && walk.queue.holdsAny(y + row, x, columns)) {
+                shadeQueue(walk, walk.queue);
+                break;
+            }
+        }
+    }
+    const double inverse = 1.0 / static_cast<double>(setup.doubleArea);
+    const auto b1 = barycentricLanes(e1, inverse), b2 = barycentricLanes(e2, inverse);
+    const auto z = interpolateDepth(setup, b1, b2);
+    for (int half = 0; half < kPatchRows<PatchLanes> / 2; ++half) {
+        const unsigned halfCovered = (covered >> (half * kBlockSize)) & 0xffu;
+        if (!halfCovered) continue;
+        const int rowY = y + 2 * half;
+        const Float8 halfZ = patchHalf(z, half);
+        const unsigned passed = depthTestPatchRows(walk, x, rowY, halfZ, halfCovered);
+        if (passed)
+            queuePatchRows(walk, setup, planes, x, rowY, halfZ, patchHalf(b1, half), patchHalf(b2, half),
+                           passed);
+    }
+}
+
+// Whether a walk draws triangles of a few pixels as patches: unwatched (an observer is shown the block
+// walk's coverage decisions) and single-sample.
+template <class C>
+inline constexpr bool kWalksPatches = !C::kMultisample && !C::kObserving;
+
+// Whether a triangle is walked as a patch: its pixels fit in one, and the tile (or part) can hold one
+// (it is at least a patch wide and high, as all but tiny framebuffers' tiles are).
+inline bool walksAsPatch(const TriangleSetup& setup, const PixelRect& area) {
+    constexpr int kRows = kPatchRows<PatchLanes>;
+    return fitsPatch(setup, kRows) && area.maxX - area.minX + 1 >= kPatchColumns &&
+           area.maxY - area.minY + 1 >= kRows;
+}
+
 // Calls visit(block) for every block of the triangle in `area` with a covered sample: a CoverageBlock
 // (rasterizeBlocks), or, multisampled, an aligned block with its coverage at each of the draw's samples
 // (blockCoverage at the sample's offset).
@@ -656,6 +773,17 @@ void drawTile(TileWalk<C>& walk, const PixelRect& rect, bool inPart, std::size_t
                 for (int y = std::max(rect.minY, setup.minY); y <= std::min(rect.maxY, setup.maxY); ++y)
                     for (int x = std::max(rect.minX, setup.minX); x <= std::min(rect.maxX, setup.maxX); ++x)
                         walk.observer.onCoverage(coverageAt(setup, x, y));
+            }
+            if constexpr (kWalksPatches<C>) {
+                if (walksAsPatch(setup, rect)) {
+                    // Placed over the triangle's pixels, inside the tile (as firstBlockAt places a block).
+                    const PixelRect pixels = rasterRect(setup, rect);
+                    if (pixels.empty()) continue;
+                    drawPatch(walk, setup, planes, pixels,
+                              std::min(pixels.minX, rect.maxX - (kPatchColumns - 1)),
+                              std::min(pixels.minY, rect.maxY - (kPatchRows<PatchLanes> - 1)));
+                    continue;
+                }
             }
             forEachBlock(walk, setup, rect,
                          [&](const auto& block) { drawBlock(walk, setup, planes, block); });

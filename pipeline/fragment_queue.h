@@ -114,20 +114,23 @@ inline int queueFragment(FragmentQueue& queue, const TriangleSetup& setup, const
     return slot;
 }
 
-// Puts the fragments of block row (rowX, rowY) in `columns` (at most kBlockSize − queue.count of them),
-// each with its column's depth and barycentrics of `setup`, into the next queue slots in column order:
-// the slots queueFragment would give them one by one, filled eight lanes at a time (the columns packed
-// to the front by one permutation), with no branch on which columns they are.
-inline void queueRow(FragmentQueue& queue, const TriangleSetup& setup, const float* planes, int rowX,
-                     int rowY, Float8 z, Float8 b1, Float8 b2, unsigned columns) {
-    const int first = queue.count, n = std::popcount(columns);
-    const Int8 packed = packedLaneIndices(columns);
-    const Int8 x = packed + rowX, y = Int8{} + rowY;
+// Puts the fragments of `lanes` (at most kBlockSize − queue.count of them), lane i at pixel (x[i], y[i])
+// with depth z[i] and barycentrics (b1[i], b2[i]) of `setup`, into the next queue slots in lane order:
+// the slots queueFragment would give them one by one, filled eight lanes at a time (the lanes packed to
+// the front by one permutation), with no branch on which lanes they are. `filterBits`: the lanes'
+// pixels' bits of FragmentQueue::pixelsMod8.
+inline void queueLanes(FragmentQueue& queue, const TriangleSetup& setup, const float* planes, Int8 x, Int8 y,
+                       Float8 z, Float8 b1, Float8 b2, unsigned lanes, std::uint64_t filterBits) {
+    const int first = queue.count, n = std::popcount(lanes);
+    const Int8 packed = packedLaneIndices(lanes);
+    const auto pack = [&](auto v) {
+        return std::bit_cast<decltype(v)>(permuteLanes(std::bit_cast<Float8>(v), packed));
+    };
     const Int8 triangle = Int8{} + static_cast<std::int32_t>(setup.triangle);
-    const Float8 packedZ = permuteLanes(z, packed), packedB1 = permuteLanes(b1, packed),
-                 packedB2 = permuteLanes(b2, packed);
-    std::memcpy(&queue.x[first], &x, sizeof x);
-    std::memcpy(&queue.y[first], &y, sizeof y);
+    const Int8 packedX = pack(x), packedY = pack(y);
+    const Float8 packedZ = pack(z), packedB1 = pack(b1), packedB2 = pack(b2);
+    std::memcpy(&queue.x[first], &packedX, sizeof packedX);
+    std::memcpy(&queue.y[first], &packedY, sizeof packedY);
     std::memcpy(&queue.z[first], &packedZ, sizeof packedZ);
     std::memcpy(&queue.triangle[first], &triangle, sizeof triangle);
     std::memcpy(&queue.b1[first], &packedB1, sizeof packedB1);
@@ -138,7 +141,15 @@ inline void queueRow(FragmentQueue& queue, const TriangleSetup& setup, const flo
     }
     queue.count = first + n;
     queue.batch.mask |= ((1u << n) - 1u) << first;
-    queue.pixelsMod8 |= std::uint64_t{FragmentQueue::filterBitsOf(rowX, columns)} << ((rowY & 7) * 8);
+    queue.pixelsMod8 |= filterBits;
+}
+
+// The fragments of block row (rowX, rowY) in `columns` (lane = column), queued as queueLanes does.
+inline void queueRow(FragmentQueue& queue, const TriangleSetup& setup, const float* planes, int rowX,
+                     int rowY, Float8 z, Float8 b1, Float8 b2, unsigned columns) {
+    const Int8 column = {0, 1, 2, 3, 4, 5, 6, 7};
+    queueLanes(queue, setup, planes, column + rowX, Int8{} + rowY, z, b1, b2, columns,
+               std::uint64_t{FragmentQueue::filterBitsOf(rowX, columns)} << ((rowY & 7) * 8));
 }
 
 // The varyings (and texture coordinate derivatives) of a block row's eight lanes at once, into `out`.

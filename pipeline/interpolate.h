@@ -63,6 +63,30 @@ struct BlockBarycentrics {
     }
 };
 
+// λ = E / (2·area) in each lane of a patch (rasterize.h: patchCoverage), from its exact edge values:
+// each E converted to double (exact), multiplied by inverse = 1/(2·area) and rounded once to float, the
+// operations BlockBarycentrics does on the same E, so a pixel gets the same bits in either walk. The
+// doubles are made four at a time, as there (the reason is in BlockBarycentrics' comment).
+inline Float8 barycentricLanes(Int8 e, double inverse) {
+    using Int4 = std::int32_t __attribute__((vector_size(16)));
+    using Double4 = double __attribute__((vector_size(32)));
+    using Float4 = float __attribute__((vector_size(16)));
+    const Double4 invArea = {inverse, inverse, inverse, inverse};
+    const Int4 low = __builtin_shufflevector(e, e, 0, 1, 2, 3),
+               high = __builtin_shufflevector(e, e, 4, 5, 6, 7);
+    const Float4 lowLambda = __builtin_convertvector(__builtin_convertvector(low, Double4) * invArea, Float4);
+    const Float4 highLambda =
+        __builtin_convertvector(__builtin_convertvector(high, Double4) * invArea, Float4);
+    return __builtin_shufflevector(lowLambda, highLambda, 0, 1, 2, 3, 4, 5, 6, 7);
+}
+#if FACET_SIXTEEN_LANES
+inline Floatx16 barycentricLanes(Intx16 e, double inverse) {
+    const Int8 low = __builtin_shufflevector(e, e, 0, 1, 2, 3, 4, 5, 6, 7);
+    const Int8 high = __builtin_shufflevector(e, e, 8, 9, 10, 11, 12, 13, 14, 15);
+    return joinHalves(barycentricLanes(low, inverse), barycentricLanes(high, inverse));
+}
+#endif
+
 // Window depth is an affine function of screen position: z = z0 + λ1·(z1 − z0) + λ2·(z2 − z0).
 template <class F>
 inline F interpolateDepth(const TriangleSetup& s, F b1, F b2) {

@@ -218,4 +218,51 @@ void rasterizeBlocks(const TriangleSetup& setup, const PixelRect& area, BlockVis
     }
 }
 
+// ---- Patches: the walk of a triangle of a few pixels --------------------------------------------------
+
+// A patch is kPatchColumns pixels wide and as many rows as a lane vector I (Int8: two, Intx16: four)
+// holds, lane = row · kPatchColumns + column: a triangle whose pixels fit in one is tested, depth-tested
+// and queued in one pass of lane vectors, where the block walk spends a pass per row of eight lanes
+// (most of them outside so small a triangle) and sets up each block for edges of any length.
+inline constexpr int kPatchColumns = 4;
+template <class I>
+inline constexpr int kPatchRows = int(sizeof(I) / sizeof(std::int32_t)) / kPatchColumns;
+
+// Whether the triangle's own pixels fit in a patch's four columns and `rows` rows. Its edges are
+// then at most a few pixels long, so every edge function value near it fits in 32 bits.
+inline bool fitsPatch(const TriangleSetup& setup, int rows) {
+    return setup.maxX - setup.minX < kPatchColumns && setup.maxY - setup.minY < rows;
+}
+
+// The coverage of the patch at pixel (x, y) by a triangle that fitsPatch: bit `lane` set where all three
+// biased edge functions are ≥ 0 at the lane's sample (the top-left rule, as coversSample decides) and
+// the lane's pixel is inside `rect`. Also gives E₁ and E₂ unbiased at each lane's sample, for its
+// barycentrics. Each value is E(first sample) + column·a·kFixedOne + row·b·kFixedOne, exact in 32 bits
+// for such a triangle (E over a patch a few pixels from an edge a few pixels long stays below 2^31).
+template <class I>
+[[gnu::always_inline]] inline unsigned patchCoverage(const TriangleSetup& setup, int x, int y,
+                                                     const PixelRect& rect, I& e1, I& e2) {
+    constexpr int kLanes = kPatchColumns * kPatchRows<I>;
+    I column, row;
+    for (int lane = 0; lane < kLanes; ++lane) {
+        column[lane] = lane % kPatchColumns;
+        row[lane] = lane / kPatchColumns;
+    }
+    const SamplePoint first = samplePosition(x, y);
+    I biased[3], unbiased[3];
+    for (int i = 0; i < 3; ++i) {
+        const EdgeFunction& e = setup.edges[i];
+        const auto origin = static_cast<std::int32_t>(e.at(first.x, first.y));
+        unbiased[i] = origin + column * static_cast<std::int32_t>(e.a * kFixedOne) +
+                      row * static_cast<std::int32_t>(e.b * kFixedOne);
+        biased[i] = unbiased[i] + static_cast<std::int32_t>(e.bias());
+    }
+    e1 = unbiased[1];
+    e2 = unbiased[2];
+    const I inRect = (column >= rect.minX - x) & (column <= rect.maxX - x) & (row >= rect.minY - y) &
+                     (row <= rect.maxY - y);
+    // Covered where no biased value is negative (the OR has no sign bit) and the pixel is in rect.
+    return signMask(~(biased[0] | biased[1] | biased[2]) & inRect);
+}
+
 }  // namespace facet

@@ -14,6 +14,7 @@ DrawStats& DrawStats::operator+=(const DrawStats& o) {
     trianglesZeroArea += o.trianglesZeroArea;
     trianglesMissingSamples += o.trianglesMissingSamples;
     trianglesRasterized += o.trianglesRasterized;
+    patchWalks += o.patchWalks;
     fragmentsShaded += o.fragmentsShaded;
     fragmentsShadedBy16 += o.fragmentsShadedBy16;
     fragmentsDepthFailed += o.fragmentsDepthFailed;
@@ -164,10 +165,11 @@ std::ostream& operator<<(std::ostream& os, const DrawStats& s) {
     return os << s.vertices << " vertices, " << s.triangles << " triangles (" << s.trianglesClipped
               << " clipped, " << s.trianglesRejected << " rejected, " << s.trianglesCulled << " culled, "
               << s.trianglesZeroArea << " zero-area, " << s.trianglesMissingSamples
-              << " between pixel centres, " << s.trianglesRasterized << " rasterized), " << s.fragmentsShaded
-              << " fragments shaded (" << s.fragmentsShadedBy16 << " sixteen at a time, "
-              << s.fragmentsDepthFailed << " failed depth, " << s.fragmentsDiscarded << " discarded, "
-              << s.fragmentsWritten << " written, " << s.fragmentsStored << " stored)";
+              << " between pixel centres, " << s.trianglesRasterized << " rasterized, " << s.patchWalks
+              << " tile walks as patches), " << s.fragmentsShaded << " fragments shaded ("
+              << s.fragmentsShadedBy16 << " sixteen at a time, " << s.fragmentsDepthFailed
+              << " failed depth, " << s.fragmentsDiscarded << " discarded, " << s.fragmentsWritten
+              << " written, " << s.fragmentsStored << " stored)";
 }
 
 }  // namespace facet

@@ -164,7 +164,8 @@ void runBench(const BenchOptions& options, std::ostream& out) {
     const Antialiasing aa = scene.pipeline.antialiasing;
     out << "samples    " << samplesPerPixel(aa) << " per pixel (--aa " << nameOf(aa) << ")\n";
     out << "triangles  " << prepared.triangleCount << " (" << stats.trianglesRasterized
-        << " rasterized after culling and clipping)\n";
+        << " rasterized after culling and clipping; " << stats.patchWalks
+        << " walks of a triangle over a tile done as one patch of a few pixels)\n";
     out << "fragments  " << stats.fragmentsShaded << " shaded, " << stats.fragmentsWritten << " written, "
         << stats.fragmentsDepthFailed << " rejected by the depth test\n";
     out << "frames     " << options.frames << " timed after 1 warm-up\n";

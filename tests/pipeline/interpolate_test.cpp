@@ -162,6 +162,57 @@ TEST(Interpolate, SetUpPlanesGiveEachVertexItsVaryings) {
         }
 }
 
+// A triangle walked as a patch gets its barycentrics from its lanes' exact edge values
+// (barycentricLanes); the block walk from BlockBarycentrics' rows. A pixel must get the same bits
+// either way, whichever walk the triangle's size chooses.
+// Breaks caught: E rounded to float before the multiplication, or 1/(2·area) taken in float.
+TEST(Interpolate, PatchBarycentricsAreTheBlockWalksBits) {
+    std::mt19937 rng(11);
+    std::uniform_int_distribution<std::int64_t> coordinate(0, 12 * kFixedOne),
+        nearby(-3 * kFixedOne, 3 * kFixedOne);
+    DrawState state;
+    state.viewport = {0, 0, 32, 32};
+    state.raster.cull = CullMode::None;
+    int compared = 0;
+    for (int trial = 0; trial < 2000; ++trial) {
+        const std::int64_t cx = coordinate(rng) + 8 * kFixedOne, cy = coordinate(rng) + 8 * kFixedOne;
+        WindowTriangle t;
+        for (WindowVertex& v : t.vertices) {
+            v.xFixed = cx + nearby(rng);
+            v.yFixed = cy + nearby(rng);
+            v.invW = 1.0f;
+        }
+        TriangleSetup setup;
+        if (setupTriangle(t, state, setup, nullptr) != TriangleFate::Drawn) continue;
+        const int x = setup.minX, y = setup.minY;
+        const BlockBarycentrics block(setup, x, y);
+        const double inverse = 1.0 / static_cast<double>(setup.doubleArea);
+        for (int rowPair = 0; rowPair < 4; rowPair += 2) {
+            Int8 e1, e2;  // rows rowPair and rowPair + 1 of the block's first four columns
+            for (int lane = 0; lane < 8; ++lane) {
+                const SamplePoint p = samplePosition(x + lane % 4, y + rowPair + lane / 4);
+                e1[lane] = static_cast<std::int32_t>(setup.edges[1].at(p.x, p.y));
+                e2[lane] = static_cast<std::int32_t>(setup.edges[2].at(p.x, p.y));
+            }
+            const Float8 b1 = barycentricLanes(e1, inverse), b2 = barycentricLanes(e2, inverse);
+            for (int row = 0; row < 2; ++row) {
+                Float8 blockB1, blockB2;
+                block.row(rowPair + row, blockB1, blockB2);
+                for (int column = 0; column < 4; ++column) {
+                    ASSERT_EQ(std::bit_cast<std::uint32_t>(b1[row * 4 + column]),
+                              std::bit_cast<std::uint32_t>(blockB1[column]))
+                        << "trial " << trial;
+                    ASSERT_EQ(std::bit_cast<std::uint32_t>(b2[row * 4 + column]),
+                              std::bit_cast<std::uint32_t>(blockB2[column]))
+                        << "trial " << trial;
+                    ++compared;
+                }
+            }
+        }
+    }
+    EXPECT_GT(compared, 20000);
+}
+
 // The back end interpolates a row's fragments eight at a time or one at a time depending on how many
 // survived the depth test, so both lane widths must give the same bits for depth, 1/w and every
 // varying, perspective-correct or affine, flat or not.

@@ -282,6 +282,64 @@ TEST(Observer, UnwatchedDrawsCullAndCountAsWatchedOnesDo) {
         }
 }
 
+// A triangle of a few pixels is drawn as one patch (back_end.h: drawPatch) when unwatched, and block by
+// block when watched, so the two must give the same bytes: overlapping tiny triangles, drawn with the
+// depth test and replaced colours, by a shader that discards, then blended additively (whose float
+// sums depend on the order each pixel's fragments arrive in), on one thread and on three.
+// Breaks caught: the queue not shaded before a patch whose pixel holds a queued fragment (a pixel's
+// fragments blended out of order), a patch's second row pair left out of the depth test or its depth
+// write, the patch placed outside the tile.
+TEST(PatchWalk, TinyTrianglesDrawTheBytesOfTheBlockWalk) {
+    std::mt19937 rng(99);
+    Framebuffer probe(40, 30);
+    std::uniform_real_distribution<float> centreX(2.0f, 38.0f), centreY(2.0f, 28.0f), spread(-2.0f, 2.0f),
+        depth(-0.9f, 0.9f), channel(0.0f, 1.0f);
+    std::vector<ClipSpaceColorShader::Attributes> v;
+    for (int t = 0; t < 600; ++t) {
+        // Half of them piled on a 6×6 square, so that pixels see many fragments.
+        const vec2 centre = t % 2 ? vec2(centreX(rng), centreY(rng))
+                                  : vec2(17.0f, 13.0f) + 0.5f * vec2(spread(rng), spread(rng));
+        const float z = depth(rng);
+        const vec4 color(channel(rng), channel(rng), channel(rng), 1.0f);
+        for (int k = 0; k < 3; ++k)
+            v.push_back({testing::clipFromWindow(centre + vec2(spread(rng), spread(rng)), probe, z), color});
+    }
+    std::vector<std::uint32_t> indices(v.size());
+    for (std::size_t i = 0; i < indices.size(); ++i)
+        indices[i] = static_cast<std::uint32_t>(i);
+    const std::span<const ClipSpaceColorShader::Attributes> vertices(v);
+    for (const int threads : {1, 3}) {
+        Framebuffer plain(40, 30), watched(40, 30);
+        DrawContext plainContext(threads, 16), watchedContext(1, 16);
+        for (Framebuffer* fb : {&plain, &watched})
+            fb->clear(vec4(0.0f), DepthFormat::kClear, plainContext.pool);
+        DrawState state = testing::stateFor(plain);
+        state.raster.cull = CullMode::None;
+        RecordingObserver observer;
+        std::uint64_t patchWalks = 0;
+        auto drawBothWays = [&]<class S>(S) {
+            const DrawStats plainStats = draw<S>(state, {}, vertices, indices, plain, plainContext);
+            const DrawStats watchedStats =
+                draw<S>(state, {}, vertices, indices, watched, watchedContext, observer);
+            EXPECT_EQ(plainStats.fragmentsShaded, watchedStats.fragmentsShaded);
+            EXPECT_EQ(plainStats.fragmentsDepthFailed, watchedStats.fragmentsDepthFailed);
+            EXPECT_EQ(watchedStats.patchWalks, 0u);
+            patchWalks += plainStats.patchWalks;
+        };
+        // A shader that may discard writes depth when shaded, not when tested: a pixel's next fragment
+        // must not be tested before its queued one is shaded.
+        drawBothWays(RedDiscardingShader{});
+        state.depth.compare = CompareOp::LessEqual;
+        drawBothWays(ClipSpaceColorShader{});
+        state.blend = BlendMode::Additive;
+        state.depth.testEnabled = false;
+        drawBothWays(ClipSpaceColorShader{});
+        EXPECT_GT(patchWalks, 300u) << "the tiny triangles were not walked as patches";
+        EXPECT_EQ(plain.colorPixels(), watched.colorPixels()) << threads << " threads";
+        EXPECT_EQ(plain.depthPixels(), watched.depthPixels()) << threads << " threads";
+    }
+}
+
 // A back-facing triangle culled by the draw is still shown to the observer: the setup it would have had
 // and the samples it would have covered, which are the ones it covers when culling is off.
 // Break caught: the would-be setup made with the draw's own culling (so nothing is shown).

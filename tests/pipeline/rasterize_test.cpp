@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../support/patch_checks.h"
 #include "triangle_setup.h"
 
 namespace facet {
@@ -103,6 +104,13 @@ TEST(Rasterize, BlockWalkMatchesPerPixelOracleOnRandomTriangles) {
     }
     EXPECT_GT(trianglesChecked, 2000);
     EXPECT_GT(fullBlocksSeen, 100);  // the trivial-accept path was exercised
+}
+
+// A triangle of a few pixels is walked as one patch: its coverage, edge values and barycentrics against
+// the per-pixel test and the block walk (support/patch_checks.h; the sixteen-lane patch in the
+// AVX-512 test binary).
+TEST(Rasterize, PatchCoverageMatchesThePerPixelTestWithEightLanes) {
+    testing_support::expectPatchCoverageMatchesTheOracle<Int8>();
 }
 
 // Edges thousands of pixels long overflow the 32-bit lanes of a crossed block; those blocks take the

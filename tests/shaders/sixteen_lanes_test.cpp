@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../support/patch_checks.h"
 #include "shaders/shaders.h"
 #include "shaders/user_shader.h"
 
@@ -226,6 +227,12 @@ TEST(SixteenLanes, ThePerPixelShaderGivesTheEightLaneBitsOfEachHalf) {
         expectSameLanes(got.z, lowShaded.z, highShaded.z, "blue", name);
         expectSameLanes(got.w, lowShaded.w, highShaded.w, "alpha", name);
     }
+}
+
+// The patch walk of the AVX-512 copy (4×4 pixels in sixteen lanes): coverage, edge values and
+// barycentrics as the per-pixel test and the block walk give them (support/patch_checks.h).
+TEST(SixteenLanes, PatchCoverageMatchesThePerPixelTest) {
+    testing_support::expectPatchCoverageMatchesTheOracle<Intx16>();
 }
 
 }  // namespace
