@@ -641,13 +641,12 @@ template <class C>
         queueLanes(queue, setup, planes, pixelX, pixelY, z, b1, b2, later, filterBits(later));
 }
 
-// A triangle that fitsPatch, over the patch at (x, y) inside the tile: coverage, barycentrics and depth
+// A triangle that fitsPatch, over one patch at (x, y) inside the tile: coverage, barycentrics and depth
 // of every lane at once, then the depth test and queueing two rows at a time. The same fragments, with
 // the same bits, as the block walk gives (tests: PatchWalk).
 template <class C>
 [[gnu::always_inline]] inline void drawPatch(TileWalk<C>& walk, const TriangleSetup& setup,
                                              const float* planes, const PixelRect& rect, int x, int y) {
-    ++walk.stats.patchWalks;
     PatchLanes e1, e2;
     const unsigned covered = patchCoverage(setup, x, y, rect, e1, e2);
     if (!covered) return;
@@ -681,12 +680,31 @@ template <class C>
 template <class C>
 inline constexpr bool kWalksPatches = !C::kMultisample && !C::kObserving;
 
-// Whether a triangle is walked as a patch: its pixels fit in one, and the tile (or part) can hold one
-// (it is at least a patch wide and high, as all but tiny framebuffers' tiles are).
-inline bool walksAsPatch(const TriangleSetup& setup, const PixelRect& area) {
+// The most rows a triangle walked as patches may span, in a stack of patches one above the other: a
+// triangle a few pixels wide and up to eight tall (a sliver of a dense mesh or of a wall seen edge-on)
+// then takes two patches of sixteen lanes where the block walk would take a pass per row.
+inline constexpr int kPatchStackRows = 8;
+
+// A triangle that fitsPatch a stack, in a tile (or part) `area` that can hold the stack (at least a
+// patch wide and the stack high, as all but tiny framebuffers' tiles are): its pixels in the area,
+// walked as a stack of patches placed over them inside the area (as firstBlockAt places a block).
+// Returns false, having drawn nothing, for any other triangle (the block walk draws it).
+template <class C>
+[[gnu::always_inline]] inline bool drawAsPatches(TileWalk<C>& walk, const TriangleSetup& setup,
+                                                 const float* planes, const PixelRect& area) {
     constexpr int kRows = kPatchRows<PatchLanes>;
-    return fitsPatch(setup, kRows) && area.maxX - area.minX + 1 >= kPatchColumns &&
-           area.maxY - area.minY + 1 >= kRows;
+    if (!fitsPatch(setup, kPatchStackRows)) return false;
+    const PixelRect pixels = rasterRect(setup, area);
+    if (pixels.empty()) return true;  // binned to the tile, but beside this part of it
+    const int patches = (pixels.maxY - pixels.minY) / kRows + 1;
+    if (area.maxX - area.minX + 1 < kPatchColumns || area.maxY - area.minY + 1 < patches * kRows)
+        return false;
+    ++walk.stats.patchWalks;
+    const int x = std::min(pixels.minX, area.maxX - (kPatchColumns - 1));
+    int y = std::min(pixels.minY, area.maxY - (patches * kRows - 1));
+    for (int patch = 0; patch < patches; ++patch, y += kRows)
+        drawPatch(walk, setup, planes, pixels, x, y);
+    return true;
 }
 
 // Calls visit(block) for every block of the triangle in `area` with a covered sample: a CoverageBlock
@@ -774,17 +792,8 @@ void drawTile(TileWalk<C>& walk, const PixelRect& rect, bool inPart, std::size_t
                     for (int x = std::max(rect.minX, setup.minX); x <= std::min(rect.maxX, setup.maxX); ++x)
                         walk.observer.onCoverage(coverageAt(setup, x, y));
             }
-            if constexpr (kWalksPatches<C>) {
-                if (walksAsPatch(setup, rect)) {
-                    // Placed over the triangle's pixels, inside the tile (as firstBlockAt places a block).
-                    const PixelRect pixels = rasterRect(setup, rect);
-                    if (pixels.empty()) continue;
-                    drawPatch(walk, setup, planes, pixels,
-                              std::min(pixels.minX, rect.maxX - (kPatchColumns - 1)),
-                              std::min(pixels.minY, rect.maxY - (kPatchRows<PatchLanes> - 1)));
-                    continue;
-                }
-            }
+            if constexpr (kWalksPatches<C>)
+                if (drawAsPatches(walk, setup, planes, rect)) continue;
             forEachBlock(walk, setup, rect,
                          [&](const auto& block) { drawBlock(walk, setup, planes, block); });
         }

@@ -228,10 +228,19 @@ inline constexpr int kPatchColumns = 4;
 template <class I>
 inline constexpr int kPatchRows = int(sizeof(I) / sizeof(std::int32_t)) / kPatchColumns;
 
-// Whether the triangle's own pixels fit in a patch's four columns and `rows` rows. Its edges are
-// then at most a few pixels long, so every edge function value near it fits in 32 bits.
+// Edges of a triangle walked as patches are at most this long along each axis (fixed units): then
+// every edge function value within kMaxPatchEdge of its vertices, |a·dx + b·dy| ≤ 2·16·256·(20·256)
+// < 2^26, fits in 32 bits with room to spare, whatever the clipper and the viewport did to the box.
+inline constexpr std::int64_t kMaxPatchEdge = 16 * kFixedOne;
+
+// Whether the triangle's pixels fit in a patch's four columns and `rows` rows (a stack of patches
+// when `rows` is more than one patch holds), and its edges are short (kMaxPatchEdge).
 inline bool fitsPatch(const TriangleSetup& setup, int rows) {
-    return setup.maxX - setup.minX < kPatchColumns && setup.maxY - setup.minY < rows;
+    bool shortEdges = true;
+    for (const EdgeFunction& e : setup.edges)
+        shortEdges &=
+            e.a <= kMaxPatchEdge && e.a >= -kMaxPatchEdge && e.b <= kMaxPatchEdge && e.b >= -kMaxPatchEdge;
+    return setup.maxX - setup.minX < kPatchColumns && setup.maxY - setup.minY < rows && shortEdges;
 }
 
 // The coverage of the patch at pixel (x, y) by a triangle that fitsPatch: bit `lane` set where all three

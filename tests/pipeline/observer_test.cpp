@@ -282,13 +282,13 @@ TEST(Observer, UnwatchedDrawsCullAndCountAsWatchedOnesDo) {
         }
 }
 
-// A triangle of a few pixels is drawn as one patch (back_end.h: drawPatch) when unwatched, and block by
-// block when watched, so the two must give the same bytes: overlapping tiny triangles, drawn with the
-// depth test and replaced colours, by a shader that discards, then blended additively (whose float
-// sums depend on the order each pixel's fragments arrive in), on one thread and on three.
-// Breaks caught: the queue not shaded before a patch whose pixel holds a queued fragment (a pixel's
-// fragments blended out of order), a patch's second row pair left out of the depth test or its depth
-// write, the patch placed outside the tile.
+// A triangle a few pixels wide and up to eight tall is drawn as a stack of patches (back_end.h:
+// drawAsPatches) when unwatched, and block by block when watched, so the two must give the same bytes:
+// overlapping tiny triangles, drawn with the depth test and replaced colours, by a shader that discards, then
+// blended additively (whose float sums depend on the order each pixel's fragments arrive in), on one thread
+// and on three. Breaks caught: the queue not shaded before a patch whose pixel holds a queued fragment (a
+// pixel's fragments blended out of order), a patch's second row pair left out of the depth test or its depth
+// write, the patch placed outside the tile, the second patch of a stack left out.
 TEST(PatchWalk, TinyTrianglesDrawTheBytesOfTheBlockWalk) {
     std::mt19937 rng(99);
     Framebuffer probe(40, 30);
@@ -302,7 +302,8 @@ TEST(PatchWalk, TinyTrianglesDrawTheBytesOfTheBlockWalk) {
         const float z = depth(rng);
         const vec4 color(channel(rng), channel(rng), channel(rng), 1.0f);
         for (int k = 0; k < 3; ++k)
-            v.push_back({testing::clipFromWindow(centre + vec2(spread(rng), spread(rng)), probe, z), color});
+            v.push_back(
+                {testing::clipFromWindow(centre + vec2(spread(rng), 1.8f * spread(rng)), probe, z), color});
     }
     std::vector<std::uint32_t> indices(v.size());
     for (std::size_t i = 0; i < indices.size(); ++i)

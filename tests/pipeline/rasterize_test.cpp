@@ -109,6 +109,29 @@ TEST(Rasterize, BlockWalkMatchesPerPixelOracleOnRandomTriangles) {
 // A triangle of a few pixels is walked as one patch: its coverage, edge values and barycentrics against
 // the per-pixel test and the block walk (support/patch_checks.h; the sixteen-lane patch in the
 // AVX-512 test binary).
+// A patch's edge values are 32-bit, so a triangle is walked as patches only when its edges are short,
+// not merely its box: the box of a long sliver that reaches beyond the viewport is cut to a few pixels.
+// Break caught: fitsPatch deciding by the (clamped) box alone, whose edge values then wrap in 32 bits.
+TEST(Rasterize, APatchNeedsShortEdgesNotJustASmallBox) {
+    DrawState state;
+    state.viewport = {0, 0, 16, 16};
+    state.raster.cull = CullMode::None;
+    WindowTriangle small, sliver;
+    small.vertices = {fixedAt(2 * kFixedOne, 2 * kFixedOne), fixedAt(5 * kFixedOne, 3 * kFixedOne),
+                      fixedAt(3 * kFixedOne, 8 * kFixedOne)};
+    // Reaches 3000 pixels left of the viewport; its box inside it is 3 × 3 pixels.
+    sliver.vertices = {fixedAt(-3000 * kFixedOne, 2 * kFixedOne), fixedAt(3 * kFixedOne, 2 * kFixedOne),
+                       fixedAt(-3000 * kFixedOne, 5 * kFixedOne)};
+    TriangleSetup smallSetup, sliverSetup;
+    ASSERT_EQ(setupTriangle(small, state, smallSetup, nullptr), TriangleFate::Drawn);
+    ASSERT_EQ(setupTriangle(sliver, state, sliverSetup, nullptr), TriangleFate::Drawn);
+    ASSERT_LT(sliverSetup.maxX - sliverSetup.minX, kPatchColumns);
+    ASSERT_LT(sliverSetup.maxY - sliverSetup.minY, 8);
+    EXPECT_TRUE(fitsPatch(smallSetup, 8));
+    EXPECT_FALSE(fitsPatch(smallSetup, 4));  // six rows
+    EXPECT_FALSE(fitsPatch(sliverSetup, 8));
+}
+
 TEST(Rasterize, PatchCoverageMatchesThePerPixelTestWithEightLanes) {
     testing_support::expectPatchCoverageMatchesTheOracle<Int8>();
 }
