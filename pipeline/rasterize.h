@@ -228,9 +228,11 @@ inline constexpr int kPatchColumns = 4;
 template <class I>
 inline constexpr int kPatchRows = int(sizeof(I) / sizeof(std::int32_t)) / kPatchColumns;
 
-// Edges of a triangle walked as patches are at most this long along each axis (fixed units): then
-// every edge function value within kMaxPatchEdge of its vertices, |a·dx + b·dy| ≤ 2·16·256·(20·256)
-// < 2^26, fits in 32 bits with room to spare, whatever the clipper and the viewport did to the box.
+// Edges of a triangle walked as patches are at most this long along each axis (fixed units, 16 pixels).
+// Its box lies within its vertices' extent and a patch is placed at most 4 pixels beyond the box, so
+// every patch sample is within 20 pixels of each vertex and every edge function value there,
+// E = a·dx + b·dy from an edge's first vertex, has |E| ≤ 2 · 16·256 · 20·256 < 2^26: 32 bits with room
+// to spare. Checked on the edges themselves, not the box, which is clamped to the viewport.
 inline constexpr std::int64_t kMaxPatchEdge = 16 * kFixedOne;
 
 // Whether the triangle's pixels fit in a patch's four columns and `rows` rows (a stack of patches
@@ -247,7 +249,7 @@ inline bool fitsPatch(const TriangleSetup& setup, int rows) {
 // biased edge functions are ≥ 0 at the lane's sample (the top-left rule, as coversSample decides) and
 // the lane's pixel is inside `rect`. Also gives E₁ and E₂ unbiased at each lane's sample, for its
 // barycentrics. Each value is E(first sample) + column·a·kFixedOne + row·b·kFixedOne, exact in 32 bits
-// for such a triangle (E over a patch a few pixels from an edge a few pixels long stays below 2^31).
+// for such a triangle (kMaxPatchEdge).
 template <class I>
 [[gnu::always_inline]] inline unsigned patchCoverage(const TriangleSetup& setup, int x, int y,
                                                      const PixelRect& rect, I& e1, I& e2) {
