@@ -309,36 +309,42 @@ TEST(PatchWalk, TinyTrianglesDrawTheBytesOfTheBlockWalk) {
     for (std::size_t i = 0; i < indices.size(); ++i)
         indices[i] = static_cast<std::uint32_t>(i);
     const std::span<const ClipSpaceColorShader::Attributes> vertices(v);
-    for (const int threads : {1, 3}) {
-        Framebuffer plain(40, 30), watched(40, 30);
-        DrawContext plainContext(threads, 16), watchedContext(1, 16);
-        for (Framebuffer* fb : {&plain, &watched})
-            fb->clear(vec4(0.0f), DepthFormat::kClear, plainContext.pool);
-        DrawState state = testing::stateFor(plain);
-        state.raster.cull = CullMode::None;
-        RecordingObserver observer;
-        std::uint64_t patchWalks = 0;
-        auto drawBothWays = [&]<class S>(S) {
-            const DrawStats plainStats = draw<S>(state, {}, vertices, indices, plain, plainContext);
-            const DrawStats watchedStats =
-                draw<S>(state, {}, vertices, indices, watched, watchedContext, observer);
-            EXPECT_EQ(plainStats.fragmentsShaded, watchedStats.fragmentsShaded);
-            EXPECT_EQ(plainStats.fragmentsDepthFailed, watchedStats.fragmentsDepthFailed);
-            EXPECT_EQ(watchedStats.patchWalks, 0u);
-            patchWalks += plainStats.patchWalks;
-        };
-        // A shader that may discard writes depth when shaded, not when tested: a pixel's next fragment
-        // must not be tested before its queued one is shaded.
-        drawBothWays(RedDiscardingShader{});
-        state.depth.compare = CompareOp::LessEqual;
-        drawBothWays(ClipSpaceColorShader{});
-        state.blend = BlendMode::Additive;
-        state.depth.testEnabled = false;
-        drawBothWays(ClipSpaceColorShader{});
-        EXPECT_GT(patchWalks, 300u) << "the tiny triangles were not walked as patches";
-        EXPECT_EQ(plain.colorPixels(), watched.colorPixels()) << threads << " threads";
-        EXPECT_EQ(plain.depthPixels(), watched.depthPixels()) << threads << " threads";
-    }
+    for (const DepthBufferFormat depthFormat : {DepthBufferFormat::Float, DepthBufferFormat::Unorm16,
+                                                DepthBufferFormat::Unorm24, DepthBufferFormat::ReversedFloat})
+        for (const int threads : {1, 3}) {
+            SCOPED_TRACE(::testing::Message() << "depth format " << static_cast<int>(depthFormat) << ", "
+                                              << threads << " threads");
+            Framebuffer plain(40, 30), watched(40, 30);
+            DrawContext plainContext(threads, 16), watchedContext(1, 16);
+            for (Framebuffer* fb : {&plain, &watched})
+                fb->clear(vec4(0.0f), depthClearValue(depthFormat), plainContext.pool);
+            DrawState state = testing::stateFor(plain);
+            state.raster.cull = CullMode::None;
+            state.depth.format = depthFormat;
+            state.depth.compare = nearerPasses(depthFormat, CompareOp::Less);
+            RecordingObserver observer;
+            std::uint64_t patchWalks = 0;
+            auto drawBothWays = [&]<class S>(S) {
+                const DrawStats plainStats = draw<S>(state, {}, vertices, indices, plain, plainContext);
+                const DrawStats watchedStats =
+                    draw<S>(state, {}, vertices, indices, watched, watchedContext, observer);
+                EXPECT_EQ(plainStats.fragmentsShaded, watchedStats.fragmentsShaded);
+                EXPECT_EQ(plainStats.fragmentsDepthFailed, watchedStats.fragmentsDepthFailed);
+                EXPECT_EQ(watchedStats.patchWalks, 0u);
+                patchWalks += plainStats.patchWalks;
+            };
+            // A shader that may discard writes depth when shaded, not when tested: a pixel's next
+            // fragment must not be tested before its queued one is shaded.
+            drawBothWays(RedDiscardingShader{});
+            state.depth.compare = nearerPasses(depthFormat, CompareOp::LessEqual);
+            drawBothWays(ClipSpaceColorShader{});
+            state.blend = BlendMode::Additive;
+            state.depth.testEnabled = false;
+            drawBothWays(ClipSpaceColorShader{});
+            EXPECT_GT(patchWalks, 300u) << "the tiny triangles were not walked as patches";
+            EXPECT_EQ(plain.colorPixels(), watched.colorPixels());
+            EXPECT_EQ(plain.depthPixels(), watched.depthPixels());
+        }
 }
 
 // A back-facing triangle culled by the draw is still shown to the observer: the setup it would have had
