@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../support/patch_checks.h"
 #include "../support/test_shaders.h"
 #include "pipeline.h"
 
@@ -17,6 +18,7 @@ namespace {
 
 using testing::ClipSpaceColorShader;
 using testing::FlatColorShader;
+using testing::RedDiscardingShader;
 
 // Records every hook.
 struct RecordingObserver : NullObserver {
@@ -42,20 +44,6 @@ struct RecordingObserver : NullObserver {
     void onResolve(const ResolveEvent& e) {
         resolves.push_back(e);
         resolvedLists.emplace_back(e.fragments.begin(), e.fragments.end());
-    }
-};
-
-// A shader that discards where its colour's red is above ½: a third way for a fragment to end.
-struct RedDiscardingShader {
-    using Attributes = ClipSpaceColorShader::Attributes;
-    using Varyings = ClipSpaceColorShader::Varyings;
-    using Uniforms = ClipSpaceColorShader::Uniforms;
-    static VertexOut<Varyings> vertex(const Attributes& in, const Uniforms&) {
-        return {in.position, {in.color}};
-    }
-    static std::optional<vec4> fragment(const Varyings& in, const Uniforms&) {
-        if (in.color.r > 0.5f) return std::nullopt;
-        return in.color;
     }
 };
 
@@ -282,69 +270,11 @@ TEST(Observer, UnwatchedDrawsCullAndCountAsWatchedOnesDo) {
         }
 }
 
-// A triangle a few pixels wide and up to eight tall is drawn as a stack of patches (back_end.h:
-// drawAsPatches) when unwatched, and block by block when watched, so the two must give the same bytes:
-// overlapping tiny triangles, drawn with the depth test and replaced colours, by a shader that discards, then
-// blended additively (whose float sums depend on the order each pixel's fragments arrive in), on one thread
-// and on three. Breaks caught: the queue not shaded before a patch whose pixel holds a queued fragment (a
-// pixel's fragments blended out of order), a patch's second row pair left out of the depth test or its depth
-// write, the patch placed outside the tile, the second patch of a stack left out.
+// A triangle a few pixels wide and up to eight tall is drawn as a stack of patches when unwatched, block
+// by block when watched: the same bytes (support/patch_checks.h, also run for sixteen lanes in the
+// AVX-512 test binary).
 TEST(PatchWalk, TinyTrianglesDrawTheBytesOfTheBlockWalk) {
-    std::mt19937 rng(99);
-    Framebuffer probe(40, 30);
-    std::uniform_real_distribution<float> centreX(2.0f, 38.0f), centreY(2.0f, 28.0f), spread(-2.0f, 2.0f),
-        depth(-0.9f, 0.9f), channel(0.0f, 1.0f);
-    std::vector<ClipSpaceColorShader::Attributes> v;
-    for (int t = 0; t < 600; ++t) {
-        // Half of them piled on a 6×6 square, so that pixels see many fragments.
-        const vec2 centre = t % 2 ? vec2(centreX(rng), centreY(rng))
-                                  : vec2(17.0f, 13.0f) + 0.5f * vec2(spread(rng), spread(rng));
-        const float z = depth(rng);
-        const vec4 color(channel(rng), channel(rng), channel(rng), 1.0f);
-        for (int k = 0; k < 3; ++k)
-            v.push_back(
-                {testing::clipFromWindow(centre + vec2(spread(rng), 1.8f * spread(rng)), probe, z), color});
-    }
-    std::vector<std::uint32_t> indices(v.size());
-    for (std::size_t i = 0; i < indices.size(); ++i)
-        indices[i] = static_cast<std::uint32_t>(i);
-    const std::span<const ClipSpaceColorShader::Attributes> vertices(v);
-    for (const DepthBufferFormat depthFormat : {DepthBufferFormat::Float, DepthBufferFormat::Unorm16,
-                                                DepthBufferFormat::Unorm24, DepthBufferFormat::ReversedFloat})
-        for (const int threads : {1, 3}) {
-            SCOPED_TRACE(::testing::Message() << "depth format " << static_cast<int>(depthFormat) << ", "
-                                              << threads << " threads");
-            Framebuffer plain(40, 30), watched(40, 30);
-            DrawContext plainContext(threads, 16), watchedContext(1, 16);
-            for (Framebuffer* fb : {&plain, &watched})
-                fb->clear(vec4(0.0f), depthClearValue(depthFormat), plainContext.pool);
-            DrawState state = testing::stateFor(plain);
-            state.raster.cull = CullMode::None;
-            state.depth.format = depthFormat;
-            state.depth.compare = nearerPasses(depthFormat, CompareOp::Less);
-            RecordingObserver observer;
-            std::uint64_t patchWalks = 0;
-            auto drawBothWays = [&]<class S>(S) {
-                const DrawStats plainStats = draw<S>(state, {}, vertices, indices, plain, plainContext);
-                const DrawStats watchedStats =
-                    draw<S>(state, {}, vertices, indices, watched, watchedContext, observer);
-                EXPECT_EQ(plainStats.fragmentsShaded, watchedStats.fragmentsShaded);
-                EXPECT_EQ(plainStats.fragmentsDepthFailed, watchedStats.fragmentsDepthFailed);
-                EXPECT_EQ(watchedStats.patchWalks, 0u);
-                patchWalks += plainStats.patchWalks;
-            };
-            // A shader that may discard writes depth when shaded, not when tested: a pixel's next
-            // fragment must not be tested before its queued one is shaded.
-            drawBothWays(RedDiscardingShader{});
-            state.depth.compare = nearerPasses(depthFormat, CompareOp::LessEqual);
-            drawBothWays(ClipSpaceColorShader{});
-            state.blend = BlendMode::Additive;
-            state.depth.testEnabled = false;
-            drawBothWays(ClipSpaceColorShader{});
-            EXPECT_GT(patchWalks, 300u) << "the tiny triangles were not walked as patches";
-            EXPECT_EQ(plain.colorPixels(), watched.colorPixels());
-            EXPECT_EQ(plain.depthPixels(), watched.depthPixels());
-        }
+    testing_support::expectPatchWalkDrawsTheBlockWalksBytes();
 }
 
 // A back-facing triangle culled by the draw is still shown to the observer: the setup it would have had

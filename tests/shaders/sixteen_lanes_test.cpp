@@ -235,5 +235,10 @@ TEST(SixteenLanes, PatchCoverageMatchesThePerPixelTest) {
     testing_support::expectPatchCoverageMatchesTheOracle<Intx16>();
 }
 
+// Tiny triangles drawn as 4×4 patches of sixteen lanes against the block walk: the same bytes.
+TEST(SixteenLanes, PatchWalkDrawsTheBlockWalksBytes) {
+    testing_support::expectPatchWalkDrawsTheBlockWalksBytes();
+}
+
 }  // namespace
 }  // namespace facet

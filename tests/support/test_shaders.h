@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -24,6 +25,20 @@ struct ClipSpaceColorShader {
         return {in.position, {in.color}};
     }
     static vec4 fragment(const Varyings& in, const Uniforms&) { return in.color; }
+};
+
+// A shader that discards where its colour's red is above ½: a third way for a fragment to end.
+struct RedDiscardingShader {
+    using Attributes = ClipSpaceColorShader::Attributes;
+    using Varyings = ClipSpaceColorShader::Varyings;
+    using Uniforms = ClipSpaceColorShader::Uniforms;
+    static VertexOut<Varyings> vertex(const Attributes& in, const Uniforms&) {
+        return {in.position, {in.color}};
+    }
+    static std::optional<vec4> fragment(const Varyings& in, const Uniforms&) {
+        if (in.color.r > 0.5f) return std::nullopt;
+        return in.color;
+    }
 };
 
 // Like ClipSpaceColorShader, but the colour is flat (GLSL `flat`): the provoking vertex's, unblended,
