@@ -286,7 +286,7 @@ struct DrawStats {
     std::uint64_t trianglesMissingSamples = 0;  // no pixel centre inside their bounding box
     std::uint64_t trianglesRasterized = 0;      // window triangles handed to the rasterizer (after clipping)
     std::uint64_t patchWalks = 0;  // of a triangle's walks over the tiles it touches, those of a few pixels'
-                                   // done as one patch (back end: drawPatch)
+                                   // done as patches (back end: drawAsPatches)
     std::uint64_t fragmentsShaded = 0;      // fragment shader invocations
     std::uint64_t fragmentsShadedBy16 = 0;  // of them, shaded sixteen at a time (two batches a call: wide.h)
     std::uint64_t fragmentsDepthFailed = 0;

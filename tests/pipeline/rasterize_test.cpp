@@ -13,13 +13,7 @@
 namespace facet {
 namespace {
 
-WindowVertex fixedAt(std::int64_t xFixed, std::int64_t yFixed) {
-    WindowVertex v;
-    v.xFixed = xFixed;
-    v.yFixed = yFixed;
-    v.invW = 1.0f;
-    return v;
-}
+using testing_support::fixedAt;
 
 // Where a block may start along one axis: at a multiple of 8, or, when the triangle's pixels in the
 // area span at most a block along it, anywhere a whole block stays inside the area.
@@ -106,9 +100,6 @@ TEST(Rasterize, BlockWalkMatchesPerPixelOracleOnRandomTriangles) {
     EXPECT_GT(fullBlocksSeen, 100);  // the trivial-accept path was exercised
 }
 
-// A triangle of a few pixels is walked as one patch: its coverage, edge values and barycentrics against
-// the per-pixel test and the block walk (support/patch_checks.h; the sixteen-lane patch in the
-// AVX-512 test binary).
 // A patch's edge values are 32-bit, so a triangle is walked as patches only when its edges are short,
 // not merely its box: the box of a long sliver that reaches beyond the viewport is cut to a few pixels.
 // Break caught: fitsPatch deciding by the (clamped) box alone, whose edge values then wrap in 32 bits.
@@ -132,6 +123,9 @@ TEST(Rasterize, APatchNeedsShortEdgesNotJustASmallBox) {
     EXPECT_FALSE(fitsPatch(sliverSetup, 8));
 }
 
+// A triangle of a few pixels is walked as one patch: its coverage, edge values and barycentrics against
+// the per-pixel test and the block walk (support/patch_checks.h; the sixteen-lane patch in the
+// AVX-512 test binary).
 TEST(Rasterize, PatchCoverageMatchesThePerPixelTestWithEightLanes) {
     testing_support::expectPatchCoverageMatchesTheOracle<Int8>();
 }

@@ -18,6 +18,15 @@
 
 namespace facet::testing_support {
 
+// A window vertex at fixed-point (xFixed, yFixed), 1/w = 1.
+inline WindowVertex fixedAt(std::int64_t xFixed, std::int64_t yFixed) {
+    WindowVertex v;
+    v.xFixed = xFixed;
+    v.yFixed = yFixed;
+    v.invW = 1.0f;
+    return v;
+}
+
 // A triangle of a few pixels is walked as one patch (4 columns by 2 rows of lanes, or 4 by 4 with
 // sixteen): its coverage must be the per-pixel test's inside the rectangle, its unbiased edge values
 // E₁, E₂ the exact ones, and its barycentrics the bits the block walk gives the same pixels, at any
@@ -26,14 +35,6 @@ namespace facet::testing_support {
 // Breaks caught: the fill rule's bias left out (a pixel on a right or bottom edge covered by both
 // neighbouring triangles), columns and rows swapped in the lanes, a rectangle bound off by one, E
 // rounded to float before it is divided by the area.
-inline WindowVertex patchTestVertex(std::int64_t xFixed, std::int64_t yFixed) {
-    WindowVertex v;
-    v.xFixed = xFixed;
-    v.yFixed = yFixed;
-    v.invW = 1.0f;
-    return v;
-}
-
 template <class I>
 void expectPatchCoverageMatchesTheOracle() {
     constexpr int kRows = kPatchRows<I>;
@@ -51,8 +52,8 @@ void expectPatchCoverageMatchesTheOracle() {
         const float cx = centreX(rng), cy = centreY(rng);
         WindowTriangle t;
         for (auto& v : t.vertices)
-            v = patchTestVertex(static_cast<std::int64_t>(cx + offset(rng)),
-                                static_cast<std::int64_t>(cy + offset(rng)));
+            v = fixedAt(static_cast<std::int64_t>(cx + offset(rng)),
+                        static_cast<std::int64_t>(cy + offset(rng)));
         TriangleSetup setup;
         if (setupTriangle(t, state, setup, nullptr) != TriangleFate::Drawn || !fitsPatch(setup, kRows))
             continue;
