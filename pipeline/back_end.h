@@ -574,8 +574,9 @@ template <class C, class Block>
 
 // ---- The walk of a triangle of a few pixels -----------------------------------------------------------
 
-// The lanes a patch (rasterize.h) is walked with: sixteen, 4×4 pixels, in the AVX-512 copy; eight, 4×2,
-// elsewhere. The depth test and the queue take them eight at a time, two rows of the patch.
+// The lanes a patch (rasterize.h) is walked with: sixteen in the AVX-512 copy (4×4 or 8×2 pixels),
+// eight elsewhere (4×2 or 8×1). The depth test and the queue take them eight at a time: two rows of a
+// narrow patch, one row of a wide one.
 #if FACET_SIXTEEN_LANES
 using PatchLanes = Intx16;
 inline Float8 patchHalf(Floatx16 v, int half) {
@@ -588,48 +589,62 @@ inline Float8 patchHalf(Float8 v, int) {
     return v;
 }
 
-// The depth test of two patch rows, (x, y) and (x, y + 1), four pixels each, lane = row · 4 + column,
-// for the `covered` lanes, as depthTestRow does for a block row; the rows are inside the tile. Returns
-// the lanes that passed.
-template <class C>
+// The rows of a patch kColumns wide in one half (eight lanes).
+template <int kColumns>
+inline constexpr int kRowsPerHalf = kBlockSize / kColumns;
+
+// The depth test of the eight lanes of a patch half at (x, y): two rows of four pixels, lane = row · 4 +
+// column, or one row of eight, for the `covered` lanes, as depthTestRow does for a block row; the rows
+// are inside the tile. Returns the lanes that passed.
+template <class C, int kColumns>
 [[gnu::always_inline]] inline unsigned depthTestPatchRows(TileWalk<C>& walk, int x, int y, Float8 z,
                                                           unsigned covered) {
     using Stored = typename C::Depth::Stored;
-    static_assert(std::is_same_v<Stored, float>, "two rows of four stored depths load as eight floats");
+    static_assert(std::is_same_v<Stored, float>, "a half's stored depths load as eight floats");
     using Float4 = float __attribute__((vector_size(16)));
     Stored* top = &walk.target.depth(x, y);
-    Stored* bottom = &walk.target.depth(x, y + 1);
-    Float4 topDepths, bottomDepths;
-    std::memcpy(&topDepths, top, sizeof topDepths);
-    std::memcpy(&bottomDepths, bottom, sizeof bottomDepths);
-    const Float8 stored = __builtin_shufflevector(topDepths, bottomDepths, 0, 1, 2, 3, 4, 5, 6, 7);
+    Stored* bottom = &walk.target.depth(x, y + kRowsPerHalf<kColumns> - 1);
+    Float8 stored;
+    if constexpr (kColumns == kWidePatch) {
+        std::memcpy(&stored, top, sizeof stored);
+    } else {
+        Float4 topDepths, bottomDepths;
+        std::memcpy(&topDepths, top, sizeof topDepths);
+        std::memcpy(&bottomDepths, bottom, sizeof bottomDepths);
+        stored = __builtin_shufflevector(topDepths, bottomDepths, 0, 1, 2, 3, 4, 5, 6, 7);
+    }
     unsigned passed = covered;
     if (walk.plan.depthTest) passed &= signMask(walk.depth.passes(walk.plan.depthCompare, z, stored));
     if constexpr (C::kDepthWrittenAtTest) {
         if (walk.plan.depthWrite && passed) {
             const Float8 written = select(laneMaskOf(passed), walk.depth.store(z), stored);
-            const Float4 topWritten = __builtin_shufflevector(written, written, 0, 1, 2, 3);
-            const Float4 bottomWritten = __builtin_shufflevector(written, written, 4, 5, 6, 7);
-            std::memcpy(top, &topWritten, sizeof topWritten);
-            std::memcpy(bottom, &bottomWritten, sizeof bottomWritten);
+            if constexpr (kColumns == kWidePatch) {
+                std::memcpy(top, &written, sizeof written);
+            } else {
+                const Float4 topWritten = __builtin_shufflevector(written, written, 0, 1, 2, 3);
+                const Float4 bottomWritten = __builtin_shufflevector(written, written, 4, 5, 6, 7);
+                std::memcpy(top, &topWritten, sizeof topWritten);
+                std::memcpy(bottom, &bottomWritten, sizeof bottomWritten);
+            }
         }
     }
     walk.stats.fragmentsDepthFailed += static_cast<unsigned>(std::popcount(covered & ~passed));
     return passed;
 }
 
-// The passing lanes of two patch rows at (x, y), queued (as many as the queue has room for, the queue
+// The passing lanes of a patch half at (x, y), queued (as many as the queue has room for, the queue
 // shaded when full, then the rest), as shadePassingRow queues a block row's.
-template <class C>
+template <class C, int kColumns>
 [[gnu::always_inline]] inline void queuePatchRows(TileWalk<C>& walk, const TriangleSetup& setup,
                                                   const float* planes, int x, int y, Float8 z, Float8 b1,
                                                   Float8 b2, unsigned passed) {
+    constexpr unsigned kRowBits = (1u << kColumns) - 1u;
     const Int8 lane = {0, 1, 2, 3, 4, 5, 6, 7};
-    const Int8 pixelX = (lane & (kPatchColumns - 1)) + x, pixelY = (lane >> 2) + y;
+    const Int8 pixelX = lane % kColumns + x, pixelY = lane / kColumns + y;
     const auto filterBits = [&](unsigned lanes) {
         std::uint64_t bits = 0;
-        for (int row = 0; row < 2; ++row)
-            bits |= std::uint64_t{FragmentQueue::filterBitsOf(x, (lanes >> (row * kPatchColumns)) & 0xfu)}
+        for (int row = 0; row < kRowsPerHalf<kColumns>; ++row)
+            bits |= std::uint64_t{FragmentQueue::filterBitsOf(x, (lanes >> (row * kColumns)) & kRowBits)}
                     << (((y + row) & 7) * 8);
         return bits;
     };
@@ -641,19 +656,21 @@ template <class C>
         queueLanes(queue, setup, planes, pixelX, pixelY, z, b1, b2, later, filterBits(later));
 }
 
-// A triangle that fitsPatch, over one patch at (x, y) inside the tile: coverage, barycentrics and depth
-// of every lane at once, then the depth test and queueing two rows at a time. The same fragments, with
-// the same bits, as the block walk gives (tests: PatchWalk).
-template <class C>
+// A triangle that fitsPatch, over one patch kColumns wide at (x, y) inside the tile: coverage,
+// barycentrics and depth of every lane at once, then the depth test and queueing eight lanes at a time.
+// The same fragments, with the same bits, as the block walk gives (tests: PatchWalk).
+template <class C, int kColumns>
 [[gnu::always_inline]] inline void drawPatch(TileWalk<C>& walk, const TriangleSetup& setup,
                                              const float* planes, const PixelRect& rect, int x, int y) {
+    constexpr int kRows = kPatchRows<PatchLanes, kColumns>;
+    constexpr unsigned kRowBits = (1u << kColumns) - 1u;
     PatchLanes e1, e2;
-    const unsigned covered = patchCoverage(setup, x, y, rect, e1, e2);
+    const unsigned covered = patchCoverage<PatchLanes, kColumns>(setup, x, y, rect, e1, e2);
     if (!covered) return;
     // A queued fragment at one of the patch's pixels reaches the framebuffer before they are tested.
     if (walk.queue.count) {
-        for (int row = 0; row < kPatchRows<PatchLanes>; ++row) {
-            const unsigned columns = (covered >> (row * kPatchColumns)) & 0xfu;
+        for (int row = 0; row < kRows; ++row) {
+            const unsigned columns = (covered >> (row * kColumns)) & kRowBits;
             if (columns && walk.queue.holdsAny(y + row, x, columns)) {
                 shadeQueue(walk, walk.queue);
                 break;
@@ -663,15 +680,15 @@ template <class C>
     const double inverse = 1.0 / static_cast<double>(setup.doubleArea);
     const auto b1 = barycentricLanes(e1, inverse), b2 = barycentricLanes(e2, inverse);
     const auto z = interpolateDepth(setup, b1, b2);
-    for (int half = 0; half < kPatchRows<PatchLanes> / 2; ++half) {
+    for (int half = 0; half < kRows / kRowsPerHalf<kColumns>; ++half) {
         const unsigned halfCovered = (covered >> (half * kBlockSize)) & 0xffu;
         if (!halfCovered) continue;
-        const int rowY = y + 2 * half;
+        const int rowY = y + kRowsPerHalf<kColumns> * half;
         const Float8 halfZ = patchHalf(z, half);
-        const unsigned passed = depthTestPatchRows(walk, x, rowY, halfZ, halfCovered);
+        const unsigned passed = depthTestPatchRows<C, kColumns>(walk, x, rowY, halfZ, halfCovered);
         if (passed)
-            queuePatchRows(walk, setup, planes, x, rowY, halfZ, patchHalf(b1, half), patchHalf(b2, half),
-                           passed);
+            queuePatchRows<C, kColumns>(walk, setup, planes, x, rowY, halfZ, patchHalf(b1, half),
+                                        patchHalf(b2, half), passed);
     }
 }
 
@@ -682,29 +699,58 @@ inline constexpr bool kWalksPatches = !C::kMultisample && !C::kObserving;
 
 // The most rows a triangle walked as patches may span, in a stack of patches one above the other: a
 // triangle a few pixels wide and up to eight tall (a sliver of a dense mesh or of a wall seen edge-on)
-// then takes two patches of sixteen lanes where the block walk would take a pass per row.
+// then takes two narrow patches of sixteen lanes where the block walk would take a pass per row.
 inline constexpr int kPatchStackRows = 8;
 
-// A triangle that fitsPatch a stack, in a tile (or part) `area` that can hold the stack (at least a
-// patch wide and the stack high, as all but tiny framebuffers' tiles are): its pixels in the area,
-// walked as a stack of patches placed over them inside the area (as firstBlockAt places a block).
-// Returns false, having drawn nothing, for any other triangle (the block walk draws it).
+// A triangle whose pixels in `area` (a tile or part of one) lie in a box of at most kColumns by
+// kPatchStackRows pixels: walked as a stack of patches placed over them inside the area (as
+// firstBlockAt places a block), if the area can hold the stack (at least a patch wide and the stack
+// high, as all but tiny framebuffers' tiles are). Returns false, having drawn nothing, if it cannot.
+template <class C, int kColumns>
+[[gnu::always_inline]] inline bool drawPatchStack(TileWalk<C>& walk, const TriangleSetup& setup,
+                                                  const float* planes, const PixelRect& area,
+                                                  const PixelRect& pixels) {
+    constexpr int kRows = kPatchRows<PatchLanes, kColumns>;
+    const int patches = (pixels.maxY - pixels.minY) / kRows + 1;
+    if (area.maxX - area.minX + 1 < kColumns || area.maxY - area.minY + 1 < patches * kRows) return false;
+    ++walk.stats.patchWalks;
+    const int x = std::min(pixels.minX, area.maxX - (kColumns - 1));
+    int y = std::min(pixels.minY, area.maxY - (patches * kRows - 1));
+    for (int patch = 0; patch < patches; ++patch, y += kRows)
+        drawPatch<C, kColumns>(walk, setup, planes, pixels, x, y);
+    return true;
+}
+
+// The most rows a triangle walked as wide patches may span: two, a flat strip (the edge-on walls and
+// sliver rows of a block world, a few pixels tall and five to eight wide), which the block walk sets a
+// block up for and then walks row by row. Taller ones keep the block walk, whose set-up is shared by
+// more rows, and which measured as fast as a stack of wide patches for them (docs/performance.md).
+inline constexpr int kWideStackRows = 2;
+
+// A triangle that fitsPatch kWidePatch columns and kWideStackRows rows, walked as wide patches.
+// Out of line: inlined into the tile walk beside the narrow stack, it slowed the narrow triangles'
+// walk, which most triangles of a dense mesh take.
+template <class C>
+[[gnu::noinline]] bool drawWidePatches(TileWalk<C>& walk, const TriangleSetup& setup, const float* planes,
+                                       const PixelRect& area) {
+    const PixelRect pixels = rasterRect(setup, area);
+    if (pixels.empty()) return true;  // binned to the tile, but beside this part of it
+    return drawPatchStack<C, kWidePatch>(walk, setup, planes, area, pixels);
+}
+
+// A triangle of a few pixels in a tile (or part) `area`: its pixels in the area walked as a stack of
+// narrow patches if its box is at most four columns by kPatchStackRows rows, or of wide ones if at most
+// eight by kWideStackRows (and its edges are short: fitsPatch). Returns false, having drawn nothing, for
+// any other triangle (the block walk draws it).
 template <class C>
 [[gnu::always_inline]] inline bool drawAsPatches(TileWalk<C>& walk, const TriangleSetup& setup,
                                                  const float* planes, const PixelRect& area) {
-    constexpr int kRows = kPatchRows<PatchLanes>;
-    if (!fitsPatch(setup, kPatchStackRows)) return false;
-    const PixelRect pixels = rasterRect(setup, area);
-    if (pixels.empty()) return true;  // binned to the tile, but beside this part of it
-    const int patches = (pixels.maxY - pixels.minY) / kRows + 1;
-    if (area.maxX - area.minX + 1 < kPatchColumns || area.maxY - area.minY + 1 < patches * kRows)
-        return false;
-    ++walk.stats.patchWalks;
-    const int x = std::min(pixels.minX, area.maxX - (kPatchColumns - 1));
-    int y = std::min(pixels.minY, area.maxY - (patches * kRows - 1));
-    for (int patch = 0; patch < patches; ++patch, y += kRows)
-        drawPatch(walk, setup, planes, pixels, x, y);
-    return true;
+    if (fitsPatch(setup, kNarrowPatch, kPatchStackRows)) {
+        const PixelRect pixels = rasterRect(setup, area);
+        if (pixels.empty()) return true;  // binned to the tile, but beside this part of it
+        return drawPatchStack<C, kNarrowPatch>(walk, setup, planes, area, pixels);
+    }
+    return fitsPatch(setup, kWidePatch, kWideStackRows) && drawWidePatches(walk, setup, planes, area);
 }
 
 // Calls visit(block) for every block of the triangle in `area` with a covered sample: a CoverageBlock

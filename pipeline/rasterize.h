@@ -220,29 +220,35 @@ void rasterizeBlocks(const TriangleSetup& setup, const PixelRect& area, BlockVis
 
 // ---- Patches: the walk of a triangle of a few pixels --------------------------------------------------
 
-// A patch is kPatchColumns pixels wide and as many rows as a lane vector I (Int8: two, Intx16: four)
-// holds, lane = row · kPatchColumns + column: a triangle whose pixels fit in one is tested, depth-tested
-// and queued in one pass of lane vectors, where the block walk spends a pass per row of eight lanes
-// (most of them outside so small a triangle) and sets up each block for edges of any length.
-inline constexpr int kPatchColumns = 4;
-template <class I>
-inline constexpr int kPatchRows = int(sizeof(I) / sizeof(std::int32_t)) / kPatchColumns;
+// A patch is kColumns pixels wide, four (kNarrowPatch) or eight (kWidePatch), and as many rows as a
+// lane vector I holds (sixteen lanes: four rows or two; eight lanes: two rows or one), lane = row ·
+// kColumns + column: a triangle whose pixels fit in one is tested, depth-tested and queued in one pass
+// of lane vectors, where the block walk spends a pass per row of eight lanes (most of them outside so
+// small a triangle) and sets up each block for edges of any length.
+inline constexpr int kNarrowPatch = 4, kWidePatch = 8;
+template <class I, int kColumns>
+inline constexpr int kPatchRows = int(sizeof(I) / sizeof(std::int32_t)) / kColumns;
 
 // Edges of a triangle walked as patches are at most this long along each axis (fixed units, 16 pixels).
-// Its box lies within its vertices' extent and a patch is placed at most 4 pixels beyond the box, so
-// every patch sample is within 20 pixels of each vertex and every edge function value there,
-// E = a·dx + b·dy from an edge's first vertex, has |E| ≤ 2 · 16·256 · 20·256 < 2^26: 32 bits with room
+// Its box lies within its vertices' extent and a patch is placed at most 7 pixels beyond the box, so
+// every patch sample is within 23 pixels of each vertex and every edge function value there,
+// E = a·dx + b·dy from an edge's first vertex, has |E| ≤ 2 · 16·256 · 23·256 < 2^26: 32 bits with room
 // to spare. Checked on the edges themselves, not the box, which is clamped to the viewport.
 inline constexpr std::int64_t kMaxPatchEdge = 16 * kFixedOne;
 
-// Whether the triangle's pixels fit in a patch's four columns and `rows` rows (a stack of patches
-// when `rows` is more than one patch holds), and its edges are short (kMaxPatchEdge).
-inline bool fitsPatch(const TriangleSetup& setup, int rows) {
+// Whether the triangle's edges are short enough for a patch (kMaxPatchEdge).
+inline bool hasPatchEdges(const TriangleSetup& setup) {
     bool shortEdges = true;
     for (const EdgeFunction& e : setup.edges)
         shortEdges &=
             e.a <= kMaxPatchEdge && e.a >= -kMaxPatchEdge && e.b <= kMaxPatchEdge && e.b >= -kMaxPatchEdge;
-    return setup.maxX - setup.minX < kPatchColumns && setup.maxY - setup.minY < rows && shortEdges;
+    return shortEdges;
+}
+
+// Whether the triangle's pixels fit in `columns` columns and `rows` rows (a stack of patches when `rows`
+// is more than one patch holds), and its edges are short (kMaxPatchEdge).
+inline bool fitsPatch(const TriangleSetup& setup, int columns, int rows) {
+    return setup.maxX - setup.minX < columns && setup.maxY - setup.minY < rows && hasPatchEdges(setup);
 }
 
 // The coverage of the patch at pixel (x, y) by a triangle that fitsPatch: bit `lane` set where all three
@@ -250,14 +256,14 @@ inline bool fitsPatch(const TriangleSetup& setup, int rows) {
 // the lane's pixel is inside `rect`. Also gives E₁ and E₂ unbiased at each lane's sample, for its
 // barycentrics. Each value is E(first sample) + column·a·kFixedOne + row·b·kFixedOne, exact in 32 bits
 // for such a triangle (kMaxPatchEdge).
-template <class I>
+template <class I, int kColumns>
 [[gnu::always_inline]] inline unsigned patchCoverage(const TriangleSetup& setup, int x, int y,
                                                      const PixelRect& rect, I& e1, I& e2) {
-    constexpr int kLanes = kPatchColumns * kPatchRows<I>;
+    constexpr int kLanes = kColumns * kPatchRows<I, kColumns>;
     I column, row;
     for (int lane = 0; lane < kLanes; ++lane) {
-        column[lane] = lane % kPatchColumns;
-        row[lane] = lane / kPatchColumns;
+        column[lane] = lane % kColumns;
+        row[lane] = lane / kColumns;
     }
     const SamplePoint first = samplePosition(x, y);
     I biased[3], unbiased[3];

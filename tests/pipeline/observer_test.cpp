@@ -277,6 +277,31 @@ TEST(PatchWalk, TinyTrianglesDrawTheBytesOfTheBlockWalk) {
     testing_support::expectPatchWalkDrawsTheBlockWalksBytes();
 }
 
+// Which walk a triangle takes goes by its size: up to four pixels wide a narrow patch, up to eight a
+// wide one, wider the block walk; each of them two rows tall.
+// Breaks caught: triangles wider than a narrow patch left to the block walk; a triangle wider than a
+// wide patch walked as one (its pixels beyond the eighth column lost).
+TEST(PatchWalk, ATriangleUpToEightPixelsWideIsWalkedAsPatches) {
+    using testing::ClipSpaceColorShader;
+    for (const auto& [width, patchWalks] : {std::pair{3.0f, 1u}, {6.0f, 1u}, {12.0f, 0u}}) {
+        SCOPED_TRACE(::testing::Message() << "a triangle " << width << " pixels wide");
+        Framebuffer fb(32, 16);
+        DrawContext context(1, 16);
+        fb.clear(vec4(0.0f), 1.0f, context.pool);
+        DrawState state = testing::stateFor(fb);
+        state.raster.cull = CullMode::None;
+        const vec4 white(1.0f);
+        const std::vector<ClipSpaceColorShader::Attributes> v = {
+            {testing::clipFromWindow(vec2(4.2f, 4.3f), fb), white},
+            {testing::clipFromWindow(vec2(4.2f + width, 4.6f), fb), white},
+            {testing::clipFromWindow(vec2(4.4f, 5.9f), fb), white}};
+        const std::vector<std::uint32_t> indices = {0, 1, 2};
+        const DrawStats stats = draw<ClipSpaceColorShader>(state, {}, v, indices, fb, context);
+        EXPECT_GT(stats.fragmentsShaded, 0u);
+        EXPECT_EQ(stats.patchWalks, patchWalks);
+    }
+}
+
 // A back-facing triangle culled by the draw is still shown to the observer: the setup it would have had
 // and the samples it would have covered, which are the ones it covers when culling is off.
 // Break caught: the would-be setup made with the draw's own culling (so nothing is shown).

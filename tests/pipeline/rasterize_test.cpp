@@ -116,18 +116,24 @@ TEST(Rasterize, APatchNeedsShortEdgesNotJustASmallBox) {
     TriangleSetup smallSetup, sliverSetup;
     ASSERT_EQ(setupTriangle(small, state, smallSetup, nullptr), TriangleFate::Drawn);
     ASSERT_EQ(setupTriangle(sliver, state, sliverSetup, nullptr), TriangleFate::Drawn);
-    ASSERT_LT(sliverSetup.maxX - sliverSetup.minX, kPatchColumns);
+    ASSERT_LT(sliverSetup.maxX - sliverSetup.minX, kNarrowPatch);
     ASSERT_LT(sliverSetup.maxY - sliverSetup.minY, 8);
-    EXPECT_TRUE(fitsPatch(smallSetup, 8));
-    EXPECT_FALSE(fitsPatch(smallSetup, 4));  // six rows
-    EXPECT_FALSE(fitsPatch(sliverSetup, 8));
+    EXPECT_TRUE(fitsPatch(smallSetup, kNarrowPatch, 8));
+    EXPECT_FALSE(fitsPatch(smallSetup, kNarrowPatch, 4));  // six rows
+    EXPECT_FALSE(fitsPatch(smallSetup, 2, 8));             // four columns
+    EXPECT_FALSE(fitsPatch(sliverSetup, kWidePatch, 8));
 }
 
 // A triangle of a few pixels is walked as one patch: its coverage, edge values and barycentrics against
 // the per-pixel test and the block walk (support/patch_checks.h; the sixteen-lane patch in the
 // AVX-512 test binary).
 TEST(Rasterize, PatchCoverageMatchesThePerPixelTestWithEightLanes) {
-    testing_support::expectPatchCoverageMatchesTheOracle<Int8>();
+    testing_support::expectPatchCoverageMatchesTheOracle<Int8, kNarrowPatch>();
+}
+
+// The same for a wide patch, eight columns by one row of eight lanes.
+TEST(Rasterize, WidePatchCoverageMatchesThePerPixelTestWithEightLanes) {
+    testing_support::expectPatchCoverageMatchesTheOracle<Int8, kWidePatch>();
 }
 
 // Edges thousands of pixels long overflow the 32-bit lanes of a crossed block; those blocks take the

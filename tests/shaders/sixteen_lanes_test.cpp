@@ -229,13 +229,16 @@ TEST(SixteenLanes, ThePerPixelShaderGivesTheEightLaneBitsOfEachHalf) {
     }
 }
 
-// The patch walk of the AVX-512 copy (4×4 pixels in sixteen lanes): coverage, edge values and
+// The patch walk of the AVX-512 copy (4×4 or 8×2 pixels in sixteen lanes): coverage, edge values and
 // barycentrics as the per-pixel test and the block walk give them (support/patch_checks.h).
 TEST(SixteenLanes, PatchCoverageMatchesThePerPixelTest) {
-    testing_support::expectPatchCoverageMatchesTheOracle<Intx16>();
+    testing_support::expectPatchCoverageMatchesTheOracle<Intx16, kNarrowPatch>();
+}
+TEST(SixteenLanes, WidePatchCoverageMatchesThePerPixelTest) {
+    testing_support::expectPatchCoverageMatchesTheOracle<Intx16, kWidePatch>();
 }
 
-// Tiny triangles drawn as 4×4 patches of sixteen lanes against the block walk: the same bytes.
+// Tiny triangles drawn as 4×4 and 8×2 patches of sixteen lanes against the block walk: the same bytes.
 TEST(SixteenLanes, PatchWalkDrawsTheBlockWalksBytes) {
     testing_support::expectPatchWalkDrawsTheBlockWalksBytes();
 }

@@ -27,17 +27,16 @@ inline WindowVertex fixedAt(std::int64_t xFixed, std::int64_t yFixed) {
     return v;
 }
 
-// A triangle of a few pixels is walked as one patch (4 columns by 2 rows of lanes, or 4 by 4 with
-// sixteen): its coverage must be the per-pixel test's inside the rectangle, its unbiased edge values
-// E₁, E₂ the exact ones, and its barycentrics the bits the block walk gives the same pixels, at any
-// placement of the patch over the triangle's pixels and for rectangles that cut them (the triangle's
-// part of a tile).
-// Breaks caught: the fill rule's bias left out (a pixel on a right or bottom edge covered by both
-// neighbouring triangles), columns and rows swapped in the lanes, a rectangle bound off by one, E
-// rounded to float before it is divided by the area.
-template <class I>
+// A triangle of a few pixels is walked as one patch kColumns wide (4 or 8 columns by 2 or 1 rows of
+// eight lanes, by 4 or 2 rows of sixteen): its coverage must be the per-pixel test's inside the rectangle,
+// its unbiased edge values E₁, E₂ the exact ones, and its barycentrics the bits the block walk gives the same
+// pixels, at any placement of the patch over the triangle's pixels and for rectangles that cut them (the
+// triangle's part of a tile). Breaks caught: the fill rule's bias left out (a pixel on a right or bottom edge
+// covered by both neighbouring triangles), columns and rows swapped in the lanes, a rectangle bound off by
+// one, E rounded to float before it is divided by the area.
+template <class I, int kColumns>
 void expectPatchCoverageMatchesTheOracle() {
-    constexpr int kRows = kPatchRows<I>;
+    constexpr int kRows = kPatchRows<I, kColumns>;
     std::mt19937 rng(20261207);
     const int width = 40, height = 30;
     DrawState state;
@@ -45,17 +44,21 @@ void expectPatchCoverageMatchesTheOracle() {
     state.raster.cull = CullMode::None;
     int checked = 0, coveredSeen = 0;
     for (int trial = 0; trial < 20000; ++trial) {
-        const float scale = (0.5f + 4.0f * static_cast<float>(rng() % 1000) / 1000.0f) * kFixedOne;
-        std::uniform_real_distribution<float> offset(-0.5f * scale, 0.5f * scale);
+        // Spread over about the patch's width and height, so that many fit it and some do not.
+        const float scaleX = (0.5f + kColumns * static_cast<float>(rng() % 1000) / 1000.0f) * kFixedOne;
+        const float scaleY = (0.5f + kRows * static_cast<float>(rng() % 1000) / 1000.0f) * kFixedOne;
+        std::uniform_real_distribution<float> offsetX(-0.5f * scaleX, 0.5f * scaleX),
+            offsetY(-0.5f * scaleY, 0.5f * scaleY);
         std::uniform_real_distribution<float> centreX(4 * kFixedOne, (width - 4) * kFixedOne),
             centreY(4 * kFixedOne, (height - 4) * kFixedOne);
         const float cx = centreX(rng), cy = centreY(rng);
         WindowTriangle t;
         for (auto& v : t.vertices)
-            v = fixedAt(static_cast<std::int64_t>(cx + offset(rng)),
-                        static_cast<std::int64_t>(cy + offset(rng)));
+            v = fixedAt(static_cast<std::int64_t>(cx + offsetX(rng)),
+                        static_cast<std::int64_t>(cy + offsetY(rng)));
         TriangleSetup setup;
-        if (setupTriangle(t, state, setup, nullptr) != TriangleFate::Drawn || !fitsPatch(setup, kRows))
+        if (setupTriangle(t, state, setup, nullptr) != TriangleFate::Drawn ||
+            !fitsPatch(setup, kColumns, kRows))
             continue;
         // A tile that holds the triangle, or cuts it on a random side.
         PixelRect area{0, 0, width - 1, height - 1};
@@ -66,17 +69,17 @@ void expectPatchCoverageMatchesTheOracle() {
         const PixelRect rect = rasterRect(setup, area);
         if (rect.empty()) continue;
         // Any placement of the patch over the rectangle's pixels.
-        const int x = rect.maxX - (kPatchColumns - 1) +
-                      static_cast<int>(rng() % (kPatchColumns - (rect.maxX - rect.minX)));
+        const int x =
+            rect.maxX - (kColumns - 1) + static_cast<int>(rng() % (kColumns - (rect.maxX - rect.minX)));
         const int y = rect.maxY - (kRows - 1) + static_cast<int>(rng() % (kRows - (rect.maxY - rect.minY)));
         I e1, e2;
-        const unsigned mask = patchCoverage(setup, x, y, rect, e1, e2);
+        const unsigned mask = patchCoverage<I, kColumns>(setup, x, y, rect, e1, e2);
         const double inverse = 1.0 / static_cast<double>(setup.doubleArea);
         const auto b1 = barycentricLanes(e1, inverse), b2 = barycentricLanes(e2, inverse);
         const BlockBarycentrics block(setup, x, y);  // a block placed where the patch is
         ++checked;
-        for (int lane = 0; lane < kPatchColumns * kRows; ++lane) {
-            const int px = x + lane % kPatchColumns, py = y + lane / kPatchColumns;
+        for (int lane = 0; lane < kColumns * kRows; ++lane) {
+            const int px = x + lane % kColumns, py = y + lane / kColumns;
             const bool inRect = px >= rect.minX && px <= rect.maxX && py >= rect.minY && py <= rect.maxY;
             const bool expected = inRect && coversSample(setup, px, py);
             coveredSeen += expected;
@@ -86,12 +89,12 @@ void expectPatchCoverageMatchesTheOracle() {
             ASSERT_EQ(e1[lane], setup.edges[1].at(p.x, p.y)) << "trial " << trial << " lane " << lane;
             ASSERT_EQ(e2[lane], setup.edges[2].at(p.x, p.y)) << "trial " << trial << " lane " << lane;
             Float8 blockB1, blockB2;
-            block.row(lane / kPatchColumns, blockB1, blockB2);
+            block.row(lane / kColumns, blockB1, blockB2);
             ASSERT_EQ(std::bit_cast<std::uint32_t>(b1[lane]),
-                      std::bit_cast<std::uint32_t>(blockB1[lane % kPatchColumns]))
+                      std::bit_cast<std::uint32_t>(blockB1[lane % kColumns]))
                 << "trial " << trial << " lane " << lane;
             ASSERT_EQ(std::bit_cast<std::uint32_t>(b2[lane]),
-                      std::bit_cast<std::uint32_t>(blockB2[lane % kPatchColumns]))
+                      std::bit_cast<std::uint32_t>(blockB2[lane % kColumns]))
                 << "trial " << trial << " lane " << lane;
         }
     }
@@ -104,14 +107,15 @@ struct WatchingObserver : NullObserver {
     static constexpr bool enabled = true;
 };
 
-// A triangle a few pixels wide and up to eight tall is drawn as a stack of patches (back_end.h:
-// drawAsPatches) when unwatched (4×4 pixels in the AVX-512 build, 4×2 elsewhere), and block by block when
-// watched, so the two must give the same bytes: overlapping tiny triangles, drawn with the depth test and
-// replaced colours, by a shader that discards, then blended additively (whose float sums depend on the order
-// each pixel's fragments arrive in), on one thread and on three. Breaks caught: the queue not shaded before a
-// patch whose pixel holds a queued fragment (a pixel's fragments blended out of order), a patch's second row
-// pair left out of the depth test or its depth write, the patch placed outside the tile, the second patch of
-// a stack left out.
+// A triangle of a few pixels is drawn as a stack of patches (back_end.h: drawAsPatches: 4×4 or 8×2
+// pixels in the AVX-512 build, 4×2 or 8×1 elsewhere) when unwatched, and block by block when watched, so
+// the two must give the same bytes: overlapping tiny triangles, a third of them flat strips wider than a
+// narrow patch, drawn with the depth test and replaced colours, by a shader that discards, then blended
+// additively (whose float sums depend on the order each pixel's fragments arrive in), on one thread and
+// on three. Breaks caught: the queue not shaded before a patch whose pixel holds a queued fragment (a
+// pixel's fragments blended out of order), a patch's second half left out of the depth test or its depth
+// write, a wide patch's row stored as a narrow one's two half rows, the patch placed outside the tile, the
+// second patch of a stack left out.
 inline void expectPatchWalkDrawsTheBlockWalksBytes() {
     using testing::ClipSpaceColorShader;
     using testing::RedDiscardingShader;
@@ -126,10 +130,15 @@ inline void expectPatchWalkDrawsTheBlockWalksBytes() {
                                   : vec2(17.0f, 13.0f) + 0.5f * vec2(spread(rng), spread(rng));
         const float z = depth(rng);
         const vec4 color(channel(rng), channel(rng), channel(rng), 1.0f);
-        for (int k = 0; k < 3; ++k)
-            v.push_back({testing::clipFromWindow(centre + vec2(spread(rng), 1.8f * spread(rng)), probe,
-                                                 z + 0.02f * spread(rng)),
-                         color});
+        for (int k = 0; k < 3; ++k) {
+            // Every third triangle five to eight pixels wide and one or two rows tall: its vertices 3
+            // pixels apart along x.
+            const bool wide = t % 3 == 0;
+            const vec2 offset =
+                wide ? vec2(3.0f * static_cast<float>(k - 1) + 0.4f * spread(rng), 0.3f * spread(rng))
+                     : vec2(spread(rng), 1.8f * spread(rng));
+            v.push_back({testing::clipFromWindow(centre + offset, probe, z + 0.02f * spread(rng)), color});
+        }
     }
     std::vector<std::uint32_t> indices(v.size());
     for (std::size_t i = 0; i < indices.size(); ++i)
