@@ -724,7 +724,7 @@ template <class C, int kColumns>
 // The most rows a triangle walked as wide patches may span: two, a flat strip (the edge-on walls and
 // sliver rows of a block world, a few pixels tall and five to eight wide), which the block walk sets a
 // block up for and then walks row by row. Taller ones keep the block walk, whose set-up is shared by
-// more rows, and which measured as fast as a stack of wide patches for them (docs/performance.md).
+// more rows: for them it measured no slower than a stack of wide patches (docs/performance.md).
 inline constexpr int kWideStackRows = 2;
 
 // A triangle that fitsPatch kWidePatch columns and kWideStackRows rows, walked as wide patches.
