@@ -603,7 +603,7 @@ template <class C, int kColumns>
     static_assert(std::is_same_v<Stored, float>, "a half's stored depths load as eight floats");
     using Float4 = float __attribute__((vector_size(16)));
     Stored* top = &walk.target.depth(x, y);
-    Stored* bottom = &walk.target.depth(x, y + kRowsPerHalf<kColumns> - 1);
+    Stored* bottom = &walk.target.depth(x, y + 1);  // a narrow half's second row
     Float8 stored;
     if constexpr (kColumns == kWidePatch) {
         std::memcpy(&stored, top, sizeof stored);
@@ -702,15 +702,16 @@ inline constexpr bool kWalksPatches = !C::kMultisample && !C::kObserving;
 // then takes two narrow patches of sixteen lanes where the block walk would take a pass per row.
 inline constexpr int kPatchStackRows = 8;
 
-// A triangle whose pixels in `area` (a tile or part of one) lie in a box of at most kColumns by
-// kPatchStackRows pixels: walked as a stack of patches placed over them inside the area (as
-// firstBlockAt places a block), if the area can hold the stack (at least a patch wide and the stack
-// high, as all but tiny framebuffers' tiles are). Returns false, having drawn nothing, if it cannot.
+// A triangle whose box is at most kColumns by kPatchStackRows pixels: its pixels in `area` (a tile or
+// part of one) walked as a stack of patches placed over them inside the area (as firstBlockAt places a
+// block), if the area can hold the stack (at least a patch wide and the stack high, as all but tiny
+// framebuffers' tiles are). Returns false, having drawn nothing, if it cannot.
 template <class C, int kColumns>
 [[gnu::always_inline]] inline bool drawPatchStack(TileWalk<C>& walk, const TriangleSetup& setup,
-                                                  const float* planes, const PixelRect& area,
-                                                  const PixelRect& pixels) {
+                                                  const float* planes, const PixelRect& area) {
     constexpr int kRows = kPatchRows<PatchLanes, kColumns>;
+    const PixelRect pixels = rasterRect(setup, area);
+    if (pixels.empty()) return true;  // binned to the tile, but beside this part of it
     const int patches = (pixels.maxY - pixels.minY) / kRows + 1;
     if (area.maxX - area.minX + 1 < kColumns || area.maxY - area.minY + 1 < patches * kRows) return false;
     ++walk.stats.patchWalks;
@@ -733,9 +734,7 @@ inline constexpr int kWideStackRows = 2;
 template <class C>
 [[gnu::noinline]] bool drawWidePatches(TileWalk<C>& walk, const TriangleSetup& setup, const float* planes,
                                        const PixelRect& area) {
-    const PixelRect pixels = rasterRect(setup, area);
-    if (pixels.empty()) return true;  // binned to the tile, but beside this part of it
-    return drawPatchStack<C, kWidePatch>(walk, setup, planes, area, pixels);
+    return drawPatchStack<C, kWidePatch>(walk, setup, planes, area);
 }
 
 // A triangle of a few pixels in a tile (or part) `area`: its pixels in the area walked as a stack of
@@ -745,11 +744,8 @@ template <class C>
 template <class C>
 [[gnu::always_inline]] inline bool drawAsPatches(TileWalk<C>& walk, const TriangleSetup& setup,
                                                  const float* planes, const PixelRect& area) {
-    if (fitsPatch(setup, kNarrowPatch, kPatchStackRows)) {
-        const PixelRect pixels = rasterRect(setup, area);
-        if (pixels.empty()) return true;  // binned to the tile, but beside this part of it
-        return drawPatchStack<C, kNarrowPatch>(walk, setup, planes, area, pixels);
-    }
+    if (fitsPatch(setup, kNarrowPatch, kPatchStackRows))
+        return drawPatchStack<C, kNarrowPatch>(walk, setup, planes, area);
     return fitsPatch(setup, kWidePatch, kWideStackRows) && drawWidePatches(walk, setup, planes, area);
 }
 

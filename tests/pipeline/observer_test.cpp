@@ -282,7 +282,6 @@ TEST(PatchWalk, TinyTrianglesDrawTheBytesOfTheBlockWalk) {
 // Breaks caught: triangles wider than a narrow patch left to the block walk; a triangle wider than a
 // wide patch walked as one (its pixels beyond the eighth column lost).
 TEST(PatchWalk, ATriangleUpToEightPixelsWideIsWalkedAsPatches) {
-    using testing::ClipSpaceColorShader;
     for (const auto& [width, patchWalks] : {std::pair{3.0f, 1u}, {6.0f, 1u}, {12.0f, 0u}}) {
         SCOPED_TRACE(::testing::Message() << "a triangle " << width << " pixels wide");
         Framebuffer fb(32, 16);
