@@ -16,7 +16,8 @@ if [ $# -eq 0 ]; then
     exit 2
 fi
 
-library=$(ldconfig -p | awk '$1 == "libOSMesa.so.8" {print $NF; exit}')
+# awk reads the whole list: leaving early would end ldconfig with SIGPIPE, which pipefail turns into exit 141.
+library=$(ldconfig -p | awk '$1 == "libOSMesa.so.8" && !found {print $NF; found = 1}')
 if [ -z "$library" ]; then
     exec "$@"
 fi
