@@ -203,7 +203,7 @@ template <WideLanes F>
     const Int c00 = gatherWords(t.codes.data(), i00), c10 = gatherWords(t.codes.data(), i10),
               c01 = gatherWords(t.codes.data(), i01), c11 = gatherWords(t.codes.data(), i11);
     auto color = [&](int shift) {
-        auto decode = [&](Int c) { return gather(t.colorFromCode.data(), (c >> shift) & 0xff); };
+        auto decode = [&](Int c) { return lookupByteCodes(t.colorFromCode, (c >> shift) & 0xff); };
         return filter(decode(c00), decode(c10), decode(c01), decode(c11));
     };
     auto alpha = [&](Int c) { return alphaFromCode((c >> 24) & 0xff); };

@@ -2,6 +2,7 @@
 // the lane helpers it is built on (wide.h's laneMaskOf, gather, gatherWords). Header-only on purpose:
 // this file is also compiled alone for x86-64-v3 (facet_pipeline_avx2_tests), where the gathers are
 // AVX2 instructions rather than the portable loops the baseline build tests.
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -27,7 +28,8 @@ TEST(TextureLanes, LaneMaskOfSetsTheLanesOfItsBits) {
     }
 }
 
-// Breaks caught: a gather scaled by the wrong element size, or reading the index's lane out of order.
+// Breaks caught: a gather scaled by the wrong element size, or reading the index's lane out of order;
+// the 8-bit code lookup reading another entry than its code's.
 TEST(TextureLanes, GathersReadTheIndexedElements) {
     std::vector<float> table(300);
     for (std::size_t i = 0; i < table.size(); ++i)
@@ -43,6 +45,12 @@ TEST(TextureLanes, GathersReadTheIndexedElements) {
                                        static_cast<std::uint32_t>(bytes[at + 3]) << 24;  // little-endian
         EXPECT_EQ(static_cast<std::uint32_t>(words[lane]), expected) << "lane " << lane;
     }
+    std::array<float, 256> codeTable;
+    for (std::size_t code = 0; code < codeTable.size(); ++code)
+        codeTable[code] = table[code];
+    const Float8 decoded = lookupByteCodes(codeTable, index & 0xff);
+    for (int lane = 0; lane < 8; ++lane)
+        EXPECT_EQ(decoded[lane], table[static_cast<std::size_t>(index[lane] & 0xff)]) << "lane " << lane;
 }
 
 // An 8-bit texture with random codes, its colour decoded through a table that is not code/255, so

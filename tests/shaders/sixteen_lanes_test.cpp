@@ -149,6 +149,24 @@ TEST(SixteenLanes, MasksAndGathersCoverAllSixteenLanes) {
     }
 }
 
+// Every 8-bit code through the 256-entry table lookup of sixteen lanes (eight permutes and a choice by
+// the code's top three bits), each code in every lane. Breaks caught: an eighth of the table read from
+// the wrong place, the choice by bit 5, 6 or 7 inverted or swapped, a lane's code taken from another.
+TEST(SixteenLanes, ByteCodeLookupReadsEveryEntryInEveryLane) {
+    std::array<float, 256> table;
+    for (int code = 0; code < 256; ++code)
+        table[static_cast<std::size_t>(code)] = static_cast<float>(code) * 1.5f + 0.25f;
+    for (int start = 0; start < 256; ++start) {
+        Intx16 code;
+        for (int lane = 0; lane < 16; ++lane)
+            code[lane] = (start + lane * 17) % 256;
+        const Floatx16 looked = lookupByteCodes(table, code);
+        for (int lane = 0; lane < 16; ++lane)
+            ASSERT_EQ(looked[lane], table[static_cast<std::size_t>(code[lane])])
+                << "code " << code[lane] << " in lane " << lane;
+    }
+}
+
 // Breaks caught: sixteen-lane bilinear filtering that weighs, decodes or addresses texels otherwise
 // than eight lanes (or one) do, or takes the gathering path where one lane would wrap.
 TEST(SixteenLanes, BilinearSamplesGiveTheEightLaneBitsOfEachHalf) {
