@@ -592,6 +592,9 @@ inline Float8 patchHalf(Float8 v, int) {
 // The rows of a patch kColumns wide in one half (eight lanes).
 template <int kColumns>
 inline constexpr int kRowsPerHalf = kBlockSize / kColumns;
+// The lane bits of one row of such a patch.
+template <int kColumns>
+inline constexpr unsigned kPatchRowBits = (1u << kColumns) - 1u;
 
 // The depth test of the eight lanes of a patch half at (x, y): two rows of four pixels, lane = row · 4 +
 // column, or one row of eight, for the `covered` lanes, as depthTestRow does for a block row; the rows
@@ -603,7 +606,8 @@ template <class C, int kColumns>
     static_assert(std::is_same_v<Stored, float>, "a half's stored depths load as eight floats");
     using Float4 = float __attribute__((vector_size(16)));
     Stored* top = &walk.target.depth(x, y);
-    Stored* bottom = &walk.target.depth(x, y + 1);  // a narrow half's second row
+    Stored* bottom = nullptr;  // a narrow half's second row (a wide half's row may be the last one)
+    if constexpr (kColumns == kNarrowPatch) bottom = &walk.target.depth(x, y + 1);
     Float8 stored;
     if constexpr (kColumns == kWidePatch) {
         std::memcpy(&stored, top, sizeof stored);
@@ -638,13 +642,13 @@ template <class C, int kColumns>
 [[gnu::always_inline]] inline void queuePatchRows(TileWalk<C>& walk, const TriangleSetup& setup,
                                                   const float* planes, int x, int y, Float8 z, Float8 b1,
                                                   Float8 b2, unsigned passed) {
-    constexpr unsigned kRowBits = (1u << kColumns) - 1u;
     const Int8 lane = {0, 1, 2, 3, 4, 5, 6, 7};
     const Int8 pixelX = lane % kColumns + x, pixelY = lane / kColumns + y;
     const auto filterBits = [&](unsigned lanes) {
         std::uint64_t bits = 0;
         for (int row = 0; row < kRowsPerHalf<kColumns>; ++row)
-            bits |= std::uint64_t{FragmentQueue::filterBitsOf(x, (lanes >> (row * kColumns)) & kRowBits)}
+            bits |= std::uint64_t{FragmentQueue::filterBitsOf(
+                        x, (lanes >> (row * kColumns)) & kPatchRowBits<kColumns>)}
                     << (((y + row) & 7) * 8);
         return bits;
     };
@@ -663,14 +667,13 @@ template <class C, int kColumns>
 [[gnu::always_inline]] inline void drawPatch(TileWalk<C>& walk, const TriangleSetup& setup,
                                              const float* planes, const PixelRect& rect, int x, int y) {
     constexpr int kRows = kPatchRows<PatchLanes, kColumns>;
-    constexpr unsigned kRowBits = (1u << kColumns) - 1u;
     PatchLanes e1, e2;
     const unsigned covered = patchCoverage<PatchLanes, kColumns>(setup, x, y, rect, e1, e2);
     if (!covered) return;
     // A queued fragment at one of the patch's pixels reaches the framebuffer before they are tested.
     if (walk.queue.count) {
         for (int row = 0; row < kRows; ++row) {
-            const unsigned columns = (covered >> (row * kColumns)) & kRowBits;
+            const unsigned columns = (covered >> (row * kColumns)) & kPatchRowBits<kColumns>;
             if (columns && walk.queue.holdsAny(y + row, x, columns)) {
                 shadeQueue(walk, walk.queue);
                 break;
