@@ -581,25 +581,28 @@ std::vector<std::string> decisionsOf(const TradeResult& result) {
     std::vector<std::string> decisions;
     for (std::size_t i = 0; i < result.rows.size(); ++i) {
         const TradeRow& row = result.rows[i];
-        // A row that changes the image really costs what it costs: an 8-bit colour buffer sits near the
-        // margin (1 + 2 x noise) and reads "slower" in one run and "within noise" in the next on a
-        // loaded machine. Only the baseline's and the no-effect rows' verdicts are fixed by design.
+        // A row that changes the image really costs what it costs: a colour buffer of 8 or 16 bits sits
+        // near the margin (1 + 2 x noise) and reads "slower" in one run and "within noise" in the next on
+        // a loaded machine, and with its verdict goes its place on the front (read faster by chance, the
+        // less accurate row joins it). Only the baseline's and the no-effect rows' verdicts and places
+        // are fixed by design.
         const bool verdictFixed = i == 0 || row.noEffect;
         decisions.push_back(row.setting.knob + " " + row.setting.value + " [" + row.setting.label() +
                             "]: " + (verdictFixed ? verdict(row.timeVerdict) : "any verdict") +
-                            (row.pareto ? ", front" : "") + (row.noEffect ? ", no effect" : ""));
+                            (row.pareto && verdictFixed ? ", front" : "") +
+                            (row.noEffect ? ", no effect" : ""));
     }
     return decisions;
 }
 
 // The same small trade run twice in one test agrees on every decision: the time verdicts, the front and
-// the presets' knobs. Its knobs cost the baseline's time or nearly (no transparency mode, depth format
-// or half colour buffer changes the opaque cow; an 8-bit colour buffer changes it, and its verdict
-// is left out of the comparison), so that on a loaded machine any raw difference between their times is
-// noise: with CPU time and the noise margin no verdict comes from it. (Anti-aliasing is left out: settings
-// such as ssaa2 and msaa2 cost within a few per cent of each other, and which of the two a front keeps then
-// depends on the margin of that run.) Catches: verdicts, front or presets taken from the raw times (the rows
-// without effect then read faster or slower by chance and push the baseline off the front), a row
+// the presets' knobs. Its knobs cost the baseline's time or nearly (no transparency mode or depth format
+// changes the opaque cow; the colour buffers of 8 and 16 bits change it, and their verdicts and places
+// on the front are left out of the comparison), so that on a loaded machine any raw difference between their
+// times is noise: with CPU time and the noise margin no verdict comes from it. (Anti-aliasing is left out:
+// settings such as ssaa2 and msaa2 cost within a few per cent of each other, and which of the two a front
+// keeps then depends on the margin of that run.) Catches: verdicts, front or presets taken from the raw times
+// (the rows without effect then read faster or slower by chance and push the baseline off the front), a row
 // without effect given a verdict.
 TEST(TradeRepeat, TheSameTradeTwiceAgreesOnEveryVerdict) {
     const testing_support::TempFolder folder;
@@ -743,7 +746,7 @@ TEST(TradeMetrics, IdenticalImagesHaveTheCappedPsnrAndAnSsimOfOne) {
 // shader, far from the reference); the reference traced with the built-in shader or at the mesh's own
 // positions (its image the built-in's, the rows far from it).
 TEST(TradeWithShader, TheKnobsAreScoredAgainstTheReferenceOfTheShader) {
-    const testing_support::OwnShaderCache cache;
+    const testing_support::SharedShaderCache cache;
     const testing_support::TempFolder folder;
     CLI::App app;
     cli::TradeArgs args;
