@@ -206,7 +206,7 @@ TEST_F(BenchTest, InstructionSetsAreEachTimedAndAgree) {
 // (or the shader side with the built-in: the written fragments of the two sides then agree where the
 // discarding shader writes fewer of them), the ratio's line missing.
 TEST_F(BenchTest, ShaderIsTimedAgainstTheBuiltInBlinnPhong) {
-    const testing_support::OwnShaderCache cache;
+    const testing_support::SharedShaderCache cache;
     BenchOptions options;
     options.model = FACET_SOURCE_DIR "/models/spot/spot_triangulated.obj";
     options.width = 64;

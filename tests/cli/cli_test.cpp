@@ -613,7 +613,7 @@ TEST(Cli, UnreadableTextureWarnsAndDrawsWithoutIt) {
 // through to the Mesa comparison (exit 3 or a Mesa message), the exit statuses swapped or 3, the trace
 // of the first pixel left out.
 TEST(CompareAgainst, AShaderIsComparedWithTheBuiltInModel) {
-    const testing_support::OwnShaderCache cache;
+    const testing_support::SharedShaderCache cache;
     const TempFolder dir;
     const std::string shader = (testing_support::kUserShaders / "own_phong.cpp").string();
     const std::string common = "compare '" FACET_SOURCE_DIR

@@ -17,7 +17,7 @@ namespace facet {
 namespace {
 
 using testing_support::kUserShaders;
-using testing_support::OwnShaderCache;
+using testing_support::SharedShaderCache;
 
 const std::filesystem::path kSpot =
     std::filesystem::path(FACET_SOURCE_DIR) / "models/spot/spot_triangulated.obj";
@@ -56,7 +56,7 @@ void expectAgreement(const ReferenceComparison& c) {
 // instead of the drawn one, or without the division by w); varyings interpolated with the wrong
 // barycentrics (the colours would be off by more than 1/255 across the model).
 TEST(UserShaderReference, DisplacedTrianglesAgreeWithTheRasterizer) {
-    const OwnShaderCache cache;
+    const SharedShaderCache cache;
     const ReferenceComparison flat = compareWithoutShadowMapTable(displaceCutoutScene(0.0, 2.0));
     expectAgreement(flat);
     const ReferenceComparison displaced = compareWithoutShadowMapTable(displaceCutoutScene(0.04, 2.0));
@@ -72,7 +72,7 @@ TEST(UserShaderReference, DisplacedTrianglesAgreeWithTheRasterizer) {
 // behind it; the discarding draw left opaque in the camera rays' BVH, which stops them at the discarded
 // fragment; nearestSurfaces not told about the surface behind (every hole counted as a disagreement).
 TEST(UserShaderReference, DiscardedFragmentsShowWhatIsBehind) {
-    const OwnShaderCache cache;
+    const SharedShaderCache cache;
     const auto scene = [](double cut) {
         Scene s = displaceCutoutScene(0.0, cut);
         s.lighting.shading = ShadingFrequency::Flat;
@@ -107,7 +107,7 @@ Scene ownPhongScene(bool specular) {
 // bits (the module compiled with other floating-point flags than the frame's code, or the uniforms it
 // sees not the built-in draw's).
 TEST(ShaderAgainstBuiltIn, TheBuiltInFormulaWrittenAsAShaderIsIdentical) {
-    const OwnShaderCache cache;
+    const SharedShaderCache cache;
     for (const ReflectionModel model :
          {ReflectionModel::Phong, ReflectionModel::BlinnPhong, ReflectionModel::CookTorrance}) {
         SCOPED_TRACE(std::string(nameOf(model)));
@@ -122,7 +122,7 @@ TEST(ShaderAgainstBuiltIn, TheBuiltInFormulaWrittenAsAShaderIsIdentical) {
 // Breaks caught: the count, the largest difference or the first pixel taken from the wrong image or
 // in column order; a pixel counted as differing when its codes are the same (linear values compared).
 TEST(ShaderAgainstBuiltIn, LeavingOutTheSpecularTermDiffersFromTheFirstHighlight) {
-    const OwnShaderCache cache;
+    const SharedShaderCache cache;
     const ShaderComparison c =
         compareShaderWithBuiltIn(shaderAgainstScenes(ownPhongScene(false), ReflectionModel::Phong), 0);
     ASSERT_TRUE(c.first.has_value());

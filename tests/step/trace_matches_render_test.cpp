@@ -15,7 +15,7 @@
 #include "io/image_io.h"
 #include "step/trace.h"
 #include "support/temp_folder.h"
-#include "test_shader_cache.h"
+#include "support/user_shader_files.h"
 
 namespace facet::step {
 namespace {
@@ -66,7 +66,7 @@ TEST_P(TraceMatchesRender, FinalBytesOfEveryTracedPixelAreTheImageFilesBytes) {
     if (setting.transparency) scene.transparency.mode = *setting.transparency;
     if (setting.preset) scene.lighting.preset = *setting.preset;
     if (setting.shader) {
-        useTestShaderCache();
+        testing_support::useSharedShaderCache();
         scene.shader = ShaderSpec{fs::path(FACET_SOURCE_DIR) / *setting.shader, {}};
     }
     const PreparedScene prepared = prepareScene(scene);

@@ -19,7 +19,7 @@
 #include "step/versus.h"
 #include "step/views.h"
 #include "step/walk.h"
-#include "test_shader_cache.h"
+#include "support/user_shader_files.h"
 
 namespace facet::step {
 namespace {
@@ -32,7 +32,7 @@ const fs::path kSpot = fs::path(FACET_SOURCE_DIR) / "models/spot/spot_triangulat
 
 class UserShaderStep : public ::testing::Test {
   protected:
-    static void SetUpTestSuite() { useTestShaderCache(); }
+    static void SetUpTestSuite() { testing_support::useSharedShaderCache(); }
 
     // spot at 96×72 drawn with the test shader and `uniforms` (as --uniform gives them).
     static PreparedScene prepared(const std::vector<std::pair<std::string, std::vector<double>>>& uniforms,
