@@ -16,6 +16,8 @@
 #include <cstdint>
 #include <cstring>
 #include <span>
+#include <stdexcept>
+#include <string>
 #include <type_traits>
 #include <vector>
 
@@ -32,6 +34,65 @@
 #include "thread_pool.h"
 
 namespace facet {
+
+// ---- The walks a shader's code holds ------------------------------------------------------------------
+
+// The back end is compiled once per kind of draw (drawTileOfChunks below): a "walk" for each depth coding
+// (Float, Unorm), sample mode and output of an unwatched draw, and two for watched draws (the step mode's).
+// A draw takes exactly one. Each walk is a copy of the tile loop with the shader inlined, so a shader's
+// code holds every walk unless it declares `static constexpr unsigned kCompiledWalks` (a set of these
+// bits): a shader module compiled for the draws its scene makes holds only theirs (shaders/shader_module.h),
+// and draw() refuses, before drawing anything, a draw whose walk its shader was compiled without.
+namespace walk {
+inline constexpr unsigned kFloatDepth = 1u << 0;  // one sample, blended into the colour buffer
+inline constexpr unsigned kUnormDepth = 1u << 1;
+inline constexpr unsigned kMultisampleFloatDepth = 1u << 2;  // two or more samples per pixel
+inline constexpr unsigned kMultisampleUnormDepth = 1u << 3;
+inline constexpr unsigned kListsFloatDepth = 1u << 4;  // appended to the fragment lists (exact transparency)
+inline constexpr unsigned kListsUnormDepth = 1u << 5;
+inline constexpr unsigned kWatched = 1u << 6;  // watched, blended (the depth coding chosen per fragment)
+inline constexpr unsigned kWatchedLists = 1u << 7;
+inline constexpr unsigned kAll = (1u << 8) - 1;
+}  // namespace walk
+
+// The walk of a draw: its coding of depths, whether it is multisampled (an unwatched draw only: a watched
+// one is refused), where its fragments go, and whether it is watched; the one place the back end's
+// choice of walk is written (drawTileOfChunks asks it of its template parameters, a caller of its plan).
+constexpr unsigned backEndWalk(DepthCodingKind depth, bool multisampled, FragmentOutput output,
+                               bool watched) {
+    const bool lists = output == FragmentOutput::AppendToLists;
+    if (watched) return lists ? walk::kWatchedLists : walk::kWatched;
+    const bool unorm = depth == DepthCodingKind::Unorm;
+    if (multisampled) return unorm ? walk::kMultisampleUnormDepth : walk::kMultisampleFloatDepth;
+    if (lists) return unorm ? walk::kListsUnormDepth : walk::kListsFloatDepth;
+    return unorm ? walk::kUnormDepth : walk::kFloatDepth;
+}
+
+inline unsigned backEndWalkOf(const DrawPlan& plan, bool watched) {
+    return backEndWalk(depthCodingOf(plan.depthFormat), plan.samples > 1, plan.output, watched);
+}
+
+// The walks S's code holds: S::kCompiledWalks when it declares them, else every one.
+template <class S>
+constexpr unsigned compiledWalks() {
+    if constexpr (requires { S::kCompiledWalks; })
+        return S::kCompiledWalks;
+    else
+        return walk::kAll;
+}
+
+// Throws std::logic_error when S's code lacks the walk `plan` takes: a caller that compiled S for some
+// draws (a shader module) gave it another.
+template <class S>
+void checkWalkCompiled(const DrawPlan& plan, bool watched) {
+    if constexpr (compiledWalks<S>() != walk::kAll)
+        if ((compiledWalks<S>() & backEndWalkOf(plan, watched)) == 0)
+            throw std::logic_error("the shader's code was compiled without the back end this draw needs (" +
+                                   std::string(watched ? "watched, " : "") +
+                                   (plan.samples > 1 ? "multisampled, " : "") +
+                                   (plan.output == FragmentOutput::AppendToLists ? "fragment lists, " : "") +
+                                   std::string(nameOf(plan.depthFormat)) + " depth)");
+}
 
 namespace detail {
 
@@ -869,10 +930,13 @@ void drawTileOfChunks(const PixelRect& rect, bool inPart, std::size_t tile,
                       std::span<const SetupChunk> chunks, const DrawPlan& plan,
                       const typename S::Uniforms& uniforms, Framebuffer& target, DrawStats& stats,
                       Observer& observer) {
+    // Only the walks S's code holds are compiled (compiledWalks); draw() has refused any other.
     const auto drawAs =
         [&]<class Depth, bool kMultisample, FragmentOutput kOutput, bool kDerivatives>(const Depth& depth) {
             using C = BackEndConfig<S, Observer, Depth, kMultisample, kOutput, kDerivatives>;
-            drawTileAs<C>(rect, inPart, tile, chunks, plan, depth, uniforms, target, stats, observer);
+            if constexpr ((compiledWalks<S>() &
+                           backEndWalk(Depth::kKind, kMultisample, kOutput, Observer::enabled)) != 0)
+                drawTileAs<C>(rect, inPart, tile, chunks, plan, depth, uniforms, target, stats, observer);
         };
     const auto drawWith = [&]<bool kDerivatives>(const auto& depth) {
         using Depth = std::decay_t<decltype(depth)>;

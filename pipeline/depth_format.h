@@ -175,8 +175,16 @@ inline CompareOp nearerPasses(DepthBufferFormat format, CompareOp lessIsNearerCo
 // reading, not speed) uses, so that it is compiled once per shader and observer.
 enum class DepthCodingKind { Float, Unorm, PerFragment };
 
-template <DepthCodingKind kKind>
+// The coding the unwatched back end is compiled with for a format: Unorm for the unorm formats, else Float.
+constexpr DepthCodingKind depthCodingOf(DepthBufferFormat format) {
+    return format == DepthBufferFormat::Unorm16 || format == DepthBufferFormat::Unorm24
+               ? DepthCodingKind::Unorm
+               : DepthCodingKind::Float;
+}
+
+template <DepthCodingKind kCoding>
 struct DepthCoding {
+    static constexpr DepthCodingKind kKind = kCoding;
     using Stored = float;
     using Stored8 = Float8;
     float unormMax = 1.0f;  // 2^N − 1 of a unorm format
@@ -184,7 +192,7 @@ struct DepthCoding {
 
     explicit DepthCoding(DepthBufferFormat format)
         : unormMax(withDepthFormat(format, [](auto f) { return decltype(f)::kUnormMax; })),
-          unorm(format == DepthBufferFormat::Unorm16 || format == DepthBufferFormat::Unorm24) {}
+          unorm(depthCodingOf(format) == DepthCodingKind::Unorm) {}
 
     template <class Depth>  // float or Float8
     Depth store(Depth windowDepth) const {
@@ -208,7 +216,7 @@ struct DepthCoding {
 // back end's template parameter.
 template <class Body>
 decltype(auto) withDepthCoding(DepthBufferFormat format, Body&& body) {
-    if (format == DepthBufferFormat::Unorm16 || format == DepthBufferFormat::Unorm24)
+    if (depthCodingOf(format) == DepthCodingKind::Unorm)
         return body(DepthCoding<DepthCodingKind::Unorm>(format));
     return body(DepthCoding<DepthCodingKind::Float>(format));
 }

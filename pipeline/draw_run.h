@@ -66,6 +66,7 @@ void validateRun(std::span<const RunDraw<S>> draws, const Framebuffer& target, c
     const Viewport& viewport = draws.front().state->viewport;
     for (const RunDraw<S>& d : draws) {
         validateDraw(*d.state, target, d.vertices.size(), d.indices, context.tileSize);
+        checkWalkCompiled<S>(planDraw(*d.state), false);
         if (!fitsInRun(d.vertices.size(), d.indices.size()))
             throw std::invalid_argument("drawRun: a draw of more than " + std::to_string(kVertexChunk) +
                                         " vertices or " + std::to_string(kTriangleChunk) +

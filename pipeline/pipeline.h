@@ -161,6 +161,7 @@ DrawStats draw(const DrawState& state, const typename S::Uniforms& uniforms,
         if (state.samples > 1)
             throw std::invalid_argument("a multisampled draw cannot be observed: draw it with one sample");
     const DrawPlan plan = planDraw(state);
+    checkWalkCompiled<S>(plan, Watcher::enabled);
     const std::uint64_t drawId = context.drawsStarted++;
     if constexpr (Watcher::enabled) observer.onDrawBegin(drawId, state);
     prepareTarget(plan, target, context);
