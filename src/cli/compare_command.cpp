@@ -14,6 +14,7 @@
 #include "oracle/compare.h"
 #include "oracle/reference_compare.h"
 #include "oracle/shader_compare.h"
+#include "render/user_shaders.h"
 #include "shading/gamma.h"
 #include "shading/shadow.h"
 #include "step/versus.h"
@@ -201,6 +202,8 @@ int compareAgainstBuiltIn(const CompareArgs& args, const facet::Scene& scene) {
     const facet::ReflectionModel model = *args.against;
     const std::string modelName(nameOf(model));
     const facet::ShaderAgainstScenes scenes = facet::shaderAgainstScenes(scene, model);
+    // A differing pixel is traced (watched draws): the shader compiled for them too, at once.
+    if (!args.noTrace) facet::compileForWatchedDraws();
     facet::PreparedScene mine, builtIn;
     const facet::ShaderComparison c =
         facet::compareShaderWithBuiltIn(scenes, args.scene.threads, &mine, &builtIn);

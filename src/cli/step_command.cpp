@@ -12,6 +12,7 @@
 #include "io/output_path.h"
 #include "io/text_file.h"
 #include "render/renderer.h"
+#include "render/user_shaders.h"
 #include "scene/limits.h"
 #include "step/html_page.h"
 #include "step/notation.h"
@@ -322,6 +323,8 @@ int step(const StepArgs& args) {
         throw facet::InputError(std::string(args.screen ? "--screen" : "--format") +
                                 " prints one walk; --versus prints two side by side: give one of them");
 
+    // The walk watches the scene's draws: a shader of one's own is compiled with its watched draw at once.
+    facet::compileForWatchedDraws();
     const facet::PreparedScene prepared = facet::prepareScene(scene);
     for (const std::string& warning : prepared.warnings)
         std::cerr << "facet: warning: " << warning << "\n";

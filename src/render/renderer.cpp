@@ -461,12 +461,19 @@ PreparedDraw partDraw(const ObjectDraws& o, const Camera& camera, const Mesh& me
     return draw;
 }
 
+DrawState pipelineState(const Scene& scene);
+
 // The shader of one's own an object is drawn with (its own, else the scene's) and its uniforms' values:
 // the scene file's for it, then --uniform's where it declares them. Nothing for the built-in shaders.
+// Its module is compiled for the back-end walk this draw takes in the scene (planFrame: the scene's
+// depth format and samples; the fragment lists for a transparent draw under exact transparency).
 void chooseUserShader(const Scene& scene, const ObjectSpec& object, PreparedDraw& draw) {
     const std::optional<ShaderSpec>& spec = object.shader ? object.shader : scene.shader;
     if (!spec) return;
-    draw.userShader = loadUserShader(spec->source);
+    DrawPlan plan = planDraw(pipelineState(scene));
+    if (draw.transparent && scene.transparency.mode == TransparencyMode::Exact)
+        plan.output = FragmentOutput::AppendToLists;
+    draw.userShader = loadUserShader(spec->source, backEndWalkOf(plan, false));
     draw.userUniforms = uniformSettings(draw.userShader, spec->uniforms);
     const std::vector<UniformSetting> given = uniformSettings(draw.userShader, scene.uniforms, true);
     draw.userUniforms.insert(draw.userUniforms.end(), given.begin(), given.end());

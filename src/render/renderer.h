@@ -403,11 +403,15 @@ template <class Observer>
 DrawStats drawUserShader(const PlannedDraw& call, const PreparedDraw& d, const SurfaceUniforms& uniforms,
                          Framebuffer& target, DrawContext& context, Observer& observer) {
     const ShaderCall shaderCall{&call.state, &uniforms, d.userUniforms, call.vertices, call.indices};
+    // The module compiled for the scene holds this draw's walk; a watched draw, or one of settings the
+    // scene did not have, may find it compiled again (once) with its walk added.
+    const ShaderModule& module =
+        userShaderFor(d.userShader, backEndWalkOf(planDraw(call.state), Observer::enabled));
     if constexpr (Observer::enabled) {
         WatcherOf<DrawTriangleNumbers<Observer>> watcher(DrawTriangleNumbers<Observer>{observer, call});
-        return d.userShader.module->drawWatched(shaderCall, target, context, watcher);
+        return module.drawWatched(shaderCall, target, context, watcher);
     } else {
-        return d.userShader.module->draw(shaderCall, target, context);
+        return module.draw(shaderCall, target, context);
     }
 }
 

@@ -186,44 +186,106 @@ const ShaderModule* openModule(const fs::path& file, const std::string& label) {
     return entry();
 }
 
-// The compiled module of `source`, from the cache or compiled now.
-const ShaderModule* compiledModule(const fs::path& source, const std::string& label) {
-    const std::string text = readWhole(source);
+// The compiler's definition that makes a module of `walks` (shaders/shader_module.h).
+std::string walksDefinition(unsigned walks) {
+    return "-DFACET_SHADER_WALKS=" + std::to_string(walks);
+}
+
+// `walks`, with the watched walks of its outputs when this process watches draws.
+unsigned walksToCompile(unsigned walks, bool watched) {
+    if (!watched) return walks;
+    if (walks & (walk::kListsFloatDepth | walk::kListsUnormDepth)) walks |= walk::kWatchedLists;
+    if (walks & ~(walk::kListsFloatDepth | walk::kListsUnormDepth | walk::kWatchedLists))
+        walks |= walk::kWatched;
+    return walks;
+}
+
+// The walks named for a message: "watched, multisampled".
+std::string describeWalks(unsigned walks) {
+    const std::pair<unsigned, const char*> kinds[] = {
+        {walk::kWatched | walk::kWatchedLists, "watched (step mode)"},
+        {walk::kMultisampleFloatDepth | walk::kMultisampleUnormDepth, "multisampled"},
+        {walk::kListsFloatDepth | walk::kListsUnormDepth | walk::kWatchedLists, "exact transparency"},
+        {walk::kUnormDepth | walk::kMultisampleUnormDepth | walk::kListsUnormDepth, "unorm depth"},
+        {walk::kFloatDepth | walk::kMultisampleFloatDepth | walk::kListsFloatDepth, "float depth"}};
+    std::string text;
+    for (const auto& [bits, name] : kinds)
+        if (walks & bits) text += (text.empty() ? "" : ", ") + std::string(name);
+    return text;
+}
+
+// Where the cache keeps the module of a source text compiled with some walks: its key (the module's
+// inputs but the files it includes, whose stamps follow the key in the key file) and its files.
+struct CacheSlot {
+    std::string key, name;
+    fs::path module, keyFile;
+};
+
+CacheSlot cacheSlot(const fs::path& source, const std::string& text, unsigned walks,
+                    const std::vector<fs::path>& headers) {
     std::vector<std::string> flags = splitList(FACET_SHADER_FLAGS);
     for (std::string& flag : instructionSetFlags())
         flags.push_back(std::move(flag));
-    std::string key = std::string(FACET_SHADER_ABI) + "\n" + FACET_SHADER_COMPILER + "\n";
+    flags.push_back(walksDefinition(walks));
+    CacheSlot slot;
+    slot.key = std::string(FACET_SHADER_ABI) + "\n" + FACET_SHADER_COMPILER + "\n";
     for (const std::string& flag : flags)
-        key += flag + " ";
-    const std::vector<fs::path> headers = headerFolders();
+        slot.key += flag + " ";
     for (const fs::path& folder : headers)
-        key += "\n-I" + folder.string();
+        slot.key += "\n-I" + folder.string();
     // Appended piece by piece: GCC 12 reports a false -Wrestrict on "…" + std::string chains.
-    key += '\n';
-    key += hex(fnv1a(text, 0xcbf29ce484222325ull));
-    key += hex(fnv1a(text, 0x84222325cbf29ce4ull));
-    key += '\n';
-    const std::string name = source.stem().string() + "-" + hex(fnv1a(key, 0xcbf29ce484222325ull)) +
-                             hex(fnv1a(key, 0x9e3779b97f4a7c15ull));
+    slot.key += '\n';
+    slot.key += hex(fnv1a(text, 0xcbf29ce484222325ull));
+    slot.key += hex(fnv1a(text, 0x84222325cbf29ce4ull));
+    slot.key += '\n';
+    slot.name = source.stem().string() + "-" + hex(fnv1a(slot.key, 0xcbf29ce484222325ull)) +
+                hex(fnv1a(slot.key, 0x9e3779b97f4a7c15ull));
     const fs::path folder = shaderCacheFolder();
-    const fs::path module = folder / (name + ".so");
-    const fs::path keyFile = folder / (name + ".key");
+    slot.module = folder / (slot.name + ".so");
+    slot.keyFile = folder / (slot.name + ".key");
+    return slot;
+}
+
+// The cached module of `slot` when there is one whose included files are unchanged, else null. A cached
+// module that does not load (damaged: cut short by a full disk, overwritten) is compiled again rather
+// than standing in the way until someone empties the cache.
+const ShaderModule* cachedModule(const CacheSlot& slot, const std::string& label, bool sayWhy) {
     std::error_code error;
-    // The cached module when there is one for this key whose included files are unchanged, else null. A
-    // cached module that does not load (damaged: cut short by a full disk, overwritten) is compiled
-    // again rather than standing in the way until someone empties the cache.
-    auto cached = [&](bool sayWhy) -> const ShaderModule* {
-        if (!fs::exists(module, error) || !fs::exists(keyFile, error)) return nullptr;
-        const std::string stored = readWhole(keyFile);
-        if (!stored.starts_with(key) || !stampsStillHold(stored.substr(key.size()))) return nullptr;
-        try {
-            return openModule(module, label);
-        } catch (const InputError& refused) {
-            if (sayWhy) std::cerr << "facet: " << refused.what() << ": compiling it again\n";
-            return nullptr;
-        }
+    if (!fs::exists(slot.module, error) || !fs::exists(slot.keyFile, error)) return nullptr;
+    const std::string stored = readWhole(slot.keyFile);
+    if (!stored.starts_with(slot.key) || !stampsStillHold(stored.substr(slot.key.size()))) return nullptr;
+    try {
+        return openModule(slot.module, label);
+    } catch (const InputError& refused) {
+        if (sayWhy) std::cerr << "facet: " << refused.what() << ": compiling it again\n";
+        return nullptr;
+    }
+}
+
+// The compiled module of `source` holding `walks` (pipeline/back_end.h): from the cache, where one of
+// these walks or of the larger sets facet compiles (with the watched walks, every walk) is kept, else
+// compiled now. `more`, when not empty, says why an already loaded module of it is compiled again.
+const ShaderModule* compiledModule(const fs::path& source, const std::string& label, unsigned walks,
+                                   const std::string& more) {
+    const std::string text = readWhole(source);
+    const std::vector<fs::path> headers = headerFolders();
+    const CacheSlot own = cacheSlot(source, text, walks, headers);
+    const auto anyCached = [&](bool sayWhy) -> const ShaderModule* {
+        if (const ShaderModule* found = cachedModule(own, label, sayWhy)) return found;
+        for (const unsigned larger : {walksToCompile(walks, true), walk::kAll})
+            if (larger != walks)
+                if (const ShaderModule* found =
+                        cachedModule(cacheSlot(source, text, larger, headers), label, false))
+                    return found;
+        return nullptr;
     };
-    if (const ShaderModule* found = cached(true)) return found;
+    const std::string& key = own.key;
+    const std::string& name = own.name;
+    const fs::path& module = own.module;
+    const fs::path& keyFile = own.keyFile;
+    const fs::path folder = shaderCacheFolder();
+    std::error_code error;
+    if (const ShaderModule* found = anyCached(true)) return found;
     bool found = false;
     for (const fs::path& folder : headers)
         found = found || fs::exists(folder / "shaders" / "user_shader.h", error);
@@ -256,7 +318,7 @@ const ShaderModule* compiledModule(const fs::path& source, const std::string& la
         }
     }
     // Another run may have compiled it since the look above.
-    if (const ShaderModule* found = cached(false)) return found;
+    if (const ShaderModule* found = anyCached(false)) return found;
     // Written under names of this run's own, then renamed: a run at the same time (another process, or
     // one on another machine or in another container sharing the folder, where process ids repeat) finds
     // either no module or a whole one, and two runs compiling at once each rename a whole module into
@@ -273,10 +335,14 @@ const ShaderModule* compiledModule(const fs::path& source, const std::string& la
     if (!std::ofstream(log))
         throw InputError(label + ": cannot write in the shader cache " + folder.string() + ": " +
                          std::strerror(errno));
-    std::vector<std::string> command = shaderCompileCommand(source, partial);
+    std::vector<std::string> command = shaderCompileCommand(source, partial, walks);
     command.insert(command.end(), {"-MD", "-MF", dependencies.string()});
-    std::cerr << "facet: compiling " << label << " (the first time only: the module is kept in "
-              << folder.string() << ")\n";
+    if (more.empty())
+        std::cerr << "facet: compiling " << label << " (the first time only: the module is kept in "
+                  << folder.string() << ")\n";
+    else
+        std::cerr << "facet: compiling " << label << " again, for " << more << " draws too (kept in "
+                  << folder.string() << ")\n";
     const auto start = std::chrono::steady_clock::now();
     const int status = runCommand(command, log);
     const std::string messages = readWhole(log);
@@ -331,7 +397,8 @@ std::array<float, 4> checkedValue(const UniformInfo& info, const UniformValue& v
 
 struct Registry {
     std::mutex mutex;
-    std::map<fs::path, const ShaderModule*> loaded;  // by canonical path
+    std::map<fs::path, const ShaderModule*> loaded;  // by canonical path: the one holding the most walks
+    bool watched = false;                            // compileForWatchedDraws()
 };
 
 Registry& registry() {
@@ -350,12 +417,14 @@ fs::path shaderCacheFolder() {
     return fs::temp_directory_path() / ("facet-shaders-" + std::to_string(::getuid()));
 }
 
-std::vector<std::string> shaderCompileCommand(const fs::path& source, const fs::path& output) {
+std::vector<std::string> shaderCompileCommand(const fs::path& source, const fs::path& output,
+                                              unsigned walks) {
     std::vector<std::string> command{FACET_SHADER_COMPILER};
     for (const std::string& flag : splitList(FACET_SHADER_FLAGS))
         command.push_back(flag);
     for (std::string& flag : instructionSetFlags())
         command.push_back(std::move(flag));
+    command.push_back(walksDefinition(walks));
     // A shared library whose only visible symbols are the two entry points: the pipeline's functions
     // it calls are facet's own (the program exports them).
     command.insert(command.end(), {"-fPIC", "-shared", "-fvisibility=hidden", "-fvisibility-inlines-hidden"});
@@ -365,7 +434,37 @@ std::vector<std::string> shaderCompileCommand(const fs::path& source, const fs::
     return command;
 }
 
-UserShader loadUserShader(const fs::path& source) {
+namespace {
+
+// The registry's module of `canonical` holding `walks`: the loaded one if it holds them; else, the first
+// time, the source compiled with them (and the watched walks, once compileForWatchedDraws was called);
+// else compiled with every walk. A .so is loaded as it is (facet_add_shader builds every walk); one built
+// with fewer walks than a draw needs is refused.
+const ShaderModule* moduleHolding(Registry& r, const fs::path& source, const fs::path& canonical,
+                                  const std::string& label, unsigned walks) {
+    const auto found = r.loaded.find(canonical);
+    if (found != r.loaded.end() && (found->second->walks & walks) == walks) return found->second;
+    const ShaderModule* module = nullptr;
+    if (source.extension() == ".so") {
+        module = found != r.loaded.end() ? found->second : openModule(fs::absolute(source), label);
+        if ((module->walks & walks) != walks)
+            throw InputError(label + ": the module was built without the code for " +
+                             describeWalks(walks & ~module->walks) +
+                             " draws: build it again without FACET_SHADER_WALKS (or give its .cpp file)");
+    } else if (found != r.loaded.end()) {
+        // A second kind of draw in one process (a trade, a benchmark of several settings, a walk): every
+        // walk at once, so that a third costs nothing.
+        module = compiledModule(source, label, walk::kAll, describeWalks(walks & ~found->second->walks));
+    } else {
+        module = compiledModule(source, label, walksToCompile(walks, r.watched), "");
+    }
+    r.loaded.insert_or_assign(canonical, module);
+    return module;
+}
+
+}  // namespace
+
+UserShader loadUserShader(const fs::path& source, unsigned walks) {
     const std::string label = source.string();
     std::error_code error;
     if (!fs::is_regular_file(source, error))
@@ -374,11 +473,20 @@ UserShader loadUserShader(const fs::path& source) {
     const fs::path canonical = fs::weakly_canonical(source, error);
     Registry& r = registry();
     const std::lock_guard lock(r.mutex);
-    if (const auto found = r.loaded.find(canonical); found != r.loaded.end()) return {found->second, label};
-    const ShaderModule* module =
-        source.extension() == ".so" ? openModule(fs::absolute(source), label) : compiledModule(source, label);
-    r.loaded.emplace(canonical, module);
-    return {module, label};
+    return {moduleHolding(r, source, canonical, label, walks), label, source, canonical};
+}
+
+const ShaderModule& userShaderFor(const UserShader& shader, unsigned walk) {
+    if (shader.module->walks & walk) return *shader.module;
+    Registry& r = registry();
+    const std::lock_guard lock(r.mutex);
+    return *moduleHolding(r, shader.source, shader.canonical, shader.label, walk);
+}
+
+void compileForWatchedDraws() {
+    Registry& r = registry();
+    const std::lock_guard lock(r.mutex);
+    r.watched = true;
 }
 
 bool declaresUniform(const UserShader& shader, std::string_view name) {

@@ -20,14 +20,27 @@ namespace facet {
 // A loaded shader module and the name its messages use (the file as the user gave it).
 struct UserShader {
     const ShaderModule* module = nullptr;
-    std::string label;  // "toon.cpp"
+    std::string label;                // "toon.cpp"
+    std::filesystem::path source;     // as given
+    std::filesystem::path canonical;  // the registry's key
 };
 
-// The shader of `source`: a .so loaded as it is, anything else compiled (on first use: then cached).
-// Each file is loaded once per process and stays loaded. Throws InputError with a one-line message
-// when it does not compile (the compiler's messages, which point at the file and line, go to stderr
-// first), cannot be loaded, is no shader module or was built for another version of facet.
-UserShader loadUserShader(const std::filesystem::path& source);
+// The shader of `source`: a .so loaded as it is, anything else compiled (on first use: then cached)
+// into a module holding the pipeline's back-end `walks` (pipeline/back_end.h: the draws it can make;
+// a scene's draws take one or two of them, and each walk is a large part of the compile time), and the
+// watched ones too once compileForWatchedDraws() was called. Each file is loaded once per process and
+// stays loaded; one asked for walks its module lacks is compiled again with those added. Throws
+// InputError with a one-line message when it does not compile (the compiler's messages, which point at
+// the file and line, go to stderr first), cannot be loaded, is no shader module or was built for
+// another version of facet.
+UserShader loadUserShader(const std::filesystem::path& source, unsigned walks = walk::kAll);
+
+// The module of `shader` holding `walk`: its own, or (once) the file compiled again with it added.
+const ShaderModule& userShaderFor(const UserShader& shader, unsigned walk);
+
+// From now on, shaders are compiled with the watched draws too (the step mode's): one compile serves
+// both the watched and the unwatched draws of a scene.
+void compileForWatchedDraws();
 
 // The settings of the uniforms `values` for `shader`, in the module's terms. Throws InputError,
 // naming the value's origin, for a uniform the shader does not declare (the message lists the ones it
@@ -50,9 +63,11 @@ std::string uniformValueText(UniformType type, const std::array<float, 4>& value
 // ~/.cache/facet/shaders.
 std::filesystem::path shaderCacheFolder();
 
-// The compiler's command line for `source` into `output` (the flags facet was built with, the headers'
-// folders, the instruction set of the frame's code this CPU runs), for messages and the docs.
+// The compiler's command line for `source` into a module of `walks` at `output` (the flags facet was built
+// with, the headers' folders, the instruction set of the frame's code this CPU runs), for messages and
+// the docs.
 std::vector<std::string> shaderCompileCommand(const std::filesystem::path& source,
-                                              const std::filesystem::path& output);
+                                              const std::filesystem::path& output,
+                                              unsigned walks = walk::kAll);
 
 }  // namespace facet

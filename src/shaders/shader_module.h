@@ -107,6 +107,9 @@ struct ShaderModule {
     std::span<const UniformInfo> uniforms;
     std::span<const std::string> varyingNames;  // one per float: "N_eye.x", …
     bool discards = false;                      // its fragment part returns FragmentOut
+    // The pipeline's back-end walks its draws hold (pipeline/back_end.h, walk::): a draw that takes
+    // another is refused; drawWatched is null without the watched ones.
+    unsigned walks = walk::kAll;
     // The draw, on the pool's threads (eight lanes at once), and the same draw watched, on the calling
     // thread (the step mode).
     DrawStats (*draw)(const ShaderCall& call, Framebuffer& target, DrawContext& context);
@@ -122,6 +125,18 @@ struct ShaderModule {
 // ---- Making one from a shader's struct (the module's side) -------------------------------------------
 
 namespace user_shader {
+
+// The walks this module is compiled with: all of them, unless facet compiles the shader for the draws of
+// one scene (render/user_shaders.cpp passes -DFACET_SHADER_WALKS=N): each walk is a copy of the tile loop
+// with the shader inlined, most of a module's compile time, and a scene's draws take one or two.
+#ifdef FACET_SHADER_WALKS
+inline constexpr unsigned kModuleWalks = FACET_SHADER_WALKS;
+#else
+inline constexpr unsigned kModuleWalks = walk::kAll;
+#endif
+static_assert(kModuleWalks != 0 && (kModuleWalks & ~walk::kAll) == 0,
+              "FACET_SHADER_WALKS is a non-empty set of the pipeline's walks (pipeline/back_end.h)");
+inline constexpr bool kModuleWatches = (kModuleWalks & (walk::kWatched | walk::kWatchedLists)) != 0;
 
 template <class Body>
 using Uniforms = typename Body::Uniforms;
@@ -222,6 +237,7 @@ struct Adapter : DerivativesOf<Body>, BarycentricsOf<Body> {
     using Attributes = MeshVertex;
     using Uniforms = user_shader::Uniforms<Body>;
     using Varyings = user_shader::Varyings<Body>;
+    static constexpr unsigned kCompiledWalks = kModuleWalks;
     static constexpr bool kHasDerivatives = requires { Body::kDerivativeVarying; };
 
     static VertexOut<Varyings> vertex(const Attributes& in, const Uniforms& u) { return Body::vertex(in, u); }
@@ -375,6 +391,16 @@ DrawStats drawWatchedCall(const ShaderCall& call, Framebuffer& target, DrawConte
                                WatcherRef{&watcher});
 }
 
+// The watched draw, when the module holds its walks (else none: its own front end and tile loops would
+// be compiled for nothing).
+template <class Body>
+constexpr auto watchedDraw() {
+    if constexpr (kModuleWatches)
+        return &drawWatchedCall<Body>;
+    else
+        return static_cast<decltype(&drawWatchedCall<Body>)>(nullptr);
+}
+
 template <class Body>
 vec4 shadeVertex(const MeshVertex& vertex, const ShaderCall& call, float* varyings) {
     const Uniforms<Body> u = uniformsOf<Body>(call);
@@ -413,8 +439,9 @@ const ShaderModule& moduleOf(const char* name) {
                                      uniforms,
                                      varyings,
                                      discards<Body>(),
+                                     kModuleWalks,
                                      &drawCall<Body>,
-                                     &drawWatchedCall<Body>,
+                                     watchedDraw<Body>(),
                                      &shadeVertex<Body>,
                                      &shadeFragment<Body>};
     return module;

@@ -311,6 +311,31 @@ TEST_F(UserShaderCli, SameFileNameInTwoFoldersDoesNotCollide) {
     EXPECT_EQ(readText(dir.path() / "a.ppm"), readText(dir.path() / "a2.ppm"));
 }
 
+// A shader is compiled for the kind of draw its scene makes (the back end's walk: its depth coding,
+// samples, output), once, and draws what the module built with every walk (facet_add_shader) draws.
+// Breaks caught: the scene's walk reckoned otherwise than the draw takes it (the run compiles the shader
+// a second time, "again", when it draws); the module's walks set by anything but the scene (a cached
+// module of another scene's walk loaded and refused at the draw).
+TEST_F(UserShaderCli, AShaderIsCompiledOnceForTheDrawsOfItsScene) {
+    fs::copy_file(kShaders / "toon.cpp", dir.path() / "toon.cpp");
+    const std::string settings = "--aa msaa4 --depth unorm24 ";
+    const RunResult compiled = render(dir, image(), settings + "--shader toon.cpp", dir.path());
+    ASSERT_EQ(compiled.status, 0) << compiled.err;
+    std::size_t compiles = 0;
+    for (std::size_t at = compiled.err.find("facet: compiling "); at != std::string::npos;
+         at = compiled.err.find("facet: compiling ", at + 1))
+        ++compiles;
+    EXPECT_EQ(compiles, 1u) << compiled.err;
+    const RunResult module =
+        render(dir, dir.path() / "module.ppm", settings + "--shader " + shellQuoted(FACET_TEST_TOON_MODULE));
+    ASSERT_EQ(module.status, 0) << module.err;
+    EXPECT_EQ(readText(image()), readText(dir.path() / "module.ppm"));
+    // Another scene's walk (one sample, float depth): compiled for it, not the module above refused.
+    const RunResult plain = render(dir, dir.path() / "plain.ppm", "--shader toon.cpp", dir.path());
+    ASSERT_EQ(plain.status, 0) << plain.err;
+    EXPECT_NE(readText(dir.path() / "plain.ppm"), readText(image()));
+}
+
 // Two facet processes asking for one shader of one cache at the same moment both draw, the same picture:
 // one compiles, the other waits and loads its module; a third run finds a whole module. Breaks caught:
 // the two writing one file (a torn module, "file too short" from dlopen), one removing what the other is

@@ -67,6 +67,7 @@ TEST_P(TraceMatchesRender, FinalBytesOfEveryTracedPixelAreTheImageFilesBytes) {
     if (setting.preset) scene.lighting.preset = *setting.preset;
     if (setting.shader) {
         testing_support::useSharedShaderCache();
+        compileForWatchedDraws();  // traced: the render's draws and the trace's watched ones, one compile
         scene.shader = ShaderSpec{fs::path(FACET_SOURCE_DIR) / *setting.shader, {}};
     }
     const PreparedScene prepared = prepareScene(scene);

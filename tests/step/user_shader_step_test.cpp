@@ -32,7 +32,11 @@ const fs::path kSpot = fs::path(FACET_SOURCE_DIR) / "models/spot/spot_triangulat
 
 class UserShaderStep : public ::testing::Test {
   protected:
-    static void SetUpTestSuite() { testing_support::useSharedShaderCache(); }
+    // The walk's draws are watched: compiled with them at once, as facet step does.
+    static void SetUpTestSuite() {
+        testing_support::useSharedShaderCache();
+        compileForWatchedDraws();
+    }
 
     // spot at 96×72 drawn with the test shader and `uniforms` (as --uniform gives them).
     static PreparedScene prepared(const std::vector<std::pair<std::string, std::vector<double>>>& uniforms,
@@ -268,6 +272,26 @@ TEST_F(UserShaderStep, VersusPrintsTheUserShaderBesideTheBuiltInOne) {
         EXPECT_NE(run.out.find("\n > Your shader: ToonStep's fragment part"), std::string::npos)
             << run.out.substr(0, 4000);
     }
+}
+
+// A module loaded for some kinds of draw (walks, pipeline/back_end.h) meets a draw of another: the shader
+// is compiled again, once, with every walk; the module loaded first stays as it was (draws prepared with
+// it keep using it), and the loader serves the larger one from then on.
+// Breaks caught: userShaderFor returning a module that lacks the walk (the pipeline refuses the draw);
+// compiling again at every such draw; the loader going back to the smaller module (compiling again at
+// the next scene of another walk).
+TEST(UserShaderWalks, ADrawOfAnotherKindCompilesTheShaderOnceMoreWithEveryWalk) {
+    testing_support::useSharedShaderCache();
+    const UserShader first = loadUserShader(kCutout, walk::kFloatDepth);
+    ASSERT_NE(first.module->walks & walk::kFloatDepth, 0u);
+    ASSERT_EQ(first.module->walks & walk::kUnormDepth, 0u) << "compiled for one depth coding only";
+    EXPECT_EQ(&userShaderFor(first, walk::kFloatDepth), first.module);
+    const ShaderModule& every = userShaderFor(first, walk::kUnormDepth);
+    EXPECT_EQ(every.walks, walk::kAll);
+    EXPECT_NE(every.drawWatched, nullptr);
+    EXPECT_EQ(&userShaderFor(first, walk::kMultisampleUnormDepth), &every) << "compiled yet again";
+    EXPECT_EQ(loadUserShader(kCutout, walk::kListsFloatDepth).module, &every);
+    EXPECT_EQ(first.module->walks & walk::kUnormDepth, 0u) << "the first module changed";
 }
 
 }  // namespace
