@@ -399,6 +399,7 @@ struct Registry {
     std::mutex mutex;
     std::map<fs::path, const ShaderModule*> loaded;  // by canonical path: the one holding the most walks
     bool watched = false;                            // compileForWatchedDraws()
+    bool every = false;                              // compileEveryWalk()
 };
 
 Registry& registry() {
@@ -437,9 +438,9 @@ std::vector<std::string> shaderCompileCommand(const fs::path& source, const fs::
 namespace {
 
 // The registry's module of `canonical` holding `walks`: the loaded one if it holds them; else, the first
-// time, the source compiled with them (and the watched walks, once compileForWatchedDraws was called);
-// else compiled with every walk. A .so is loaded as it is (facet_add_shader builds every walk); one built
-// with fewer walks than a draw needs is refused.
+// time, the source compiled with them (and the watched walks, once compileForWatchedDraws was called;
+// every walk, once compileEveryWalk was); else compiled with every walk. A .so is loaded as it is
+// (facet_add_shader builds every walk); one built with fewer walks than a draw needs is refused.
 const ShaderModule* moduleHolding(Registry& r, const fs::path& source, const fs::path& canonical,
                                   const std::string& label, unsigned walks) {
     const auto found = r.loaded.find(canonical);
@@ -456,7 +457,7 @@ const ShaderModule* moduleHolding(Registry& r, const fs::path& source, const fs:
         // walk at once, so that a third costs nothing.
         module = compiledModule(source, label, walk::kAll, describeWalks(walks & ~found->second->walks));
     } else {
-        module = compiledModule(source, label, walksToCompile(walks, r.watched), "");
+        module = compiledModule(source, label, r.every ? walk::kAll : walksToCompile(walks, r.watched), "");
     }
     r.loaded.insert_or_assign(canonical, module);
     return module;
@@ -487,6 +488,12 @@ void compileForWatchedDraws() {
     Registry& r = registry();
     const std::lock_guard lock(r.mutex);
     r.watched = true;
+}
+
+void compileEveryWalk() {
+    Registry& r = registry();
+    const std::lock_guard lock(r.mutex);
+    r.every = true;
 }
 
 bool declaresUniform(const UserShader& shader, std::string_view name) {

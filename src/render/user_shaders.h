@@ -28,11 +28,11 @@ struct UserShader {
 // The shader of `source`: a .so loaded as it is, anything else compiled (on first use: then cached)
 // into a module holding the pipeline's back-end `walks` (pipeline/back_end.h: the draws it can make;
 // a scene's draws take one or two of them, and each walk is a large part of the compile time), and the
-// watched ones too once compileForWatchedDraws() was called. Each file is loaded once per process and
-// stays loaded; one asked for walks its module lacks is compiled again with those added. Throws
-// InputError with a one-line message when it does not compile (the compiler's messages, which point at
-// the file and line, go to stderr first), cannot be loaded, is no shader module or was built for
-// another version of facet.
+// watched ones too once compileForWatchedDraws() was called (every walk after compileEveryWalk()). Each file
+// is loaded once per process and stays loaded; one asked for walks its module lacks is compiled again with
+// those added. Throws InputError with a one-line message when it does not compile (the compiler's messages,
+// which point at the file and line, go to stderr first), cannot be loaded, is no shader module or was built
+// for another version of facet.
 UserShader loadUserShader(const std::filesystem::path& source, unsigned walks = walk::kAll);
 
 // The module of `shader` holding `walk`: its own, or (once) the file compiled again with it added.
@@ -41,6 +41,10 @@ const ShaderModule& userShaderFor(const UserShader& shader, unsigned walk);
 // From now on, shaders are compiled with the watched draws too (the step mode's): one compile serves
 // both the watched and the unwatched draws of a scene.
 void compileForWatchedDraws();
+
+// From now on, shaders are compiled with every walk (a command that draws one scene in many settings:
+// one compile instead of one for the first setting and another for the rest).
+void compileEveryWalk();
 
 // The settings of the uniforms `values` for `shader`, in the module's terms. Throws InputError,
 // naming the value's origin, for a uniform the shader does not declare (the message lists the ones it

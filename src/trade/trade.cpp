@@ -15,6 +15,7 @@
 #include "io/text_file.h"
 #include "reference/reference.h"
 #include "render/renderer.h"
+#include "render/user_shaders.h"
 #include "trade/blank.h"
 #include "trade/pareto.h"
 #include "trade/presets.h"
@@ -119,6 +120,9 @@ TradeResult runTrade(const SceneWithWords& sceneWithWords, const TradeOptions& o
     TradeProgress progress(log, options.progress, now);
     const double referenceStart = now();
     progress.referenceStarted(referenceStart);
+    // The settings draw the scene in several kinds of draw (depth formats, anti-aliasing, transparency):
+    // a shader of one's own is compiled for all of them at once, not for the first and then again.
+    compileEveryWalk();
     const PreparedScene referenceScene = prepareScene(baseline);
     ReferenceOptions referenceOptions;
     referenceOptions.samples = options.referenceSamples;

@@ -378,7 +378,8 @@ TEST_F(UserShaderCli, CacheFolderThatCannotBeMadeIsAnError) {
 
 // The shader README.md shows, cut from it, compiles, draws with its uniform and shows its record in the
 // step mode. Breaks caught: the README's example going stale against user_shader.h (a renamed part, a
-// GLSL function missing for eight lanes), --uniform not reaching the draw, gl.record not traced.
+// GLSL function missing for eight lanes), --uniform not reaching the draw, gl.record not traced; facet
+// step loading the module the renders compiled and compiling again at its first watched draw.
 TEST_F(UserShaderCli, ReadmeShaderDrawsAndIsTraced) {
     const std::string readme = readText(kSource / "README.md");
     const std::size_t begin = readme.find("<!-- readme-shader:begin -->");
@@ -402,6 +403,9 @@ TEST_F(UserShaderCli, ReadmeShaderDrawsAndIsTraced) {
                  dir);
     ASSERT_EQ(step.status, 0) << step.err;
     EXPECT_TRUE(contains(step.out, "level = ")) << step.out;
+    // The walk's watched draws compiled with the first compile, not after the render's module was loaded.
+    EXPECT_TRUE(contains(step.err, "facet: compiling ")) << step.err;
+    EXPECT_FALSE(contains(step.err, " again, for ")) << step.err;
 }
 
 }  // namespace

@@ -741,13 +741,15 @@ TEST(TradeMetrics, IdenticalImagesHaveTheCappedPsnrAndAnSsimOfOne) {
 }
 
 // facet trade --shader: the knobs timed and scored with a shader of one's own, against the reference
-// traced with it (displace_cutout.cpp, its vertices moved along the normal). Breaks caught: the trade's
+// traced with it (displace_cutout.cpp, its vertices moved along the normal), the shader compiled once for
+// every setting. Breaks caught: the shader compiled for the first setting and again for the next; the trade's
 // settings parsed onto a fresh scene that drops --shader or --uniform (the rows drawn with the built-in
 // shader, far from the reference); the reference traced with the built-in shader or at the mesh's own
 // positions (its image the built-in's, the rows far from it).
 TEST(TradeWithShader, TheKnobsAreScoredAgainstTheReferenceOfTheShader) {
-    const testing_support::SharedShaderCache cache;
     const testing_support::TempFolder folder;
+    // A cache of its own: the compile is seen (a shared cache may hold the modules already).
+    ::setenv("FACET_SHADER_CACHE", (folder.path() / "cache").c_str(), 1);
     CLI::App app;
     cli::TradeArgs args;
     cli::addTradeCommand(app, args);
@@ -769,11 +771,16 @@ TEST(TradeWithShader, TheKnobsAreScoredAgainstTheReferenceOfTheShader) {
     options.progress = false;
     options.outputDir = folder.path() / "trade";
     std::ostringstream log;
+    ::testing::internal::CaptureStderr();
     const TradeResult result = runTrade(
         [&](const std::vector<std::string>& settingWords) {
             return cli::sceneWithWords(args.scene, settingWords);
         },
         options, log);
+    const std::string messages = ::testing::internal::GetCapturedStderr();
+    ::unsetenv("FACET_SHADER_CACHE");
+    // The depth formats are several kinds of draw: the shader compiled once for all of them.
+    EXPECT_EQ(messages.find(" again, for "), std::string::npos) << messages;
     ASSERT_GE(result.rows.size(), 2u);
     // The baseline (the shader as given) is close to the shader's reference.
     EXPECT_EQ(result.rows[0].setting.knob, "baseline");
