@@ -26,16 +26,16 @@ struct UserShader {
 };
 
 // The shader of `source`: a .so loaded as it is, anything else compiled (on first use: then cached)
-// into a module holding the pipeline's back-end `walks` (pipeline/back_end.h: the draws it can make;
-// a scene's draws take one or two of them, and each walk is a large part of the compile time), and the
-// watched ones too once compileForWatchedDraws() was called (every walk after compileEveryWalk()). Each file
-// is loaded once per process and stays loaded; one asked for walks its module lacks is compiled again with
-// those added. Throws InputError with a one-line message when it does not compile (the compiler's messages,
-// which point at the file and line, go to stderr first), cannot be loaded, is no shader module or was built
-// for another version of facet.
+// into a module holding the pipeline's back-end `walks` (pipeline/back_end.h: the kinds of draw it can
+// make; a scene's draws take one or two, and each walk is a large part of the compile time), with the
+// watched ones once compileForWatchedDraws() was called (every walk after compileEveryWalk()). Each
+// file is loaded once per process and stays loaded; asked for a walk its module lacks, it is compiled
+// again with every walk. Throws InputError with a one-line message when it does not compile (the
+// compiler's messages, which point at the file and line, go to stderr first), cannot be loaded, is no
+// shader module or was built for another version of facet.
 UserShader loadUserShader(const std::filesystem::path& source, unsigned walks = walk::kAll);
 
-// The module of `shader` holding `walk`: its own, or (once) the file compiled again with it added.
+// The module of `shader` holding `walk`: its own, or (once) the file compiled again with every walk.
 const ShaderModule& userShaderFor(const UserShader& shader, unsigned walk);
 
 // From now on, shaders are compiled with the watched draws too (the step mode's): one compile serves
