@@ -279,10 +279,6 @@ const ShaderModule* compiledModule(const fs::path& source, const std::string& la
                     return found;
         return nullptr;
     };
-    const std::string& key = own.key;
-    const std::string& name = own.name;
-    const fs::path& module = own.module;
-    const fs::path& keyFile = own.keyFile;
     const fs::path folder = shaderCacheFolder();
     std::error_code error;
     if (const ShaderModule* found = anyCached(true)) return found;
@@ -303,7 +299,7 @@ const ShaderModule* compiledModule(const fs::path& source, const std::string& la
     // it and load its module, instead of each compiling the same. The lock goes with the process, so
     // one killed while compiling holds nobody up; where the file system has no locks, the runs compile
     // side by side, which the names below keep safe.
-    const fs::path lockFile = folder / (name + ".lock");
+    const fs::path lockFile = folder / (own.name + ".lock");
     const int lock = ::open(lockFile.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
     if (lock < 0)
         throw InputError(label + ": cannot write in the shader cache " + folder.string() + ": " +
@@ -328,9 +324,9 @@ const ShaderModule* compiledModule(const fs::path& source, const std::string& la
     unique += '-';
     unique += hex(std::random_device()());
     unique += ".tmp";
-    const fs::path partial = folder / (name + unique + ".so");
-    const fs::path dependencies = folder / (name + unique + ".d");
-    const fs::path log = folder / (name + unique + ".log");
+    const fs::path partial = folder / (own.name + unique + ".so");
+    const fs::path dependencies = folder / (own.name + unique + ".d");
+    const fs::path log = folder / (own.name + unique + ".log");
     // A folder one cannot write in would otherwise surface as the compiler failing to start.
     if (!std::ofstream(log))
         throw InputError(label + ": cannot write in the shader cache " + folder.string() + ": " +
@@ -359,14 +355,15 @@ const ShaderModule* compiledModule(const fs::path& source, const std::string& la
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::cerr << "facet: compiled " << label << " in " << std::lround(seconds * 10) / 10.0 << " s\n";
-    std::ofstream(keyFile.string() + unique) << key << includedFileStamps(dependencies, source, headers);
+    std::ofstream(own.keyFile.string() + unique)
+        << own.key << includedFileStamps(dependencies, source, headers);
     fs::remove(dependencies, error);
-    fs::rename(partial, module, error);
-    if (!error) fs::rename(keyFile.string() + unique, keyFile, error);
+    fs::rename(partial, own.module, error);
+    if (!error) fs::rename(own.keyFile.string() + unique, own.keyFile, error);
     if (error)
         throw InputError(label + ": cannot keep the compiled shader in " + folder.string() + ": " +
                          error.message());
-    return openModule(module, label);
+    return openModule(own.module, label);
 }
 
 // Reads a uniform's numbers into the module's form, or says why they do not fit its type.

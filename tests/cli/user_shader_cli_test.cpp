@@ -315,7 +315,8 @@ TEST_F(UserShaderCli, SameFileNameInTwoFoldersDoesNotCollide) {
 // samples, output), once, and draws what the module built with every walk (facet_add_shader) draws.
 // Breaks caught: the scene's walk reckoned otherwise than the draw takes it (the run compiles the shader
 // a second time, "again", when it draws); the module's walks set by anything but the scene (a cached
-// module of another scene's walk loaded and refused at the draw).
+// module of another scene's walk loaded and refused at the draw); a .so lacking a scene's walk drawing
+// nothing, or failing with the pipeline's error instead of one line naming what it lacks.
 TEST_F(UserShaderCli, AShaderIsCompiledOnceForTheDrawsOfItsScene) {
     fs::copy_file(kShaders / "toon.cpp", dir.path() / "toon.cpp");
     const std::string settings = "--aa msaa4 --depth unorm24 ";
@@ -330,6 +331,13 @@ TEST_F(UserShaderCli, AShaderIsCompiledOnceForTheDrawsOfItsScene) {
         render(dir, dir.path() / "module.ppm", settings + "--shader " + shellQuoted(FACET_TEST_TOON_MODULE));
     ASSERT_EQ(module.status, 0) << module.err;
     EXPECT_EQ(readText(image()), readText(dir.path() / "module.ppm"));
+    // That module, given as a .so to a scene of another walk: refused in one line, not drawn blank.
+    fs::path lean;
+    for (const auto& entry : fs::directory_iterator(dir.path() / "cache"))
+        if (entry.path().extension() == ".so") lean = entry.path();
+    ASSERT_FALSE(lean.empty());
+    expectRefused(render(dir, dir.path() / "lean.ppm", "--shader " + shellQuoted(lean)),
+                  "the module was built without the code for float depth draws");
     // Another scene's walk (one sample, float depth): compiled for it, not the module above refused.
     const RunResult plain = render(dir, dir.path() / "plain.ppm", "--shader toon.cpp", dir.path());
     ASSERT_EQ(plain.status, 0) << plain.err;
