@@ -127,8 +127,9 @@ struct ShaderModule {
 namespace user_shader {
 
 // The walks this module is compiled with: all of them, unless facet compiles the shader for the draws of
-// one scene (render/user_shaders.cpp passes -DFACET_SHADER_WALKS=N): each walk is a copy of the tile loop
-// with the shader inlined, most of a module's compile time, and a scene's draws take one or two.
+// one scene (render/user_shaders.cpp passes -DFACET_SHADER_WALKS=N) or a build names the ones its draws
+// take (examples/CMakeLists.txt): each walk is a copy of the tile loop with the shader inlined, most of a
+// module's compile time, and a scene's draws take one or two.
 #ifdef FACET_SHADER_WALKS
 inline constexpr unsigned kModuleWalks = FACET_SHADER_WALKS;
 #else
