@@ -16,6 +16,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -1384,17 +1385,23 @@ TEST(ObjImportModels, BunnyNormalsFollowTheCreaseRule) {
     EXPECT_EQ(mesh.vertices.size(), welded.vertices.size() + mesh.stats.creaseSplits);
     EXPECT_EQ(mesh.stats.normalsComputed, mesh.vertices.size());
 
+    // A position as a hash key: the bytes of its coordinates, -0 read as 0 (positions compare as values).
+    auto positionKey = [](glm::vec3 q) {
+        q += glm::vec3(0.0f);
+        return std::string(reinterpret_cast<const char*>(&q), sizeof q);
+    };
     std::vector<glm::dvec3> cross(triangles), unit(triangles);
-    std::map<std::vector<float>, std::vector<std::size_t>> trianglesAt;
+    std::unordered_map<std::string, std::vector<std::size_t>> trianglesAt;
     for (std::size_t t = 0; t < triangles; ++t) {
         const auto p = triangle(mesh, t);
         cross[t] = glm::cross(glm::dvec3(p[1]) - glm::dvec3(p[0]), glm::dvec3(p[2]) - glm::dvec3(p[0]));
         unit[t] = cross[t] / glm::length(cross[t]);
         for (const glm::vec3& q : p)
-            trianglesAt[{q.x, q.y, q.z}].push_back(t);
+            trianglesAt[positionKey(q)].push_back(t);
     }
     const double limit = std::cos(glm::radians(60.0));
-    std::map<std::pair<std::vector<float>, std::vector<std::size_t>>, std::uint32_t> vertexOfSet;
+    // A corner's position and the set of triangles its normal sums, as one key.
+    std::unordered_map<std::string, std::uint32_t> vertexOfSet;
     std::size_t checked = 0;
     for (std::size_t t = 0; t < triangles; ++t) {
         for (int c = 0; c < 3; ++c) {
@@ -1403,7 +1410,7 @@ TEST(ObjImportModels, BunnyNormalsFollowTheCreaseRule) {
             std::vector<std::size_t> set;
             glm::dvec3 sum(0.0);
             bool nearTheLimit = false;
-            for (const std::size_t other : trianglesAt[{q.x, q.y, q.z}]) {
+            for (const std::size_t other : trianglesAt[positionKey(q)]) {
                 const double d = glm::dot(unit[t], unit[other]);
                 nearTheLimit = nearTheLimit || std::abs(d - limit) < 1e-9;
                 if (d >= limit || other == t) {
@@ -1416,7 +1423,9 @@ TEST(ObjImportModels, BunnyNormalsFollowTheCreaseRule) {
             ASSERT_NEAR(glm::distance(glm::dvec3(mesh.vertices[index].normal), sum / glm::length(sum)), 0.0,
                         1e-6)
                 << "triangle " << t << " corner " << c;
-            const auto [it, inserted] = vertexOfSet.try_emplace({{q.x, q.y, q.z}, set}, index);
+            std::string key = positionKey(q);
+            key.append(reinterpret_cast<const char*>(set.data()), set.size() * sizeof(std::size_t));
+            const auto [it, inserted] = vertexOfSet.try_emplace(key, index);
             ASSERT_EQ(it->second, index) << "triangle " << t << " corner " << c;
         }
     }
