@@ -23,6 +23,9 @@ namespace {
 
 namespace fs = std::filesystem;
 using namespace analytic_shadow;
+// Declared here too: a render() of another test file compiled in the same batch (unity build) would
+// hide the directive's.
+using analytic_shadow::render;
 
 // The rectangle light of the tests: centred at the point light's place, facing down, 1.2 × 1.2.
 constexpr double kLightSide = 1.2;
