@@ -22,18 +22,19 @@ using glm::dvec4;
 namespace {
 
 // Records which opaque triangle wrote each pixel last: with the depth test, the nearest one.
-struct SurfaceRecorder : NullObserver {
-    static constexpr bool enabled = true;
+class SurfaceRecorder final : public FrameWatcher {
+  public:
+    SurfaceRecorder(std::vector<RayHit>& surfaces, int width) : surfaces(surfaces), width(width) {}
     std::vector<RayHit>& surfaces;
     int width;
     std::uint32_t draw = 0;
     bool opaque = true;
 
-    void onPlannedDraw(const PlannedDraw& call, const PreparedDraw& d) {
+    void onPlannedDraw(const PlannedDraw& call, const PreparedDraw& d) override {
         draw = call.draw;
         opaque = !d.transparent;
     }
-    void onFragment(const FragmentEvent& e) {
+    void onFragment(const FragmentEvent& e) override {
         if (!opaque || e.fate != FragmentFate::Written) return;
         RayHit& hit = surfaces[static_cast<std::size_t>(e.y) * width + e.x];
         hit.mesh = draw;
@@ -165,8 +166,8 @@ LinearImage rasterizeSurfaces(const PreparedScene& prepared, DrawContext& contex
     surfaces.assign(static_cast<std::size_t>(width) * height, RayHit{});
     Framebuffer target(width, height);
     FrameMemory memory;
-    SurfaceRecorder recorder{{}, surfaces, width};
-    renderFrame(prepared, target, context, memory, recorder);
+    SurfaceRecorder recorder(surfaces, width);
+    renderFrameWatched(prepared, target, context, memory, recorder);
     return toImage(target);
 }
 

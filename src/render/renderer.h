@@ -302,6 +302,33 @@ template <PipelineObserver Observer>
 FrameStats renderFrame(const PreparedScene& prepared, Framebuffer& target, DrawContext& context,
                        FrameMemory& memory, Observer& observer, std::uint8_t terms = kAllTerms);
 
+// An observer whose hooks are virtual functions that do nothing unless overridden: the pipeline's
+// (pipeline/observer.h, as DrawWatcher has them) and onPlannedDraw. The observers of the libraries (the
+// step mode's recorders, the reference comparison's) are FrameWatchers watching renderFrameWatched:
+// the frame is compiled once for all of them (frame_watched.cpp) instead of once per observer type, and
+// a watched frame is not the hot path.
+class FrameWatcher : public DrawWatcher {
+  public:
+    void onDrawBegin(std::uint64_t /*drawId*/, const DrawState& /*state*/) override {}
+    void onDrawEnd(std::uint64_t /*drawId*/, const DrawStats& /*stats*/) override {}
+    void onVertex(std::uint32_t /*index*/, const vec4& /*clip*/, const float* /*varyings*/, int /*count*/,
+                  std::uint8_t /*outcode*/) override {}
+    void onAssembled(std::uint32_t /*triangle*/, const ClipPolygon& /*polygon*/) override {}
+    void onClipped(std::uint32_t /*triangle*/, const ClipPolygon& /*polygon*/) override {}
+    void onSetup(std::uint32_t /*triangle*/, const WindowTriangle& /*window*/, TriangleFate /*fate*/,
+                 const TriangleSetup& /*setup*/) override {}
+    void onCoverage(const CoverageEvent& /*event*/) override {}
+    void onRejected(std::uint32_t /*triangle*/, TriangleFate /*fate*/) override {}
+    void onFragment(const FragmentEvent& /*event*/) override {}
+    void onResolve(const ResolveEvent& /*event*/) override {}
+    // Before each draw call of the frame: the call (a draw, or a run of its transparent triangles).
+    virtual void onPlannedDraw(const PlannedDraw& /*call*/, const PreparedDraw& /*draw*/) {}
+};
+
+// renderFrame with a FrameWatcher as its observer: every hook, in the order renderFrame gives them.
+FrameStats renderFrameWatched(const PreparedScene& prepared, Framebuffer& target, DrawContext& context,
+                              FrameMemory& memory, FrameWatcher& watcher, std::uint8_t terms = kAllTerms);
+
 // The framebuffer's colour as an image (same linear values).
 LinearImage toImage(const Framebuffer& framebuffer);
 // The framebuffer's colour as an image to write, without a copy (valid while the framebuffer is).

@@ -192,10 +192,8 @@ float fogFactorAt(const SurfaceUniforms& u, const vec3& eyePosition) {
 }
 
 // Watches one frame drawn with per-pixel shading and keeps, per pixel, what the data images show.
-class StageRecorder : public NullObserver {
+class StageRecorder final : public FrameWatcher {
   public:
-    static constexpr bool enabled = true;
-
     explicit StageRecorder(const PreparedScene& observed)
         : state_(observed.state),
           width_(observed.scene.width),
@@ -207,18 +205,18 @@ class StageRecorder : public NullObserver {
           normals_(filledImage(width_, height_, kNoSurface)),
           fogFactors_(filledImage(width_, height_, kNoSurfaceForFog)) {}
 
-    void onPlannedDraw(const PlannedDraw& call, const PreparedDraw& draw) {
+    void onPlannedDraw(const PlannedDraw& call, const PreparedDraw& draw) override {
         draw_ = call.draw;
         uniforms_ = &draw.uniforms;
         transparent_ = draw.transparent;
     }
-    void onAssembled(std::uint32_t, const ClipPolygon& assembled) {
+    void onAssembled(std::uint32_t, const ClipPolygon& assembled) override {
         for (int k = 0; k < 3; ++k)
             assembled_[k] = assembled.vertices[k].position;
     }
     // The triangle as assembled, in the removed colour: the clipped polygon's window triangles
     // (onSetup) cover what clipping kept of it.
-    void onClipped(std::uint32_t, const ClipPolygon&) {
+    void onClipped(std::uint32_t, const ClipPolygon&) override {
         ++clipped_;
         for (int k = 0; k < 3; ++k) {
             vec4 a = assembled_[k], b = assembled_[(k + 1) % 3];
@@ -227,16 +225,17 @@ class StageRecorder : public NullObserver {
                          toWindow(b, state_.viewport, state_.raster.subpixelBits).window, kRemovedEdge);
         }
     }
-    void onSetup(std::uint32_t, const WindowTriangle& window, TriangleFate fate, const TriangleSetup&) {
+    void onSetup(std::uint32_t, const WindowTriangle& window, TriangleFate fate,
+                 const TriangleSetup&) override {
         const WireLayer layer = fate == TriangleFate::Culled ? kCulledEdge : kDrawnEdge;
         (fate == TriangleFate::Culled ? culled_ : windowTriangles_) += 1;
         for (int k = 0; k < 3; ++k)
             drawLine(window.vertices[k].window, window.vertices[(k + 1) % 3].window, layer);
     }
-    void onRejected(std::uint32_t, TriangleFate fate) {
+    void onRejected(std::uint32_t, TriangleFate fate) override {
         if (fate != TriangleFate::ClippedAway) ++outside_;
     }
-    void onFragment(const FragmentEvent& event) {
+    void onFragment(const FragmentEvent& event) override {
         const std::size_t pixel = static_cast<std::size_t>(event.y) * width_ + event.x;
         maxFragments_ = std::max(maxFragments_, ++fragments_[pixel]);
         if (event.fate != FragmentFate::Written && event.fate != FragmentFate::Stored) return;
@@ -542,7 +541,7 @@ void renderStageImages(const PreparedScene& prepared, const StageImageOptions& o
         const PreparedScene& observed = perPixel ? *perPixel : prepared;
         StageRecorder recorder(observed);
         FrameMemory memory;
-        renderFrame(observed, framebuffer, context, memory, recorder, options.terms);
+        renderFrameWatched(observed, framebuffer, context, memory, recorder, options.terms);
         emit(recorder.wireframe());
         emit(recorder.triangles());
         emit(recorder.overdraw());

@@ -431,7 +431,7 @@ FrameTrace traceFrame(const PreparedScene& prepared, Framebuffer& target, DrawCo
                       const TraceRequest& request, std::uint8_t terms) {
     TraceRecorder recorder(request, frameShape(prepared), context.tileSize);
     FrameMemory memory;
-    renderFrame(prepared, target, context, memory, recorder, terms);
+    renderFrameWatched(prepared, target, context, memory, recorder, terms);
     FrameTrace trace = recorder.finish(target);
     // The traced triangles' corners as the model gives them, and the matrices that moved them.
     for (TriangleTrace& t : trace.triangles) {
@@ -455,11 +455,12 @@ namespace facet::step {
 namespace {
 
 // Marks the pixels some fragment reached.
-struct CoverageMarker : NullObserver {
-    static constexpr bool enabled = true;
+class CoverageMarker final : public FrameWatcher {
+  public:
+    CoverageMarker(std::vector<bool>& covered, int width) : covered(covered), width(width) {}
     std::vector<bool>& covered;
     int width;
-    void onFragment(const FragmentEvent& e) {
+    void onFragment(const FragmentEvent& e) override {
         if (e.fate == FragmentFate::Written || e.fate == FragmentFate::Stored)
             covered[static_cast<std::size_t>(e.y) * width + e.x] = true;
     }
@@ -472,8 +473,8 @@ std::vector<bool> coveredPixels(const PreparedScene& prepared, DrawContext& cont
     std::vector<bool> covered(static_cast<std::size_t>(width) * height, false);
     Framebuffer target(width, height);
     FrameMemory memory;
-    CoverageMarker marker{{}, covered, width};
-    renderFrame(prepared, target, context, memory, marker, terms);
+    CoverageMarker marker(covered, width);
+    renderFrameWatched(prepared, target, context, memory, marker, terms);
     return covered;
 }
 

@@ -183,13 +183,12 @@ struct FrameShape {
 };
 FrameShape frameShape(const PreparedScene& prepared);
 
-// The observer that records a trace: renderFrame's hooks (pipeline/observer.h, and onPlannedDraw)
+// The observer that records a trace: the frame's hooks (pipeline/observer.h, and onPlannedDraw)
 // arrive here in submission order, on the calling thread. traceFrame below runs it on a frame of a
-// scene; a caller of draw() (a test with its own shader) calls beginCall before each draw call.
-class TraceRecorder : public NullObserver {
+// scene (renderFrameWatched); a caller of draw() (a test with its own shader) calls beginCall before
+// each draw call.
+class TraceRecorder final : public FrameWatcher {
   public:
-    static constexpr bool enabled = true;
-
     TraceRecorder(const TraceRequest& request, const FrameShape& frame, int tileSize);
 
     // A draw call begins: which draw, its state, its index list (into `vertexCount` vertices), whether
@@ -197,17 +196,17 @@ class TraceRecorder : public NullObserver {
     void beginCall(std::uint32_t draw, const DrawState& state, std::span<const std::uint32_t> indices,
                    std::size_t vertexCount, bool transparent = false,
                    std::span<const std::uint32_t> triangles = {});
-    void onPlannedDraw(const PlannedDraw& call, const PreparedDraw& draw);
+    void onPlannedDraw(const PlannedDraw& call, const PreparedDraw& draw) override;
 
     void onVertex(std::uint32_t index, const vec4& clip, const float* varyings, int varyingCount,
-                  std::uint8_t outcode);
-    void onRejected(std::uint32_t triangle, TriangleFate fate);
-    void onAssembled(std::uint32_t triangle, const ClipPolygon& assembled);
+                  std::uint8_t outcode) override;
+    void onRejected(std::uint32_t triangle, TriangleFate fate) override;
+    void onAssembled(std::uint32_t triangle, const ClipPolygon& assembled) override;
     void onSetup(std::uint32_t triangle, const WindowTriangle& window, TriangleFate fate,
-                 const TriangleSetup& setup);
-    void onCoverage(const CoverageEvent& event);
-    void onFragment(const FragmentEvent& event);
-    void onResolve(const ResolveEvent& event);
+                 const TriangleSetup& setup) override;
+    void onCoverage(const CoverageEvent& event) override;
+    void onFragment(const FragmentEvent& event) override;
+    void onResolve(const ResolveEvent& event) override;
 
     // The frame is drawn: the histories completed from the colour buffer (the final colours and
     // bytes, who wrote last, who owns a lost tie). The triangle views' object-space corners and

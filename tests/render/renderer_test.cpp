@@ -266,20 +266,56 @@ TEST(Renderer, ReusedRunsTakeTheScenesStatesAndBelongToOneScene) {
 // ---- Watching a frame ------------------------------------------------------------------------------
 
 // Records what a frame observer sees: the draw calls, and per call the triangles that reached primitive
-// assembly or were rejected before it, by the numbers the hooks give.
-struct FrameRecorder : NullObserver {
-    static constexpr bool enabled = true;
+// assembly or were rejected before it, by the numbers the hooks give; and every hook in order. A
+// FrameWatcher, so that it watches renderFrame as a template observer (its hooks called directly) and
+// renderFrameWatched through the virtual functions alike.
+struct FrameRecorder final : FrameWatcher {
     std::vector<std::uint32_t> callDraws;               // PlannedDraw::draw of each call, in order
     std::vector<std::vector<std::uint32_t>> triangles;  // per call
     std::size_t fragments = 0, resolvedPixels = 0;
-    void onPlannedDraw(const PlannedDraw& call, const PreparedDraw&) {
+    // Every hook: which one (its place in pipeline/observer.h, the planned draw last), and the triangle,
+    // vertex or draw and the pixel it names (0 where it names none).
+    std::vector<std::array<std::uint32_t, 4>> hooks;
+
+    void onPlannedDraw(const PlannedDraw& call, const PreparedDraw&) override {
         callDraws.push_back(call.draw);
         triangles.emplace_back();
+        hooks.push_back({10, call.draw, 0, 0});
     }
-    void onAssembled(std::uint32_t triangle, const ClipPolygon&) { triangles.back().push_back(triangle); }
-    void onRejected(std::uint32_t triangle, TriangleFate) { triangles.back().push_back(triangle); }
-    void onFragment(const FragmentEvent&) { ++fragments; }
-    void onResolve(const ResolveEvent&) { ++resolvedPixels; }
+    void onDrawBegin(std::uint64_t id, const DrawState&) override {
+        hooks.push_back({0, static_cast<std::uint32_t>(id), 0, 0});
+    }
+    void onDrawEnd(std::uint64_t id, const DrawStats&) override {
+        hooks.push_back({1, static_cast<std::uint32_t>(id), 0, 0});
+    }
+    void onVertex(std::uint32_t index, const vec4&, const float*, int, std::uint8_t) override {
+        hooks.push_back({2, index, 0, 0});
+    }
+    void onAssembled(std::uint32_t triangle, const ClipPolygon&) override {
+        triangles.back().push_back(triangle);
+        hooks.push_back({3, triangle, 0, 0});
+    }
+    void onClipped(std::uint32_t triangle, const ClipPolygon&) override {
+        hooks.push_back({4, triangle, 0, 0});
+    }
+    void onSetup(std::uint32_t triangle, const WindowTriangle&, TriangleFate, const TriangleSetup&) override {
+        hooks.push_back({5, triangle, 0, 0});
+    }
+    void onCoverage(const CoverageEvent& e) override {
+        hooks.push_back({6, e.triangle, static_cast<std::uint32_t>(e.x), static_cast<std::uint32_t>(e.y)});
+    }
+    void onRejected(std::uint32_t triangle, TriangleFate) override {
+        triangles.back().push_back(triangle);
+        hooks.push_back({7, triangle, 0, 0});
+    }
+    void onFragment(const FragmentEvent& e) override {
+        ++fragments;
+        hooks.push_back({8, e.triangle, static_cast<std::uint32_t>(e.x), static_cast<std::uint32_t>(e.y)});
+    }
+    void onResolve(const ResolveEvent& e) override {
+        ++resolvedPixels;
+        hooks.push_back({9, 0, static_cast<std::uint32_t>(e.x), static_cast<std::uint32_t>(e.y)});
+    }
 };
 
 // Watching a frame changes no byte of colour or depth, sorted or exact (breaks caught: an observed
@@ -306,6 +342,36 @@ TEST(Renderer, WatchingAFrameChangesNoByte) {
         for (int y = 0; y < plain.height(); ++y)
             for (int x = 0; x < plain.width(); ++x)
                 ASSERT_EQ(plain.depth(x, y), watched.depth(x, y)) << x << "," << y;
+    }
+}
+
+// renderFrameWatched, the frame compiled once for every FrameWatcher (the step mode's recorders, the
+// reference comparison's), hands its watcher every hook renderFrame gives a template observer, in the
+// same order, and draws the same bytes (breaks caught: a hook not forwarded, onPlannedDraw among them,
+// or the watched frame drawn with other terms).
+TEST(Renderer, AFrameWatcherHearsEveryHookOfTheFrame) {
+    for (const TransparencyMode mode : {TransparencyMode::Sorted, TransparencyMode::Exact}) {
+        PreparedScene prepared = mixedScene();
+        prepared.scene.transparency.mode = mode;
+        Framebuffer direct(prepared.scene.width, prepared.scene.height);
+        Framebuffer watched(prepared.scene.width, prepared.scene.height);
+        DrawContext directContext(1), watchedContext(1);
+        FrameMemory directMemory, watchedMemory;
+        FrameRecorder directHooks, watchedHooks;
+        const auto terms = static_cast<std::uint8_t>(kAllTerms & ~kSpecularTerm);
+        renderFrame(prepared, direct, directContext, directMemory, directHooks, terms);
+        renderFrameWatched(prepared, watched, watchedContext, watchedMemory, watchedHooks, terms);
+        for (std::uint32_t kind = 0; kind <= 10; ++kind) {
+            // The scene has no triangle clipped or rejected, and only exact transparency resolves lists.
+            if (kind == 4 || kind == 7 || (kind == 9 && mode != TransparencyMode::Exact)) continue;
+            EXPECT_TRUE(std::any_of(directHooks.hooks.begin(), directHooks.hooks.end(),
+                                    [&](const auto& hook) { return hook[0] == kind; }))
+                << "hook " << kind;
+        }
+        EXPECT_EQ(watchedHooks.hooks, directHooks.hooks);
+        EXPECT_EQ(std::memcmp(direct.colorPixels().data(), watched.colorPixels().data(),
+                              direct.colorPixels().size() * sizeof(vec4)),
+                  0);
     }
 }
 
