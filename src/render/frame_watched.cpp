@@ -5,11 +5,11 @@ namespace facet {
 
 namespace {
 
-// renderFrame's observer for a FrameWatcher: the pipeline's hooks through WatcherRef, and onPlannedDraw.
+// renderFrame's observer for a FrameWatcher: the pipeline's hooks through WatcherRef, and onPlannedDraw
+// to the same watcher.
 struct FrameWatcherRef : WatcherRef {
-    FrameWatcher* frameWatcher;
     void onPlannedDraw(const PlannedDraw& call, const PreparedDraw& draw) {
-        frameWatcher->onPlannedDraw(call, draw);
+        static_cast<FrameWatcher*>(watcher)->onPlannedDraw(call, draw);
     }
 };
 
@@ -17,7 +17,7 @@ struct FrameWatcherRef : WatcherRef {
 
 FrameStats renderFrameWatched(const PreparedScene& prepared, Framebuffer& target, DrawContext& context,
                               FrameMemory& memory, FrameWatcher& watcher, std::uint8_t terms) {
-    FrameWatcherRef observer{{&watcher}, &watcher};
+    FrameWatcherRef observer{{&watcher}};
     return renderFrame(prepared, target, context, memory, observer, terms);
 }
 

@@ -277,6 +277,13 @@ struct FrameRecorder final : FrameWatcher {
     // vertex or draw and the pixel it names (0 where it names none).
     std::vector<std::array<std::uint32_t, 4>> hooks;
 
+    // The call's triangle list; a triangle before any onPlannedDraw (a frame that did not call it) gets
+    // a list of its own, so that the hooks' comparison, not a crash, reports it.
+    std::vector<std::uint32_t>& callTriangles() {
+        if (triangles.empty()) triangles.emplace_back();
+        return triangles.back();
+    }
+
     void onPlannedDraw(const PlannedDraw& call, const PreparedDraw&) override {
         callDraws.push_back(call.draw);
         triangles.emplace_back();
@@ -292,7 +299,7 @@ struct FrameRecorder final : FrameWatcher {
         hooks.push_back({2, index, 0, 0});
     }
     void onAssembled(std::uint32_t triangle, const ClipPolygon&) override {
-        triangles.back().push_back(triangle);
+        callTriangles().push_back(triangle);
         hooks.push_back({3, triangle, 0, 0});
     }
     void onClipped(std::uint32_t triangle, const ClipPolygon&) override {
@@ -305,7 +312,7 @@ struct FrameRecorder final : FrameWatcher {
         hooks.push_back({6, e.triangle, static_cast<std::uint32_t>(e.x), static_cast<std::uint32_t>(e.y)});
     }
     void onRejected(std::uint32_t triangle, TriangleFate) override {
-        triangles.back().push_back(triangle);
+        callTriangles().push_back(triangle);
         hooks.push_back({7, triangle, 0, 0});
     }
     void onFragment(const FragmentEvent& e) override {
@@ -321,57 +328,43 @@ struct FrameRecorder final : FrameWatcher {
 // Watching a frame changes no byte of colour or depth, sorted or exact (breaks caught: an observed
 // frame drawing its calls in another order, or skipping the resolve). The unwatched frame draws the
 // sorted transparent calls in runs (drawRun), the watched one call by call: also caught, a run that
-// draws its calls out of order or with another call's state or uniforms.
+// draws its calls out of order or with another call's state or uniforms. renderFrameWatched, the frame
+// compiled once for every FrameWatcher (the step mode's recorders, the reference comparison's), hands
+// its watcher every hook the template observer gets, in the same order, and draws the same bytes
+// (caught: a hook not forwarded, onPlannedDraw among them, or the watched frame drawn with other terms).
 TEST(Renderer, WatchingAFrameChangesNoByte) {
+    const auto terms = static_cast<std::uint8_t>(kAllTerms & ~kSpecularTerm);
     for (const TransparencyMode mode : {TransparencyMode::Sorted, TransparencyMode::Exact}) {
         PreparedScene prepared = mixedScene();
         prepared.scene.transparency.mode = mode;
         Framebuffer plain(prepared.scene.width, prepared.scene.height);
         Framebuffer watched(prepared.scene.width, prepared.scene.height);
-        DrawContext threads(3), calling(1);
-        FrameMemory plainMemory, watchedMemory;
-        const FrameStats plainStats = renderFrame(prepared, plain, threads, plainMemory);
+        Framebuffer watcherWatched(prepared.scene.width, prepared.scene.height);
+        DrawContext threads(3), calling(1), watcherCalling(1);
+        FrameMemory plainMemory, watchedMemory, watcherMemory;
+        const FrameStats plainStats = renderFrame(prepared, plain, threads, plainMemory, terms);
         EXPECT_GT(plainStats.drawRuns, 0u);
-        FrameRecorder recorder;
-        renderFrame(prepared, watched, calling, watchedMemory, recorder);
+        FrameRecorder recorder, watcher;
+        renderFrame(prepared, watched, calling, watchedMemory, recorder, terms);
+        renderFrameWatched(prepared, watcherWatched, watcherCalling, watcherMemory, watcher, terms);
         EXPECT_GT(recorder.fragments, 0u);
         EXPECT_EQ(recorder.resolvedPixels > 0, mode == TransparencyMode::Exact);
-        EXPECT_EQ(std::memcmp(plain.colorPixels().data(), watched.colorPixels().data(),
-                              plain.colorPixels().size() * sizeof(vec4)),
-                  0);
-        for (int y = 0; y < plain.height(); ++y)
-            for (int x = 0; x < plain.width(); ++x)
-                ASSERT_EQ(plain.depth(x, y), watched.depth(x, y)) << x << "," << y;
-    }
-}
-
-// renderFrameWatched, the frame compiled once for every FrameWatcher (the step mode's recorders, the
-// reference comparison's), hands its watcher every hook renderFrame gives a template observer, in the
-// same order, and draws the same bytes (breaks caught: a hook not forwarded, onPlannedDraw among them,
-// or the watched frame drawn with other terms).
-TEST(Renderer, AFrameWatcherHearsEveryHookOfTheFrame) {
-    for (const TransparencyMode mode : {TransparencyMode::Sorted, TransparencyMode::Exact}) {
-        PreparedScene prepared = mixedScene();
-        prepared.scene.transparency.mode = mode;
-        Framebuffer direct(prepared.scene.width, prepared.scene.height);
-        Framebuffer watched(prepared.scene.width, prepared.scene.height);
-        DrawContext directContext(1), watchedContext(1);
-        FrameMemory directMemory, watchedMemory;
-        FrameRecorder directHooks, watchedHooks;
-        const auto terms = static_cast<std::uint8_t>(kAllTerms & ~kSpecularTerm);
-        renderFrame(prepared, direct, directContext, directMemory, directHooks, terms);
-        renderFrameWatched(prepared, watched, watchedContext, watchedMemory, watchedHooks, terms);
         for (std::uint32_t kind = 0; kind <= 10; ++kind) {
             // The scene has no triangle clipped or rejected, and only exact transparency resolves lists.
             if (kind == 4 || kind == 7 || (kind == 9 && mode != TransparencyMode::Exact)) continue;
-            EXPECT_TRUE(std::any_of(directHooks.hooks.begin(), directHooks.hooks.end(),
+            EXPECT_TRUE(std::any_of(recorder.hooks.begin(), recorder.hooks.end(),
                                     [&](const auto& hook) { return hook[0] == kind; }))
                 << "hook " << kind;
         }
-        EXPECT_EQ(watchedHooks.hooks, directHooks.hooks);
-        EXPECT_EQ(std::memcmp(direct.colorPixels().data(), watched.colorPixels().data(),
-                              direct.colorPixels().size() * sizeof(vec4)),
-                  0);
+        EXPECT_EQ(watcher.hooks, recorder.hooks);
+        for (const Framebuffer* other : {&watched, &watcherWatched}) {
+            EXPECT_EQ(std::memcmp(plain.colorPixels().data(), other->colorPixels().data(),
+                                  plain.colorPixels().size() * sizeof(vec4)),
+                      0);
+            for (int y = 0; y < plain.height(); ++y)
+                for (int x = 0; x < plain.width(); ++x)
+                    ASSERT_EQ(plain.depth(x, y), other->depth(x, y)) << x << "," << y;
+        }
     }
 }
 
